@@ -1,0 +1,51 @@
+"""tilekit: computational tiling theory after Kaplan's *Introductory Tiling Theory for Computer Graphics*.
+
+The public face: the core vocabulary (Affine, Prototile, Patch, Tiling, PeriodicTiling,
+Colouring), the plugin marker ``hookimpl``, and the catalogue entry point ``open_catalogue``.
+"""
+
+from tilekit.colouring import Colouring
+from tilekit.errors import (
+    CatalogueError,
+    GeometryError,
+    NotFoundError,
+    ParameterError,
+    ParseError,
+    PluginError,
+    SearchError,
+    TilekitError,
+)
+from tilekit.geometry import Affine, Isometry
+from tilekit.hookspecs import hookimpl
+from tilekit.tiling import Patch, PeriodicTiling, Prototile, Tiling, ValidationReport
+
+__version__ = "0.1.0"
+
+
+def open_catalogue(url: str | None = None, **kwargs):
+    """Open (migrating and seeding on first use) the catalogue at ``url`` or the default."""
+    from tilekit.catalogue import open_catalogue as _open
+
+    return _open(url, **kwargs)
+
+
+__all__ = [
+    "Affine",
+    "CatalogueError",
+    "Colouring",
+    "GeometryError",
+    "Isometry",
+    "NotFoundError",
+    "ParameterError",
+    "ParseError",
+    "Patch",
+    "PeriodicTiling",
+    "PluginError",
+    "Prototile",
+    "SearchError",
+    "Tiling",
+    "TilekitError",
+    "ValidationReport",
+    "hookimpl",
+    "open_catalogue",
+]

@@ -1,0 +1,221 @@
+"""The plugin manager, the built-in family plugins, and the small types plugins return.
+
+Built-in families are ordinary plugins listed in ``DEFAULT_PLUGINS`` and registered
+explicitly; third-party ones arrive through the ``tilekit`` entry-point group. Setting
+``TILEKIT_PLUGINS`` to a comma-separated list of plugin names (the module's last dotted
+component for built-ins, the entry-point name for packages) restricts what loads.
+"""
+
+from __future__ import annotations
+
+import importlib
+import os
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+import pluggy
+
+from tilekit import hookspecs
+from tilekit.errors import NotFoundError, PluginError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from tilekit.tiling import Tiling
+
+DEFAULT_PLUGINS: tuple[str, ...] = (
+    "tilekit.plugins.archimedean",
+    "tilekit.plugins.isohedral",
+    "tilekit.plugins.substitution",
+    "tilekit.plugins.wang",
+)
+
+
+@dataclass(frozen=True)
+class Family:
+    """A tiling family: its name, a one-line summary, and how to rebuild a tiling from a spec.
+
+    ``from_spec(spec)`` receives the JSON object stored in the catalogue (and returned by
+    ``Tiling.spec()``) and returns a :class:`tilekit.Tiling`.
+    """
+
+    name: str
+    summary: str
+    from_spec: Callable[[Mapping[str, Any]], Tiling]
+    description: str = ""
+    #: Optional: build a tiling from a user's data file (``tilekit render --system FILE
+    #: --family NAME``), e.g. a substitution system or a Wang tile set.
+    from_file: Callable[[str], Tiling] | None = None
+
+
+@dataclass
+class CatalogueRecord:
+    """One known tiling (or search result) as the catalogue stores it.
+
+    ``properties`` are the facts the catalogue indexes and queries: plain JSON scalars
+    (str, int, float, bool) or lists of them. ``aliases`` are other spellings of ``name``
+    that ``tilekit show`` accepts (e.g. ``4.4.4.4`` for ``4^4``).
+    """
+
+    family: str
+    name: str
+    spec: dict[str, Any]
+    title: str = ""
+    properties: dict[str, Any] = field(default_factory=dict)
+    aliases: list[str] = field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class SearchParam:
+    """One parameter of a search, shown as a ``--name`` option of ``tilekit search KIND``."""
+
+    name: str
+    type: type = str  # str, int, float or bool
+    default: Any = None
+    help: str = ""
+    required: bool = False
+
+
+@dataclass
+class ChunkResult:
+    """What one chunk of a search yields.
+
+    ``results`` are JSON objects stored in the run's result table; ``records`` are
+    catalogue records (new tilings or updated properties) upserted in the same transaction
+    as the chunk's done mark.
+    """
+
+    results: list[dict[str, Any]] = field(default_factory=list)
+    records: list[CatalogueRecord] = field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class Search:
+    """An enumeration or search job a family contributes.
+
+    ``chunks(params)`` splits a run into JSON-serialisable chunk descriptions (the unit of
+    resume and of parallel work); ``run_chunk(params, chunk)`` computes one chunk and must
+    be a module-level function or otherwise picklable, so process pools and dask workers can
+    run it. ``summarize(params, results)`` (optional) turns all results into a short dict
+    shown by ``tilekit runs``.
+    """
+
+    name: str
+    summary: str
+    family: str
+    params: Sequence[SearchParam]
+    chunks: Callable[[Mapping[str, Any]], list[dict[str, Any]]]
+    run_chunk: Callable[[Mapping[str, Any], Mapping[str, Any]], ChunkResult]
+    summarize: Callable[[Mapping[str, Any], list[dict[str, Any]]], dict[str, Any]] | None = None
+
+
+def _wanted() -> set[str] | None:
+    raw = os.environ.get("TILEKIT_PLUGINS")
+    if raw is None or not raw.strip():
+        return None
+    return {part.strip() for part in raw.split(",") if part.strip()}
+
+
+def make_plugin_manager(extra_plugins: Iterable[object] = ()) -> pluggy.PluginManager:
+    """Build a fresh plugin manager: built-ins, entry points, then ``extra_plugins``."""
+    pm = pluggy.PluginManager("tilekit")
+    pm.add_hookspecs(hookspecs)
+    wanted = _wanted()
+    for modname in DEFAULT_PLUGINS:
+        short = modname.rsplit(".", 1)[-1]
+        if wanted is not None and short not in wanted and modname not in wanted:
+            continue
+        module = importlib.import_module(modname)
+        pm.register(module, name=modname)
+    if wanted is None:
+        pm.load_setuptools_entrypoints("tilekit")
+    else:
+        from importlib.metadata import entry_points
+
+        for ep in entry_points(group="tilekit"):
+            if ep.name in wanted and pm.get_plugin(ep.name) is None:
+                pm.register(ep.load(), name=ep.name)
+    for plugin in extra_plugins:
+        pm.register(plugin)
+    return pm
+
+
+_pm: pluggy.PluginManager | None = None
+
+
+def get_plugin_manager() -> pluggy.PluginManager:
+    """The process-wide plugin manager (built on first use)."""
+    global _pm
+    if _pm is None:
+        _pm = make_plugin_manager()
+    return _pm
+
+
+def reset_plugin_manager() -> None:
+    """Forget the process-wide manager (tests, or after installing a plugin at run time)."""
+    global _pm
+    _pm = None
+
+
+def _flatten(results: Iterable[Iterable[Any] | None]) -> list[Any]:
+    out: list[Any] = []
+    for items in results:
+        if items:
+            out.extend(items)
+    return out
+
+
+def families(pm: pluggy.PluginManager | None = None) -> dict[str, Family]:
+    """All registered families by name."""
+    pm = pm or get_plugin_manager()
+    out: dict[str, Family] = {}
+    for fam in _flatten(pm.hook.tilekit_families()):
+        if not isinstance(fam, Family):
+            raise PluginError(f"tilekit_families returned {type(fam).__name__}, not Family")
+        if fam.name in out:
+            raise PluginError(f"two plugins define the family {fam.name!r}")
+        out[fam.name] = fam
+    return out
+
+
+def get_family(name: str, pm: pluggy.PluginManager | None = None) -> Family:
+    """The family called ``name``, or NotFoundError naming the valid ones."""
+    fams = families(pm)
+    try:
+        return fams[name]
+    except KeyError:
+        raise NotFoundError("family", name, fams) from None
+
+
+def catalogue_records(pm: pluggy.PluginManager | None = None) -> list[CatalogueRecord]:
+    """Every record the plugins ship, in registration order."""
+    pm = pm or get_plugin_manager()
+    return _flatten(pm.hook.tilekit_catalogue_records())
+
+
+def searches(pm: pluggy.PluginManager | None = None) -> dict[str, Search]:
+    """All registered searches by name."""
+    pm = pm or get_plugin_manager()
+    out: dict[str, Search] = {}
+    for s in _flatten(pm.hook.tilekit_searches()):
+        if s.name in out:
+            raise PluginError(f"two plugins define the search {s.name!r}")
+        out[s.name] = s
+    return out
+
+
+def get_search(name: str, pm: pluggy.PluginManager | None = None) -> Search:
+    found = searches(pm)
+    try:
+        return found[name]
+    except KeyError:
+        raise NotFoundError("search", name, found) from None
+
+
+def migration_locations(pm: pluggy.PluginManager | None = None) -> list[str]:
+    pm = pm or get_plugin_manager()
+    return [str(p) for p in _flatten(pm.hook.tilekit_migration_locations())]
+
+
+def tiling_from_spec(family: str, spec: Mapping[str, Any]) -> Tiling:
+    """Rebuild a tiling of ``family`` from its catalogue spec."""
+    return get_family(family).from_spec(spec)

@@ -1,0 +1,1 @@
+"""The archimedean family plugin."""

@@ -1,0 +1,1 @@
+"""The isohedral family plugin."""

@@ -1,0 +1,1 @@
+"""The substitution family plugin."""

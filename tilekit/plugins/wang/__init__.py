@@ -1,0 +1,1 @@
+"""The wang family plugin."""

@@ -1,0 +1,606 @@
+"""The core vocabulary: Prototile, Patch (tiles as columns), the Tiling ABC, PeriodicTiling.
+
+A Patch stores n placed tiles as arrays (prototile index, 3x3 transform, colour, aspect),
+so a million tiles is a handful of arrays; geometry is produced per prototile in batches.
+PeriodicTiling implements ``patch(region)`` once, by the lattice rasterization of §3.4 with
+as many rings as the translational unit's extent requires (§3.5).
+"""
+
+from __future__ import annotations
+
+import math
+from abc import ABC, abstractmethod
+from collections.abc import Iterator, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import shapely
+from shapely.geometry.base import BaseGeometry
+
+from tilekit.colouring import Colouring
+from tilekit.errors import GeometryError, ParameterError, ParseError
+from tilekit.geometry import AREA_TOL, EPS, Affine, as_region, signed_area, translations_into
+
+#: Refuse to rasterize more lattice cells than this in one patch (a typo guard, not a limit
+#: of the method: 20 million cells is already hundreds of millions of tiles).
+MAX_LATTICE_CELLS = 20_000_000
+
+
+# --------------------------------------------------------------------------- Prototile
+
+
+@dataclass(frozen=True, eq=False)
+class Prototile:
+    """A tile shape: a counter-clockwise outline (k, 2), optional edge labels and marking.
+
+    ``edge_labels[i]`` labels the edge from ``outline[i]`` to ``outline[i+1]`` (integer
+    labels with the i / -i matching rule of exercise 6.2, or any hashable value a family's
+    compatibility rule understands). ``marking`` is a tuple of polylines drawn on the tile
+    (decorations that break its symmetry, e.g. for marked isohedral types or Penrose arcs).
+    ``corners`` optionally names which outline points are tiling vertices (§5.1) when the
+    outline carries shaped edges with many points.
+    """
+
+    outline: np.ndarray
+    edge_labels: tuple[Any, ...] | None = None
+    marking: tuple[np.ndarray, ...] = ()
+    name: str = ""
+    corners: tuple[int, ...] | None = None
+
+    def __post_init__(self) -> None:
+        pts = np.asarray(self.outline, dtype=float)
+        if pts.ndim != 2 or pts.shape[1] != 2 or len(pts) < 3:
+            raise GeometryError(
+                f"prototile {self.name or '?'}: outline must be at least 3 (x, y) points, "
+                f"got shape {pts.shape}"
+            )
+        if not np.all(np.isfinite(pts)):
+            raise GeometryError(f"prototile {self.name or '?'}: outline has non-finite coordinates")
+        if np.allclose(pts[0], pts[-1]) and len(pts) > 3:
+            pts = pts[:-1]
+        area = signed_area(pts)
+        if abs(area) < EPS:
+            raise GeometryError(f"prototile {self.name or '?'}: outline has zero area")
+        if area < 0:
+            if self.edge_labels is not None:
+                raise GeometryError(
+                    f"prototile {self.name or '?'}: outline is clockwise; give it "
+                    "counter-clockwise so edge labels keep their meaning"
+                )
+            pts = pts[::-1].copy()
+        pts.setflags(write=False)
+        object.__setattr__(self, "outline", pts)
+        if self.edge_labels is not None and len(self.edge_labels) != len(pts):
+            raise GeometryError(
+                f"prototile {self.name or '?'}: {len(self.edge_labels)} edge labels for "
+                f"{len(pts)} edges"
+            )
+        marks = tuple(np.asarray(m, dtype=float).reshape(-1, 2) for m in self.marking)
+        object.__setattr__(self, "marking", marks)
+        if not shapely.Polygon(pts).is_valid:
+            raise GeometryError(f"prototile {self.name or '?'}: outline is self-intersecting")
+
+    @property
+    def area(self) -> float:
+        return signed_area(self.outline)
+
+    @property
+    def edges(self) -> int:
+        return len(self.outline)
+
+    def polygon(self) -> shapely.Polygon:
+        return shapely.Polygon(self.outline)
+
+    def to_json(self) -> dict[str, Any]:
+        out: dict[str, Any] = {"outline": np.round(self.outline, 12).tolist()}
+        if self.edge_labels is not None:
+            out["edge_labels"] = list(self.edge_labels)
+        if self.marking:
+            out["marking"] = [np.round(m, 12).tolist() for m in self.marking]
+        if self.name:
+            out["name"] = self.name
+        if self.corners is not None:
+            out["corners"] = list(self.corners)
+        return out
+
+    @classmethod
+    def from_json(cls, data: Mapping[str, Any]) -> Prototile:
+        try:
+            return cls(
+                outline=np.asarray(data["outline"], dtype=float),
+                edge_labels=tuple(data["edge_labels"]) if data.get("edge_labels") is not None else None,
+                marking=tuple(np.asarray(m, dtype=float) for m in data.get("marking", ())),
+                name=str(data.get("name", "")),
+                corners=tuple(data["corners"]) if data.get("corners") is not None else None,
+            )
+        except (KeyError, TypeError, ValueError) as exc:
+            raise ParseError(f"prototile spec is malformed: {exc}") from None
+
+
+# --------------------------------------------------------------------------- Patch
+
+
+@dataclass
+class ValidationReport:
+    """What ``Patch.validate`` found: overlapping pairs, invalid tiles, uncovered area."""
+
+    tiles: int
+    overlaps: list[tuple[int, int, float]] = field(default_factory=list)
+    invalid_tiles: list[int] = field(default_factory=list)
+    uncovered_area: float = 0.0
+    region_area: float = 0.0
+    uncovered_bounds: tuple[float, float, float, float] | None = None
+    area_tolerance: float = 0.0
+
+    @property
+    def ok(self) -> bool:
+        return not self.overlaps and not self.invalid_tiles and self.uncovered_area <= self.area_tolerance
+
+    def __bool__(self) -> bool:
+        return self.ok
+
+    def summary(self) -> str:
+        if self.ok:
+            return f"valid: {self.tiles} tiles, no overlaps, region covered"
+        parts = []
+        if self.invalid_tiles:
+            parts.append(f"{len(self.invalid_tiles)} invalid tile(s), first {self.invalid_tiles[:5]}")
+        if self.overlaps:
+            i, j, a = self.overlaps[0]
+            parts.append(f"{len(self.overlaps)} overlapping pair(s), first tiles {i} and {j} (area {a:.3g})")
+        if self.uncovered_area > self.area_tolerance:
+            parts.append(
+                f"gap: {self.uncovered_area:.3g} of the region's {self.region_area:.3g} uncovered "
+                f"near {tuple(round(v, 3) for v in self.uncovered_bounds or ())}"
+            )
+        return "invalid patch: " + "; ".join(parts)
+
+    def raise_if_invalid(self) -> None:
+        if not self.ok:
+            raise GeometryError(self.summary())
+
+
+class Patch:
+    """A finite set of placed tiles stored as columns.
+
+    ``prototiles`` is the list of shapes; tile t is ``prototiles[prototile[t]]`` moved by
+    ``transform[t]`` (3x3), with a symbolic ``colour[t]`` and ``aspect[t]`` (both ints).
+    """
+
+    __slots__ = ("prototiles", "prototile", "transform", "colour", "aspect", "_geoms")
+
+    def __init__(
+        self,
+        prototiles: Sequence[Prototile],
+        prototile: np.ndarray,
+        transform: np.ndarray,
+        colour: np.ndarray | None = None,
+        aspect: np.ndarray | None = None,
+    ) -> None:
+        self.prototiles = list(prototiles)
+        self.prototile = np.asarray(prototile, dtype=np.int64).reshape(-1)
+        n = len(self.prototile)
+        self.transform = np.asarray(transform, dtype=float).reshape(n, 3, 3)
+        self.colour = (
+            np.zeros(n, dtype=np.int64) if colour is None else np.asarray(colour, dtype=np.int64).reshape(n)
+        )
+        self.aspect = (
+            np.zeros(n, dtype=np.int64) if aspect is None else np.asarray(aspect, dtype=np.int64).reshape(n)
+        )
+        if n and (self.prototile.min() < 0 or self.prototile.max() >= len(self.prototiles)):
+            raise GeometryError("patch refers to a prototile index out of range")
+        self._geoms: np.ndarray | None = None
+
+    # construction ------------------------------------------------------------
+    @classmethod
+    def empty(cls, prototiles: Sequence[Prototile]) -> Patch:
+        return cls(prototiles, np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3)))
+
+    @classmethod
+    def concat(cls, patches: Sequence[Patch]) -> Patch:
+        """Join patches that share the same prototile list."""
+        if not patches:
+            raise GeometryError("concat needs at least one patch")
+        first = patches[0]
+        for p in patches[1:]:
+            if p.prototiles is not first.prototiles and p.prototiles != first.prototiles:
+                raise GeometryError("concat: patches have different prototile lists")
+        return cls(
+            first.prototiles,
+            np.concatenate([p.prototile for p in patches]),
+            np.concatenate([p.transform for p in patches]),
+            np.concatenate([p.colour for p in patches]),
+            np.concatenate([p.aspect for p in patches]),
+        )
+
+    def subset(self, index: np.ndarray | Sequence[int] | slice) -> Patch:
+        """The tiles at ``index`` (an int array, boolean mask or slice)."""
+        return Patch(
+            self.prototiles,
+            self.prototile[index],
+            self.transform[index],
+            self.colour[index],
+            self.aspect[index],
+        )
+
+    def transformed(self, m: np.ndarray) -> Patch:
+        """The whole patch moved by the map ``m``."""
+        return Patch(self.prototiles, self.prototile, np.asarray(m) @ self.transform, self.colour, self.aspect)
+
+    def __len__(self) -> int:
+        return len(self.prototile)
+
+    def __repr__(self) -> str:
+        return f"Patch({len(self)} tiles, {len(self.prototiles)} prototiles)"
+
+    # geometry ----------------------------------------------------------------
+    def groups(self) -> Iterator[tuple[int, np.ndarray, np.ndarray]]:
+        """Per prototile: (prototile index, tile indices, outlines (m, k, 2)) in batches."""
+        for p, proto in enumerate(self.prototiles):
+            idx = np.flatnonzero(self.prototile == p)
+            if len(idx):
+                yield p, idx, Affine.apply(self.transform[idx], proto.outline)
+
+    def polygons(self) -> list[np.ndarray]:
+        """Every tile's outline as a (k, 2) array, in tile order."""
+        out: list[np.ndarray] = [np.zeros((0, 2))] * len(self)
+        for _, idx, pts in self.groups():
+            for i, t in enumerate(idx):
+                out[t] = pts[i]
+        return out
+
+    def geometries(self) -> np.ndarray:
+        """Every tile as a shapely Polygon (an object array, built per prototile in batches)."""
+        if self._geoms is None:
+            geoms = np.empty(len(self), dtype=object)
+            for _, idx, pts in self.groups():
+                geoms[idx] = shapely.polygons(pts)
+            self._geoms = geoms
+        return self._geoms
+
+    def tile_bounds(self) -> np.ndarray:
+        """(n, 4) array of each tile's x0, y0, x1, y1."""
+        out = np.zeros((len(self), 4))
+        for _, idx, pts in self.groups():
+            out[idx, :2] = pts.min(axis=1)
+            out[idx, 2:] = pts.max(axis=1)
+        return out
+
+    def bounds(self) -> tuple[float, float, float, float]:
+        if not len(self):
+            raise GeometryError("an empty patch has no bounds")
+        b = self.tile_bounds()
+        return (float(b[:, 0].min()), float(b[:, 1].min()), float(b[:, 2].max()), float(b[:, 3].max()))
+
+    def centres(self) -> np.ndarray:
+        """(n, 2) centroids of the tiles (each prototile's centroid, transformed)."""
+        from tilekit.geometry import centroid
+
+        out = np.zeros((len(self), 2))
+        for p, idx, _ in self.groups():
+            c = centroid(self.prototiles[p].outline)
+            out[idx] = Affine.apply(self.transform[idx], c[None, :])[:, 0, :]
+        return out
+
+    def clip(self, region: Any, mode: str = "intersects") -> Patch:
+        """The tiles that meet ``region`` (mode 'intersects') or lie inside it ('within')."""
+        reg = as_region(region)
+        if not len(self):
+            return self
+        b = self.tile_bounds()
+        x0, y0, x1, y1 = reg.bounds
+        cand = np.flatnonzero((b[:, 2] >= x0) & (b[:, 0] <= x1) & (b[:, 3] >= y0) & (b[:, 1] <= y1))
+        if mode == "intersects":
+            if _is_box(reg):
+                # bounding boxes touching the box may still only touch at a corner; test exactly
+                keep = shapely.intersects(reg, self.geometries()[cand]) & ~shapely.touches(
+                    reg, self.geometries()[cand]
+                )
+            else:
+                g = self.geometries()[cand]
+                keep = shapely.intersects(reg, g) & ~shapely.touches(reg, g)
+        elif mode == "within":
+            keep = shapely.covers(reg.buffer(1e-7), self.geometries()[cand])
+        else:
+            raise ParameterError(f"clip mode {mode!r} is not 'intersects' or 'within'")
+        return self.subset(cand[keep])
+
+    # validation --------------------------------------------------------------
+    def validate(self, region: Any = None, tolerance: float = AREA_TOL) -> ValidationReport:
+        """Check with shapely that no two tiles overlap and that ``region`` is covered.
+
+        Overlaps are pairs whose interiors meet in more than ``tolerance`` times the median
+        tile area (shared edges and float noise do not count). With a region, the part of
+        it not covered by the union of the tiles must be below the same tolerance. Returns a
+        report naming offending tiles; ``bool(report)`` is True when the patch is valid.
+        """
+        n = len(self)
+        report = ValidationReport(tiles=n)
+        if n == 0:
+            if region is not None:
+                reg = as_region(region)
+                report.region_area = report.uncovered_area = float(reg.area)
+                report.uncovered_bounds = tuple(reg.bounds)
+            return report
+        geoms = self.geometries()
+        areas = shapely.area(geoms)
+        tol_area = tolerance * float(np.median(areas))
+        report.area_tolerance = tol_area
+        bad = ~shapely.is_valid(geoms) | (areas <= tol_area)
+        report.invalid_tiles = np.flatnonzero(bad).tolist()
+        tree = shapely.STRtree(geoms)
+        left, right = tree.query(geoms, predicate="intersects")
+        mask = left < right
+        left, right = left[mask], right[mask]
+        if len(left):
+            touching = shapely.touches(geoms[left], geoms[right])
+            left, right = left[~touching], right[~touching]
+        if len(left):
+            inter = shapely.area(shapely.intersection(geoms[left], geoms[right], grid_size=None))
+            hit = inter > tol_area
+            report.overlaps = [
+                (int(i), int(j), float(a)) for i, j, a in zip(left[hit], right[hit], inter[hit])
+            ]
+        if region is not None:
+            reg = as_region(region)
+            report.region_area = float(reg.area)
+            union = shapely.union_all(geoms)
+            rest = shapely.difference(reg, union)
+            report.uncovered_area = float(rest.area)
+            if not rest.is_empty:
+                report.uncovered_bounds = tuple(float(v) for v in rest.bounds)
+        return report
+
+    # output ------------------------------------------------------------------
+    def to_svg(self, **options: Any) -> str:
+        """SVG text of the patch; options as for :func:`tilekit.render.patch_to_svg`."""
+        from tilekit.render import patch_to_svg
+
+        return patch_to_svg(self, **options)
+
+
+def _is_box(geom: BaseGeometry) -> bool:
+    x0, y0, x1, y1 = geom.bounds
+    return abs(geom.area - (x1 - x0) * (y1 - y0)) <= 1e-12 * max(1.0, geom.area)
+
+
+# --------------------------------------------------------------------------- Tiling
+
+
+class Tiling(ABC):
+    """A tiling of the plane, whatever its family (the answer to exercise 2.8).
+
+    Every tiling knows its ``family`` and ``name``, its ``prototiles``, can produce a
+    ``patch(region)`` covering a region, reports ``properties()`` for the catalogue, and
+    round-trips through ``spec()`` / the family's ``from_spec`` as plain JSON.
+    """
+
+    family: str = ""
+    name: str = ""
+
+    @property
+    @abstractmethod
+    def prototiles(self) -> list[Prototile]:
+        """The distinct tile shapes (k of them for a k-hedral tiling)."""
+
+    @abstractmethod
+    def patch(self, region: Any) -> Patch:
+        """Tiles covering ``region`` (a shapely geometry or an (x0, y0, x1, y1) box)."""
+
+    @abstractmethod
+    def spec(self) -> dict[str, Any]:
+        """A JSON-serialisable description from which the family rebuilds this tiling."""
+
+    def properties(self) -> dict[str, Any]:
+        """Facts about this tiling the catalogue indexes (JSON scalars or lists)."""
+        return {}
+
+    def describe(self) -> str:
+        """Extra human-readable text for ``tilekit show`` (e.g. an isohedral template)."""
+        return ""
+
+    def configure(self, **options: Any) -> Tiling:
+        """A new tiling with user options applied (parameters, edge shapes, depth ...).
+
+        The CLI passes ``params`` (list of floats), ``edges`` (list of 'name=x,y:x,y'
+        strings), ``depth`` (int) and ``colours``/free ``KEY=VALUE`` options here. The base
+        class accepts none; families override and reject what they do not understand.
+        """
+        if options:
+            raise ParameterError(
+                f"{self.name or type(self).__name__} takes no options "
+                f"({', '.join(sorted(options))} given)"
+            )
+        return self
+
+    def default_region(self) -> BaseGeometry:
+        """A region showing a representative piece of the tiling (used when none is given)."""
+        scale = math.sqrt(max(abs(p.area) for p in self.prototiles))
+        return shapely.box(-4 * scale, -4 * scale, 4 * scale, 4 * scale)
+
+    def __repr__(self) -> str:
+        return f"<{type(self).__name__} {self.family}/{self.name}>"
+
+
+class PeriodicTiling(Tiling):
+    """A tiling given by a translational unit (placed tiles) and two translation vectors.
+
+    ``unit_prototile[i]`` / ``unit_transform[i]`` place tile i of the unit; ``unit_aspect[i]``
+    is its aspect number (default i); the ``colouring`` assigns colours per aspect and
+    permutes them from unit to unit (§5.4.3).
+    """
+
+    def __init__(
+        self,
+        prototiles: Sequence[Prototile],
+        unit_prototile: Sequence[int],
+        unit_transform: np.ndarray,
+        v1: Sequence[float],
+        v2: Sequence[float],
+        colouring: Colouring | None = None,
+        unit_aspect: Sequence[int] | None = None,
+        *,
+        family: str = "",
+        name: str = "",
+    ) -> None:
+        self._prototiles = list(prototiles)
+        self.unit_prototile = np.asarray(unit_prototile, dtype=np.int64).reshape(-1)
+        m = len(self.unit_prototile)
+        if m == 0:
+            raise GeometryError("a translational unit needs at least one tile")
+        self.unit_transform = np.asarray(unit_transform, dtype=float).reshape(m, 3, 3)
+        self.unit_aspect = (
+            np.arange(m, dtype=np.int64) if unit_aspect is None else np.asarray(unit_aspect, dtype=np.int64)
+        )
+        self.v1 = np.asarray(v1, dtype=float).reshape(2)
+        self.v2 = np.asarray(v2, dtype=float).reshape(2)
+        det = self.v1[0] * self.v2[1] - self.v1[1] * self.v2[0]
+        if not np.isfinite(det) or abs(det) < EPS:
+            raise GeometryError(
+                f"translation vectors {self.v1.tolist()} and {self.v2.tolist()} are parallel or zero"
+            )
+        aspects = int(self.unit_aspect.max()) + 1
+        self.colouring = colouring or Colouring.by_aspect(self._default_colours())
+        if len(self.colouring.aspects) < aspects:
+            raise ParameterError(
+                f"colouring {self.colouring} gives {len(self.colouring.aspects)} aspect colours, "
+                f"the unit has {aspects} aspects"
+            )
+        self.family = family
+        self.name = name
+        self._unit_bounds: np.ndarray | None = None
+
+    def _default_colours(self) -> list[int]:
+        """Default: colour by prototile."""
+        colours = [0] * (int(self.unit_aspect.max()) + 1)
+        for a, p in zip(self.unit_aspect, self.unit_prototile):
+            colours[int(a)] = int(p)
+        return colours
+
+    @property
+    def prototiles(self) -> list[Prototile]:
+        return self._prototiles
+
+    @property
+    def basis(self) -> np.ndarray:
+        """2x2 matrix with v1 and v2 as columns."""
+        return np.column_stack([self.v1, self.v2])
+
+    def unit(self) -> Patch:
+        """The translational unit as a patch (lattice point (0, 0))."""
+        colours = self.colouring.colour(self.unit_aspect, np.zeros(len(self.unit_aspect)), np.zeros(len(self.unit_aspect)))
+        return Patch(self._prototiles, self.unit_prototile, self.unit_transform, colours, self.unit_aspect)
+
+    def unit_tile_bounds(self) -> np.ndarray:
+        if self._unit_bounds is None:
+            self._unit_bounds = Patch(self._prototiles, self.unit_prototile, self.unit_transform).tile_bounds()
+        return self._unit_bounds
+
+    def lattice_points(self, region: Any) -> np.ndarray:
+        """Integer (a, b) whose unit copy's bounding box can meet the region's bounding box.
+
+        The set of translations t for which the unit's box meets the region's box is the box
+        R (-) U (Minkowski difference); its preimage under the lattice basis is a
+        parallelogram whose integer points we enumerate. No ring count is guessed (§3.5).
+        """
+        reg = as_region(region)
+        rx0, ry0, rx1, ry1 = reg.bounds
+        ub = self.unit_tile_bounds()
+        ux0, uy0 = ub[:, 0].min(), ub[:, 1].min()
+        ux1, uy1 = ub[:, 2].max(), ub[:, 3].max()
+        ex0, ex1 = rx0 - ux1, rx1 - ux0
+        ey0, ey1 = ry0 - uy1, ry1 - uy0
+        inv = np.linalg.inv(self.basis)
+        corners = np.array([[ex0, ey0], [ex1, ey0], [ex1, ey1], [ex0, ey1]]) @ inv.T
+        lo = np.floor(corners.min(axis=0) - 1e-9).astype(np.int64)
+        hi = np.ceil(corners.max(axis=0) + 1e-9).astype(np.int64)
+        cells = int(hi[0] - lo[0] + 1) * int(hi[1] - lo[1] + 1)
+        if cells > MAX_LATTICE_CELLS:
+            raise ParameterError(
+                f"region {tuple(round(v, 3) for v in reg.bounds)} needs {cells} translational units; "
+                f"the limit is {MAX_LATTICE_CELLS} (use a smaller region)"
+            )
+        a, b = np.meshgrid(np.arange(lo[0], hi[0] + 1), np.arange(lo[1], hi[1] + 1), indexing="ij")
+        ab = np.column_stack([a.ravel(), b.ravel()])
+        t = ab @ self.basis.T
+        tol = 1e-9
+        keep = (t[:, 0] >= ex0 - tol) & (t[:, 0] <= ex1 + tol) & (t[:, 1] >= ey0 - tol) & (t[:, 1] <= ey1 + tol)
+        return ab[keep]
+
+    def patch(self, region: Any) -> Patch:
+        """Every tile whose bounding box meets the region's, by lattice rasterization (§3.4)."""
+        reg = as_region(region)
+        ab = self.lattice_points(reg)
+        m = len(self.unit_prototile)
+        t = ab @ self.basis.T  # (L, 2)
+        rx0, ry0, rx1, ry1 = reg.bounds
+        ub = self.unit_tile_bounds()  # (m, 4)
+        # per-tile bounding-box test, vectorised over (L, m)
+        bx0 = ub[None, :, 0] + t[:, None, 0]
+        by0 = ub[None, :, 1] + t[:, None, 1]
+        bx1 = ub[None, :, 2] + t[:, None, 0]
+        by1 = ub[None, :, 3] + t[:, None, 1]
+        hit = (bx1 > rx0) & (bx0 < rx1) & (by1 > ry0) & (by0 < ry1)
+        li, ti = np.nonzero(hit)
+        transforms = self.unit_transform[ti].copy()
+        transforms[:, :2, 2] += t[li]
+        aspect = self.unit_aspect[ti]
+        colour = self.colouring.colour(aspect, ab[li, 0], ab[li, 1])
+        patch = Patch(self._prototiles, self.unit_prototile[ti], transforms, colour, aspect)
+        if not _is_box(reg):
+            patch = patch.clip(reg)
+        return patch
+
+    def default_region(self) -> BaseGeometry:
+        ub = self.unit_tile_bounds()
+        size = max(ub[:, 2].max() - ub[:, 0].min(), ub[:, 3].max() - ub[:, 1].min())
+        half = 2.5 * size
+        return shapely.box(-half, -half, half, half)
+
+    def properties(self) -> dict[str, Any]:
+        return {
+            "periodic": True,
+            "k_hedral": len(self._prototiles),
+            "tiles_per_unit": int(len(self.unit_prototile)),
+            "aspects": int(self.unit_aspect.max()) + 1,
+            "colours": self.colouring.colours,
+        }
+
+    def spec(self) -> dict[str, Any]:
+        """A self-contained JSON description (families may store something more compact)."""
+        return {
+            "kind": "periodic",
+            "prototiles": [p.to_json() for p in self._prototiles],
+            "unit": [
+                {"prototile": int(p), "transform": np.round(tr[:2], 12).tolist(), "aspect": int(a)}
+                for p, tr, a in zip(self.unit_prototile, self.unit_transform, self.unit_aspect)
+            ],
+            "v1": self.v1.tolist(),
+            "v2": self.v2.tolist(),
+            "colouring": str(self.colouring),
+            "name": self.name,
+            "family": self.family,
+        }
+
+    @classmethod
+    def from_spec(cls, spec: Mapping[str, Any]) -> PeriodicTiling:
+        try:
+            protos = [Prototile.from_json(p) for p in spec["prototiles"]]
+            unit = spec["unit"]
+            transforms = np.array([np.vstack([u["transform"], [0.0, 0.0, 1.0]]) for u in unit], dtype=float)
+            return cls(
+                protos,
+                [u["prototile"] for u in unit],
+                transforms,
+                spec["v1"],
+                spec["v2"],
+                Colouring.parse(spec["colouring"]) if spec.get("colouring") else None,
+                [u.get("aspect", i) for i, u in enumerate(unit)],
+                family=spec.get("family", ""),
+                name=spec.get("name", ""),
+            )
+        except (KeyError, TypeError, ValueError) as exc:
+            if isinstance(exc, ParseError | GeometryError):
+                raise
+            raise ParseError(f"periodic tiling spec is malformed: {exc!r}") from None
