@@ -541,7 +541,7 @@ class PeriodicTiling(Tiling):
         by0 = ub[None, :, 1] + t[:, None, 1]
         bx1 = ub[None, :, 2] + t[:, None, 0]
         by1 = ub[None, :, 3] + t[:, None, 1]
-        hit = (bx1 > rx0) & (bx0 < rx1) & (by1 > ry0) & (by0 < ry1)
+        hit = (bx1 > rx0 + EPS) & (bx0 < rx1 - EPS) & (by1 > ry0 + EPS) & (by0 < ry1 - EPS)
         li, ti = np.nonzero(hit)
         transforms = self.unit_transform[ti].copy()
         transforms[:, :2, 2] += t[li]

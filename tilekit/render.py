@@ -1,0 +1,190 @@
+"""Render patches as SVG (and PNG through cairosvg, the ``png`` extra).
+
+Tiles are drawn as one ``<path>`` per colour whose subpaths are all the tiles of that colour,
+so a 100,000-tile patch is a few elements; coordinates are formatted per prototile in batches.
+The y axis points up, as in the book's figures.
+"""
+
+from __future__ import annotations
+
+import html
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from tilekit.errors import ParameterError, ParseError, TilekitError
+from tilekit.geometry import Affine, as_region
+
+#: The default palette: soft, distinguishable fills (colour 0 first).
+PALETTE: tuple[str, ...] = (
+    "#f4c27a",
+    "#7fb3d5",
+    "#e88a8a",
+    "#9ccc8f",
+    "#c3a6e0",
+    "#f2e394",
+    "#8fd1c8",
+    "#d9a37b",
+    "#b0b7c6",
+    "#f5a3c7",
+    "#a4c66b",
+    "#e6c36a",
+)
+
+
+def parse_palette(text: str | Sequence[str] | None) -> tuple[str, ...] | None:
+    """Colours from 'red,#00ff00,...' (CSS names or #rgb/#rrggbb); None keeps the default."""
+    if text is None:
+        return None
+    items = [s.strip() for s in (text.split(",") if isinstance(text, str) else text) if s.strip()]
+    if not items:
+        raise ParseError("--colours needs at least one colour, e.g. '#f4c27a,#7fb3d5'")
+    for c in items:
+        ok = (c.startswith("#") and len(c) in (4, 7) and all(ch in "0123456789abcdefABCDEF" for ch in c[1:])) or (
+            c.isalpha() and c.isascii()
+        )
+        if not ok:
+            raise ParseError(f"colour {c!r} is not a CSS name or #rgb / #rrggbb")
+    return tuple(items)
+
+
+def _path_data(pts: np.ndarray, closed: bool = True) -> list[str]:
+    """SVG path data for a batch of polylines (m, k, 2), one string each."""
+    m, k, _ = pts.shape
+    if m == 0:
+        return []
+    fmt = "M" + " L".join(["%.5g %.5g"] * k) + ("Z" if closed else "")
+    flat = pts.reshape(m, 2 * k)
+    return [fmt % tuple(row) for row in flat.tolist()]
+
+
+def patch_to_svg(
+    patch: Any,
+    palette: Sequence[str] | None = None,
+    stroke: str = "#222",
+    stroke_width: float | None = None,
+    labels: bool = False,
+    markings: bool = True,
+    vectors: tuple[Sequence[float], Sequence[float], Sequence[float]] | None = None,
+    size: int = 800,
+    region: Any = None,
+    background: str | None = "#ffffff",
+) -> str:
+    """SVG text for a patch.
+
+    ``palette[c % len(palette)]`` fills tiles of colour c; ``labels`` writes each edge's label
+    inside the tile near its midpoint; ``markings`` draws prototile markings; ``vectors`` =
+    (origin, v1, v2) draws the translation vectors as arrows; ``region`` sets the view box and
+    clips to it (default: the patch's bounds).
+    """
+    palette = tuple(palette) if palette else PALETTE
+    if size <= 0:
+        raise ParameterError(f"image size must be positive, not {size}")
+    if region is not None:
+        x0, y0, x1, y1 = as_region(region).bounds
+    elif len(patch):
+        x0, y0, x1, y1 = patch.bounds()
+    else:
+        x0, y0, x1, y1 = (0.0, 0.0, 1.0, 1.0)
+    w, h = x1 - x0, y1 - y0
+    pad = 0.02 * max(w, h)
+    vb = (x0 - pad, -(y1 + pad), w + 2 * pad, h + 2 * pad)
+    scale = size / max(vb[2], vb[3])
+    sw = stroke_width if stroke_width is not None else 1.2 / scale
+    width_px = round(vb[2] * scale)
+    height_px = round(vb[3] * scale)
+    out: list[str] = [
+        f'<svg xmlns="http://www.w3.org/2000/svg" width="{width_px}" height="{height_px}" '
+        f'viewBox="{vb[0]:.6g} {vb[1]:.6g} {vb[2]:.6g} {vb[3]:.6g}">'
+    ]
+    if background:
+        out.append(
+            f'<rect x="{vb[0]:.6g}" y="{vb[1]:.6g}" width="{vb[2]:.6g}" height="{vb[3]:.6g}" '
+            f'fill="{html.escape(background)}"/>'
+        )
+    if region is not None:
+        out.append(
+            f'<clipPath id="region"><rect x="{x0:.6g}" y="{-y1:.6g}" width="{w:.6g}" '
+            f'height="{h:.6g}"/></clipPath>'
+        )
+    clip = ' clip-path="url(#region)"' if region is not None else ""
+    out.append(f'<g transform="scale(1,-1)"{clip} stroke="{html.escape(stroke)}" '
+               f'stroke-width="{sw:.4g}" stroke-linejoin="round">')
+    by_colour: dict[int, list[str]] = {}
+    mark_paths: list[str] = []
+    label_items: list[tuple[float, float, str]] = []
+    for p, idx, pts in patch.groups():
+        data = _path_data(pts)
+        for c, d in zip(patch.colour[idx].tolist(), data):
+            by_colour.setdefault(c, []).append(d)
+        proto = patch.prototiles[p]
+        if markings and proto.marking:
+            for mk in proto.marking:
+                mpts = Affine.apply(patch.transform[idx], mk)
+                mark_paths.extend(_path_data(mpts, closed=False))
+        if labels and proto.edge_labels is not None:
+            outline = proto.outline
+            mids = (outline + np.roll(outline, -1, axis=0)) / 2
+            cen = outline.mean(axis=0)
+            inset = mids + 0.18 * (cen - mids)
+            where = Affine.apply(patch.transform[idx], inset)  # (m, k, 2)
+            for tile_pts in where:
+                for (lx, ly), lab in zip(tile_pts.tolist(), proto.edge_labels):
+                    label_items.append((lx, ly, str(lab)))
+    for c in sorted(by_colour):
+        fill = palette[c % len(palette)]
+        out.append(f'<path fill="{html.escape(fill)}" d="{" ".join(by_colour[c])}"/>')
+    if mark_paths:
+        out.append(f'<path fill="none" stroke-width="{sw * 0.8:.4g}" d="{" ".join(mark_paths)}"/>')
+    if vectors is not None:
+        o, v1, v2 = (np.asarray(v, dtype=float) for v in vectors)
+        out.append(
+            '<defs><marker id="arrow" viewBox="0 0 10 10" refX="9" refY="5" markerWidth="6" '
+            'markerHeight="6" orient="auto"><path d="M0 0 L10 5 L0 10z" fill="#c00"/></marker></defs>'
+        )
+        for v in (v1, v2):
+            e = o + v
+            out.append(
+                f'<line x1="{o[0]:.6g}" y1="{o[1]:.6g}" x2="{e[0]:.6g}" y2="{e[1]:.6g}" '
+                f'stroke="#c00" stroke-width="{2 * sw:.4g}" marker-end="url(#arrow)"/>'
+            )
+    out.append("</g>")
+    if label_items:
+        fs = 0.15 * (max(w, h) / max(1.0, np.sqrt(len(patch)))) if len(patch) else 0.1
+        out.append(f'<g font-size="{fs:.4g}" text-anchor="middle" dominant-baseline="middle" fill="#000">')
+        for lx, ly, lab in label_items:
+            out.append(f'<text x="{lx:.5g}" y="{-ly:.5g}">{html.escape(lab)}</text>')
+        out.append("</g>")
+    out.append("</svg>")
+    return "\n".join(out)
+
+
+def svg_to_png(svg: str, path: str | Path) -> None:
+    """Write SVG text as a PNG file (needs cairosvg: ``pip install 'tilekit[png]'``)."""
+    try:
+        import cairosvg
+    except (ImportError, OSError) as exc:
+        raise TilekitError(
+            f"PNG output needs cairosvg and the cairo library ({exc.__class__.__name__}); "
+            "install it with: pip install 'tilekit[png]', or write .svg instead"
+        ) from None
+    cairosvg.svg2png(bytestring=svg.encode("utf-8"), write_to=str(path))
+
+
+def write_image(patch: Any, path: str | Path, **options: Any) -> Path:
+    """Write ``patch`` to ``path`` as .svg or .png (chosen by the suffix)."""
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix not in (".svg", ".png"):
+        raise ParameterError(f"output file {str(path)!r} must end in .svg or .png")
+    svg = patch_to_svg(patch, **options)
+    try:
+        if suffix == ".svg":
+            path.write_text(svg, encoding="utf-8")
+        else:
+            svg_to_png(svg, path)
+    except OSError as exc:
+        raise TilekitError(f"cannot write {str(path)!r}: {exc.strerror or exc}") from None
+    return path
