@@ -1,0 +1,34 @@
+"""A non-editable install must carry the catalogue data and the Alembic migrations."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+@pytest.mark.slow
+def test_wheel_ships_catalogue_data_and_migrations(tmp_path) -> None:
+    subprocess.run(
+        [sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation", "-q",
+         "-w", str(tmp_path), str(ROOT)],
+        check=True,
+        capture_output=True,
+    )
+    (wheel,) = tmp_path.glob("tilekit-*.whl")
+    names = set(zipfile.ZipFile(wheel).namelist())
+    shipped_data = {n for n in names if n.startswith("tilekit/_catalogue/")}
+    repo_data = {
+        "tilekit/_catalogue/" + p.relative_to(ROOT / "catalogue").as_posix()
+        for p in (ROOT / "catalogue").rglob("*")
+        if p.is_file() and "__pycache__" not in p.parts
+    }
+    assert repo_data <= shipped_data
+    assert "tilekit/_migrations/env.py" in names
+    versions = {p.name for p in (ROOT / "migrations" / "versions").glob("*.py")}
+    assert versions and all(f"tilekit/_migrations/versions/{v}" in names for v in versions)

@@ -1,0 +1,53 @@
+"""Rendering: SVG structure, PNG through cairosvg, and clear errors for bad output requests."""
+
+from __future__ import annotations
+
+import math
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pytest
+
+from tilekit import Affine, Colouring, ParameterError, ParseError, Patch, PeriodicTiling, Prototile
+from tilekit.geometry import regular_polygon
+from tilekit.render import parse_palette, patch_to_svg, write_image
+
+SVG = "{http://www.w3.org/2000/svg}"
+
+
+def triangle_patch() -> Patch:
+    tri = Prototile(regular_polygon(3), edge_labels=(1, -1, 2))
+    unit = np.array([np.eye(3), Affine.half_turn((0.75, math.sqrt(3) / 4))])
+    t = PeriodicTiling([tri], [0, 0], unit, (1, 0), (0.5, math.sqrt(3) / 2), Colouring.by_aspect([0, 1]))
+    return t.patch((-2, -2, 2, 2))
+
+
+def test_one_path_per_colour_with_one_subpath_per_tile() -> None:
+    patch = triangle_patch()
+    root = ET.fromstring(patch_to_svg(patch, palette=["red", "#00f"]))
+    paths = [p for p in root.iter(SVG + "path") if p.get("fill") not in (None, "none")]
+    assert {p.get("fill") for p in paths} == {"red", "#00f"}  # 2 aspects coloured by aspect
+    subpaths = sum(p.get("d").count("M") for p in paths)
+    assert subpaths == len(patch)
+
+
+def test_labels_and_vectors_are_drawn() -> None:
+    patch = triangle_patch()
+    svg = patch_to_svg(patch, labels=True, vectors=((0, 0), (1, 0), (0.5, 0.8)))
+    root = ET.fromstring(svg)
+    texts = [t.text for t in root.iter(SVG + "text")]
+    assert len(texts) == 3 * len(patch) and set(texts) == {"1", "-1", "2"}
+    assert len(list(root.iter(SVG + "line"))) == 2
+
+
+def test_png_is_written(tmp_path) -> None:
+    out = write_image(triangle_patch(), tmp_path / "t.png", size=200)
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_bad_requests_are_one_line_errors(tmp_path) -> None:
+    with pytest.raises(ParameterError, match=r"\.svg or \.png"):
+        write_image(triangle_patch(), tmp_path / "t.jpg")
+    with pytest.raises(ParseError, match="not a CSS name"):
+        parse_palette("red,#12345")
+    assert parse_palette("red, #abc") == ("red", "#abc")
