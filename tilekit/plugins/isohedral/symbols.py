@@ -1,0 +1,247 @@
+"""Incidence symbols of isohedral tilings (§5.2): parse, print, edge kinds, canonical form.
+
+An incidence symbol such as ``[a+b+c+c-b-a-; a-c+b+]`` lists, counter-clockwise around the
+tile, the label of every tiling edge with its direction (``+`` agrees with the traversal,
+``-`` opposes it, no sign: undirected), then for each distinct label in order of first
+appearance the label of the edge adjacent to it in the neighbouring tile (with ``+`` when the
+direction is preserved across the edge and ``-`` when it is reversed). The book's
+superscript form ``$[a^+b^+c^+c^-b^-a^-; a^-c^+b^+]$`` is accepted as well.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from itertools import permutations
+
+from tilekit.errors import ParseError
+
+#: One labelled edge: (label, sign) with sign +1, -1 or 0 (undirected).
+Edge = tuple[str, int]
+
+_TOKEN = re.compile(r"([a-z])(\^?\{?([+-])\}?)?")
+_SIGN = {"+": 1, "-": -1, None: 0}
+_SIGN_TEXT = {1: "+", -1: "-", 0: ""}
+
+
+def _normalise(text: str) -> str:
+    s = text.strip().strip("$").strip()
+    s = s.replace("\\cdot", " ").replace("^+", "+").replace("^-", "-")
+    s = s.replace("^{+}", "+").replace("^{-}", "-")
+    return s
+
+
+def _parse_part(part: str, text: str, which: str) -> list[Edge]:
+    compact = re.sub(r"\s+", "", part)
+    out: list[Edge] = []
+    pos = 0
+    while pos < len(compact):
+        m = _TOKEN.match(compact, pos)
+        if not m:
+            raise ParseError(
+                f"incidence symbol {text!r}: unexpected {compact[pos:pos + 3]!r} in the {which} part "
+                "(expected letters a-z, each optionally followed by + or -)"
+            )
+        out.append((m.group(1), _SIGN[m.group(3)]))
+        pos = m.end()
+    if not out:
+        raise ParseError(f"incidence symbol {text!r}: the {which} part is empty")
+    return out
+
+
+@dataclass(frozen=True)
+class IncidenceSymbol:
+    """The two halves of an incidence symbol: ``edges`` around the tile, ``adjacency`` per label."""
+
+    edges: tuple[Edge, ...]
+    adjacency: tuple[Edge, ...]
+
+    # construction ------------------------------------------------------------------
+    @classmethod
+    def parse(cls, text: str) -> IncidenceSymbol:
+        """Parse the ASCII form ``[a+b+a-; b-a+]`` or the book's ``$[a^+b^+ ...]$`` form."""
+        s = _normalise(text)
+        m = re.fullmatch(r"\[([^;\]]*);([^;\]]*)\]", s)
+        if not m:
+            raise ParseError(
+                f"incidence symbol {text!r} is not of the form '[a+b+c+c-b-a-; a-c+b+]' "
+                "(edge labels, a semicolon, adjacent labels, in square brackets)"
+            )
+        edges = _parse_part(m.group(1), text, "first")
+        adjacency = _parse_part(m.group(2), text, "second")
+        sym = cls(tuple(edges), tuple(adjacency))
+        sym.check(text)
+        return sym
+
+    def check(self, text: str | None = None) -> None:
+        """Raise ParseError unless the symbol is internally consistent."""
+        what = f"incidence symbol {text or str(self)!r}"
+        labels = self.labels
+        if len(self.adjacency) != len(labels):
+            raise ParseError(
+                f"{what}: {len(labels)} distinct edge labels ({''.join(labels)}) need "
+                f"{len(labels)} adjacency entries, got {len(self.adjacency)}"
+            )
+        signs: dict[str, set[int]] = {}
+        for lab, sg in self.edges:
+            signs.setdefault(lab, set()).add(sg)
+        for lab, ss in signs.items():
+            if 0 in ss and len(ss) > 1:
+                raise ParseError(f"{what}: label {lab!r} is both directed and undirected")
+        adj = self.adjacent_map()
+        for lab, (other, sg) in adj.items():
+            if other not in signs:
+                raise ParseError(f"{what}: label {lab!r} is adjacent to {other!r}, which labels no edge")
+            directed = 0 not in signs[lab]
+            if directed != (sg != 0):
+                raise ParseError(
+                    f"{what}: adjacency of {lab!r} must carry a sign exactly when {lab!r} is directed"
+                )
+            if (0 not in signs[other]) != directed:
+                raise ParseError(f"{what}: {lab!r} and its neighbour {other!r} differ in directedness")
+            back, bsg = adj[other]
+            if back != lab or bsg != sg:
+                raise ParseError(
+                    f"{what}: adjacency is not symmetric ({lab!r} -> {other!r}{_SIGN_TEXT[sg]} but "
+                    f"{other!r} -> {back!r}{_SIGN_TEXT[bsg]})"
+                )
+
+    # views ---------------------------------------------------------------------------
+    @property
+    def labels(self) -> list[str]:
+        """Distinct labels in order of first appearance."""
+        seen: list[str] = []
+        for lab, _ in self.edges:
+            if lab not in seen:
+                seen.append(lab)
+        return seen
+
+    def adjacent_map(self) -> dict[str, Edge]:
+        return dict(zip(self.labels, self.adjacency))
+
+    def __len__(self) -> int:
+        return len(self.edges)
+
+    def __str__(self) -> str:
+        first = "".join(lab + _SIGN_TEXT[sg] for lab, sg in self.edges)
+        second = "".join(lab + _SIGN_TEXT[sg] for lab, sg in self.adjacency)
+        return f"[{first}; {second}]"
+
+    def latex(self) -> str:
+        """The book's form, e.g. ``$[a^+b^+c^+; a^-b^+c^-]$``."""
+
+        def part(items: tuple[Edge, ...]) -> str:
+            return "".join(lab + ("^" + _SIGN_TEXT[sg] if sg else "") for lab, sg in items)
+
+        return f"$[{part(self.edges)}; {part(self.adjacency)}]$"
+
+    # edge kinds (§5.3.1) ---------------------------------------------------------------
+    def label_kind(self, label: str) -> str:
+        """J, U, S or I for a label, by the rules of §5.3.1."""
+        other, sg = self.adjacent_map()[label]
+        directed = self._directed(label)
+        if not directed:
+            return "I" if other == label else "U"
+        if other == label:
+            return "S" if sg > 0 else "I"
+        return "J"
+
+    def _directed(self, label: str) -> bool:
+        return any(sg != 0 for lab, sg in self.edges if lab == label)
+
+    def edge_kinds(self) -> str:
+        """One letter per edge, e.g. 'IJJJJI' for IH16."""
+        return "".join(self.label_kind(lab) for lab, _ in self.edges)
+
+    # canonical form ------------------------------------------------------------------
+    def variants(self) -> list[IncidenceSymbol]:
+        """Every symbol of the same tiling type: each starting edge, both directions, relabelled.
+
+        Reversing the traversal direction reverses the edge order and flips every edge sign
+        (adjacency signs record preservation across an edge and do not change). Labels are
+        renamed a, b, c ... in order of first appearance, which is the lexicographic minimum
+        over relabellings for that starting edge and direction.
+        """
+        n = len(self.edges)
+        out: list[IncidenceSymbol] = []
+        for direction in (1, -1):
+            seq = list(self.edges) if direction == 1 else [(lab, -sg) for lab, sg in reversed(self.edges)]
+            for start in range(n):
+                rot = seq[start:] + seq[:start]
+                out.append(self._relabelled(rot))
+        return out
+
+    def _relabelled(self, seq: list[Edge]) -> IncidenceSymbol:
+        names: dict[str, str] = {}
+        for lab, _ in seq:
+            if lab not in names:
+                names[lab] = chr(ord("a") + len(names))
+        adj = self.adjacent_map()
+        edges = tuple((names[lab], sg) for lab, sg in seq)
+        labels = []
+        for lab, _ in seq:
+            if lab not in labels:
+                labels.append(lab)
+        adjacency = tuple((names[adj[lab][0]], adj[lab][1]) for lab in labels)
+        return IncidenceSymbol(edges, adjacency)
+
+    def sort_key(self) -> tuple:
+        # order: letters, then '+' before '-' before no sign (as Grünbaum and Shephard list them)
+        order = {1: 0, -1: 1, 0: 2}
+        return (
+            tuple((lab, order[sg]) for lab, sg in self.edges),
+            tuple((lab, order[sg]) for lab, sg in self.adjacency),
+        )
+
+    def canonical(self) -> IncidenceSymbol:
+        """The lexicographically first symbol over relabelling, starting edge and direction."""
+        return min(self.variants(), key=IncidenceSymbol.sort_key)
+
+    def relabel(self, mapping: dict[str, str]) -> IncidenceSymbol:
+        """Rename labels (a bijection); used to test that renaming preserves the type."""
+        if sorted(mapping) != sorted(self.labels) or len(set(mapping.values())) != len(mapping):
+            raise ParseError(f"relabelling {mapping} is not a bijection on the labels {self.labels}")
+        edges = tuple((mapping[lab], sg) for lab, sg in self.edges)
+        adjacency = tuple((mapping[lab], sg) for lab, sg in self.adjacency)
+        return IncidenceSymbol(edges, adjacency)
+
+    def rotated(self, start: int, reverse: bool = False) -> IncidenceSymbol:
+        """The same symbol read from edge ``start`` (0-based), optionally clockwise; labels kept."""
+        seq = list(self.edges) if not reverse else [(lab, -sg) for lab, sg in reversed(self.edges)]
+        seq = seq[start:] + seq[:start]
+        adj = self.adjacent_map()
+        labels: list[str] = []
+        for lab, _ in seq:
+            if lab not in labels:
+                labels.append(lab)
+        return IncidenceSymbol(tuple(seq), tuple(adj[lab] for lab in labels))
+
+    # tile symmetries -------------------------------------------------------------------
+    def tile_symmetries(self) -> list[tuple[int, bool]]:
+        """Edge permutations of the tile that preserve labels and arrows.
+
+        Each is (shift, reflect): edge i goes to edge (shift + i) mod n without reflection,
+        or to edge (shift - i) mod n traversed backwards with reflection (signs flip). The
+        identity (0, False) comes first.
+        """
+        n = len(self.edges)
+        out: list[tuple[int, bool]] = []
+        for reflect in (False, True):
+            for shift in range(n):
+                ok = True
+                for i, (lab, sg) in enumerate(self.edges):
+                    j = (shift - i) % n if reflect else (shift + i) % n
+                    lab2, sg2 = self.edges[j]
+                    if lab2 != lab or sg2 != (-sg if reflect else sg):
+                        ok = False
+                        break
+                if ok:
+                    out.append((shift, reflect))
+        return out
+
+
+def all_relabellings(symbol: IncidenceSymbol) -> list[IncidenceSymbol]:
+    """Every renaming of the labels by letters a.. (small symbols only: at most 6 labels)."""
+    labels = symbol.labels
+    letters = [chr(ord("a") + i) for i in range(len(labels))]
+    return [symbol.relabel(dict(zip(labels, p))) for p in permutations(letters)]
