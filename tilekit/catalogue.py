@@ -296,6 +296,13 @@ def _scalar_row(key: str, value: Any, owner: str) -> dict[str, Any]:
     return row
 
 
+def _json_row(owner: str, key: str, value: Any) -> dict[str, Any]:
+    """A nested value (list of lists, object) kept whole as JSON text: shown, ~-searchable."""
+    _json_ok(f"record {owner!r}", f"property {key!r}", value)
+    return {"key": key, "position": None, "kind": "json", "value_text": json.dumps(value),
+            "value_num": None, "value_bool": None}
+
+
 def _property_rows(owner: str, properties: Mapping[str, Any]) -> list[dict[str, Any]]:
     """Typed rows for every property; a list becomes one row per element (``position``)."""
     rows: list[dict[str, Any]] = []
@@ -310,13 +317,13 @@ def _property_rows(owner: str, properties: Mapping[str, Any]) -> list[dict[str, 
             if not value:
                 rows.append({"key": key, "position": None, "kind": "empty",
                              "value_text": None, "value_num": None, "value_bool": None})
-            for i, item in enumerate(value):
-                if isinstance(item, list | tuple | dict):
-                    raise CatalogueError(
-                        f"record {owner!r}: property {key!r} nests a {type(item).__name__}; "
-                        "lists hold scalars only"
-                    )
-                rows.append({"key": key, "position": i, **_scalar_row(key, item, owner)})
+            elif any(isinstance(item, list | tuple | dict) for item in value):
+                rows.append(_json_row(owner, key, value))
+            else:
+                for i, item in enumerate(value):
+                    rows.append({"key": key, "position": i, **_scalar_row(key, item, owner)})
+        elif isinstance(value, dict):
+            rows.append(_json_row(owner, key, value))
         else:
             rows.append({"key": key, "position": None, **_scalar_row(key, value, owner)})
     return rows
@@ -331,6 +338,8 @@ def _restore_value(kind: str, text: str | None, num: float | None, flag: bool | 
         return num
     if kind == "bool":
         return bool(flag) if flag is not None else None
+    if kind == "json":
+        return json.loads(text) if text is not None else None
     return None
 
 
@@ -338,6 +347,9 @@ def _shared_values(owner: str, properties: Mapping[str, Any]) -> dict[str, Any]:
     out: dict[str, Any] = {}
     for key, typ in SHARED_COLUMNS.items():
         value = properties.get(key)
+        if key == "symmetry_group" and value is None:
+            # families report the wallpaper group as "wallpaper_group" (tilekit.symmetry)
+            value = properties.get("wallpaper_group")
         if value is None:
             out[key] = None
         elif typ is bool:

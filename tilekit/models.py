@@ -113,7 +113,8 @@ class PropertyRow(Base):
     """One typed property value of a tiling; a list property has one row per element.
 
     ``kind`` is how the value is restored: ``str``, ``int``, ``float``, ``bool``, ``null``,
-    or ``empty`` (an empty list). ``position`` is the element's index for list properties
+    ``empty`` (an empty list) or ``json`` (a nested list or object kept whole as JSON text,
+    in ``value_text``). ``position`` is the element's index for list properties
     and NULL for scalars. Numbers are in ``value_num``, booleans in ``value_bool``, text in
     ``value_text``.
     """
