@@ -1,0 +1,480 @@
+"""The isohedral engine: hops, aspect transforms, translation vectors and prototiles (§5.4).
+
+For each tiling edge, the *hop* across it (§5.4.2) is the rigid motion carrying the tile onto
+its neighbour: it maps the adjacent edge named by the incidence symbol onto the edge, as a
+direct motion (translation, or half-turn about the edge centre, or a rotation about a vertex)
+when the arrows say so, otherwise as an opposite motion (reflection in the edge, or a glide
+reflection). Appendix A's rules compose hops into aspect transforms; translation vectors come
+from the centroid rule. Every type then becomes a :class:`tilekit.PeriodicTiling`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+import shapely
+
+from tilekit.colouring import Colouring
+from tilekit.errors import GeometryError, ParameterError, ParseError
+from tilekit.geometry import Affine, signed_area
+from tilekit.plugins.isohedral.shapes import (
+    FLIP,
+    IDENTITY,
+    ROFL,
+    ROT,
+    EdgeShape,
+    apply_unit,
+    complete,
+    parse_edge_option,
+)
+from tilekit.plugins.isohedral.symbols import IncidenceSymbol
+from tilekit.plugins.isohedral.templates import (
+    Parameterization,
+    Template,
+    get_template,
+    load_parameterizations,
+    topology_valences,
+)
+from tilekit.tiling import Patch, PeriodicTiling, Prototile
+
+FAMILY = "isohedral"
+
+
+# --------------------------------------------------------------------------- geometry helpers
+
+
+def edge_frames(verts: np.ndarray) -> np.ndarray:
+    """(n, 3, 3): the direct similarity taking (0,0)-(1,0) onto edge i (P_i -> P_i+1)."""
+    p = np.asarray(verts, dtype=float)
+    q = np.roll(p, -1, axis=0)
+    d = q - p
+    out = np.zeros((len(p), 3, 3))
+    out[:, 0, 0] = d[:, 0]
+    out[:, 0, 1] = -d[:, 1]
+    out[:, 1, 0] = d[:, 1]
+    out[:, 1, 1] = d[:, 0]
+    out[:, :2, 2] = p
+    out[:, 2, 2] = 1.0
+    return out
+
+
+def laves_polygon(topology: str) -> np.ndarray:
+    """The Laves tile of a topological type, counter-clockwise (§4.2, §5.2).
+
+    Its vertices are the centres of the regular polygons around a vertex of the dual
+    Archimedean tiling (unit edges), so the valence of Laves vertex j is the j-th polygon's.
+    """
+    pts = []
+    ang = 0.0
+    for p in topology_valences(topology):
+        interior = math.pi * (p - 2) / p
+        radius = 1.0 / (2.0 * math.sin(math.pi / p))
+        mid = ang + interior / 2
+        pts.append((radius * math.cos(mid), radius * math.sin(mid)))
+        ang += interior
+    if abs(ang - 2 * math.pi) > 1e-9:
+        raise ParameterError(f"topology {topology!r}: the polygons' angles do not fill a vertex")
+    return np.array(pts)
+
+
+# --------------------------------------------------------------------------- the engine
+
+
+class HopEngine:
+    """Hops and symmetry data of one template at one set of tiling vertices."""
+
+    def __init__(self, symbol: IncidenceSymbol, verts: np.ndarray) -> None:
+        self.symbol = symbol
+        self.verts = np.asarray(verts, dtype=float)
+        n = len(symbol)
+        self.frames = edge_frames(self.verts)
+        self.inverse_frames = Affine.inverse(self.frames)
+        adj = symbol.adjacent_map()
+        self.partner: list[int] = []
+        self.orientation: list[np.ndarray] = []  # O in H_i = T_i O S_j
+        for label, sign in symbol.edges:
+            other, t = adj[label]
+            candidates = [j for j, (lab, _) in enumerate(symbol.edges) if lab == other]
+            j = candidates[0]  # the first edge with the adjacent label (the rules assume this)
+            sj = symbol.edges[j][1]
+            if sign == 0:  # undirected (U or I): the neighbour is the mirror image across the edge
+                o = ROFL
+            else:
+                o = ROT if t == sign * sj else ROFL
+            self.partner.append(j)
+            self.orientation.append(o)
+        self.hops = np.stack(
+            [self.frames[i] @ self.orientation[i] @ self.inverse_frames[self.partner[i]] for i in range(n)]
+        )
+
+    def unit_orientation(self, i: int) -> np.ndarray:
+        """O_i: how edge i's curve sits relative to its label's curve (FLIP for reversed arrows)."""
+        return FLIP if self.symbol.edges[i][1] < 0 else IDENTITY
+
+    def tile_symmetries(self) -> np.ndarray:
+        """(s, 3, 3): the isometries of the tiling polygon that preserve labels and arrows."""
+        out = []
+        for shift, reflect in self.symbol.tile_symmetries():
+            m = self.frames[shift] @ (FLIP if reflect else IDENTITY) @ self.inverse_frames[0]
+            out.append(m)
+        return np.stack(out)
+
+    def label_curves(self, shapes: Mapping[str, EdgeShape]) -> dict[str, np.ndarray]:
+        """Level 1 and 2 of the edge model: the curve of every label, from (0,0) to (1,0)."""
+        sym = self.symbol
+        curves: dict[str, np.ndarray] = {
+            lab: complete("I", None) for lab in sym.labels if sym.label_kind(lab) == "I"
+        }
+        for rep in shape_classes(sym):
+            kind = sym.label_kind(rep)
+            base = complete(kind, shapes.get(rep))
+            curves[rep] = base
+            other, _ = sym.adjacent_map()[rep]
+            if other != rep:
+                i = next(k for k, (lab, _) in enumerate(sym.edges) if lab == rep)
+                j = self.partner[i]
+                c = apply_unit(self.unit_orientation(i), base)
+                c = apply_unit(self.orientation[i], c)
+                c = apply_unit(self.unit_orientation(j), c)
+                curves[other] = c
+        return curves
+
+    def outline(self, shapes: Mapping[str, EdgeShape]) -> tuple[np.ndarray, tuple[int, ...], list[np.ndarray]]:
+        """Level 3: the prototile outline, the indices of the tiling vertices in it, and edge curves."""
+        curves = self.label_curves(shapes)
+        parts = []
+        corners = []
+        edge_paths = []
+        count = 0
+        for i, (label, _) in enumerate(self.symbol.edges):
+            local = apply_unit(self.unit_orientation(i), curves[label])
+            pts = local @ self.frames[i][:2, :2].T + self.frames[i][:2, 2]
+            edge_paths.append(pts)
+            corners.append(count)
+            parts.append(pts[:-1])
+            count += len(pts) - 1
+        return np.vstack(parts), tuple(corners), edge_paths
+
+
+def shape_classes(symbol: IncidenceSymbol) -> list[str]:
+    """Labels that own a fundamental shape: one per pair of adjacent labels, I edges excluded."""
+    out: list[str] = []
+    adj = symbol.adjacent_map()
+    for lab in symbol.labels:
+        if symbol.label_kind(lab) == "I":
+            continue
+        other = adj[lab][0]
+        if other in out:
+            continue
+        out.append(lab)
+    return out
+
+
+def compute_unit(template: Template, verts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, HopEngine]:
+    """Aspect transforms (m, 3, 3) and translation vectors v1, v2 from the template's rules."""
+    engine = HopEngine(template.symbol, verts)
+    known: dict[str, np.ndarray] = {template.aspects[0]: np.eye(3)}
+    vectors: dict[str, np.ndarray] = {}
+    centre = verts.mean(axis=0)
+    for rule in template.rules:
+        m = known[rule.base].copy()
+        for h in rule.hops:
+            m = m @ engine.hops[h - 1]
+        if rule.target in ("v1", "v2"):
+            moved = Affine.apply(m, verts).mean(axis=0)
+            vectors[rule.target] = moved - centre
+        else:
+            known[rule.target] = m
+    aspects = np.stack([known[a] for a in template.aspects])
+    return _snap(aspects), _snap(vectors["v1"]), _snap(vectors["v2"]), engine
+
+
+def _snap(x: np.ndarray) -> np.ndarray:
+    """Round float noise (|x| < 1e-10) to zero, so lattice rows stay exactly axis-aligned."""
+    return np.where(np.abs(x) < 1e-10, 0.0, x)
+
+
+# --------------------------------------------------------------------------- the tiling
+
+
+class IsohedralTiling(PeriodicTiling):
+    """A tiling of one of the 93 isohedral types with given parameters, edge shapes and colouring.
+
+    ``IsohedralTiling("IH16", params=[0.3], edges={"b": EdgeShape(...)})``. Unmarked types
+    are built from their Appendix A template; the 12 marked types are drawn as the Laves tile
+    of their topology with a marking.
+    """
+
+    def __init__(
+        self,
+        ih: str | int,
+        params: Sequence[float] | None = None,
+        edges: Mapping[str, EdgeShape] | None = None,
+        colouring: Colouring | str | None = None,
+        check: bool | None = None,
+    ) -> None:
+        self.template = get_template(ih)
+        t = self.template
+        if t.marked:
+            raise ParameterError(
+                f"{t.name} can only be realised with marked tiles; build it with marked_tiling('{t.name}')"
+            )
+        self.parameterization: Parameterization = load_parameterizations()[t.parameterization or ""]
+        tv = self.parameterization
+        if params is None:
+            params = tv.default
+        params = tuple(float(p) for p in params)
+        if len(params) != tv.parameters:
+            raise ParameterError(
+                f"{t.name} takes {tv.parameters} parameter(s) ({t.parameterization}), got {len(params)}"
+                + (f"; default {list(tv.default)}" if tv.parameters else "")
+            )
+        if not all(math.isfinite(p) for p in params):
+            raise ParameterError(f"{t.name}: parameters {list(params)} must be finite numbers")
+        self.params = params
+        self.edge_shapes: dict[str, EdgeShape] = {}
+        classes = shape_classes(t.symbol)
+        adj = t.symbol.adjacent_map()
+        for label, shape in (edges or {}).items():
+            if label not in t.symbol.labels:
+                raise ParameterError(
+                    f"{t.name} has no edge label {label!r}; its labels are {', '.join(t.symbol.labels)}"
+                )
+            if t.symbol.label_kind(label) == "I":
+                raise ParameterError(f"{t.name}: edges labelled {label!r} are I edges and must stay straight")
+            rep = label if label in classes else adj[label][0]
+            if rep != label:
+                # the shape was given for the partner label: carry it over to the class's own label
+                shape = _transfer_shape(t.symbol, label, rep, shape, tv, params)
+            self.edge_shapes[rep] = shape
+        verts = self.tiling_vertices()
+        self._check_polygon(verts)
+        aspects, v1, v2, engine = compute_unit(t, verts)
+        self.engine = engine
+        outline, corners, paths = engine.outline(self.edge_shapes)
+        self.edge_paths = paths
+        self._check_outline(paths)
+        proto = Prototile(outline, name=t.name, corners=corners)
+        if isinstance(colouring, str):
+            colouring = Colouring.parse(colouring)
+        col = colouring or t.colouring
+        super().__init__(
+            [proto],
+            np.zeros(len(aspects), dtype=np.int64),
+            aspects,
+            v1,
+            v2,
+            col,
+            np.arange(len(aspects)),
+            family=FAMILY,
+            name=t.name,
+        )
+        if check is None:
+            check = bool(self.edge_shapes) or self.params != tuple(tv.default)
+        if check:
+            self.check_overlaps()
+
+    # geometry ----------------------------------------------------------------------
+    def tiling_vertices(self) -> np.ndarray:
+        """The tiling polygon's vertices, numbered as the incidence symbol's edges (§5.4.1)."""
+        verts = self.parameterization.evaluate(self.params)
+        return np.roll(verts, -self.template.edge_offset, axis=0)
+
+    @property
+    def symbol(self) -> IncidenceSymbol:
+        return self.template.symbol
+
+    @property
+    def prototile(self) -> Prototile:
+        return self.prototiles[0]
+
+    def _param_names(self, edge: int) -> str:
+        """The parameters on which tiling edge ``edge``'s two vertices depend."""
+        tv = self.parameterization
+        k = tv.vertices
+        off = self.template.edge_offset
+        rows = []
+        for v in (edge, edge + 1):
+            idx = (v + off) % k
+            rows += [tv.coefficients[2 * idx, :-1], tv.coefficients[2 * idx + 1, :-1]]
+        used = [f"v{p}={self.params[p]:g}" for p in range(tv.parameters) if any(abs(r[p]) > 0 for r in rows)]
+        return ", ".join(used) if used else "no parameter"
+
+    def _check_polygon(self, verts: np.ndarray) -> None:
+        t = self.template
+        n = len(verts)
+        scale = max(float(np.ptp(verts, axis=0).max()), 1e-12)
+        lengths = np.linalg.norm(np.roll(verts, -1, axis=0) - verts, axis=1)
+        for i in range(n):
+            if lengths[i] < 1e-7 * scale:
+                raise ParameterError(
+                    f"{t.name}: parameters {list(self.params)} make tiling edge {i + 1} degenerate "
+                    f"(zero length; it depends on {self._param_names(i)}) - the tiling would change type (§5.4.5)"
+                )
+        poly = shapely.Polygon(verts)
+        if signed_area(verts) <= 0 or not poly.is_valid:
+            raise ParameterError(
+                f"{t.name}: parameters {list(self.params)} make the tiling polygon self-intersecting or "
+                f"inside out; try values near the default {list(self.parameterization.default)}"
+            )
+
+    def _check_outline(self, paths: list[np.ndarray]) -> None:
+        t = self.template
+        lines = [shapely.LineString(p) for p in paths]
+        n = len(lines)
+        for i, line in enumerate(lines):
+            if not line.is_simple:
+                raise ParameterError(
+                    f"{t.name}: the shape of edge {i + 1} (label {t.symbol.edges[i][0]!r}) crosses itself"
+                )
+        for i in range(n):
+            for j in range(i + 1, n):
+                inter = lines[i].intersection(lines[j])
+                if inter.is_empty:
+                    continue
+                allowed = []
+                if j == i + 1:
+                    allowed.append(shapely.Point(paths[i][-1]))
+                if i == 0 and j == n - 1:
+                    allowed.append(shapely.Point(paths[0][0]))
+                rest = inter
+                for pt in allowed:
+                    rest = rest.difference(pt.buffer(1e-9))
+                if not rest.is_empty:
+                    raise ParameterError(
+                        f"{t.name}: edge {i + 1} (label {t.symbol.edges[i][0]!r}) and edge {j + 1} "
+                        f"(label {t.symbol.edges[j][0]!r}) cross - the tile would be self-intersecting; "
+                        "use a smaller edge shape"
+                    )
+
+    def check_overlaps(self) -> None:
+        """GeometryError if tiles of the unit and its 8 neighbour units overlap (§5.4.5)."""
+        unit = self.unit()
+        geoms = unit.geometries()
+        shifts = [(a, b) for a in (-1, 0, 1) for b in (-1, 0, 1)]
+        others = []
+        for a, b in shifts:
+            moved = unit.transformed(Affine.translation(*(a * self.v1 + b * self.v2)))
+            others.append(moved.geometries())
+        allg = np.concatenate(others)
+        area = self.prototile.area
+        tree = shapely.STRtree(allg)
+        left, right = tree.query(geoms, predicate="intersects")
+        for i, j in zip(left, right):
+            g1, g2 = geoms[i], allg[j]
+            if g1.equals_exact(g2, 1e-7):
+                continue
+            inter = shapely.area(shapely.intersection(g1, g2))
+            if inter > 1e-6 * area:
+                raise GeometryError(
+                    f"{self.name}: with parameters {list(self.params)} and edge shapes "
+                    f"{ {k: v.to_text() for k, v in self.edge_shapes.items()} } neighbouring tiles overlap "
+                    f"(area {inter:.3g}); use smaller edge shapes or parameters nearer the default"
+                )
+
+    # Tiling API ----------------------------------------------------------------------
+    def patch(self, region: Any) -> Patch:
+        """Tiles covering ``region`` by §3.4 replication (PeriodicTiling), transforms snapped.
+
+        Transforms are rounded to 1e-12 so that tiles sharing an edge share its coordinates
+        bit for bit; GEOS overlays of nearly-but-not-exactly coincident edges are not robust.
+        """
+        out = super().patch(region)
+        out.transform = np.round(out.transform, 12)
+        out._geoms = None
+        return out
+
+    def describe(self) -> str:
+        t = self.template
+        lines = [t.text(), ""]
+        lines.append(f"edge kinds {t.symbol.edge_kinds()}   canonical symbol {t.symbol.canonical()}")
+        if self.parameterization.parameters:
+            lines.append(
+                "parameters " + ", ".join(f"v{i}={p:g}" for i, p in enumerate(self.params))
+                + f" (default {', '.join(f'{p:g}' for p in self.parameterization.default)})"
+            )
+        classes = shape_classes(t.symbol)
+        if classes:
+            lines.append(
+                "edge shapes (--edge LABEL=x,y:...:1,0): "
+                + ", ".join(f"{c} ({t.symbol.label_kind(c)})" for c in classes)
+            )
+        for note in t.notes:
+            lines.append(f"note: {note}")
+        return "\n".join(lines)
+
+    def configure(self, **options: Any) -> IsohedralTiling:
+        """A new tiling with ``params`` (floats), ``edges`` ('b=x,y:...'), ``colours``/``colouring``."""
+        params = self.params
+        edges = dict(self.edge_shapes)
+        colouring: Colouring | None = self.colouring
+        for key, value in options.items():
+            if key == "params":
+                if value is None:
+                    continue
+                params = tuple(float(v) for v in value)
+            elif key == "edges":
+                for item in value or ():
+                    label, shape = parse_edge_option(item) if isinstance(item, str) else item
+                    edges[label] = shape
+            elif key in ("colours", "colouring"):
+                colouring = Colouring.parse(value) if isinstance(value, str) else value
+            else:
+                raise ParameterError(
+                    f"{self.name} does not take option {key!r}; valid: params, edges, colouring"
+                )
+        return IsohedralTiling(self.template.ih, params, edges, colouring)
+
+    def spec(self) -> dict[str, Any]:
+        out: dict[str, Any] = {"ih": self.template.ih, "params": list(self.params)}
+        if self.edge_shapes:
+            out["edges"] = {k: v.to_text() for k, v in self.edge_shapes.items()}
+        if self.colouring != self.template.colouring:
+            out["colouring"] = str(self.colouring)
+        return out
+
+    @classmethod
+    def from_spec(cls, spec: Mapping[str, Any]) -> IsohedralTiling:  # type: ignore[override]
+        return tiling_from_spec(spec)  # type: ignore[return-value]
+
+    def properties(self) -> dict[str, Any]:
+        from tilekit.plugins.isohedral.records import type_properties
+
+        return type_properties(self.template.ih)
+
+
+def _transfer_shape(
+    symbol: IncidenceSymbol, label: str, rep: str, shape: EdgeShape, tv: Parameterization, params: tuple
+) -> EdgeShape:
+    """A shape given for ``label`` expressed as the fundamental shape of its partner ``rep``.
+
+    The partner's curve is O_j O O_i applied to the class curve (see HopEngine.label_curves);
+    these unit maps are involutions, so the inverse applies them in the opposite order. For U
+    labels the map is the mirror in the edge line, which acts on the free half alike.
+    """
+    engine = HopEngine(symbol, tv.evaluate(params)[: len(symbol)])
+    i = next(k for k, (lab, _) in enumerate(symbol.edges) if lab == rep)
+    j = engine.partner[i]
+    c = apply_unit(engine.unit_orientation(j), np.asarray(shape.points))
+    c = apply_unit(engine.orientation[i], c)
+    c = apply_unit(engine.unit_orientation(i), c)
+    return EdgeShape(c, shape.smooth)
+
+
+def tiling_from_spec(spec: Mapping[str, Any]) -> PeriodicTiling:
+    """Rebuild an isohedral tiling from ``{"ih": 16, "params": [...], "edges": {...}}``."""
+    try:
+        ih = spec["ih"]
+    except (KeyError, TypeError):
+        raise ParseError(f"isohedral spec {dict(spec) if isinstance(spec, Mapping) else spec!r} has no 'ih'") from None
+    from tilekit.plugins.isohedral.marked import marked_tiling
+
+    t = get_template(ih)
+    if t.marked:
+        return marked_tiling(t.ih)
+    edges = {k: EdgeShape.parse(v) for k, v in (spec.get("edges") or {}).items()}
+    col = spec.get("colouring")
+    return IsohedralTiling(t.ih, spec.get("params"), edges, col)
