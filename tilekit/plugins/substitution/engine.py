@@ -1,0 +1,148 @@
+"""Generation of substitution patches as arrays (§6.1, exercise 6.7, §7.4's selective substitution).
+
+All tiles of a level are expanded at once: per prototile, the (k, 3, 3) stack of tile
+transforms is multiplied by the rule's (m, 3, 3) stack of child maps in one batched matmul.
+Only tiles whose *inflated* bounds (a disc holding all their descendants) meet the region
+are expanded. Coincident duplicates are removed exactly: a tile is keyed by its prototile
+and its transform, canonicalised modulo the prototile's symmetry group (two matrices that
+differ by a symmetry place the same tile) and quantised on two staggered grids.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from tilekit.plugins.substitution.system import SubstitutionSystem, inflation_radii
+
+#: Quantum of the duplicate keys, relative to the tiles' linear size.
+KEY_QUANTUM = 1e-6
+
+
+def expand_level(system: SubstitutionSystem, proto: np.ndarray, transform: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """One substitution step applied to every tile: children of tile t are T_t @ M_c."""
+    protos, transforms = [], []
+    for i, rule in enumerate(system.rules):
+        idx = np.flatnonzero(proto == i)
+        if not len(idx):
+            continue
+        kids = np.matmul(transform[idx][:, None, :, :], rule.matrices[None, :, :, :])
+        transforms.append(kids.reshape(-1, 3, 3))
+        protos.append(np.tile(rule.children, len(idx)))
+    if not protos:
+        return np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3))
+    return np.concatenate(protos), np.concatenate(transforms)
+
+
+def meets_box(
+    system: SubstitutionSystem,
+    proto: np.ndarray,
+    transform: np.ndarray,
+    box: tuple[float, float, float, float],
+    radii: tuple[np.ndarray, np.ndarray] | None = None,
+) -> np.ndarray:
+    """Mask of tiles whose descendants (all depths) can meet the box: their disc test."""
+    centres, radius = radii if radii is not None else inflation_radii(system)
+    c = centres[proto]
+    img = np.einsum("nij,nj->ni", transform[:, :2, :2], c) + transform[:, :2, 2]
+    sigma = np.sqrt(np.abs(transform[:, 0, 0] * transform[:, 1, 1] - transform[:, 0, 1] * transform[:, 1, 0]))
+    reach = sigma * radius[proto]
+    x0, y0, x1, y1 = box
+    dx = np.maximum(np.maximum(x0 - img[:, 0], img[:, 0] - x1), 0.0)
+    dy = np.maximum(np.maximum(y0 - img[:, 1], img[:, 1] - y1), 0.0)
+    return dx * dx + dy * dy <= reach * reach
+
+
+def generate(
+    system: SubstitutionSystem,
+    depth: int,
+    seed_transform: np.ndarray | None = None,
+    seed_prototile: int | None = None,
+    box: tuple[float, float, float, float] | None = None,
+    dedupe: bool | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Substitute one seed tile ``depth`` times; return (prototile, transform) arrays.
+
+    With ``box``, only tiles whose inflated bounds meet it are expanded (and kept). Duplicates
+    are removed after every level for overlapping systems and once at the end otherwise
+    (``dedupe`` forces either way). Transforms are those of the rule prototiles (half-tiles
+    for systems with an assembly; see :func:`assemble`).
+    """
+    seed = system.seed if seed_prototile is None else int(seed_prototile)
+    proto = np.array([seed], dtype=np.int64)
+    transform = (np.eye(3) if seed_transform is None else np.asarray(seed_transform, dtype=float)).reshape(1, 3, 3)
+    radii = inflation_radii(system) if box is not None else None
+    per_level = system.kind == "overlapping" if dedupe is None else dedupe
+    for _ in range(depth):
+        if box is not None:
+            keep = meets_box(system, proto, transform, box, radii)
+            proto, transform = proto[keep], transform[keep]
+        proto, transform = expand_level(system, proto, transform)
+        if per_level:
+            keep = unique_tiles(proto, transform, system.symmetries)
+            proto, transform = proto[keep], transform[keep]
+    if box is not None and len(proto):
+        keep = meets_box(system, proto, transform, box, radii)
+        proto, transform = proto[keep], transform[keep]
+    if dedupe is not False and not per_level and system.kind == "overlapping":
+        keep = unique_tiles(proto, transform, system.symmetries)
+        proto, transform = proto[keep], transform[keep]
+    return proto, transform
+
+
+def assemble(system: SubstitutionSystem, proto: np.ndarray, transform: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Whole tiles from half-tiles (exercise 6.10), each once.
+
+    Every half-tile names the whole tile it belongs to and where that whole tile lies in its
+    frame; mapping each half by its placement gives the whole tile, and the two halves of one
+    tile give the same tile modulo the whole tile's mirror symmetry, so the symmetric
+    duplicate removal pairs them up (vectorised; a half whose partner lies outside the patch
+    still yields its whole tile, which belongs to the same tiling).
+    """
+    if system.output_prototiles is None:
+        return proto, transform
+    assert system.assemble_tile is not None and system.assemble_matrix is not None
+    out_proto = system.assemble_tile[proto]
+    out_transform = np.matmul(transform, system.assemble_matrix[proto])
+    keep = unique_tiles(out_proto, out_transform, system.output_symmetries)
+    return out_proto[keep], out_transform[keep]
+
+
+def unique_tiles(proto: np.ndarray, transform: np.ndarray, groups: Sequence[np.ndarray]) -> np.ndarray:
+    """Indices of one representative per distinct placed tile (sorted)."""
+    if len(proto) < 2:
+        return np.arange(len(proto))
+    sigma = np.sqrt(np.abs(transform[:, 0, 0] * transform[:, 1, 1] - transform[:, 0, 1] * transform[:, 1, 0]))
+    quantum = KEY_QUANTUM * float(np.median(sigma)) if len(sigma) else KEY_QUANTUM
+    survivors = np.arange(len(proto))
+    for offset in (0.0, 0.5):
+        keys = _canonical_keys(proto[survivors], transform[survivors], groups, quantum, offset)
+        _, first = np.unique(keys, axis=0, return_index=True)
+        survivors = survivors[np.sort(first)]
+    return survivors
+
+
+def _canonical_keys(
+    proto: np.ndarray, transform: np.ndarray, groups: Sequence[np.ndarray], quantum: float, offset: float
+) -> np.ndarray:
+    keys = np.zeros((len(proto), 7), dtype=np.int64)
+    keys[:, 0] = proto
+    for p, group in enumerate(groups):
+        idx = np.flatnonzero(proto == p)
+        if not len(idx):
+            continue
+        best = None
+        for g in group:
+            cand = np.floor((transform[idx] @ g)[:, :2, :].reshape(-1, 6) / quantum + offset).astype(np.int64)
+            if best is None:
+                best = cand
+                continue
+            diff = cand != best
+            has = diff.any(axis=1)
+            first = np.argmax(diff, axis=1)
+            rows = np.arange(len(idx))
+            less = has & (cand[rows, first] < best[rows, first])
+            best[less] = cand[less]
+        keys[idx, 1:] = best
+    return keys

@@ -1,0 +1,477 @@
+"""Substitution systems as data (§6.1): prototiles, expansion constant, rules, and their checks.
+
+A system file (TOML, one per system in ``catalogue/substitution/``) names its prototiles
+(congruent ones may appear under distinct labels), the expansion constant ``scale``, and a
+rule per prototile ``T_i -> [(j, M), ...]``. Following the book's convention (Figure 6.5)
+each M already includes the factor 1/s, so a rule's children cover the *unscaled* parent.
+A child's M is written either as a 2x3 ``matrix`` or as ``vertices``: where the child's
+outline vertices 0, 1, 2 land in the parent's frame. All numbers are expressions in named
+constants (phi, sqrt2, ...) evaluated once by :mod:`.expr`.
+
+The loader checks what the book requires of a system: indices in range, every M a similarity
+of scale 1/s, and — by ``kind`` — that the children of each rule cover the parent exactly
+(``exact``: a composition), tile without overlap but leave indentations and protrusions
+(``indented``, e.g. Gähler's shield), or cover it with consistent overlaps (``overlapping``,
+e.g. Lord's tiling). Every error names the file, the rule and the problem.
+
+Optional ``[[tile]]`` / ``[assemble]`` tables describe a final assembly (exercise 6.10):
+each half-tile prototile names the whole tile it is half of and where that whole tile sits
+in the half-tile's frame; generation then emits the whole tiles, each exactly once.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import shapely
+
+from tilekit.errors import GeometryError, ParseError
+from tilekit.geometry import Affine
+from tilekit.plugins.substitution.expr import constants_with, evaluate
+from tilekit.tiling import Prototile
+
+KINDS = ("exact", "indented", "overlapping")
+
+#: Relative tolerance of the loader's geometric checks (areas as a fraction of the parent).
+CHECK_TOL = 1e-7
+
+
+@dataclass
+class Rule:
+    """The substitution of one prototile: child prototile indices and their maps (m, 3, 3)."""
+
+    children: np.ndarray
+    matrices: np.ndarray
+
+
+@dataclass
+class SubstitutionSystem:
+    """A validated substitution system (see the module docstring for the file format)."""
+
+    name: str
+    title: str
+    scale: float
+    kind: str
+    prototiles: list[Prototile]
+    rules: list[Rule]
+    seed: int = 0
+    output_prototiles: list[Prototile] | None = None
+    assemble_tile: np.ndarray | None = None
+    assemble_matrix: np.ndarray | None = None
+    facts: dict[str, Any] = field(default_factory=dict)
+    source: str = "<memory>"
+    data: dict[str, Any] = field(default_factory=dict)
+    symmetries: list[np.ndarray] = field(default_factory=list)
+    output_symmetries: list[np.ndarray] = field(default_factory=list)
+
+    # ------------------------------------------------------------------ derived facts
+    @property
+    def n(self) -> int:
+        return len(self.prototiles)
+
+    @property
+    def tiles(self) -> list[Prototile]:
+        """The prototiles a generated patch is made of (the whole tiles after assembly)."""
+        return self.output_prototiles if self.output_prototiles is not None else self.prototiles
+
+    def substitution_matrix(self) -> np.ndarray:
+        """M[i, j] = number of prototile-i children in the rule of prototile j."""
+        m = np.zeros((self.n, self.n), dtype=np.int64)
+        for j, rule in enumerate(self.rules):
+            np.add.at(m[:, j], rule.children, 1)
+        return m
+
+    def perron_frobenius(self) -> tuple[float, np.ndarray]:
+        """The dominant eigenvalue of the substitution matrix and its eigenvector (sum 1).
+
+        For a primitive matrix the normalised right eigenvector gives the limiting relative
+        frequencies of the prototiles; for a self-similar system the eigenvalue is s**2.
+        """
+        m = self.substitution_matrix().astype(float)
+        vals, vecs = np.linalg.eig(m)
+        k = int(np.argmax(vals.real))
+        vec = np.abs(vecs[:, k].real)
+        return float(vals[k].real), vec / vec.sum()
+
+    def counts(self, generations: int, start: int | None = None) -> list[list[int]]:
+        """Prototile counts after 0..generations substitutions of one ``start`` tile (M^n e)."""
+        m = self.substitution_matrix()
+        v = np.zeros(self.n, dtype=object)
+        v[self.seed if start is None else start] = 1
+        out = [[int(x) for x in v]]
+        mo = m.astype(object)
+        for _ in range(generations):
+            v = mo.dot(v)
+            out.append([int(x) for x in v])
+        return out
+
+    def rep_tile(self) -> int | None:
+        """k if the system is a k-rep-tile (one prototile, all children congruent), else None."""
+        if self.n != 1 or self.kind != "exact":
+            return None
+        return int(len(self.rules[0].children))
+
+
+# ---------------------------------------------------------------------- loading
+
+
+def load_system(path: str | Path) -> SubstitutionSystem:
+    """Read and validate a system file (TOML)."""
+    p = Path(path)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except OSError as exc:
+        raise ParseError(f"substitution system {str(p)!r} cannot be read: {exc.strerror}") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ParseError(f"substitution system {p.name}: not valid TOML ({exc})") from None
+    return system_from_data(data, source=p.name)
+
+
+def system_from_data(data: Mapping[str, Any], source: str = "<data>") -> SubstitutionSystem:
+    """Build and validate a system from parsed TOML/JSON data (``source`` names it in errors)."""
+    where = f"substitution system {source}"
+
+    def fail(msg: str) -> ParseError:
+        return ParseError(f"{where}: {msg}")
+
+    if not isinstance(data, Mapping):
+        raise fail("top level must be a table")
+    env = constants_with(_table(data.get("constants", {}), where + ": [constants]"))
+
+    def num(value: Any, ctx: str) -> float:
+        try:
+            return evaluate(value, env)
+        except ParseError as exc:
+            raise fail(f"{ctx}: {exc}") from None
+
+    def point(value: Any, ctx: str) -> np.ndarray:
+        if not isinstance(value, Sequence) or isinstance(value, str) or len(value) != 2:
+            raise fail(f"{ctx}: a point must be [x, y], got {value!r}")
+        return np.array([num(value[0], ctx), num(value[1], ctx)])
+
+    name = str(data.get("name") or Path(source).stem)
+    kind = str(data.get("kind", "exact"))
+    if kind not in KINDS:
+        raise fail(f"kind {kind!r} is not one of {', '.join(KINDS)}")
+    if "scale" not in data:
+        raise fail("missing the expansion constant 'scale'")
+    scale = num(data["scale"], "scale")
+    if not scale > 1:
+        raise fail(f"expansion constant scale = {scale:g} must be greater than 1")
+
+    protos, names = _prototiles(data.get("prototile"), "prototile", num, point, fail)
+    index = {nm: i for i, nm in enumerate(names)}
+
+    raw_rules = data.get("rule")
+    if not isinstance(raw_rules, list) or not raw_rules:
+        raise fail("no [[rule]] tables")
+    rules: list[Rule | None] = [None] * len(protos)
+    for r, raw in enumerate(raw_rules):
+        if not isinstance(raw, Mapping) or "parent" not in raw:
+            raise fail(f"rule #{r + 1} has no 'parent'")
+        parent = _resolve(raw["parent"], index, f"rule #{r + 1} parent", fail)
+        rctx = f"rule for {names[parent]!r}"
+        if rules[parent] is not None:
+            raise fail(f"{rctx}: given twice")
+        kids = raw.get("child")
+        if not isinstance(kids, list) or not kids:
+            raise fail(f"{rctx}: no [[rule.child]] entries")
+        labels, mats = [], []
+        for c, kid in enumerate(kids):
+            cctx = f"{rctx}, child #{c + 1}"
+            if not isinstance(kid, Mapping) or "tile" not in kid:
+                raise fail(f"{cctx}: needs 'tile'")
+            j = _resolve(kid["tile"], index, cctx, fail)
+            labels.append(j)
+            mats.append(_child_matrix(kid, protos[j], cctx, num, point, fail))
+        rules[parent] = Rule(np.array(labels, dtype=np.int64), np.array(mats))
+    missing = [names[i] for i, rl in enumerate(rules) if rl is None]
+    if missing:
+        raise fail(f"no rule for prototile(s) {', '.join(missing)}")
+
+    seed_name = data.get("seed", names[0])
+    seed = _resolve(seed_name, index, "seed", fail)
+
+    output = assemble_tile = assemble_matrix = None
+    if "tile" in data or "assemble" in data:
+        output, out_names = _prototiles(data.get("tile"), "tile", num, point, fail)
+        out_index = {nm: i for i, nm in enumerate(out_names)}
+        table = _table(data.get("assemble"), where + ": [assemble]")
+        assemble_tile = np.zeros(len(protos), dtype=np.int64)
+        assemble_matrix = np.zeros((len(protos), 3, 3))
+        for i, nm in enumerate(names):
+            if nm not in table:
+                raise fail(f"[assemble] has no entry for prototile {nm!r}")
+            entry = table[nm]
+            actx = f"[assemble] {nm!r}"
+            if not isinstance(entry, Mapping) or "tile" not in entry:
+                raise fail(f"{actx}: needs 'tile'")
+            t = _resolve(entry["tile"], out_index, actx, fail)
+            assemble_tile[i] = t
+            assemble_matrix[i] = _child_matrix(entry, output[t], actx, num, point, fail)
+
+    facts = dict(_table(data.get("properties", {}), where + ": [properties]"))
+    system = SubstitutionSystem(
+        name=name,
+        title=str(data.get("title", name)),
+        scale=scale,
+        kind=kind,
+        prototiles=protos,
+        rules=rules,  # type: ignore[arg-type]
+        seed=seed,
+        output_prototiles=output,
+        assemble_tile=assemble_tile,
+        assemble_matrix=assemble_matrix,
+        facts=facts,
+        source=source,
+        data=dict(data),
+    )
+    check_system(system, names)
+    system.symmetries = rule_symmetries(system)
+    if output is not None:
+        system.output_symmetries = [outline_symmetries(t.outline) for t in output]
+    return system
+
+
+def _table(value: Any, ctx: str) -> Mapping[str, Any]:
+    if value is None:
+        return {}
+    if not isinstance(value, Mapping):
+        raise ParseError(f"{ctx} must be a table")
+    return value
+
+
+def _resolve(ref: Any, index: Mapping[str, int], ctx: str, fail: Any) -> int:
+    if isinstance(ref, bool):
+        raise fail(f"{ctx}: tile reference {ref!r} is not a name or index")
+    if isinstance(ref, int):
+        if not 0 <= ref < len(index):
+            raise fail(f"{ctx}: tile index {ref} out of range 0..{len(index) - 1}")
+        return ref
+    if isinstance(ref, str) and ref in index:
+        return index[ref]
+    raise fail(f"{ctx}: unknown tile {ref!r}; known: {', '.join(index)}")
+
+
+def _prototiles(raw: Any, key: str, num: Any, point: Any, fail: Any) -> tuple[list[Prototile], list[str]]:
+    if not isinstance(raw, list) or not raw:
+        raise fail(f"no [[{key}]] tables")
+    protos, names = [], []
+    for i, entry in enumerate(raw):
+        if not isinstance(entry, Mapping) or "outline" not in entry:
+            raise fail(f"[[{key}]] #{i + 1} needs an 'outline'")
+        nm = str(entry.get("name", f"T{i + 1}"))
+        if nm in names:
+            raise fail(f"[[{key}]] name {nm!r} used twice")
+        pts = np.array([point(p, f"{key} {nm!r} outline") for p in entry["outline"]])
+        if len(pts) < 3:
+            raise fail(f"{key} {nm!r}: outline needs at least 3 points")
+        if shapely.Polygon(pts).is_valid is False:
+            raise fail(f"{key} {nm!r}: outline is self-intersecting")
+        area = 0.5 * float(np.sum(pts[:, 0] * np.roll(pts[:, 1], -1) - np.roll(pts[:, 0], -1) * pts[:, 1]))
+        if area <= 0:
+            raise fail(f"{key} {nm!r}: outline must be counter-clockwise with positive area")
+        marking = tuple(
+            np.array([point(p, f"{key} {nm!r} marking") for p in line]) for line in entry.get("marking", [])
+        )
+        try:
+            protos.append(Prototile(pts, marking=marking, name=nm))
+        except GeometryError as exc:
+            raise fail(f"{key} {nm!r}: {exc}") from None
+        names.append(nm)
+    return protos, names
+
+
+def _child_matrix(kid: Mapping[str, Any], child: Prototile, ctx: str, num: Any, point: Any, fail: Any) -> np.ndarray:
+    if ("matrix" in kid) == ("vertices" in kid):
+        raise fail(f"{ctx}: give exactly one of 'matrix' (2x3) or 'vertices' (3 points)")
+    if "matrix" in kid:
+        rows = kid["matrix"]
+        if not isinstance(rows, list) or len(rows) not in (2, 3) or any(
+            not isinstance(r, list) or len(r) != 3 for r in rows
+        ):
+            raise fail(f"{ctx}: matrix must be 2 or 3 rows of 3 entries")
+        m = np.array([[num(v, f"{ctx} matrix") for v in r] for r in rows[:2]] + [[0.0, 0.0, 1.0]])
+        if len(rows) == 3 and [num(v, ctx) for v in rows[2]] != [0.0, 0.0, 1.0]:
+            raise fail(f"{ctx}: matrix third row must be [0, 0, 1]")
+        return m
+    imgs = kid["vertices"]
+    if not isinstance(imgs, list) or len(imgs) != 3:
+        raise fail(f"{ctx}: 'vertices' must list the images of the child's vertices 0, 1, 2")
+    dst = np.array([point(v, f"{ctx} vertices") for v in imgs])
+    src = child.outline[:3]
+    return affine_from_points(src, dst, ctx, fail)
+
+
+def affine_from_points(src: np.ndarray, dst: np.ndarray, ctx: str = "", fail: Any = None) -> np.ndarray:
+    """The affine map taking the three points ``src`` to ``dst``."""
+    a = np.column_stack([src, np.ones(3)])
+    try:
+        sol = np.linalg.solve(a, dst)  # (3, 2): rows are x-coef, y-coef, constant
+    except np.linalg.LinAlgError:
+        msg = f"{ctx}: the child's first three vertices are collinear"
+        raise (fail(msg) if fail else GeometryError(msg)) from None
+    m = np.eye(3)
+    m[:2, :2] = sol[:2].T
+    m[:2, 2] = sol[2]
+    return m
+
+
+# ---------------------------------------------------------------------- checks
+
+
+def check_system(system: SubstitutionSystem, names: Sequence[str]) -> None:
+    """The loader's geometric checks (similarity scale and coverage by kind)."""
+    where = f"substitution system {system.source}"
+    inv = 1.0 / system.scale
+    polys = [p.polygon() for p in system.prototiles]
+    for j, rule in enumerate(system.rules):
+        rctx = f"{where}: rule for {names[j]!r}"
+        for c, m in enumerate(rule.matrices):
+            s = Affine.similarity_scale(m, tol=1e-7)
+            if s is None:
+                raise ParseError(f"{rctx}, child #{c + 1}: matrix is not a similarity (it shears or stretches)")
+            if abs(s - inv) > 1e-7 * max(1.0, inv):
+                raise ParseError(
+                    f"{rctx}, child #{c + 1}: similarity has scale {s:.9g}, expected 1/scale = {inv:.9g}"
+                )
+        parent = polys[j]
+        kids = [
+            shapely.Polygon(Affine.apply(m, system.prototiles[k].outline))
+            for k, m in zip(rule.children, rule.matrices)
+        ]
+        area = parent.area
+        tol = CHECK_TOL * area
+        union = shapely.union_all(kids)
+        total = sum(k.area for k in kids)
+        if system.kind == "exact":
+            outside = union.difference(parent).area
+            uncovered = parent.difference(union).area
+            if outside > tol:
+                raise ParseError(f"{rctx}: children extend outside the parent (area {outside:.3g})")
+            if uncovered > tol:
+                raise ParseError(f"{rctx}: children leave a gap in the parent (area {uncovered:.3g})")
+            if total - area > tol:
+                raise ParseError(f"{rctx}: children overlap (total area {total:.6g} > parent {area:.6g})")
+        elif system.kind == "indented":
+            if abs(total - union.area) > tol:
+                raise ParseError(f"{rctx}: children overlap each other (an indented system may not)")
+            if abs(total - area) > tol:
+                raise ParseError(
+                    f"{rctx}: children's area {total:.6g} differs from the parent's {area:.6g} "
+                    "(protrusions must balance indentations)"
+                )
+        else:  # overlapping
+            uncovered = parent.difference(union).area
+            if uncovered > tol:
+                raise ParseError(f"{rctx}: children do not cover the parent (gap area {uncovered:.3g})")
+    if system.output_prototiles is not None:
+        assert system.assemble_tile is not None and system.assemble_matrix is not None
+        for i, (t, m) in enumerate(zip(system.assemble_tile, system.assemble_matrix)):
+            actx = f"{where}: [assemble] {names[i]!r}"
+            if not Affine.is_isometry(m, tol=1e-7):
+                raise ParseError(f"{actx}: the whole tile's placement is not an isometry")
+            whole = shapely.Polygon(Affine.apply(m, system.output_prototiles[t].outline))
+            half = polys[i]
+            if half.difference(whole).area > CHECK_TOL * half.area:
+                raise ParseError(f"{actx}: the half-tile is not inside the whole tile it names")
+
+
+# ---------------------------------------------------------------------- symmetry
+
+
+def outline_symmetries(outline: np.ndarray, tol: float = 1e-7) -> np.ndarray:
+    """All isometries mapping the outline onto itself (k, 3, 3), identity first."""
+    pts = np.asarray(outline, dtype=float)
+    k = len(pts)
+    out = [np.eye(3)]
+    for j in range(k):
+        for direction in (1, -1):
+            if j == 0 and direction == 1:
+                continue
+            src = pts[[0, 1, 2]]
+            dst = pts[[j % k, (j + direction) % k, (j + 2 * direction) % k]]
+            try:
+                m = affine_from_points(src, dst)
+            except GeometryError:
+                continue
+            if not Affine.is_isometry(m, tol=1e-6):
+                continue
+            img = Affine.apply(m, pts)
+            perm = pts[[(j + direction * i) % k for i in range(k)]]
+            if np.allclose(img, perm, atol=tol * max(1.0, float(np.abs(pts).max()))):
+                out.append(m)
+    return np.array(out)
+
+
+def rule_symmetries(system: SubstitutionSystem) -> list[np.ndarray]:
+    """Per prototile, the outline symmetries that also preserve its substitution (exercise 6.7).
+
+    Two matrices M and M @ S place the same tile of prototile i exactly when S is a symmetry
+    of the outline *and* of everything the rule produces from it; a greatest fixed point:
+    start from the outline symmetries and drop S whenever S maps the rule's children onto a
+    set that differs from the children modulo their own surviving symmetries.
+    """
+    groups = [outline_symmetries(p.outline) for p in system.prototiles]
+    changed = True
+    while changed:
+        changed = False
+        for i, rule in enumerate(system.rules):
+            keep = [groups[i][0]]
+            base = _child_keys(rule.children, rule.matrices, groups)
+            for s in groups[i][1:]:
+                moved = _child_keys(rule.children, s[None] @ rule.matrices, groups)
+                if moved == base:
+                    keep.append(s)
+            if len(keep) != len(groups[i]):
+                groups[i] = np.array(keep)
+                changed = True
+    return groups
+
+
+def _child_keys(children: np.ndarray, mats: np.ndarray, groups: list[np.ndarray]) -> set[tuple[int, ...]]:
+    keys = set()
+    for j, m in zip(children, mats):
+        cands = [tuple(np.round((m @ g)[:2].ravel() * 1e6).astype(np.int64).tolist()) for g in groups[int(j)]]
+        keys.add((int(j), *min(cands)))
+    return keys
+
+
+def inflation_radii(system: SubstitutionSystem) -> tuple[np.ndarray, np.ndarray]:
+    """Per prototile, a centre c_i and radius R_i bounding all its descendants at every depth.
+
+    R_i = max(radius of T_i about c_i, max over children |M c_j - c_i| + R_j / s), iterated to
+    its fixed point (a contraction, since 1/s < 1). Exact systems give the outline radius.
+    """
+    centres = np.array([p.outline.mean(axis=0) for p in system.prototiles])
+    base = np.array([np.linalg.norm(p.outline - c, axis=1).max() for p, c in zip(system.prototiles, centres)])
+    radius = base.copy()
+    inv = 1.0 / system.scale
+    for _ in range(200):
+        new = base.copy()
+        for i, rule in enumerate(system.rules):
+            img = np.einsum("nij,nj->ni", rule.matrices[:, :2, :2], centres[rule.children]) + rule.matrices[:, :2, 2]
+            reach = np.linalg.norm(img - centres[i], axis=1) + radius[rule.children] * inv
+            new[i] = max(base[i], float(reach.max()))
+        if np.allclose(new, radius, rtol=1e-12, atol=1e-12):
+            break
+        radius = new
+    return centres, radius * (1 + 1e-9) + 1e-12
+
+
+def inscribed_disc(outline: np.ndarray) -> tuple[np.ndarray, float]:
+    """A large disc inside the outline (centre, radius), by shapely's polylabel."""
+    from shapely.ops import polylabel
+
+    poly = shapely.Polygon(outline)
+    tol = math.sqrt(poly.area) * 1e-4
+    c = polylabel(poly, tolerance=tol)
+    return np.array([c.x, c.y]), float(poly.exterior.distance(c))

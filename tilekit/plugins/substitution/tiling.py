@@ -1,0 +1,205 @@
+"""SubstitutionTiling: a Tiling whose patches come from a substitution system (§6.1, §7.4).
+
+``patch(region)`` picks the depth that covers the region: the seed prototile, scaled by
+s**d about its largest inscribed disc, must hold the region's circumscribed disc; for an
+exact system (a composition) its d-th substitution then covers the region, and only tiles
+whose inflated bounds meet the region are expanded. ``configure(depth=N)`` fixes the depth
+instead (the seed scaled by s**N at the origin) and ``patch`` returns the tiles meeting the
+region.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+import shapely
+from shapely.geometry.base import BaseGeometry
+
+from tilekit.errors import ParameterError, ParseError
+from tilekit.geometry import Affine, as_region
+from tilekit.plugins.substitution import engine
+from tilekit.plugins.substitution.system import SubstitutionSystem, inscribed_disc
+from tilekit.tiling import Patch, Prototile, Tiling
+
+#: Refuse depths whose full expansion would be absurd even with region culling.
+MAX_DEPTH = 60
+
+
+class SubstitutionTiling(Tiling):
+    """A substitution tiling: a validated system, an optional fixed depth, and options."""
+
+    family = "substitution"
+
+    def __init__(
+        self,
+        system: SubstitutionSystem,
+        depth: int | None = None,
+        seed: str | None = None,
+        spec_source: Mapping[str, Any] | None = None,
+    ) -> None:
+        self.system = system
+        self.name = system.name
+        self.depth = depth
+        if depth is not None and not 0 <= depth <= MAX_DEPTH:
+            raise ParameterError(f"depth {depth} is out of range 0..{MAX_DEPTH}")
+        names = [p.name for p in system.prototiles]
+        if seed is not None and seed not in names:
+            raise ParameterError(f"seed {seed!r} is not a prototile of {system.name}; valid: {', '.join(names)}")
+        self.seed = seed
+        self._spec_source = dict(spec_source) if spec_source is not None else {"system": system.name}
+
+    # ------------------------------------------------------------------ Tiling API
+    @property
+    def prototiles(self) -> list[Prototile]:
+        return self.system.tiles
+
+    def _seed_index(self) -> int:
+        if self.seed is not None:
+            return [p.name for p in self.system.prototiles].index(self.seed)
+        return self.system.seed
+
+    def seed_placement(self, region: BaseGeometry) -> tuple[int, np.ndarray, int]:
+        """(seed prototile, seed transform, depth) whose substitution covers ``region``."""
+        if self.depth is not None:
+            d = self.depth
+            return self._seed_index(), Affine.scaling(self.system.scale**d), d
+        x0, y0, x1, y1 = region.bounds
+        centre = np.array([(x0 + x1) / 2, (y0 + y1) / 2])
+        need = math.hypot(x1 - x0, y1 - y0) / 2
+        # the seed with the largest inscribed disc relative to its tiles needs the fewest levels
+        best: tuple[float, int, np.ndarray] | None = None
+        candidates = [self._seed_index()] if self.seed is not None else range(self.system.n)
+        for i in candidates:
+            c, r = inscribed_disc(self.system.prototiles[i].outline)
+            if best is None or r > best[0]:
+                best = (r, i, c)
+        assert best is not None
+        r, i, c = best
+        d = max(0, math.ceil(math.log(max(need, 1e-12) / r) / math.log(self.system.scale) - 1e-12))
+        if d > MAX_DEPTH:
+            raise ParameterError(f"region {region.bounds} needs depth {d}; the limit is {MAX_DEPTH}")
+        lam = self.system.scale**d
+        t = Affine.translation(*centre) @ Affine.scaling(lam) @ Affine.translation(-c[0], -c[1])
+        return i, t, d
+
+    def raw(self, region: Any = None) -> tuple[np.ndarray, np.ndarray]:
+        """The (prototile, transform) arrays before clipping (whole tiles after assembly)."""
+        reg = as_region(region) if region is not None else None
+        if reg is None and self.depth is None:
+            raise ParameterError("a region or a fixed depth is needed")
+        seed, t, d = self.seed_placement(reg) if reg is not None else (
+            self._seed_index(),
+            Affine.scaling(self.system.scale**self.depth),  # type: ignore[operator]
+            int(self.depth),  # type: ignore[arg-type]
+        )
+        box = tuple(reg.bounds) if reg is not None else None
+        proto, transform = engine.generate(self.system, d, t, seed, box=box)
+        return engine.assemble(self.system, proto, transform)
+
+    def patch(self, region: Any = None) -> Patch:
+        """Tiles meeting ``region`` (every tile of the fixed-depth patch when region is None)."""
+        reg = as_region(region) if region is not None else None
+        proto, transform = self.raw(reg)
+        patch = Patch(self.system.tiles, proto, transform, colour=proto)
+        if reg is not None:
+            patch = patch.clip(reg)
+        return patch
+
+    def default_region(self) -> BaseGeometry:
+        size = math.sqrt(max(abs(p.area) for p in self.system.tiles))
+        return shapely.box(-6 * size, -6 * size, 6 * size, 6 * size)
+
+    def configure(self, **options: Any) -> SubstitutionTiling:
+        """Options: ``depth`` (int, fixed substitution depth), ``seed`` (prototile name)."""
+        depth = options.pop("depth", self.depth)
+        seed = options.pop("seed", self.seed)
+        if options:
+            raise ParameterError(
+                f"{self.name} does not take option(s) {', '.join(sorted(options))}; valid: depth, seed"
+            )
+        if depth is not None:
+            try:
+                depth = int(depth)
+            except (TypeError, ValueError):
+                raise ParameterError(f"depth {depth!r} is not an integer") from None
+        return SubstitutionTiling(self.system, depth, seed, self._spec_source)
+
+    def spec(self) -> dict[str, Any]:
+        out = dict(self._spec_source)
+        if self.depth is not None:
+            out["depth"] = self.depth
+        if self.seed is not None:
+            out["seed"] = self.seed
+        return out
+
+    # ------------------------------------------------------------------ facts
+    def properties(self) -> dict[str, Any]:
+        return system_properties(self.system)
+
+    def describe(self) -> str:
+        s = self.system
+        lines = [f"{s.title}: {s.n} rule prototile(s), expansion constant {s.scale:.9g}, kind {s.kind}"]
+        m = s.substitution_matrix()
+        lines.append("substitution matrix (column j = children of prototile j): " + str(m.tolist()))
+        for j, rule in enumerate(s.rules):
+            kids = ", ".join(s.prototiles[k].name for k in rule.children)
+            lines.append(f"  {s.prototiles[j].name} -> {kids}")
+        return "\n".join(lines)
+
+
+def system_properties(system: SubstitutionSystem, generations: int = 6) -> dict[str, Any]:
+    """The catalogue facts of a system: expansion constant, matrix, eigen-data, counts ..."""
+    eig, freq = system.perron_frobenius()
+    counts = system.counts(generations)
+    props: dict[str, Any] = {
+        "expansion_constant": round(system.scale, 12),
+        "substitution_matrix": [[int(v) for v in row] for row in system.substitution_matrix()],
+        "perron_frobenius_eigenvalue": round(eig, 12),
+        "tile_frequencies": [round(float(f), 12) for f in freq],
+        "rule_prototiles": [p.name for p in system.prototiles],
+        "tiles_per_generation": [int(sum(c)) for c in counts],
+        "kind": system.kind,
+        "k_hedral": len({_shape_key(p) for p in system.tiles}),
+    }
+    rep = system.rep_tile()
+    if rep is not None:
+        props["rep_tile"] = rep
+    aperiodic = system.facts.get("aperiodic")
+    if aperiodic is not None:
+        props["aperiodic"] = bool(aperiodic)
+    if system.facts.get("nonperiodic", aperiodic):
+        props["periodic"] = False
+    for key, value in system.facts.items():
+        if key not in props and isinstance(value, str | int | float | bool | list):
+            props[key] = value
+    return props
+
+
+def _shape_key(p: Prototile) -> tuple[int, ...]:
+    """Congruence-class key of an outline: sorted edge lengths and squared-area (for k_hedral)."""
+    pts = p.outline
+    edges = np.linalg.norm(np.roll(pts, -1, axis=0) - pts, axis=1)
+    return (len(pts), round(abs(p.area) * 1e6), *sorted(np.round(edges * 1e6).astype(int).tolist()))
+
+
+def tiling_from_spec(spec: Mapping[str, Any], systems: Mapping[str, SubstitutionSystem]) -> SubstitutionTiling:
+    """Rebuild a tiling from ``{"system": name}`` or ``{"system_data": {...}}`` plus options."""
+    from tilekit.errors import NotFoundError
+    from tilekit.plugins.substitution.system import system_from_data
+
+    if "system_data" in spec:
+        system = system_from_data(spec["system_data"], source=str(spec.get("source", "<spec>")))
+    elif "system" in spec:
+        name = spec["system"]
+        if name not in systems:
+            raise NotFoundError("substitution system", str(name), systems)
+        system = systems[name]
+    else:
+        raise ParseError("substitution spec needs 'system' (a built-in name) or 'system_data'")
+    source = {k: spec[k] for k in ("system", "system_data", "source") if k in spec}
+    tiling = SubstitutionTiling(system, spec_source=source)
+    options = {k: spec[k] for k in ("depth", "seed") if k in spec}
+    return tiling.configure(**options) if options else tiling
