@@ -69,6 +69,10 @@ ENV_VAR = "TILEKIT_CATALOGUE"
 #: SQLite waits this long (ms) for a lock held by another writer before giving up.
 BUSY_TIMEOUT_MS = 30_000
 
+#: ``KEY=N`` on a numeric property matches values within this relative tolerance, so a
+#: float written with 10 significant digits finds the stored double.
+NUMBER_RTOL = 1e-9
+
 #: Batch size for ``IN (...)`` lists and bulk inserts.
 _BATCH = 500
 
@@ -544,7 +548,8 @@ class Catalogue:
         """Tilings matching every filter, ordered and paged.
 
         ``family`` restricts to one family; ``where`` holds filter expressions (see
-        :func:`parse_filter`): on a list property ``=`` means "some element equals", ``!=``
+        :func:`parse_filter`): ``=`` on numbers allows a relative tolerance of 1e-9; on a
+        list property ``=`` means "some element equals", ``!=``
         means "has the property and no element equals", ranges mean "some element is in
         range". ``text`` is a case-insensitive substring of the name, title, an alias or a
         text property. ``order_by`` is a column or property key, ``-key`` for descending.
@@ -943,7 +948,9 @@ def _condition(f: Filter) -> Any:
         if isinstance(f.value, bool):
             equal = sa.or_(p.c.value_bool == f.value, p.c.value_text == f.raw)
         elif isinstance(f.value, int | float):
-            equal = sa.or_(p.c.value_num == float(f.value), p.c.value_text == f.raw)
+            v = float(f.value)
+            eps = NUMBER_RTOL * max(1.0, abs(v))
+            equal = sa.or_(p.c.value_num.between(v - eps, v + eps), p.c.value_text == f.raw)
         else:
             equal = p.c.value_text == f.raw
         if f.op == "=":

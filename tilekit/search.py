@@ -206,6 +206,11 @@ def run_search(
         raise ParameterError(f"executor {executor!r} is not one of: {', '.join(EXECUTORS)}")
     if workers is not None and workers < 1:
         raise ParameterError(f"workers must be at least 1, got {workers}")
+    if executor == "dask":  # fail before creating or touching a run if dask is missing
+        try:
+            import dask.distributed  # noqa: F401
+        except ImportError:
+            _dask_client(workers, scheduler)
 
     if resume_run is not None:
         info = catalogue.run(resume_run)
@@ -235,12 +240,6 @@ def run_search(
         except Exception as exc:
             raise SearchError(f"search {search.name!r} could not split its work: {exc}") from exc
         run_id = catalogue.create_run(search.name, params, chunks)
-
-    if executor == "dask":  # fail before touching the run if dask is missing
-        try:
-            import dask.distributed  # noqa: F401
-        except ImportError:
-            _dask_client(workers, scheduler)
 
     info = catalogue.run(run_id)
     total = info.chunks_total
