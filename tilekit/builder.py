@@ -1,0 +1,886 @@
+"""The backtracking patch builder shared by every family (§2.4, exercise 6.2).
+
+Polygonal prototiles (optionally with edge labels) are placed edge to edge against the
+open edges of a growing patch, taken from a frontier (breadth-first by default). Each
+candidate placement is checked against its neighbours (a grid hash over tile bounding
+boxes, then an exact separating-axis test with a tolerance on convex pieces), against the
+angle sums of the vertices it touches, and against a pluggable local rule called for every
+vertex it changes (``closed`` when a vertex becomes surrounded, ``open`` otherwise).
+Backtracking uses an explicit stack, so there is no recursion limit, and the search order is
+fixed by the inputs, so results are deterministic.
+
+The result is honest: ``complete`` with a patch that meets the goal, ``exhausted`` when every
+branch died (a proof, for a radius goal, that no edge-to-edge patch covering the disc of that
+radius around the seed exists), or ``limit`` when the node or time budget ran out.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable, Hashable, Sequence
+from dataclasses import dataclass, field
+from typing import Any, Protocol
+
+import numpy as np
+
+from tilekit.errors import GeometryError, ParameterError
+from tilekit.geometry import Affine
+from tilekit.tiling import Patch, Prototile
+
+TWO_PI = 2.0 * math.pi
+#: Angles (radians) closer than this are equal.
+ANGLE_TOL = 1e-6
+
+ORDERS = ("bfs", "dfs", "nearest")
+
+
+# --------------------------------------------------------------------------- public types
+
+
+@dataclass(frozen=True)
+class Corner:
+    """One tile corner at a vertex: the tile, its prototile, the prototile's vertex index,
+    the interior angle, and the direction (radians) of the corner's first (CCW-most
+    clockwise) edge, so corners sorted by ``start`` go counter-clockwise round the vertex."""
+
+    tile: int
+    prototile: int
+    index: int
+    angle: float
+    start: float
+
+
+@dataclass(frozen=True)
+class VertexView:
+    """What a rule sees of one vertex of the patch.
+
+    ``fans`` are the maximal runs of corners that abut one another, in counter-clockwise
+    order; ``gaps[i]`` is the uncovered angle after ``fans[i]`` (before the next fan). A
+    closed vertex has one fan and no gap.
+    """
+
+    point: tuple[float, float]
+    closed: bool
+    angle_sum: float
+    fans: tuple[tuple[Corner, ...], ...]
+    gaps: tuple[float, ...]
+
+    @property
+    def corners(self) -> tuple[Corner, ...]:
+        return tuple(c for fan in self.fans for c in fan)
+
+
+class VertexRule(Protocol):
+    """A local acceptance rule: ``closed(view)`` for a surrounded vertex, ``open(view)`` for
+    a partly surrounded one. Either returns True to accept. ``describe()`` names the rule."""
+
+    def closed(self, view: VertexView) -> bool: ...
+
+    def open(self, view: VertexView) -> bool: ...
+
+
+@dataclass
+class BuildStats:
+    """Search statistics. ``nodes``: candidate placements examined; ``placements``: tiles
+    placed; ``backtracks``: tiles removed; ``max_tiles``: the largest patch seen;
+    ``max_radius``: the largest covered disc (radius goal) seen on any branch."""
+
+    nodes: int = 0
+    placements: int = 0
+    backtracks: int = 0
+    seconds: float = 0.0
+    reason: str = ""
+    max_tiles: int = 0
+    max_radius: float = 0.0
+    rejections: dict[str, int] = field(default_factory=dict)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "nodes": self.nodes,
+            "placements": self.placements,
+            "backtracks": self.backtracks,
+            "seconds": round(self.seconds, 6),
+            "reason": self.reason,
+            "max_tiles": self.max_tiles,
+            "max_radius": round(self.max_radius, 6),
+            "rejections": dict(self.rejections),
+        }
+
+
+@dataclass
+class BuildResult:
+    """``status`` is ``complete`` (``patch`` meets the goal), ``exhausted`` (no patch meeting
+    the goal exists from this seed) or ``limit`` (gave up; ``patch`` is None)."""
+
+    status: str
+    patch: Patch | None
+    stats: BuildStats
+
+    @property
+    def ok(self) -> bool:
+        return self.status == "complete"
+
+    def __bool__(self) -> bool:
+        return self.ok
+
+
+def labels_match(a: Hashable, b: Hashable) -> bool:
+    """The rule of exercise 6.2: a shared edge carries labels i and -i (unlabelled edges
+    match only unlabelled edges)."""
+    if a is None or b is None:
+        return a is None and b is None
+    try:
+        return a == -b  # type: ignore[operator]
+    except TypeError:
+        return False
+
+
+# --------------------------------------------------------------------------- internals
+
+
+def _segment_distance(p: np.ndarray, q: np.ndarray, cx: float, cy: float) -> float:
+    px, py, qx, qy = float(p[0]), float(p[1]), float(q[0]), float(q[1])
+    dx, dy = qx - px, qy - py
+    len2 = dx * dx + dy * dy
+    u = 0.0 if len2 == 0 else max(0.0, min(1.0, ((cx - px) * dx + (cy - py) * dy) / len2))
+    return math.hypot(px + u * dx - cx, py + u * dy - cy)
+
+
+def _interior_angles(pts: np.ndarray) -> np.ndarray:
+    nxt = np.roll(pts, -1, axis=0) - pts
+    prv = np.roll(pts, 1, axis=0) - pts
+    cross = nxt[:, 0] * prv[:, 1] - nxt[:, 1] * prv[:, 0]
+    dot = (nxt * prv).sum(axis=1)
+    return np.mod(np.arctan2(cross, dot), TWO_PI)
+
+
+def _ear_clip(pts: np.ndarray) -> list[np.ndarray]:
+    """Triangulate a simple CCW polygon (used to split non-convex prototiles into convex pieces)."""
+    idx = list(range(len(pts)))
+    out: list[np.ndarray] = []
+
+    def cross(o, a, b) -> float:
+        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+
+    guard = 0
+    while len(idx) > 3 and guard < 10000:
+        guard += 1
+        n = len(idx)
+        for k in range(n):
+            i0, i1, i2 = idx[k - 1], idx[k], idx[(k + 1) % n]
+            a, b, c = pts[i0], pts[i1], pts[i2]
+            if cross(a, b, c) <= 1e-12:
+                continue
+            inside = False
+            for j in idx:
+                if j in (i0, i1, i2):
+                    continue
+                p = pts[j]
+                if cross(a, b, p) >= -1e-12 and cross(b, c, p) >= -1e-12 and cross(c, a, p) >= -1e-12:
+                    inside = True
+                    break
+            if not inside:
+                out.append(np.array([a, b, c]))
+                del idx[k]
+                break
+        else:
+            raise GeometryError("prototile outline could not be triangulated (is it simple?)")
+    out.append(pts[idx])
+    return out
+
+
+def _pad(pts: np.ndarray, k: int) -> np.ndarray:
+    if len(pts) == k:
+        return pts
+    return np.vstack([pts, np.repeat(pts[-1:], k - len(pts), axis=0)])
+
+
+def _normals(padded: np.ndarray) -> np.ndarray:
+    """Unit outward-ish edge normals of padded convex pieces (..., K, 2); zero-length padding
+    edges get the first real normal (a repeated axis is harmless in the SAT test)."""
+    d = np.roll(padded, -1, axis=-2) - padded
+    n = np.stack([d[..., 1], -d[..., 0]], axis=-1)
+    length = np.linalg.norm(n, axis=-1, keepdims=True)
+    good = length[..., 0] > 1e-12
+    n = np.where(good[..., None], n / np.where(length > 1e-12, length, 1.0), 0.0)
+    if n.ndim == 2:
+        first = n[np.argmax(good)]
+        n[~good] = first
+    else:
+        first = n[np.arange(len(n)), np.argmax(good, axis=-1)]
+        n = np.where(good[..., None], n, first[:, None, :])
+    return n
+
+
+@dataclass
+class _Candidate:
+    prototile: int
+    variant: int
+    edge: int  # variant edge index placed against the open edge
+    length: float
+    label: Hashable
+    local: np.ndarray  # (k, 2) outline with edge `edge` from (0,0) to (length,0)
+    angles: np.ndarray  # (k,) interior angles aligned with local
+    labels: tuple[Hashable, ...]  # per local edge
+    vertex_map: tuple[int, ...]  # local vertex -> prototile vertex index
+    pieces: np.ndarray  # (c, K, 2) convex pieces, padded
+    normals: np.ndarray  # (c, K, 2) the pieces' unit edge normals
+    base: np.ndarray  # 3x3 map from prototile coordinates to the local frame
+    outline_next: np.ndarray  # (k, 2) local outline rolled by one (edge ends)
+
+
+@dataclass
+class _Tile:
+    cand: int
+    transform: np.ndarray
+    points: np.ndarray
+    vids: list[int]
+    new_vids: list[int]
+    edges: list[tuple[int, int]]
+    pieces: list[int]
+    cells: list[tuple[int, int]]
+    bbox: tuple[float, float, float, float]
+
+
+class PatchBuilder:
+    """Grow patches of ``prototiles`` edge to edge with backtracking.
+
+    ``compatible(a, b)`` decides whether edge labels a (existing tile) and b (new tile) may
+    share an edge (default :func:`labels_match`, the i / -i rule); ``reflections`` allows
+    mirror images; ``rule`` is a :class:`VertexRule`; ``order`` picks the open edge to fill
+    next: ``bfs`` (oldest first, exercise 6.2), ``dfs`` (newest first), ``nearest``
+    (closest to the seed's centre first) or a callable ``key(edge) -> sortable`` where
+    ``edge`` is a dict with ``serial``, ``distance``, ``midpoint``, ``angle_sum``.
+    """
+
+    def __init__(
+        self,
+        prototiles: Sequence[Prototile],
+        *,
+        reflections: bool = False,
+        compatible: Callable[[Hashable, Hashable], bool] | None = None,
+        rule: VertexRule | None = None,
+        order: str | Callable[[dict[str, Any]], Any] = "bfs",
+        tolerance: float = 1e-6,
+    ) -> None:
+        if not prototiles:
+            raise ParameterError("the builder needs at least one prototile")
+        if isinstance(order, str) and order not in ORDERS:
+            raise ParameterError(f"builder order {order!r} is not one of {', '.join(ORDERS)} or a callable")
+        self.prototiles = list(prototiles)
+        self.reflections = reflections
+        self.compatible = compatible or labels_match
+        self.rule = rule
+        self.order = order
+        scale = max(
+            float(np.linalg.norm(np.roll(p.outline, -1, axis=0) - p.outline, axis=1).max())
+            for p in self.prototiles
+        )
+        self.scale = scale
+        self.tol = tolerance * scale
+        self._prepare()
+
+    # ------------------------------------------------------------------ preparation
+    def _prepare(self) -> None:
+        variants: list[tuple[int, np.ndarray, tuple, tuple, np.ndarray]] = []
+        signatures: list[tuple[int, list[tuple]]] = []
+        for p, proto in enumerate(self.prototiles):
+            k = len(proto.outline)
+            labels = proto.edge_labels if proto.edge_labels is not None else (None,) * k
+            forms = [(proto.outline.copy(), tuple(labels), tuple(range(k)), np.eye(3))]
+            if self.reflections:
+                refl = proto.outline * np.array([1.0, -1.0])
+                pts = refl[::-1].copy()
+                vmap = tuple((k - 1 - i) for i in range(k))
+                rl = tuple(labels[(k - 2 - i) % k] for i in range(k))
+                forms.append((pts, rl, vmap, Affine.scaling(1.0, -1.0)))
+            for pts, labs, vmap, base in forms:
+                sig = self._signature(pts, labs)
+                if any(q == p and self._cyclic_equal(sig, s) for q, s in signatures):
+                    continue  # the mirror image is a rotated copy: no new placements
+                signatures.append((p, sig))
+                variants.append((p, pts, labs, vmap, base))
+        self._variants = variants
+        convex_pieces: list[list[np.ndarray]] = []
+        kmax = 3
+        for _, pts, _, _, _ in variants:
+            ang = _interior_angles(pts)
+            if np.all(ang <= math.pi + ANGLE_TOL):
+                pieces = [pts]
+            else:
+                pieces = _ear_clip(pts)
+            convex_pieces.append(pieces)
+            kmax = max(kmax, max(len(pc) for pc in pieces), len(pts))
+        self._K = kmax
+        cands: list[_Candidate] = []
+        for vi, (p, pts, labs, vmap, base) in enumerate(variants):
+            k = len(pts)
+            sig = self._signature(pts, labs)
+            seen: list[list[tuple]] = []
+            ang = _interior_angles(pts)
+            for j in range(k):
+                rot = sig[j:] + sig[:j]
+                if any(rot == s for s in seen):
+                    continue  # a symmetry of the tile maps edge j onto an earlier edge
+                seen.append(rot)
+                q0, q1 = pts[j], pts[(j + 1) % k]
+                length = float(np.hypot(*(q1 - q0)))
+                frame = Affine.segment_map((0.0, 0.0), (length, 0.0), q0, q1)
+                local = Affine.apply(frame, pts)
+                pieces = np.stack([_pad(Affine.apply(frame, pc), kmax) for pc in convex_pieces[vi]])
+                cands.append(
+                    _Candidate(
+                        prototile=p,
+                        variant=vi,
+                        edge=j,
+                        length=length,
+                        label=labs[j],
+                        local=local,
+                        angles=ang,
+                        labels=labs,
+                        vertex_map=vmap,
+                        pieces=pieces,
+                        normals=_normals(pieces),
+                        base=frame @ base,
+                        outline_next=np.roll(local, -1, axis=0),
+                    )
+                )
+        self._cands = cands
+        self._lengths = np.array([c.length for c in cands])
+        # tile diameter bounds the grid cell
+        diam = 0.0
+        for _, pts, _, _, _ in variants:
+            d = pts[:, None, :] - pts[None, :, :]
+            diam = max(diam, float(np.sqrt((d**2).sum(-1)).max()))
+        self._cell = diam
+        self._angle_set = self._fillable_angles()
+
+    def _signature(self, pts: np.ndarray, labels: Sequence[Hashable]) -> list[tuple]:
+        edges = np.roll(pts, -1, axis=0) - pts
+        lengths = np.hypot(edges[:, 0], edges[:, 1])
+        ang = _interior_angles(pts)
+        q = self.tol if hasattr(self, "tol") else 1e-6
+        return [
+            (round(float(lengths[i]) / (100 * q)), round(float(ang[i]) / 1e-4), labels[i])
+            for i in range(len(pts))
+        ]
+
+    @staticmethod
+    def _cyclic_equal(a: list[tuple], b: list[tuple]) -> bool:
+        if len(a) != len(b):
+            return False
+        return any(a[s:] + a[:s] == b for s in range(len(a)))
+
+    def _fillable_angles(self) -> np.ndarray | None:
+        """Sorted sums (<= 2π) of corner angles with repetition: the angles an open vertex's
+        gap can still be filled with. None when there are too many to be a useful test."""
+        angles = sorted({round(float(a), 9) for _, pts, _, _, _ in self._variants for a in _interior_angles(pts)})
+        sums = {0.0}
+        frontier = {0.0}
+        while frontier:
+            nxt = set()
+            for s in frontier:
+                for a in angles:
+                    t = round(s + a, 7)
+                    if t <= TWO_PI + 1e-6 and t not in sums:
+                        nxt.add(t)
+            sums |= nxt
+            frontier = nxt
+            if len(sums) > 20000:
+                return None
+        return np.array(sorted(sums))
+
+    # ------------------------------------------------------------------ state
+    def _reset(self) -> None:
+        self._tiles: list[_Tile] = []
+        self._vkey: dict[tuple[int, int], int] = {}
+        self._vpos: list[tuple[float, float]] = []
+        self._vsum: list[float] = []
+        self._vcorners: list[list[Corner]] = []
+        self._vfree: list[int] = []
+        self._vlive: list[bool] = []
+        self._edges: dict[tuple[int, int], tuple[int, int, int, float]] = {}
+        self._open: set[tuple[int, int]] = set()
+        self._serial = 0
+        self._grid: dict[tuple[int, int], list[int]] = {}
+        cap = 256
+        self._ppts = np.zeros((cap, self._K, 2))
+        self._pnorm = np.zeros((cap, self._K, 2))
+        self._pcount = 0
+        self._pfree: list[int] = []
+        self._tpts = np.zeros((cap, self._K, 2))
+        self._tnext = np.zeros((cap, self._K, 2))
+        self._tbox = np.zeros((cap, 4))
+
+    def _find_vertex(self, x: float, y: float) -> int | None:
+        q = self.tol
+        kx, ky = round(x / q), round(y / q)
+        v = self._vkey.get((kx, ky))
+        if v is not None:
+            return v
+        for dx in (-1, 0, 1):
+            for dy in (-1, 0, 1):
+                v = self._vkey.get((kx + dx, ky + dy))
+                if v is not None:
+                    px, py = self._vpos[v]
+                    if abs(px - x) <= 2 * q and abs(py - y) <= 2 * q:
+                        return v
+        return None
+
+    def _new_vertex(self, x: float, y: float) -> int:
+        q = self.tol
+        if self._vfree:
+            v = self._vfree.pop()
+            self._vpos[v] = (x, y)
+            self._vsum[v] = 0.0
+            self._vcorners[v] = []
+            self._vlive[v] = True
+        else:
+            v = len(self._vpos)
+            self._vpos.append((x, y))
+            self._vsum.append(0.0)
+            self._vcorners.append([])
+            self._vlive.append(True)
+        self._vkey[(round(x / q), round(y / q))] = v
+        return v
+
+    def _drop_vertex(self, v: int) -> None:
+        x, y = self._vpos[v]
+        q = self.tol
+        del self._vkey[(round(x / q), round(y / q))]
+        self._vlive[v] = False
+        self._vfree.append(v)
+
+    def _cells(self, bbox: tuple[float, float, float, float]) -> list[tuple[int, int]]:
+        c = self._cell
+        x0, y0, x1, y1 = bbox
+        return [
+            (i, j)
+            for i in range(math.floor(x0 / c), math.floor(x1 / c) + 1)
+            for j in range(math.floor(y0 / c), math.floor(y1 / c) + 1)
+        ]
+
+    def _alloc_piece(self) -> int:
+        if self._pfree:
+            return self._pfree.pop()
+        if self._pcount == len(self._ppts):
+            self._ppts = np.concatenate([self._ppts, np.zeros_like(self._ppts)])
+            self._pnorm = np.concatenate([self._pnorm, np.zeros_like(self._pnorm)])
+        self._pcount += 1
+        return self._pcount - 1
+
+    # ------------------------------------------------------------------ geometry tests
+    def _neighbours(self, bbox: tuple[float, float, float, float]) -> list[int]:
+        found: set[int] = set()
+        for cell in self._cells(bbox):
+            found.update(self._grid.get(cell, ()))
+        if not found:
+            return []
+        ids = np.fromiter(found, dtype=np.int64, count=len(found))
+        b = self._tbox[ids]
+        keep = (b[:, 0] <= bbox[2]) & (b[:, 2] >= bbox[0]) & (b[:, 1] <= bbox[3]) & (b[:, 3] >= bbox[1])
+        return np.sort(ids[keep]).tolist()
+
+    def _overlaps(
+        self, pieces: np.ndarray, an: np.ndarray, pts: np.ndarray, nxt: np.ndarray, neighbours: list[int]
+    ) -> str | None:
+        """'overlap' if a placed piece meets a neighbour's interior, 'vertex on edge' if a
+        corner lies inside another tile's edge (not edge to edge), else None."""
+        if not neighbours:
+            return None
+        tol = self.tol
+        nb_pieces = [pc for t in neighbours for pc in self._tiles[t].pieces]
+        bp = self._ppts[nb_pieces]  # (m, K, 2)
+        bn = self._pnorm[nb_pieces]
+        c, m = len(pieces), len(bp)
+        axes = np.concatenate(
+            [np.broadcast_to(an[:, None], (c, m) + an.shape[1:]), np.broadcast_to(bn[None], (c, m) + bn.shape[1:])],
+            axis=2,
+        )  # (c, m, 2K, 2)
+        pa = np.einsum("cmad,ckd->cmak", axes, pieces)
+        pb = np.einsum("cmad,mkd->cmak", axes, bp)
+        sep = (pa.max(-1) <= pb.min(-1) + tol) | (pb.max(-1) <= pa.min(-1) + tol)
+        if not np.all(sep.any(-1)):
+            return "overlap"
+        # corners strictly inside edges (T-junctions) in either direction
+        nb_out = self._tpts[neighbours].reshape(-1, 2)  # padded outlines
+        if self._t_junction(pts, nb_out, self._tnext[neighbours].reshape(-1, 2)):
+            return "vertex on edge"
+        if self._t_junction(nb_out, pts, nxt):
+            return "vertex on edge"
+        return None
+
+    def _t_junction(self, points: np.ndarray, s: np.ndarray, t: np.ndarray) -> bool:
+        d = t - s
+        len2 = (d**2).sum(-1)
+        good = len2 > 1e-18
+        if not good.any():
+            return False
+        s, d, len2 = s[good], d[good], len2[good]
+        rel = points[:, None, :] - s[None, :, :]
+        u = (rel * d[None]).sum(-1) / len2[None]
+        cross = d[None, :, 0] * rel[..., 1] - d[None, :, 1] * rel[..., 0]
+        perp = np.abs(cross) / np.sqrt(len2)[None]
+        ltol = self.tol / np.sqrt(len2)[None]
+        return bool(np.any((perp <= self.tol) & (u > ltol) & (u < 1 - ltol)))
+
+    # ------------------------------------------------------------------ placement
+    def _try_place(self, ci: int, frame: np.ndarray, stats: BuildStats) -> bool:
+        cand = self._cands[ci]
+        lin, off = frame[:2, :2], frame[:2, 2]
+        pts = cand.local @ lin.T + off
+        k = len(pts)
+        vids: list[int | None] = [self._find_vertex(float(x), float(y)) for x, y in pts]
+        for i, v in enumerate(vids):
+            if v is not None and self._vsum[v] + cand.angles[i] > TWO_PI + ANGLE_TOL:
+                return self._reject(stats, "angle sum")
+        # directed edges: each must be new, and any reverse edge must carry compatible labels
+        for i in range(k):
+            a, b = vids[i], vids[(i + 1) % k]
+            if a is None or b is None:
+                continue
+            if (a, b) in self._edges:
+                return self._reject(stats, "overlap")
+            rev = self._edges.get((b, a))
+            if rev is not None:
+                other = self._tiles[rev[0]]
+                other_label = self._cands[other.cand].labels[rev[1]]
+                if not self.compatible(other_label, cand.labels[i]):
+                    return self._reject(stats, "edge labels")
+        pieces = cand.pieces @ lin.T + off
+        normals = cand.normals @ lin.T
+        nxt = cand.outline_next @ lin.T + off
+        bbox = (float(pts[:, 0].min()), float(pts[:, 1].min()), float(pts[:, 0].max()), float(pts[:, 1].max()))
+        tb = (bbox[0] - self.tol, bbox[1] - self.tol, bbox[2] + self.tol, bbox[3] + self.tol)
+        problem = self._overlaps(pieces, normals, pts, nxt, self._neighbours(tb))
+        if problem:
+            return self._reject(stats, problem)
+        t = self._commit(ci, frame @ cand.base, pts, vids, pieces, bbox, normals, nxt)
+        touched = self._tiles[t].vids
+        if not self._vertices_ok(touched, stats):
+            self._undo()
+            return False
+        return True
+
+    def _reject(self, stats: BuildStats, why: str) -> bool:
+        stats.rejections[why] = stats.rejections.get(why, 0) + 1
+        return False
+
+    def _commit(self, ci, transform, pts, vids, pieces, bbox, normals, nxt) -> int:
+        cand = self._cands[ci]
+        t = len(self._tiles)
+        k = len(pts)
+        new_vids: list[int] = []
+        full: list[int] = []
+        for i, v in enumerate(vids):
+            if v is None:
+                v = self._new_vertex(float(pts[i, 0]), float(pts[i, 1]))
+                new_vids.append(v)
+            full.append(v)
+        for i, v in enumerate(full):
+            dx, dy = pts[(i + 1) % k] - pts[i]
+            start = math.atan2(dy, dx)
+            self._vcorners[v].append(
+                Corner(t, cand.prototile, cand.vertex_map[i], float(cand.angles[i]), start)
+            )
+            self._vsum[v] += float(cand.angles[i])
+        edges = []
+        cx, cy = float(self._centre[0]), float(self._centre[1])
+        for i in range(k):
+            a, b = full[i], full[(i + 1) % k]
+            self._serial += 1
+            self._edges[(a, b)] = (t, i, self._serial, _segment_distance(pts[i], pts[(i + 1) % k], cx, cy))
+            edges.append((a, b))
+            if (b, a) in self._open:
+                self._open.discard((b, a))
+            else:
+                self._open.add((a, b))
+        piece_ids = []
+        for pc, pn in zip(pieces, normals):
+            pid = self._alloc_piece()
+            self._ppts[pid] = pc
+            self._pnorm[pid] = pn
+            piece_ids.append(pid)
+        if t == len(self._tpts):
+            self._tpts = np.concatenate([self._tpts, np.zeros_like(self._tpts)])
+            self._tnext = np.concatenate([self._tnext, np.zeros_like(self._tnext)])
+            self._tbox = np.concatenate([self._tbox, np.zeros_like(self._tbox)])
+        self._tbox[t] = bbox
+        self._tpts[t] = _pad(pts, self._K)
+        self._tnext[t] = _pad(nxt, self._K)
+        cells = self._cells(bbox)
+        for cell in cells:
+            self._grid.setdefault(cell, []).append(t)
+        self._tiles.append(_Tile(ci, transform, pts, full, new_vids, edges, piece_ids, cells, bbox))
+        return t
+
+    def _undo(self) -> None:
+        tile = self._tiles.pop()
+        t = len(self._tiles)
+        for cell in tile.cells:
+            lst = self._grid[cell]
+            lst.remove(t)
+            if not lst:
+                del self._grid[cell]
+        self._pfree.extend(reversed(tile.pieces))
+        for a, b in tile.edges:
+            del self._edges[(a, b)]
+            if (a, b) in self._open:
+                self._open.discard((a, b))
+            elif (b, a) in self._edges:
+                self._open.add((b, a))
+        for v in tile.vids:
+            corners = self._vcorners[v]
+            for idx in range(len(corners) - 1, -1, -1):
+                if corners[idx].tile == t:
+                    self._vsum[v] -= corners[idx].angle
+                    del corners[idx]
+                    break
+        for v in reversed(tile.new_vids):
+            self._drop_vertex(v)
+
+    def vertex_view(self, v: int) -> VertexView:
+        corners = sorted(self._vcorners[v], key=lambda c: (c.start % TWO_PI, c.tile))
+        total = self._vsum[v]
+        closed = abs(total - TWO_PI) <= ANGLE_TOL
+        if closed:
+            # rotate so the list starts at a deterministic corner (the lowest tile index)
+            first = min(range(len(corners)), key=lambda i: corners[i].tile)
+            corners = corners[first:] + corners[:first]
+            return VertexView(self._vpos[v], True, total, (tuple(corners),), ())
+        # split into fans: corner i abuts corner i+1 when its end equals the next start
+        n = len(corners)
+        ends = [(c.start + c.angle) % TWO_PI for c in corners]
+        breaks = []
+        for i in range(n):
+            nxt = corners[(i + 1) % n].start % TWO_PI
+            gap = (nxt - ends[i]) % TWO_PI
+            if gap > ANGLE_TOL and TWO_PI - gap > ANGLE_TOL:
+                breaks.append((i, gap))
+            elif n == 1:
+                breaks.append((i, TWO_PI - total))
+        if not breaks:  # cannot happen for an open vertex, kept for safety
+            breaks = [(n - 1, TWO_PI - total)]
+        fans = []
+        gaps = []
+        for b_idx, (i, gap) in enumerate(breaks):
+            prev_i = breaks[b_idx - 1][0]
+            start = (prev_i + 1) % n
+            fan = []
+            j = start
+            while True:
+                fan.append(corners[j])
+                if j == i:
+                    break
+                j = (j + 1) % n
+            fans.append(tuple(fan))
+            gaps.append(gap)
+        return VertexView(self._vpos[v], False, total, tuple(fans), tuple(gaps))
+
+    def _vertices_ok(self, vids: list[int], stats: BuildStats) -> bool:
+        for v in vids:
+            total = self._vsum[v]
+            if abs(total - TWO_PI) <= ANGLE_TOL:
+                if self.rule is not None and not self.rule.closed(self.vertex_view(v)):
+                    return self._reject(stats, "closed vertex rule")
+                continue
+            if self._angle_set is not None:
+                # every gap must be fillable by corner angles
+                view = self.vertex_view(v)
+                for gap in view.gaps:
+                    i = np.searchsorted(self._angle_set, gap - 1e-6)
+                    if i >= len(self._angle_set) or abs(self._angle_set[i] - gap) > 1e-6:
+                        return self._reject(stats, "unfillable angle")
+                if self.rule is not None and not self.rule.open(view):
+                    return self._reject(stats, "open vertex rule")
+            elif self.rule is not None and not self.rule.open(self.vertex_view(v)):
+                return self._reject(stats, "open vertex rule")
+        return True
+
+    # ------------------------------------------------------------------ frontier
+    def _choose(self, centre: np.ndarray, radius: float | None) -> tuple[tuple[int, int] | None, float]:
+        """The open edge to fill next, and the radius of the disc the patch covers."""
+        best = None
+        best_key = None
+        covered = math.inf
+        for e in self._open:
+            info = self._edges[e]
+            dist = info[3]
+            covered = min(covered, dist)
+            if radius is not None and dist >= radius - self.tol:
+                continue
+            if self.order == "bfs":
+                key: Any = info[2]
+            elif self.order == "dfs":
+                key = -info[2]
+            elif self.order == "nearest":
+                key = (round(dist, 9), info[2])
+            else:
+                key = (
+                    self.order(
+                        {
+                            "serial": info[2],
+                            "distance": dist,
+                            "midpoint": tuple((np.asarray(self._vpos[e[0]]) + self._vpos[e[1]]) / 2),
+                            "angle_sum": max(self._vsum[e[0]], self._vsum[e[1]]),
+                        }
+                    ),
+                    info[2],
+                )
+            if best_key is None or key < best_key:
+                best, best_key = e, key
+        return best, covered
+
+    def _candidates_for(self, e: tuple[int, int]) -> tuple[list[int], np.ndarray]:
+        a, b = e
+        pa = np.asarray(self._vpos[a])
+        pb = np.asarray(self._vpos[b])
+        d = pa - pb
+        length = float(np.hypot(*d))
+        theta = math.atan2(d[1], d[0])
+        frame = Affine.rotation(theta)
+        frame[:2, 2] = pb
+        owner = self._tiles[self._edges[e][0]]
+        label = self._cands[owner.cand].labels[self._edges[e][1]]
+        room_a = TWO_PI - self._vsum[a] + ANGLE_TOL
+        room_b = TWO_PI - self._vsum[b] + ANGLE_TOL
+        ids = []
+        for ci in np.flatnonzero(np.abs(self._lengths - length) <= self.tol * 10):
+            c = self._cands[ci]
+            k = len(c.local)
+            if c.angles[c.edge] > room_b or c.angles[(c.edge + 1) % k] > room_a:
+                continue
+            if not self.compatible(label, c.label):
+                continue
+            ids.append(int(ci))
+        return ids, frame
+
+    # ------------------------------------------------------------------ the search
+    def build(
+        self,
+        *,
+        tiles: int | None = None,
+        radius: float | None = None,
+        seed: int = 0,
+        seed_transform: np.ndarray | None = None,
+        max_nodes: int = 1_000_000,
+        max_seconds: float | None = None,
+    ) -> BuildResult:
+        """Grow a patch from prototile ``seed`` (placed by ``seed_transform``, default the
+        identity) until it has ``tiles`` tiles or covers the disc of ``radius`` round the
+        seed's centroid. Stops at ``max_nodes`` candidate placements or ``max_seconds``."""
+        if (tiles is None) == (radius is None):
+            raise ParameterError("give exactly one goal: tiles=N or radius=R")
+        if tiles is not None and tiles < 1:
+            raise ParameterError(f"tiles={tiles}: the goal must be at least 1 tile")
+        if radius is not None and not radius > 0:
+            raise ParameterError(f"radius={radius}: the goal radius must be positive")
+        if not 0 <= seed < len(self.prototiles):
+            raise ParameterError(f"seed={seed} is not a prototile index 0..{len(self.prototiles) - 1}")
+        if max_nodes < 1:
+            raise ParameterError(f"max_nodes={max_nodes} must be at least 1")
+        started = time.perf_counter()
+        stats = BuildStats()
+        self._reset()
+        # the seed tile: its variant 0 as given, edge 0 in the local frame
+        seed_ci = next(i for i, c in enumerate(self._cands) if c.prototile == seed and c.variant == min(
+            c2.variant for c2 in self._cands if c2.prototile == seed))
+        cand = self._cands[seed_ci]
+        placement = np.eye(3) if seed_transform is None else np.asarray(seed_transform, dtype=float)
+        frame = placement @ Affine.inverse(cand.base)  # so that the tile transform is `placement`
+        pts = cand.local @ frame[:2, :2].T + frame[:2, 2]
+        pieces = cand.pieces @ frame[:2, :2].T + frame[:2, 2]
+        normals = cand.normals @ frame[:2, :2].T
+        nxt = cand.outline_next @ frame[:2, :2].T + frame[:2, 2]
+        bbox = (float(pts[:, 0].min()), float(pts[:, 1].min()), float(pts[:, 0].max()), float(pts[:, 1].max()))
+        centre = pts.mean(axis=0) if tiles is not None else np.asarray(
+            Patch(self.prototiles, [seed], [placement]).centres()[0]
+        )
+        self._centre = centre
+        self._commit(seed_ci, frame @ cand.base, pts, [None] * len(pts), pieces, bbox, normals, nxt)
+        stats.placements = 1
+        if not self._vertices_ok(self._tiles[0].vids, stats):
+            stats.seconds = time.perf_counter() - started
+            stats.reason = "the seed tile alone breaks the vertex rule"
+            return BuildResult("exhausted", None, stats)
+        stack: list[list[Any]] = []  # frames: [candidate ids, next index, frame matrix]
+        deadline = None if max_seconds is None else started + max_seconds
+        while True:
+            n = len(self._tiles)
+            stats.max_tiles = max(stats.max_tiles, n)
+            edge, covered = self._choose(centre, radius)
+            if radius is not None:
+                stats.max_radius = max(stats.max_radius, min(covered, radius))
+            if (tiles is not None and n >= tiles) or (radius is not None and edge is None):
+                stats.seconds = time.perf_counter() - started
+                goal = f"{tiles} tiles" if tiles is not None else f"the disc of radius {radius:g}"
+                stats.reason = f"reached {goal} with {n} tiles"
+                return BuildResult("complete", self._patch(), stats)
+            if edge is None:  # a tile goal and no open edge: impossible in the plane
+                stats.seconds = time.perf_counter() - started
+                stats.reason = "no open edge left"
+                return BuildResult("exhausted", None, stats)
+            ids, fr = self._candidates_for(edge)
+            stack.append([ids, 0, fr])
+            while True:
+                top = stack[-1]
+                placed = False
+                while top[1] < len(top[0]):
+                    ci = top[0][top[1]]
+                    top[1] += 1
+                    stats.nodes += 1
+                    if self._try_place(ci, top[2], stats):
+                        stats.placements += 1
+                        placed = True
+                        break
+                    if stats.nodes >= max_nodes or (
+                        deadline is not None and (stats.nodes & 63) == 0 and time.perf_counter() > deadline
+                    ):
+                        return self._give_up(stats, started, max_nodes, max_seconds)
+                if placed:
+                    break
+                stack.pop()
+                if not stack:
+                    stats.seconds = time.perf_counter() - started
+                    if radius is not None:
+                        stats.reason = (
+                            f"exhausted: no patch covering the disc of radius {radius:g} round the seed "
+                            f"exists; every branch died by radius {stats.max_radius:.3g} "
+                            f"(largest patch {stats.max_tiles} tiles)"
+                        )
+                    else:
+                        stats.reason = (
+                            f"exhausted: no patch of {tiles} tiles exists from this seed "
+                            f"(largest {stats.max_tiles} tiles)"
+                        )
+                    return BuildResult("exhausted", None, stats)
+                self._undo()
+                stats.backtracks += 1
+            if stats.nodes >= max_nodes or (deadline is not None and time.perf_counter() > deadline):
+                return self._give_up(stats, started, max_nodes, max_seconds)
+
+    def _give_up(self, stats: BuildStats, started: float, max_nodes: int, max_seconds: float | None) -> BuildResult:
+        stats.seconds = time.perf_counter() - started
+        which = f"node limit {max_nodes}" if stats.nodes >= max_nodes else f"time limit {max_seconds:g} s"
+        stats.reason = f"gave up at the {which} (largest patch {stats.max_tiles} tiles)"
+        return BuildResult("limit", None, stats)
+
+    def _patch(self) -> Patch:
+        protos = np.array([self._cands[t.cand].prototile for t in self._tiles], dtype=np.int64)
+        # rounding to 12 decimals removes float noise below 1e-12 (e.g. 6e-16 versus 5e-16 at
+        # a shared vertex near an axis), which trips GEOS's overlay into wrong intersections
+        transforms = np.array([t.transform for t in self._tiles])
+        return Patch(self.prototiles, protos, transforms, protos.copy(), np.zeros(len(protos), dtype=np.int64))
+
+    # ------------------------------------------------------------------ inspection
+    def closed_vertices(self) -> list[VertexView]:
+        """Views of the closed vertices of the last patch built (after a complete build)."""
+        return [self.vertex_view(v) for v in range(len(self._vpos)) if self._vlive[v] and
+                abs(self._vsum[v] - TWO_PI) <= ANGLE_TOL]
+
+
+def build_patch(prototiles: Sequence[Prototile], **options: Any) -> BuildResult:
+    """One-call form: ``build_patch(tiles, tiles=50)``; constructor and ``build`` options mixed."""
+    ctor = {k: options.pop(k) for k in ("reflections", "compatible", "rule", "order", "tolerance") if k in options}
+    return PatchBuilder(prototiles, **ctor).build(**options)

@@ -1,0 +1,486 @@
+"""Build Archimedean tilings from their vertex types, and Laves tilings as their duals.
+
+Construction (no coordinates typed in): the shared builder grows a patch of unit-edge
+regular polygons under the rule "every vertex has this type" to a radius; the translations
+that map the patch's core onto the patch are read off (the differences of equal, equally
+turned tiles that carry every tile near the centre onto a tile); the two shortest
+independent ones form a reduced lattice basis; the tiles whose centres fall in one
+fundamental parallelogram are the translational unit. The result is checked before it is
+returned: the periodic patch it generates is valid and every interior vertex has the type.
+If the patch was too small to show two translations, the radius grows.
+
+Laves tilings (§4.2): one tile per vertex of the Archimedean tiling, the polygon through the
+centres of the tiles round that vertex, in order; all such tiles are congruent, and each is
+placed by the rigid motion taking the first onto it.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+from typing import Any
+
+import numpy as np
+
+from tilekit.builder import TWO_PI, BuildResult, PatchBuilder, VertexView
+from tilekit.colouring import Colouring
+from tilekit.errors import GeometryError, ParseError
+from tilekit.geometry import Affine, regular_polygon
+from tilekit.plugins.archimedean.notation import VertexType, arrangements, parse_vertex_type
+from tilekit.tiling import Patch, PeriodicTiling, Prototile
+
+#: Colour of a polygon by its number of sides (the same colour in every tiling).
+SIZE_COLOURS = (3, 4, 6, 8, 12)
+
+
+def _zap(a: np.ndarray) -> np.ndarray:
+    """Float noise below 1e-12 set to exact zero (e.g. -4e-16 in a lattice vector), which
+    keeps shared vertices on an axis bit-identical for GEOS's overlay in Patch.validate."""
+    a = np.array(a, dtype=float)
+    a[np.abs(a) < 1e-12] = 0.0
+    return a
+
+
+def polygon_angle(p: int) -> float:
+    return math.pi * (p - 2) / p
+
+
+def size_colour(p: int) -> int:
+    return SIZE_COLOURS.index(p) if p in SIZE_COLOURS else len(SIZE_COLOURS) + p
+
+
+def regular_prototiles(sizes: tuple[int, ...]) -> list[Prototile]:
+    """Unit-edge regular polygons, one per size, named by their number of sides."""
+    return [Prototile(regular_polygon(p), name=f"{p}-gon") for p in sizes]
+
+
+class VertexTypeRule:
+    """The builder rule "every vertex has one of these types".
+
+    A closed vertex must read, counter-clockwise, as an arrangement of an allowed type. An
+    open vertex's fans (runs of abutting corners) with the angular gaps between them must
+    fit some arrangement: each fan a run of the cycle, each gap exactly filled by the
+    polygons between."""
+
+    def __init__(self, types: list[VertexType], sides: list[int]) -> None:
+        self.types = list(types)
+        self.sides = list(sides)  # prototile index -> number of sides
+        self._closed = {a for t in self.types for a in arrangements(t.polygons)}
+        self._cycles = sorted(self._closed)
+
+    def describe(self) -> str:
+        return "every vertex of type " + " or ".join(str(t) for t in self.types)
+
+    def closed(self, view: VertexView) -> bool:
+        seq = tuple(self.sides[c.prototile] for c in view.fans[0])
+        return seq in self._closed
+
+    def open(self, view: VertexView) -> bool:
+        fans = [tuple(self.sides[c.prototile] for c in fan) for fan in view.fans]
+        gaps = list(view.gaps)
+        return any(self._fits(cyc, fans, gaps) for cyc in self._cycles)
+
+    @staticmethod
+    def _fits(cyc: tuple[int, ...], fans: list[tuple[int, ...]], gaps: list[float]) -> bool:
+        k = len(cyc)
+        if sum(len(f) for f in fans) > k:
+            return False
+        for start in range(k):
+            pos = start
+            ok = True
+            used = 0
+            for fan, gap in zip(fans, gaps):
+                for p in fan:
+                    if cyc[pos % k] != p:
+                        ok = False
+                        break
+                    pos += 1
+                    used += 1
+                if not ok:
+                    break
+                # fill the gap with the next polygons of the cycle
+                acc = 0.0
+                while acc < gap - 1e-6 and used < k:
+                    acc += polygon_angle(cyc[pos % k])
+                    pos += 1
+                    used += 1
+                if abs(acc - gap) > 1e-6:
+                    ok = False
+                    break
+            if ok and used == k:
+                return True
+        return False
+
+
+def grow(vertex_type: VertexType | str, radius: float, *, max_nodes: int = 200_000,
+         max_seconds: float | None = None, seed_size: int | None = None) -> BuildResult:
+    """Grow a patch round a seed polygon in which every closed vertex has ``vertex_type``."""
+    vt = parse_vertex_type(vertex_type) if isinstance(vertex_type, str) else vertex_type
+    sizes = vt.sizes
+    protos = regular_prototiles(sizes)
+    rule = VertexTypeRule([vt], list(sizes))
+    seed = sizes.index(seed_size) if seed_size is not None else len(sizes) - 1
+    builder = PatchBuilder(protos, rule=rule, order="nearest")
+    # centre the seed polygon on the origin
+    c = protos[seed].outline.mean(axis=0)
+    return builder.build(radius=radius, seed=seed, seed_transform=Affine.translation(-c[0], -c[1]),
+                         max_nodes=max_nodes, max_seconds=max_seconds)
+
+
+def _tile_keys(patch: Patch, sides: list[int]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Centres, sides and orientation class (rotation angle modulo the polygon's symmetry)."""
+    centres = patch.centres()
+    n = np.array([sides[p] for p in patch.prototile])
+    theta = np.arctan2(patch.transform[:, 1, 0], patch.transform[:, 0, 0])
+    orient = np.mod(theta, TWO_PI / n) / (TWO_PI / n)
+    orient = np.where(orient > 1 - 1e-6, 0.0, orient)
+    return centres, n, orient
+
+
+def _reduce(v1: np.ndarray, v2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Lagrange-Gauss reduction of a 2D lattice basis (shortest vectors, |v1| <= |v2|)."""
+    if v1 @ v1 > v2 @ v2:
+        v1, v2 = v2, v1
+    while True:
+        mu = round(float(v1 @ v2) / float(v1 @ v1))
+        if mu == 0:
+            break
+        v2 = v2 - mu * v1
+        if v2 @ v2 < v1 @ v1:
+            v1, v2 = v2, v1
+        else:
+            break
+    if v1[0] * v2[1] - v1[1] * v2[0] < 0:
+        v2 = -v2
+    return v1, v2
+
+
+def canonical_basis(g1: np.ndarray, g2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """A deterministic reduced basis of the lattice spanned by g1, g2: v1 a shortest vector
+    with the least direction angle in [0, 2π); v2 a shortest vector completing a
+    positively oriented basis, least angle from v1 on ties (float noise cannot flip ties)."""
+    g1, g2 = _reduce(np.asarray(g1, float), np.asarray(g2, float))
+    det = abs(g1[0] * g2[1] - g1[1] * g2[0])
+    combos = np.array([a * g1 + b * g2 for a in range(-2, 3) for b in range(-2, 3) if (a, b) != (0, 0)])
+    lengths = np.hypot(combos[:, 0], combos[:, 1])
+    ang = np.round(np.mod(np.arctan2(combos[:, 1], combos[:, 0]), TWO_PI), 6) % round(TWO_PI, 6)
+    shortest = np.flatnonzero(lengths <= lengths.min() + 1e-6)
+    i1 = shortest[np.lexsort((ang[shortest],))[0]]
+    v1 = combos[i1]
+    best = None
+    for j in np.argsort(np.round(lengths, 6), kind="stable"):
+        w = combos[j]
+        d = v1[0] * w[1] - v1[1] * w[0]
+        if abs(abs(d) - det) > 1e-6 * max(1.0, det) or d <= 0:
+            continue
+        key = (round(float(lengths[j]), 6), round(float(np.mod(np.arctan2(w[1], w[0]) - np.arctan2(v1[1], v1[0]), TWO_PI)), 6))
+        if best is None or key < best[0]:
+            best = (key, w)
+    assert best is not None
+    return v1, best[1]
+
+
+def find_lattice(patch: Patch, sides: list[int], radius: float) -> tuple[np.ndarray, np.ndarray] | None:
+    """Two independent translations mapping the patch's core onto the patch, or None.
+
+    A translation t qualifies when every tile whose centre lies within ``radius - |t| - d``
+    of the origin (d: the largest tile diameter) has a tile of the same size and orientation
+    at its centre + t, and that core reaches at least |t| (so a whole period was seen)."""
+    centres, n, orient = _tile_keys(patch, sides)
+    q = 1e-5
+    keys = {
+        (int(k), round(float(o) * 1e4), round(float(x) / q), round(float(y) / q))
+        for k, o, (x, y) in zip(n, orient, centres)
+    }
+
+    def has(k, o, x, y) -> bool:
+        ko = round(float(o) * 1e4)
+        kx, ky = round(float(x) / q), round(float(y) / q)
+        return any((int(k), ko2, kx + dx, ky + dy) in keys
+                   for ko2 in (ko - 1, ko, ko + 1) for dx in (-1, 0, 1) for dy in (-1, 0, 1))
+
+    diam = max(1.0 / math.sin(math.pi / p) for p in set(sides))
+    dist = np.hypot(centres[:, 0], centres[:, 1])
+    seed = int(np.argmin(dist))
+    same = np.flatnonzero((n == n[seed]) & (np.abs(orient - orient[seed]) < 1e-4))
+    cands = centres[same] - centres[seed]
+    lengths = np.hypot(cands[:, 0], cands[:, 1])
+    order = np.lexsort((np.round(np.mod(np.arctan2(cands[:, 1], cands[:, 0]), TWO_PI), 6), np.round(lengths, 6)))
+    good: list[np.ndarray] = []
+    for i in order:
+        t, length = cands[i], lengths[i]
+        if length < 1e-6:
+            continue
+        core_r = radius - length - diam
+        if core_r < length:
+            break
+        core = dist <= core_r
+        if all(has(k, o, x + t[0], y + t[1]) for k, o, (x, y) in zip(n[core], orient[core], centres[core])):
+            if not good:
+                good.append(t)
+            elif abs(good[0][0] * t[1] - good[0][1] * t[0]) > 1e-6:
+                good.append(t)
+                return canonical_basis(good[0], good[1])
+    return None
+
+
+def unit_from_patch(patch: Patch, v1: np.ndarray, v2: np.ndarray) -> np.ndarray:
+    """Indices of the tiles whose centres lie in the fundamental parallelogram at the origin
+    (shifted by a small generic offset so no centre sits on its boundary)."""
+    centres = patch.centres()
+    basis = np.column_stack([v1, v2])
+    ab = (centres - np.array([0.0123, 0.0171])) @ np.linalg.inv(basis).T + np.array([0.5, 0.5])
+    return np.flatnonzero(np.all((ab >= 0) & (ab < 1), axis=1))
+
+
+def _vertex_sequences(patch: Patch, sides: list[int], region_radius: float) -> dict[tuple[int, ...], int]:
+    """Canonical polygon sequence (CCW) round every vertex within ``region_radius`` whose
+    surrounding angle is complete, counted; used to check a construction."""
+    from tilekit.plugins.archimedean.notation import canonical
+
+    polys = patch.polygons()
+    corners: dict[tuple[int, int], list[tuple[float, int, float]]] = {}
+    q = 1e-6
+    for t, pts in enumerate(polys):
+        k = len(pts)
+        p = sides[int(patch.prototile[t])]
+        for i in range(k):
+            x, y = pts[i]
+            if math.hypot(x, y) > region_radius:
+                continue
+            d = pts[(i + 1) % k] - pts[i]
+            key = (round(x / q), round(y / q))
+            corners.setdefault(key, []).append((math.atan2(d[1], d[0]), p, polygon_angle(p)))
+    out: dict[tuple[int, ...], int] = {}
+    for lst in corners.values():
+        total = sum(c[2] for c in lst)
+        if abs(total - TWO_PI) > 1e-6:
+            continue
+        seq = canonical(tuple(c[1] for c in sorted(lst)))
+        out[seq] = out.get(seq, 0) + 1
+    return out
+
+
+def vertex_types_in(patch: Patch, sides: list[int], radius: float) -> dict[str, int]:
+    """Vertex types (exponent form) of the surrounded vertices within ``radius`` of the origin."""
+    return {str(VertexType(s)): n for s, n in _vertex_sequences(patch, sides, radius).items()}
+
+
+@lru_cache(maxsize=None)
+def _construct(polygons: tuple[int, ...]) -> tuple[list[int], np.ndarray, np.ndarray, np.ndarray, dict[str, Any]]:
+    vt = VertexType(polygons)
+    sizes = vt.sizes
+    radius = 6.0
+    last = None
+    while radius <= 40.0:
+        res = grow(vt, radius)
+        last = res
+        if not res.ok:
+            raise GeometryError(
+                f"vertex type {vt} does not extend to a tiling: {res.stats.reason}"
+            )
+        patch = res.patch
+        assert patch is not None
+        lattice = find_lattice(patch, list(sizes), radius)
+        if lattice is not None:
+            v1, v2 = lattice
+            idx = unit_from_patch(patch, v1, v2)
+            unit = patch.subset(idx)
+            area = sum(abs(patch.prototiles[int(p)].area) for p in unit.prototile)
+            if abs(area - abs(v1[0] * v2[1] - v1[1] * v2[0])) < 1e-6:
+                info = {"radius": radius, "nodes": res.stats.nodes, "backtracks": res.stats.backtracks,
+                        "seconds": res.stats.seconds}
+                return list(unit.prototile), _zap(unit.transform), _zap(v1), _zap(v2), info
+        radius *= 1.5
+    raise GeometryError(
+        f"vertex type {vt}: no translational unit found up to radius 40 ({last.stats.reason if last else ''})"
+    )
+
+
+def archimedean_tiling(vertex_type: VertexType | str, hand: str = "") -> PeriodicTiling:
+    """The Archimedean tiling ``(vertex_type)`` as a PeriodicTiling, coloured by polygon size.
+
+    For the chiral 3^4.6, ``hand`` picks the form: '' or 'l' as built, 'r' its mirror image."""
+    vt = parse_vertex_type(vertex_type) if isinstance(vertex_type, str) else vertex_type
+    if vt.geometry != "euclidean":
+        raise ParseError(f"vertex type {vt} is {vt.geometry} (angle sum {'<' if vt.excess < 0 else '>'} 2π), not a plane tiling")
+    if hand not in ("", "l", "r"):
+        raise ParseError(f"hand {hand!r} is not 'l' or 'r'")
+    protos_idx, transforms, v1, v2, _ = _construct(vt.polygons)
+    sizes = vt.sizes
+    protos = regular_prototiles(sizes)
+    transforms = transforms.copy()
+    if hand == "r":
+        m = Affine.scaling(1.0, -1.0)
+        # mirror each tile: a regular polygon is symmetric in the perpendicular bisector of
+        # its first edge (x = 1/2), so m @ T @ that reflection is a direct motion onto the image
+        bisector = Affine.reflection(math.pi / 2, (0.5, 0.0))
+        transforms = _zap(m @ transforms @ bisector)
+        v1, v2 = m[:2, :2] @ v1, m[:2, :2] @ v2
+        v1, v2 = canonical_basis(v1, v2)
+        v1, v2 = _zap(v1), _zap(v2)
+    colours = [size_colour(sizes[p]) for p in protos_idx]
+    colouring = Colouring.by_aspect(colours)
+    name = archimedean_name(vt, hand)
+    return ArchimedeanTiling(protos, protos_idx, transforms, v1, v2, colouring, vertex_type=vt, hand=hand,
+                             name=name)
+
+
+def archimedean_name(vt: VertexType, hand: str = "") -> str:
+    return f"{vt}" + (hand if hand else "")
+
+
+class ArchimedeanTiling(PeriodicTiling):
+    """A PeriodicTiling that remembers its vertex type (and hand, for 3^4.6)."""
+
+    def __init__(self, *args: Any, vertex_type: VertexType, hand: str = "", name: str = "", **kw: Any) -> None:
+        super().__init__(*args, family="archimedean", name=name, **kw)
+        self.vertex_type = vertex_type
+        self.hand = hand
+
+    def spec(self) -> dict[str, Any]:
+        return {"kind": "archimedean", "vertex_type": str(self.vertex_type), "hand": self.hand}
+
+    def properties(self) -> dict[str, Any]:
+        props = super().properties()
+        props.update(archimedean_properties(self))
+        return props
+
+
+class LavesTiling(PeriodicTiling):
+    """The dual of an Archimedean tiling: monohedral, isohedral, named ``[vertex type]``."""
+
+    def __init__(self, *args: Any, vertex_type: VertexType, hand: str = "", name: str = "", **kw: Any) -> None:
+        super().__init__(*args, family="laves", name=name, **kw)
+        self.vertex_type = vertex_type
+        self.hand = hand
+
+    def spec(self) -> dict[str, Any]:
+        return {"kind": "laves", "vertex_type": str(self.vertex_type), "hand": self.hand}
+
+    def properties(self) -> dict[str, Any]:
+        props = super().properties()
+        props.update(laves_properties(self))
+        return props
+
+
+def _match_polygon(base: np.ndarray, poly: np.ndarray, tol: float = 1e-6) -> np.ndarray | None:
+    """A rigid motion (direct first, then with reflection) mapping outline ``base`` onto
+    ``poly`` as point sequences (cyclic shift allowed), or None."""
+    k = len(base)
+    if len(poly) != k:
+        return None
+    for mirror in (False, True):
+        src = base if not mirror else (base * np.array([1.0, -1.0]))[::-1]
+        pre = np.eye(3) if not mirror else Affine.scaling(1.0, -1.0)
+        for s in range(k):
+            tgt = np.roll(poly, -s, axis=0)
+            m = Affine.segment_map(tgt[0], tgt[1], src[0], src[1])
+            if Affine.similarity_scale(m) is None or abs(Affine.similarity_scale(m) - 1) > 1e-6:
+                continue
+            if np.allclose(Affine.apply(m, src), tgt, atol=tol):
+                return m @ pre
+    return None
+
+
+@lru_cache(maxsize=None)
+def _laves(polygons: tuple[int, ...], hand: str) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    arch = archimedean_tiling(VertexType(polygons), hand)
+    v1, v2 = arch.v1, arch.v2
+    span = 2.5 * max(np.hypot(*v1), np.hypot(*v2)) + 3
+    patch = arch.patch((-span, -span, span, span))
+    centres = patch.centres()
+    polys = patch.polygons()
+    q = 1e-6
+    around: dict[tuple[int, int], list[tuple[float, int]]] = {}
+    pos: dict[tuple[int, int], np.ndarray] = {}
+    for t, pts in enumerate(polys):
+        for x, y in pts:
+            key = (round(x / q), round(y / q))
+            pos[key] = np.array([x, y])
+            c = centres[t]
+            around.setdefault(key, []).append((math.atan2(c[1] - y, c[0] - x), t))
+    basis = np.column_stack([v1, v2])
+    inv = np.linalg.inv(basis)
+    offset = np.array([0.0123, 0.0171])
+    tiles = []
+    for key, lst in sorted(around.items()):
+        p = pos[key]
+        ab = (p - offset) @ inv.T + 0.5
+        if not np.all((ab >= 0) & (ab < 1)):
+            continue
+        angle_sum = sum(polygon_angle(len(polys[t])) for _, t in lst)
+        if abs(angle_sum - TWO_PI) > 1e-6:
+            raise GeometryError(f"({arch.vertex_type}): vertex near the unit is not surrounded; enlarge the patch")
+        ring = np.array([centres[t] for _, t in sorted(lst)])
+        tiles.append((p, ring))
+    if len(tiles) == 0:
+        raise GeometryError(f"({arch.vertex_type}): no vertex in the fundamental parallelogram")
+    p0, ring0 = tiles[0]
+    outline = ring0 - p0  # prototile: the dual tile of the first vertex, that vertex at the origin
+    transforms = []
+    for p, ring in tiles:
+        m = _match_polygon(outline, ring)
+        if m is None:
+            raise GeometryError(f"[{arch.vertex_type}]: dual tiles are not congruent")
+        transforms.append(m)
+    return _zap(outline), _zap(np.array(transforms)), v1, v2
+
+
+def laves_tiling(vertex_type: VertexType | str, hand: str = "") -> LavesTiling:
+    """The Laves tiling ``[vertex_type]``: the geometric dual of the Archimedean tiling."""
+    vt = parse_vertex_type(vertex_type) if isinstance(vertex_type, str) else vertex_type
+    if vt.geometry != "euclidean":
+        raise ParseError(f"vertex type {vt} is {vt.geometry}, so it has no plane Laves tiling")
+    outline, transforms, v1, v2 = _laves(vt.polygons, hand)
+    proto = Prototile(outline, name=f"[{vt}]")
+    m = len(transforms)
+    # colour by aspect class: tiles whose placements differ by a translation share a colour
+    classes: list[np.ndarray] = []
+    colours = []
+    for tr in transforms:
+        lin = tr[:2, :2]
+        for i, c in enumerate(classes):
+            if np.allclose(c, lin, atol=1e-6):
+                colours.append(i)
+                break
+        else:
+            classes.append(lin)
+            colours.append(len(classes) - 1)
+    return LavesTiling([proto], [0] * m, transforms, v1, v2, Colouring.by_aspect(colours),
+                       vertex_type=vt, hand=hand, name=f"[{vt}]" + hand)
+
+
+def laves_prototile(vertex_type: VertexType | str) -> Prototile:
+    """The prototile of the Laves tiling [vertex_type] (a default shape for its topological type)."""
+    return laves_tiling(vertex_type).prototiles[0]
+
+
+def archimedean_properties(t: ArchimedeanTiling) -> dict[str, Any]:
+    vt = t.vertex_type
+    return {
+        "vertex_type": str(vt),
+        "species": vt.species_name,
+        "polygons": list(vt.sizes),
+        "chiral": vt.polygons == (3, 3, 3, 3, 6),
+        "dual": f"[{vt}]" + t.hand,
+        "edge_to_edge": True,
+        "k_hedral": len(vt.sizes),
+        "k_isohedral": None,
+        "uniform": True,
+    }
+
+
+def laves_properties(t: LavesTiling) -> dict[str, Any]:
+    vt = t.vertex_type
+    return {
+        "vertex_type": str(vt),
+        "topology": f"[{vt}]",
+        "species": vt.species_name,
+        "chiral": vt.polygons == (3, 3, 3, 3, 6),
+        "dual": f"{vt}" + t.hand,
+        "edge_to_edge": True,
+        "k_hedral": 1,
+        "k_isohedral": 1,
+        "tile_vertices": len(vt.polygons),
+    }
