@@ -41,7 +41,7 @@ SIDES = ("N", "E", "S", "W")
 #: Corner indices into a corner tile's (NE, SE, SW, NW) row.
 CORNERS = ("NE", "SE", "SW", "NW")
 #: The header keys a ``.wang`` file may set (besides the ``tiles:``/``corners:`` line).
-HEADER_KEYS = ("name", "title", "source", "known_aperiodic", "notes", "palette")
+HEADER_KEYS = ("name", "title", "source", "known_aperiodic", "notes", "palette", "aliases")
 
 _TOKEN = re.compile(r"^[A-Za-z0-9_.+\-]+$")
 _NAME = re.compile(r"^[a-z0-9][a-z0-9_.\-]*$")
@@ -72,6 +72,7 @@ class WangTileSet:
     corners: np.ndarray | None = None
     corner_colours: tuple[str, ...] = ()
     path: str = ""
+    aliases: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         tiles = np.asarray(self.tiles, dtype=np.int64)
@@ -208,6 +209,8 @@ class WangTileSet:
             out["known_aperiodic"] = True
         if self.palette:
             out["palette"] = dict(self.palette)
+        if self.aliases:
+            out["aliases"] = list(self.aliases)
         return out
 
     @classmethod
@@ -221,6 +224,7 @@ class WangTileSet:
                 notes=str(data.get("notes", "")),
                 known_aperiodic=bool(data.get("known_aperiodic", False)),
                 palette=dict(data.get("palette", {})),
+                aliases=tuple(str(a) for a in data.get("aliases", ())),
             )
             names = [str(n) for n in data.get("tile_names", [])]
             if "corners" in data:
@@ -243,6 +247,8 @@ class WangTileSet:
             lines.append("known_aperiodic: true")
         if self.palette:
             lines.append("palette: " + " ".join(f"{k}={v}" for k, v in self.palette.items()))
+        if self.aliases:
+            lines.append("aliases: " + " ".join(self.aliases))
         if self.corners is not None:
             lines.append("corners: NE SE SW NW")
             rows = [[self.corner_colours[int(c)] for c in r] for r in self.corners]
@@ -400,6 +406,7 @@ def parse_tileset(text: str, filename: str = "<text>") -> WangTileSet:
         known_aperiodic=header.get("known_aperiodic", False),
         palette=palette,
         path=filename,
+        aliases=header.get("aliases", ()),
     )
     build = from_corners if corner_mode else from_tuples
     return build(header["name"], rows, names, **meta)
@@ -422,6 +429,12 @@ def _header_value(key: str, value: str, fail: Any) -> Any:
         if low not in ("true", "false"):
             raise fail(f"known_aperiodic must be true or false, got {value!r}")
         return low == "true"
+    if key == "aliases":
+        names = tuple(value.split())
+        for a in names:
+            if not _NAME.match(a):
+                raise fail(f"alias {a!r} must be lower case letters, digits, '-', '_' or '.'")
+        return names
     if key == "palette":
         out: dict[str, str] = {}
         for item in value.split():
@@ -475,10 +488,12 @@ def builtin_sets() -> dict[str, WangTileSet]:
 def get_tileset(name: str) -> WangTileSet:
     """A shipped tile set by name (NotFoundError suggests the close ones)."""
     sets = builtin_sets()
-    try:
+    if name in sets:
         return sets[name]
-    except KeyError:
-        raise NotFoundError("Wang tile set", name, sets) from None
+    for ts in sets.values():
+        if name in ts.aliases:
+            return ts
+    raise NotFoundError("Wang tile set", name, sets)
 
 
 # ---------------------------------------------------------------------- geometry
