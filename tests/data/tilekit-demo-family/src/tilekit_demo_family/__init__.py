@@ -1,0 +1,89 @@
+"""A tilekit family plugin: running-bond brick walls (rows of a x b bricks, each row shifted).
+
+The whole plugin is this module and one entry point in pyproject.toml:
+``[project.entry-points.tilekit] demo_bricks = "tilekit_demo_family"``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+import tilekit
+from tilekit.errors import ParameterError
+from tilekit.plugins import CatalogueRecord, Family
+from tilekit.tiling import PeriodicTiling, Prototile
+
+FAMILY = "bricks"
+
+
+class BrickWall(PeriodicTiling):
+    """Bricks of width ``a`` and height ``b``; each row is shifted by ``shift`` * a."""
+
+    def __init__(self, a: float = 2.0, b: float = 1.0, shift: float = 0.5, name: str = "") -> None:
+        if not (a > 0 and b > 0):
+            raise ParameterError(f"brick sides must be positive, got a={a}, b={b}")
+        if not 0 <= shift < 1:
+            raise ParameterError(f"shift must be in [0, 1), got {shift}")
+        self.a, self.b, self.shift = float(a), float(b), float(shift)
+        brick = Prototile(np.array([[0, 0], [a, 0], [a, b], [0, b]], dtype=float), name="brick")
+        super().__init__([brick], [0], np.eye(3)[None], (a, 0.0), (shift * a, b),
+                         family=FAMILY, name=name or f"bricks-{a:g}x{b:g}-{shift:g}")
+
+    def spec(self) -> dict[str, Any]:
+        return {"a": self.a, "b": self.b, "shift": self.shift, "name": self.name}
+
+    def properties(self) -> dict[str, Any]:
+        return {
+            "periodic": True,
+            "k_hedral": 1,
+            "k_isohedral": 1,
+            # a shifted row puts a brick corner inside the neighbouring brick's long edge
+            "edge_to_edge": self.shift == 0,
+            "brick_width": self.a,
+            "brick_height": self.b,
+        }
+
+    def describe(self) -> str:
+        return (f"running bond: {self.a:g} x {self.b:g} bricks, rows shifted by "
+                f"{self.shift:g} of a brick")
+
+    def configure(self, **options: Any) -> BrickWall:
+        unknown = set(options) - {"params"}
+        if unknown:
+            raise ParameterError(f"bricks take only --param a,b,shift; got {', '.join(sorted(unknown))}")
+        values = list(options.get("params", []))
+        if not 1 <= len(values) <= 3:
+            raise ParameterError(f"bricks take 1 to 3 parameters (a, b, shift), got {len(values)}")
+        a, b, shift = values + [self.a, self.b, self.shift][len(values):]
+        return BrickWall(a, b, shift)
+
+
+def from_spec(spec: Mapping[str, Any]) -> BrickWall:
+    try:
+        return BrickWall(spec["a"], spec["b"], spec.get("shift", 0.5), name=spec.get("name", ""))
+    except (KeyError, TypeError) as exc:
+        raise ParameterError(f"brick spec needs numbers a and b: {exc}") from None
+
+
+@tilekit.hookimpl
+def tilekit_families():
+    return [Family(FAMILY, "Brick walls: one a x b rectangle, rows shifted (demo plugin)", from_spec)]
+
+
+@tilekit.hookimpl
+def tilekit_catalogue_records():
+    wall = BrickWall(2.0, 1.0, 0.5, name="running-bond")
+    return [
+        CatalogueRecord(
+            FAMILY,
+            wall.name,
+            wall.spec(),
+            title="running bond of 2 x 1 bricks",
+            # brickwork is the textbook example of wallpaper group cmm (2*22)
+            properties={**wall.properties(), "symmetry_group": "cmm"},
+            aliases=["stretcher-bond"],
+        )
+    ]
