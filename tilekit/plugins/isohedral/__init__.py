@@ -1,1 +1,54 @@
-"""The isohedral family plugin."""
+"""The isohedral family plugin: the 93 isohedral tiling types (Kaplan 2009, chapter 5).
+
+Templates and tiling vertex parameterizations are data (catalogue/isohedral/); the hop
+engine (:mod:`.engine`) turns a template, a parameter vector and edge shapes into a
+:class:`tilekit.PeriodicTiling`. Public names: :class:`IsohedralTiling`,
+:class:`IncidenceSymbol`, :class:`EdgeShape`, :func:`lookup`, :func:`isohedral_tiling`.
+"""
+
+from __future__ import annotations
+
+from tilekit.hookspecs import hookimpl
+from tilekit.plugins import Family
+from tilekit.plugins.isohedral.engine import IsohedralTiling, tiling_from_spec
+from tilekit.plugins.isohedral.lookup import lookup
+from tilekit.plugins.isohedral.shapes import EdgeShape
+from tilekit.plugins.isohedral.symbols import IncidenceSymbol
+
+__all__ = ["EdgeShape", "IncidenceSymbol", "IsohedralTiling", "isohedral_tiling", "lookup"]
+
+DESCRIPTION = """\
+The 93 isohedral tiling types IH1..IH93 of Grünbaum and Shephard, after Kaplan's chapter 5
+and Appendix A. Each unmarked type has a template (topological type, incidence symbol,
+tiling vertex parameterization, default colouring, aspects and rules); a tiling of the type
+is given by parameters (--param) and fundamental edge shapes (--edge LABEL=x,y:...:1,0,
+polylines from (0,0) to (1,0), or 'bezier:' control points). The 12 marked types are drawn
+as the Laves tile of their topology with a marking."""
+
+
+def isohedral_tiling(name: str | int, **options) -> IsohedralTiling:
+    """IsohedralTiling('IH16', params=[0.3], edges=['b=0,0:0.3,0.2:1,0'])-style convenience."""
+    from tilekit.plugins.isohedral.shapes import parse_edge_option
+
+    edges = options.pop("edges", None) or []
+    shapes = dict(parse_edge_option(e) if isinstance(e, str) else e for e in edges)
+    return IsohedralTiling(name, options.pop("params", None), shapes, options.pop("colouring", None), **options)
+
+
+@hookimpl
+def tilekit_families():
+    return [
+        Family(
+            name="isohedral",
+            summary="The 93 isohedral tiling types (templates, incidence symbols, edge shapes)",
+            from_spec=tiling_from_spec,
+            description=DESCRIPTION,
+        )
+    ]
+
+
+@hookimpl
+def tilekit_catalogue_records():
+    from tilekit.plugins.isohedral.records import records
+
+    return records()

@@ -77,7 +77,7 @@ class Template:
 
     ih: int
     topology: str
-    symbol: IncidenceSymbol
+    symbol: IncidenceSymbol | None
     marked: bool = False
     parameterization: str | None = None
     colouring_text: str | None = None
@@ -102,7 +102,7 @@ class Template:
 
     def text(self) -> str:
         """The template as printed in the data file (for ``tilekit show``)."""
-        lines = [f"{self.name} {self.topology} {self.symbol}"]
+        lines = [f"{self.name} {self.topology} {self.symbol or ''}".rstrip()]
         if self.marked:
             lines.append("  marked (realisable only with marked tiles; drawn as the Laves tile)")
             if self.source:
@@ -228,6 +228,8 @@ def parse_templates(text: str, path: Path | str = "templates.ih") -> dict[int, T
             for key in ("parameterization", "colouring", "aspects"):
                 if cur[key] is None:
                     raise _fail(path, ln, f"IH{cur['ih']} has no '{key}' line")
+            if cur["symbol"] is None:
+                raise _fail(path, ln, f"unmarked type IH{cur['ih']} needs an incidence symbol")
             names = cur["aspects"]
             defined = {names[0]}
             for rule, rl in cur["rules"]:
@@ -238,7 +240,7 @@ def parse_templates(text: str, path: Path | str = "templates.ih") -> dict[int, T
                 if rule.target not in names:
                     raise _fail(path, rl, f"rule '{rule}' defines {rule.target!r}, not one of the aspects {names}")
                 defined.add(rule.target)
-                n = len(cur["symbol"])
+                n = len(cur["symbol"]) if cur["symbol"] is not None else 0
                 bad = [h for h in rule.hops if not 1 <= h <= n]
                 if bad:
                     raise _fail(path, rl, f"rule '{rule}' hops across edge {bad[0]}; edges are 1..{n}")
@@ -278,20 +280,24 @@ def parse_templates(text: str, path: Path | str = "templates.ih") -> dict[int, T
             continue
         if not raw.startswith((" ", "\t")):
             finish()
-            m = re.match(r"^IH(\d+)\s+(\S+)\s+(\[.*\])\s*(marked)?\s*$", line)
-            if not m:
-                raise _fail(path, lineno, f"expected 'IHn <topology> [<symbol>]', got {line.strip()!r}")
+            m = re.match(r"^IH(\d+)\s+(\S+)(?:\s+(\[.*\]))?\s*(marked)?\s*$", line)
+            if not m or (m.group(3) is None and not m.group(4)):
+                raise _fail(
+                    path, lineno, f"expected 'IHn <topology> [<symbol>]' or 'IHn <topology> marked', got {line.strip()!r}"
+                )
             ih = int(m.group(1))
             if not 1 <= ih <= 93:
                 raise _fail(path, lineno, f"IH{ih} is not one of IH1..IH93")
             if ih in out:
                 raise _fail(path, lineno, f"IH{ih} is defined twice")
             valences = topology_valences_checked(m.group(2), path, lineno)
-            try:
-                symbol = IncidenceSymbol.parse(m.group(3))
-            except ParseError as exc:
-                raise _fail(path, lineno, str(exc)) from None
-            if len(symbol) != len(valences):
+            symbol = None
+            if m.group(3) is not None:
+                try:
+                    symbol = IncidenceSymbol.parse(m.group(3))
+                except ParseError as exc:
+                    raise _fail(path, lineno, str(exc)) from None
+            if symbol is not None and len(symbol) != len(valences):
                 raise _fail(
                     path, lineno, f"IH{ih}: symbol {symbol} has {len(symbol)} edges but topology "
                     f"{m.group(2)} has {len(valences)}"

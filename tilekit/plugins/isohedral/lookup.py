@@ -1,0 +1,48 @@
+"""Identify an isohedral type from its topological type and any of its incidence symbols (§5.2)."""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+from tilekit.errors import NotFoundError, ParseError
+from tilekit.plugins.isohedral.symbols import IncidenceSymbol
+from tilekit.plugins.isohedral.templates import load_templates, topology_valences
+
+
+def _topology_key(topology: str) -> tuple[int, ...]:
+    """Topological types compared as cyclic valence sequences up to rotation and reflection."""
+    vals = topology_valences(topology)
+    n = len(vals)
+    cands = [tuple(vals[i:] + vals[:i]) for i in range(n)]
+    rev = vals[::-1]
+    cands += [tuple(rev[i:] + rev[:i]) for i in range(n)]
+    return min(cands)
+
+
+@lru_cache(maxsize=1)
+def canonical_index() -> dict[tuple[tuple[int, ...], str], int]:
+    out: dict[tuple[tuple[int, ...], str], int] = {}
+    for ih, t in load_templates().items():
+        if t.symbol is None:
+            continue
+        out[(_topology_key(t.topology), str(t.symbol.canonical()))] = ih
+    return out
+
+
+def lookup(topology: str, symbol: str | IncidenceSymbol) -> int:
+    """The IH number of the type with this topology and (any form of) incidence symbol.
+
+    Exercise 5.6: the topology matters, since different types can share a symbol.
+    """
+    sym = IncidenceSymbol.parse(symbol) if isinstance(symbol, str) else symbol
+    n = len(topology_valences(topology))
+    if len(sym) != n:
+        raise ParseError(f"symbol {sym} has {len(sym)} edges but topology {topology} has {n}")
+    key = (_topology_key(topology), str(sym.canonical()))
+    try:
+        return canonical_index()[key]
+    except KeyError:
+        raise NotFoundError(
+            "isohedral type with topology and symbol", f"{topology} {sym}",
+            [f"{t.topology} {t.symbol}" for t in load_templates().values() if t.topology == topology and t.symbol],
+        ) from None
