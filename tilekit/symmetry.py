@@ -58,7 +58,7 @@ IUC: dict[str, str] = {v: k for k, v in ORBIFOLD.items()}
 # --------------------------------------------------------------------------- results
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Operation:
     """One isometry of a symmetry group: its 3x3 matrix and its classification (§3.1)."""
 
@@ -93,7 +93,7 @@ def _operation(m: np.ndarray) -> Operation:
     return Operation(m, Affine.classify(m, tol=1e-6))
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class SymmetryGroup:
     """The symmetries of a periodic tiling: a translation lattice and point-group cosets.
 
@@ -147,7 +147,7 @@ class SymmetryGroup:
         return out.reshape(-1, 3, 3)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class WallpaperGroup:
     """The wallpaper type of a periodic tiling's symmetry group, with the evidence.
 
@@ -202,7 +202,7 @@ class WallpaperGroup:
         return f"{self.iuc} ({self.orbifold})"
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class ColouringReport:
     """Whether a tiling's colouring is perfect (§3.6.1), and why.
 
