@@ -17,7 +17,7 @@ placed by the rigid motion taking the first onto it.
 from __future__ import annotations
 
 import math
-from functools import lru_cache
+from functools import cache
 from typing import Any
 
 import numpy as np
@@ -110,6 +110,11 @@ class VertexTypeRule:
             if ok and used == k:
                 return True
         return False
+
+
+def seed_radius(vt: VertexType) -> float:
+    """Circumradius of the seed polygon that :func:`grow` starts from (the largest one)."""
+    return 0.5 / math.sin(math.pi / max(vt.polygons))
 
 
 def grow(vertex_type: VertexType | str, radius: float, *, max_nodes: int = 200_000,
@@ -266,7 +271,7 @@ def vertex_types_in(patch: Patch, sides: list[int], radius: float) -> dict[str, 
     return {str(VertexType(s)): n for s, n in _vertex_sequences(patch, sides, radius).items()}
 
 
-@lru_cache(maxsize=None)
+@cache
 def _construct(polygons: tuple[int, ...]) -> tuple[list[int], np.ndarray, np.ndarray, np.ndarray, dict[str, Any]]:
     vt = VertexType(polygons)
     sizes = vt.sizes
@@ -297,36 +302,108 @@ def _construct(polygons: tuple[int, ...]) -> tuple[list[int], np.ndarray, np.nda
     )
 
 
-def archimedean_tiling(vertex_type: VertexType | str, hand: str = "") -> PeriodicTiling:
+def hand_of(sizes: tuple[int, ...], prototile: np.ndarray, transforms: np.ndarray, v1: np.ndarray) -> str:
+    """'l' or 'r' for a tiling with hexagons whose lattice is turned against them (3^4.6):
+    'l' when the shortest translation lies counter-clockwise of the nearest hexagon apothem
+    (by an angle in (0, π/6)), 'r' when clockwise; '' for a tiling without that twist."""
+    if 6 not in sizes:
+        return ""
+    i = int(np.flatnonzero(np.array([sizes[int(p)] for p in prototile]) == 6)[0])
+    theta = math.atan2(transforms[i][1, 0], transforms[i][0, 0])
+    # the first edge of regular_polygon(6) runs along +x, so its apothem points at -π/2
+    apothem = theta - math.pi / 2
+    phi = (math.atan2(v1[1], v1[0]) - apothem) % (math.pi / 3)
+    if phi < 1e-6 or phi > math.pi / 3 - 1e-6 or abs(phi - math.pi / 6) < 1e-6:
+        return ""
+    return "l" if phi < math.pi / 6 else "r"
+
+
+def _mirror(transforms: np.ndarray, v1: np.ndarray, v2: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The mirror image (in the x-axis) of a unit of regular polygons, as direct placements:
+    a regular polygon is symmetric in the perpendicular bisector of its first edge (x = 1/2),
+    so m @ T @ that reflection maps the prototile onto the mirrored tile."""
+    m = Affine.scaling(1.0, -1.0)
+    bisector = Affine.reflection(math.pi / 2, (0.5, 0.0))
+    w1, w2 = canonical_basis(m[:2, :2] @ v1, m[:2, :2] @ v2)
+    return _zap(m @ transforms @ bisector), _zap(w1), _zap(w2)
+
+
+def _unit(vt: VertexType, hand: str, rebuild: bool = False) -> tuple[list[int], np.ndarray, np.ndarray, np.ndarray]:
+    """The translational unit of (vt) in the requested hand, from the shipped data or built."""
+    cached = None if rebuild else cached_data().get("archimedean", {}).get(str(vt))
+    if cached is not None:
+        protos = [vt.sizes.index(int(p)) for p, _ in cached["unit"]]
+        transforms = np.array([np.vstack([np.reshape(t, (2, 3)), [0.0, 0.0, 1.0]]) for _, t in cached["unit"]])
+        v1, v2 = np.array(cached["v1"], float), np.array(cached["v2"], float)
+    else:
+        protos, transforms, v1, v2, _ = _construct(vt.polygons)
+    built = hand_of(vt.sizes, np.asarray(protos), transforms, v1)
+    if hand and built and hand != built:
+        transforms, v1, v2 = _mirror(transforms, v1, v2)
+    return list(protos), transforms, v1, v2
+
+
+def archimedean_tiling(vertex_type: VertexType | str, hand: str = "", *, rebuild: bool = False) -> ArchimedeanTiling:
     """The Archimedean tiling ``(vertex_type)`` as a PeriodicTiling, coloured by polygon size.
 
-    For the chiral 3^4.6, ``hand`` picks the form: '' or 'l' as built, 'r' its mirror image."""
+    The chiral 3^4.6 comes in two hands, ``hand='l'`` (default) or ``'r'`` (see
+    :func:`hand_of`); other types take no hand. The unit comes from the shipped data
+    (catalogue/archimedean/tilings.json, written by ``python -m
+    tilekit.plugins.archimedean.generate``) unless ``rebuild`` asks for a fresh construction.
+    """
     vt = parse_vertex_type(vertex_type) if isinstance(vertex_type, str) else vertex_type
     if vt.geometry != "euclidean":
-        raise ParseError(f"vertex type {vt} is {vt.geometry} (angle sum {'<' if vt.excess < 0 else '>'} 2π), not a plane tiling")
-    if hand not in ("", "l", "r"):
-        raise ParseError(f"hand {hand!r} is not 'l' or 'r'")
-    protos_idx, transforms, v1, v2, _ = _construct(vt.polygons)
+        raise ParseError(
+            f"vertex type {vt} is {vt.geometry} (angle sum {'<' if vt.excess < 0 else '>'} 2π), not a plane tiling"
+        )
+    hand = _check_hand(vt, hand)
+    protos_idx, transforms, v1, v2 = _unit(vt, hand, rebuild)
     sizes = vt.sizes
     protos = regular_prototiles(sizes)
-    transforms = transforms.copy()
-    if hand == "r":
-        m = Affine.scaling(1.0, -1.0)
-        # mirror each tile: a regular polygon is symmetric in the perpendicular bisector of
-        # its first edge (x = 1/2), so m @ T @ that reflection is a direct motion onto the image
-        bisector = Affine.reflection(math.pi / 2, (0.5, 0.0))
-        transforms = _zap(m @ transforms @ bisector)
-        v1, v2 = m[:2, :2] @ v1, m[:2, :2] @ v2
-        v1, v2 = canonical_basis(v1, v2)
-        v1, v2 = _zap(v1), _zap(v2)
     colours = [size_colour(sizes[p]) for p in protos_idx]
     colouring = Colouring.by_aspect(colours)
-    name = archimedean_name(vt, hand)
     return ArchimedeanTiling(protos, protos_idx, transforms, v1, v2, colouring, vertex_type=vt, hand=hand,
-                             name=name)
+                             name=archimedean_name(vt, hand))
+
+
+def is_chiral(vt: VertexType) -> bool:
+    """Whether (vt) has two mirror-image forms; decided from the built tiling (its unit is
+    turned against its hexagons), not from a list."""
+    if vt.geometry != "euclidean":
+        return False
+    protos, transforms, v1, _ = _unit(vt, "")
+    return hand_of(vt.sizes, np.asarray(protos), transforms, v1) != ""
+
+
+def _check_hand(vt: VertexType, hand: str) -> str:
+    hand = (hand or "").lower()
+    if hand not in ("", "l", "r"):
+        raise ParseError(f"hand {hand!r} is not 'l' or 'r'")
+    if is_chiral(vt):
+        return hand or "l"
+    if hand:
+        raise ParseError(f"({vt}) is not chiral, so it takes no hand (got {hand!r})")
+    return ""
+
+
+_CACHE: dict[str, Any] | None = None
+
+
+def cached_data() -> dict[str, Any]:
+    """The shipped construction results (empty when the data file is absent)."""
+    global _CACHE
+    if _CACHE is None:
+        import json
+
+        from tilekit.resources import catalogue_dir
+
+        path = catalogue_dir() / "archimedean" / "tilings.json"
+        _CACHE = json.loads(path.read_text()) if path.exists() else {}
+    return _CACHE
 
 
 def archimedean_name(vt: VertexType, hand: str = "") -> str:
+    """Catalogue name: the vertex type, with the hand for the chiral one (``3^4.6l``)."""
     return f"{vt}" + (hand if hand else "")
 
 
@@ -383,9 +460,17 @@ def _match_polygon(base: np.ndarray, poly: np.ndarray, tol: float = 1e-6) -> np.
     return None
 
 
-@lru_cache(maxsize=None)
-def _laves(polygons: tuple[int, ...], hand: str) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    arch = archimedean_tiling(VertexType(polygons), hand)
+@cache
+def _laves(
+    polygons: tuple[int, ...], hand: str, rebuild: bool = False
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    key = str(VertexType(polygons)) + hand
+    cached = None if rebuild else cached_data().get("laves", {}).get(key)
+    if cached is not None:
+        transforms = np.array([np.vstack([np.reshape(t, (2, 3)), [0.0, 0.0, 1.0]]) for t in cached["unit"]])
+        return (np.array(cached["outline"], float), transforms, np.array(cached["v1"], float),
+                np.array(cached["v2"], float))
+    arch = archimedean_tiling(VertexType(polygons), hand, rebuild=rebuild)
     v1, v2 = arch.v1, arch.v2
     span = 2.5 * max(np.hypot(*v1), np.hypot(*v2)) + 3
     patch = arch.patch((-span, -span, span, span))
@@ -419,7 +504,7 @@ def _laves(polygons: tuple[int, ...], hand: str) -> tuple[np.ndarray, np.ndarray
     p0, ring0 = tiles[0]
     outline = ring0 - p0  # prototile: the dual tile of the first vertex, that vertex at the origin
     transforms = []
-    for p, ring in tiles:
+    for _p, ring in tiles:
         m = _match_polygon(outline, ring)
         if m is None:
             raise GeometryError(f"[{arch.vertex_type}]: dual tiles are not congruent")
@@ -427,12 +512,14 @@ def _laves(polygons: tuple[int, ...], hand: str) -> tuple[np.ndarray, np.ndarray
     return _zap(outline), _zap(np.array(transforms)), v1, v2
 
 
-def laves_tiling(vertex_type: VertexType | str, hand: str = "") -> LavesTiling:
-    """The Laves tiling ``[vertex_type]``: the geometric dual of the Archimedean tiling."""
+def laves_tiling(vertex_type: VertexType | str, hand: str = "", *, rebuild: bool = False) -> LavesTiling:
+    """The Laves tiling ``[vertex_type]``: the geometric dual of the Archimedean tiling
+    (``hand`` as for :func:`archimedean_tiling`)."""
     vt = parse_vertex_type(vertex_type) if isinstance(vertex_type, str) else vertex_type
     if vt.geometry != "euclidean":
         raise ParseError(f"vertex type {vt} is {vt.geometry}, so it has no plane Laves tiling")
-    outline, transforms, v1, v2 = _laves(vt.polygons, hand)
+    hand = _check_hand(vt, hand)
+    outline, transforms, v1, v2 = _laves(vt.polygons, hand, rebuild)
     proto = Prototile(outline, name=f"[{vt}]")
     m = len(transforms)
     # colour by aspect class: tiles whose placements differ by a translation share a colour
@@ -462,12 +549,11 @@ def archimedean_properties(t: ArchimedeanTiling) -> dict[str, Any]:
         "vertex_type": str(vt),
         "species": vt.species_name,
         "polygons": list(vt.sizes),
-        "chiral": vt.polygons == (3, 3, 3, 3, 6),
+        "chiral": bool(t.hand),
+        "chirality": t.hand or "achiral",
         "dual": f"[{vt}]" + t.hand,
         "edge_to_edge": True,
         "k_hedral": len(vt.sizes),
-        "k_isohedral": None,
-        "uniform": True,
     }
 
 
@@ -477,10 +563,63 @@ def laves_properties(t: LavesTiling) -> dict[str, Any]:
         "vertex_type": str(vt),
         "topology": f"[{vt}]",
         "species": vt.species_name,
-        "chiral": vt.polygons == (3, 3, 3, 3, 6),
+        "chiral": bool(t.hand),
+        "chirality": t.hand or "achiral",
         "dual": f"{vt}" + t.hand,
         "edge_to_edge": True,
         "k_hedral": 1,
-        "k_isohedral": 1,
         "tile_vertices": len(vt.polygons),
+    }
+
+
+def orbit_count(points: np.ndarray, tiling: PeriodicTiling) -> int:
+    """How many orbits the symmetry group of ``tiling`` has on ``points`` (one per point of a
+    translational unit, given modulo the lattice v1, v2): 1 means transitive."""
+    from tilekit.symmetry import symmetries
+
+    group = symmetries(tiling)
+    basis = np.column_stack([tiling.v1, tiling.v2])
+    inv = np.linalg.inv(basis)
+    frac = np.mod(points @ inv.T, 1.0)
+    parent = list(range(len(points)))
+
+    def find(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    ops = [op.matrix for op in group.operations] + [Affine.translation(*w) for w in group.lattice]
+    for m in ops:
+        img = np.mod(Affine.apply(m, points) @ inv.T, 1.0)
+        d = np.abs(img[:, None, :] - frac[None, :, :])
+        d = np.minimum(d, 1.0 - d).max(axis=-1)
+        j = np.argmin(d, axis=1)
+        if np.any(d[np.arange(len(points)), j] > 1e-6):
+            raise GeometryError("a symmetry does not map the unit's points onto themselves")
+        for i, jj in enumerate(j):
+            a, b = find(i), find(int(jj))
+            if a != b:
+                parent[max(a, b)] = min(a, b)
+    return len({find(i) for i in range(len(points))})
+
+
+def unit_vertices(tiling: PeriodicTiling) -> np.ndarray:
+    """One point per vertex of the tiling modulo its lattice (tile corners, deduplicated)."""
+    basis = np.column_stack([tiling.v1, tiling.v2])
+    inv = np.linalg.inv(basis)
+    pts = np.concatenate(tiling.unit().polygons())
+    frac = np.mod(pts @ inv.T + 1e-9, 1.0)
+    keep: list[int] = []
+    for i, f in enumerate(frac):
+        if not any(np.all(np.minimum(np.abs(frac[k] - f), 1 - np.abs(frac[k] - f)) < 1e-6) for k in keep):
+            keep.append(i)
+    return pts[keep]
+
+
+def transitivity(tiling: PeriodicTiling) -> dict[str, int]:
+    """Orbits of the symmetry group on tiles (k-isohedral) and on vertices (k-isogonal)."""
+    return {
+        "k_isohedral": orbit_count(tiling.unit().centres(), tiling),
+        "k_isogonal": orbit_count(unit_vertices(tiling), tiling),
     }

@@ -1,0 +1,177 @@
+"""Catalogue records and the family objects of the archimedean plugin.
+
+Two families: ``archimedean`` (the 11 Archimedean tilings, the chiral 3^4.6 in both hands,
+plus the vertex types classified by the vertex-species search) and ``laves`` (their 11 duals).
+Records are built from the shipped construction data, so seeding a catalogue grows no patch.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from tilekit.errors import ParameterError, ParseError
+from tilekit.plugins import CatalogueRecord, Family
+from tilekit.plugins.archimedean import construct
+from tilekit.plugins.archimedean.notation import VertexType, format_sequence, parse_sequence
+from tilekit.tiling import Tiling
+
+_ORBIFOLD = {"p1": "o", "p2": "2222", "pm": "**", "pg": "xx", "cm": "*x", "pmm": "*2222",
+             "pmg": "22*", "pgg": "22x", "cmm": "2*22", "p4": "442", "p4m": "*442", "p4g": "4*2",
+             "p3": "333", "p3m1": "*333", "p31m": "3*3", "p6": "632", "p6m": "*632"}
+
+
+def species_text(vt: VertexType) -> str:
+    """A species as the sorted sequence in exponent form (``3^3.4^2`` holds 3^2.4.3.4 too)."""
+    return format_sequence(vt.species)
+
+
+def _hands(vt: VertexType) -> list[str]:
+    return ["l", "r"] if construct.is_chiral(vt) else [""]
+
+
+def _group(name: str) -> dict[str, Any]:
+    data = construct.cached_data().get("symmetry", {}).get(name)
+    if data is None:
+        return {}
+    iuc = data["wallpaper_group"]
+    return {"symmetry_group": iuc, "wallpaper_group": iuc, "orbifold": _ORBIFOLD[iuc],
+            "k_isohedral": int(data["k_isohedral"]), "k_isogonal": int(data["k_isogonal"])}
+
+
+def _hand_word(hand: str) -> str:
+    return {"l": ", left-handed", "r": ", right-handed"}.get(hand, "")
+
+
+def archimedean_record(vt: VertexType, hand: str, extra: Mapping[str, Any] | None = None) -> CatalogueRecord:
+    t = construct.archimedean_tiling(vt, hand)
+    props = t.properties()
+    props.pop("colours", None)
+    props.update({"kind": "tiling", "species": species_text(vt), "valence": len(vt.polygons),
+                  "polygon_counts": [int(sum(1 for p in t.unit_prototile if vt.sizes[p] == s)) for s in vt.sizes]})
+    props.update(_group(t.name))
+    if extra:
+        props.update(extra)
+        props["kind"] = "tiling"
+    aliases = [a for a in vt.aliases() if hand != "r"]
+    if hand == "l":
+        aliases = [str(vt)] + aliases
+    if hand:
+        aliases.append(f"({vt}){hand}")
+    return CatalogueRecord(
+        family="archimedean",
+        name=t.name,
+        spec=t.spec(),
+        title=f"Archimedean tiling ({vt}){_hand_word(hand)}",
+        properties=props,
+        aliases=aliases,
+    )
+
+
+def laves_record(vt: VertexType, hand: str) -> CatalogueRecord:
+    t = construct.laves_tiling(vt, hand)
+    props = t.properties()
+    props.pop("colours", None)
+    props["species"] = species_text(vt)
+    props.update(_group(t.name))
+    aliases = [f"[{vt.dotted}]{hand}"]
+    if hand == "l":
+        aliases.append(f"[{vt}]")
+        aliases.append(f"[{vt.dotted}]")
+    return CatalogueRecord(
+        family="laves",
+        name=t.name,
+        spec=t.spec(),
+        title=f"Laves tiling [{vt}]{_hand_word(hand)}, dual of ({vt})",
+        properties=props,
+        aliases=list(dict.fromkeys(a for a in aliases if a != t.name)),
+    )
+
+
+def tiling_types() -> list[VertexType]:
+    """The vertex types with a constructed tiling in the shipped data."""
+    return sorted((VertexType.of(parse_sequence(k)) for k in construct.cached_data().get("archimedean", {})),
+                  key=lambda v: (len(v.polygons), v.polygons))
+
+
+def catalogue_records() -> list[CatalogueRecord]:
+    out: list[CatalogueRecord] = []
+    for vt in tiling_types():
+        for hand in _hands(vt):
+            out.append(archimedean_record(vt, hand))
+    for vt in tiling_types():
+        for hand in _hands(vt):
+            out.append(laves_record(vt, hand))
+    return out
+
+
+def vertex_type_records(vt: VertexType, props: Mapping[str, Any]) -> list[CatalogueRecord]:
+    """Records the vertex-species search upserts for one type: the tiling record(s) with the
+    search's findings for a type that tiles, otherwise a vertex-type record."""
+    if props.get("status") == "tiles":
+        extra = {k: v for k, v in props.items() if k not in ("kind",)}
+        return [archimedean_record(vt, hand, extra) for hand in _hands(vt)]
+    p = dict(props)
+    p["species"] = species_text(vt)
+    if p.get("geometry") == "euclidean":
+        p["periodic"] = False
+        p["tiles_plane"] = False
+        title = f"Vertex type {vt}: no tiling ({p.get('status')})"
+    elif p.get("geometry") == "spherical":
+        title = f"Vertex type {vt}: spherical" + (f", the {p['solid']}" if p.get("solid") else "")
+    else:
+        title = f"Vertex type {vt}: hyperbolic"
+    return [CatalogueRecord(
+        family="archimedean",
+        name=str(vt),
+        spec={"kind": "vertex_type", "vertex_type": str(vt)},
+        title=title,
+        properties=p,
+        aliases=[a for a in [vt.dotted] if a != str(vt)],
+    )]
+
+
+def archimedean_from_spec(spec: Mapping[str, Any]) -> Tiling:
+    kind = spec.get("kind")
+    try:
+        vt = VertexType.parse(str(spec["vertex_type"]))
+    except KeyError:
+        raise ParseError(f"archimedean spec {dict(spec)!r} has no vertex_type") from None
+    if kind == "archimedean":
+        return construct.archimedean_tiling(vt, str(spec.get("hand", "")))
+    if kind == "vertex_type":
+        if vt.geometry != "euclidean":
+            raise ParameterError(f"vertex type {vt} is {vt.geometry}: it has no plane tiling to draw")
+        if str(vt) in construct.cached_data().get("archimedean", {}):
+            return construct.archimedean_tiling(vt)
+        raise ParameterError(f"vertex type {vt} admits no tiling of the plane: nothing to draw")
+    raise ParseError(f"archimedean spec kind {kind!r} is not 'archimedean' or 'vertex_type'")
+
+
+def laves_from_spec(spec: Mapping[str, Any]) -> Tiling:
+    if spec.get("kind") != "laves":
+        raise ParseError(f"laves spec kind {spec.get('kind')!r} is not 'laves'")
+    try:
+        return construct.laves_tiling(str(spec["vertex_type"]), str(spec.get("hand", "")))
+    except KeyError:
+        raise ParseError(f"laves spec {dict(spec)!r} has no vertex_type") from None
+
+
+FAMILIES = [
+    Family(
+        name="archimedean",
+        summary="The 11 Archimedean (uniform) tilings by regular polygons, named by vertex type (§4.1)",
+        from_spec=archimedean_from_spec,
+        description=(
+            "Edge-to-edge tilings by regular polygons with every vertex of one type p1.p2...pk. "
+            "Names accept 4^4, (4^4) or 4.4.4.4; the chiral 3^4.6 comes as 3^4.6l and 3^4.6r. "
+            "The vertex-species search adds every vertex type with its classification."
+        ),
+    ),
+    Family(
+        name="laves",
+        summary="The 11 Laves tilings: duals of the Archimedean tilings, monohedral and isohedral (§4.2)",
+        from_spec=laves_from_spec,
+        description="Named [vertex type] after the Archimedean tiling they are dual to, e.g. [3^2.4.3.4] (Cairo).",
+    ),
+]
