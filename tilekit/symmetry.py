@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from functools import cache
 from typing import Any
 
 import numpy as np
@@ -309,20 +310,40 @@ def _reduce(b1: np.ndarray, b2: np.ndarray) -> np.ndarray:
     return np.array([b1, b2])
 
 
+def _inv2(basis: np.ndarray) -> np.ndarray:
+    """Inverse of a 2x2 matrix in closed form (for the lattice-coordinate map)."""
+    (a, b), (c, d) = basis
+    det = a * d - b * c
+    return np.array([[d, -b], [-c, a]]) / det
+
+
 def _frac(vectors: np.ndarray, basis: np.ndarray) -> np.ndarray:
     """Coordinates of vectors (..., 2) in the basis whose rows are the lattice vectors."""
-    return np.asarray(vectors) @ np.linalg.inv(basis)
+    return np.asarray(vectors) @ _inv2(basis)
+
+
+def _lattice_residual(v: np.ndarray, basis: np.ndarray) -> np.ndarray:
+    """Distance of each vector (..., 2) from the nearest lattice point."""
+    f = _frac(v, basis)
+    return np.linalg.norm((f - np.rint(f)) @ basis, axis=-1)
 
 
 def _in_lattice(v: np.ndarray, basis: np.ndarray, tol: float) -> bool:
-    f = _frac(v, basis)
-    return bool(np.linalg.norm((f - np.rint(f)) @ basis) < tol)
+    return bool(np.all(_lattice_residual(v, basis) < tol))
+
+
+@cache
+def _grid(r: int) -> np.ndarray:
+    """Integer pairs (a, b) with |a|, |b| <= r, as a read-only (n, 2) float array."""
+    rng = np.arange(-r, r + 1, dtype=float)
+    a, b = np.meshgrid(rng, rng, indexing="ij")
+    out = np.column_stack([a.ravel(), b.ravel()])
+    out.setflags(write=False)
+    return out
 
 
 def _small_combos(basis: np.ndarray, r: int) -> np.ndarray:
-    rng = np.arange(-r, r + 1)
-    a, b = np.meshgrid(rng, rng, indexing="ij")
-    return np.column_stack([a.ravel(), b.ravel()]) @ basis
+    return _grid(r) @ basis
 
 
 def _lattice_from(translations: np.ndarray, given: np.ndarray, index: int, tol: float) -> np.ndarray:
@@ -347,9 +368,10 @@ def _lattice_from(translations: np.ndarray, given: np.ndarray, index: int, tol: 
             f"the {index} translations found do not form a lattice refining v1, v2 (tolerance {tol:g})"
         )
     basis = _reduce(w1, cand[ok[0]])
-    for t in np.vstack([translations, given]):
-        if not _in_lattice(t, basis, tol * 10):
-            raise GeometryError(f"translation {t.tolist()} is not in the lattice found; raise the tolerance")
+    bad = _lattice_residual(np.vstack([translations, given]), basis) >= tol * 10
+    if bad.any():
+        t = np.vstack([translations, given])[np.argmax(bad)]
+        raise GeometryError(f"translation {t.tolist()} is not in the lattice found; raise the tolerance")
     return basis
 
 
@@ -434,12 +456,17 @@ def _locate(cell: _Cell, pts: np.ndarray, centre: np.ndarray, label: np.ndarray)
     return found, shift
 
 
-def _images(cell: _Cell, maps: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Every cell tile moved by every map: points (C*m, K, 2), centres (C*m, 2), labels."""
-    c, m, k = len(maps), len(cell), cell.points.shape[1]
-    pts = Affine.apply(maps, cell.points.reshape(-1, 2)).reshape(c * m, k, 2)
-    cen = Affine.apply(maps, cell.centre).reshape(c * m, 2)
-    lab = np.tile(cell.label, c)
+def _images(
+    cell: _Cell, maps: np.ndarray, idx: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Cell tiles (all, or those at ``idx``) moved by every map: points (C*m, K, 2), centres, labels."""
+    points, centre, label = cell.points, cell.centre, cell.label
+    if idx is not None:
+        points, centre, label = points[idx], centre[idx], label[idx]
+    c, m, k = len(maps), len(label), points.shape[1]
+    pts = Affine.apply(maps, points.reshape(-1, 2)).reshape(c * m, k, 2)
+    cen = Affine.apply(maps, centre).reshape(c * m, 2)
+    lab = np.tile(label, c)
     return pts, cen, lab
 
 
@@ -448,11 +475,9 @@ def _images(cell: _Cell, maps: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.n
 
 def _cosets(maps: np.ndarray, lattice: np.ndarray, tol: float) -> tuple[Operation, ...]:
     """One canonical representative per distinct linear part of ``maps`` (identity first)."""
-    reps: list[np.ndarray] = []
-    for g in maps:
-        if not any(np.allclose(g[:2, :2], r[:2, :2], atol=1e-6) for r in reps):
-            reps.append(g)
-    out = [_canonical(g, lattice, tol) for g in reps]
+    key = np.round(maps[:, :2, :2].reshape(-1, 4) * 1e5).astype(np.int64)
+    _, first = np.unique(key, axis=0, return_index=True)
+    out = [_canonical(maps[i], lattice, tol) for i in np.sort(first)]
     out.sort(key=_op_sort_key)
     return tuple(out)
 
@@ -510,12 +535,55 @@ def _assemble(accepted: np.ndarray, given: np.ndarray, tol: float, coloured: boo
     lattice = _lattice_from(trans, given, max(index, 1), tol)
     # a candidate that maps the cell's tiles onto tiles is a symmetry only if its linear part
     # maps the lattice into the translation group (then it maps every translate correctly)
-    keep = []
-    for g in accepted:
-        moved = lattice @ g[:2, :2].T
-        keep.append(all(_in_lattice(v, lattice, tol * 10) for v in moved))
-    ops = _cosets(accepted[np.array(keep, dtype=bool)], lattice, tol)
+    moved = np.einsum("kj,nij->nki", lattice, accepted[:, :2, :2])  # R w for each map, basis row
+    keep = (_lattice_residual(moved, lattice) < tol * 10).all(axis=1)
+    ops = _cosets(accepted[keep], lattice, tol)
     return SymmetryGroup(lattice=lattice, operations=ops, lattice_index=index, tol=tol, coloured=coloured)
+
+
+#: Tiles near the anchor on which every candidate is tried before the whole cell.
+_PROBE = 6
+
+
+def _accepts(cell: _Cell, maps: np.ndarray, anchor: int) -> np.ndarray:
+    """Which maps send every tile of the cell onto a tile of the tiling.
+
+    Candidates are first tried on the few tiles nearest the anchor, which rejects almost
+    every wrong one, and only the survivors on the whole cell.
+    """
+    ok = np.zeros(len(maps), dtype=bool)
+    if not len(maps):
+        return ok
+    m = len(cell)
+    alive = np.arange(len(maps))
+    if m > _PROBE:
+        near = np.argsort(np.hypot(*(cell.centre - cell.centre[anchor]).T), kind="stable")[:_PROBE]
+        pts, cen, lab = _images(cell, maps, near)
+        found, _ = _locate(cell, pts, cen, lab)
+        alive = alive[(found >= 0).reshape(len(maps), len(near)).all(axis=1)]
+    if len(alive):
+        pts, cen, lab = _images(cell, maps[alive])
+        found, _ = _locate(cell, pts, cen, lab)
+        ok[alive[(found >= 0).reshape(len(alive), m).all(axis=1)]] = True
+    return ok
+
+
+def _primitive(cell: _Cell, lattice: np.ndarray) -> _Cell:
+    """The cell's tiles modulo a finer lattice (one tile per class), over that lattice."""
+    f = _frac(cell.centre, lattice)
+    key = np.round((f - np.floor(f)) * 1e6).astype(np.int64) % 1_000_000
+    _, first = np.unique(np.column_stack([key, cell.label]), axis=0, return_index=True)
+    keep = np.sort(first)
+    return _Cell(
+        [cell.outlines[i] for i in keep],
+        cell.points[keep],
+        cell.count[keep],
+        cell.centre[keep],
+        cell.label[keep],
+        cell.colour[keep],
+        lattice,
+        cell.tol,
+    )
 
 
 def _group_of_cell(cell: _Cell) -> SymmetryGroup:
@@ -530,14 +598,26 @@ def _group_of_cell(cell: _Cell) -> SymmetryGroup:
     maps = np.concatenate([c for c in cands if len(c)]) if any(len(c) for c in cands) else np.zeros((0, 3, 3))
     if not len(maps):
         raise GeometryError("no tile of the unit is congruent to its first tile: the unit is malformed")
-    pts, cen, lab = _images(cell, maps)
-    found, _ = _locate(cell, pts, cen, lab)
-    ok = (found >= 0).reshape(len(maps), len(cell)).all(axis=1)
-    if not ok.any():
+    # translations first: when the unit is not primitive, continue on a primitive cell
+    is_t = np.all(np.abs(maps[:, :2, :2] - np.eye(2)) < 1e-6, axis=(1, 2))
+    trans = maps[is_t][_accepts(cell, maps[is_t], anchor)]
+    if not len(trans):
         raise GeometryError(
             "the identity is not a symmetry of the unit: tiles overlap or repeat within the unit"
         )
-    return _assemble(maps[ok], cell.basis, cell.tol, coloured=False)
+    if len(trans) > 1:
+        lattice = _lattice_from(trans[:, :2, 2], cell.basis, len(trans), cell.tol)
+        prim = _primitive(cell, lattice)
+        if len(prim) * len(trans) != len(cell):
+            raise GeometryError(
+                f"the unit's {len(cell)} tiles do not fall into {len(trans)} translates of a "
+                "primitive cell: tiles overlap or repeat within the unit"
+            )
+        sub = _group_of_cell(prim)
+        return SymmetryGroup(sub.lattice, sub.operations, len(trans) * sub.lattice_index, sub.tol)
+    rest = maps[~is_t]
+    accepted = np.concatenate([trans, rest[_accepts(cell, rest, anchor)]])
+    return _assemble(accepted, cell.basis, cell.tol, coloured=False)
 
 
 def _check(tiling: Any) -> PeriodicTiling:
@@ -693,25 +773,38 @@ def _fixes(op: Operation, c: np.ndarray, lattice: np.ndarray, tol: float) -> boo
 
 
 def _rotation_centres(group: SymmetryGroup) -> list[tuple[np.ndarray, int]]:
-    """Rotation centres modulo the lattice with their orders (stabiliser sizes)."""
+    """Rotation centres modulo the lattice with their orders (stabiliser sizes).
+
+    The centres of the rotations in the coset of (R, t) are (I - R)^-1 (t + L) for lattice
+    vectors L; modulo the lattice, L need only run over L / (I - R)L, whose classes have
+    representatives with coordinates 0..2 (the index det(I - R) is 4, 3, 2 or 1).
+    """
     lat, tol = group.lattice, group.tol * 10
     direct = [op for op in group.operations if op.kind == "rotation"]
-    centres: list[np.ndarray] = []
-    ab = np.array([(a, b) for a in range(3) for b in range(3)]) @ lat
+    if not direct:
+        return []
+    shifts = np.array([(a, b) for a in range(3) for b in range(3)], dtype=float) @ lat
+    cands = []
     for op in direct:
         lin, t = op.matrix[:2, :2], op.matrix[:2, 2]
-        for v in ab:
-            c = np.linalg.solve(np.eye(2) - lin, t + v)
-            f = _frac(c, lat)
-            f = f - np.floor(f + 1e-9)
-            c = f @ lat
-            if not any(_in_lattice(c - d, lat, tol) for d in centres):
-                centres.append(c)
-    out = []
-    for c in centres:
-        order = 1 + sum(_fixes(op, c, lat, tol) for op in direct)
-        out.append((c, order))
-    return out
+        cands.append(np.linalg.solve(np.eye(2) - lin, (t + shifts).T).T)
+    c = np.vstack(cands)
+    f = _frac(c, lat)
+    f = f - np.floor(f + 1e-9)
+    c = f @ lat
+    # deduplicate modulo the lattice
+    keep: list[int] = []
+    for i in range(len(c)):
+        if not keep or (_lattice_residual(c[keep] - c[i], lat) >= tol).all():
+            keep.append(i)
+    c = c[keep]
+    # the order of a centre is 1 + the number of rotation cosets with an element fixing it
+    lins = np.array([op.matrix[:2, :2] for op in direct])
+    ts = np.array([op.matrix[:2, 2] for op in direct])
+    moved = c[None, :, :] - np.einsum("nij,kj->nki", lins, c) - ts[:, None, :]  # (r, k, 2)
+    fixes = _lattice_residual(moved, lat) < tol
+    orders = 1 + fixes.sum(axis=0)
+    return [(c[i], int(orders[i])) for i in range(len(c))]
 
 
 def classify_group(group: SymmetryGroup) -> WallpaperGroup:
@@ -790,6 +883,129 @@ def wallpaper_group(
     ``colours=True`` gives the group of the colour-preserving symmetries instead.
     """
     return classify_group(symmetries(tiling, tol, colours=colours, match_prototiles=match_prototiles))
+
+
+# --------------------------------------------------------------------------- orbits
+
+
+def _union_find(n: int, pairs: np.ndarray) -> np.ndarray:
+    """Connected components of 0..n-1 under the (k, 2) pairs, labelled 0.. in first-seen order."""
+    parent = np.arange(n)
+
+    def root(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    for a, b in pairs:
+        ra, rb = root(int(a)), root(int(b))
+        if ra != rb:
+            parent[max(ra, rb)] = min(ra, rb)
+    roots = np.array([root(i) for i in range(n)])
+    _, labels = np.unique(roots, return_inverse=True)
+    # relabel in order of first appearance so tile 0 is in orbit 0
+    order = {r: k for k, r in enumerate(dict.fromkeys(labels.tolist()))}
+    return np.array([order[x] for x in labels.tolist()], dtype=np.int64)
+
+
+def _generator_maps(group: SymmetryGroup) -> np.ndarray:
+    ops = [op.matrix for op in group.operations if op.kind != "identity"]
+    ops += [Affine.translation(*v) for v in group.lattice]
+    return np.array(ops)
+
+
+def tile_orbits(
+    tiling: PeriodicTiling, tol: float = DEFAULT_TOL, *, match_prototiles: bool = False
+) -> np.ndarray:
+    """The transitivity class of each tile of the unit under the symmetry group (§3.5, §5.1).
+
+    Returns one label per unit tile (0 for tile 0's orbit, then in order of first
+    appearance); the number of labels is the k of a k-isohedral tiling.
+    """
+    tiling = _check(tiling)
+    cell = _base_cell(tiling, _abs_tol(tiling, tol), match_prototiles)
+    group = _group_of_cell(cell)
+    maps = _generator_maps(group)
+    pts, cen, lab = _images(cell, maps)
+    found, _ = _locate(cell, pts, cen, lab)
+    src = np.tile(np.arange(len(cell)), len(maps))
+    if (found < 0).any():
+        raise GeometryError("a symmetry failed to map the unit's tiles onto tiles (tolerance too tight?)")
+    return _union_find(len(cell), np.column_stack([src, found]))
+
+
+def isohedrality(tiling: PeriodicTiling, tol: float = DEFAULT_TOL) -> int:
+    """k such that the tiling is k-isohedral: the number of transitivity classes of tiles."""
+    return int(tile_orbits(tiling, tol).max()) + 1
+
+
+def tiling_vertices(tiling: PeriodicTiling, tol: float = DEFAULT_TOL) -> np.ndarray:
+    """One point per vertex of the tiling modulo the lattice of v1, v2 (§5.1).
+
+    A vertex is a point where three or more tiles meet. Candidates are the tiles' corners
+    (``Prototile.corners`` where given, else every outline point); a candidate is kept when
+    at least three tiles of the surrounding patch reach it, so points that only shape an
+    edge, or the straight angle of a tile drawn with a point mid-edge, are not vertices.
+    """
+    import shapely
+
+    tiling = _check(tiling)
+    abs_tol = _abs_tol(tiling, tol)
+    basis = np.array([tiling.v1, tiling.v2])
+    cand = []
+    for p, m in zip(tiling.unit_prototile, tiling.unit_transform):
+        proto = tiling.prototiles[int(p)]
+        pts = proto.outline if proto.corners is None else proto.outline[list(proto.corners)]
+        cand.append(Affine.apply(m, pts))
+    cand = np.vstack(cand)
+    f = _frac(cand, basis)
+    f = f - np.floor(f + 1e-9)
+    reduced = f @ basis
+    key = np.round(f * 1e6).astype(np.int64) % 1_000_000
+    _, first = np.unique(key, axis=0, return_index=True)
+    reduced = reduced[np.sort(first)]
+    # tiles around the fundamental cell
+    lo, hi = reduced.min(axis=0), reduced.max(axis=0)
+    ub = tiling.unit_tile_bounds()
+    pad = float(max(ub[:, 2].max() - ub[:, 0].min(), ub[:, 3].max() - ub[:, 1].min()))
+    patch = tiling.patch((lo[0] - pad, lo[1] - pad, hi[0] + pad, hi[1] + pad))
+    geoms = patch.geometries()
+    tree = shapely.STRtree(geoms)
+    points = shapely.points(reduced)
+    qi, _ = tree.query(points, predicate="dwithin", distance=abs_tol * 10)
+    valence = np.bincount(qi, minlength=len(reduced))
+    return reduced[valence >= 3]
+
+
+def vertex_orbits(tiling: PeriodicTiling, tol: float = DEFAULT_TOL) -> tuple[np.ndarray, np.ndarray]:
+    """Vertices modulo the lattice (as ``tiling_vertices``) and their transitivity classes.
+
+    The number of classes is the k of a k-isogonal tiling (1 for the regular and the
+    Archimedean tilings, §5.1).
+    """
+    tiling = _check(tiling)
+    abs_tol = _abs_tol(tiling, tol)
+    verts = tiling_vertices(tiling, tol)
+    group = _group_of_cell(_base_cell(tiling, abs_tol, False))
+    basis = np.array([tiling.v1, tiling.v2])
+    inv = np.linalg.inv(basis)
+    pairs = []
+    for g in _generator_maps(group):
+        img = Affine.apply(g, verts)
+        f = (img[:, None, :] - verts[None, :, :]) @ inv
+        resid = np.linalg.norm((f - np.rint(f)) @ basis, axis=2)
+        hit = resid < abs_tol * 10
+        if not hit.any(axis=1).all():
+            raise GeometryError("a symmetry failed to map the tiling's vertices onto vertices")
+        pairs.append(np.column_stack([np.arange(len(verts)), hit.argmax(axis=1)]))
+    labels = _union_find(len(verts), np.vstack(pairs)) if pairs else np.zeros(len(verts), dtype=np.int64)
+    return verts, labels
+
+
+def isogonality(tiling: PeriodicTiling, tol: float = DEFAULT_TOL) -> int:
+    """k such that the tiling is k-isogonal: the number of transitivity classes of vertices."""
+    return int(vertex_orbits(tiling, tol)[1].max()) + 1
 
 
 # --------------------------------------------------------------------------- colourings
