@@ -30,7 +30,12 @@ from tilekit.geometry import Affine, regular_polygon
 from tilekit.symmetry import (
     IUC,
     ORBIFOLD,
+    isogonality,
+    isohedrality,
     symmetries,
+    tile_orbits,
+    tiling_vertices,
+    vertex_orbits,
     wallpaper_group,
 )
 from tilekit.tiling import PeriodicTiling, Prototile
@@ -403,3 +408,73 @@ def test_overlapping_unit_is_not_a_tiling() -> None:
     bad = periodic([SQUARE], [(0, ID), (0, ID)], (1, 0), (0, 1))
     with pytest.raises(GeometryError):
         symmetries(bad)
+
+
+# --------------------------------------------------------------------------- orbits
+
+
+def rhombitrihexagonal() -> PeriodicTiling:
+    """3.4.6.4: a unit hexagon, squares on three of its edges, triangles at two corners.
+
+    Hexagon centres are 2 apothems plus a square side apart: sqrt(3) + 1, along the edge
+    normals at 30 and 90 degrees. Each square is shared by two hexagons and each triangle
+    by three, so a cell holds 1 hexagon, 3 squares and 2 triangles.
+    """
+    corner = [np.array([math.cos(k * math.pi / 3), math.sin(k * math.pi / 3)]) for k in range(7)]
+    normal = [np.array([math.cos(math.pi / 6 + k * math.pi / 3), math.sin(math.pi / 6 + k * math.pi / 3)]) for k in range(-1, 6)]
+    tiles = [np.array(corner[:6])]
+    for k in range(3):  # squares on edges 0, 1, 2 (normals at 30, 90, 150 degrees)
+        n = normal[k + 1]
+        tiles.append(np.array([corner[k], corner[k] + n, corner[k + 1] + n, corner[k + 1]]))
+    for k in range(2):  # triangles at corners 0 and 1, between the squares on either side
+        tiles.append(np.array([corner[k], corner[k] + normal[k], corner[k] + normal[k + 1]]))
+    s = S3 + 1
+    return periodic(tiles, [(i, ID) for i in range(len(tiles))], s * normal[1], s * normal[2])
+
+
+def test_archimedean_3464_is_isogonal_and_3_isohedral() -> None:
+    """An Archimedean tiling is vertex-transitive (Kaplan §5.1; Grünbaum & Shephard §2.1);
+    3.4.6.4 has three tile shapes, each one transitivity class, and symmetry *632."""
+    tiling = rhombitrihexagonal()
+    assert_tiles(tiling)
+    assert wallpaper_group(tiling).iuc == "p6m"
+    assert isohedrality(tiling) == 3
+    assert tile_orbits(tiling).tolist() == [0, 1, 1, 1, 2, 2]
+    verts, labels = vertex_orbits(tiling)
+    assert len(verts) == 6  # 6 vertices per cell: each hexagon corner, each counted once
+    assert isogonality(tiling) == 1
+
+
+@pytest.mark.parametrize(
+    "name, tile_classes, vertex_classes",
+    [
+        # regular tilings are isohedral and isogonal
+        ("squares", 1, 1),
+        ("triangles", 1, 1),
+        ("hexagons", 1, 1),
+        # Pythagorean: two sizes of square cannot be equivalent; every vertex is a corner
+        # of exactly one small square, whose 4-fold turn permutes its corners: 1 class
+        ("pythagorean", 2, 1),
+        # basketweave: one brick class; vertices of valence 4 (block corners) and 3 (ends
+        # of the line between the two bricks of a block) cannot be equivalent: 2 classes
+        ("basketweave", 1, 2),
+        # 6^3 has two classes of vertices (Y and inverted Y) swapped only by half-turns or
+        # mirrors through edge midpoints: p3 and *333 keep them apart, 632 and 3*3 do not
+        ("C3 hexagons", 1, 2),
+        ("corner triangles", 1, 2),
+        ("C6 hexagons", 1, 1),
+        ("edge triangles", 1, 1),
+    ],
+)
+def test_tile_and_vertex_orbits(name: str, tile_classes: int, vertex_classes: int) -> None:
+    tiling = TILINGS[name][1]
+    assert isohedrality(tiling) == tile_classes
+    assert isogonality(tiling) == vertex_classes
+
+
+def test_vertices_exclude_points_on_straight_edges() -> None:
+    """Chevron corners at the notch meet only two tiles, so they are no tiling vertices;
+    aligned chevron columns have one 4-valent vertex per cell."""
+    verts = tiling_vertices(TILINGS["chevrons"][1])
+    assert len(verts) == 1
+    assert np.allclose(verts[0], (0, 0)) or np.allclose(verts[0] % 1, (0, 0))
