@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import itertools
 import re
-from collections import Counter
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -116,10 +115,9 @@ class VertexType:
 
     @property
     def species_name(self) -> str:
-        """Species printed as ``{3^4,6}``-style text: sorted sizes with exponents."""
-        return "{" + ",".join(
-            f"{p}^{n}" if n > 1 else str(p) for p, n in sorted(Counter(self.polygons).items())
-        ) + "}"
+        """The species as the sorted sequence in exponent form: ``3^3.4^2`` names the species
+        of both 3^3.4^2 and 3^2.4.3.4."""
+        return format_sequence(self.species)
 
     @property
     def excess(self) -> Fraction:

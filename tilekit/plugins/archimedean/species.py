@@ -11,7 +11,9 @@ Sequences with angle sum below 2π are *spherical* (exercise 4.11) and above it
 V = 4 / (2 - k + 2 Σ 1/p_i) vertices (Euler's formula with V·δ = 4π, δ the angle defect)
 and V·m_p / p faces of each size p (m_p: how often p occurs); the type is named when it is
 the vertex type of a Platonic or Archimedean solid, a prism (4^2.n) or an antiprism (3^3.n).
-Non-Euclidean sequences are enumerated in a bounded range: 3 <= k <= 6 and 3 <= p_i <= max_sides.
+Non-Euclidean sequences are enumerated in a bounded range: 3 <= k <= 6, and 3 <= p_i <=
+max_sides (default 12) for spherical ones, 3 <= p_i <= hyperbolic_max_sides (default 6) for
+hyperbolic ones (there are 98,308 hyperbolic types with sides up to 12: too many to be useful)
 """
 
 from __future__ import annotations
@@ -55,7 +57,7 @@ SOLIDS: dict[str, tuple[str, str, int]] = {
     "3^4.5": ("snub dodecahedron", "archimedean", 60),
 }
 
-DEFAULTS = {"radius": 4.0, "max_nodes": 200_000, "max_sides": 12}
+DEFAULTS = {"radius": 4.0, "max_nodes": 200_000, "max_sides": 12, "hyperbolic_max_sides": 6}
 
 
 def spherical_vertices(vt: VertexType) -> Fraction:
@@ -167,6 +169,8 @@ def _params(params: Mapping[str, Any]) -> dict[str, Any]:
         raise ParameterError(f"max_nodes={p['max_nodes']} must be at least 1")
     if not 3 <= int(p["max_sides"]) <= 50:
         raise ParameterError(f"max_sides={p['max_sides']} must be between 3 and 50")
+    if not 3 <= int(p["hyperbolic_max_sides"]) <= 20:
+        raise ParameterError(f"hyperbolic_max_sides={p['hyperbolic_max_sides']} must be between 3 and 20")
     return p
 
 
@@ -178,7 +182,8 @@ def chunks(params: Mapping[str, Any]) -> list[dict[str, Any]]:
         {"geometry": "euclidean", "species": list(s)} for s in euclidean_species()
     ]
     for k in range(3, 7):
-        out.append({"geometry": "non-euclidean", "k": k, "max_sides": int(p["max_sides"])})
+        out.append({"geometry": "non-euclidean", "k": k, "max_sides": int(p["max_sides"]),
+                    "hyperbolic_max_sides": int(p["hyperbolic_max_sides"])})
     return out
 
 
@@ -201,7 +206,10 @@ def run_chunk(params: Mapping[str, Any], chunk: Mapping[str, Any]) -> ChunkResul
     else:
         k = int(chunk["k"])
         for species in bounded_species(int(chunk["max_sides"]), k, k):
-            if geometry_of(species) == "euclidean":
+            geometry = geometry_of(species)
+            if geometry == "euclidean":
+                continue
+            if geometry == "hyperbolic" and species[-1] > int(chunk["hyperbolic_max_sides"]):
                 continue
             types = types_of_species(species)
             for vt in types:
@@ -239,7 +247,9 @@ SEARCH = Search(
                     "edge lengths beyond the seed polygon that a type must extend to"),
         SearchParam("max_nodes", int, DEFAULTS["max_nodes"], "builder node limit per vertex type"),
         SearchParam("max_sides", int, DEFAULTS["max_sides"],
-                    "largest polygon in the bounded spherical/hyperbolic enumeration"),
+                    "largest polygon in the bounded spherical enumeration"),
+        SearchParam("hyperbolic_max_sides", int, DEFAULTS["hyperbolic_max_sides"],
+                    "largest polygon in the bounded hyperbolic enumeration"),
     ),
     chunks=chunks,
     run_chunk=run_chunk,
