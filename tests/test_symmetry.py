@@ -478,3 +478,63 @@ def test_vertices_exclude_points_on_straight_edges() -> None:
     verts = tiling_vertices(TILINGS["chevrons"][1])
     assert len(verts) == 1
     assert np.allclose(verts[0], (0, 0)) or np.allclose(verts[0] % 1, (0, 0))
+
+
+# --------------------------------------------------------------------------- isohedral types
+
+
+def tactile_tiling(ih: int) -> PeriodicTiling:
+    """An isohedral tiling of type IH``ih`` from Kaplan's Tactile tables, with generic edges.
+
+    Each edge shape class gets its own small asymmetric curve (completed by Tactile to a U
+    or S edge where the type demands) and the tiling-vertex parameters are nudged off
+    their defaults, so that the tile has no symmetry beyond what its type forces.
+    """
+    from tactile import EdgeShape, IsohedralTiling, Point, mul
+
+    til = IsohedralTiling(ih)
+    if til.num_parameters:
+        til.parameters = [p + 0.013 * (i + 1) for i, p in enumerate(til.parameters)]
+    base = [(0.0, 0.0), (0.3, 0.05), (0.6, 0.02), (1.0, 0.0)]
+    jbase = [(0.0, 0.0), (0.25, 0.05), (0.45, -0.03), (0.7, 0.06), (1.0, 0.0)]
+    pts = []
+    for part in til.parts:
+        kind = til.edge_shapes[part.id]
+        f = 1.0 + 0.37 * part.id
+        if kind == EdgeShape.I:
+            curve = [(0.0, 0.0), (1.0, 0.0)]
+        elif kind == EdgeShape.J:
+            curve = [(x, y * (f if k % 2 else 2 - f)) for k, (x, y) in enumerate(jbase)]
+        else:
+            curve = [(x, y * f) for x, y in base]
+        ej = [Point(*p) for p in curve]
+        cur, inc = (len(ej) - 2, -1) if part.rev else (1, 1)
+        for _ in range(len(ej) - 1):
+            q = mul(part.T, ej[cur])
+            pts.append((q.x, q.y))
+            cur += inc
+    aspects = np.array([[a[0:3], a[3:6], [0.0, 0.0, 1.0]] for a in til.aspects], dtype=float)
+    return PeriodicTiling(
+        [Prototile(np.array(pts))],
+        [0] * len(aspects),
+        aspects,
+        (til.t1.x, til.t1.y),
+        (til.t2.x, til.t2.y),
+        name=f"IH{ih}",
+    )
+
+
+def test_isohedral_types_are_isohedral() -> None:
+    """All 81 unmarked isohedral types (Tactile's tables of Kaplan's Appendix A) give
+    tilings whose symmetry group is transitive on the tiles (the definition, §5.2); where
+    the type places reflected copies of the tile, the group has opposite isometries."""
+    from tactile import tiling_types
+
+    assert len(tiling_types) == 81
+    for ih in tiling_types:
+        tiling = tactile_tiling(ih)
+        group = wallpaper_group(tiling)
+        assert isohedrality(tiling) == 1, f"IH{ih}"
+        reflected = bool((np.linalg.det(tiling.unit_transform[:, :2, :2]) < 0).any())
+        has_opposite = any(op.kind in ("reflection", "glide reflection") for op in group.operations)
+        assert has_opposite or not reflected, f"IH{ih}"
