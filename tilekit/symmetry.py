@@ -704,13 +704,40 @@ def symmetries(
 
 
 def _colour_group(cell: _Cell, group: SymmetryGroup, n: int) -> SymmetryGroup:
-    """The colour-preserving subgroup: elements (modulo n*L) inducing the identity on colours."""
+    """The colour-preserving subgroup: elements (modulo n*L) that keep every tile's colour.
+
+    Each element T(s) op of the group modulo n*L permutes the cell's tiles; the permutation
+    is composed from those of the coset representatives and of the two lattice
+    translations, so only |P| + 2 maps are ever located, not |P| n^2.
+    """
+    reps = np.array([op.matrix for op in group.operations])
+    steps = np.array([Affine.translation(*v) for v in group.lattice])
+    perm = _tile_perm(cell, np.concatenate([reps, steps]))
+    rep_perm, (w1, w2) = perm[: len(reps)], perm[len(reps) :]
+    ident = np.arange(len(cell))
+    shift_perm = []
+    pa = ident
+    for _a in range(n):
+        pb = pa
+        for _b in range(n):
+            shift_perm.append(pb)
+            pb = w2[pb]
+        pa = w1[pa]
+    moved = np.array(shift_perm)[:, rep_perm]  # (n^2, |P|, m): tile t -> shift(rep(t))
+    good = (cell.colour[moved] == cell.colour).all(axis=2).reshape(-1)
     elems = _elements_mod(group, n)
-    perms = _colour_maps(cell, elems)
-    good = np.array([p is not None and p == tuple(range(len(p))) for p in perms])
     sub = _assemble(elems[good], cell.basis, cell.tol, coloured=True)
     coarser = int(round(_cell_area(sub.lattice) / _cell_area(group.lattice)))
     return SymmetryGroup(sub.lattice, sub.operations, coarser, sub.tol, coloured=True)
+
+
+def _tile_perm(cell: _Cell, maps: np.ndarray) -> np.ndarray:
+    """(len(maps), m): the cell tile (modulo the cell's lattice) each map sends each tile to."""
+    pts, cen, lab = _images(cell, maps)
+    found, _ = _locate(cell, pts, cen, lab)
+    if (found < 0).any():
+        raise GeometryError("a symmetry of the tiling failed to map the coloured cell onto itself")
+    return found.reshape(len(maps), len(cell))
 
 
 def _elements_mod(group: SymmetryGroup, n: int) -> np.ndarray:
@@ -725,12 +752,7 @@ def _elements_mod(group: SymmetryGroup, n: int) -> np.ndarray:
 
 def _colour_maps(cell: _Cell, maps: np.ndarray) -> list[tuple[int, ...] | None]:
     """For each symmetry in ``maps``, the colour permutation it induces on ``cell``, or None."""
-    pts, cen, lab = _images(cell, maps)
-    found, _ = _locate(cell, pts, cen, lab)
-    m = len(cell)
-    found = found.reshape(len(maps), m)
-    if (found < 0).any():
-        raise GeometryError("a symmetry of the tiling failed to map the coloured cell onto itself")
+    found = _tile_perm(cell, maps)
     k = int(cell.colour.max()) + 1
     used = np.unique(cell.colour)
     out: list[tuple[int, ...] | None] = []
