@@ -252,6 +252,8 @@ class PatchBuilder:
     next: ``bfs`` (oldest first, exercise 6.2), ``dfs`` (newest first), ``nearest``
     (closest to the seed's centre first) or a callable ``key(edge) -> sortable`` where
     ``edge`` is a dict with ``serial``, ``distance``, ``midpoint``, ``angle_sum``.
+    ``angle_check`` rejects a placement early when a vertex's remaining angle is no sum of
+    corner angles of the prototiles (off: such dead ends are found later, by overlap).
     """
 
     def __init__(
@@ -263,6 +265,7 @@ class PatchBuilder:
         rule: VertexRule | None = None,
         order: str | Callable[[dict[str, Any]], Any] = "bfs",
         tolerance: float = 1e-6,
+        angle_check: bool = True,
     ) -> None:
         if not prototiles:
             raise ParameterError("the builder needs at least one prototile")
@@ -273,6 +276,7 @@ class PatchBuilder:
         self.compatible = compatible or labels_match
         self.rule = rule
         self.order = order
+        self.angle_check = angle_check
         scale = max(
             float(np.linalg.norm(np.roll(p.outline, -1, axis=0) - p.outline, axis=1).max())
             for p in self.prototiles
@@ -354,7 +358,7 @@ class PatchBuilder:
             d = pts[:, None, :] - pts[None, :, :]
             diam = max(diam, float(np.sqrt((d**2).sum(-1)).max()))
         self._cell = diam
-        self._angle_set = self._fillable_angles()
+        self._angle_set = self._fillable_angles() if self.angle_check else None
 
     def _signature(self, pts: np.ndarray, labels: Sequence[Hashable]) -> list[tuple]:
         edges = np.roll(pts, -1, axis=0) - pts
@@ -802,7 +806,7 @@ class PatchBuilder:
         stats.placements = 1
         if not self._vertices_ok(self._tiles[0].vids, stats):
             stats.seconds = time.perf_counter() - started
-            stats.reason = "the seed tile alone breaks the vertex rule"
+            stats.reason = "exhausted: the seed tile alone already fails (" + ", ".join(sorted(stats.rejections)) + ")"
             return BuildResult("exhausted", None, stats)
         stack: list[list[Any]] = []  # frames: [candidate ids, next index, frame matrix]
         deadline = None if max_seconds is None else started + max_seconds
@@ -870,7 +874,10 @@ class PatchBuilder:
         protos = np.array([self._cands[t.cand].prototile for t in self._tiles], dtype=np.int64)
         # rounding to 12 decimals removes float noise below 1e-12 (e.g. 6e-16 versus 5e-16 at
         # a shared vertex near an axis), which trips GEOS's overlay into wrong intersections
+        # float noise below 1e-12 is set to zero (e.g. 6e-16 versus 5e-16 at a shared vertex
+        # on an axis), which otherwise trips GEOS's overlay in Patch.validate
         transforms = np.array([t.transform for t in self._tiles])
+        transforms[np.abs(transforms) < 1e-12] = 0.0
         return Patch(self.prototiles, protos, transforms, protos.copy(), np.zeros(len(protos), dtype=np.int64))
 
     # ------------------------------------------------------------------ inspection
@@ -882,5 +889,6 @@ class PatchBuilder:
 
 def build_patch(prototiles: Sequence[Prototile], **options: Any) -> BuildResult:
     """One-call form: ``build_patch(tiles, tiles=50)``; constructor and ``build`` options mixed."""
-    ctor = {k: options.pop(k) for k in ("reflections", "compatible", "rule", "order", "tolerance") if k in options}
+    names = ("reflections", "compatible", "rule", "order", "tolerance", "angle_check")
+    ctor = {k: options.pop(k) for k in names if k in options}
     return PatchBuilder(prototiles, **ctor).build(**options)

@@ -1,0 +1,195 @@
+"""The shared backtracking patch builder (§2.4 Extension Theorem, exercise 6.2)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import shapely
+
+from tilekit.builder import PatchBuilder, VertexView, build_patch, labels_match
+from tilekit.errors import ParameterError
+from tilekit.geometry import regular_polygon
+from tilekit.tiling import Prototile
+
+
+def _disc(result, radius: float):
+    patch = result.patch
+    seed = patch.centres()[0]
+    return shapely.Point(*seed).buffer(radius, quad_segs=64)
+
+
+@pytest.mark.parametrize(
+    "sides, radius",
+    [((3,), 3.0), ((4,), 4.0), ((6,), 4.0), ((4, 8), 4.0), ((3, 12), 5.0)],
+)
+def test_sets_that_tile_reach_the_radius(sides, radius):
+    """Regular 3-, 4-, 6-gons, the (4.8^2) and (3.12^2) sets tile (§4.1), so a patch covering
+    a disc of any radius exists; the builder must return one that covers it exactly."""
+    protos = [Prototile(regular_polygon(n)) for n in sides]
+    res = build_patch(protos, radius=radius, seed=len(protos) - 1, max_nodes=50_000)
+    assert res.status == "complete", res.stats.reason
+    report = res.patch.validate(_disc(res, radius))
+    assert report, report.summary()
+    assert res.stats.placements == len(res.patch) + res.stats.backtracks
+
+
+def test_regular_pentagons_alone_are_exhausted():
+    """Regular pentagons cannot tile (exercise 4.3a: 108° does not divide 360°): the builder
+    must prove it (status exhausted, no patch), for a tile goal and a radius goal."""
+    pent = [Prototile(regular_polygon(5))]
+    for goal in ({"tiles": 3}, {"radius": 2.0}):
+        res = build_patch(pent, **goal)
+        assert res.status == "exhausted"
+        assert res.patch is None
+        assert not res
+
+
+def test_pentagons_without_the_angle_test_die_by_overlap():
+    """With a rule that accepts everything the pentagon still fails: three pentagons leave a
+    36° gap no pentagon fits, so every branch dies when a vertex cannot close."""
+
+    class Anything:
+        def closed(self, view: VertexView) -> bool:
+            return True
+
+        def open(self, view: VertexView) -> bool:
+            return True
+
+    res = PatchBuilder([Prototile(regular_polygon(5))], rule=Anything()).build(radius=2.0)
+    assert res.status == "exhausted"
+    assert "exhausted" in res.stats.reason
+
+
+def test_node_and_time_limits_are_honoured():
+    """A limit is reported as 'limit' with no patch, never as a partial success."""
+    tri = [Prototile(regular_polygon(3))]
+    res = build_patch(tri, radius=50.0, max_nodes=40)
+    assert res.status == "limit" and res.patch is None
+    assert res.stats.nodes == 40
+    assert "node limit" in res.stats.reason
+    res = build_patch(tri, radius=500.0, max_seconds=0.05)
+    assert res.status == "limit" and res.patch is None
+    assert "time limit" in res.stats.reason
+    assert res.stats.seconds < 5.0
+
+
+def test_deterministic():
+    """Two runs with the same input place the same tiles in the same order."""
+    protos = [Prototile(regular_polygon(4)), Prototile(regular_polygon(8))]
+    a = build_patch(protos, tiles=60, seed=1)
+    b = build_patch(protos, tiles=60, seed=1)
+    assert a.ok and b.ok
+    assert np.array_equal(a.patch.prototile, b.patch.prototile)
+    assert np.array_equal(a.patch.transform, b.patch.transform)
+
+
+def test_tile_goal_and_bfs_order():
+    """Exercise 6.2: breadth-first from one tile to a given number of tiles; the first ring of a
+    square patch is the 4 edge neighbours of the seed."""
+    res = build_patch([Prototile(regular_polygon(4))], tiles=5)
+    assert res.ok and len(res.patch) == 5
+    assert res.patch.validate()
+    centres = res.patch.centres()
+    d = np.hypot(*(centres[1:] - centres[0]).T)
+    assert np.allclose(d, 1.0)
+
+
+def test_edge_labels_i_minus_i():
+    """Exercise 6.2's rule: a shared edge carries labels i and -i. A square labelled
+    (1, 2, -1, -2) tiles (each label meets its negative across the square); (1, 1, 1, 1)
+    cannot even have a neighbour."""
+    sq = regular_polygon(4)
+    good = build_patch([Prototile(sq, edge_labels=(1, 2, -1, -2))], radius=3.0)
+    assert good.ok and good.patch.validate()
+    bad = build_patch([Prototile(sq, edge_labels=(1, 1, 1, 1))], tiles=2)
+    assert bad.status == "exhausted"
+    assert labels_match(3, -3) and not labels_match(3, 3) and labels_match(None, None)
+    assert not labels_match(None, 1)
+
+
+def test_pluggable_compatibility():
+    """A custom compatibility predicate replaces the i / -i rule (here: equal colours)."""
+    sq = Prototile(regular_polygon(4), edge_labels=("a", "b", "a", "b"))
+    res = build_patch([sq], tiles=9, compatible=lambda x, y: x == y)
+    assert res.ok and res.patch.validate()
+    res = build_patch([sq], tiles=2, compatible=lambda x, y: x != y and x == "never")
+    assert res.status == "exhausted"
+
+
+def test_non_convex_prototile_with_reflections():
+    """The L-tromino (non-convex, split into convex pieces for the overlap test) tiles the
+    plane; a patch covering radius 2.5 exists and is valid."""
+    ell = np.array([(0, 0), (1, 0), (2, 0), (2, 1), (1, 1), (1, 2), (0, 2), (0, 1)], float)
+    for reflections in (False, True):
+        res = build_patch([Prototile(ell)], radius=2.5, reflections=reflections, max_nodes=100_000)
+        assert res.ok, res.stats.reason
+        assert res.patch.validate(_disc(res, 2.5))
+
+
+def test_reflections_give_mirror_images():
+    """A scalene triangle has 3 distinct edge placements per hand: 6 with reflections; a
+    square's mirror image is a rotated copy, so reflections add none. Without reflections
+    every placement is direct (determinant +1)."""
+    tri = Prototile(np.array([(0, 0), (2, 0), (0, 1)], float))
+    assert len(PatchBuilder([tri])._cands) == 3
+    assert len(PatchBuilder([tri], reflections=True)._cands) == 6
+    sq = Prototile(regular_polygon(4))
+    assert len(PatchBuilder([sq], reflections=True)._cands) == len(PatchBuilder([sq])._cands) == 1
+    direct = build_patch([tri], radius=2.0, reflections=False, max_nodes=50_000)
+    both = build_patch([tri], radius=2.0, reflections=True, max_nodes=50_000)
+    assert direct.ok and both.ok
+    t = direct.patch.transform
+    assert np.all(t[:, 0, 0] * t[:, 1, 1] - t[:, 0, 1] * t[:, 1, 0] > 0)
+    assert both.patch.validate() and direct.patch.validate()
+
+
+def test_reflected_labels_follow_their_edges():
+    """A mirrored tile keeps each label on its own (mirrored) edge: with equal-label matching
+    a triangle labelled by edge length meets a copy only along equal edges, in both hands."""
+    tri = Prototile(np.array([(0, 0), (2, 0), (0, 1)], float), edge_labels=("long", "hyp", "short"))
+    res = build_patch([tri], radius=2.0, reflections=True, compatible=lambda a, b: a == b)
+    assert res.ok and res.patch.validate()
+    lengths = {"long": 2.0, "hyp": math.sqrt(5), "short": 1.0}
+    # every label sits on an edge of its own length, in every placed tile
+    for t, pts in enumerate(res.patch.polygons()):
+        proto = res.patch.prototiles[int(res.patch.prototile[t])]
+        edge = np.hypot(*(np.roll(pts, -1, axis=0) - pts).T)
+        assert np.allclose(edge, [lengths[lab] for lab in proto.edge_labels])
+
+
+def test_vertex_rule_sees_closed_vertices():
+    """The rule's closed() is called with the corners round each surrounded vertex, in
+    counter-clockwise order, summing to 2π."""
+    seen: list[VertexView] = []
+
+    class Record:
+        def closed(self, view: VertexView) -> bool:
+            seen.append(view)
+            return True
+
+        def open(self, view: VertexView) -> bool:
+            return True
+
+    res = PatchBuilder([Prototile(regular_polygon(6))], rule=Record()).build(radius=2.5)
+    assert res.ok and seen
+    for v in seen:
+        assert v.closed and len(v.fans) == 1 and len(v.corners) == 3
+        assert math.isclose(sum(c.angle for c in v.corners), 2 * math.pi, abs_tol=1e-9)
+
+
+def test_bad_input_is_rejected():
+    sq = [Prototile(regular_polygon(4))]
+    with pytest.raises(ParameterError, match="exactly one goal"):
+        build_patch(sq)
+    with pytest.raises(ParameterError, match="exactly one goal"):
+        build_patch(sq, tiles=3, radius=2.0)
+    with pytest.raises(ParameterError, match="order"):
+        PatchBuilder(sq, order="sideways")
+    with pytest.raises(ParameterError, match="seed"):
+        build_patch(sq, tiles=3, seed=4)
+    with pytest.raises(ParameterError, match="radius"):
+        build_patch(sq, radius=-1.0)
+    with pytest.raises(ParameterError, match="at least one prototile"):
+        PatchBuilder([])
