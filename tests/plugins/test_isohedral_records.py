@@ -1,0 +1,114 @@
+"""Catalogue records of the isohedral family, the family hook and the command line."""
+
+from __future__ import annotations
+
+import json
+import time
+
+import pytest
+from click.testing import CliRunner
+
+from tilekit.cli import cli
+from tilekit.plugins import catalogue_records, families, get_family
+from tilekit.plugins.isohedral.records import records, type_properties
+from tilekit.plugins.isohedral.templates import load_templates
+
+KEYS = {
+    "ih", "topology", "marked", "periodic", "k_hedral", "k_isohedral", "edge_kinds",
+    "j_edges", "u_edges", "s_edges", "i_edges",
+}
+UNMARKED_KEYS = KEYS | {
+    "incidence_symbol", "canonical_symbol", "parameters", "aspects", "colours",
+    "perfect_colouring", "symmetry_group",
+}
+
+
+def test_93_records_named_ih1_to_ih93_with_aliases():
+    recs = records()
+    assert [r.name for r in recs] == [f"IH{i}" for i in range(1, 94)]
+    ih16 = recs[15]
+    assert ih16.family == "isohedral" and ih16.spec == {"ih": 16}
+    assert set(ih16.aliases) == {"ih16", "IH016"}
+
+
+def test_record_properties():
+    for r in records():
+        props = r.properties
+        assert KEYS <= set(props), r.name
+        if not props["marked"]:
+            assert UNMARKED_KEYS <= set(props), r.name
+        for v in props.values():
+            assert isinstance(v, str | int | float | bool)
+        n = props["j_edges"] + props["u_edges"] + props["s_edges"] + props["i_edges"]
+        assert n == len(props["edge_kinds"])
+        assert props["k_hedral"] == 1 and props["k_isohedral"] == 1 and props["periodic"] is True
+    p16 = type_properties(16)
+    assert p16["incidence_symbol"] == "[a+b+c+c-b-a-; a-c+b+]"
+    assert p16["edge_kinds"] == "IJJJJI" and p16["aspects"] == 3 and p16["parameters"] == 1
+    assert p16["symmetry_group"] == "3*3" and p16["colours"] == 3
+    assert "heesch_type" not in p16 and type_properties(1)["heesch_type"] == "TTTTTT"
+    # §5.3.2: 21 types have only I edges; 12 of them are the marked types
+    all_i = [ih for ih in range(1, 94) if set(type_properties(ih)["edge_kinds"]) == {"I"}]
+    assert len(all_i) == 21
+    assert sum(1 for ih in all_i if type_properties(ih)["marked"]) == 12
+
+
+def test_records_are_cheap():
+    type_properties.cache_clear()
+    start = time.perf_counter()
+    records()
+    assert time.perf_counter() - start < 1.0
+
+
+def test_family_and_records_through_the_plugin_manager():
+    fam = families()["isohedral"]
+    assert get_family("isohedral") is not None and fam.summary
+    mine = [r for r in catalogue_records() if r.family == "isohedral"]
+    assert len(mine) == 93
+    t = fam.from_spec({"ih": 16, "params": [0.3]})
+    assert t.name == "IH16" and t.params == (0.3,)
+    marked = fam.from_spec({"ih": 48})
+    assert marked.name == "IH48" and marked.prototiles[0].marking
+    region = (0, 0, 6, 6)
+    assert marked.patch(region).validate(region)
+
+
+def test_every_marked_type_draws_as_a_valid_laves_tiling():
+    for ih, t in load_templates().items():
+        if t.marked:
+            tiling = get_family("isohedral").from_spec({"ih": ih})
+            region = (0, 0, 5, 5)
+            assert tiling.patch(region).validate(region), ih
+            assert tiling.spec() == {"ih": ih}
+
+
+@pytest.fixture()
+def runner_args(tmp_path):
+    return ["--catalogue", f"sqlite:///{tmp_path / 'cat.db'}"]
+
+
+def test_cli_render_show_and_list(tmp_path, runner_args):
+    runner = CliRunner()
+    out = tmp_path / "f.svg"
+    res = runner.invoke(cli, runner_args + ["render", "IH16", "--param", "0.3", "--edge", "b=0,0:0.3,0.2:1,0", "-o", str(out)])
+    assert res.exit_code == 0, res.output
+    assert out.read_text().lstrip().startswith("<")
+    res = runner.invoke(cli, runner_args + ["show", "IH16"])
+    assert res.exit_code == 0, res.output
+    assert "parameterization TV14" in res.output and "3 <- 1; 6" in res.output
+    res = runner.invoke(
+        cli, runner_args + ["list", "--family", "isohedral", "--where", "topology=3^6", "--where", "edge_kinds~S", "--format", "json"]
+    )
+    assert res.exit_code == 0, res.output
+    names = {row["name"] for row in json.loads(res.output)}
+    expected = {
+        f"IH{ih}" for ih, t in load_templates().items()
+        if t.topology == "3^6" and "S" in type_properties(ih)["edge_kinds"]
+    }
+    assert names == expected and "IH8" in names
+
+
+def test_cli_reports_bad_edge_on_one_line(tmp_path, runner_args):
+    res = CliRunner().invoke(cli, runner_args + ["render", "IH16", "--edge", "q=0,0:1,0", "-o", str(tmp_path / "x.svg")])
+    assert res.exit_code == 2
+    assert "no edge label 'q'" in res.output and "Traceback" not in res.output
