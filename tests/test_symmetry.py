@@ -538,3 +538,81 @@ def test_isohedral_types_are_isohedral() -> None:
         reflected = bool((np.linalg.det(tiling.unit_transform[:, :2, :2]) < 0).any())
         has_opposite = any(op.kind in ("reflection", "glide reflection") for op in group.operations)
         assert has_opposite or not reflected, f"IH{ih}"
+
+
+# --------------------------------------------------------------------------- Archimedean and Laves
+
+#: Symmetry groups of the 11 Archimedean tilings (Grünbaum & Shephard, Tilings and
+#: Patterns, §2.1; Kaplan §5.1); each Laves tiling, the dual, has the same group.
+ARCHIMEDEAN_GROUPS = {
+    "3^6": "p6m", "4^4": "p4m", "6^3": "p6m", "3.12^2": "p6m", "4.6.12": "p6m",
+    "3.4.6.4": "p6m", "3.6.3.6": "p6m", "4.8^2": "p4m", "3^4.6": "p6",
+    "3^3.4^2": "cmm", "3^2.4.3.4": "p4g",
+}  # fmt: skip
+
+
+def test_archimedean_and_laves_catalogue_tilings() -> None:
+    """The family's 11 Archimedean tilings (both hands of 3^4.6) have the published groups
+    and are isogonal (vertex-transitive, §5.1); their Laves duals are isohedral."""
+    from tilekit.plugins.archimedean.records import (
+        archimedean_from_spec,
+        catalogue_records,
+        laves_from_spec,
+    )
+
+    seen = {"archimedean": set(), "laves": set()}
+    for record in catalogue_records():
+        if record.family not in seen:
+            continue
+        build = archimedean_from_spec if record.family == "archimedean" else laves_from_spec
+        tiling = build(record.spec)
+        key = record.name.strip("[]").rstrip("lr").rstrip("]")
+        assert wallpaper_group(tiling).iuc == ARCHIMEDEAN_GROUPS[key], record.name
+        if record.family == "archimedean":
+            assert isogonality(tiling) == 1, record.name
+        else:
+            assert isohedrality(tiling) == 1, record.name
+        seen[record.family].add(key)
+    assert seen["archimedean"] == seen["laves"] == set(ARCHIMEDEAN_GROUPS)
+
+
+# --------------------------------------------------------------------------- options and output
+
+
+def test_match_prototiles_keeps_congruent_prototiles_apart() -> None:
+    """A chessboard drawn with two congruent prototiles: by geometry alone it is 4^4 with
+    unit translations; keeping the prototiles apart leaves the chessboard's colour group,
+    *442 on the diagonal lattice (1, 1), (1, -1)."""
+    tiling = periodic([SQUARE, SQUARE], [(0, ID), (1, T(1, 0))], (1, 1), (1, -1))
+    plain = symmetries(tiling)
+    assert plain.lattice_index == 2 and wallpaper_group(tiling).iuc == "p4m"
+    kept = symmetries(tiling, match_prototiles=True)
+    assert kept.lattice_index == 1
+    assert abs(abs(np.linalg.det(kept.lattice)) - 2.0) < 1e-9
+    assert wallpaper_group(tiling, match_prototiles=True).iuc == "p4m"
+    assert isohedrality(tiling) == 1
+
+
+def test_properties_are_json_scalars() -> None:
+    """Catalogue records need JSON scalars or lists under snake_case keys."""
+    props = wallpaper_group(TILINGS["basketweave"][1]).properties()
+    assert props == {
+        "wallpaper_group": "p4g",
+        "orbifold": "4*2",
+        "point_group_order": 8,
+        "rotation_orders": [2, 4],
+        "reflections": True,
+        "glide_reflections": True,
+    }
+    assert all(isinstance(v, str | int | bool | list) for v in props.values())
+    assert str(wallpaper_group(TILINGS["basketweave"][1])) == "p4g (4*2)"
+
+
+def test_generators_are_classified() -> None:
+    """Generators carry their classification: p4g's are two translations, a quarter turn
+    and an opposite isometry."""
+    group = wallpaper_group(TILINGS["basketweave"][1])
+    kinds = [g.kind for g in group.generators]
+    assert kinds[:3] == ["translation", "translation", "rotation"]
+    assert kinds[3] in ("reflection", "glide reflection")
+    assert group.generators[2].isometry.order == 4
