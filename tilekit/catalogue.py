@@ -599,13 +599,15 @@ class Catalogue:
                 sa.or_(
                     sa.func.lower(t.c.name).contains(needle, autoescape=True),
                     sa.func.lower(t.c.title).contains(needle, autoescape=True),
-                    sa.exists().where(
-                        a.c.tiling_id == t.c.id,
-                        sa.func.lower(a.c.alias).contains(needle, autoescape=True),
+                    t.c.id.in_(
+                        sa.select(a.c.tiling_id).where(
+                            sa.func.lower(a.c.alias).contains(needle, autoescape=True)
+                        )
                     ),
-                    sa.exists().where(
-                        p.c.tiling_id == t.c.id,
-                        sa.func.lower(p.c.value_text).contains(needle, autoescape=True),
+                    t.c.id.in_(
+                        sa.select(p.c.tiling_id).where(
+                            sa.func.lower(p.c.value_text).contains(needle, autoescape=True)
+                        )
                     ),
                 )
             )
@@ -939,24 +941,28 @@ def _condition(f: Filter) -> Any:
             raise _type_error(f, "is a number")
         return _compare(column, f.op, f.value)
 
-    has_key = p.c.tiling_id == t.c.id, p.c.key == f.key
+    # Uncorrelated "id IN (SELECT tiling_id ...)" subqueries: each is evaluated once through
+    # the (key, value) indexes, instead of once per tiling.
+    def having(*conditions: Any) -> Any:
+        return t.c.id.in_(sa.select(p.c.tiling_id).where(p.c.key == f.key, *conditions))
+
     if f.op == "~":
-        return sa.exists().where(
-            *has_key, sa.func.lower(p.c.value_text).contains(f.raw.lower(), autoescape=True)
-        )
+        return having(sa.func.lower(p.c.value_text).contains(f.raw.lower(), autoescape=True))
     if f.op in ("=", "!="):
+        # each alternative is its own indexed subquery (an OR inside one would defeat the index)
         if isinstance(f.value, bool):
-            equal = sa.or_(p.c.value_bool == f.value, p.c.value_text == f.raw)
+            alternatives = [p.c.value_bool == f.value, p.c.value_text == f.raw]
         elif isinstance(f.value, int | float):
             v = float(f.value)
             eps = NUMBER_RTOL * max(1.0, abs(v))
-            equal = sa.or_(p.c.value_num.between(v - eps, v + eps), p.c.value_text == f.raw)
+            alternatives = [p.c.value_num.between(v - eps, v + eps), p.c.value_text == f.raw]
         else:
-            equal = p.c.value_text == f.raw
+            alternatives = [p.c.value_text == f.raw]
+        equal = sa.or_(*(having(c) for c in alternatives))
         if f.op == "=":
-            return sa.exists().where(*has_key, equal)
-        return sa.and_(sa.exists().where(*has_key), ~sa.exists().where(*has_key, equal))
-    return sa.exists().where(*has_key, _compare(p.c.value_num, f.op, float(f.value)))
+            return equal
+        return sa.and_(having(), ~equal)
+    return having(_compare(p.c.value_num, f.op, float(f.value)))
 
 
 # --------------------------------------------------------------------------- upsert

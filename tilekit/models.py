@@ -121,8 +121,9 @@ class PropertyRow(Base):
 
     __tablename__ = "tiling_properties"
     __table_args__ = (
-        Index("ix_tiling_properties_key_text", "key", "value_text"),
-        Index("ix_tiling_properties_key_num", "key", "value_num"),
+        # covering indexes: a filter's "tiling_id IN (SELECT ...)" never touches the table
+        Index("ix_tiling_properties_key_text", "key", "value_text", "tiling_id"),
+        Index("ix_tiling_properties_key_num", "key", "value_num", "tiling_id"),
     )
 
     id: Mapped[int] = mapped_column(Integer, primary_key=True)

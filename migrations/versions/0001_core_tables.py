@@ -71,8 +71,8 @@ def upgrade() -> None:
         sa.PrimaryKeyConstraint("id", name="pk_tiling_properties"),
     )
     op.create_index("ix_tiling_properties_tiling_id", "tiling_properties", ["tiling_id"])
-    op.create_index("ix_tiling_properties_key_text", "tiling_properties", ["key", "value_text"])
-    op.create_index("ix_tiling_properties_key_num", "tiling_properties", ["key", "value_num"])
+    op.create_index("ix_tiling_properties_key_text", "tiling_properties", ["key", "value_text", "tiling_id"])
+    op.create_index("ix_tiling_properties_key_num", "tiling_properties", ["key", "value_num", "tiling_id"])
 
     op.create_table(
         "runs",
