@@ -257,3 +257,19 @@ def test_colour_preserving_group_is_a_subgroup() -> None:
         assert full.contains(op.matrix)
     for v in sub.lattice:
         assert full.contains(Affine.translation(*v))
+
+
+def test_herringbone_coloured_by_aspect_is_perfect() -> None:
+    """Herringbone (pgg) with horizontal and vertical bricks coloured by aspect: half-turns
+    keep each brick's direction, the diagonal glides swap the two: perfect, and the
+    colour-preserving group is the translations and half-turns, p2, of index 2."""
+    rect = np.array([(0, 0), (2, 0), (2, 1), (0, 1)], dtype=float)
+    vert = Affine.translation(1, 1) @ Affine.rotation(math.pi / 2)
+    tiling = PeriodicTiling(
+        [Prototile(rect)], [0, 0], np.array([ID, vert]), (1, 1), (2, -2), Colouring.parse("(1 2)(1 2)(1 2)")
+    )
+    report = colouring_report(tiling)
+    assert report.perfect
+    assert report.symmetry.iuc == "pgg"
+    assert report.colour_group.iuc == "p2"
+    assert report.index == 2

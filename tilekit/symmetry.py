@@ -4,7 +4,9 @@
 congruences of one tile onto the tiles of the translational unit against the geometry of
 the whole unit (outlines and markings); ``wallpaper_group(tiling)`` names the group among
 the 17 (orbifold and IUC names); ``colouring_report(tiling)`` / ``is_perfect_colouring``
-decide whether every symmetry of the uncoloured tiling permutes the colours (§3.6.1).
+decide whether every symmetry of the uncoloured tiling permutes the colours (§3.6.1);
+``tile_orbits`` / ``vertex_orbits`` give the transitivity classes (k-isohedral,
+k-isogonal). The method, tolerances and limits are described in docs/symmetry.md.
 
 The group is returned as a lattice of translations plus one coset representative per
 element of the point group: every symmetry is ``T(L) @ op`` for exactly one representative
