@@ -192,6 +192,20 @@ def compute_unit(template: Template, verts: np.ndarray) -> tuple[np.ndarray, np.
     return _snap(aspects), _snap(vectors["v1"]), _snap(vectors["v2"]), engine
 
 
+def tile_outlines(patch: Patch, prototile: int = 0) -> np.ndarray:
+    """(n, k, 2) outlines of the patch's tiles of one prototile, by one batched matmul.
+
+    Equivalent to ``Affine.apply(patch.transform[idx], outline)`` but an order of magnitude
+    faster for 10^5 tiles (BLAS batched products instead of a generic einsum).
+    """
+    idx = np.flatnonzero(patch.prototile == prototile)
+    m = patch.transform[idx]
+    outline = patch.prototiles[prototile].outline
+    pts = np.matmul(m[:, :2, :2], outline.T)
+    pts += m[:, :2, 2, None]
+    return pts.transpose(0, 2, 1)
+
+
 def _snap(x: np.ndarray) -> np.ndarray:
     """Round float noise (|x| < 1e-10) to zero, so lattice rows stay exactly axis-aligned."""
     return np.where(np.abs(x) < 1e-10, 0.0, x)
