@@ -16,6 +16,7 @@ radius around the seed exists), or ``limit`` when the node or time budget ran ou
 
 from __future__ import annotations
 
+import heapq
 import math
 import time
 from collections.abc import Callable, Hashable, Sequence
@@ -226,6 +227,8 @@ class _Candidate:
     vertex_map: tuple[int, ...]  # local vertex -> prototile vertex index
     pieces: np.ndarray  # (c, K, 2) convex pieces, padded
     normals: np.ndarray  # (c, K, 2) the pieces' unit edge normals
+    proj_min: np.ndarray  # (c, K) each piece's projection on its own normals: min
+    proj_max: np.ndarray  # (c, K) and max
     base: np.ndarray  # 3x3 map from prototile coordinates to the local frame
     outline_next: np.ndarray  # (k, 2) local outline rolled by one (edge ends)
 
@@ -346,6 +349,8 @@ class PatchBuilder:
                         vertex_map=vmap,
                         pieces=pieces,
                         normals=_normals(pieces),
+                        proj_min=np.einsum("cad,ckd->cak", _normals(pieces), pieces).min(-1),
+                        proj_max=np.einsum("cad,ckd->cak", _normals(pieces), pieces).max(-1),
                         base=frame @ base,
                         outline_next=np.roll(local, -1, axis=0),
                     )
@@ -411,6 +416,10 @@ class PatchBuilder:
         cap = 256
         self._ppts = np.zeros((cap, self._K, 2))
         self._pnorm = np.zeros((cap, self._K, 2))
+        self._pmin = np.zeros((cap, self._K))
+        self._pmax = np.zeros((cap, self._K))
+        self._heap: list[tuple[Any, int, tuple[int, int]]] = []
+        self._dheap: list[tuple[float, int, tuple[int, int]]] = []
         self._pcount = 0
         self._pfree: list[int] = []
         self._tpts = np.zeros((cap, self._K, 2))
@@ -471,6 +480,8 @@ class PatchBuilder:
         if self._pcount == len(self._ppts):
             self._ppts = np.concatenate([self._ppts, np.zeros_like(self._ppts)])
             self._pnorm = np.concatenate([self._pnorm, np.zeros_like(self._pnorm)])
+            self._pmin = np.concatenate([self._pmin, np.zeros_like(self._pmin)])
+            self._pmax = np.concatenate([self._pmax, np.zeros_like(self._pmax)])
         self._pcount += 1
         return self._pcount - 1
 
@@ -487,31 +498,41 @@ class PatchBuilder:
         return np.sort(ids[keep]).tolist()
 
     def _overlaps(
-        self, pieces: np.ndarray, an: np.ndarray, pts: np.ndarray, nxt: np.ndarray, neighbours: list[int]
+        self,
+        pieces: np.ndarray,
+        an: np.ndarray,
+        amin: np.ndarray,
+        amax: np.ndarray,
+        pts: np.ndarray,
+        nxt: np.ndarray,
+        neighbours: list[int],
     ) -> str | None:
         """'overlap' if a placed piece meets a neighbour's interior, 'vertex on edge' if a
-        corner lies inside another tile's edge (not edge to edge), else None."""
+        corner lies strictly inside another tile's edge (not edge to edge), else None.
+
+        Separating axes: a pair of convex pieces is disjoint (up to ``tol``) when their
+        projections on some edge normal of either piece are separated; each piece's
+        projections on its own normals are stored, so only the cross terms are computed."""
         if not neighbours:
             return None
         tol = self.tol
         nb_pieces = [pc for t in neighbours for pc in self._tiles[t].pieces]
         bp = self._ppts[nb_pieces]  # (m, K, 2)
         bn = self._pnorm[nb_pieces]
-        c, m = len(pieces), len(bp)
-        axes = np.concatenate(
-            [np.broadcast_to(an[:, None], (c, m) + an.shape[1:]), np.broadcast_to(bn[None], (c, m) + bn.shape[1:])],
-            axis=2,
-        )  # (c, m, 2K, 2)
-        pa = np.einsum("cmad,ckd->cmak", axes, pieces)
-        pb = np.einsum("cmad,mkd->cmak", axes, bp)
-        sep = (pa.max(-1) <= pb.min(-1) + tol) | (pb.max(-1) <= pa.min(-1) + tol)
-        if not np.all(sep.any(-1)):
+        pb = np.einsum("cad,mkd->cmak", an, bp)  # neighbours on the new piece's axes
+        sep = ((amax[:, None, :] <= pb.min(-1) + tol) | (pb.max(-1) <= amin[:, None, :] + tol)).any(-1)
+        pa = np.einsum("mad,ckd->cmak", bn, pieces)  # new piece on the neighbours' axes
+        bmin, bmax = self._pmin[nb_pieces], self._pmax[nb_pieces]
+        sep |= ((pa.max(-1) <= bmin[None] + tol) | (bmax[None] <= pa.min(-1) + tol)).any(-1)
+        if not sep.all():
             return "overlap"
-        # corners strictly inside edges (T-junctions) in either direction
-        nb_out = self._tpts[neighbours].reshape(-1, 2)  # padded outlines
-        if self._t_junction(pts, nb_out, self._tnext[neighbours].reshape(-1, 2)):
-            return "vertex on edge"
-        if self._t_junction(nb_out, pts, nxt):
+        # corners strictly inside edges (T-junctions), both ways in one test: the patch is
+        # edge to edge already, so neighbour-on-neighbour pairs never fire
+        nb_out = self._tpts[neighbours].reshape(-1, 2)
+        points = np.concatenate([pts, nb_out])
+        starts = np.concatenate([nb_out, pts])
+        ends = np.concatenate([self._tnext[neighbours].reshape(-1, 2), nxt])
+        if self._t_junction(points, starts, ends):
             return "vertex on edge"
         return None
 
@@ -554,13 +575,15 @@ class PatchBuilder:
                     return self._reject(stats, "edge labels")
         pieces = cand.pieces @ lin.T + off
         normals = cand.normals @ lin.T
+        shift = normals @ off  # (c, K): projections move by normal . offset
+        amin, amax = cand.proj_min + shift, cand.proj_max + shift
         nxt = cand.outline_next @ lin.T + off
         bbox = (float(pts[:, 0].min()), float(pts[:, 1].min()), float(pts[:, 0].max()), float(pts[:, 1].max()))
         tb = (bbox[0] - self.tol, bbox[1] - self.tol, bbox[2] + self.tol, bbox[3] + self.tol)
-        problem = self._overlaps(pieces, normals, pts, nxt, self._neighbours(tb))
+        problem = self._overlaps(pieces, normals, amin, amax, pts, nxt, self._neighbours(tb))
         if problem:
             return self._reject(stats, problem)
-        t = self._commit(ci, frame @ cand.base, pts, vids, pieces, bbox, normals, nxt)
+        t = self._commit(ci, frame @ cand.base, pts, vids, pieces, bbox, normals, nxt, amin, amax)
         touched = self._tiles[t].vids
         if not self._vertices_ok(touched, stats):
             self._undo()
@@ -571,7 +594,7 @@ class PatchBuilder:
         stats.rejections[why] = stats.rejections.get(why, 0) + 1
         return False
 
-    def _commit(self, ci, transform, pts, vids, pieces, bbox, normals, nxt) -> int:
+    def _commit(self, ci, transform, pts, vids, pieces, bbox, normals, nxt, amin, amax) -> int:
         cand = self._cands[ci]
         t = len(self._tiles)
         k = len(pts)
@@ -594,17 +617,21 @@ class PatchBuilder:
         for i in range(k):
             a, b = full[i], full[(i + 1) % k]
             self._serial += 1
-            self._edges[(a, b)] = (t, i, self._serial, _segment_distance(pts[i], pts[(i + 1) % k], cx, cy))
+            dist = _segment_distance(pts[i], pts[(i + 1) % k], cx, cy)
+            self._edges[(a, b)] = (t, i, self._serial, dist)
             edges.append((a, b))
             if (b, a) in self._open:
                 self._open.discard((b, a))
             else:
                 self._open.add((a, b))
+                self._push((a, b))
         piece_ids = []
-        for pc, pn in zip(pieces, normals):
+        for pc, pn, lo, hi in zip(pieces, normals, amin, amax):
             pid = self._alloc_piece()
             self._ppts[pid] = pc
             self._pnorm[pid] = pn
+            self._pmin[pid] = lo
+            self._pmax[pid] = hi
             piece_ids.append(pid)
         if t == len(self._tpts):
             self._tpts = np.concatenate([self._tpts, np.zeros_like(self._tpts)])
@@ -634,6 +661,7 @@ class PatchBuilder:
                 self._open.discard((a, b))
             elif (b, a) in self._edges:
                 self._open.add((b, a))
+                self._push((b, a))
         for v in tile.vids:
             corners = self._vcorners[v]
             for idx in range(len(corners) - 1, -1, -1):
@@ -703,8 +731,41 @@ class PatchBuilder:
         return True
 
     # ------------------------------------------------------------------ frontier
+    def _push(self, e: tuple[int, int]) -> None:
+        """Queue an edge that just became open (static keys: serial and distance)."""
+        if callable(self.order):
+            return
+        _, _, serial, dist = self._edges[e]
+        key: Any = serial if self.order == "bfs" else (-serial if self.order == "dfs" else (round(dist, 9), serial))
+        heapq.heappush(self._heap, (key, serial, e))
+        heapq.heappush(self._dheap, (dist, serial, e))
+
+    def _valid(self, entry: tuple[Any, int, tuple[int, int]]) -> bool:
+        e = entry[2]
+        return e in self._open and self._edges[e][2] == entry[1]
+
     def _choose(self, centre: np.ndarray, radius: float | None) -> tuple[tuple[int, int] | None, float]:
         """The open edge to fill next, and the radius of the disc the patch covers."""
+        if callable(self.order):
+            return self._choose_by_scan(radius)
+        dheap = self._dheap
+        while dheap and not self._valid(dheap[0]):
+            heapq.heappop(dheap)
+        covered = dheap[0][0] if dheap else math.inf
+        heap = self._heap
+        limit = None if radius is None else radius - self.tol
+        while heap:
+            top = heap[0]
+            if not self._valid(top):
+                heapq.heappop(heap)
+                continue
+            if limit is not None and self._edges[top[2]][3] >= limit:
+                heapq.heappop(heap)  # outside the disc for good: its distance never changes
+                continue
+            return top[2], covered
+        return None, covered
+
+    def _choose_by_scan(self, radius: float | None) -> tuple[tuple[int, int] | None, float]:
         best = None
         best_key = None
         covered = math.inf
@@ -714,24 +775,17 @@ class PatchBuilder:
             covered = min(covered, dist)
             if radius is not None and dist >= radius - self.tol:
                 continue
-            if self.order == "bfs":
-                key: Any = info[2]
-            elif self.order == "dfs":
-                key = -info[2]
-            elif self.order == "nearest":
-                key = (round(dist, 9), info[2])
-            else:
-                key = (
-                    self.order(
-                        {
-                            "serial": info[2],
-                            "distance": dist,
-                            "midpoint": tuple((np.asarray(self._vpos[e[0]]) + self._vpos[e[1]]) / 2),
-                            "angle_sum": max(self._vsum[e[0]], self._vsum[e[1]]),
-                        }
-                    ),
-                    info[2],
-                )
+            key = (
+                self.order(
+                    {
+                        "serial": info[2],
+                        "distance": dist,
+                        "midpoint": tuple((np.asarray(self._vpos[e[0]]) + self._vpos[e[1]]) / 2),
+                        "angle_sum": max(self._vsum[e[0]], self._vsum[e[1]]),
+                    }
+                ),
+                info[2],
+            )
             if best_key is None or key < best_key:
                 best, best_key = e, key
         return best, covered
@@ -802,7 +856,9 @@ class PatchBuilder:
             Patch(self.prototiles, [seed], [placement]).centres()[0]
         )
         self._centre = centre
-        self._commit(seed_ci, frame @ cand.base, pts, [None] * len(pts), pieces, bbox, normals, nxt)
+        shift = normals @ frame[:2, 2]
+        self._commit(seed_ci, frame @ cand.base, pts, [None] * len(pts), pieces, bbox, normals, nxt,
+                     cand.proj_min + shift, cand.proj_max + shift)
         stats.placements = 1
         if not self._vertices_ok(self._tiles[0].vids, stats):
             stats.seconds = time.perf_counter() - started
