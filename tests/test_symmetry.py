@@ -616,3 +616,29 @@ def test_generators_are_classified() -> None:
     assert kinds[:3] == ["translation", "translation", "rotation"]
     assert kinds[3] in ("reflection", "glide reflection")
     assert group.generators[2].isometry.order == 4
+
+
+@pytest.mark.parametrize("name", ["basketweave", "pythagorean", "C3 hexagons", "glided chevrons"])
+def test_symmetry_properties_agree_with_the_single_functions(name: str) -> None:
+    """symmetry_properties computes the group once; its answers equal the separate calls."""
+    from tilekit.colouring import Colouring
+    from tilekit.symmetry import is_perfect_colouring, symmetry_properties
+
+    tiling = TILINGS[name][1]
+    if name == "glided chevrons":  # colour the two columns apart: every symmetry keeps or swaps them
+        tiling = PeriodicTiling(
+            tiling.prototiles, tiling.unit_prototile, tiling.unit_transform, tiling.v1, tiling.v2,
+            Colouring.parse("(1 2)(1 2)(1 2)"),
+        )
+    props = symmetry_properties(tiling)
+    expected = wallpaper_group(tiling).properties()
+    expected.update(
+        k_isohedral=isohedrality(tiling),
+        k_isogonal=isogonality(tiling),
+        perfect_colouring=is_perfect_colouring(tiling),
+    )
+    assert props == expected
+    assert set(symmetry_properties(tiling, colouring=False, vertices=False)) == set(expected) - {
+        "k_isogonal",
+        "perfect_colouring",
+    }

@@ -986,7 +986,10 @@ def tile_orbits(
     """
     tiling = _check(tiling)
     cell = _base_cell(tiling, _abs_tol(tiling, tol), match_prototiles)
-    group = _group_of_cell(cell)
+    return _tile_orbits_of(cell, _group_of_cell(cell))
+
+
+def _tile_orbits_of(cell: _Cell, group: SymmetryGroup) -> np.ndarray:
     maps = _generator_maps(group)
     pts, cen, lab = _images(cell, maps)
     found, _ = _locate(cell, pts, cen, lab)
@@ -1047,10 +1050,15 @@ def vertex_orbits(tiling: PeriodicTiling, tol: float = DEFAULT_TOL) -> tuple[np.
     """
     tiling = _check(tiling)
     abs_tol = _abs_tol(tiling, tol)
-    verts = tiling_vertices(tiling, tol)
     group = _group_of_cell(_base_cell(tiling, abs_tol, False))
+    return _vertex_orbits_of(tiling, group, tol)
+
+
+def _vertex_orbits_of(tiling: PeriodicTiling, group: SymmetryGroup, tol: float) -> tuple[np.ndarray, np.ndarray]:
+    abs_tol = _abs_tol(tiling, tol)
+    verts = tiling_vertices(tiling, tol)
     basis = np.array([tiling.v1, tiling.v2])
-    inv = np.linalg.inv(basis)
+    inv = _inv2(basis)
     pairs = []
     for g in _generator_maps(group):
         img = Affine.apply(g, verts)
@@ -1110,11 +1118,12 @@ def _cell_area(lattice: np.ndarray) -> float:
 
 
 def _perfect(
-    tiling: PeriodicTiling, tol: float, match_prototiles: bool
+    tiling: PeriodicTiling, tol: float, match_prototiles: bool, group: SymmetryGroup | None = None
 ) -> tuple[bool, tuple[Operation, ...], list[tuple[int, ...] | None], _Cell, SymmetryGroup, int]:
     tiling = _check(tiling)
     abs_tol = _abs_tol(tiling, tol)
-    group = _group_of_cell(_base_cell(tiling, abs_tol, match_prototiles))
+    if group is None:
+        group = _group_of_cell(_base_cell(tiling, abs_tol, match_prototiles))
     cell, n = _colour_cell(tiling, group, abs_tol, match_prototiles)
     gens = group.translations() + tuple(op for op in group.operations if op.kind != "identity")
     perms = _colour_maps(cell, np.array([g.matrix for g in gens]))
@@ -1132,3 +1141,30 @@ def is_perfect_colouring(
 ) -> bool:
     """True when every symmetry of the uncoloured tiling permutes the colours (§3.6.1)."""
     return _perfect(tiling, tol, match_prototiles)[0]
+
+
+# --------------------------------------------------------------------------- everything at once
+
+
+def symmetry_properties(
+    tiling: PeriodicTiling, tol: float = DEFAULT_TOL, *, colouring: bool = True, vertices: bool = True
+) -> dict[str, Any]:
+    """The symmetry facts a catalogue record wants, from one computation of the group.
+
+    Keys: wallpaper_group, orbifold, point_group_order, rotation_orders, reflections,
+    glide_reflections (as ``WallpaperGroup.properties``), k_isohedral (tile classes),
+    k_isogonal (vertex classes; omitted with ``vertices=False``) and perfect_colouring
+    (whether the tiling's own colouring is perfect; omitted with ``colouring=False``).
+    All values are JSON scalars or lists.
+    """
+    tiling = _check(tiling)
+    abs_tol = _abs_tol(tiling, tol)
+    cell = _base_cell(tiling, abs_tol, False)
+    group = _group_of_cell(cell)
+    props = classify_group(group).properties()
+    props["k_isohedral"] = int(_tile_orbits_of(cell, group).max()) + 1
+    if vertices:
+        props["k_isogonal"] = int(_vertex_orbits_of(tiling, group, tol)[1].max()) + 1
+    if colouring:
+        props["perfect_colouring"] = bool(_perfect(tiling, tol, False, group)[0])
+    return props
