@@ -278,6 +278,13 @@ class RunInfo:
 
 
 def _scalar_row(key: str, value: Any, owner: str) -> dict[str, Any]:
+    kind = type(value)  # fast path for the plain types; ABC checks below for numpy and co.
+    if kind is str:
+        return {"kind": "str", "value_text": value, "value_num": None, "value_bool": None}
+    if kind is int:
+        return {"kind": "int", "value_text": None, "value_num": float(value), "value_bool": None}
+    if kind is bool:
+        return {"kind": "bool", "value_text": None, "value_num": None, "value_bool": value}
     row: dict[str, Any] = {"value_text": None, "value_num": None, "value_bool": None}
     if value is None:
         row["kind"] = "null"
@@ -654,7 +661,7 @@ class Catalogue:
                 )
                 .where(_PROPS.c.tiling_id.in_(batch))
                 .order_by(_PROPS.c.tiling_id, _PROPS.c.id)
-            )
+            ).all()
             for tid, key, position, kind, text, num, flag in prop_rows:
                 props = entries[tid].properties
                 if kind == "empty":
@@ -669,7 +676,7 @@ class Catalogue:
                 sa.select(_ALIASES.c.tiling_id, _ALIASES.c.alias)
                 .where(_ALIASES.c.tiling_id.in_(batch))
                 .order_by(_ALIASES.c.id)
-            )
+            ).all()
             for tid, alias in alias_rows:
                 entries[tid].aliases.append(alias)
         for (tid, key), items in lists.items():
