@@ -161,7 +161,8 @@ class WallpaperGroup:
     there are mirrors and essential glides (glides that are not a reflection followed by a
     lattice translation along its axis); ``mirror_directions`` are the mirror axis angles in
     [0, π). ``generators`` generate the group: the two lattice translations, a rotation of
-    the highest order and one reflection or glide where they exist.
+    the highest order and one reflection or glide where they exist. ``rotation_centres``
+    holds (x, y, order) for one centre of each class modulo the lattice.
     """
 
     iuc: str
