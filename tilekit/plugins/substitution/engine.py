@@ -14,6 +14,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from tilekit.geometry import Affine
 from tilekit.plugins.substitution.system import SubstitutionSystem, inflation_radii
 
 #: Quantum of the duplicate keys, relative to the tiles' linear size.
@@ -102,6 +103,8 @@ def assemble(system: SubstitutionSystem, proto: np.ndarray, transform: np.ndarra
     """
     if system.output_prototiles is None:
         return proto, transform
+    if system.pairing_edge is not None:
+        return pair_halves(system, proto, transform)
     assert system.assemble_tile is not None and system.assemble_matrix is not None
     out_proto = system.assemble_tile[proto]
     out_transform = np.matmul(transform, system.assemble_matrix[proto])
@@ -146,3 +149,54 @@ def _canonical_keys(
             best[less] = cand[less]
         keys[idx, 1:] = best
     return keys
+
+
+def pair_halves(system: SubstitutionSystem, proto: np.ndarray, transform: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Whole tiles from half-tiles that share their pairing edge (exercise 6.10, vectorised).
+
+    Each half's pairing edge is keyed by its quantised, unordered end points; halves with
+    equal keys are partners. A partner of opposite handedness makes the "mirror" whole tile,
+    one of the same handedness the "turn" whole tile, placed in the frame of the partner
+    with positive determinant (or the first one). Halves whose partner is not in the patch
+    are dropped: generate a margin around the region you need.
+    """
+    assert system.pairing_edge is not None and system.output_prototiles is not None
+    if not len(proto):
+        return proto, transform
+    a, b = system.pairing_edge
+    ends = Affine.apply(transform, system.prototiles[0].outline[[a, b]])  # (n, 2, 2)
+    sigma = np.sqrt(np.abs(_det(transform)))
+    quantum = KEY_QUANTUM * 100 * float(np.median(sigma))
+    q = np.floor(ends / quantum + 0.5).astype(np.int64).reshape(-1, 2, 2)
+    first_smaller = (q[:, 0, 0] < q[:, 1, 0]) | ((q[:, 0, 0] == q[:, 1, 0]) & (q[:, 0, 1] <= q[:, 1, 1]))
+    lo = np.where(first_smaller[:, None], q[:, 0], q[:, 1])
+    hi = np.where(first_smaller[:, None], q[:, 1], q[:, 0])
+    keys = np.column_stack([lo, hi])
+    _, inverse, counts = np.unique(keys, axis=0, return_inverse=True, return_counts=True)
+    inverse = inverse.reshape(-1)
+    order = np.argsort(inverse, kind="stable")
+    grouped = inverse[order]
+    starts = np.flatnonzero(np.r_[True, grouped[1:] != grouped[:-1]])
+    sizes = counts[grouped[starts]]
+    pairs = starts[sizes == 2]
+    i, j = order[pairs], order[pairs + 1]
+    di, dj = _det(transform[i]) > 0, _det(transform[j]) > 0
+    ref = np.where(dj & ~di, j, i)
+    mirror = di != dj
+    out_p, out_t = [], []
+    for relation, mask in (("mirror", mirror), ("turn", ~mirror)):
+        if not mask.any():
+            continue
+        if relation not in system.pairing:
+            continue
+        tile, placement = system.pairing[relation]
+        out_p.append(np.full(int(mask.sum()), tile, dtype=np.int64))
+        out_t.append(np.matmul(transform[ref[mask]], placement))
+    if not out_p:
+        return np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3))
+    return np.concatenate(out_p), np.concatenate(out_t)
+
+
+def _det(m: np.ndarray) -> np.ndarray:
+    return m[..., 0, 0] * m[..., 1, 1] - m[..., 0, 1] * m[..., 1, 0]
+

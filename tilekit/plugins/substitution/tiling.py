@@ -96,6 +96,12 @@ class SubstitutionTiling(Tiling):
             int(self.depth),  # type: ignore[arg-type]
         )
         box = tuple(reg.bounds) if reg is not None else None
+        if box is not None and self.system.pairing_edge is not None:
+            # a half whose partner lies outside the generated set is dropped: add a margin
+            margin = 2 * max(float(np.ptp(p.outline, axis=0).max()) for p in self.system.tiles)
+            box = (box[0] - margin, box[1] - margin, box[2] + margin, box[3] + margin)
+            if self.depth is None:
+                seed, t, d = self.seed_placement(shapely.box(*box))
         proto, transform = engine.generate(self.system, d, t, seed, box=box)
         return engine.assemble(self.system, proto, transform)
 
