@@ -173,8 +173,9 @@ def tilings() -> dict[str, tuple[str, PeriodicTiling]]:
     # cmm: running bond (rows offset by half a brick): vertical mirrors at every integer x,
     # horizontal mirrors along row midlines, and half-turns at (0.5, 1) off every mirror.
     out["running bond"] = ("cmm", periodic([RECT], [(0, ID)], (2, 0), (1, 1)))
-    # p4: the Pythagorean tiling (squares of sides 2 and 1) is chiral with 4-fold centres
-    # at the centres of both squares (Grünbaum & Shephard, Tilings and Patterns, §2.1).
+    # p4: the Pythagorean tiling (squares of sides 2 and 1) has 4-fold centres at the
+    # centres of both squares and is chiral: a mirror would turn its pinwheel of four big
+    # squares round each small one the other way.
     out["pythagorean"] = (
         "p4",
         periodic([SQUARE * 2, SQUARE], [(0, ID), (1, T(2, 0))], (2, 1), (-1, 2)),
