@@ -15,12 +15,9 @@ from tilekit.plugins.isohedral.templates import load_templates
 
 KEYS = {
     "ih", "topology", "marked", "periodic", "k_hedral", "k_isohedral", "edge_kinds",
-    "j_edges", "u_edges", "s_edges", "i_edges",
+    "j_edges", "u_edges", "s_edges", "i_edges", "incidence_symbol", "canonical_symbol", "symmetry_group",
 }
-UNMARKED_KEYS = KEYS | {
-    "incidence_symbol", "canonical_symbol", "parameters", "aspects", "colours",
-    "perfect_colouring", "symmetry_group",
-}
+UNMARKED_KEYS = KEYS | {"parameters", "aspects", "colours", "perfect_colouring"}
 
 
 def test_93_records_named_ih1_to_ih93_with_aliases():
@@ -112,3 +109,35 @@ def test_cli_reports_bad_edge_on_one_line(tmp_path, runner_args):
     res = CliRunner().invoke(cli, runner_args + ["render", "IH16", "--edge", "q=0,0:1,0", "-o", str(tmp_path / "x.svg")])
     assert res.exit_code == 2
     assert "no edge label 'q'" in res.output and "Traceback" not in res.output
+
+
+@pytest.mark.slow
+def test_all_i_enumeration_gives_the_9_unmarked_and_the_12_marked_types():
+    """§5.3.1: 21 types have only I edges; 12 need marked tiles (FACTS.md numbers them).
+
+    The enumeration of marked.all_i_types (from the Laves tiles, first principles) must
+    return exactly the 9 all-I types of Appendix A and the 12 marked symbols of the data,
+    topology by topology.
+    """
+    from tilekit.plugins.isohedral.marked import all_i_types
+
+    expected: dict[str, set[str]] = {}
+    for t in load_templates().values():
+        if t.symbol is not None and set(t.symbol.edge_kinds()) == {"I"}:
+            expected.setdefault(t.topology, set()).add(str(t.symbol.canonical()))
+    assert sum(len(v) for v in expected.values()) == 21
+    for topology in {t.topology for t in load_templates().values()}:
+        found = {str(s) for s in all_i_types(topology)}
+        assert found == expected.get(topology, set()), topology
+
+
+def test_marked_tilings_agree_with_the_geometric_symmetry_finder():
+    from tilekit import symmetry
+    from tilekit.plugins.isohedral.analysis import wallpaper_group
+    from tilekit.plugins.isohedral.marked import MarkedTiling
+
+    for ih, t in load_templates().items():
+        if t.marked:
+            tiling = MarkedTiling(ih)
+            assert symmetry.wallpaper_group(tiling).orbifold == wallpaper_group(tiling) == type_properties(ih)["symmetry_group"]
+    assert type_properties(19)["symmetry_group_iuc"] == "p3m1"  # as listed for IH19 (gist TriHydera/63e7...)

@@ -26,23 +26,22 @@ _COLUMNS = ("ih", "symmetry_group", "symmetry_group_iuc", "perfect_colouring", "
 
 
 def computed_properties(ih: int) -> dict[str, Any]:
-    """Recompute the symmetry facts of one unmarked type from its tiling."""
+    """Recompute the symmetry facts of one type from its tiling."""
     from tilekit.plugins.isohedral.analysis import (
         ORBIFOLD_TO_IUC,
         heesch_type,
         is_perfect_colouring,
         wallpaper_group,
     )
-    from tilekit.plugins.isohedral.engine import IsohedralTiling
+    from tilekit.plugins.isohedral.engine import tiling_from_spec
 
-    tiling = IsohedralTiling(ih)
-    group = wallpaper_group(tiling)
-    out: dict[str, Any] = {
-        "symmetry_group": group,
-        "symmetry_group_iuc": ORBIFOLD_TO_IUC[group],
-        "perfect_colouring": is_perfect_colouring(tiling),
-    }
-    heesch = heesch_type(tiling)
+    tiling = tiling_from_spec({"ih": ih})
+    group = wallpaper_group(tiling)  # type: ignore[arg-type]
+    out: dict[str, Any] = {"symmetry_group": group, "symmetry_group_iuc": ORBIFOLD_TO_IUC[group]}
+    if load_templates()[ih].marked:  # no default colouring in the book for these
+        return out
+    out["perfect_colouring"] = is_perfect_colouring(tiling)  # type: ignore[arg-type]
+    heesch = heesch_type(tiling)  # type: ignore[arg-type]
     if heesch is not None:
         out["heesch_type"] = heesch
     return out
@@ -51,12 +50,10 @@ def computed_properties(ih: int) -> dict[str, Any]:
 def properties_table_text() -> str:
     """The text of properties.tsv, recomputed."""
     lines = [
-        "# Symmetry facts of the unmarked isohedral types, computed by tilekit.plugins.isohedral.analysis",
+        "# Symmetry facts of the isohedral types, computed by tilekit.plugins.isohedral.analysis",
         "# (regenerate: python -m tilekit.plugins.isohedral.records). Columns: " + " ".join(_COLUMNS),
     ]
-    for ih, t in sorted(load_templates().items()):
-        if t.marked:
-            continue
+    for ih in sorted(load_templates()):
         p = computed_properties(ih)
         lines.append(
             "\t".join(
@@ -64,7 +61,7 @@ def properties_table_text() -> str:
                     str(ih),
                     p["symmetry_group"],
                     p["symmetry_group_iuc"],
-                    "yes" if p["perfect_colouring"] else "no",
+                    {True: "yes", False: "no", None: "-"}[p.get("perfect_colouring")],
                     p.get("heesch_type", "-"),
                 ]
             )
@@ -80,13 +77,11 @@ def stored_properties() -> dict[int, dict[str, Any]]:
         if not raw.strip() or raw.startswith("#"):
             continue
         parts = raw.split("\t")
-        if len(parts) != len(_COLUMNS) or parts[3] not in ("yes", "no"):
+        if len(parts) != len(_COLUMNS) or parts[3] not in ("yes", "no", "-"):
             raise ParseError(f"{PROPERTIES_FILE}, line {lineno}: expected {len(_COLUMNS)} tab-separated columns {_COLUMNS}")
-        row: dict[str, Any] = {
-            "symmetry_group": parts[1],
-            "symmetry_group_iuc": parts[2],
-            "perfect_colouring": parts[3] == "yes",
-        }
+        row: dict[str, Any] = {"symmetry_group": parts[1], "symmetry_group_iuc": parts[2]}
+        if parts[3] != "-":
+            row["perfect_colouring"] = parts[3] == "yes"
         if parts[4] != "-":
             row["heesch_type"] = parts[4]
         out[int(parts[0])] = row
@@ -119,8 +114,7 @@ def type_properties(ih: int) -> dict[str, Any]:
             i_edges=kinds.count("I"),
         )
     if t.marked:
-        # all edges of the marked types are I edges (Kaplan §5.3.1)
-        props.update(edge_kinds="I" * n, j_edges=0, u_edges=0, s_edges=0, i_edges=n)
+        props.update(stored_properties().get(ih, {}))
         return props
     tv = load_parameterizations()[t.parameterization or ""]
     col = t.colouring

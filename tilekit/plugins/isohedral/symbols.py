@@ -159,8 +159,9 @@ class IncidenceSymbol:
 
         Reversing the traversal direction reverses the edge order and flips every edge sign
         (adjacency signs record preservation across an edge and do not change). Labels are
-        renamed a, b, c ... in order of first appearance, which is the lexicographic minimum
-        over relabellings for that starting edge and direction.
+        renamed a, b, c ... in order of first appearance with each label's first arrow
+        counter-clockwise, which is the lexicographic minimum over relabellings (and arrow
+        choices) for that starting edge and direction.
         """
         n = len(self.edges)
         out: list[IncidenceSymbol] = []
@@ -172,18 +173,33 @@ class IncidenceSymbol:
         return out
 
     def _relabelled(self, seq: list[Edge]) -> IncidenceSymbol:
+        """Rename labels a, b, ... in order of appearance and redraw arrows so that each
+        label's first edge points counter-clockwise (Step 1 of §5.2's derivation).
+
+        Reversing the arrows of a label x negates its signs around the tile; the adjacency
+        sign between x and a different label y flips too (arrows that opposed now agree),
+        while a label adjacent to itself keeps its adjacency sign.
+        """
         names: dict[str, str] = {}
-        for lab, _ in seq:
+        flipped: set[str] = set()
+        for lab, sg in seq:
             if lab not in names:
                 names[lab] = chr(ord("a") + len(names))
+                if sg < 0:
+                    flipped.add(lab)
         adj = self.adjacent_map()
-        edges = tuple((names[lab], sg) for lab, sg in seq)
+        edges = tuple((names[lab], -sg if lab in flipped else sg) for lab, sg in seq)
         labels = []
         for lab, _ in seq:
             if lab not in labels:
                 labels.append(lab)
-        adjacency = tuple((names[adj[lab][0]], adj[lab][1]) for lab in labels)
-        return IncidenceSymbol(edges, adjacency)
+        adjacency = []
+        for lab in labels:
+            other, t = adj[lab]
+            if other != lab and ((lab in flipped) != (other in flipped)):
+                t = -t
+            adjacency.append((names[other], t))
+        return IncidenceSymbol(edges, tuple(adjacency))
 
     def sort_key(self) -> tuple:
         # order: letters, then '+' before '-' before no sign (as Grünbaum and Shephard list them)
