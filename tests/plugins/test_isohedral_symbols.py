@@ -13,6 +13,7 @@ from tilekit.plugins.isohedral import IncidenceSymbol, lookup
 from tilekit.plugins.isohedral.templates import load_templates
 
 UNMARKED = sorted(ih for ih, t in load_templates().items() if not t.marked)
+ALL = sorted(load_templates())
 
 
 def test_parse_and_print_ascii_and_book_forms():
@@ -85,7 +86,7 @@ def _random_variant(sym: IncidenceSymbol, rng: random.Random) -> IncidenceSymbol
 
 
 @settings(max_examples=60, deadline=None)
-@given(ih=st.sampled_from(UNMARKED), seed=st.integers(0, 10**6))
+@given(ih=st.sampled_from(ALL), seed=st.integers(0, 10**6))
 def test_random_relabelling_and_rotation_maps_back_to_the_type(ih, seed):
     t = load_templates()[ih]
     variant = _random_variant(t.symbol, random.Random(seed))
@@ -94,7 +95,7 @@ def test_random_relabelling_and_rotation_maps_back_to_the_type(ih, seed):
 
 
 def test_every_type_is_found_from_every_rotation():
-    for ih in UNMARKED:
+    for ih in ALL:
         t = load_templates()[ih]
         for start in range(len(t.symbol)):
             for rev in (False, True):
@@ -103,16 +104,24 @@ def test_every_type_is_found_from_every_rotation():
 
 def test_canonical_symbols_distinct_per_topology():
     seen: dict[tuple[str, str], int] = {}
-    for ih in UNMARKED:
+    for ih in ALL:
         t = load_templates()[ih]
         key = (t.topology, str(t.symbol.canonical()))
         assert key not in seen, (ih, seen.get(key))
         seen[key] = ih
-    assert len(seen) == 81
+    assert len(seen) == 93
+
+
+def test_arrow_reversal_of_a_label_is_the_same_type():
+    """Drawing a label's arrows the other way (Step 1 of §5.2 is a choice) keeps the type."""
+    # IH68 [a+b+b-a-; b-a-] read from edge 3 has b first with a clockwise arrow
+    assert lookup("4^4", "[b-a-a+b+; a-b-]") == 68
+    # reversing only a's arrows flips the a-b adjacency sign
+    assert lookup("4^4", "[a-b+b-a+; b+a+]") == 68
 
 
 def test_canonical_form_is_lexicographically_first_and_idempotent():
-    for ih in UNMARKED:
+    for ih in ALL:
         sym = load_templates()[ih].symbol
         canon = sym.canonical()
         assert canon.canonical() == canon
