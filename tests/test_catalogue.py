@@ -481,3 +481,103 @@ def test_record_chunk_is_atomic_and_never_duplicates(cat):
         cat.record_chunk(run_id, 7, ChunkResult())
     with pytest.raises(NotFoundError, match="unknown run '99'"):
         cat.run(99)
+
+
+# --------------------------------------------------------------------------- robustness
+
+
+def test_unknown_migration_revision_is_refused_untouched(url, pm, tmp_path):
+    with open_catalogue(url, pm=pm) as cat, cat.engine.begin() as conn:
+        conn.execute(sa.text("UPDATE alembic_version SET version_num = 'f00dcafe'"))
+    with pytest.raises(CatalogueError) as info:
+        open_catalogue(url, pm=pm)
+    assert "'f00dcafe'" in str(info.value) and "left untouched" in str(info.value)
+    raw = sqlite3.connect(tmp_path / "catalogue.sqlite")
+    assert raw.execute("SELECT count(*) FROM tilings").fetchone()[0] == 11
+    raw.close()
+
+
+def test_in_memory_catalogue(pm):
+    with open_catalogue("sqlite://", pm=pm) as cat:
+        assert cat.count() == 11 and cat.path is None
+        assert names(cat.query(where=["regular=true"])) == {"3^6", "4^4", "6^3"}
+
+
+def test_two_writers_on_one_file(url, pm):
+    """WAL + busy timeout: two connections record chunks at the same time without errors."""
+    import threading
+
+    first = open_catalogue(url, pm=pm)
+    second = open_catalogue(url, pm=pm)
+    runs = {c: c.create_run("demo", {}, [{"i": i} for i in range(40)]) for c in (first, second)}
+    errors: list[BaseException] = []
+
+    def work(cat):
+        try:
+            for i in range(40):
+                cat.record_chunk(runs[cat], i, ChunkResult(results=[{"i": i}], records=[
+                    CatalogueRecord("testgrid", f"w{runs[cat]}-{i}", {}, properties={"k_hedral": 1})]))
+        except BaseException as exc:  # pragma: no cover - reported below
+            errors.append(exc)
+
+    threads = [threading.Thread(target=work, args=(c,)) for c in (first, second)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert errors == []
+    for run_id in runs.values():
+        assert first.run(run_id).chunks_done == 40 and len(first.results(run_id)) == 40
+    assert first.count() == 11 + 80
+    first.close()
+    second.close()
+
+
+def _open_and_count(target: str) -> int:
+    import os
+
+    from tilekit.plugins import make_plugin_manager
+
+    os.environ["TILEKIT_PLUGINS"] = "no-such-plugin"
+    pm = make_plugin_manager(extra_plugins=[testkit.GridPlugin()])
+    with open_catalogue(target, pm=pm) as cat:
+        return cat.count()
+
+
+def test_processes_opening_a_new_catalogue_at_once(tmp_path):
+    """Three first opens race; all succeed, whichever migrates and seeds first; nothing doubles."""
+    import multiprocessing
+
+    target = f"sqlite:///{tmp_path / 'race.sqlite'}"
+    with multiprocessing.get_context("fork").Pool(3) as pool:
+        assert pool.map(_open_and_count, [target] * 3) == [11, 11, 11]
+
+
+def test_threads_opening_catalogues_at_once(tmp_path, pm):
+    """Alembic's global migration context is guarded: threads may open catalogues together."""
+    import threading
+
+    results: list[object] = []
+
+    def opener(i: int) -> None:
+        try:
+            with open_catalogue(f"sqlite:///{tmp_path / f't{i}.sqlite'}", pm=pm) as cat:
+                results.append(cat.count())
+        except BaseException as exc:  # pragma: no cover - reported below
+            results.append(exc)
+
+    threads = [threading.Thread(target=opener, args=(i,)) for i in range(3)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert results == [11, 11, 11]
+
+
+def test_family_failing_to_rebuild_is_a_plugin_error(cat):
+    from tilekit.errors import PluginError
+
+    cat.upsert([CatalogueRecord("testgrid", "no-vertex-type", {"other": 1})])
+    with pytest.raises(PluginError) as info:
+        cat.tiling("no-vertex-type")
+    assert "could not rebuild 'no-vertex-type'" in str(info.value) and "KeyError" in str(info.value)

@@ -16,6 +16,7 @@ import math
 import numbers
 import os
 import re
+import threading
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -29,7 +30,14 @@ from sqlalchemy import event
 from sqlalchemy.engine import Connection, Engine, make_url
 from sqlalchemy.exc import ArgumentError, SQLAlchemyError
 
-from tilekit.errors import CatalogueError, NotFoundError, ParameterError, ParseError
+from tilekit.errors import (
+    CatalogueError,
+    NotFoundError,
+    ParameterError,
+    ParseError,
+    PluginError,
+    TilekitError,
+)
 from tilekit.models import (
     SHARED_COLUMNS,
     TEXT_COLUMNS,
@@ -72,6 +80,9 @@ BUSY_TIMEOUT_MS = 30_000
 #: ``KEY=N`` on a numeric property matches values within this relative tolerance, so a
 #: float written with 10 significant digits finds the stored double.
 NUMBER_RTOL = 1e-9
+
+#: Alembic keeps its migration context in module globals: one migration at a time per process.
+_MIGRATION_LOCK = threading.RLock()
 
 #: Batch size for ``IN (...)`` lists and bulk inserts.
 _BATCH = 500
@@ -435,6 +446,14 @@ class Catalogue:
         except SQLAlchemyError as exc:
             raise CatalogueError(f"catalogue {self.url}: {action} failed: {_one_line(exc)}") from None
 
+    def _lock_for_writing(self, conn: Connection) -> None:
+        """On SQLite, take the write lock now (BEGIN IMMEDIATE), so a check-then-write
+        sequence (am I migrated? is it empty? does this name exist?) is atomic; other
+        writers wait for it through the busy timeout. pysqlite would otherwise run DDL and
+        the leading SELECTs outside any transaction."""
+        if conn.dialect.name == "sqlite":
+            conn.exec_driver_sql("BEGIN IMMEDIATE")
+
     # ----------------------------------------------------------------- migrations
 
     def _alembic_config(self) -> Any:
@@ -464,16 +483,18 @@ class Catalogue:
         from alembic import command
         from alembic.runtime.migration import MigrationContext
         from alembic.script import ScriptDirectory
+        from alembic.script.revision import RevisionError
         from alembic.util import CommandError
 
         cfg = self._alembic_config()
         script = ScriptDirectory.from_config(cfg)
-        with self._errors("migrating"), self.engine.begin() as conn:
+        with _MIGRATION_LOCK, self._errors("migrating"), self.engine.begin() as conn:
+            self._lock_for_writing(conn)
             current = set(MigrationContext.configure(conn).get_current_heads())
             for rev in current:
                 try:
                     known = script.get_revision(rev)
-                except CommandError:
+                except (CommandError, RevisionError):
                     known = None
                 if known is None:
                     raise CatalogueError(
@@ -485,21 +506,23 @@ class Catalogue:
             cfg.attributes["connection"] = conn
             try:
                 command.upgrade(cfg, revision)
-            except CommandError as exc:
+            except (CommandError, RevisionError) as exc:
                 raise CatalogueError(f"catalogue {self.url}: migration to {revision!r} failed: {exc}") from None
             return set(MigrationContext.configure(conn).get_current_heads())
 
     def downgrade(self, revision: str) -> None:
         """Run migrations down to ``revision`` (``"base"`` drops every tilekit table)."""
         from alembic import command
+        from alembic.script.revision import RevisionError
         from alembic.util import CommandError
 
         cfg = self._alembic_config()
-        with self._errors("migrating"), self.engine.begin() as conn:
+        with _MIGRATION_LOCK, self._errors("migrating"), self.engine.begin() as conn:
+            self._lock_for_writing(conn)
             cfg.attributes["connection"] = conn
             try:
                 command.downgrade(cfg, revision)
-            except CommandError as exc:
+            except (CommandError, RevisionError) as exc:
                 raise CatalogueError(f"catalogue {self.url}: downgrade to {revision!r} failed: {exc}") from None
 
     # ----------------------------------------------------------------- writing tilings
@@ -521,10 +544,20 @@ class Catalogue:
         records = catalogue_records(self.pm)
         return self.upsert(records, replace=replace)
 
+    def seed_if_empty(self) -> tuple[int, int]:
+        """Seed only if the catalogue has no tilings, checked and written in one transaction."""
+        records = catalogue_records(self.pm)
+        with self._errors("seeding"), self.engine.begin() as conn:
+            self._lock_for_writing(conn)
+            if conn.execute(sa.select(sa.func.count()).select_from(_TILINGS)).scalar_one():
+                return 0, 0
+            return _upsert(conn, list(records), replace=False)
+
     def upsert(self, records: Iterable[CatalogueRecord], *, replace: bool = True) -> tuple[int, int]:
         """Insert records by name (replacing existing ones if ``replace``); return (added, replaced)."""
         records = list(records)
         with self._errors("writing tilings"), self.engine.begin() as conn:
+            self._lock_for_writing(conn)
             return _upsert(conn, records, replace=replace)
 
     def delete(self, name: str) -> None:
@@ -716,7 +749,15 @@ class Catalogue:
         fams = families(self.pm)
         if entry.family not in fams:
             raise NotFoundError("family", entry.family, fams)
-        return fams[entry.family].from_spec(entry.spec)
+        try:
+            return fams[entry.family].from_spec(entry.spec)
+        except TilekitError:
+            raise
+        except Exception as exc:
+            raise PluginError(
+                f"family {entry.family!r} could not rebuild {entry.name!r} from its spec: "
+                f"{type(exc).__name__}: {_one_line(exc)}"
+            ) from exc
 
     # ----------------------------------------------------------------- export
 
@@ -804,6 +845,7 @@ class Catalogue:
                 )
             _json_ok(f"run {run_id} chunk {index}", "a result", item)
         with self._errors(f"recording run {run_id} chunk {index}"), self.engine.begin() as conn:
+            self._lock_for_writing(conn)
             marked = conn.execute(
                 sa.update(_CHUNKS)
                 .where(_CHUNKS.c.run_id == run_id, _CHUNKS.c.index == index, _CHUNKS.c.status != "done")
@@ -1159,9 +1201,16 @@ def open_catalogue(
         with engine.connect() as conn:
             conn.execute(sa.text("SELECT 1"))
         if migrate:
-            catalogue.upgrade()
+            try:
+                catalogue.upgrade()
+            except CatalogueError:
+                # on a server, another process may have migrated the same new catalogue at
+                # the same moment (SQLite serialises this through BEGIN IMMEDIATE)
+                current, heads = catalogue.revisions()
+                if current != heads:
+                    raise
         if seed and migrate and catalogue.count() == 0:
-            catalogue.seed()
+            catalogue.seed_if_empty()
     except SQLAlchemyError as exc:
         engine.dispose()
         raise CatalogueError(f"cannot open catalogue {_display(sa_url)}: {_one_line(exc)}") from None
