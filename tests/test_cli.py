@@ -299,3 +299,18 @@ def test_main_exits_2_with_one_line(pm, db, capsys):
     assert info.value.code == 2
     err = capsys.readouterr().err
     assert err.startswith("error: unknown tiling 'nope'") and err.count("\n") == 1
+
+
+@pytest.mark.parametrize(
+    "args, fragment",
+    [
+        (["families", "--format", "xml"], "'xml' is not one of"),
+        (["catalogue", "export", "--format", "xml"], "'xml' is not one of"),
+        (["catalogue", "export", "-o", "/no/such/dir/out.json"], "cannot write /no/such/dir/out.json"),
+        (["catalogue", "export", "--where", "k_hedral>>1"], "needs a number"),
+        (["catalogue", "exprt"], "unknown command 'exprt'; did you mean 'export'"),
+        (["runs", "--format", "yaml"], "'yaml' is not one of"),
+    ],
+)
+def test_other_bad_input(pm, db, args, fragment):
+    assert_one_line_error(run(db, *args), fragment)

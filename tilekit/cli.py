@@ -70,7 +70,19 @@ pass_state = click.make_pass_decorator(State)
 # --------------------------------------------------------------------------- groups
 
 
-class TilekitGroup(click.Group):
+class SuggestingGroup(click.Group):
+    """A group whose unknown subcommands are a NotFoundError suggesting the closest names."""
+
+    what = "command"
+
+    def resolve_command(self, ctx: click.Context, args: list[str]) -> Any:
+        name = args[0] if args else ""
+        if name and not name.startswith("-") and self.get_command(ctx, name) is None:
+            raise NotFoundError(self.what, name, self.list_commands(ctx))
+        return super().resolve_command(ctx, args)
+
+
+class TilekitGroup(SuggestingGroup):
     """The top-level group: adds plugin commands, suggests close names, prints one-line errors."""
 
     _plugin_cache: dict[int, tuple[pluggy.PluginManager, dict[str, click.Command]]] = {}
@@ -96,12 +108,6 @@ class TilekitGroup(click.Group):
             return self.commands[cmd_name]
         return self.plugin_commands().get(cmd_name)
 
-    def resolve_command(self, ctx: click.Context, args: list[str]) -> Any:
-        name = args[0] if args else ""
-        if name and not name.startswith("-") and self.get_command(ctx, name) is None:
-            raise NotFoundError("command", name, self.list_commands(ctx))
-        return super().resolve_command(ctx, args)
-
     def main(self, args: Sequence[str] | None = None, prog_name: str | None = None,
              complete_var: str | None = None, standalone_mode: bool = True, **extra: Any) -> Any:
         try:
@@ -122,8 +128,10 @@ class TilekitGroup(click.Group):
         sys.exit(rv if isinstance(rv, int) else 0)
 
 
-class SearchGroup(click.Group):
+class SearchGroup(SuggestingGroup):
     """``tilekit search KIND``: one subcommand per registered search, built from its SearchParams."""
+
+    what = "search"
 
     def list_commands(self, ctx: click.Context) -> list[str]:
         from tilekit.plugins import searches
@@ -135,12 +143,6 @@ class SearchGroup(click.Group):
 
         search = searches(plugin_manager()).get(cmd_name)
         return None if search is None else _search_command(search)
-
-    def resolve_command(self, ctx: click.Context, args: list[str]) -> Any:
-        name = args[0] if args else ""
-        if name and not name.startswith("-") and self.get_command(ctx, name) is None:
-            raise NotFoundError("search", name, self.list_commands(ctx))
-        return super().resolve_command(ctx, args)
 
 
 @click.group(cls=TilekitGroup, context_settings={"help_option_names": ["-h", "--help"]})
@@ -553,7 +555,7 @@ def runs(state: State, run_id: int | None, fmt: str) -> None:
 # --------------------------------------------------------------------------- catalogue
 
 
-@cli.group(name="catalogue")
+@cli.group(name="catalogue", cls=SuggestingGroup)
 def catalogue_group() -> None:
     """The catalogue database: where it is, migrate, export, seed."""
 
