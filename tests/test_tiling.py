@@ -118,6 +118,20 @@ def test_shared_edges_are_not_overlaps() -> None:
     assert Patch([sq], [0] * 4, moves).validate((0, 0, 4, 1)).ok
 
 
+def test_float_noise_on_shared_edges_is_not_an_overlap() -> None:
+    """A glide-reflected hexagon tiling whose shared edges differ by float noise.
+
+    GEOS's floating overlay once reported a full tile (area 0.984) as the intersection of
+    two tiles that only share an edge; validate must use a snap-rounded overlay.
+    """
+    tile = Prototile(np.array([(0, 0), (0.3, 0.2), (1, 0), (1, 1), (0.3, 1.2), (0, 1)]))
+    glide = Affine.translation(0, 0.5) @ Affine.reflection(math.pi / 2, (1, 0))
+    t = PeriodicTiling([tile], [0, 0], np.array([np.eye(3), glide]), (2, 0), (0, 1))
+    region = (-3, -3, 3, 3)
+    report = t.patch(region).validate(region)
+    assert report.ok, report.summary()
+
+
 def test_colouring_permutes_between_units() -> None:
     """Figure 5.12's rule: aspect i in the unit at a*v1 + b*v2 has colour rho2^b(rho1^a(c_i))."""
     col = Colouring.parse("(1 2)(2 3 1)(1 2 3)")
@@ -169,3 +183,9 @@ def test_patch_columns_concat_subset_and_bounds() -> None:
     assert len(q) == 12 and q.validate((0, 0, 6, 2)).ok
     assert len(q.subset(q.centres()[:, 0] < 1)) == 2
     assert len(p.clip((0.5, 0.5, 1.5, 1.5))) == 4
+
+
+def test_colouring_notation_base_is_read_from_the_permutations() -> None:
+    """Figure 5.13 numbers colours from 1, Appendix A from 0; both parse to the same colouring."""
+    assert Colouring.parse("(0 1 2 0)(1 2 0)(0 1 2)") == Colouring.parse("(1 2 3 1)(2 3 1)(1 2 3)")
+    assert str(Colouring.parse("(0 1)(1 0)(0 1)")) == "(1 2)(2 1)(1 2)"

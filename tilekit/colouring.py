@@ -91,7 +91,12 @@ class Colouring:
 
     @classmethod
     def parse(cls, text: str) -> Colouring:
-        """Parse '(1 2 3) (1 2 3) (1 2 3)' (1-based, spaces or commas, as in Appendix A)."""
+        """Parse '(1 2 3) (1 2 3) (1 2 3)' (spaces or commas between numbers).
+
+        Colours may be numbered from 1 (as in Figures 5.12 and 5.13) or from 0 (as Appendix A
+        prints them): a permutation of 0..k-1 contains 0 and one of 1..k never does, so the
+        base is read off the permutations unambiguously.
+        """
         groups = _GROUP.findall(text)
         rest = _GROUP.sub("", text).strip()
         if len(groups) != 3 or rest:
@@ -102,11 +107,13 @@ class Colouring:
         for g in groups:
             items = [s for s in re.split(r"[\s,]+", g.strip()) if s]
             try:
-                seqs.append([int(s) - 1 for s in items])
+                seqs.append([int(s) for s in items])
             except ValueError:
                 raise ParseError(f"colouring {text!r}: ({g}) holds a non-integer") from None
             if not items:
                 raise ParseError(f"colouring {text!r}: empty group ()")
+        base = 0 if 0 in seqs[1] or 0 in seqs[2] else 1
+        seqs = [[v - base for v in seq] for seq in seqs]
         return cls(tuple(seqs[0]), tuple(seqs[1]), tuple(seqs[2]))
 
     def __str__(self) -> str:

@@ -327,6 +327,9 @@ class Patch:
         areas = shapely.area(geoms)
         tol_area = tolerance * float(np.median(areas))
         report.area_tolerance = tol_area
+        # Overlaps are computed with a snap-rounded overlay: GEOS's floating overlay can return
+        # a whole tile as the "intersection" of two tiles that share an edge up to float noise.
+        grid = 1e-9 * math.sqrt(float(np.median(areas)))
         bad = ~shapely.is_valid(geoms) | (areas <= tol_area)
         report.invalid_tiles = np.flatnonzero(bad).tolist()
         tree = shapely.STRtree(geoms)
@@ -337,7 +340,7 @@ class Patch:
             touching = shapely.touches(geoms[left], geoms[right])
             left, right = left[~touching], right[~touching]
         if len(left):
-            inter = shapely.area(shapely.intersection(geoms[left], geoms[right], grid_size=None))
+            inter = shapely.area(shapely.intersection(geoms[left], geoms[right], grid_size=grid))
             hit = inter > tol_area
             report.overlaps = [
                 (int(i), int(j), float(a)) for i, j, a in zip(left[hit], right[hit], inter[hit])
@@ -352,7 +355,9 @@ class Patch:
             covered = float(shapely.area(shapely.intersection(geoms[near], reg)).sum())
             if report.overlaps:
                 ov = shapely.intersection(
-                    geoms[[i for i, _, _ in report.overlaps]], geoms[[j for _, j, _ in report.overlaps]]
+                    geoms[[i for i, _, _ in report.overlaps]],
+                    geoms[[j for _, j, _ in report.overlaps]],
+                    grid_size=grid,
                 )
                 covered -= float(shapely.area(shapely.intersection(ov, reg)).sum())
             report.uncovered_area = max(0.0, report.region_area - covered)
