@@ -17,6 +17,7 @@ from tilekit.plugins import CatalogueRecord, Family
 from tilekit.plugins.substitution.system import SubstitutionSystem, load_system
 from tilekit.plugins.substitution.tiling import (
     SubstitutionTiling,
+    make_tiling,
     system_properties,
     tiling_from_spec,
 )
@@ -39,7 +40,7 @@ def system_dir() -> Path:
 
 
 @lru_cache(maxsize=1)
-def builtin_systems() -> dict[str, SubstitutionSystem]:
+def builtin_systems() -> dict[str, Any]:
     """Every shipped system by name (loaded and validated once per process)."""
     out: dict[str, SubstitutionSystem] = {}
     for path in sorted(system_dir().glob("*.toml")):
@@ -61,7 +62,7 @@ def from_spec(spec: Mapping[str, Any]) -> SubstitutionTiling:
 def from_file(path: str) -> SubstitutionTiling:
     """A tiling from a user's system file; its spec embeds the file's data."""
     system = load_system(path)
-    return SubstitutionTiling(system, spec_source={"system_data": system.data, "source": Path(path).name})
+    return make_tiling(system, spec_source={"system_data": system.data, "source": Path(path).name})
 
 
 @tilekit.hookimpl

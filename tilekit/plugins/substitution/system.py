@@ -126,8 +126,9 @@ class SubstitutionSystem:
 # ---------------------------------------------------------------------- loading
 
 
-def load_system(path: str | Path) -> SubstitutionSystem:
-    """Read and validate a system file (TOML)."""
+def load_system(path: str | Path) -> Any:
+    """Read and validate a system file (TOML): a SubstitutionSystem, or a KeypointSystem
+    when the file says ``engine = "keypoint"``."""
     p = Path(path)
     try:
         text = p.read_text(encoding="utf-8")
@@ -137,7 +138,19 @@ def load_system(path: str | Path) -> SubstitutionSystem:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ParseError(f"substitution system {p.name}: not valid TOML ({exc})") from None
-    return system_from_data(data, source=p.name)
+    return load_data(data, source=p.name)
+
+
+def load_data(data: Mapping[str, Any], source: str = "<data>") -> Any:
+    """A system of either engine from parsed data."""
+    engine = data.get("engine", "similarity") if isinstance(data, Mapping) else None
+    if engine == "keypoint":
+        from tilekit.plugins.substitution.keypoint import keypoint_system_from_data
+
+        return keypoint_system_from_data(data, source)
+    if engine not in ("similarity", None):
+        raise ParseError(f"substitution system {source}: engine {engine!r} is not 'similarity' or 'keypoint'")
+    return system_from_data(data, source=source)
 
 
 def system_from_data(data: Mapping[str, Any], source: str = "<data>") -> SubstitutionSystem:

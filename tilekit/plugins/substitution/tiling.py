@@ -160,13 +160,14 @@ def system_properties(system: SubstitutionSystem, generations: int = 6) -> dict[
     """The catalogue facts of a system: expansion constant, matrix, eigen-data, counts ..."""
     eig, freq = system.perron_frobenius()
     counts = system.counts(generations)
+    tile_counts = getattr(system, "tile_counts", None)
     props: dict[str, Any] = {
         "expansion_constant": round(system.scale, 12),
         "substitution_matrix": [[int(v) for v in row] for row in system.substitution_matrix()],
         "perron_frobenius_eigenvalue": round(eig, 12),
         "tile_frequencies": [round(float(f), 12) for f in freq],
         "rule_prototiles": [p.name for p in system.prototiles],
-        "tiles_per_generation": [int(sum(c)) for c in counts],
+        "tiles_per_generation": tile_counts(generations) if tile_counts else [int(sum(c)) for c in counts],
         "kind": system.kind,
         "k_hedral": len({_shape_key(p) for p in system.tiles}),
     }
@@ -184,6 +185,97 @@ def system_properties(system: SubstitutionSystem, generations: int = 6) -> dict[
     return props
 
 
+class KeypointTiling(SubstitutionTiling):
+    """A tiling from a keypoint substitution (the Spectre): supertiles grow by rigid placement.
+
+    ``patch(region)`` centres a level-d supertile on the region, with d the first level whose
+    bounding disc is twice the region's, and goes one level further while the tiles do not
+    cover the region (the supertiles are not convex, so their inner radius is measured, not
+    assumed).
+    """
+
+    system: Any
+
+    def __init__(self, system: Any, depth: int | None = None, seed: str | None = None,
+                 spec_source: Mapping[str, Any] | None = None) -> None:
+        self.system = system
+        self.name = system.name
+        if depth is not None and not 0 <= depth <= MAX_DEPTH // 4:
+            raise ParameterError(f"depth {depth} is out of range 0..{MAX_DEPTH // 4}")
+        self.depth = depth
+        if seed is not None and seed not in system.labels:
+            raise ParameterError(
+                f"seed {seed!r} is not a supertile label of {system.name}; valid: {', '.join(system.labels)}"
+            )
+        self.seed = seed
+        self._spec_source = dict(spec_source) if spec_source is not None else {"system": system.name}
+
+    def _seed_index(self) -> int:
+        return self.system.labels.index(self.seed) if self.seed is not None else self.system.seed
+
+    def patch(self, region: Any = None) -> Patch:
+        reg = as_region(region) if region is not None else None
+        s = self.system
+        label = self._seed_index()
+        if self.depth is not None:
+            box = tuple(reg.bounds) if reg is not None else None
+            proto, transform, colour = s.generate(self.depth, seed_label=label, box=box)
+            patch = Patch(s.tiles, proto, transform, colour=colour)
+            return patch.clip(reg) if reg is not None else patch
+        if reg is None:
+            raise ParameterError("a region or a fixed depth is needed")
+        x0, y0, x1, y1 = reg.bounds
+        centre = np.array([(x0 + x1) / 2, (y0 + y1) / 2])
+        need = math.hypot(x1 - x0, y1 - y0) / 2
+        d = 0
+        while s.bounds(d)[1][label] < 2 * need:
+            d += 1
+        for depth in range(d, d + 4):
+            c = s.bounds(depth)[0][label]
+            if depth % 2 == 1 and s.reflect:
+                c = np.array([-c[0], c[1]])
+            t0 = Affine.translation(*(centre - c))
+            proto, transform, colour = s.generate(depth, t0, label, box=tuple(reg.bounds))
+            patch = Patch(s.tiles, proto, transform, colour=colour).clip(reg)
+            if len(patch) and _covers(patch, reg):
+                return patch
+        raise ParameterError(f"could not cover region {reg.bounds} by depth {d + 3}")
+
+    def raw(self, region: Any = None) -> tuple[np.ndarray, np.ndarray]:
+        p = self.patch(region)
+        return p.prototile, p.transform
+
+    def configure(self, **options: Any) -> KeypointTiling:
+        depth = options.pop("depth", self.depth)
+        seed = options.pop("seed", self.seed)
+        if options:
+            raise ParameterError(
+                f"{self.name} does not take option(s) {', '.join(sorted(options))}; valid: depth, seed"
+            )
+        if depth is not None:
+            try:
+                depth = int(depth)
+            except (TypeError, ValueError):
+                raise ParameterError(f"depth {depth!r} is not an integer") from None
+        return KeypointTiling(self.system, depth, seed, self._spec_source)
+
+    def describe(self) -> str:
+        s = self.system
+        lines = [f"{s.title}: keypoint substitution on {s.n} supertile labels, growth {s.perron_frobenius()[0]:.9g} per level"]
+        for j, slots in enumerate(s.rules):
+            kids = ", ".join(s.labels[k] if k >= 0 else "-" for k in slots)
+            lines.append(f"  {s.labels[j]} -> {kids}")
+        return "\n".join(lines)
+
+
+def _covers(patch: Patch, region: BaseGeometry) -> bool:
+    """Whether the tiles cover the region (areas of the clipped tiles, snap-rounded)."""
+    g = patch.geometries()
+    grid = 1e-9 * math.sqrt(region.area)
+    covered = shapely.area(shapely.intersection(g, region, grid_size=grid)).sum()
+    return bool(region.area - covered <= 1e-7 * region.area)
+
+
 def _shape_key(p: Prototile) -> tuple[int, ...]:
     """Congruence-class key of an outline: sorted edge lengths and squared-area (for k_hedral)."""
     pts = p.outline
@@ -194,10 +286,10 @@ def _shape_key(p: Prototile) -> tuple[int, ...]:
 def tiling_from_spec(spec: Mapping[str, Any], systems: Mapping[str, SubstitutionSystem]) -> SubstitutionTiling:
     """Rebuild a tiling from ``{"system": name}`` or ``{"system_data": {...}}`` plus options."""
     from tilekit.errors import NotFoundError
-    from tilekit.plugins.substitution.system import system_from_data
+    from tilekit.plugins.substitution.system import load_data
 
     if "system_data" in spec:
-        system = system_from_data(spec["system_data"], source=str(spec.get("source", "<spec>")))
+        system = load_data(spec["system_data"], source=str(spec.get("source", "<spec>")))
     elif "system" in spec:
         name = spec["system"]
         if name not in systems:
@@ -206,6 +298,13 @@ def tiling_from_spec(spec: Mapping[str, Any], systems: Mapping[str, Substitution
     else:
         raise ParseError("substitution spec needs 'system' (a built-in name) or 'system_data'")
     source = {k: spec[k] for k in ("system", "system_data", "source") if k in spec}
-    tiling = SubstitutionTiling(system, spec_source=source)
+    tiling = make_tiling(system, spec_source=source)
     options = {k: spec[k] for k in ("depth", "seed") if k in spec}
     return tiling.configure(**options) if options else tiling
+
+
+def make_tiling(system: Any, spec_source: Mapping[str, Any] | None = None) -> SubstitutionTiling:
+    """The tiling class that fits the system (similarity rules or keypoint placement)."""
+    if getattr(system, "kind", "") == "keypoint":
+        return KeypointTiling(system, spec_source=spec_source)
+    return SubstitutionTiling(system, spec_source=spec_source)

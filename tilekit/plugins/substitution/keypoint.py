@@ -1,0 +1,341 @@
+"""Keypoint substitutions: supertiles built from rigid copies placed by matching keypoints.
+
+The Spectre's substitution (arXiv:2305.17743) is combinatorial, not a similarity: a
+level-(n+1) supertile is a few level-n supertiles moved by rigid motions, chosen so that a
+keypoint of each copy lands on a keypoint of the previous one. The motions therefore differ
+from level to level (they are computed from that level's keypoints), but within a level they
+are shared by all labels, so generation stays a batched product of (k, 3, 3) stacks: the
+same array engine as for similarity systems, with per-level rule matrices.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import shapely
+
+from tilekit.errors import ParseError
+from tilekit.geometry import Affine
+from tilekit.plugins.substitution.expr import constants_with, evaluate
+from tilekit.plugins.substitution.system import Rule
+from tilekit.tiling import Prototile
+
+REFLECT_Y = np.diag([-1.0, 1.0, 1.0])
+
+
+@dataclass
+class KeypointSystem:
+    """A keypoint substitution (see the module docstring and catalogue/substitution/spectre.toml)."""
+
+    name: str
+    title: str
+    labels: list[str]
+    tile: Prototile
+    quad: np.ndarray  # (4, 2) level-0 keypoints
+    base: list[np.ndarray]  # per label: (m, 3, 3) level-0 tile placements
+    steps: list[tuple[float, int, int]]
+    reflect: bool
+    next_quad: list[tuple[int, int]]
+    rules: list[np.ndarray]  # per label: slot -> child label index, -1 for an empty slot
+    seed: int = 0
+    facts: dict[str, Any] = field(default_factory=dict)
+    source: str = "<data>"
+    data: dict[str, Any] = field(default_factory=dict)
+    kind: str = "keypoint"
+    _levels: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
+    _bounds: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
+
+    # ------------------------------------------------------------------ shared API
+    @property
+    def n(self) -> int:
+        return len(self.labels)
+
+    @property
+    def tiles(self) -> list[Prototile]:
+        return [self.tile]
+
+    @property
+    def prototiles(self) -> list[Prototile]:
+        return [self.tile]
+
+    @property
+    def output_prototiles(self) -> list[Prototile]:
+        return [self.tile]
+
+    @property
+    def scale(self) -> float:
+        """Linear growth per level: the square root of the Perron-Frobenius eigenvalue."""
+        return math.sqrt(self.perron_frobenius()[0])
+
+    def substitution_matrix(self) -> np.ndarray:
+        m = np.zeros((self.n, self.n), dtype=np.int64)
+        for j, slots in enumerate(self.rules):
+            kids = slots[slots >= 0]
+            np.add.at(m[:, j], kids, 1)
+        return m
+
+    def perron_frobenius(self) -> tuple[float, np.ndarray]:
+        m = self.substitution_matrix().astype(float)
+        vals, vecs = np.linalg.eig(m)
+        k = int(np.argmax(vals.real))
+        vec = np.abs(vecs[:, k].real)
+        return float(vals[k].real), vec / vec.sum()
+
+    def counts(self, generations: int, start: int | None = None) -> list[list[int]]:
+        """Label counts after 0..generations substitutions of one ``start`` supertile."""
+        m = self.substitution_matrix().astype(object)
+        v = np.zeros(self.n, dtype=object)
+        v[self.seed if start is None else start] = 1
+        out = [[int(x) for x in v]]
+        for _ in range(generations):
+            v = m.dot(v)
+            out.append([int(x) for x in v])
+        return out
+
+    def tile_counts(self, generations: int, start: int | None = None) -> list[int]:
+        """Number of actual tiles in a level-n supertile, n = 0..generations."""
+        per_label = np.array([len(b) for b in self.base])
+        return [int(np.dot(c, per_label)) for c in self.counts(generations, start)]
+
+    def rep_tile(self) -> None:
+        return None
+
+    # ------------------------------------------------------------------ levels
+    def level(self, n: int) -> tuple[np.ndarray, np.ndarray]:
+        """The slot transforms (8, 3, 3) that build level-n supertiles from level n-1 ones,
+        and the level-n quad (4, 2); n >= 1."""
+        if n < 1:
+            raise ValueError("levels start at 1")
+        while len(self._levels) < n:
+            quad = self.quad if not self._levels else self._levels[-1][1]
+            self._levels.append(self._place(quad))
+        return self._levels[n - 1]
+
+    def _place(self, quad: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        transforms = [np.eye(3)]
+        total = 0.0
+        rot = np.eye(3)
+        for angle, frm, to in self.steps:
+            total += angle
+            if angle:
+                rot = Affine.rotation(math.radians(total))
+            prev = Affine.apply(transforms[-1], quad[frm])
+            here = Affine.apply(rot, quad[to])
+            transforms.append(Affine.translation(*(prev - here)) @ rot)
+        ts = np.array(transforms)
+        if self.reflect:
+            ts = REFLECT_Y[None] @ ts
+        new_quad = np.array([Affine.apply(ts[slot], quad[k]) for slot, k in self.next_quad])
+        return ts, new_quad
+
+    def rules_at(self, n: int) -> list[Rule]:
+        """Per label, the children (label indices) and rigid maps building level n from n-1."""
+        ts, _ = self.level(n)
+        out = []
+        for slots in self.rules:
+            used = np.flatnonzero(slots >= 0)
+            out.append(Rule(slots[used], ts[used]))
+        return out
+
+    def bounds(self, n: int) -> tuple[np.ndarray, np.ndarray]:
+        """Per label, a centre and radius bounding its level-n supertile (in its own frame)."""
+        while len(self._bounds) <= n:
+            k = len(self._bounds)
+            if k == 0:
+                pts = self.tile.outline
+                centres, radii = [], []
+                for b in self.base:
+                    allpts = np.concatenate(list(Affine.apply(b, pts)))
+                    c = allpts.mean(axis=0)
+                    centres.append(c)
+                    radii.append(float(np.linalg.norm(allpts - c, axis=1).max()))
+                self._bounds.append((np.array(centres), np.array(radii)))
+                continue
+            pc, pr = self._bounds[k - 1]
+            rules = self.rules_at(k)
+            centres, radii = [], []
+            for rule in rules:
+                img = np.einsum("nij,nj->ni", rule.matrices[:, :2, :2], pc[rule.children]) + rule.matrices[:, :2, 2]
+                c = img.mean(axis=0)
+                centres.append(c)
+                radii.append(float((np.linalg.norm(img - c, axis=1) + pr[rule.children]).max()))
+            self._bounds.append((np.array(centres), np.array(radii)))
+        return self._bounds[n]
+
+    # ------------------------------------------------------------------ generation
+    def generate(
+        self,
+        depth: int,
+        seed_transform: np.ndarray | None = None,
+        seed_label: int | None = None,
+        box: tuple[float, float, float, float] | None = None,
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Tiles of a level-``depth`` supertile: (prototile, transform, colour) arrays.
+
+        Colour 1 marks the Mystic's turned spectre, 0 every other one. Odd depths get one
+        extra reflection so that every spectre is unreflected.
+        """
+        label = np.array([self.seed if seed_label is None else seed_label], dtype=np.int64)
+        t0 = np.eye(3) if seed_transform is None else np.asarray(seed_transform, dtype=float)
+        if depth % 2 == 1 and self.reflect:
+            t0 = t0 @ REFLECT_Y
+        transform = t0.reshape(1, 3, 3)
+        for n in range(depth, 0, -1):
+            if box is not None:
+                keep = _meets(label, transform, self.bounds(n), box)
+                label, transform = label[keep], transform[keep]
+            labels, transforms = [], []
+            for j, rule in enumerate(self.rules_at(n)):
+                idx = np.flatnonzero(label == j)
+                if not len(idx):
+                    continue
+                kids = np.matmul(transform[idx][:, None], rule.matrices[None])
+                transforms.append(kids.reshape(-1, 3, 3))
+                labels.append(np.tile(rule.children, len(idx)))
+            if not labels:
+                return np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3)), np.zeros(0, dtype=np.int64)
+            label, transform = np.concatenate(labels), np.concatenate(transforms)
+        if box is not None:
+            keep = _meets(label, transform, self.bounds(0), box)
+            label, transform = label[keep], transform[keep]
+        out_t, out_c = [], []
+        for j, placements in enumerate(self.base):
+            idx = np.flatnonzero(label == j)
+            if not len(idx):
+                continue
+            tiles = np.matmul(transform[idx][:, None], placements[None]).reshape(-1, 3, 3)
+            out_t.append(tiles)
+            out_c.append(np.tile(np.arange(len(placements)) > 0, len(idx)).astype(np.int64))
+        if not out_t:
+            return np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3)), np.zeros(0, dtype=np.int64)
+        transform = np.concatenate(out_t)
+        return np.zeros(len(transform), dtype=np.int64), transform, np.concatenate(out_c)
+
+
+def _meets(label: np.ndarray, transform: np.ndarray, bounds: tuple[np.ndarray, np.ndarray], box: Sequence[float]) -> np.ndarray:
+    centres, radii = bounds
+    img = np.einsum("nij,nj->ni", transform[:, :2, :2], centres[label]) + transform[:, :2, 2]
+    x0, y0, x1, y1 = box
+    dx = np.maximum(np.maximum(x0 - img[:, 0], img[:, 0] - x1), 0.0)
+    dy = np.maximum(np.maximum(y0 - img[:, 1], img[:, 1] - y1), 0.0)
+    r = radii[label] * (1 + 1e-9) + 1e-9
+    return dx * dx + dy * dy <= r * r
+
+
+# ---------------------------------------------------------------------- loading
+
+
+def keypoint_system_from_data(data: Mapping[str, Any], source: str = "<data>") -> KeypointSystem:
+    """Build and check a keypoint system from parsed TOML (errors name the file and part)."""
+    where = f"substitution system {source}"
+
+    def fail(msg: str) -> ParseError:
+        return ParseError(f"{where}: {msg}")
+
+    env = constants_with(data.get("constants", {}))
+
+    def num(v: Any, ctx: str) -> float:
+        try:
+            return evaluate(v, env)
+        except ParseError as exc:
+            raise fail(f"{ctx}: {exc}") from None
+
+    labels = data.get("labels")
+    if not isinstance(labels, list) or not labels or not all(isinstance(x, str) for x in labels):
+        raise fail("'labels' must be a list of names")
+    index = {nm: i for i, nm in enumerate(labels)}
+    tile_data = data.get("tile")
+    if not isinstance(tile_data, Mapping) or "outline" not in tile_data:
+        raise fail("[tile] needs an 'outline'")
+    outline = np.array([[num(c, "tile outline") for c in p] for p in tile_data["outline"]])
+    try:
+        tile = Prototile(outline, name=str(tile_data.get("name", "tile")))
+    except Exception as exc:  # GeometryError
+        raise fail(f"[tile]: {exc}") from None
+    quad_idx = tile_data.get("quad")
+    if not isinstance(quad_idx, list) or len(quad_idx) != 4 or not all(
+        isinstance(i, int) and 0 <= i < len(outline) for i in quad_idx
+    ):
+        raise fail(f"[tile] quad must be 4 vertex indices in 0..{len(outline) - 1}")
+    base: list[np.ndarray] = []
+    base_data = data.get("base", {})
+    for nm in labels:
+        entries = base_data.get(nm, [{"rotate": 0, "translate": [0, 0]}])
+        mats = []
+        for e in entries:
+            ang = math.radians(num(e.get("rotate", 0), f"[base] {nm} rotate"))
+            tx, ty = (num(v, f"[base] {nm} translate") for v in e.get("translate", [0, 0]))
+            mats.append(Affine.translation(tx, ty) @ Affine.rotation(ang))
+        base.append(np.array(mats))
+    placement = data.get("placement", {})
+    steps_raw = placement.get("steps")
+    if not isinstance(steps_raw, list) or not steps_raw:
+        raise fail("[placement] needs 'steps' = [[angle, from, to], ...]")
+    steps = []
+    for k, st in enumerate(steps_raw):
+        if not isinstance(st, list) or len(st) != 3 or not all(isinstance(i, int) and 0 <= i < 4 for i in st[1:]):
+            raise fail(f"[placement] step #{k + 1} must be [angle, from keypoint 0..3, to keypoint 0..3]")
+        steps.append((num(st[0], f"step #{k + 1}"), int(st[1]), int(st[2])))
+    slots = len(steps) + 1
+    next_quad = placement.get("next_quad")
+    if not isinstance(next_quad, list) or len(next_quad) != 4 or not all(
+        isinstance(p, list) and len(p) == 2 and 0 <= p[0] < slots and 0 <= p[1] < 4 for p in next_quad
+    ):
+        raise fail(f"[placement] next_quad must be four [slot 0..{slots - 1}, keypoint 0..3] pairs")
+    rules_data = data.get("rules", {})
+    rules = []
+    for nm in labels:
+        row = rules_data.get(nm)
+        if not isinstance(row, list) or len(row) != slots:
+            raise fail(f"rule for {nm!r} must list {slots} slots")
+        kids = []
+        for s in row:
+            if s == "":
+                kids.append(-1)
+            elif s in index:
+                kids.append(index[s])
+            else:
+                raise fail(f"rule for {nm!r}: unknown label {s!r}; known: {', '.join(labels)}")
+        rules.append(np.array(kids, dtype=np.int64))
+    seed = index.get(str(data.get("seed", labels[0])))
+    if seed is None:
+        raise fail(f"seed {data.get('seed')!r} is not a label")
+    system = KeypointSystem(
+        name=str(data.get("name", source)),
+        title=str(data.get("title", data.get("name", source))),
+        labels=list(labels),
+        tile=tile,
+        quad=outline[quad_idx],
+        base=base,
+        steps=steps,
+        reflect=bool(placement.get("reflect", False)),
+        next_quad=[(int(a), int(b)) for a, b in next_quad],
+        rules=rules,
+        seed=seed,
+        facts=dict(data.get("properties", {})),
+        source=source,
+        data=dict(data),
+    )
+    check_keypoint_system(system)
+    return system
+
+
+def check_keypoint_system(system: KeypointSystem, levels: int = 2) -> None:
+    """Every label's supertile, for the first ``levels`` levels, is a set of non-overlapping
+    tiles (the placement data is wrong otherwise)."""
+    tile = system.tile.outline
+    for n in range(0, levels + 1):
+        for j, nm in enumerate(system.labels):
+            _, tr, _ = system.generate(n, seed_label=j)
+            polys = shapely.polygons(Affine.apply(tr, tile))
+            total = float(shapely.area(polys).sum())
+            grid = 1e-9
+            union = shapely.union_all(polys, grid_size=grid).area
+            if total - union > 1e-6 * float(shapely.area(polys[0])):
+                raise ParseError(
+                    f"substitution system {system.source}: level-{n} supertile {nm!r} has overlapping tiles"
+                )
