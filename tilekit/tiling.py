@@ -352,17 +352,17 @@ class Patch:
             # there: one vectorised clip instead of a union of every tile. The (slow) union
             # runs only to locate a gap once one is known to exist.
             near = tree.query(reg, predicate="intersects")
-            covered = float(shapely.area(shapely.intersection(geoms[near], reg)).sum())
+            covered = float(shapely.area(shapely.intersection(geoms[near], reg, grid_size=grid)).sum())
             if report.overlaps:
                 ov = shapely.intersection(
                     geoms[[i for i, _, _ in report.overlaps]],
                     geoms[[j for _, j, _ in report.overlaps]],
                     grid_size=grid,
                 )
-                covered -= float(shapely.area(shapely.intersection(ov, reg)).sum())
+                covered -= float(shapely.area(shapely.intersection(ov, reg, grid_size=grid)).sum())
             report.uncovered_area = max(0.0, report.region_area - covered)
             if report.uncovered_area > tol_area:
-                rest = shapely.difference(reg, shapely.union_all(geoms[near]))
+                rest = shapely.difference(reg, shapely.union_all(geoms[near], grid_size=grid), grid_size=grid)
                 report.uncovered_area = float(rest.area)
                 if not rest.is_empty:
                     report.uncovered_bounds = tuple(float(v) for v in rest.bounds)
