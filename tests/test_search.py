@@ -174,9 +174,11 @@ def test_local_run_records_every_chunk(cat, pm):
 
 def test_interrupted_run_resumes_without_redoing_or_duplicating(cat, pm):
     INTERRUPT_AT.add(8)
+    announced: list[int] = []
     with pytest.raises(KeyboardInterrupt):
-        run_search(cat, "rects", {"max_area": 12}, pm=pm)
+        run_search(cat, "rects", {"max_area": 12}, pm=pm, on_run=announced.append)
     (info,) = cat.runs()
+    assert announced == [info.id]
     assert (info.status, info.chunks_done) == ("interrupted", 7)
     assert COMPLETED == [1, 2, 3, 4, 5, 6, 7]
     assert len(cat.results(info.id)) == sum(A038548[:7])

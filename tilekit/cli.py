@@ -478,21 +478,26 @@ def _run_search_cli(state: State, name: str, params: dict[str, Any] | None, exec
             bar.__enter__()
         bar.update(done - bar.pos)
 
-    run_id: int | None = resume
+    started: list[int] = []
+
+    def close_bar() -> None:
+        nonlocal bar
+        if bar is not None:
+            bar.__exit__(None, None, None)
+            bar = None
+
     try:
         run_id = run_search(cat, name, params, executor=executor, workers=workers, resume_run=resume,
-                            progress=progress, pm=state.pm)
+                            progress=progress, pm=state.pm, on_run=started.append)
     except KeyboardInterrupt:
-        if bar is not None:
-            bar.__exit__(None, None, None)
-        latest = cat.runs(kind=name)
-        rid = resume if resume is not None else (latest[-1].id if latest else "?")
-        info = cat.run(rid) if latest else None
-        done = f" after {info.progress} chunks" if info else ""
-        _fail(f"run {rid} interrupted{done}; continue it with: tilekit search {name} --resume {rid}", 130)
+        close_bar()
+        if not started:
+            _fail("interrupted before the run was created", 130)
+        info = cat.run(started[0])
+        _fail(f"run {info.id} interrupted after {info.progress} chunks; continue it with: "
+              f"tilekit search {name} --resume {info.id}", 130)
     finally:
-        if bar is not None:
-            bar.__exit__(None, None, None)
+        close_bar()
     _print_run(cat.run(run_id))
 
 

@@ -190,6 +190,7 @@ def run_search(
     *,
     pm: pluggy.PluginManager | None = None,
     scheduler: str | None = None,
+    on_run: Callable[[int], None] | None = None,
 ) -> int:
     """Run (or resume) the search ``name`` and return the run id.
 
@@ -199,7 +200,9 @@ def run_search(
     ``local`` (in-process), ``process`` (a process pool of ``workers``) or ``dask``
     (``scheduler`` address, ``$TILEKIT_DASK_SCHEDULER``, or a local cluster of ``workers``).
     The run ends ``done``; ``failed`` (SearchError) if a chunk raised; ``interrupted`` if
-    interrupted (e.g. Ctrl-C; the interrupt propagates).
+    interrupted (e.g. Ctrl-C; the interrupt propagates). ``on_run(run_id)`` is called once
+    the run exists (so a caller knows which run to resume); ``progress(done, total)`` at the
+    start and after every recorded chunk.
     """
     pm = pm or catalogue._pm or get_plugin_manager()
     if executor not in EXECUTORS:
@@ -224,6 +227,8 @@ def run_search(
             )
         params = stored
         run_id = info.id
+        if on_run:
+            on_run(run_id)
         if info.status == "done":
             if progress:
                 progress(info.chunks_done, info.chunks_total)
@@ -240,6 +245,8 @@ def run_search(
         except Exception as exc:
             raise SearchError(f"search {search.name!r} could not split its work: {exc}") from exc
         run_id = catalogue.create_run(search.name, params, chunks)
+        if on_run:
+            on_run(run_id)
 
     info = catalogue.run(run_id)
     total = info.chunks_total
