@@ -352,7 +352,11 @@ class Patch:
             # there: one vectorised clip instead of a union of every tile. The (slow) union
             # runs only to locate a gap once one is known to exist.
             near = tree.query(reg, predicate="intersects")
-            covered = float(shapely.area(shapely.intersection(geoms[near], reg, grid_size=grid)).sum())
+            if _is_box(reg):  # rectangle clipping is exact and immune to overlay robustness bugs
+                clipped = shapely.clip_by_rect(geoms[near], *reg.bounds)
+            else:
+                clipped = shapely.intersection(geoms[near], reg, grid_size=grid)
+            covered = float(shapely.area(clipped).sum())
             if report.overlaps:
                 ov = shapely.intersection(
                     geoms[[i for i, _, _ in report.overlaps]],
