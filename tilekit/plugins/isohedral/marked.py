@@ -18,6 +18,7 @@ that this yields the 9 all-I unmarked types of Appendix A plus exactly the 12 ma
 from __future__ import annotations
 
 import math
+from functools import cache
 from typing import Any
 
 import numpy as np
@@ -92,6 +93,19 @@ def _generators(symbol: IncidenceSymbol, verts: np.ndarray) -> tuple[list[np.nda
     return list(engine.hops) + list(engine.tile_symmetries()), engine
 
 
+@cache
+def _cached_unit(ih: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The translational unit of a marked type (computed once per process)."""
+    t = get_template(ih)
+    assert t.symbol is not None
+    verts = laves_polygon(t.topology)
+    gens, _ = _generators(t.symbol, verts)
+    aspects, v1, v2 = unit_from_group(verts, gens)
+    for a in (aspects, v1, v2):
+        a.setflags(write=False)
+    return aspects, v1, v2
+
+
 class MarkedTiling(PeriodicTiling):
     """A marked isohedral type: Laves tiles carrying a flag with exactly the type's tile symmetry."""
 
@@ -102,8 +116,8 @@ class MarkedTiling(PeriodicTiling):
             raise ParameterError(f"IH{ih} is not a marked type with an incidence symbol")
         verts = laves_polygon(t.topology)
         self._verts = verts
-        gens, self.engine = _generators(t.symbol, verts)
-        aspects, v1, v2 = unit_from_group(verts, gens)
+        self.engine = HopEngine(t.symbol, verts)
+        aspects, v1, v2 = _cached_unit(ih)
         c = verts.mean(axis=0)
         r = 0.3 * math.sqrt(abs(shapely.Polygon(verts).area))
         flag = np.array([[0.0, 0.0], [0.55, 0.0], [0.55, 0.22], [0.3, 0.22]]) * r + c
