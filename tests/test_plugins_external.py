@@ -9,6 +9,7 @@ uninstalled again when the test ends.
 from __future__ import annotations
 
 import importlib
+import importlib.util
 import json
 import os
 import shutil
@@ -32,6 +33,17 @@ def _pip(*args: str) -> subprocess.CompletedProcess:
     return subprocess.run([sys.executable, "-m", "pip", *args], capture_output=True, text=True, timeout=300)
 
 
+def _build_options() -> list[str]:
+    """Build with this environment's setuptools when it can make wheels (setuptools >= 70.1,
+    or the ``wheel`` package); otherwise let pip fetch the build requirements."""
+    import setuptools
+
+    major, minor = (int(x) for x in setuptools.__version__.split(".")[:2])
+    if (major, minor) >= (70, 1) or importlib.util.find_spec("wheel") is not None:
+        return ["--no-build-isolation", "--no-index"]
+    return []
+
+
 def _forget() -> None:
     importlib.invalidate_caches()
     for name in [m for m in sys.modules if m.startswith("tilekit_demo_family")]:
@@ -46,7 +58,7 @@ def demo_installed(tmp_path, monkeypatch):
     monkeypatch.delenv("TILEKIT_CATALOGUE", raising=False)
     source = tmp_path / "tilekit-demo-family"
     shutil.copytree(DEMO, source, ignore=shutil.ignore_patterns("build", "*.egg-info", "__pycache__"))
-    done = _pip("install", "--no-deps", "--no-build-isolation", "--no-index", "--quiet", str(source))
+    done = _pip("install", "--no-deps", "--quiet", *_build_options(), str(source))
     assert done.returncode == 0, done.stderr[-2000:]
     _forget()
     try:
