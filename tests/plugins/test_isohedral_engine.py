@@ -267,3 +267,10 @@ def test_translation_vectors_by_the_centroid_rule():
             assert any(
                 np.allclose(np.sort(moved - v, axis=0), np.sort(u, axis=0)) for u in unit_tiles
             )
+
+
+def test_properties_follow_a_user_colouring():
+    t = IsohedralTiling(28)
+    assert t.properties()["perfect_colouring"] is False  # exercise 5.10(a)
+    single = t.configure(colouring="(1 1 1 1)(1)(1)")
+    assert single.properties()["colours"] == 1 and single.properties()["perfect_colouring"] is True

@@ -455,9 +455,15 @@ class IsohedralTiling(PeriodicTiling):
         return tiling_from_spec(spec)  # type: ignore[return-value]
 
     def properties(self) -> dict[str, Any]:
+        """The type's catalogue properties; colour facts follow this tiling's own colouring."""
+        from tilekit.plugins.isohedral.analysis import is_perfect_colouring
         from tilekit.plugins.isohedral.records import type_properties
 
-        return type_properties(self.template.ih)
+        props = dict(type_properties(self.template.ih))
+        if self.colouring != self.template.colouring:
+            props["colours"] = self.colouring.colours
+            props["perfect_colouring"] = is_perfect_colouring(self)
+        return props
 
 
 def _transfer_shape(
