@@ -7,8 +7,10 @@ and ``tilekit.render.write_image``. Errors print one line ``error: ...`` on stde
 
 from __future__ import annotations
 
+import io
 import json
 import math
+import os
 import sys
 from collections.abc import Sequence
 from typing import Any
@@ -121,6 +123,13 @@ class TilekitGroup(SuggestingGroup):
             rv = 0
         except click.ClickException as exc:
             _fail(exc.format_message())
+        except BrokenPipeError:  # `tilekit list | head`: the reader left; stop quietly
+            try:
+                devnull = os.open(os.devnull, os.O_WRONLY)
+                os.dup2(devnull, sys.stdout.fileno())
+            except (OSError, ValueError, io.UnsupportedOperation):
+                pass
+            sys.exit(1)
         except OSError as exc:
             _fail(f"{exc.strerror or exc}" + (f": {exc.filename}" if exc.filename else ""))
         if not standalone_mode:
