@@ -87,26 +87,36 @@ def scanline_fill(
         )
     choices, counts = _scanline_tables(tileset)
     c = len(tileset.colours)
-    rng = np.random.default_rng(seed)
-    u = rng.random((rows, cols))
-    grid = np.empty((rows, cols), dtype=np.int64)
-    south = np.full((rows + 1, cols), c, dtype=np.int64)  # south[i] = north colour of row i
-    east = np.full((rows, cols + 1), c, dtype=np.int64)  # east[:, j] = west colour of column j
+    kmax = choices.shape[2]
+    flat_counts = counts.ravel().astype(float)
+    flat_choices = choices.ravel()
     s_col, e_col = tileset.tiles[:, S], tileset.tiles[:, E]
-    ii_all = np.arange(rows)
+    rng = np.random.default_rng(seed)
+    u = rng.random(rows * cols)
+    grid = np.empty(rows * cols, dtype=np.int64)
+    # colour arrays padded with ANY (= c) on the north row and the west column; stored flat so
+    # that every anti-diagonal is a strided slice (a view), not a fancy index
+    south = np.full((rows + 1) * cols, c, dtype=np.int64)  # south[i*cols + j]: north colour of (i, j)
+    east = np.full(rows * (cols + 1), c, dtype=np.int64)  # east[i*(cols+1) + j]: west colour of (i, j)
+    step_g = cols - 1  # (i, d - i) -> d + i*(cols - 1) in grid and south
+    step_e = cols  # (i, d - i) -> d + i*cols in east
     for d in range(rows + cols - 1):
         lo, hi = max(0, d - cols + 1), min(rows, d + 1)
-        i = ii_all[lo:hi]
-        j = d - i
-        n_c = south[i, j]
-        w_c = east[i, j]
-        cnt = counts[n_c, w_c]
-        k = (u[i, j] * cnt).astype(np.int64)
-        t = choices[n_c, w_c, k]
-        grid[i, j] = t
-        south[i + 1, j] = s_col[t]
-        east[i, j + 1] = e_col[t]
-    return grid
+        if step_g:
+            g_sl = slice(d + lo * step_g, d + (hi - 1) * step_g + 1, step_g)
+            s_next = slice(d + lo * step_g + cols, d + (hi - 1) * step_g + cols + 1, step_g)
+        else:  # one column: the diagonal is the single cell (d, 0)
+            g_sl = slice(d * cols, d * cols + 1)
+            s_next = slice((d + 1) * cols, (d + 1) * cols + 1)
+        e_sl = slice(d + lo * step_e, d + (hi - 1) * step_e + 1, step_e)
+        e_next = slice(d + lo * step_e + 1, d + (hi - 1) * step_e + 2, step_e)
+        key = south[g_sl] * (c + 1) + east[e_sl]
+        k = (u[g_sl] * flat_counts.take(key)).astype(np.int64)
+        t = flat_choices.take(key * kmax + k)
+        grid[g_sl] = t
+        south[s_next] = s_col.take(t)
+        east[e_next] = e_col.take(t)
+    return grid.reshape(rows, cols)
 
 
 # ---------------------------------------------------------------------- random access
