@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 import sqlalchemy as sa
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 sys.path.insert(0, str(Path(__file__).parent / "data"))
@@ -581,3 +581,60 @@ def test_family_failing_to_rebuild_is_a_plugin_error(cat):
     with pytest.raises(PluginError) as info:
         cat.tiling("no-vertex-type")
     assert "could not rebuild 'no-vertex-type'" in str(info.value) and "KeyError" in str(info.value)
+
+
+_scalars = st.one_of(
+    st.none(),
+    st.booleans(),
+    st.integers(min_value=-(2**53), max_value=2**53),
+    st.floats(allow_nan=False, allow_infinity=False),
+    st.text(alphabet=st.characters(blacklist_categories=("Cs",)), max_size=20),
+)
+_properties = st.dictionaries(
+    st.from_regex(r"[a-z][a-z0-9_]{0,12}", fullmatch=True).filter(
+        lambda k: k not in {"name", "family", "title", "spec", "aliases", "id", *SHARED}),
+    st.one_of(_scalars, st.lists(_scalars.filter(lambda v: v is not None), max_size=5)),
+    max_size=6,
+)
+SHARED = {"periodic", "k_hedral", "k_isohedral", "edge_to_edge", "symmetry_group"}
+_MEMORY: list = []
+
+
+def _memory_catalogue():
+    if not _MEMORY:
+        import os
+
+        from tilekit.plugins import make_plugin_manager
+
+        old = os.environ.get("TILEKIT_PLUGINS")
+        os.environ["TILEKIT_PLUGINS"] = "no-such-plugin"
+        try:
+            _MEMORY.append(open_catalogue("sqlite://", seed=False, pm=make_plugin_manager()))
+        finally:
+            if old is None:
+                del os.environ["TILEKIT_PLUGINS"]
+            else:
+                os.environ["TILEKIT_PLUGINS"] = old
+    return _MEMORY[0]
+
+
+@settings(max_examples=40, deadline=None)
+@given(props=_properties)
+def test_properties_round_trip_with_their_types(props):
+    """Whatever JSON scalars and lists a plugin stores come back equal and of the same type."""
+    cat = _memory_catalogue()
+    cat.upsert([CatalogueRecord("f", "round-trip", {"p": props}, properties=props)])
+    back = cat.get("round-trip")
+    assert back.properties == props and back.spec == {"p": props}
+    for key, value in props.items():
+        restored = back.properties[key]
+        if isinstance(value, list):
+            assert [type(v) for v in restored] == [type(v) for v in value]
+        else:
+            assert type(restored) is type(value)
+    # every scalar is findable by equality through the typed columns
+    for key, value in props.items():
+        for item in value if isinstance(value, list) else [value]:
+            if isinstance(item, bool) or (isinstance(item, int | float) and abs(item) < 1e300):
+                expr = f"{key}={str(item).lower() if isinstance(item, bool) else repr(item)}"
+                assert "round-trip" in names(cat.query(where=[expr])), expr
