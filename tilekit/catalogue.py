@@ -39,6 +39,7 @@ from tilekit.errors import (
     TilekitError,
 )
 from tilekit.models import (
+    RUN_STATUSES,
     SHARED_COLUMNS,
     TEXT_COLUMNS,
     AliasRow,
@@ -880,6 +881,8 @@ class Catalogue:
         seconds: float = 0.0,
     ) -> None:
         """Set a run's final (or interrupted) status, add ``seconds`` of work, store summary/error."""
+        if status not in RUN_STATUSES:
+            raise ParameterError(f"run status {status!r} is not one of: {', '.join(RUN_STATUSES)}")
         values: dict[str, Any] = {
             "status": status,
             "seconds": _RUNS.c.seconds + float(seconds),

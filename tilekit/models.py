@@ -43,7 +43,9 @@ SHARED_COLUMNS: dict[str, type] = {
 #: Columns of ``tilings`` a filter or ``order_by`` may name directly (besides SHARED_COLUMNS).
 TEXT_COLUMNS: tuple[str, ...] = ("name", "family", "title")
 
+#: A run is queued, then running, then done, failed (a chunk raised) or interrupted.
 RUN_STATUSES: tuple[str, ...] = ("queued", "running", "done", "failed", "interrupted")
+#: A chunk is pending until its results are recorded, then done.
 CHUNK_STATUSES: tuple[str, ...] = ("pending", "done")
 
 
