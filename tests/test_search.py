@@ -259,3 +259,23 @@ def test_chunk_returning_the_wrong_type_fails_the_run(cat, pm, monkeypatch):
     with pytest.raises(SearchError, match="not a ChunkResult"):
         run_search(cat, "bad", {}, pm=pm)
     assert cat.runs(kind="bad")[0].status == "failed"
+
+
+def test_failing_summary_fails_the_run_but_keeps_its_results(cat, pm):
+    def broken_summary(params, results):
+        raise ZeroDivisionError("no squares")
+
+    flaky = Search("flaky", "bad summary", testkit.FAMILY, RECTS.params, rect_chunks, rect_run_chunk,
+                   summarize=broken_summary)
+
+    class FlakyPlugin:
+        @tilekit.hookimpl
+        def tilekit_searches(self):
+            return [flaky]
+
+    pm.register(FlakyPlugin())
+    with pytest.raises(SearchError, match="could not summarise its results: no squares"):
+        run_search(cat, "flaky", {"max_area": 4, "store": False}, pm=pm)
+    (info,) = cat.runs(kind="flaky")
+    assert info.status == "failed" and "no squares" in info.error
+    assert info.chunks_done == 4 and cat.results(info.id) == expected_results(4)

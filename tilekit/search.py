@@ -286,7 +286,11 @@ def run_search(
             f"fix the cause and resume it (tilekit search {search.name} --resume {run_id})"
         ) from cause
 
-    summary = _summarize(search, params, catalogue.results(run_id))
+    try:
+        summary = _summarize(search, params, catalogue.results(run_id))
+    except TilekitError as exc:
+        catalogue.finish_run(run_id, "failed", error=str(exc), seconds=time.perf_counter() - started)
+        raise
     catalogue.finish_run(run_id, "done", summary=summary, seconds=time.perf_counter() - started)
     return run_id
 
