@@ -121,33 +121,67 @@ def unique_tiles(proto: np.ndarray, transform: np.ndarray, groups: Sequence[np.n
     survivors = np.arange(len(proto))
     for offset in (0.0, 0.5):
         keys = _canonical_keys(proto[survivors], transform[survivors], groups, quantum, offset)
-        _, first = np.unique(keys, axis=0, return_index=True)
+        first, _ = _row_groups(keys)
         survivors = survivors[np.sort(first)]
     return survivors
+
+
+def _row_groups(keys: np.ndarray) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray, np.ndarray]]:
+    """Group equal rows of an int array (much faster than np.unique(axis=0)).
+
+    Rows are sorted by a 64-bit multiplicative hash of their columns; a group starts where
+    the hash *or* the full row changes, so distinct rows are never merged (a hash collision
+    can at worst split a group, with probability about n^2 / 2^64). Returns the index of the
+    first row of each group, and (order, group starts in order, group sizes).
+    """
+    mult = np.array([0x9E3779B97F4A7C15, 0xC2B2AE3D27D4EB4F, 0x165667B19E3779F9, 0xD6E8FEB86659FD93,
+                     0xFF51AFD7ED558CCD, 0xC4CEB9FE1A85EC53, 0x94D049BB133111EB, 0xBF58476D1CE4E5B9],
+                    dtype=np.uint64)[: keys.shape[1]]
+    with np.errstate(over="ignore"):
+        h = (keys.astype(np.uint64) * mult).sum(axis=1, dtype=np.uint64)
+        h ^= h >> np.uint64(31)
+    order = np.argsort(h, kind="stable")
+    hs = h[order]
+    ordered = keys[order]
+    new = np.r_[True, (hs[1:] != hs[:-1]) | np.any(ordered[1:] != ordered[:-1], axis=1)]
+    starts = np.flatnonzero(new)
+    sizes = np.diff(np.r_[starts, len(keys)])
+    return order[starts], (order, starts, sizes)
 
 
 def _canonical_keys(
     proto: np.ndarray, transform: np.ndarray, groups: Sequence[np.ndarray], quantum: float, offset: float
 ) -> np.ndarray:
+    """(prototile, quantised 2x3 map) rows, the map canonicalised modulo the symmetry group.
+
+    Among the candidates T @ S (S in the prototile's group) the canonical one minimises
+    (orientation reversed?, angle of the first column, offset by an irrational amount so that
+    no orientation used by a tiling sits on the wrap-around). Distinct candidates differ by
+    at least the group's smallest rotation or in handedness, so float noise cannot make two
+    copies of one tile choose different candidates.
+    """
     keys = np.zeros((len(proto), 7), dtype=np.int64)
     keys[:, 0] = proto
     for p, group in enumerate(groups):
         idx = np.flatnonzero(proto == p)
         if not len(idx):
             continue
-        best = None
-        for g in group:
-            cand = np.floor((transform[idx] @ g)[:, :2, :].reshape(-1, 6) / quantum + offset).astype(np.int64)
-            if best is None:
-                best = cand
-                continue
-            diff = cand != best
-            has = diff.any(axis=1)
-            first = np.argmax(diff, axis=1)
-            rows = np.arange(len(idx))
-            less = has & (cand[rows, first] < best[rows, first])
-            best[less] = cand[less]
-        keys[idx, 1:] = best
+        sub = transform[idx][:, :2, :]
+        if len(group) == 1:
+            best = sub
+        else:
+            # the candidates' angles and handedness follow from T's and each symmetry's,
+            # so only the chosen product is ever formed
+            det_t = sub[:, 0, 0] * sub[:, 1, 1] - sub[:, 0, 1] * sub[:, 1, 0]
+            theta = np.arctan2(sub[:, 1, 0], sub[:, 0, 0])
+            phi = np.arctan2(group[:, 1, 0], group[:, 0, 0])
+            det_g = group[:, 0, 0] * group[:, 1, 1] - group[:, 0, 1] * group[:, 1, 0]
+            sign = np.where(det_t < 0, -1.0, 1.0)
+            angle = np.mod(theta[:, None] + sign[:, None] * phi[None, :] + 0.7236, 2 * np.pi)
+            score = angle + 10.0 * ((det_t[:, None] * det_g[None, :]) < 0)
+            choice = np.argmin(score, axis=1)
+            best = np.matmul(transform[idx], group[choice])[:, :2, :]
+        keys[idx, 1:] = np.floor(best.reshape(-1, 6) / quantum + offset).astype(np.int64)
     return keys
 
 
@@ -172,12 +206,7 @@ def pair_halves(system: SubstitutionSystem, proto: np.ndarray, transform: np.nda
     lo = np.where(first_smaller[:, None], q[:, 0], q[:, 1])
     hi = np.where(first_smaller[:, None], q[:, 1], q[:, 0])
     keys = np.column_stack([lo, hi])
-    _, inverse, counts = np.unique(keys, axis=0, return_inverse=True, return_counts=True)
-    inverse = inverse.reshape(-1)
-    order = np.argsort(inverse, kind="stable")
-    grouped = inverse[order]
-    starts = np.flatnonzero(np.r_[True, grouped[1:] != grouped[:-1]])
-    sizes = counts[grouped[starts]]
+    _, (order, starts, sizes) = _row_groups(keys)
     pairs = starts[sizes == 2]
     i, j = order[pairs], order[pairs + 1]
     di, dj = _det(transform[i]) > 0, _det(transform[j]) > 0
