@@ -458,3 +458,40 @@ def test_generic_patch_carries_tile_identity_and_edge_labels():
     assert proto.edge_labels == ("1", "2", "4", "2")
     assert len(proto.marking) == 2  # the diagonals that split the square into four triangles
     assert (ts.tiles[0, [N, E, S, W]] == [ts.colours.index(c) for c in ("4", "2", "1", "2")]).all()
+
+
+# ---------------------------------------------------------------------- command line
+
+
+def _run(tmp_path, *args: str):
+    from click.testing import CliRunner
+
+    from tilekit.cli import cli
+
+    return CliRunner().invoke(cli, ["--catalogue", f"sqlite:///{tmp_path / 'cat.db'}", *args])
+
+
+def test_cli_wang_solve_and_render(tmp_path):
+    res = _run(tmp_path, "wang", "solve", "cycle-3", "--rows", "2", "--cols", "6", "--torus")
+    assert res.exit_code == 0, res.output
+    lines = res.output.splitlines()
+    assert "2 x 6 torus: tiles" in lines[0]
+    # every row of a cycle-3 torus cycles t0 t1 t2 (from some start)
+    for row in lines[1:3]:
+        names = row.split()
+        assert len(names) == 6 and all(int(b[1]) == (int(a[1]) + 1) % 3 for a, b in zip(names, names[1:]))
+    res = _run(tmp_path, "wang", "solve", "counter-4", "--rows", "2", "--cols", "5", "--method", "builder")
+    assert res.exit_code == 0 and "proved untileable (builder" in res.output
+    res = _run(tmp_path, "wang", "solve", "counter-4", "--rows", "2", "--cols", "5", "--fix", "7,0=c0")
+    assert res.exit_code == 2 and "outside the 2 x 5 grid" in res.output
+    out = tmp_path / "t.svg"
+    res = _run(tmp_path, "wang", "render", "corner-2colour", "--rows", "5", "--cols", "7", "-o", str(out))
+    assert res.exit_code == 0 and out.read_text().count("<use ") == 35
+
+
+def test_cli_search_stores_the_run(tmp_path):
+    res = _run(tmp_path, "search", "wang-periodicity", "--set", "checkerboard-2", "--max-m", "4")
+    assert res.exit_code == 0, res.output
+    assert "outcome: periodic" in res.output
+    show = _run(tmp_path, "show", "checkerboard-2")
+    assert "periodic_unit" in show.output

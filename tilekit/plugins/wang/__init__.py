@@ -188,13 +188,8 @@ class WangTiling(Tiling):
 
     def describe(self) -> str:
         ts = self.tileset
-        lines = [
-            f"{ts.title or ts.name}: {len(ts)} {ts.kind} tiles; fill: {self.fill_method()} (seed {self.seed})",
-        ]
-        if ts.source:
-            lines.append(f"source: {ts.source}")
-        lines.append(ts.to_text().rstrip())
-        return "\n".join(lines)
+        head = f"{len(ts)} {ts.kind} tiles; patches fill by {self.fill_method()} (seed {self.seed})"
+        return head + "\n" + ts.to_text().rstrip()
 
     def configure(self, **options: Any) -> WangTiling:
         """Options: ``seed`` (int), ``method`` (one of FILL_METHODS), ``time_limit`` (s)."""
@@ -383,3 +378,10 @@ def tilekit_catalogue_records() -> list[CatalogueRecord]:
 @tilekit.hookimpl
 def tilekit_searches() -> list[Search]:
     return [PERIODICITY]
+
+
+@tilekit.hookimpl
+def tilekit_cli_commands(cli: Any) -> None:
+    from tilekit.plugins.wang.cli import wang_group
+
+    cli.add_command(wang_group)
