@@ -183,3 +183,14 @@ def test_stored_properties_match_recomputation():
     """properties.tsv is generated; recompute every row and compare."""
     stored = (data_dir() / "properties.tsv").read_text(encoding="utf-8")
     assert stored == properties_table_text()
+
+
+def test_every_template_prints_in_the_file_format_and_parses_back():
+    for ih, t in load_templates().items():
+        again = parse_templates(t.text() + "\n", "printed.ih")[ih]
+        assert (again.topology, again.symbol, again.marked, again.parameterization) == (
+            t.topology, t.symbol, t.marked, t.parameterization
+        )
+        assert (again.colouring_text, again.aspects, again.rules, again.edge_offset, again.notes) == (
+            t.colouring_text, t.aspects, t.rules, t.edge_offset, t.notes
+        )

@@ -416,8 +416,6 @@ class IsohedralTiling(PeriodicTiling):
                 "edge shapes (--edge LABEL=x,y:...:1,0): "
                 + ", ".join(f"{c} ({t.symbol.label_kind(c)})" for c in classes)
             )
-        for note in t.notes:
-            lines.append(f"note: {note}")
         return "\n".join(lines)
 
     def configure(self, **options: Any) -> IsohedralTiling:

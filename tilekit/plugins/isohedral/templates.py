@@ -101,18 +101,22 @@ class Template:
         return parse_zero_based_colouring(self.colouring_text)
 
     def text(self) -> str:
-        """The template as printed in the data file (for ``tilekit show``)."""
-        lines = [f"{self.name} {self.topology} {self.symbol or ''}".rstrip()]
+        """The template in the data file's format (``tilekit show`` prints it; it parses back)."""
+        head = f"{self.name} {self.topology}"
+        if self.symbol is not None:
+            head += f" {self.symbol}"
+        lines = [head + (" marked" if self.marked else "")]
+        lines += [f"  note {n}" for n in self.notes]
         if self.marked:
-            lines.append("  marked (realisable only with marked tiles; drawn as the Laves tile)")
             if self.source:
                 lines.append(f"  source {self.source}")
             return "\n".join(lines)
+        if self.edge_offset:
+            lines.append(f"  edge-offset {self.edge_offset}")
         lines.append(f"  parameterization {self.parameterization}")
         lines.append(f"  colouring {self.colouring_text}")
         lines.append("  aspects " + ", ".join(self.aspects))
-        lines.append("  rules")
-        lines += [f"    {r}" for r in self.rules]
+        lines += [f"  rule {r}" for r in self.rules]
         return "\n".join(lines)
 
 
