@@ -84,7 +84,16 @@ def laves_polygon(topology: str) -> np.ndarray:
 
 
 class HopEngine:
-    """Hops and symmetry data of one template at one set of tiling vertices."""
+    """Hops and symmetry data of one incidence symbol at one set of tiling vertices.
+
+    Edge i (label x, sign s) is adjacent to label y with sign t. The neighbour across edge i
+    presents its edge j, the *first* edge labelled y (Appendix A's rules assume this choice:
+    when the tile has symmetries, another choice changes the hop by a tile symmetry and the
+    rules then walk across different edges). With T_k the similarity taking the unit segment
+    onto edge k, the hop is ``H_i = T_i O T_j^-1`` where O is the half-turn about (1/2, 0)
+    for a direct hop (t = s * s_j) and the mirror in the x axis otherwise (always for
+    undirected edges, whose neighbour is a mirror image).
+    """
 
     def __init__(self, symbol: IncidenceSymbol, verts: np.ndarray) -> None:
         self.symbol = symbol
