@@ -11,7 +11,7 @@ region.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -39,6 +39,8 @@ class SubstitutionTiling(Tiling):
         depth: int | None = None,
         seed: str | None = None,
         spec_source: Mapping[str, Any] | None = None,
+        params: Sequence[float] | None = None,
+        edges: Sequence[str] | None = None,
     ) -> None:
         self.system = system
         self.name = system.name
@@ -50,11 +52,51 @@ class SubstitutionTiling(Tiling):
             raise ParameterError(f"seed {seed!r} is not a prototile of {system.name}; valid: {', '.join(names)}")
         self.seed = seed
         self._spec_source = dict(spec_source) if spec_source is not None else {"system": system.name}
+        self.params = [float(v) for v in params] if params is not None else None
+        self.edges = list(edges) if edges is not None else None
+        self._shaped: list[Prototile] | None = None
+        self._classes: Any = None
+        if self.params is not None or self.edges is not None:
+            self._shaped = self._shape_tiles()
+
+    def _shape_tiles(self) -> list[Prototile]:
+        """Shaped whole tiles from params (tooth heights) and/or named edge shapes (§6.3)."""
+        from tilekit.errors import GeometryError
+        from tilekit.plugins.substitution import shapes
+
+        if self.system.output_prototiles is None:
+            raise ParameterError(
+                f"{self.name} has no assembled whole tiles; edge shapes apply to penrose-p2, "
+                "penrose-p3 and other systems with an [assemble] table"
+            )
+        try:
+            classes = _edge_classes(self.system)
+        except GeometryError as exc:
+            raise ParameterError(f"{self.name}: edges cannot carry interlocking shapes ({exc})") from None
+        letters = "abcdefghijklmnopqrstuvwxyz"[: classes.count]
+        heights = list(self.params or [])
+        if len(heights) > classes.count:
+            raise ParameterError(
+                f"{self.name} has {classes.count} free edge shape(s) ({', '.join(letters)}); "
+                f"{len(heights)} params given"
+            )
+        defaults = [0.1, -0.08, 0.06, -0.05]
+        heights += [defaults[i % 4] for i in range(len(heights), classes.count)]
+        shape_list = [shapes.default_shape(h) for h in heights]
+        for text in self.edges or []:
+            name, pts = shapes.parse_edge_shape(text)
+            if name not in letters:
+                raise ParameterError(
+                    f"edge shape {name!r} is not one of {self.name}'s edge classes {', '.join(letters)}"
+                )
+            shape_list[letters.index(name)] = pts
+        self._classes = classes
+        return shapes.shaped_tiles(self.system.tiles, classes, shape_list)
 
     # ------------------------------------------------------------------ Tiling API
     @property
     def prototiles(self) -> list[Prototile]:
-        return self.system.tiles
+        return self._shaped if self._shaped is not None else self.system.tiles
 
     def _seed_index(self) -> int:
         if self.seed is not None:
@@ -109,7 +151,11 @@ class SubstitutionTiling(Tiling):
         """Tiles meeting ``region`` (every tile of the fixed-depth patch when region is None)."""
         reg = as_region(region) if region is not None else None
         proto, transform = self.raw(reg)
-        patch = Patch(self.system.tiles, proto, transform, colour=proto)
+        if self._shaped is not None:
+            from tilekit.plugins.substitution.shapes import canonical_transforms
+
+            transform = canonical_transforms(proto, transform, self._classes.mirror)
+        patch = Patch(self.prototiles, proto, transform, colour=proto)
         if reg is not None:
             patch = patch.clip(reg)
         return patch
@@ -119,19 +165,31 @@ class SubstitutionTiling(Tiling):
         return shapely.box(-6 * size, -6 * size, 6 * size, 6 * size)
 
     def configure(self, **options: Any) -> SubstitutionTiling:
-        """Options: ``depth`` (int, fixed substitution depth), ``seed`` (prototile name)."""
+        """Options: ``depth`` (int, fixed substitution depth), ``seed`` (prototile name),
+        ``params`` (tooth heights of the free edge shapes a, b, ... of assembled systems) and
+        ``edges`` ('a=x,y:x,y' edge shapes from (0,0) to (1,0), interior points only)."""
         depth = options.pop("depth", self.depth)
         seed = options.pop("seed", self.seed)
+        params = options.pop("params", self.params)
+        edges = options.pop("edges", self.edges)
         if options:
             raise ParameterError(
-                f"{self.name} does not take option(s) {', '.join(sorted(options))}; valid: depth, seed"
+                f"{self.name} does not take option(s) {', '.join(sorted(options))}; "
+                "valid: depth, seed, params, edges"
             )
         if depth is not None:
             try:
                 depth = int(depth)
             except (TypeError, ValueError):
                 raise ParameterError(f"depth {depth!r} is not an integer") from None
-        return SubstitutionTiling(self.system, depth, seed, self._spec_source)
+        if params is not None:
+            try:
+                params = [float(v) for v in params]
+            except (TypeError, ValueError):
+                raise ParameterError(f"params {params!r} are not numbers") from None
+        if isinstance(edges, str):
+            edges = [edges]
+        return SubstitutionTiling(self.system, depth, seed, self._spec_source, params, edges)
 
     def spec(self) -> dict[str, Any]:
         out = dict(self._spec_source)
@@ -139,6 +197,10 @@ class SubstitutionTiling(Tiling):
             out["depth"] = self.depth
         if self.seed is not None:
             out["seed"] = self.seed
+        if self.params is not None:
+            out["params"] = self.params
+        if self.edges is not None:
+            out["edges"] = self.edges
         return out
 
     # ------------------------------------------------------------------ facts
@@ -299,8 +361,20 @@ def tiling_from_spec(spec: Mapping[str, Any], systems: Mapping[str, Substitution
         raise ParseError("substitution spec needs 'system' (a built-in name) or 'system_data'")
     source = {k: spec[k] for k in ("system", "system_data", "source") if k in spec}
     tiling = make_tiling(system, spec_source=source)
-    options = {k: spec[k] for k in ("depth", "seed") if k in spec}
+    options = {k: spec[k] for k in ("depth", "seed", "params", "edges") if k in spec}
     return tiling.configure(**options) if options else tiling
+
+
+_EDGE_CLASS_CACHE: dict[int, Any] = {}
+
+
+def _edge_classes(system: SubstitutionSystem) -> Any:
+    from tilekit.plugins.substitution.shapes import edge_classes
+
+    key = id(system)
+    if key not in _EDGE_CLASS_CACHE:
+        _EDGE_CLASS_CACHE[key] = edge_classes(system)
+    return _EDGE_CLASS_CACHE[key]
 
 
 def make_tiling(system: Any, spec_source: Mapping[str, Any] | None = None) -> SubstitutionTiling:
