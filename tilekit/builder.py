@@ -286,6 +286,13 @@ class PatchBuilder:
         )
         self.scale = scale
         self.tol = tolerance * scale
+        shortest = min(
+            float(np.linalg.norm(np.roll(p.outline, -1, axis=0) - p.outline, axis=1).min())
+            for p in self.prototiles
+        )
+        #: Angles measured from edge directions are trusted to this: vertices merge within
+        #: 2 tol, so a direction along the shortest edge may turn by up to 4 tol / length.
+        self.angle_tol = max(ANGLE_TOL, 4 * self.tol / shortest)
         self._prepare()
 
     # ------------------------------------------------------------------ preparation
@@ -419,6 +426,7 @@ class PatchBuilder:
         self._pmin = np.zeros((cap, self._K))
         self._pmax = np.zeros((cap, self._K))
         self._heap: list[tuple[Any, int, tuple[int, int]]] = []
+        self._directions: dict[int, float] = {}
         self._dheap: list[tuple[float, int, tuple[int, int]]] = []
         self._pcount = 0
         self._pfree: list[int] = []
@@ -526,13 +534,11 @@ class PatchBuilder:
         sep |= ((pa.max(-1) <= bmin[None] + tol) | (bmax[None] <= pa.min(-1) + tol)).any(-1)
         if not sep.all():
             return "overlap"
-        # corners strictly inside edges (T-junctions), both ways in one test: the patch is
-        # edge to edge already, so neighbour-on-neighbour pairs never fire
+        # corners strictly inside edges (T-junctions), both ways; linear in the neighbours
         nb_out = self._tpts[neighbours].reshape(-1, 2)
-        points = np.concatenate([pts, nb_out])
-        starts = np.concatenate([nb_out, pts])
-        ends = np.concatenate([self._tnext[neighbours].reshape(-1, 2), nxt])
-        if self._t_junction(points, starts, ends):
+        if self._t_junction(pts, nb_out, self._tnext[neighbours].reshape(-1, 2)):
+            return "vertex on edge"
+        if self._t_junction(nb_out, pts, nxt):
             return "vertex on edge"
         return None
 
@@ -688,12 +694,11 @@ class PatchBuilder:
         for i in range(n):
             nxt = corners[(i + 1) % n].start % TWO_PI
             gap = (nxt - ends[i]) % TWO_PI
-            if gap > ANGLE_TOL and TWO_PI - gap > ANGLE_TOL:
+            if gap > self.angle_tol and TWO_PI - gap > self.angle_tol:
                 breaks.append((i, gap))
-            elif n == 1:
-                breaks.append((i, TWO_PI - total))
-        if not breaks:  # cannot happen for an open vertex, kept for safety
-            breaks = [(n - 1, TWO_PI - total)]
+        if len(breaks) <= 1:
+            # one fan: its gap is exactly what the corner angles leave (no direction noise)
+            breaks = [(breaks[0][0] if breaks else n - 1, TWO_PI - total)]
         fans = []
         gaps = []
         for b_idx, (i, gap) in enumerate(breaks):
@@ -720,9 +725,10 @@ class PatchBuilder:
             if self._angle_set is not None:
                 # every gap must be fillable by corner angles
                 view = self.vertex_view(v)
+                tol = self.angle_tol
                 for gap in view.gaps:
-                    i = np.searchsorted(self._angle_set, gap - 1e-6)
-                    if i >= len(self._angle_set) or abs(self._angle_set[i] - gap) > 1e-6:
+                    i = np.searchsorted(self._angle_set, gap - tol)
+                    if i >= len(self._angle_set) or abs(self._angle_set[i] - gap) > tol:
                         return self._reject(stats, "unfillable angle")
                 if self.rule is not None and not self.rule.open(view):
                     return self._reject(stats, "open vertex rule")
@@ -790,13 +796,25 @@ class PatchBuilder:
                 best, best_key = e, key
         return best, covered
 
+    def _snap_direction(self, theta: float) -> float:
+        """The first direction seen within 1e-9 rad of ``theta``, so tiles placed along
+        parallel edges get bit-identical rotations; otherwise the rounding error of an edge's
+        direction, amplified along every chain of placements, grows with each generation."""
+        key = round(theta * 1e9)
+        for k in (key, key - 1, key + 1):
+            seen = self._directions.get(k)
+            if seen is not None and abs(seen - theta) <= 1e-9:
+                return seen
+        self._directions[key] = theta
+        return theta
+
     def _candidates_for(self, e: tuple[int, int]) -> tuple[list[int], np.ndarray]:
         a, b = e
         pa = np.asarray(self._vpos[a])
         pb = np.asarray(self._vpos[b])
         d = pa - pb
         length = float(np.hypot(*d))
-        theta = math.atan2(d[1], d[0])
+        theta = self._snap_direction(math.atan2(d[1], d[0]))
         frame = Affine.rotation(theta)
         frame[:2, 2] = pb
         owner = self._tiles[self._edges[e][0]]

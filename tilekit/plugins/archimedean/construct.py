@@ -100,11 +100,11 @@ class VertexTypeRule:
                     break
                 # fill the gap with the next polygons of the cycle
                 acc = 0.0
-                while acc < gap - 1e-6 and used < k:
+                while acc < gap - 1e-5 and used < k:
                     acc += polygon_angle(cyc[pos % k])
                     pos += 1
                     used += 1
-                if abs(acc - gap) > 1e-6:
+                if abs(acc - gap) > 1e-5:
                     ok = False
                     break
             if ok and used == k:
