@@ -271,6 +271,9 @@ class KeypointTiling(SubstitutionTiling):
             )
         self.seed = seed
         self._spec_source = dict(spec_source) if spec_source is not None else {"system": system.name}
+        self.params = None
+        self.edges = None
+        self._shaped = None
 
     def _seed_index(self) -> int:
         return self.system.labels.index(self.seed) if self.seed is not None else self.system.seed
