@@ -140,4 +140,4 @@ def test_marked_tilings_agree_with_the_geometric_symmetry_finder():
         if t.marked:
             tiling = MarkedTiling(ih)
             assert symmetry.wallpaper_group(tiling).orbifold == wallpaper_group(tiling) == type_properties(ih)["symmetry_group"]
-    assert type_properties(19)["symmetry_group_iuc"] == "p3m1"  # as listed for IH19 (gist TriHydera/63e7...)
+    assert type_properties(19)["wallpaper_group"] == "p3m1"  # as listed for IH19 (gist TriHydera/63e7...)

@@ -37,7 +37,7 @@ def computed_properties(ih: int) -> dict[str, Any]:
 
     tiling = tiling_from_spec({"ih": ih})
     group = wallpaper_group(tiling)  # type: ignore[arg-type]
-    out: dict[str, Any] = {"symmetry_group": group, "symmetry_group_iuc": ORBIFOLD_TO_IUC[group]}
+    out: dict[str, Any] = {"symmetry_group": group, "orbifold": group, "wallpaper_group": ORBIFOLD_TO_IUC[group]}
     if load_templates()[ih].marked:  # no default colouring in the book for these
         return out
     out["perfect_colouring"] = is_perfect_colouring(tiling)  # type: ignore[arg-type]
@@ -60,7 +60,7 @@ def properties_table_text() -> str:
                 [
                     str(ih),
                     p["symmetry_group"],
-                    p["symmetry_group_iuc"],
+                    p["wallpaper_group"],
                     {True: "yes", False: "no", None: "-"}[p.get("perfect_colouring")],
                     p.get("heesch_type", "-"),
                 ]
@@ -79,7 +79,9 @@ def stored_properties() -> dict[int, dict[str, Any]]:
         parts = raw.split("\t")
         if len(parts) != len(_COLUMNS) or parts[3] not in ("yes", "no", "-"):
             raise ParseError(f"{PROPERTIES_FILE}, line {lineno}: expected {len(_COLUMNS)} tab-separated columns {_COLUMNS}")
-        row: dict[str, Any] = {"symmetry_group": parts[1], "symmetry_group_iuc": parts[2]}
+        # catalogue-wide keys: symmetry_group and orbifold in orbifold notation,
+        # wallpaper_group in IUC notation (as the archimedean and other families report them)
+        row: dict[str, Any] = {"symmetry_group": parts[1], "orbifold": parts[1], "wallpaper_group": parts[2]}
         if parts[3] != "-":
             row["perfect_colouring"] = parts[3] == "yes"
         if parts[4] != "-":
