@@ -51,9 +51,13 @@ class Family:
 class CatalogueRecord:
     """One known tiling (or search result) as the catalogue stores it.
 
-    ``properties`` are the facts the catalogue indexes and queries: plain JSON scalars
-    (str, int, float, bool) or lists of them. ``aliases`` are other spellings of ``name``
-    that ``tilekit show`` accepts (e.g. ``4.4.4.4`` for ``4^4``).
+    ``properties`` are the facts the catalogue indexes and queries: JSON scalars (str, int,
+    float, bool) or lists of them, stored one row per element so ``--where polygons=6`` tests
+    membership; deeper JSON (e.g. a matrix) is stored whole and shown, not compared.
+    Catalogue-wide keys: ``periodic``, ``k_hedral``, ``k_isohedral``, ``edge_to_edge``,
+    ``symmetry_group`` and ``orbifold`` (orbifold notation, e.g. ``*632``) and
+    ``wallpaper_group`` (IUC notation, e.g. ``p6m``). ``aliases`` are other spellings of
+    ``name`` that ``tilekit show`` accepts (e.g. ``4.4.4.4`` for ``4^4``).
     """
 
     family: str
