@@ -87,6 +87,16 @@ def test_deterministic():
     assert np.array_equal(a.patch.transform, b.patch.transform)
 
 
+@pytest.mark.parametrize("order", ["bfs", "dfs", "nearest", lambda e: -e["angle_sum"]])
+def test_frontier_orders(order):
+    """Every order (and a callable key: fill edges at the fullest vertex first) grows a valid
+    patch of the (3.12^2) set reaching the radius."""
+    protos = [Prototile(regular_polygon(3)), Prototile(regular_polygon(12))]
+    res = build_patch(protos, radius=3.5, seed=1, order=order, max_nodes=100_000)
+    assert res.ok, res.stats.reason
+    assert res.patch.validate(_disc(res, 3.5))
+
+
 def test_tile_goal_and_bfs_order():
     """Exercise 6.2: breadth-first from one tile to a given number of tiles; the first ring of a
     square patch is the 4 edge neighbours of the seed."""

@@ -80,6 +80,12 @@ def test_summary(results):
     s = search.summarize(params, res)
     assert s["euclidean_types"] == 21 and s["euclidean_species"] == 17
     assert s["tiling_types"] == 11 and s["impossible_types"] == 10 and s["undecided_types"] == 0
+    # the 11 types fall into 10 species (3^3.4^2 and 3^2.4.3.4 share one); species such as
+    # 3^2.6^2 hold a type that tiles (3.6.3.6) and one that does not (3^2.6^2)
+    assert s["tiling_species"] == 10
+    eu = {r["vertex_type"]: r for r in res if r["geometry"] == "euclidean"}
+    assert eu["3^2.6^2"]["status"] == "impossible" and eu["3^2.6^2"]["species_tiles"] is True
+    assert eu["3.7.42"]["species_tiles"] is False
 
 
 def test_spherical_types_give_the_solids(results):

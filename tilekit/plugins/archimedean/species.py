@@ -197,10 +197,16 @@ def run_chunk(params: Mapping[str, Any], chunk: Mapping[str, Any]) -> ChunkResul
     if chunk["geometry"] == "euclidean":
         species = tuple(int(x) for x in chunk["species"])
         types = types_of_species(species)
+        found = []
         for vt in types:
             props = _base_properties(vt)
             props["types_in_species"] = len(types)
             props.update(classify_euclidean(vt, float(p["radius"]), int(p["max_nodes"])))
+            found.append((vt, props))
+        # a species tiles when one of its types does (exercise 4.10)
+        species_tiles = any(props["status"] == "tiles" for _, props in found)
+        for vt, props in found:
+            props["species_tiles"] = species_tiles
             results.append(props)
             records.extend(rec.vertex_type_records(vt, props))
     else:
@@ -228,6 +234,7 @@ def summarize(params: Mapping[str, Any], results: list[dict[str, Any]]) -> dict[
     return {
         "euclidean_types": len(eu),
         "euclidean_species": len({r["species"] for r in eu}),
+        "tiling_species": len({r["species"] for r in eu if r.get("species_tiles")}),
         "tiling_types": len(tiles),
         "impossible_types": sum(1 for r in eu if r.get("status") == "impossible"),
         "undecided_types": sum(1 for r in eu if r.get("status") == "undecided"),
