@@ -258,6 +258,12 @@ def test_families_and_records():
     assert "3^4.6" in by_name["3^4.6l"].aliases
 
 
+def test_describe():
+    text = archimedean_tiling("4.6.12").describe()
+    assert "3 4-gons, 2 6-gons, 1 12-gon" in text and "[4.6.12]" in text
+    assert "5 corners" in laves_tiling("3^2.4.3.4").describe()
+
+
 def test_configure_rejects_options():
     with pytest.raises(ParameterError):
         archimedean_tiling("4^4").configure(params=[1.0])

@@ -33,6 +33,10 @@ from tilekit.tiling import Patch, PeriodicTiling, Prototile
 SIZE_COLOURS = (3, 4, 6, 8, 12)
 
 
+def _fmt_vec(v: np.ndarray) -> str:
+    return "(" + ", ".join(f"{float(x):.6g}" for x in np.asarray(v).ravel()) + ")"
+
+
 def _zap(a: np.ndarray) -> np.ndarray:
     """Float noise below 1e-12 set to exact zero (e.g. -4e-16 in a lattice vector), which
     keeps shared vertices on an axis bit-identical for GEOS's overlay in Patch.validate."""
@@ -418,6 +422,16 @@ class ArchimedeanTiling(PeriodicTiling):
     def spec(self) -> dict[str, Any]:
         return {"kind": "archimedean", "vertex_type": str(self.vertex_type), "hand": self.hand}
 
+    def describe(self) -> str:
+        sizes = self.vertex_type.sizes
+        counts = [int(sum(1 for p in self.unit_prototile if sizes[p] == n)) for n in sizes]
+        per_unit = ", ".join(f"{c} {n}-gon{'s' if c > 1 else ''}" for n, c in zip(sizes, counts))
+        return (
+            f"Every vertex: {self.vertex_type.dotted} (polygons met in order round it).\n"
+            f"Translational unit: {per_unit}; v1 = {_fmt_vec(self.v1)}, v2 = {_fmt_vec(self.v2)}.\n"
+            f"Dual: the Laves tiling [{self.vertex_type}]{self.hand}."
+        )
+
     def properties(self) -> dict[str, Any]:
         props = super().properties()
         props.update(archimedean_properties(self))
@@ -434,6 +448,15 @@ class LavesTiling(PeriodicTiling):
 
     def spec(self) -> dict[str, Any]:
         return {"kind": "laves", "vertex_type": str(self.vertex_type), "hand": self.hand}
+
+    def describe(self) -> str:
+        corners = ", ".join(f"{p}" for p in self.vertex_type.polygons)
+        return (
+            f"Topological type [{self.vertex_type}]: each tile has {len(self.vertex_type.polygons)} corners, "
+            f"where {corners} tiles meet.\n"
+            f"Prototile corners: {', '.join(_fmt_vec(p) for p in self.prototiles[0].outline)}.\n"
+            f"{len(self.unit_prototile)} tiles per translational unit; dual of ({self.vertex_type}){self.hand}."
+        )
 
     def properties(self) -> dict[str, Any]:
         props = super().properties()
