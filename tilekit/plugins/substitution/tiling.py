@@ -161,6 +161,12 @@ class SubstitutionTiling(Tiling):
         return patch
 
     def default_region(self) -> BaseGeometry:
+        """A window of about 12 tiles across, or, with a fixed depth, the whole inflated seed."""
+        if self.depth is not None:
+            pts = Affine.apply(Affine.scaling(self.system.scale**self.depth), self.system.prototiles[self._seed_index()].outline)
+            x0, y0 = pts.min(axis=0)
+            x1, y1 = pts.max(axis=0)
+            return shapely.box(x0, y0, x1, y1)
         size = math.sqrt(max(abs(p.area) for p in self.system.tiles))
         return shapely.box(-6 * size, -6 * size, 6 * size, 6 * size)
 
@@ -309,6 +315,17 @@ class KeypointTiling(SubstitutionTiling):
     def raw(self, region: Any = None) -> tuple[np.ndarray, np.ndarray]:
         p = self.patch(region)
         return p.prototile, p.transform
+
+    def default_region(self) -> BaseGeometry:
+        """About 12 tiles across, or, with a fixed depth, the level-d supertile's bounding box."""
+        if self.depth is not None:
+            _, tr, _ = self.system.generate(self.depth, seed_label=self._seed_index())
+            pts = Affine.apply(tr, self.system.tile.outline).reshape(-1, 2)
+            x0, y0 = pts.min(axis=0)
+            x1, y1 = pts.max(axis=0)
+            return shapely.box(x0, y0, x1, y1)
+        size = math.sqrt(abs(self.system.tile.area))
+        return shapely.box(-6 * size, -6 * size, 6 * size, 6 * size)
 
     def configure(self, **options: Any) -> KeypointTiling:
         depth = options.pop("depth", self.depth)
