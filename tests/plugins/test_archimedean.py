@@ -279,3 +279,22 @@ def test_patch_cost_is_vectorised():
     assert len(patch) > 20_000
     assert time.perf_counter() - start < 5.0
     assert math.isfinite(float(patch.transform.sum()))
+
+
+def test_exercise_4_12_cairo_coordinates():
+    """Exercise 4.12: with the edge joining the two 3-valent corners (the two adjacent 120°
+    corners) from (-1/2, 0) to (1/2, 0), the Cairo tile's other corners are
+    (±(3+√3)/4, (3+√3)/4) and (0, 1+√3/2): the long edges have length (1+√3)/2 and leave the
+    base at 60° (regular 3-valent corners), meeting the 90° corners (regular 4-valent)."""
+    from tilekit.geometry import Affine
+
+    pts = laves_prototile("3^2.4.3.4").outline
+    k = len(pts)
+    nxt, prv = np.roll(pts, -1, axis=0) - pts, np.roll(pts, 1, axis=0) - pts
+    ang = np.degrees(np.arccos(np.sum(nxt * prv, axis=1) / np.hypot(*nxt.T) / np.hypot(*prv.T)))
+    (i,) = [i for i in range(k) if abs(ang[i] - 120) < 1e-6 and abs(ang[(i + 1) % k] - 120) < 1e-6]
+    m = Affine.segment_map((-0.5, 0.0), (0.5, 0.0), pts[i], pts[(i + 1) % k])  # similarity
+    placed = Affine.apply(m, np.roll(pts, -i, axis=0))
+    s3 = math.sqrt(3)
+    expect = [(-0.5, 0), (0.5, 0), ((3 + s3) / 4, (3 + s3) / 4), (0, 1 + s3 / 2), (-(3 + s3) / 4, (3 + s3) / 4)]
+    assert np.allclose(placed, expect, atol=1e-9)
