@@ -309,3 +309,33 @@ def test_custom_system_from_file_round_trips_through_its_spec(tmp_path: Path) ->
     back = from_spec(t.spec())
     region = (-4, -4, 4, 4)
     assert len(back.patch(region)) == len(t.patch(region)) > 50
+
+
+def test_cli_renders_builtin_and_custom_systems(tmp_path: Path) -> None:
+    """`tilekit render penrose-p3 --depth 6 -o p3.svg` and `tilekit render --system my.toml`."""
+    from click.testing import CliRunner
+
+    from tilekit.cli import cli
+
+    db = f"sqlite:///{tmp_path / 'cat.db'}"
+    out = tmp_path / "p3.svg"
+    res = CliRunner().invoke(cli, ["--catalogue", db, "render", "penrose-p3", "--depth", "6", "-o", str(out)])
+    assert res.exit_code == 0, res.output
+    s = builtin_systems()["penrose-p3"]
+    halves, tr = generate(s, 6, Affine.scaling(PHI**6))
+    whole, _ = assemble(s, halves, tr)
+    assert f"({len(whole)} tiles)" in res.output  # the whole depth-6 patch, not a window
+    assert out.read_text().startswith("<svg") or "<svg" in out.read_text()[:200]
+    src = Path(__file__).resolve().parents[2] / "catalogue" / "substitution" / "chair.toml"
+    mine = tmp_path / "mine.toml"
+    mine.write_text(src.read_text().replace('name = "chair"', 'name = "my-chair"', 1))
+    res = CliRunner().invoke(
+        cli, ["--catalogue", db, "render", "--system", str(mine), "--depth", "3", "-o", str(tmp_path / "c.svg")]
+    )
+    assert res.exit_code == 0, res.output
+    assert "(64 tiles)" in res.output  # 4^3 chairs
+    broken = tmp_path / "broken.toml"
+    broken.write_text(src.read_text().replace('vertices = [[2, 0], [2, 1], ["3/2", 1]]', 'vertices = [[2, 0], [2, 1], [2, 1]]'))
+    res = CliRunner().invoke(cli, ["--catalogue", db, "render", "--system", str(broken), "-o", str(tmp_path / "b.svg")])
+    assert res.exit_code != 0
+    assert "broken.toml" in res.output and "rule for 'chair', child #3" in res.output
