@@ -97,6 +97,25 @@ def test_frontier_orders(order):
     assert res.patch.validate(_disc(res, 3.5))
 
 
+def test_fill_goal_covers_a_box():
+    """A fill predicate as the goal: close every open edge whose midpoint lies inside a box;
+    the patch then covers the box (here squares, so exactly the 5 x 3 unit cells)."""
+    inside = lambda e: -1.9 < e["midpoint"][0] < 2.9 and -0.9 < e["midpoint"][1] < 1.9  # noqa: E731
+    res = build_patch([Prototile(regular_polygon(4))], fill=inside)
+    assert res.ok and len(res.patch) == 15
+    assert res.patch.validate((-2.0, -1.0, 3.0, 2.0))
+    # a first corona: close every edge of the seed tile (4 neighbours for a square)
+    res = build_patch([Prototile(regular_polygon(4))], fill=lambda e: e["tile"] == 0)
+    assert res.ok and len(res.patch) == 5
+    # pentagons on two adjacent edges of a pentagon leave 36° at their common corner, which
+    # no pentagon corner fills (the angle test sees it at once): no first corona that could
+    # be part of a tiling; without the angle test the flower of 5 pentagons is a valid patch
+    pent = [Prototile(regular_polygon(5))]
+    assert build_patch(pent, fill=lambda e: e["tile"] == 0).status == "exhausted"
+    flower = build_patch(pent, fill=lambda e: e["tile"] == 0, angle_check=False)
+    assert flower.ok and len(flower.patch) == 6 and flower.patch.validate()
+
+
 def test_tile_goal_and_bfs_order():
     """Exercise 6.2: breadth-first from one tile to a given number of tiles; the first ring of a
     square patch is the 4 edge neighbours of the seed."""
@@ -197,6 +216,8 @@ def test_bad_input_is_rejected():
         build_patch(sq)
     with pytest.raises(ParameterError, match="exactly one goal"):
         build_patch(sq, tiles=3, radius=2.0)
+    with pytest.raises(ParameterError, match="exactly one goal"):
+        build_patch(sq, radius=2.0, fill=lambda e: True)
     with pytest.raises(ParameterError, match="order"):
         PatchBuilder(sq, order="sideways")
     with pytest.raises(ParameterError, match="seed"):

@@ -750,10 +750,12 @@ class PatchBuilder:
         e = entry[2]
         return e in self._open and self._edges[e][2] == entry[1]
 
-    def _choose(self, centre: np.ndarray, radius: float | None) -> tuple[tuple[int, int] | None, float]:
+    def _choose(
+        self, centre: np.ndarray, radius: float | None, fill: Callable[[dict[str, Any]], bool] | None = None
+    ) -> tuple[tuple[int, int] | None, float]:
         """The open edge to fill next, and the radius of the disc the patch covers."""
-        if callable(self.order):
-            return self._choose_by_scan(radius)
+        if callable(self.order) or fill is not None:
+            return self._choose_by_scan(radius, fill)
         dheap = self._dheap
         while dheap and not self._valid(dheap[0]):
             heapq.heappop(dheap)
@@ -771,27 +773,43 @@ class PatchBuilder:
             return top[2], covered
         return None, covered
 
-    def _choose_by_scan(self, radius: float | None) -> tuple[tuple[int, int] | None, float]:
+    def _edge_info(self, e: tuple[int, int]) -> dict[str, Any]:
+        info = self._edges[e]
+        pa, pb = self._vpos[e[0]], self._vpos[e[1]]
+        return {
+            "serial": info[2],
+            "distance": info[3],
+            "midpoint": ((pa[0] + pb[0]) / 2, (pa[1] + pb[1]) / 2),
+            "start": pa,
+            "end": pb,
+            "angle_sum": max(self._vsum[e[0]], self._vsum[e[1]]),
+            "tile": info[0],
+            "prototile": self._cands[self._tiles[info[0]].cand].prototile,
+        }
+
+    def _choose_by_scan(
+        self, radius: float | None, fill: Callable[[dict[str, Any]], bool] | None = None
+    ) -> tuple[tuple[int, int] | None, float]:
         best = None
         best_key = None
         covered = math.inf
-        for e in self._open:
+        for e in self._open:  # the key ends with the serial, so the choice is order-free
             info = self._edges[e]
             dist = info[3]
             covered = min(covered, dist)
             if radius is not None and dist >= radius - self.tol:
                 continue
-            key = (
-                self.order(
-                    {
-                        "serial": info[2],
-                        "distance": dist,
-                        "midpoint": tuple((np.asarray(self._vpos[e[0]]) + self._vpos[e[1]]) / 2),
-                        "angle_sum": max(self._vsum[e[0]], self._vsum[e[1]]),
-                    }
-                ),
-                info[2],
-            )
+            data = self._edge_info(e)
+            if fill is not None and not fill(data):
+                continue
+            if self.order == "bfs":
+                key: Any = info[2]
+            elif self.order == "dfs":
+                key = -info[2]
+            elif self.order == "nearest":
+                key = (round(dist, 9), info[2])
+            else:
+                key = (self.order(data), info[2])
             if best_key is None or key < best_key:
                 best, best_key = e, key
         return best, covered
@@ -838,16 +856,20 @@ class PatchBuilder:
         *,
         tiles: int | None = None,
         radius: float | None = None,
+        fill: Callable[[dict[str, Any]], bool] | None = None,
         seed: int = 0,
         seed_transform: np.ndarray | None = None,
         max_nodes: int = 1_000_000,
         max_seconds: float | None = None,
     ) -> BuildResult:
         """Grow a patch from prototile ``seed`` (placed by ``seed_transform``, default the
-        identity) until it has ``tiles`` tiles or covers the disc of ``radius`` round the
-        seed's centroid. Stops at ``max_nodes`` candidate placements or ``max_seconds``."""
-        if (tiles is None) == (radius is None):
-            raise ParameterError("give exactly one goal: tiles=N or radius=R")
+        identity) until it has ``tiles`` tiles, or covers the disc of ``radius`` round the
+        seed's centroid, or has no open edge that ``fill(edge)`` accepts (``edge`` as for a
+        callable order, plus ``tile`` and ``prototile`` of the tile that owns it: e.g. "every
+        edge inside this box", or "every edge of the seed" for a first corona). Stops at
+        ``max_nodes`` candidate placements or ``max_seconds``."""
+        if sum(g is not None for g in (tiles, radius, fill)) != 1:
+            raise ParameterError("give exactly one goal: tiles=N, radius=R or fill=predicate")
         if tiles is not None and tiles < 1:
             raise ParameterError(f"tiles={tiles}: the goal must be at least 1 tile")
         if radius is not None and not radius > 0:
@@ -887,12 +909,16 @@ class PatchBuilder:
         while True:
             n = len(self._tiles)
             stats.max_tiles = max(stats.max_tiles, n)
-            edge, covered = self._choose(centre, radius)
+            edge, covered = self._choose(centre, radius, fill)
             if radius is not None:
                 stats.max_radius = max(stats.max_radius, min(covered, radius))
-            if (tiles is not None and n >= tiles) or (radius is not None and edge is None):
+            if (tiles is not None and n >= tiles) or (tiles is None and edge is None):
                 stats.seconds = time.perf_counter() - started
-                goal = f"{tiles} tiles" if tiles is not None else f"the disc of radius {radius:g}"
+                goal = (
+                    f"{tiles} tiles" if tiles is not None
+                    else f"the disc of radius {radius:g}" if radius is not None
+                    else "every edge the fill predicate asks for"
+                )
                 stats.reason = f"reached {goal} with {n} tiles"
                 return BuildResult("complete", self._patch(), stats)
             if edge is None:  # a tile goal and no open edge: impossible in the plane
@@ -921,7 +947,12 @@ class PatchBuilder:
                 stack.pop()
                 if not stack:
                     stats.seconds = time.perf_counter() - started
-                    if radius is not None:
+                    if fill is not None:
+                        stats.reason = (
+                            "exhausted: no patch from this seed closes every edge the fill predicate "
+                            f"asks for (largest patch {stats.max_tiles} tiles)"
+                        )
+                    elif radius is not None:
                         stats.reason = (
                             f"exhausted: no patch covering the disc of radius {radius:g} round the seed "
                             f"exists; every branch died by radius {stats.max_radius:.3g} "
