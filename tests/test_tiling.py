@@ -10,7 +10,15 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from tilekit import Affine, Colouring, GeometryError, ParameterError, Patch, PeriodicTiling, Prototile
+from tilekit import (
+    Affine,
+    Colouring,
+    GeometryError,
+    ParameterError,
+    Patch,
+    PeriodicTiling,
+    Prototile,
+)
 from tilekit.geometry import regular_polygon
 
 SQRT3 = math.sqrt(3)

@@ -20,7 +20,7 @@ from shapely.geometry.base import BaseGeometry
 
 from tilekit.colouring import Colouring
 from tilekit.errors import GeometryError, ParameterError, ParseError
-from tilekit.geometry import AREA_TOL, EPS, Affine, as_region, signed_area, translations_into
+from tilekit.geometry import AREA_TOL, EPS, Affine, as_region, signed_area
 
 #: Refuse to rasterize more lattice cells than this in one patch (a typo guard, not a limit
 #: of the method: 20 million cells is already hundreds of millions of tiles).
@@ -552,7 +552,6 @@ class PeriodicTiling(Tiling):
         """Every tile whose bounding box meets the region's, by lattice rasterization (§3.4)."""
         reg = as_region(region)
         ab = self.lattice_points(reg)
-        m = len(self.unit_prototile)
         t = ab @ self.basis.T  # (L, 2)
         rx0, ry0, rx1, ry1 = reg.bounds
         ub = self.unit_tile_bounds()  # (m, 4)
