@@ -135,6 +135,11 @@ def classify_euclidean(vt: VertexType, radius: float, max_nodes: int) -> dict[st
         "backtracks": res.stats.backtracks,
         "reached_radius": round(res.stats.max_radius, 6),
     }
+    if res.stats.rejections:
+        # the local contradictions that killed branches, most frequent first
+        out["contradictions"] = "; ".join(
+            f"{why}: {n}" for why, n in sorted(res.stats.rejections.items(), key=lambda kv: (-kv[1], kv[0]))
+        )
     if res.status == "exhausted":
         out["status"] = "impossible"
         out["reason"] = res.stats.reason
