@@ -298,3 +298,21 @@ def test_exercise_4_12_cairo_coordinates():
     s3 = math.sqrt(3)
     expect = [(-0.5, 0), (0.5, 0), ((3 + s3) / 4, (3 + s3) / 4), (0, 1 + s3 / 2), (-(3 + s3) / 4, (3 + s3) / 4)]
     assert np.allclose(placed, expect, atol=1e-9)
+
+
+@settings(max_examples=30, deadline=None)
+@given(
+    st.sampled_from(HANDS),
+    st.booleans(),
+    st.floats(-60, 60),
+    st.floats(-60, 60),
+    st.floats(0.5, 10),
+    st.floats(0.5, 10),
+)
+def test_random_regions_are_covered(name_hand, dual, cx, cy, w, h):
+    """Any box, anywhere: the Archimedean or Laves patch covers it without overlap."""
+    name, hand = name_hand
+    t = laves_tiling(name, hand) if dual else archimedean_tiling(name, hand)
+    region = (cx - w, cy - h, cx + w, cy + h)
+    report = t.patch(region).validate(region)
+    assert report, report.summary()
