@@ -353,6 +353,18 @@ def test_patches_validate_and_match(name):
     assert len(patch) == 13 * 8  # lattice squares meeting the box: x -3..9, y 1..8
 
 
+def test_patch_of_a_disc_covers_it_and_matches():
+    import shapely
+
+    disc = shapely.Point(3.3, -2.1).buffer(6.0)
+    for name in ("corner-2colour", "stochastic-2colour"):
+        patch = WangTiling(get_tileset(name), seed=1).patch(disc)
+        assert patch.validate(disc).ok
+        assert patch_mismatches(patch) == []
+        # only squares meeting the disc are kept: none lies entirely outside it
+        assert shapely.intersects(disc, patch.geometries()).all()
+
+
 def test_fill_methods_resolve_per_set():
     assert WangTiling(get_tileset("corner-2colour")).fill_method() == "random-access"
     assert WangTiling(get_tileset("stochastic-2colour")).fill_method() == "scanline"
