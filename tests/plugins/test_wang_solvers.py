@@ -168,6 +168,12 @@ def test_limits_raise_solver_limit():
         backtrack_solve(ts, 12, 12, max_nodes=10)
     with pytest.raises(SolverLimit, match="raise max_nodes"):
         builder_solve(ts, 6, 6, max_nodes=5)
+    # Kari 70 x 70 takes CaDiCaL many seconds: CaDiCaL runs in a child process that is
+    # killed at the limit, Glucose is interrupted in process
+    kari = get_tileset("kari-14")
+    for solver in ("cadical195", "glucose4"):
+        with pytest.raises(SolverLimit, match="within 0.3 s"):
+            sat_solve(kari, 70, 70, solver=solver, time_limit=0.3)
 
 
 def test_other_sat_solvers_give_the_same_answers():

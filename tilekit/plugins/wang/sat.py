@@ -30,8 +30,11 @@ from tilekit.errors import ParameterError, SolverLimit
 from tilekit.plugins.wang.check import check_grid
 from tilekit.plugins.wang.tileset import E, N, S, W, WangTileSet
 
-#: python-sat solver names we accept (the others lack interrupt support or are slow here).
+#: python-sat solver names we accept.
 SAT_SOLVERS = ("cadical195", "cadical153", "glucose4", "glucose42", "minisat22", "maplechrono", "lingeling")
+#: Solvers python-sat can interrupt in process; the others run in a forked child under a
+#: time limit, killed when it expires.
+INTERRUPTIBLE = ("glucose4", "glucose42", "minisat22", "maplechrono")
 DEFAULT_SAT_SOLVER = "cadical195"
 
 
@@ -210,10 +213,9 @@ def sat_solve(
     """Decide whether ``tileset`` tiles a rows x cols rectangle (or torus) with ``fixed`` tiles.
 
     A tiling found is checked by the independent :func:`check_grid` before it is returned.
-    With ``time_limit`` (seconds) the solver is interrupted and :class:`SolverLimit` raised.
+    With ``time_limit`` (seconds) the solver is interrupted (or, for CaDiCaL, which python-sat
+    cannot interrupt, run in a child process that is killed) and :class:`SolverLimit` raised.
     """
-    from pysat.solvers import Solver
-
     rows, cols = _size(rows, cols)
     if solver not in SAT_SOLVERS:
         raise ParameterError(f"SAT solver {solver!r} is not supported; choose one of {', '.join(SAT_SOLVERS)}")
@@ -225,21 +227,13 @@ def sat_solve(
     enc = _Encoding(tileset, rows, cols, torus)
     clauses = enc.clauses()
     assumptions = [int(enc.x(i, j, t)) for (i, j), t in fixed_n.items()]
-    with Solver(name=solver, bootstrap_with=clauses) as s:
-        timer = None
-        if time_limit is not None:
-            timer = threading.Timer(float(time_limit), s.interrupt)
-            timer.start()
-            answer = s.solve_limited(assumptions=assumptions, expect_interrupt=True)
-            timer.cancel()
-        else:
-            answer = s.solve(assumptions=assumptions)
-        stats = {"variables": enc.top, "clauses": len(clauses), "solver": solver}
-        try:
-            stats.update({k: int(v) for k, v in (s.accum_stats() or {}).items()})
-        except (NotImplementedError, AttributeError):
-            pass
-        model = s.get_model() if answer else None
+    if time_limit is None:
+        answer, model, extra = _solve_here(solver, clauses, assumptions)
+    elif solver in INTERRUPTIBLE:
+        answer, model, extra = _solve_here(solver, clauses, assumptions, float(time_limit))
+    else:
+        answer, model, extra = _solve_in_child(solver, clauses, assumptions, float(time_limit))
+    stats = {"variables": enc.top, "clauses": len(clauses), "solver": solver, **extra}
     seconds = time.perf_counter() - start
     if answer is None:
         raise SolverLimit(
@@ -251,6 +245,60 @@ def sat_solve(
         grid = enc.decode(model)
         check_grid(grid, tileset, torus=torus, fixed=fixed_n)
     return SolveResult(bool(answer), grid, rows, cols, torus, f"sat:{solver}", seconds, stats)
+
+
+def _solve_here(
+    solver: str, clauses: list[list[int]], assumptions: list[int], time_limit: float | None = None
+) -> tuple[bool | None, list[int] | None, dict[str, int]]:
+    """Solve in this process (interrupting by a timer when ``time_limit`` is given)."""
+    from pysat.solvers import Solver
+
+    with Solver(name=solver, bootstrap_with=clauses) as s:
+        if time_limit is None:
+            answer = s.solve(assumptions=assumptions)
+        else:
+            timer = threading.Timer(time_limit, s.interrupt)
+            timer.start()
+            try:
+                answer = s.solve_limited(assumptions=assumptions, expect_interrupt=True)
+            finally:
+                timer.cancel()
+        try:
+            extra = {k: int(v) for k, v in (s.accum_stats() or {}).items()}
+        except (NotImplementedError, AttributeError):
+            extra = {}
+        return answer, (s.get_model() if answer else None), extra
+
+
+def _child(conn: Any, solver: str, clauses: list[list[int]], assumptions: list[int]) -> None:
+    conn.send(_solve_here(solver, clauses, assumptions))
+    conn.close()
+
+
+def _solve_in_child(
+    solver: str, clauses: list[list[int]], assumptions: list[int], time_limit: float
+) -> tuple[bool | None, list[int] | None, dict[str, int]]:
+    """Solve in a forked process and kill it at the time limit (for solvers such as CaDiCaL
+    that python-sat cannot interrupt). The child inherits the clauses by fork, not pickling."""
+    import multiprocessing
+
+    ctx = multiprocessing.get_context("fork")
+    parent, child = ctx.Pipe(duplex=False)
+    proc = ctx.Process(target=_child, args=(child, solver, clauses, assumptions), daemon=True)
+    proc.start()
+    child.close()
+    try:
+        if parent.poll(time_limit):
+            try:
+                return parent.recv()
+            except EOFError:
+                raise SolverLimit(f"the {solver} process ended without an answer (exit code {proc.exitcode})") from None
+        return None, None, {}
+    finally:
+        if proc.is_alive():
+            proc.kill()
+        proc.join()
+        parent.close()
 
 
 def _size(rows: Any, cols: Any) -> tuple[int, int]:
