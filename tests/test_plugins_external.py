@@ -97,7 +97,7 @@ def test_installed_family_appears_in_cli_and_catalogue(demo_installed, tmp_path,
         assert [e.name for e in cat.query()] == ["running-bond"]
         entry = cat.get("stretcher-bond")
         assert entry.family == "bricks"
-        assert entry.properties["symmetry_group"] == "cmm"
+        assert entry.properties["symmetry_group"] == "2*22" and entry.properties["wallpaper_group"] == "cmm"
         assert entry.properties["edge_to_edge"] is False
         tiling = cat.tiling("running-bond")
         region = (-3.5, -2.5, 4.0, 3.0)

@@ -295,7 +295,11 @@ def show(state: State, name: str) -> None:
     if entry.family not in all_families(state.pm):
         click.echo(f"(family {entry.family!r} is not installed: no geometry)", err=True)
         return
-    tiling = cat.tiling(entry.name)
+    try:
+        tiling = cat.tiling(entry.name)
+    except TilekitError as exc:  # a record without geometry, e.g. a vertex type that cannot tile
+        click.echo(f"(no geometry: {exc})")
+        return
     if "wallpaper_group" not in entry.properties and "symmetry_group" not in entry.properties:
         from tilekit.tiling import PeriodicTiling
 

@@ -247,7 +247,7 @@ def test_families_and_records():
         for key in ("vertex_type", "species", "tiles_per_unit", "symmetry_group", "chiral", "dual",
                     "periodic", "k_hedral", "k_isohedral", "edge_to_edge"):
             assert key in p, (r.name, key)
-        assert p["symmetry_group"] == PUBLISHED_GROUPS[p["vertex_type"]]
+        assert p["wallpaper_group"] == PUBLISHED_GROUPS[p["vertex_type"]]
         tiling = get_family(r.family).from_spec(r.spec)
         assert tiling.name == r.name
         assert len(tiling.unit_prototile) == p["tiles_per_unit"]

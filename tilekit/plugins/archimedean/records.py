@@ -35,7 +35,7 @@ def _group(name: str) -> dict[str, Any]:
     if data is None:
         return {}
     iuc = data["wallpaper_group"]
-    return {"symmetry_group": iuc, "wallpaper_group": iuc, "orbifold": _ORBIFOLD[iuc],
+    return {"symmetry_group": _ORBIFOLD[iuc], "wallpaper_group": iuc, "orbifold": _ORBIFOLD[iuc],
             "k_isohedral": int(data["k_isohedral"]), "k_isogonal": int(data["k_isogonal"])}
 
 

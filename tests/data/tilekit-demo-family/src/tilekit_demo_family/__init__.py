@@ -83,7 +83,7 @@ def tilekit_catalogue_records():
             wall.spec(),
             title="running bond of 2 x 1 bricks",
             # brickwork is the textbook example of wallpaper group cmm (2*22)
-            properties={**wall.properties(), "symmetry_group": "cmm"},
+            properties={**wall.properties(), "symmetry_group": "2*22", "wallpaper_group": "cmm"},
             aliases=["stretcher-bond"],
         )
     ]
