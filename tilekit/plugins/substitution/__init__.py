@@ -46,6 +46,9 @@ def builtin_systems() -> dict[str, Any]:
     for path in sorted(system_dir().glob("*.toml")):
         system = load_system(path)
         out[system.name] = system
+    from tilekit.plugins.substitution.hat import hat_systems  # the hat's own data format
+
+    out.update(hat_systems())
     return out
 
 

@@ -1,0 +1,481 @@
+"""The hat monotile (arXiv:2303.10798) through its four metatiles H, T, P, F.
+
+The paper's substitution is combinatorial: a level-(n+1) supertile is a cluster of level-n
+supertiles placed by rigid motions that glue edges of their outlines together, and the
+level-(n+1) outlines are then recomputed from points of that cluster (§4 of the paper). The
+outlines are not similar from level to level, so the placements are computed per level, but
+within a level they are shared by all supertiles of a label: generation is the same batched
+product of (k, 3, 3) stacks as the keypoint engine (``keypoint.py``), with per-level rules.
+
+Level 0: H carries four hats (one reflected), T one, P two, F two. The data (lattice
+coordinates of the hat and the metatiles, the cluster assembly and the supertile children)
+is ``catalogue/substitution/hat/hat.toml``; this module turns it into a system with the
+KeypointSystem interface, so ``KeypointTiling`` serves its patches.
+
+Colours of generated hats: 0 unreflected hat of an H, 1 the reflected hat of an H, 2 the
+hat of a T, 3 hats of a P, 4 hats of an F.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import shapely
+
+from tilekit.errors import ParseError
+from tilekit.geometry import Affine
+from tilekit.plugins.substitution.keypoint import _meets
+from tilekit.plugins.substitution.system import Rule
+from tilekit.resources import catalogue_dir
+from tilekit.tiling import Prototile
+
+SQRT3 = math.sqrt(3.0)
+#: The triangular-lattice basis: [a, b] is a*(1, 0) + b*(1/2, sqrt3/2).
+LATTICE = np.array([[1.0, 0.5], [0.0, SQRT3 / 2]])
+#: Area of one kite of the [3.4.6.4] Laves tiling at the hat's scale (sides 1, 1, sqrt3, sqrt3).
+KITE_AREA = SQRT3
+REFLECT_X = np.diag([1.0, -1.0, 1.0])
+#: Relative tolerance on edge lengths when gluing supertiles (they must be congruent edges).
+GLUE_TOL = 1e-9
+
+
+def lattice_points(pairs: Any) -> np.ndarray:
+    """Lattice pairs (k, 2) -> Cartesian points (k, 2)."""
+    return np.asarray(pairs, dtype=float) @ LATTICE.T
+
+
+def rigid_match(p1: np.ndarray, q1: np.ndarray, p2: np.ndarray, q2: np.ndarray) -> np.ndarray:
+    """The direct isometry taking p1 to p2 and q1 to q2; ValueError when |p1q1| != |p2q2|."""
+    a, b = q1 - p1, q2 - p2
+    la, lb = float(np.hypot(*a)), float(np.hypot(*b))
+    if abs(la - lb) > GLUE_TOL * max(la, lb, 1.0):
+        raise ValueError(f"segments of lengths {la:.9g} and {lb:.9g} cannot be matched rigidly")
+    ang = math.atan2(b[1], b[0]) - math.atan2(a[1], a[0])
+    rot = Affine.rotation(ang)
+    moved = Affine.apply(rot, p1)
+    return Affine.translation(*(p2 - moved)) @ rot
+
+
+def _rotate(point: np.ndarray, degrees: float, centre: np.ndarray) -> np.ndarray:
+    return Affine.apply(Affine.rotation(math.radians(degrees), centre), point)
+
+
+def _intersect(p1: np.ndarray, q1: np.ndarray, p2: np.ndarray, q2: np.ndarray) -> np.ndarray:
+    """Intersection of the lines p1q1 and p2q2."""
+    d1, d2 = q1 - p1, q2 - p2
+    den = d1[0] * d2[1] - d1[1] * d2[0]
+    t = ((p2[0] - p1[0]) * d2[1] - (p2[1] - p1[1]) * d2[0]) / den
+    return p1 + t * d1
+
+
+@dataclass
+class HatSystem:
+    """The hat's metatile substitution, with the interface of ``KeypointSystem``."""
+
+    name: str
+    title: str
+    labels: list[str]
+    tile: Prototile
+    outlines0: list[np.ndarray]  # per label, level-0 outline (k, 2)
+    base: list[np.ndarray]  # per label, (m, 3, 3) hat placements (in the raw outline order)
+    attach: list[tuple[Any, ...]]
+    cluster_children: list[np.ndarray]  # per label, cluster tile indices
+    seed: int = 0
+    facts: dict[str, Any] = field(default_factory=dict)
+    source: str = "<data>"
+    data: dict[str, Any] = field(default_factory=dict)
+    kind: str = "keypoint"
+    reflect: bool = False
+    _levels: list[tuple[list[Rule], list[np.ndarray]]] = field(default_factory=list)
+    _bounds: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
+
+    # ------------------------------------------------------------------ shared API
+    @property
+    def n(self) -> int:
+        return len(self.labels)
+
+    @property
+    def tiles(self) -> list[Prototile]:
+        return [self.tile]
+
+    @property
+    def prototiles(self) -> list[Prototile]:
+        return [self.tile]
+
+    @property
+    def output_prototiles(self) -> list[Prototile]:
+        return [self.tile]
+
+    @property
+    def scale(self) -> float:
+        """Linear growth per level: the square root of the Perron-Frobenius eigenvalue."""
+        return math.sqrt(self.perron_frobenius()[0])
+
+    @property
+    def rules(self) -> list[np.ndarray]:
+        """Per label, the labels of its children (for ``describe``)."""
+        lab = self.cluster_labels()
+        return [lab[c] for c in self.cluster_children]
+
+    def cluster_labels(self) -> np.ndarray:
+        index = {nm: i for i, nm in enumerate(self.labels)}
+        return np.array([index[a[-2] if len(a) > 1 else a[0]] for a in self.attach], dtype=np.int64)
+
+    def substitution_matrix(self) -> np.ndarray:
+        """Column j counts the children of label j by label."""
+        m = np.zeros((self.n, self.n), dtype=np.int64)
+        for j, kids in enumerate(self.rules):
+            np.add.at(m[:, j], kids, 1)
+        return m
+
+    def perron_frobenius(self) -> tuple[float, np.ndarray]:
+        m = self.substitution_matrix().astype(float)
+        vals, vecs = np.linalg.eig(m)
+        k = int(np.argmax(vals.real))
+        vec = np.abs(vecs[:, k].real)
+        return float(vals[k].real), vec / vec.sum()
+
+    def counts(self, generations: int, start: int | None = None) -> list[list[int]]:
+        """Label counts after 0..generations substitutions of one ``start`` supertile."""
+        m = self.substitution_matrix().astype(object)
+        v = np.zeros(self.n, dtype=object)
+        v[self.seed if start is None else start] = 1
+        out = [[int(x) for x in v]]
+        for _ in range(generations):
+            v = m.dot(v)
+            out.append([int(x) for x in v])
+        return out
+
+    def hats_per_label(self) -> np.ndarray:
+        return np.array([len(b) for b in self.base], dtype=np.int64)
+
+    def reflected_per_label(self) -> np.ndarray:
+        return np.array([int((np.linalg.det(b[:, :2, :2]) < 0).sum()) for b in self.base], dtype=np.int64)
+
+    def tile_counts(self, generations: int, start: int | None = None) -> list[int]:
+        """Number of hats in a level-n supertile, n = 0..generations."""
+        per_label = self.hats_per_label()
+        return [int(np.dot(c, per_label)) for c in self.counts(generations, start)]
+
+    def reflected_fraction_limit(self) -> float:
+        """Limit share of reflected hats: from the Perron-Frobenius frequencies of the labels."""
+        _, freq = self.perron_frobenius()
+        return float(freq @ self.reflected_per_label() / (freq @ self.hats_per_label()))
+
+    def rep_tile(self) -> None:
+        return None
+
+    # ------------------------------------------------------------------ levels
+    def outlines(self, n: int) -> list[np.ndarray]:
+        """Per label, the level-n supertile outline (in its own frame)."""
+        if n == 0:
+            return self.outlines0
+        self._build(n)
+        return self._levels[n - 1][1]
+
+    def rules_at(self, n: int) -> list[Rule]:
+        """Per label, the children (labels) and rigid maps building level n from level n-1."""
+        if n < 1:
+            raise ValueError("levels start at 1")
+        self._build(n)
+        return self._levels[n - 1][0]
+
+    def _build(self, n: int) -> None:
+        while len(self._levels) < n:
+            prev = self.outlines(len(self._levels))
+            self._levels.append(self._next_level(prev))
+
+    def _next_level(self, shapes: list[np.ndarray]) -> tuple[list[Rule], list[np.ndarray]]:
+        index = {nm: i for i, nm in enumerate(self.labels)}
+        labels: list[int] = []
+        maps: list[np.ndarray] = []
+
+        def vertex(k: int, v: int) -> np.ndarray:
+            pts = shapes[labels[k]]
+            return Affine.apply(maps[k], pts[v % len(pts)])
+
+        for entry in self.attach:
+            if len(entry) == 1:
+                labels.append(index[entry[0]])
+                maps.append(np.eye(3))
+                continue
+            if len(entry) == 4:
+                k, e, lab, f = entry
+                p, q = vertex(k, e + 1), vertex(k, e)
+            else:
+                k, u, m, v, lab, f = entry
+                p, q = vertex(m, v), vertex(k, u)
+            j = index[lab]
+            own = shapes[j]
+            try:
+                t = rigid_match(own[f % len(own)], own[(f + 1) % len(own)], p, q)
+            except ValueError as exc:
+                raise ParseError(f"substitution system {self.source}: cluster entry {list(entry)}: {exc}") from None
+            labels.append(j)
+            maps.append(t)
+        lab_arr = np.array(labels, dtype=np.int64)
+        map_arr = np.array(maps)
+        rules = [Rule(lab_arr[c], map_arr[c]) for c in self.cluster_children]
+        return rules, _outlines(vertex)
+
+    def bounds(self, n: int) -> tuple[np.ndarray, np.ndarray]:
+        """Per label, a centre and radius bounding its level-n supertile's hats."""
+        while len(self._bounds) <= n:
+            k = len(self._bounds)
+            centres, radii = [], []
+            if k == 0:
+                for b in self.base:
+                    pts = Affine.apply(b, self.tile.outline).reshape(-1, 2)
+                    c = pts.mean(axis=0)
+                    centres.append(c)
+                    radii.append(float(np.linalg.norm(pts - c, axis=1).max()))
+            else:
+                pc, pr = self._bounds[k - 1]
+                for rule in self.rules_at(k):
+                    img = np.einsum("nij,nj->ni", rule.matrices[:, :2, :2], pc[rule.children]) + rule.matrices[:, :2, 2]
+                    c = img.mean(axis=0)
+                    centres.append(c)
+                    radii.append(float((np.linalg.norm(img - c, axis=1) + pr[rule.children]).max()))
+            self._bounds.append((np.array(centres), np.array(radii)))
+        return self._bounds[n]
+
+    # ------------------------------------------------------------------ generation
+    def supertiles(
+        self, depth: int, level: int = 0, seed_transform: np.ndarray | None = None, seed_label: int | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """The level-``level`` supertiles (labels, transforms) of a level-``depth`` one."""
+        label = np.array([self.seed if seed_label is None else seed_label], dtype=np.int64)
+        t0 = np.eye(3) if seed_transform is None else np.asarray(seed_transform, dtype=float)
+        transform = t0.reshape(1, 3, 3)
+        for n in range(depth, level, -1):
+            label, transform = self._expand(label, transform, n)
+        return label, transform
+
+    def _expand(self, label: np.ndarray, transform: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+        labels, transforms = [], []
+        for j, rule in enumerate(self.rules_at(n)):
+            idx = np.flatnonzero(label == j)
+            if not len(idx):
+                continue
+            kids = np.matmul(transform[idx][:, None], rule.matrices[None])
+            transforms.append(kids.reshape(-1, 3, 3))
+            labels.append(np.tile(rule.children, len(idx)))
+        if not labels:
+            return np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3))
+        return np.concatenate(labels), np.concatenate(transforms)
+
+    def generate(
+        self,
+        depth: int,
+        seed_transform: np.ndarray | None = None,
+        seed_label: int | None = None,
+        box: tuple[float, float, float, float] | None = None,
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Hats of a level-``depth`` supertile: (prototile, transform, colour) arrays."""
+        label = np.array([self.seed if seed_label is None else seed_label], dtype=np.int64)
+        t0 = np.eye(3) if seed_transform is None else np.asarray(seed_transform, dtype=float)
+        transform = t0.reshape(1, 3, 3)
+        for n in range(depth, 0, -1):
+            if box is not None:
+                keep = _meets(label, transform, self.bounds(n), box)
+                label, transform = label[keep], transform[keep]
+            label, transform = self._expand(label, transform, n)
+        if box is not None and len(label):
+            keep = _meets(label, transform, self.bounds(0), box)
+            label, transform = label[keep], transform[keep]
+        out_t, out_c = [], []
+        for j, placements in enumerate(self.base):
+            idx = np.flatnonzero(label == j)
+            if not len(idx):
+                continue
+            out_t.append(np.matmul(transform[idx][:, None], placements[None]).reshape(-1, 3, 3))
+            colour = np.full(len(placements), 1 + j, dtype=np.int64)
+            if j == 0:
+                colour = (np.linalg.det(placements[:, :2, :2]) < 0).astype(np.int64)
+            out_c.append(np.tile(colour, len(idx)))
+        if not out_t:
+            return np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3)), np.zeros(0, dtype=np.int64)
+        transform = np.concatenate(out_t)
+        return np.zeros(len(transform), dtype=np.int64), transform, np.concatenate(out_c)
+
+
+def _outlines(vertex: Any) -> list[np.ndarray]:
+    """The next-level outlines of H, T, P, F from points of the assembled cluster.
+
+    ``vertex(k, v)`` is vertex v of cluster tile k. The construction follows the paper's
+    supertile figure: the long H-P-F boundary runs through vertex 2 of tiles 8 and 21 (the
+    second turned by -120 degrees about the first gives the boundary direction); it meets the
+    line through vertex 2 of tiles 6 and 7 at the common corner of the H, P and F
+    supertiles; the other corners are cluster vertices or translates of these by the
+    supertile edge vectors (turned by multiples of 60 degrees).
+    """
+    a = vertex(8, 2)
+    b = vertex(21, 2)
+    b_turned = _rotate(b, -120, a)
+    p72 = vertex(7, 2)
+    p252 = vertex(25, 2)
+    corner = _intersect(a, b_turned, vertex(6, 2), p72)
+    w = vertex(6, 2) - corner
+    w1 = _rotate(w, -60, np.zeros(2))
+    w2 = _rotate(w1, -60, np.zeros(2))
+    h = np.array([corner, a, a + w1, vertex(14, 2), vertex(14, 2) - w2, vertex(6, 2)])
+    p = np.array([p72, p72 + (a - corner), a, corner])
+    f = np.array([b, vertex(24, 2), vertex(25, 0), p252, p252 + (corner - a)])
+    t_apex = h[2]
+    t_base = h[1] + (h[4] - h[5])
+    t = np.array([t_base, _rotate(t_apex, -60, t_base), t_apex])
+    return [h, t, p, f]
+
+
+# ---------------------------------------------------------------------- loading
+
+
+def hat_data_path() -> Path:
+    """The shipped hat data file."""
+    return catalogue_dir() / "substitution" / "hat" / "hat.toml"
+
+
+def hat_system_from_data(data: Mapping[str, Any], source: str = "<data>") -> HatSystem:
+    """Build and check the hat system from parsed TOML (errors name the file and part)."""
+
+    def fail(msg: str) -> ParseError:
+        return ParseError(f"substitution system {source}: {msg}")
+
+    labels = data.get("labels")
+    if labels != ["H", "T", "P", "F"]:
+        raise fail("'labels' must be [\"H\", \"T\", \"P\", \"F\"] (the outline construction is specific to them)")
+    tile_data = data.get("tile")
+    if not isinstance(tile_data, Mapping) or "outline" not in tile_data:
+        raise fail("[tile] needs an 'outline' of lattice pairs")
+    raw = _pairs(tile_data["outline"], "[tile] outline", fail)
+    outline = lattice_points(raw)
+    # Prototile wants a CCW outline; placements below are computed on the raw vertex order.
+    ccw = outline if _signed_area(outline) > 0 else outline[::-1]
+    try:
+        tile = Prototile(ccw, name=str(tile_data.get("name", "hat")))
+    except Exception as exc:  # GeometryError
+        raise fail(f"[tile]: {exc}") from None
+    metas = data.get("metatiles")
+    if not isinstance(metas, Mapping):
+        raise fail("[metatiles.X] tables are missing")
+    outlines0, base = [], []
+    for nm in labels:
+        m = metas.get(nm)
+        if not isinstance(m, Mapping) or "outline" not in m or "hats" not in m:
+            raise fail(f"[metatiles.{nm}] needs 'outline' and 'hats'")
+        pts = lattice_points(_pairs(m["outline"], f"[metatiles.{nm}] outline", fail))
+        outlines0.append(pts)
+        mats = []
+        for k, h in enumerate(m["hats"]):
+            ctx = f"[metatiles.{nm}] hat #{k + 1}"
+            if "match" in h:
+                try:
+                    (i, p), (j, q) = h["match"]
+                    mats.append(rigid_match(outline[i], outline[j], pts[p], pts[q]))
+                except (ValueError, TypeError, IndexError) as exc:
+                    raise fail(f"{ctx}: match must be [[hat vertex, outline vertex], [.., ..]] of equal lengths ({exc})") from None
+            else:
+                ang = math.radians(float(h.get("rotate", 0)))
+                tx, ty = lattice_points([_pairs([h.get("translate", [0, 0])], ctx, fail)[0]])[0]
+                t = Affine.translation(tx, ty) @ Affine.rotation(ang)
+                mats.append(t @ REFLECT_X if h.get("reflect", False) else t)
+        base.append(np.array(mats))
+    cluster = data.get("cluster")
+    if not isinstance(cluster, Mapping) or "attach" not in cluster or "children" not in cluster:
+        raise fail("[cluster] needs 'attach' and 'children'")
+    attach: list[tuple[Any, ...]] = []
+    for k, e in enumerate(cluster["attach"]):
+        ok = isinstance(e, list) and (
+            (len(e) == 1 and k == 0)
+            or (len(e) == 4 and isinstance(e[0], int) and 0 <= e[0] < k)
+            or (len(e) == 6 and all(isinstance(x, int) and 0 <= x < k for x in (e[0], e[2])))
+        )
+        if not ok or e[-2 if len(e) > 1 else 0] not in labels:
+            raise fail(f"[cluster] attach entry #{k}: {e!r} is not [\"X\"] (first), [k, e, \"X\", f] or [k, u, m, v, \"X\", f] with earlier k, m")
+        attach.append(tuple(e))
+    children = []
+    for nm in labels:
+        c = cluster["children"].get(nm)
+        if not isinstance(c, list) or not c or not all(isinstance(x, int) and 0 <= x < len(attach) for x in c):
+            raise fail(f"[cluster.children] {nm} must list cluster tile indices 0..{len(attach) - 1}")
+        children.append(np.array(c, dtype=np.int64))
+    system = HatSystem(
+        name=str(data.get("name", "hat")),
+        title=str(data.get("title", "hat")),
+        labels=list(labels),
+        tile=tile,
+        outlines0=outlines0,
+        base=base,
+        attach=attach,
+        cluster_children=children,
+        seed=labels.index(str(data.get("seed", "H"))) if data.get("seed", "H") in labels else 0,
+        facts=dict(data.get("properties", {})),
+        source=source,
+        data=dict(data),
+    )
+    system.facts.setdefault("reflected_hats_per_metatile", system.reflected_per_label().tolist())
+    system.facts.setdefault("hats_per_metatile", system.hats_per_label().tolist())
+    system.facts.setdefault("reflected_hat_fraction", round(system.reflected_fraction_limit(), 12))
+    frac = system.reflected_fraction_limit()
+    system.facts.setdefault("unreflected_to_reflected_ratio", round((1 - frac) / frac, 12))
+    system.facts.setdefault(
+        "reflected_hats_per_generation", [int(c @ system.reflected_per_label()) for c in map(np.array, system.counts(6))]
+    )
+    check_hat_system(system)
+    return system
+
+
+def _pairs(value: Any, ctx: str, fail: Any) -> np.ndarray:
+    try:
+        arr = np.array(value, dtype=float)
+    except (TypeError, ValueError):
+        arr = np.zeros(0)
+    if arr.ndim != 2 or arr.shape[1] != 2 or len(arr) < 1:
+        raise fail(f"{ctx} must be a list of [a, b] lattice pairs")
+    return arr
+
+
+def _signed_area(pts: np.ndarray) -> float:
+    x, y = pts[:, 0], pts[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
+
+
+def check_hat_system(system: HatSystem, levels: int = 2) -> None:
+    """Every label's supertile, for the first ``levels`` levels, is a set of non-overlapping
+    hats (the data is wrong otherwise)."""
+    tile = system.tile.outline
+    for n in range(levels + 1):
+        for j, nm in enumerate(system.labels):
+            _, tr, _ = system.generate(n, seed_label=j)
+            polys = shapely.polygons(Affine.apply(tr, tile))
+            total = float(shapely.area(polys).sum())
+            union = shapely.union_all(polys, grid_size=1e-9).area
+            if total - union > 1e-6 * float(shapely.area(polys[0])):
+                raise ParseError(f"substitution system {system.source}: level-{n} supertile {nm!r} has overlapping hats")
+
+
+def load_hat(path: str | Path | None = None) -> HatSystem:
+    """Read and check the hat data file (the shipped one by default)."""
+    p = Path(path) if path is not None else hat_data_path()
+    try:
+        data = tomllib.loads(p.read_text(encoding="utf-8"))
+    except OSError as exc:
+        raise ParseError(f"substitution system {str(p)!r} cannot be read: {exc.strerror}") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise ParseError(f"substitution system {p.name}: not valid TOML ({exc})") from None
+    return hat_system_from_data(data, source=p.name)
+
+
+def hat_systems() -> dict[str, HatSystem]:
+    """The hat system by name, for ``builtin_systems``."""
+    system = load_hat()
+    return {system.name: system}
+
+
+__all__: Sequence[str] = ["HatSystem", "hat_system_from_data", "hat_systems", "lattice_points", "load_hat", "rigid_match"]
