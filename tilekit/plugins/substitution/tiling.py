@@ -41,6 +41,7 @@ class SubstitutionTiling(Tiling):
         spec_source: Mapping[str, Any] | None = None,
         params: Sequence[float] | None = None,
         edges: Sequence[str] | None = None,
+        quasivertex: Mapping[str, float] | None = None,
     ) -> None:
         self.system = system
         self.name = system.name
@@ -54,10 +55,36 @@ class SubstitutionTiling(Tiling):
         self._spec_source = dict(spec_source) if spec_source is not None else {"system": system.name}
         self.params = [float(v) for v in params] if params is not None else None
         self.edges = list(edges) if edges is not None else None
+        self.quasivertex = dict(quasivertex) if quasivertex is not None else None
         self._shaped: list[Prototile] | None = None
         self._classes: Any = None
-        if self.params is not None or self.edges is not None:
+        self._mirrors: Any = None
+        if self.quasivertex is not None:
+            if self.params is not None:
+                raise ParameterError(
+                    "params (tooth heights) and quasivertex parameters r1, theta1, r2, theta2 "
+                    "cannot be combined; give edge shapes for the labels a..h with edges instead"
+                )
+            self._shaped = self._quasivertex_tiles()
+        elif self.params is not None or self.edges is not None:
             self._shaped = self._shape_tiles()
+
+    def _quasivertex_tiles(self) -> list[Prototile]:
+        """The rhombs deformed by Figure 6.13's quasivertices, with Figure 6.14's edge shapes."""
+        from tilekit.plugins.substitution import quasivertex as qv
+        from tilekit.plugins.substitution.shapes import halves_mirror, parse_edge_shape
+
+        params = qv.QuasivertexParams.from_options(self.quasivertex or {})
+        self.quasivertex = params.as_dict()
+        shapes = {}
+        for text in self.edges or []:
+            name, pts = parse_edge_shape(text)
+            if name in shapes:
+                raise ParameterError(f"edge shape {name!r} is given twice")
+            shapes[name] = pts
+        tiles = qv.deformed_tiles(self.system.tiles, self.name, params, shapes)
+        self._mirrors = tuple(halves_mirror(self.system))
+        return tiles
 
     def _shape_tiles(self) -> list[Prototile]:
         """Shaped whole tiles from params (tooth heights) and/or named edge shapes (§6.3)."""
@@ -91,6 +118,7 @@ class SubstitutionTiling(Tiling):
                 )
             shape_list[letters.index(name)] = pts
         self._classes = classes
+        self._mirrors = classes.mirror
         return shapes.shaped_tiles(self.system.tiles, classes, shape_list)
 
     # ------------------------------------------------------------------ Tiling API
@@ -154,7 +182,7 @@ class SubstitutionTiling(Tiling):
         if self._shaped is not None:
             from tilekit.plugins.substitution.shapes import canonical_transforms
 
-            transform = canonical_transforms(proto, transform, self._classes.mirror)
+            transform = canonical_transforms(proto, transform, self._mirrors)
         patch = Patch(self.prototiles, proto, transform, colour=proto)
         if reg is not None:
             patch = patch.clip(reg)
@@ -178,10 +206,12 @@ class SubstitutionTiling(Tiling):
         seed = options.pop("seed", self.seed)
         params = options.pop("params", self.params)
         edges = options.pop("edges", self.edges)
+        qv_given = {k: options.pop(k) for k in ("r1", "theta1", "r2", "theta2") if k in options}
+        quasivertex = {**(self.quasivertex or {}), **qv_given} if (qv_given or self.quasivertex) else None
         if options:
             raise ParameterError(
                 f"{self.name} does not take option(s) {', '.join(sorted(options))}; "
-                "valid: depth, seed, params, edges"
+                "valid: depth, seed, params, edges, r1, theta1, r2, theta2"
             )
         if depth is not None:
             try:
@@ -195,7 +225,7 @@ class SubstitutionTiling(Tiling):
                 raise ParameterError(f"params {params!r} are not numbers") from None
         if isinstance(edges, str):
             edges = [edges]
-        return SubstitutionTiling(self.system, depth, seed, self._spec_source, params, edges)
+        return SubstitutionTiling(self.system, depth, seed, self._spec_source, params, edges, quasivertex)
 
     def spec(self) -> dict[str, Any]:
         out = dict(self._spec_source)
@@ -207,6 +237,8 @@ class SubstitutionTiling(Tiling):
             out["params"] = self.params
         if self.edges is not None:
             out["edges"] = self.edges
+        if self.quasivertex is not None:
+            out.update(self.quasivertex)
         return out
 
     # ------------------------------------------------------------------ facts
@@ -280,6 +312,8 @@ class KeypointTiling(SubstitutionTiling):
         self.params = None
         self.edges = None
         self._shaped = None
+        self.quasivertex = None
+        self._mirrors = None
 
     def _seed_index(self) -> int:
         return self.system.labels.index(self.seed) if self.seed is not None else self.system.seed
@@ -381,7 +415,7 @@ def tiling_from_spec(spec: Mapping[str, Any], systems: Mapping[str, Substitution
         raise ParseError("substitution spec needs 'system' (a built-in name) or 'system_data'")
     source = {k: spec[k] for k in ("system", "system_data", "source") if k in spec}
     tiling = make_tiling(system, spec_source=source)
-    options = {k: spec[k] for k in ("depth", "seed", "params", "edges") if k in spec}
+    options = {k: spec[k] for k in ("depth", "seed", "params", "edges", "r1", "theta1", "r2", "theta2") if k in spec}
     return tiling.configure(**options) if options else tiling
 
 

@@ -1,0 +1,302 @@
+"""Quasivertex parameterizations of the Penrose rhombs (book §6.3, Figures 6.13 and 6.14).
+
+Four numbers r1, theta1, r2, theta2 move the tiling vertices of a P3 tiling off the rhombs'
+corners. Figure 6.13 places the quasivertices in a frame where the thick rhomb is
+A = (sin pi/5, 0), B = (0, cos pi/5), C = -A, D = -B and the thin rhomb A' = (sin pi/10, 0),
+B' = (0, cos pi/10), C' = -A', D' = -B' (A, C, A', C' obtuse corners):
+
+    thick: E = A + r1 u(7pi/10 - t1)   F = A + r2 u(7pi/10 - t2)
+           G = rot(B, -2pi/5, F)        H = rot(B, -2pi/5, E)
+           I = D + r2 u(pi/2 - t2)      J = D + r1 u(pi/2 - t1)
+           K = rot(D, -2pi/5, J)        L = rot(D, -2pi/5, I)     M = rot(D, -2pi/5, H)
+    thin:  E' = A' + r1 u(6pi/5 - t1)   F' = B' + r2 u(7pi/5 - t2)
+           G' = rot(C', -4pi/5, F')     H' = D' + r1 u(3pi/5 - t1)
+           I' = D' + r1 u(pi/5 - t1)    J' = rot(A', 4pi/5, F')   K' = rot(A', 4pi/5, E')
+
+(u(a) = (cos a, sin a); rot(p, a, q) turns q by a about p.) The extracted text of the book
+gives these formulas but not the figure, so the order of the points around each tile was
+derived here (see docs/families/substitution.md, "Quasivertex shapes"): placing every point
+of every tile of a generated P3 patch for generic parameters, the only counter-clockwise
+cycles whose directed edges all meet a reversed copy in a neighbour are
+
+    thick: A E F B G H I J D K L M   (12 edges; C is not a vertex of the deformed tile)
+    thin:  A' E' F' C' G' H' D' I' J' K'   (10 edges; B' is not a vertex)
+
+and, starting at A and A', the book's edge labels abcdefegabhg and afcdegabhg then satisfy
+exactly the interlocking pairs (a, g), (b, e), (c, d), (f, h) of Figure 6.14 on every shared
+edge. Each deformed tile keeps the area of its straight rhomb for every parameter value
+(the quasivertex moves trade area between a tile's own edges), which the tests check.
+r1 = r2 = 0 gives the straight rhombs back.
+
+The book's frame is tied to the tiles of ``penrose-p3`` by fixed similarities (checked
+against the system's tile outlines), so the deformation respects the matching rules: every
+placement is direct (reflected placements re-expressed by the rhomb's mirror symmetry).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+
+from tilekit.errors import GeometryError, ParameterError
+from tilekit.geometry import Affine
+from tilekit.tiling import Prototile
+
+#: Point order around the deformed tiles (counter-clockwise, from A / A').
+THICK_ORDER = "AEFBGHIJDKLM"
+THIN_ORDER = "AEFCGHDIJK"
+#: Figure 6.14's edge labels, edge i running from point i to point i + 1 of the order above.
+THICK_LABELS = "abcdefegabhg"
+THIN_LABELS = "afcdegabhg"
+#: Interlocking pairs of §6.3: an edge labelled x meets an edge labelled PARTNER[x].
+PARTNER = {"a": "g", "g": "a", "b": "e", "e": "b", "c": "d", "d": "c", "f": "h", "h": "f"}
+#: The label that carries a pair's shape as given (its partner carries the complement).
+PRIMARY = ("a", "b", "c", "f")
+#: Option names (angles in degrees).
+PARAM_NAMES = ("r1", "theta1", "r2", "theta2")
+#: Systems whose whole tiles are the P3 rhombs in the frame this module expects.
+SUPPORTED = ("penrose-p3",)
+
+
+@dataclass(frozen=True)
+class QuasivertexParams:
+    """r1, r2 (lengths, edge length 1) and theta1, theta2 (degrees) of Figure 6.13."""
+
+    r1: float = 0.0
+    theta1: float = 0.0
+    r2: float = 0.0
+    theta2: float = 0.0
+
+    def radians(self) -> tuple[float, float, float, float]:
+        return self.r1, math.radians(self.theta1), self.r2, math.radians(self.theta2)
+
+    def as_dict(self) -> dict[str, float]:
+        return {"r1": self.r1, "theta1": self.theta1, "r2": self.r2, "theta2": self.theta2}
+
+    def text(self) -> str:
+        return f"r1={self.r1:g}, theta1={self.theta1:g}, r2={self.r2:g}, theta2={self.theta2:g}"
+
+    @classmethod
+    def from_options(cls, options: Mapping[str, object]) -> QuasivertexParams:
+        """Parse r1/theta1/r2/theta2 (numbers or numeric strings; missing ones are 0)."""
+        values: dict[str, float] = {}
+        for name in PARAM_NAMES:
+            raw = options.get(name, 0.0)
+            try:
+                v = float(raw)  # type: ignore[arg-type]
+            except (TypeError, ValueError):
+                raise ParameterError(f"quasivertex parameter {name}={raw!r} is not a number") from None
+            if not math.isfinite(v):
+                raise ParameterError(f"quasivertex parameter {name}={raw!r} is not finite")
+            values[name] = v
+        return cls(**values)
+
+
+def _u(a: float) -> np.ndarray:
+    return np.array([math.cos(a), math.sin(a)])
+
+
+def _rot(p: np.ndarray, a: float, q: np.ndarray) -> np.ndarray:
+    c, s = math.cos(a), math.sin(a)
+    d = q - p
+    return p + np.array([c * d[0] - s * d[1], s * d[0] + c * d[1]])
+
+
+def thick_points(params: QuasivertexParams) -> dict[str, np.ndarray]:
+    """The 13 named points of the thick rhomb (Figure 6.13, book frame)."""
+    r1, t1, r2, t2 = params.radians()
+    pi = math.pi
+    A = np.array([math.sin(pi / 5), 0.0])
+    B = np.array([0.0, math.cos(pi / 5)])
+    C, D = -A, -B
+    E = A + r1 * _u(7 * pi / 10 - t1)
+    F = A + r2 * _u(7 * pi / 10 - t2)
+    G = _rot(B, -2 * pi / 5, F)
+    H = _rot(B, -2 * pi / 5, E)
+    I = D + r2 * _u(pi / 2 - t2)  # noqa: E741 - the book's name
+    J = D + r1 * _u(pi / 2 - t1)
+    K = _rot(D, -2 * pi / 5, J)
+    L = _rot(D, -2 * pi / 5, I)
+    M = _rot(D, -2 * pi / 5, H)
+    return dict(A=A, B=B, C=C, D=D, E=E, F=F, G=G, H=H, I=I, J=J, K=K, L=L, M=M)
+
+
+def thin_points(params: QuasivertexParams) -> dict[str, np.ndarray]:
+    """The 11 named points A'..K' of the thin rhomb (Figure 6.13, book frame)."""
+    r1, t1, r2, t2 = params.radians()
+    pi = math.pi
+    A = np.array([math.sin(pi / 10), 0.0])
+    B = np.array([0.0, math.cos(pi / 10)])
+    C, D = -A, -B
+    E = A + r1 * _u(6 * pi / 5 - t1)
+    F = B + r2 * _u(7 * pi / 5 - t2)
+    G = _rot(C, -4 * pi / 5, F)
+    H = D + r1 * _u(3 * pi / 5 - t1)
+    I = D + r1 * _u(pi / 5 - t1)  # noqa: E741 - the book's name
+    J = _rot(A, 4 * pi / 5, F)
+    K = _rot(A, 4 * pi / 5, E)
+    return dict(A=A, B=B, C=C, D=D, E=E, F=F, G=G, H=H, I=I, J=J, K=K)
+
+
+def book_outlines(params: QuasivertexParams) -> dict[str, tuple[np.ndarray, str]]:
+    """{"thick"|"thin": (outline (k, 2) in the book's frame, edge labels)}, unmerged."""
+    tk, tn = thick_points(params), thin_points(params)
+    return {
+        "thick": (np.array([tk[c] for c in THICK_ORDER]), THICK_LABELS),
+        "thin": (np.array([tn[c] for c in THIN_ORDER]), THIN_LABELS),
+    }
+
+
+def book_to_system() -> dict[str, np.ndarray]:
+    """Similarities from the book's frame to ``penrose-p3``'s whole-tile frames.
+
+    The system's thick rhomb is (0,0), (c3,-s3), (2c3,0), (c3,s3) with c3 = cos 3pi/10 =
+    sin pi/5: the book's rhomb shifted by (c3, 0) (book C -> vertex 0). The thin rhomb
+    (0,0), (c1,-s1), (2c1,0), (c1,s1) is the book's turned by -90 degrees and shifted by
+    (c1, 0) (book A' -> vertex 1). Of the rhombs' two direct self-maps (identity and the
+    half-turn) these are the ones under which the named points of neighbouring tiles
+    coincide (the half-turn breaks the matching), found by the derivation described above.
+    """
+    c1 = math.cos(math.pi / 10)
+    c3 = math.cos(3 * math.pi / 10)
+    return {
+        "thick": Affine.translation(c3, 0.0),
+        "thin": Affine.translation(c1, 0.0) @ Affine.rotation(-math.pi / 2),
+    }
+
+
+def check_system(tiles: Sequence[Prototile], system_name: str) -> None:
+    """Raise ParameterError unless ``tiles`` are P3's thin and thick rhombs in the expected frames."""
+    if system_name not in SUPPORTED or [t.name for t in tiles] != ["thin", "thick"]:
+        raise ParameterError(
+            f"quasivertex parameters (r1, theta1, r2, theta2) apply to {', '.join(SUPPORTED)} only, "
+            f"not {system_name!r} (the kite/dart formulas of Figure 6.12 are not in the book's text)"
+        )
+    straight = book_outlines(QuasivertexParams())
+    maps = book_to_system()
+    for tile in tiles:
+        pts = Affine.apply(maps[tile.name], _merge(*straight[tile.name])[0])
+        ok = len(pts) == len(tile.outline) and any(
+            np.allclose(np.roll(pts, k, axis=0), tile.outline, atol=1e-9) for k in range(len(pts))
+        )
+        if not ok:
+            raise GeometryError(f"{system_name}: tile {tile.name!r} is not in the frame the quasivertex formulas expect")
+
+
+def _merge(outline: np.ndarray, labels: str, tol: float = 1e-12) -> tuple[np.ndarray, list[str], list[int]]:
+    """Drop zero-length edges (r = 0 collapses points): (points, labels, source edge indices)."""
+    nxt = np.roll(outline, -1, axis=0)
+    keep = np.flatnonzero(np.linalg.norm(nxt - outline, axis=1) > tol)
+    return outline[keep], [labels[i] for i in keep], [int(i) for i in keep]
+
+
+def _simple(outline: np.ndarray) -> bool:
+    if len(outline) < 3:
+        return False
+    poly = shapely.Polygon(outline)
+    area = 0.5 * float(np.sum(outline[:, 0] * np.roll(outline[:, 1], -1) - np.roll(outline[:, 0], -1) * outline[:, 1]))
+    return bool(poly.is_valid) and area > 0
+
+
+def _bad_tiles(params: QuasivertexParams) -> list[str]:
+    return [name for name, (pts, labels) in book_outlines(params).items() if not _simple(_merge(pts, labels)[0])]
+
+
+def validate_params(params: QuasivertexParams) -> None:
+    """Raise ParameterError naming the parameter when a deformed rhomb self-intersects."""
+    bad = _bad_tiles(params)
+    if not bad:
+        return
+    culprits = []
+    for r, t in (("r1", "theta1"), ("r2", "theta2")):
+        reset = QuasivertexParams(**{**params.as_dict(), r: 0.0})
+        if not _bad_tiles(reset):
+            culprits.append((r, t))
+    if len(culprits) == 1:
+        r, t = culprits[0]
+        given = getattr(params, r)
+        lo, hi = 0.0, given  # bisect for the largest valid |r| with the others fixed
+        for _ in range(40):
+            mid = (lo + hi) / 2
+            if _bad_tiles(QuasivertexParams(**{**params.as_dict(), r: mid})):
+                hi = mid
+            else:
+                lo = mid
+        raise ParameterError(
+            f"quasivertex parameter {r}={given:g} (with {t}={getattr(params, t):g}) makes the "
+            f"{' and '.join(bad)} rhomb self-intersect; with the other parameters as given |{r}| "
+            f"must stay below about {abs(lo):.3g}"
+        )
+    raise ParameterError(
+        f"quasivertex parameters r1 and r2 ({params.text()}) together make the {' and '.join(bad)} "
+        "rhomb self-intersect; use smaller r1, r2"
+    )
+
+
+def resolve_shapes(shapes: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """Edge shapes per label a..h: a shape given on a label puts its complement on the partner."""
+    from tilekit.plugins.substitution.shapes import complement
+
+    out: dict[str, np.ndarray] = {}
+    for name, pts in shapes.items():
+        if name not in PARTNER:
+            raise ParameterError(
+                f"edge shape {name!r} is not a quasivertex edge label; valid: {', '.join(sorted(PARTNER))} "
+                "(pairs a/g, b/e, c/d, f/h interlock)"
+            )
+        partner = PARTNER[name]
+        if partner in shapes:
+            raise ParameterError(
+                f"edge shapes {name!r} and {partner!r} interlock (one is the other's complement); give only one"
+            )
+        out[name] = np.asarray(pts, dtype=float).reshape(-1, 2)
+        out[partner] = complement(out[name])
+    return out
+
+
+def deformed_tiles(
+    tiles: Sequence[Prototile],
+    system_name: str,
+    params: QuasivertexParams,
+    shapes: Mapping[str, np.ndarray] | None = None,
+) -> list[Prototile]:
+    """The system's whole tiles replaced by the quasivertex tiles (in the system's frames).
+
+    ``shapes`` maps edge labels (a..h) to polylines from (0,0) to (1,0) (interior points); a
+    label's partner gets the complement. Raises ParameterError when the parameters or the
+    shapes make a tile self-intersect.
+    """
+    check_system(tiles, system_name)
+    validate_params(params)
+    per_label = resolve_shapes(shapes or {})
+    outlines = book_outlines(params)
+    maps = book_to_system()
+    out = []
+    for tile in tiles:
+        pts, labels, _ = _merge(*outlines[tile.name])
+        pts = Affine.apply(maps[tile.name], pts)
+        k = len(pts)
+        outline: list[np.ndarray] = []
+        corners: list[int] = []
+        seg_labels: list[str] = []
+        for i in range(k):
+            corners.append(len(outline))
+            outline.append(pts[i])
+            seg_labels.append(labels[i])
+            shape = per_label.get(labels[i])
+            if shape is not None and len(shape):
+                outline.extend(Affine.apply(Affine.segment_map(pts[i], pts[(i + 1) % k]), shape))
+                seg_labels.extend([labels[i]] * len(shape))
+        arr = np.array(outline)
+        if not _simple(arr):
+            culprits = sorted({lab for lab in labels if lab in per_label and len(per_label[lab])})
+            raise ParameterError(
+                f"edge shapes on {', '.join(culprits)} make the {tile.name} rhomb self-intersect "
+                f"at {params.text()}; use smaller or different shapes"
+            )
+        out.append(Prototile(arr, edge_labels=tuple(seg_labels), name=tile.name, corners=tuple(corners)))
+    return out
