@@ -369,6 +369,21 @@ def test_fill_methods_resolve_per_set():
     assert WangTiling(get_tileset("corner-2colour")).fill_method() == "random-access"
     assert WangTiling(get_tileset("stochastic-2colour")).fill_method() == "scanline"
     assert WangTiling(get_tileset("culik-13")).fill_method() == "solver"
+    assert WangTiling(get_tileset("cycle-3")).fill_method() == "periodic"
+
+
+def test_periodic_sets_fill_large_regions_by_repeating_their_unit():
+    """cycle-3 has a 3 x 3 torus, so a 200 x 200 region (beyond the solver's limit) is filled
+    by repetition; the pattern is the same whatever the region, and every edge matches."""
+    tiling = WangTiling(get_tileset("cycle-3"))
+    big = tiling.patch((-50, -50, 150, 150))
+    assert len(big) == 40_000 and patch_mismatches(big) == []
+    small = tiling.patch((3, 4, 8, 9))
+    pos_big = {tuple(p): t for p, t in zip(np.rint(big.transform[:, :2, 2]).astype(int).tolist(), big.prototile.tolist())}
+    for p, t in zip(np.rint(small.transform[:, :2, 2]).astype(int).tolist(), small.prototile.tolist()):
+        assert pos_big[tuple(p)] == t
+    with pytest.raises(ParameterError, match="no torus tiling of side <= 6"):
+        WangTiling(get_tileset("kari-14"), method="periodic").patch((0, 0, 3, 3))
 
 
 def test_random_access_tiling_patches_agree_on_overlaps():

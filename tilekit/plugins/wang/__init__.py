@@ -2,8 +2,9 @@
 
 A :class:`WangTiling` is a tile set plus a way to fill regions: the random-access hash fill
 (Lagae and Dutré) for sets with a tile for every corner/edge colouring, Cohen et al.'s
-scanline fill for complete sets, and the exact SAT solver for every other set (an
-aperiodic set tiles any finite rectangle, but only a search finds how). The catalogue
+scanline fill for complete sets, repetition of a small torus unit for sets that have one,
+and the exact SAT solver for every other set (an aperiodic set tiles any finite rectangle,
+but only a search finds how). The catalogue
 records one entry per shipped set (catalogue/wang/*.wang) and the ``wang-periodicity``
 search runs Wang's procedure on a set and stores what it showed.
 """
@@ -21,7 +22,7 @@ import shapely
 from shapely.geometry.base import BaseGeometry
 
 import tilekit
-from tilekit.errors import GeometryError, ParameterError, ParseError
+from tilekit.errors import GeometryError, ParameterError, ParseError, SolverLimit
 from tilekit.geometry import as_region
 from tilekit.plugins import CatalogueRecord, ChunkResult, Family, Search, SearchParam
 from tilekit.plugins.wang.check import check_grid, grid_mismatches, patch_mismatches
@@ -72,6 +73,7 @@ __all__ = [
     "load_tileset",
     "parse_tileset",
     "patch_mismatches",
+    "periodic_unit",
     "random_access_fill",
     "random_access_tiles",
     "record_for",
@@ -86,8 +88,8 @@ __all__ = [
 
 FAMILY = "wang"
 #: How WangTiling.patch fills a region: 'auto' picks the first that applies of
-#: random-access, scanline, solver.
-FILL_METHODS = ("auto", "random-access", "scanline", "solver")
+#: random-access, scanline, periodic (a torus unit of side <= BUILD_MAX_M exists), solver.
+FILL_METHODS = ("auto", "random-access", "scanline", "periodic", "solver")
 #: Wang's procedure runs up to this m when records are built (cheap for every shipped set).
 BUILD_MAX_M = 6
 #: Largest region (in tiles) the exact solver is asked to fill by ``patch``.
@@ -125,6 +127,8 @@ class WangTiling(Tiling):
             return "random-access"
         if self.tileset.complete:
             return "scanline"
+        if periodic_unit(self.tileset) is not None:
+            return "periodic"
         return "solver"
 
     def grid(self, x0: int, y0: int, rows: int, cols: int) -> np.ndarray:
@@ -137,6 +141,19 @@ class WangTiling(Tiling):
             # one seed per (tiling seed, region origin): the same region gives the same patch
             seq = np.random.SeedSequence([self.seed & 0xFFFFFFFF, x0 & 0xFFFFFFFF, y0 & 0xFFFFFFFF])
             return scanline_fill(self.tileset, rows, cols, seed=int(seq.generate_state(1)[0]))
+        if method == "periodic":
+            unit = periodic_unit(self.tileset)
+            if unit is None:
+                raise ParameterError(
+                    f"set {self.tileset.name!r} has no torus tiling of side <= {BUILD_MAX_M}; "
+                    "use method='solver' (or 'auto')"
+                )
+            # lattice square (x, y) takes unit[(-y) mod m, x mod m]: rows run southwards, and
+            # the unit is a torus, so the pattern is the same whatever the region
+            m = unit.shape[0]
+            ys = y0 + rows - 1 - np.arange(rows)
+            xs = x0 + np.arange(cols)
+            return unit[np.ix_((-ys) % m, xs % m)]
         if rows * cols > MAX_SOLVER_TILES:
             raise ParameterError(
                 f"a {rows} x {cols} region is too large for the exact solver (limit {MAX_SOLVER_TILES} tiles); "
@@ -258,6 +275,22 @@ def _facts(ts: WangTileSet, procedure: WangProcedureResult | None) -> dict[str, 
 @cache
 def _build_time_procedure(name: str) -> WangProcedureResult:
     return wang_procedure(get_tileset(name), BUILD_MAX_M)
+
+
+def periodic_unit(ts: WangTileSet) -> np.ndarray | None:
+    """An m x m torus tiling (m <= BUILD_MAX_M) of the set, or None if Wang's procedure found
+    none that small (cached: the build-time run for shipped sets, else one run per set)."""
+    if builtin_sets().get(ts.name) is ts:
+        proc = _build_time_procedure(ts.name)
+    else:
+        proc = ts.__dict__.get("_procedure")
+        if proc is None:
+            try:
+                proc = wang_procedure(ts, BUILD_MAX_M, time_limit=10.0)
+            except SolverLimit:
+                proc = WangProcedureResult(ts.name, BUILD_MAX_M, "no_answer", None, None)
+            ts.__dict__["_procedure"] = proc
+    return proc.unit if proc.outcome == "periodic" else None
 
 
 def set_facts(ts: WangTileSet) -> dict[str, Any]:

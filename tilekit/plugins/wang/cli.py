@@ -48,7 +48,7 @@ def wang_group() -> None:
 @click.option("--rows", type=click.IntRange(min=1), default=12, show_default=True)
 @click.option("--cols", type=click.IntRange(min=1), default=16, show_default=True)
 @click.option("--seed", type=int, default=0, show_default=True)
-@click.option("--method", type=click.Choice(["auto", "random-access", "scanline", "solver"]), default="auto",
+@click.option("--method", type=click.Choice(["auto", "random-access", "scanline", "periodic", "solver"]), default="auto",
               show_default=True, help="How to fill the grid.")
 @click.option("--texture", type=click.Path(exists=True, dir_okay=False), help="TOML file of SVG motifs per edge colour.")
 @click.option("--size", type=click.IntRange(min=16), default=800, show_default=True, help="Image size in pixels.")
