@@ -522,3 +522,14 @@ def test_cli_search_stores_the_run(tmp_path):
     assert "outcome: periodic" in res.output
     show = _run(tmp_path, "show", "checkerboard-2")
     assert "periodic_unit" in show.output
+
+
+def test_corner_colours_with_dashes_do_not_collide():
+    """Edge colours of corner tiles pair the end points' colours; 'a-b' + 'c' and 'a' + 'b-c'
+    must stay different edges."""
+    ts = from_corners("dashes", [("a-b", "c", "x", "y"), ("a", "b-c", "x", "y")])
+    # tile 0's N edge is (NW, NE) = ('y', 'a-b'); tile 1's is ('y', 'a'): E edges differ too
+    assert ts.tiles[0, E] != ts.tiles[1, E]
+    assert len(set(ts.colours)) == len(ts.colours)
+    with pytest.raises(ParseError, match="corner colour 'a/b'"):
+        from_corners("slash", [("a/b", "c", "x", "y")])

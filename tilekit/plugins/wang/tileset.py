@@ -55,7 +55,7 @@ class WangTileSet:
     """A set of Wang tiles: ``tiles[t] = (N, E, S, W)`` colour indices into ``colours``.
 
     ``colours`` are the colour tokens as written in the file (for corner sets, edge colours
-    are 'a-b' pairs of corner tokens and ``corners[t] = (NE, SE, SW, NW)`` indexes
+    are 'a/b' pairs of corner tokens and ``corners[t] = (NE, SE, SW, NW)`` indexes
     ``corner_colours``). ``palette`` maps colour tokens (corner tokens for corner sets) to
     CSS colours for rendering.
     """
@@ -300,17 +300,23 @@ def from_corners(
 ) -> WangTileSet:
     """A corner-tile set from (NE, SE, SW, NW) corner colour tuples (Lagae and Dutré).
 
-    Each edge gets the colour 'a-b' of its two end points read west-to-east (N and S edges)
+    Each edge gets the colour 'a/b' of its two end points read west-to-east (N and S edges)
     or north-to-south (E and W edges), so that matching edges is matching corners.
     """
     rows = [tuple(str(c) for c in t) for t in corners]
     for i, r in enumerate(rows):
         if len(r) != 4:
             raise ParseError(f"tile set {name!r}: corner tile {i} has {len(r)} colours, expected 4 (NE, SE, SW, NW)")
+    for i, r in enumerate(rows):
+        for c in r:
+            if not _TOKEN.match(c):  # '/' joins corner colours into edge colours below
+                raise ParseError(
+                    f"tile set {name!r}: corner colour {c!r} of tile {i} must be letters, digits, '_', '.', '+' or '-'"
+                )
     ccols, cindex = _index(c for r in rows for c in r)
     carr = np.array([[cindex[c] for c in r] for r in rows], dtype=np.int64).reshape(-1, 4)
     _check_duplicates(name, carr, tile_names, what="corner tile")
-    edges = [(f"{nw}-{ne}", f"{ne}-{se}", f"{sw}-{se}", f"{nw}-{sw}") for ne, se, sw, nw in rows]
+    edges = [(f"{nw}/{ne}", f"{ne}/{se}", f"{sw}/{se}", f"{nw}/{sw}") for ne, se, sw, nw in rows]
     colours, index = _index(c for r in edges for c in r)
     arr = np.array([[index[c] for c in r] for r in edges], dtype=np.int64)
     return WangTileSet(
