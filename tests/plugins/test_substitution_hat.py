@@ -19,7 +19,12 @@ from test_substitution import assert_valid
 from tilekit.errors import ParameterError, ParseError
 from tilekit.geometry import Affine
 from tilekit.plugins.substitution import builtin_systems, from_spec, tiling
-from tilekit.plugins.substitution.hat import hat_system_from_data, lattice_points
+from tilekit.plugins.substitution.hat import (
+    LATTICE,
+    hat_system_from_data,
+    lattice_points,
+    to_lattice,
+)
 
 PHI = (1 + math.sqrt(5)) / 2
 KITE = math.sqrt(3)  # kite with sides 1, 1, sqrt3, sqrt3 (angles 60, 90, 120, 90)
@@ -201,3 +206,20 @@ def test_seed_transform_moves_the_supertile() -> None:
     _, a, _ = s.generate(2)
     _, b, _ = s.generate(2, Affine.translation(5, 7))
     assert np.allclose(b[:, :2, 2] - a[:, :2, 2], [5, 7])
+
+
+def test_hats_lie_exactly_on_the_kite_lattice() -> None:
+    """Every hat of a hat tiling is a union of kites of one [3.4.6.4] Laves tiling
+    (arXiv:2303.10798 §1), so its placement is a symmetry of the triangular lattice: the
+    engine composes placements as integer matrices in lattice coordinates. At depth 4 the
+    hats' linear parts are the 12 point symmetries of the lattice (6 rotations, 6
+    reflections) and their vertices are lattice points up to one float conversion."""
+    s = hat()
+    _, exact = s.lattice_supertiles(4)
+    assert exact.dtype == np.int64
+    _, tr, _ = s.generate(4)
+    lat = np.linalg.solve(LATTICE, Affine.apply(tr, s.tile.outline).reshape(-1, 2).T)
+    assert np.abs(lat - np.round(lat)).max() < 1e-12
+    linear = {tuple(m[:2, :2].ravel()) for m in to_lattice(tr)}
+    assert len(linear) == 12
+    assert all(abs(round(np.linalg.det(np.reshape(m, (2, 2))))) == 1 for m in linear)

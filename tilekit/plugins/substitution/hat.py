@@ -41,6 +41,11 @@ LATTICE = np.array([[1.0, 0.5], [0.0, SQRT3 / 2]])
 #: Area of one kite of the [3.4.6.4] Laves tiling at the hat's scale (sides 1, 1, sqrt3, sqrt3).
 KITE_AREA = SQRT3
 REFLECT_X = np.diag([1.0, -1.0, 1.0])
+#: Homogeneous change of basis: lattice coordinates -> Cartesian, and back.
+TO_CARTESIAN = np.block([[LATTICE, np.zeros((2, 1))], [np.zeros((1, 2)), np.ones((1, 1))]])
+TO_LATTICE = np.linalg.inv(TO_CARTESIAN)
+#: Largest distance (in lattice units) a computed map may lie from an exact lattice map.
+SNAP_TOL = 1e-6
 #: Relative tolerance on edge lengths when gluing supertiles (they must be congruent edges).
 GLUE_TOL = 1e-9
 
@@ -48,6 +53,22 @@ GLUE_TOL = 1e-9
 def lattice_points(pairs: Any) -> np.ndarray:
     """Lattice pairs (k, 2) -> Cartesian points (k, 2)."""
     return np.asarray(pairs, dtype=float) @ LATTICE.T
+
+
+def to_lattice(matrices: np.ndarray) -> np.ndarray:
+    """Cartesian isometries (..., 3, 3) that preserve the triangular lattice -> their exact
+    integer matrices in lattice coordinates; ValueError when one is not such a map."""
+    lat = TO_LATTICE @ np.asarray(matrices, dtype=float) @ TO_CARTESIAN
+    exact = np.round(lat)
+    err = float(np.abs(lat - exact).max()) if lat.size else 0.0
+    if err > SNAP_TOL:
+        raise ValueError(f"a placement is {err:.3g} away from a symmetry of the triangular lattice")
+    return exact.astype(np.int64)
+
+
+def to_cartesian(lattice_maps: np.ndarray) -> np.ndarray:
+    """Integer lattice-coordinate maps (..., 3, 3) -> Cartesian affine matrices."""
+    return TO_CARTESIAN @ np.asarray(lattice_maps, dtype=float) @ TO_LATTICE
 
 
 def rigid_match(p1: np.ndarray, q1: np.ndarray, p2: np.ndarray, q2: np.ndarray) -> np.ndarray:
@@ -83,7 +104,7 @@ class HatSystem:
     labels: list[str]
     tile: Prototile
     outlines0: list[np.ndarray]  # per label, level-0 outline (k, 2)
-    base: list[np.ndarray]  # per label, (m, 3, 3) hat placements (in the raw outline order)
+    base: list[np.ndarray]  # per label, (m, 3, 3) integer lattice maps of its hats
     attach: list[tuple[Any, ...]]
     cluster_children: list[np.ndarray]  # per label, cluster tile indices
     seed: int = 0
@@ -92,7 +113,7 @@ class HatSystem:
     data: dict[str, Any] = field(default_factory=dict)
     kind: str = "keypoint"
     reflect: bool = False
-    _levels: list[tuple[list[Rule], list[np.ndarray]]] = field(default_factory=list)
+    _levels: list[tuple[list[Rule], list[np.ndarray], list[np.ndarray]]] = field(default_factory=list)
     _bounds: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
 
     # ------------------------------------------------------------------ shared API
@@ -186,6 +207,13 @@ class HatSystem:
         self._build(n)
         return self._levels[n - 1][0]
 
+    def lattice_rules_at(self, n: int) -> list[np.ndarray]:
+        """Per label, the exact integer (m, 3, 3) lattice-coordinate maps of ``rules_at(n)``."""
+        if n < 1:
+            raise ValueError("levels start at 1")
+        self._build(n)
+        return self._levels[n - 1][2]
+
     def _build(self, n: int) -> None:
         while len(self._levels) < n:
             prev = self.outlines(len(self._levels))
@@ -195,6 +223,7 @@ class HatSystem:
         index = {nm: i for i, nm in enumerate(self.labels)}
         labels: list[int] = []
         maps: list[np.ndarray] = []
+        lattice: list[np.ndarray] = []
 
         def vertex(k: int, v: int) -> np.ndarray:
             pts = shapes[labels[k]]
@@ -204,6 +233,7 @@ class HatSystem:
             if len(entry) == 1:
                 labels.append(index[entry[0]])
                 maps.append(np.eye(3))
+                lattice.append(np.eye(3, dtype=np.int64))
                 continue
             if len(entry) == 4:
                 k, e, lab, f = entry
@@ -217,12 +247,20 @@ class HatSystem:
                 t = rigid_match(own[f % len(own)], own[(f + 1) % len(own)], p, q)
             except ValueError as exc:
                 raise ParseError(f"substitution system {self.source}: cluster entry {list(entry)}: {exc}") from None
+            try:
+                # every hat of the tiling lies on the kite lattice, so each placement is a
+                # lattice symmetry: keep it exact (this also stops float drift between levels)
+                exact = to_lattice(t)
+            except ValueError as exc:
+                raise ParseError(f"substitution system {self.source}: cluster entry {list(entry)}: {exc}") from None
             labels.append(j)
-            maps.append(t)
+            maps.append(to_cartesian(exact))
+            lattice.append(exact)
         lab_arr = np.array(labels, dtype=np.int64)
         map_arr = np.array(maps)
+        lat_arr = np.array(lattice)
         rules = [Rule(lab_arr[c], map_arr[c]) for c in self.cluster_children]
-        return rules, _outlines(vertex)
+        return rules, _outlines(vertex), [lat_arr[c] for c in self.cluster_children]
 
     def bounds(self, n: int) -> tuple[np.ndarray, np.ndarray]:
         """Per label, a centre and radius bounding its level-n supertile's hats."""
@@ -231,7 +269,7 @@ class HatSystem:
             centres, radii = [], []
             if k == 0:
                 for b in self.base:
-                    pts = Affine.apply(b, self.tile.outline).reshape(-1, 2)
+                    pts = Affine.apply(to_cartesian(b), self.tile.outline).reshape(-1, 2)
                     c = pts.mean(axis=0)
                     centres.append(c)
                     radii.append(float(np.linalg.norm(pts - c, axis=1).max()))
@@ -246,29 +284,33 @@ class HatSystem:
         return self._bounds[n]
 
     # ------------------------------------------------------------------ generation
+    def lattice_supertiles(self, depth: int, level: int = 0, seed_label: int | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """The level-``level`` supertiles of a level-``depth`` one at the origin: labels and
+        exact integer lattice-coordinate maps (k, 3, 3)."""
+        label = np.array([self.seed if seed_label is None else seed_label], dtype=np.int64)
+        lattice = np.eye(3, dtype=np.int64)[None]
+        for n in range(depth, level, -1):
+            label, lattice = self._expand(label, lattice, n)
+        return label, lattice
+
     def supertiles(
         self, depth: int, level: int = 0, seed_transform: np.ndarray | None = None, seed_label: int | None = None
     ) -> tuple[np.ndarray, np.ndarray]:
-        """The level-``level`` supertiles (labels, transforms) of a level-``depth`` one."""
-        label = np.array([self.seed if seed_label is None else seed_label], dtype=np.int64)
-        t0 = np.eye(3) if seed_transform is None else np.asarray(seed_transform, dtype=float)
-        transform = t0.reshape(1, 3, 3)
-        for n in range(depth, level, -1):
-            label, transform = self._expand(label, transform, n)
-        return label, transform
+        """The level-``level`` supertiles (labels, Cartesian transforms) of a level-``depth`` one."""
+        label, lattice = self.lattice_supertiles(depth, level, seed_label)
+        return label, _placed(seed_transform, lattice)
 
-    def _expand(self, label: np.ndarray, transform: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
-        labels, transforms = [], []
-        for j, rule in enumerate(self.rules_at(n)):
+    def _expand(self, label: np.ndarray, lattice: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+        labels, maps = [], []
+        for j, (rule, exact) in enumerate(zip(self.rules_at(n), self.lattice_rules_at(n), strict=True)):
             idx = np.flatnonzero(label == j)
             if not len(idx):
                 continue
-            kids = np.matmul(transform[idx][:, None], rule.matrices[None])
-            transforms.append(kids.reshape(-1, 3, 3))
+            maps.append(np.matmul(lattice[idx][:, None], exact[None]).reshape(-1, 3, 3))
             labels.append(np.tile(rule.children, len(idx)))
         if not labels:
-            return np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3))
-        return np.concatenate(labels), np.concatenate(transforms)
+            return np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3), dtype=np.int64)
+        return np.concatenate(labels), np.concatenate(maps)
 
     def generate(
         self,
@@ -277,32 +319,44 @@ class HatSystem:
         seed_label: int | None = None,
         box: tuple[float, float, float, float] | None = None,
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Hats of a level-``depth`` supertile: (prototile, transform, colour) arrays."""
+        """Hats of a level-``depth`` supertile: (prototile, transform, colour) arrays.
+
+        Placements are composed exactly, as integer matrices in lattice coordinates, and
+        converted to Cartesian (and moved by ``seed_transform``) once, at the end; with a
+        ``box``, supertiles whose bounding discs miss it are dropped level by level.
+        """
         label = np.array([self.seed if seed_label is None else seed_label], dtype=np.int64)
-        t0 = np.eye(3) if seed_transform is None else np.asarray(seed_transform, dtype=float)
-        transform = t0.reshape(1, 3, 3)
+        lattice = np.eye(3, dtype=np.int64)[None]
         for n in range(depth, 0, -1):
             if box is not None:
-                keep = _meets(label, transform, self.bounds(n), box)
-                label, transform = label[keep], transform[keep]
-            label, transform = self._expand(label, transform, n)
+                keep = _meets(label, _placed(seed_transform, lattice), self.bounds(n), box)
+                label, lattice = label[keep], lattice[keep]
+            label, lattice = self._expand(label, lattice, n)
         if box is not None and len(label):
-            keep = _meets(label, transform, self.bounds(0), box)
-            label, transform = label[keep], transform[keep]
+            keep = _meets(label, _placed(seed_transform, lattice), self.bounds(0), box)
+            label, lattice = label[keep], lattice[keep]
         out_t, out_c = [], []
         for j, placements in enumerate(self.base):
             idx = np.flatnonzero(label == j)
             if not len(idx):
                 continue
-            out_t.append(np.matmul(transform[idx][:, None], placements[None]).reshape(-1, 3, 3))
+            out_t.append(np.matmul(lattice[idx][:, None], placements[None]).reshape(-1, 3, 3))
             colour = np.full(len(placements), 1 + j, dtype=np.int64)
             if j == 0:
                 colour = (np.linalg.det(placements[:, :2, :2]) < 0).astype(np.int64)
             out_c.append(np.tile(colour, len(idx)))
         if not out_t:
             return np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3)), np.zeros(0, dtype=np.int64)
-        transform = np.concatenate(out_t)
+        transform = _placed(seed_transform, np.concatenate(out_t))
         return np.zeros(len(transform), dtype=np.int64), transform, np.concatenate(out_c)
+
+
+def _placed(seed_transform: np.ndarray | None, lattice: np.ndarray) -> np.ndarray:
+    """Cartesian transforms of lattice maps, after ``seed_transform`` (identity if None)."""
+    cart = to_cartesian(lattice)
+    if seed_transform is None:
+        return cart
+    return np.asarray(seed_transform, dtype=float)[None] @ cart
 
 
 def _outlines(vertex: Any) -> list[np.ndarray]:
@@ -385,7 +439,10 @@ def hat_system_from_data(data: Mapping[str, Any], source: str = "<data>") -> Hat
                 tx, ty = lattice_points([_pairs([h.get("translate", [0, 0])], ctx, fail)[0]])[0]
                 t = Affine.translation(tx, ty) @ Affine.rotation(ang)
                 mats.append(t @ REFLECT_X if h.get("reflect", False) else t)
-        base.append(np.array(mats))
+        try:
+            base.append(to_lattice(np.array(mats)))
+        except ValueError as exc:
+            raise fail(f"[metatiles.{nm}] hats: {exc}") from None
     cluster = data.get("cluster")
     if not isinstance(cluster, Mapping) or "attach" not in cluster or "children" not in cluster:
         raise fail("[cluster] needs 'attach' and 'children'")
