@@ -173,6 +173,9 @@ def test_spec_round_trip_options_and_errors() -> None:
         t.configure(seed="Q")
     with pytest.raises(ParameterError, match="does not take option"):
         t.configure(colour="red")
+    # 4 * (growth ~6.85)^9 hats: refused with the count, not attempted
+    with pytest.raises(ParameterError, match="hat depth 9 would make 119814916 hats"):
+        tiling("hat", depth=9).patch()
 
 
 def test_loader_rejects_bad_data() -> None:

@@ -28,7 +28,7 @@ from typing import Any
 import numpy as np
 import shapely
 
-from tilekit.errors import ParseError
+from tilekit.errors import ParameterError, ParseError
 from tilekit.geometry import Affine
 from tilekit.plugins.substitution.keypoint import _meets
 from tilekit.plugins.substitution.system import Rule
@@ -44,6 +44,8 @@ REFLECT_X = np.diag([1.0, -1.0, 1.0])
 #: Homogeneous change of basis: lattice coordinates -> Cartesian, and back.
 TO_CARTESIAN = np.block([[LATTICE, np.zeros((2, 1))], [np.zeros((1, 2)), np.ones((1, 1))]])
 TO_LATTICE = np.linalg.inv(TO_CARTESIAN)
+#: Most hats a whole (unclipped) supertile may have.
+MAX_TILES = 5_000_000
 #: Largest distance (in lattice units) a computed map may lie from an exact lattice map.
 SNAP_TOL = 1e-6
 #: Relative tolerance on edge lengths when gluing supertiles (they must be congruent edges).
@@ -326,6 +328,11 @@ class HatSystem:
         ``box``, supertiles whose bounding discs miss it are dropped level by level.
         """
         label = np.array([self.seed if seed_label is None else seed_label], dtype=np.int64)
+        if box is None and self.tile_counts(depth, int(label[0]))[-1] > MAX_TILES:
+            count = self.tile_counts(depth, int(label[0]))[-1]
+            raise ParameterError(
+                f"hat depth {depth} would make {count} hats; the limit is {MAX_TILES} (give a smaller depth or a region)"
+            )
         lattice = np.eye(3, dtype=np.int64)[None]
         for n in range(depth, 0, -1):
             if box is not None:
