@@ -199,41 +199,67 @@ def _simple(outline: np.ndarray) -> bool:
         return False
     poly = shapely.Polygon(outline)
     area = 0.5 * float(np.sum(outline[:, 0] * np.roll(outline[:, 1], -1) - np.roll(outline[:, 0], -1) * outline[:, 1]))
-    return bool(poly.is_valid) and area > 0
+    if not (poly.is_valid and shapely.LinearRing(outline).is_simple and area > 0):
+        return False
+    # an outline that doubles back along itself (a slit) is not a tile boundary
+    a = outline - np.roll(outline, 1, axis=0)
+    b = np.roll(outline, -1, axis=0) - outline
+    cross = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+    dot = np.einsum("ij,ij->i", a, b)
+    scale = np.linalg.norm(a, axis=1) * np.linalg.norm(b, axis=1)
+    return not bool(np.any((np.abs(cross) <= 1e-9 * scale) & (dot < 0)))
 
 
 def _bad_tiles(params: QuasivertexParams) -> list[str]:
     return [name for name, (pts, labels) in book_outlines(params).items() if not _simple(_merge(pts, labels)[0])]
 
 
+def _valid_run(params: QuasivertexParams, name: str) -> tuple[float, float, float] | None:
+    """With the other three parameters fixed: (distance to the nearest valid value of ``name``,
+    low end, high end of the run of valid sampled values holding it), or None if none is valid."""
+    values = np.linspace(0.0, 1.0, 401) if name.startswith("r") else np.arange(-180.0, 180.5, 1.0)
+    given = getattr(params, name)
+    ok = np.array([not _bad_tiles(QuasivertexParams(**{**params.as_dict(), name: float(v)})) for v in values])
+    if not ok.any():
+        return None
+    idx = np.flatnonzero(ok)
+    near = int(idx[np.argmin(np.abs(values[idx] - given))])
+    lo = hi = near
+    while lo > 0 and ok[lo - 1]:
+        lo -= 1
+    while hi < len(values) - 1 and ok[hi + 1]:
+        hi += 1
+    scale = 1.0 if name.startswith("r") else 180.0
+    return abs(float(values[near]) - given) / scale, float(values[lo]), float(values[hi])
+
+
 def validate_params(params: QuasivertexParams) -> None:
-    """Raise ParameterError naming the parameter when a deformed rhomb self-intersects."""
+    """Raise ParameterError naming a parameter when a deformed rhomb self-intersects.
+
+    The named parameter is the one whose smallest change (others fixed, r measured in edge
+    lengths and theta in half-turns) makes both rhombs simple again, with its valid range.
+    """
     bad = _bad_tiles(params)
     if not bad:
         return
-    culprits = []
-    for r, t in (("r1", "theta1"), ("r2", "theta2")):
-        reset = QuasivertexParams(**{**params.as_dict(), r: 0.0})
-        if not _bad_tiles(reset):
-            culprits.append((r, t))
-    if len(culprits) == 1:
-        r, t = culprits[0]
-        given = getattr(params, r)
-        lo, hi = 0.0, given  # bisect for the largest valid |r| with the others fixed
-        for _ in range(40):
-            mid = (lo + hi) / 2
-            if _bad_tiles(QuasivertexParams(**{**params.as_dict(), r: mid})):
-                hi = mid
-            else:
-                lo = mid
+    what = f"the {' and '.join(bad)} rhomb{'s' if len(bad) > 1 else ''}"
+    runs = {name: _valid_run(params, name) for name in PARAM_NAMES}
+    fixable = sorted((run[0], name, run[1], run[2]) for name, run in runs.items() if run is not None)
+    if not fixable:
         raise ParameterError(
-            f"quasivertex parameter {r}={given:g} (with {t}={getattr(params, t):g}) makes the "
-            f"{' and '.join(bad)} rhomb self-intersect; with the other parameters as given |{r}| "
-            f"must stay below about {abs(lo):.3g}"
+            f"quasivertex parameters {params.text()} make {what} self-intersect and no single "
+            "parameter can fix it; start from e.g. r1=0.1, r2=0.2, theta1=theta2=0"
         )
+    _, name, lo, hi = fixable[0]
+    unit = "" if name.startswith("r") else " degrees"
+    others = ", ".join(f"{n}={getattr(params, n):g}" for n in PARAM_NAMES if n != name)
+    extra = ""
+    if len(fixable) > 1:
+        _, n2, lo2, hi2 = fixable[1]
+        extra = f" (or keep {name} and set {n2} in [{lo2:.3g}, {hi2:.3g}])"
     raise ParameterError(
-        f"quasivertex parameters r1 and r2 ({params.text()}) together make the {' and '.join(bad)} "
-        "rhomb self-intersect; use smaller r1, r2"
+        f"quasivertex parameter {name}={getattr(params, name):g} makes {what} self-intersect: with "
+        f"{others}, {name} must lie in about [{lo:.3g}, {hi:.3g}]{unit}{extra}"
     )
 
 

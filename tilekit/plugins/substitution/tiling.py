@@ -178,7 +178,13 @@ class SubstitutionTiling(Tiling):
     def patch(self, region: Any = None) -> Patch:
         """Tiles meeting ``region`` (every tile of the fixed-depth patch when region is None)."""
         reg = as_region(region) if region is not None else None
-        proto, transform = self.raw(reg)
+        if self._shaped is not None and reg is not None:
+            # shaped tiles reach beyond their straight tiles: generate for a wider box
+            margin = self._shape_margin()
+            x0, y0, x1, y1 = reg.bounds
+            proto, transform = self.raw(shapely.box(x0 - margin, y0 - margin, x1 + margin, y1 + margin))
+        else:
+            proto, transform = self.raw(reg)
         if self._shaped is not None:
             from tilekit.plugins.substitution.shapes import canonical_transforms
 
@@ -187,6 +193,14 @@ class SubstitutionTiling(Tiling):
         if reg is not None:
             patch = patch.clip(reg)
         return patch
+
+    def _shape_margin(self) -> float:
+        """How far any shaped tile reaches outside its straight tile (Hausdorff bound)."""
+        assert self._shaped is not None
+        return max(
+            float(shapely.hausdorff_distance(shapely.Polygon(a.outline), shapely.Polygon(b.outline)))
+            for a, b in zip(self._shaped, self.system.tiles)
+        )
 
     def default_region(self) -> BaseGeometry:
         """A window of about 12 tiles across, or, with a fixed depth, the whole inflated seed."""
