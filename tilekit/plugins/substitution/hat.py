@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 import tomllib
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -469,6 +469,9 @@ def hat_system_from_data(data: Mapping[str, Any], source: str = "<data>") -> Hat
         if not isinstance(c, list) or not c or not all(isinstance(x, int) and 0 <= x < len(attach) for x in c):
             raise fail(f"[cluster.children] {nm} must list cluster tile indices 0..{len(attach) - 1}")
         children.append(np.array(c, dtype=np.int64))
+    seed = str(data.get("seed", "H"))
+    if seed not in labels:
+        raise fail(f"seed {seed!r} is not one of H, T, P, F")
     system = HatSystem(
         name=str(data.get("name", "hat")),
         title=str(data.get("title", "hat")),
@@ -478,7 +481,7 @@ def hat_system_from_data(data: Mapping[str, Any], source: str = "<data>") -> Hat
         base=base,
         attach=attach,
         cluster_children=children,
-        seed=labels.index(str(data.get("seed", "H"))) if data.get("seed", "H") in labels else 0,
+        seed=labels.index(seed),
         facts=dict(data.get("properties", {})),
         source=source,
         data=dict(data),
@@ -542,4 +545,13 @@ def hat_systems() -> dict[str, HatSystem]:
     return {system.name: system}
 
 
-__all__: Sequence[str] = ["HatSystem", "hat_system_from_data", "hat_systems", "lattice_points", "load_hat", "rigid_match"]
+__all__ = [
+    "HatSystem",
+    "hat_system_from_data",
+    "hat_systems",
+    "lattice_points",
+    "load_hat",
+    "rigid_match",
+    "to_cartesian",
+    "to_lattice",
+]
