@@ -51,3 +51,13 @@ def test_bad_requests_are_one_line_errors(tmp_path) -> None:
     with pytest.raises(ParseError, match="not a CSS name"):
         parse_palette("red,#12345")
     assert parse_palette("red, #abc") == ("red", "#abc")
+
+
+def test_region_clip_is_in_tile_coordinates() -> None:
+    """The clip rectangle is used inside the y-flipped group, so it must not be flipped itself."""
+    root = ET.fromstring(patch_to_svg(triangle_patch(), region=(-1, 0.5, 1.5, 1.5)))
+    rect = next(root.iter(SVG + "clipPath")).find(SVG + "rect")
+    box = [float(rect.get(k)) for k in ("x", "y", "width", "height")]
+    assert box == pytest.approx([-1, 0.5, 2.5, 1.0])
+    group = next(g for g in root.iter(SVG + "g") if g.get("clip-path"))
+    assert group.get("transform") == "scale(1,-1)"

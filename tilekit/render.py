@@ -105,8 +105,9 @@ def patch_to_svg(
             f'fill="{html.escape(background)}"/>'
         )
     if region is not None:
+        # the clip path is applied to the y-flipped group below, so it is in tile coordinates
         out.append(
-            f'<clipPath id="region"><rect x="{x0:.6g}" y="{-y1:.6g}" width="{w:.6g}" '
+            f'<clipPath id="region"><rect x="{x0:.6g}" y="{y0:.6g}" width="{w:.6g}" '
             f'height="{h:.6g}"/></clipPath>'
         )
     clip = ' clip-path="url(#region)"' if region is not None else ""
