@@ -23,6 +23,7 @@ sys.path.insert(0, str(Path(__file__).parent / "data"))
 
 import testkit  # noqa: E402
 
+import tilekit  # noqa: E402
 from tilekit.catalogue import (  # noqa: E402
     Filter,
     open_catalogue,
@@ -70,7 +71,7 @@ def test_fresh_url_is_migrated_and_seeded_on_first_open(url, pm, tmp_path):
     assert {"tilings", "tiling_aliases", "tiling_properties", "runs", "run_chunks", "run_results",
             "alembic_version"} <= tables
     current, heads = cat.revisions()
-    assert current == heads == {"0001"}
+    assert current == heads == {"0002"}
     assert cat.count() == 11  # the 11 Archimedean tilings (Grünbaum & Shephard §2.1)
     cat.close()
     # opening again neither duplicates nor re-seeds
@@ -101,7 +102,7 @@ def test_downgrade_base_then_upgrade_head(cat):
     assert set(sa.inspect(cat.engine).get_table_names()) <= {"alembic_version"}
     assert cat.revisions()[0] == set()
     cat.upgrade()
-    assert cat.revisions()[0] == {"0001"}
+    assert cat.revisions()[0] == {"0002"}
     assert cat.count() == 0  # data went with the tables; the schema is back
     assert cat.seed() == (11, 0)
     # the migrated schema is exactly the models' schema (tables, columns, indexes, constraints)
@@ -638,3 +639,41 @@ def test_properties_round_trip_with_their_types(props):
             if isinstance(item, bool) or (isinstance(item, int | float) and abs(item) < 1e300):
                 expr = f"{key}={str(item).lower() if isinstance(item, bool) else repr(item)}"
                 assert "round-trip" in names(cat.query(where=[expr])), expr
+
+
+class _UpgradePlugin(testkit.GridPlugin):
+    """The test family after an upgrade: 4^4 gains a property, and one new tiling ships."""
+
+    @tilekit.hookimpl
+    def tilekit_catalogue_records(self):
+        out = []
+        for r in testkit.records():
+            if r.name == "4^4":
+                r = CatalogueRecord(r.family, r.name, r.spec, r.title,
+                                    {**r.properties, "shipped_in_upgrade": True}, r.aliases)
+            out.append(r)
+        square = out[-1]
+        out.append(CatalogueRecord(square.family, "new-in-upgrade", square.spec, "",
+                                   {"periodic": True, "k_hedral": 1}))
+        return out
+
+
+def test_changed_plugins_refresh_shipped_records_keeping_search_results(url, monkeypatch):
+    """Upgrading tilekit or a plugin must update shipped records without losing what searches added."""
+    before = testkit.isolated_pm(monkeypatch, testkit.GridPlugin())
+    cat = open_catalogue(url, pm=before)
+    assert cat.refresh_shipped() is None  # unchanged plugins: nothing to do
+    entry = cat.get("4^4")
+    cat.upsert([CatalogueRecord(entry.family, entry.name, entry.spec, entry.title,
+                                {**entry.properties, "found_by_search": 7}, entry.aliases)])
+    cat.upsert([CatalogueRecord(entry.family, "search-result", entry.spec, "",
+                                {"periodic": True, "k_hedral": 1})])
+    cat.close()
+
+    after = testkit.isolated_pm(monkeypatch, _UpgradePlugin())
+    cat = open_catalogue(url, pm=after)
+    square = cat.get("4^4").properties
+    assert square["shipped_in_upgrade"] is True and square["found_by_search"] == 7
+    assert cat.get("new-in-upgrade").name == "new-in-upgrade"
+    assert cat.get("search-result").name == "search-result"  # never dropped
+    assert cat.refresh_shipped() is None

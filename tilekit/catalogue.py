@@ -2,7 +2,8 @@
 
 ``open_catalogue()`` opens the SQLite file under the user data directory, or any SQLAlchemy
 URL given as an argument or in ``TILEKIT_CATALOGUE``; it runs the Alembic migrations to head
-and seeds the tilings the plugins ship when the catalogue is empty. Queries are built from
+and seeds the tilings the plugins ship when the catalogue is empty, and again (merging, never
+dropping search results) whenever the plugins or their shipped data change. Queries are built from
 parsed filters (:func:`parse_filter`) with SQLAlchemy expressions only: a user's text never
 reaches the database as SQL. See docs/catalogue.md.
 """
@@ -10,13 +11,16 @@ reaches the database as SQL. See docs/catalogue.md.
 from __future__ import annotations
 
 import csv
+import hashlib
 import io
 import json
 import math
 import numbers
 import os
 import re
+import sys
 import threading
+import types
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -43,6 +47,7 @@ from tilekit.models import (
     SHARED_COLUMNS,
     TEXT_COLUMNS,
     AliasRow,
+    MetaRow,
     PropertyRow,
     RunChunkRow,
     RunResultRow,
@@ -58,7 +63,7 @@ from tilekit.plugins import (
     get_plugin_manager,
     migration_locations,
 )
-from tilekit.resources import migrations_dir
+from tilekit.resources import catalogue_dir, migrations_dir
 
 __all__ = [
     "Catalogue",
@@ -91,6 +96,39 @@ _BATCH = 500
 _TILINGS = TilingRow.__table__
 _ALIASES = AliasRow.__table__
 _PROPS = PropertyRow.__table__
+_META = MetaRow.__table__
+#: catalogue_meta key holding the fingerprint of the records the plugins shipped at last seeding
+SEED_KEY = "seed_fingerprint"
+
+
+def shipped_fingerprint(pm: pluggy.PluginManager) -> str:
+    """A hash of what determines the shipped records: tilekit's version, the registered
+    plugins' names and source files, and the shipped catalogue/ data.
+
+    Computing it reads about a megabyte of files (milliseconds); building the records
+    themselves takes a second, so it is done only when the fingerprint changes.
+    """
+    from tilekit import __version__
+
+    digest = hashlib.sha256(__version__.encode())
+    paths: set[Path] = set()
+    for name, plugin in sorted(pm.list_name_plugin(), key=lambda item: str(item[0])):
+        digest.update(str(name).encode())
+        module = plugin if isinstance(plugin, types.ModuleType) else sys.modules.get(type(plugin).__module__)
+        source = getattr(module, "__file__", None)
+        if source:
+            src = Path(source)
+            paths |= set(src.parent.rglob("*.py")) if src.name == "__init__.py" else {src}
+    data = catalogue_dir()
+    if data.is_dir():
+        paths |= {f for f in data.rglob("*") if f.is_file() and "__pycache__" not in f.parts}
+    for path in sorted(paths):
+        digest.update(path.name.encode())
+        try:
+            digest.update(path.read_bytes())
+        except OSError:
+            continue
+    return digest.hexdigest()
 _RUNS = RunRow.__table__
 _CHUNKS = RunChunkRow.__table__
 _RESULTS = RunResultRow.__table__
@@ -553,6 +591,51 @@ class Catalogue:
             if conn.execute(sa.select(sa.func.count()).select_from(_TILINGS)).scalar_one():
                 return 0, 0
             return _upsert(conn, list(records), replace=False)
+
+    def refresh_shipped(self) -> tuple[int, int] | None:
+        """Bring the shipped records up to date when the plugins or their data changed.
+
+        Compares :func:`shipped_fingerprint` with the one stored at the last seeding; when
+        they differ, inserts new shipped records and updates existing ones (spec, title,
+        aliases, shipped properties), keeping properties that searches added and every
+        tiling no plugin ships. Returns (added, updated), or None when nothing changed.
+        """
+        fingerprint = shipped_fingerprint(self.pm)
+        with self._errors("reading the catalogue's metadata"), self.engine.connect() as conn:
+            stored = conn.execute(sa.select(_META.c.value).where(_META.c.key == SEED_KEY)).scalar()
+        if stored == fingerprint:
+            return None
+        records = list(catalogue_records(self.pm))
+        with self._errors("seeding"), self.engine.begin() as conn:
+            self._lock_for_writing(conn)
+            stored = conn.execute(sa.select(_META.c.value).where(_META.c.key == SEED_KEY)).scalar()
+            if stored == fingerprint:  # another process refreshed it meanwhile
+                return None
+            names = [r.name for r in records]
+            rows = []
+            for batch in _batches(names):
+                rows += conn.execute(
+                    sa.select(_TILINGS.c.id, _TILINGS.c.name, _TILINGS.c.family, _TILINGS.c.title, _TILINGS.c.spec)
+                    .where(_TILINGS.c.name.in_(batch))
+                ).all()
+            existing = {e.name: e for e in self._entries(conn, rows)}
+            merged = []
+            for rec in records:
+                old = existing.get(rec.name)
+                if old is not None:
+                    rec = CatalogueRecord(
+                        family=rec.family,
+                        name=rec.name,
+                        spec=rec.spec,
+                        title=rec.title,
+                        properties={**old.properties, **rec.properties},
+                        aliases=list(rec.aliases),
+                    )
+                merged.append(rec)
+            result = _upsert(conn, merged, replace=True)
+            conn.execute(sa.delete(_META).where(_META.c.key == SEED_KEY))
+            conn.execute(sa.insert(_META).values(key=SEED_KEY, value=fingerprint))
+            return result
 
     def upsert(self, records: Iterable[CatalogueRecord], *, replace: bool = True) -> tuple[int, int]:
         """Insert records by name (replacing existing ones if ``replace``); return (added, replaced)."""
@@ -1212,8 +1295,8 @@ def open_catalogue(
                 current, heads = catalogue.revisions()
                 if current != heads:
                     raise
-        if seed and migrate and catalogue.count() == 0:
-            catalogue.seed_if_empty()
+        if seed and migrate:
+            catalogue.refresh_shipped()
     except SQLAlchemyError as exc:
         engine.dispose()
         raise CatalogueError(f"cannot open catalogue {_display(sa_url)}: {_one_line(exc)}") from None

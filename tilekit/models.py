@@ -186,3 +186,12 @@ class RunResultRow(Base):
     run_id: Mapped[int] = mapped_column(ForeignKey("runs.id", ondelete="CASCADE"))
     chunk_index: Mapped[int] = mapped_column(Integer)
     data: Mapped[dict[str, Any]] = mapped_column(JSONType)
+
+
+class MetaRow(Base):
+    """Key/value facts about the catalogue itself (e.g. the fingerprint of the shipped data)."""
+
+    __tablename__ = "catalogue_meta"
+
+    key: Mapped[str] = mapped_column(String(100), primary_key=True)
+    value: Mapped[str] = mapped_column(String(400))
