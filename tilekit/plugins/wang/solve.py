@@ -5,9 +5,10 @@ Three solvers, one question, one independent checker (:func:`check_grid`) on eve
 - ``sat``: the encoding of :mod:`tilekit.plugins.wang.sat` (CaDiCaL through python-sat);
 - ``builder``: the shared backtracking patch builder (:mod:`tilekit.builder`) with Wang tiles
   as unit squares whose edge labels are (side, colour) and a colour-equality compatibility
-  rule; a vertex rule keeps tiles inside the rectangle and on their fixed cells, and the
-  frontier order fills the rectangle in scanline order. Rectangles only (the builder works
-  in the plane and has no notion of a torus);
+  rule; the builder's fill goal is "every open edge inside the rectangle is filled", a
+  vertex rule keeps tiles inside the rectangle and on their fixed cells, and the frontier
+  order is scanline order. Rectangles only (the builder works in the plane and has no
+  notion of a torus);
 - ``backtrack``: a Wang-specific scanline backtracking search with an explicit stack, for
   rectangles and tori (used for tori, and as a second opinion).
 
@@ -221,10 +222,14 @@ def builder_solve(
     start = time.perf_counter()
     top = float(rows)
 
-    def scanline(edge: Mapping[str, Any]) -> tuple[int, float, float]:
+    def inside(edge: Mapping[str, Any]) -> bool:
+        """An open edge whose midpoint is strictly inside the rectangle still needs a tile."""
+        x, y = edge["midpoint"]  # midpoints are 1/2 off the lattice; 1e-6 absorbs float noise
+        return 1e-6 < x < cols - 1e-6 and 1e-6 < y < top - 1e-6
+
+    def scanline(edge: Mapping[str, Any]) -> tuple[float, float]:
         x, y = edge["midpoint"]
-        inside = 0.0 < x < cols and 0.0 < y < top
-        return (0 if inside else 1, -round(y, 6), round(x, 6))
+        return (-round(y, 6), round(x, 6))
 
     builder = PatchBuilder(
         builder_prototiles(tileset), compatible=wang_compatible, rule=_GridRule(rows, cols, fixed_n), order=scanline
@@ -239,7 +244,7 @@ def builder_solve(
         if (budget is not None and budget < 1) or (remaining is not None and remaining <= 0):
             raise SolverLimit(_limit_message(tileset, rows, cols, nodes, start))
         result = builder.build(
-            tiles=rows * cols, seed=seed, seed_transform=corner,
+            fill=inside, seed=seed, seed_transform=corner,
             max_nodes=budget if budget is not None else 10**12, max_seconds=remaining,
         )
         nodes += result.stats.nodes
