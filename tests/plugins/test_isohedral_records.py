@@ -141,3 +141,74 @@ def test_marked_tilings_agree_with_the_geometric_symmetry_finder():
             tiling = MarkedTiling(ih)
             assert symmetry.wallpaper_group(tiling).orbifold == wallpaper_group(tiling) == type_properties(ih)["symmetry_group"]
     assert type_properties(19)["wallpaper_group"] == "p3m1"  # as listed for IH19 (gist TriHydera/63e7...)
+
+
+# Published data on the marked types. The only public table reachable here that covers any
+# of them is the list "Isohedral Tiling | Wallpaper Group | Tile" (gist by andybak,
+# https://gist.github.com/andybak/51c01feaecb233e0500851a1bb5ee30b, copied in
+# https://gist.github.com/TriHydera/63e704512f58605461c0af036fc49159); its stored copy
+# shows rows IH1..IH41 and so covers IH19 and IH35 only. It gives the wallpaper group and
+# the tile polygon (the number of edges, which fixes the topology's length). No published
+# incidence symbol of a marked type was found (see catalogue/isohedral/README.md).
+PUBLISHED_MARKED = {
+    19: ("p3m1", "Hexagon"),
+    35: ("p3m1", "Quadrilateral"),
+}
+POLYGON_EDGES = {"Triangle": 3, "Quadrilateral": 4, "Pentagon": 5, "Hexagon": 6}
+
+
+@pytest.mark.parametrize("ih", sorted(PUBLISHED_MARKED))
+def test_marked_types_match_the_published_list(ih):
+    """Wallpaper group and tile polygon of IH19 and IH35 as listed in the gist above."""
+    group, polygon = PUBLISHED_MARKED[ih]
+    props = type_properties(ih)
+    assert props["marked"] is True
+    assert props["wallpaper_group"] == group
+    assert props["edges"] == POLYGON_EDGES[polygon]
+    # the stored value is the computed one, not a copy of the list
+    from tilekit.plugins.isohedral.records import computed_properties
+
+    assert computed_properties(ih)["wallpaper_group"] == group
+
+
+def test_marked_tiles_are_fixed_exactly_by_their_symbol_symmetries():
+    """In an isohedral tiling the stabiliser of a tile is the tile symmetry group the symbol
+    records (§5.3.1). For each marked type, generate the tiling group from the hops and the
+    symbol's tile symmetries on the Laves tile, and collect the elements that map the tile
+    onto itself: there must be exactly as many as the symbol has symmetries. This catches a
+    symbol whose start is rotated against its topology: read from a 6-valent vertex of
+    3.6.3.6, IH35's mirror lies on the long diagonal, the edge reflections add the short
+    one, and the tile would be fixed by four isometries instead of two."""
+    import numpy as np
+
+    from tilekit.geometry import Affine
+    from tilekit.plugins.isohedral.engine import HopEngine, laves_polygon
+
+    for ih, t in load_templates().items():
+        if not t.marked:
+            continue
+        assert t.symbol is not None
+        verts = laves_polygon(t.topology)
+        engine = HopEngine(t.symbol, verts)
+        sym = engine.tile_symmetries()
+        gens = list(engine.hops) + list(sym)
+        reach = 4 * float(np.ptp(verts, axis=0).max())
+        centre = verts.mean(axis=0)
+        seen = {tuple(np.round(np.eye(3)[:2].ravel(), 6))}
+        frontier = [np.eye(3)]
+        stabiliser = 0
+        for _ in range(8):
+            nxt = []
+            for m in frontier:
+                img = Affine.apply(m, verts)
+                if np.linalg.norm(img[:, None] - verts[None], axis=2).min(axis=1).max() < 1e-6:
+                    stabiliser += 1
+                for g in gens:
+                    h = m @ g
+                    key = tuple(np.round(h[:2].ravel(), 6) + 0.0)
+                    if key in seen or np.hypot(*(Affine.apply(h, centre[None])[0] - centre)) > reach:
+                        continue
+                    seen.add(key)
+                    nxt.append(h)
+            frontier = nxt
+        assert stabiliser == len(sym), (ih, str(t.symbol), stabiliser, len(sym))
