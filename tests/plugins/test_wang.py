@@ -533,3 +533,16 @@ def test_corner_colours_with_dashes_do_not_collide():
     assert len(set(ts.colours)) == len(ts.colours)
     with pytest.raises(ParseError, match="corner colour 'a/b'"):
         from_corners("slash", [("a/b", "c", "x", "y")])
+
+
+def test_corner_textures_are_drawn_per_corner():
+    """Exercise 6.8 for corner tiles: one motif per corner colour, clipped to each quadrant."""
+    ts = get_tileset("corner-2colour")
+    texture = load_texture(catalogue_folder() / "textures" / "corner-2colour.toml")
+    assert set(texture) == {"0", "1"}
+    grid = random_access_fill(ts, 4, 5, seed=1)
+    svg = wang_svg(grid, ts, texture=texture)
+    used = len(np.unique(grid))
+    assert svg.count('<g clip-path="url(#clipN') + svg.count('<g clip-path="url(#clipS') == 4 * used
+    with pytest.raises(ParameterError, match="no motif for corner colour '1'"):
+        wang_svg(np.array([[15]]), ts, texture={"0": "<circle r='0.3'/>"})
