@@ -546,3 +546,17 @@ def test_corner_textures_are_drawn_per_corner():
     assert svg.count('<g clip-path="url(#clipN') + svg.count('<g clip-path="url(#clipS') == 4 * used
     with pytest.raises(ParameterError, match="no motif for corner colour '1'"):
         wang_svg(np.array([[15]]), ts, texture={"0": "<circle r='0.3'/>"})
+
+
+def test_periodicity_search_on_a_user_file(tmp_path):
+    """A user's set: the record carries the tiles inline so the catalogue can rebuild it."""
+    path = tmp_path / "pair.wang"
+    path.write_text("name: my-pair\ntiles: N E S W\na x b y\nb y a x\n")
+    search = get_search("wang-periodicity")
+    params = {"set": str(path), "max_m": 4}
+    out = search.run_chunk(params, search.chunks(params)[0])
+    assert out.results[0]["outcome"] == "periodic" and out.results[0]["m"] == 2
+    (record,) = out.records
+    assert record.name == "my-pair" and record.properties["periodic_unit"] == 2
+    rebuilt = families()["wang"].from_spec(record.spec)
+    assert rebuilt.tileset.name == "my-pair" and len(rebuilt.tileset) == 2
