@@ -57,7 +57,8 @@ class EdgeShape:
             raise ParameterError(f"edge shape needs at least two finite points, got {pts.tolist()}")
         if not (np.allclose(pts[0], (0.0, 0.0), atol=1e-9) and np.allclose(pts[-1], (1.0, 0.0), atol=1e-9)):
             raise ParameterError(
-                f"edge shape must run from (0, 0) to (1, 0); got {tuple(pts[0])} to {tuple(pts[-1])}"
+                f"edge shape must run from (0, 0) to (1, 0); got ({pts[0, 0]:g}, {pts[0, 1]:g}) "
+                f"to ({pts[-1, 0]:g}, {pts[-1, 1]:g})"
             )
         if self.smooth and (len(pts) - 1) % 3:
             raise ParameterError(
