@@ -1,7 +1,7 @@
 """Wang family speed: the two graphics fills at 1000 x 1000 and the exact solvers on Jeandel–Rao.
 
 Run the timed suite:  pytest benchmarks/bench_wang.py --benchmark-enable
-Print the tables of docs/benchmarks-wang.md:  python benchmarks/bench_wang.py
+Print the tables of docs/benchmarks.md (Wang section):  python benchmarks/bench_wang.py
 (with the project's default ``--benchmark-disable`` each test runs once, untimed).
 """
 

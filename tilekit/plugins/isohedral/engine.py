@@ -202,17 +202,9 @@ def compute_unit(template: Template, verts: np.ndarray) -> tuple[np.ndarray, np.
 
 
 def tile_outlines(patch: Patch, prototile: int = 0) -> np.ndarray:
-    """(n, k, 2) outlines of the patch's tiles of one prototile, by one batched matmul.
-
-    Equivalent to ``Affine.apply(patch.transform[idx], outline)`` but an order of magnitude
-    faster for 10^5 tiles (BLAS batched products instead of a generic einsum).
-    """
+    """(n, k, 2) outlines of the patch's tiles of one prototile (one batched transform)."""
     idx = np.flatnonzero(patch.prototile == prototile)
-    m = patch.transform[idx]
-    outline = patch.prototiles[prototile].outline
-    pts = np.matmul(m[:, :2, :2], outline.T)
-    pts += m[:, :2, 2, None]
-    return pts.transpose(0, 2, 1)
+    return Affine.apply(patch.transform[idx], patch.prototiles[prototile].outline)
 
 
 def _snap(x: np.ndarray) -> np.ndarray:
