@@ -30,7 +30,7 @@ import shapely
 
 from tilekit.errors import ParameterError, ParseError
 from tilekit.geometry import Affine
-from tilekit.plugins.substitution.keypoint import _meets
+from tilekit.plugins.substitution.keypoint import MonotileSystem, _meets
 from tilekit.plugins.substitution.system import Rule
 from tilekit.resources import catalogue_dir
 from tilekit.tiling import Prototile
@@ -98,7 +98,7 @@ def _intersect(p1: np.ndarray, q1: np.ndarray, p2: np.ndarray, q2: np.ndarray) -
 
 
 @dataclass
-class HatSystem:
+class HatSystem(MonotileSystem):
     """The hat's metatile substitution, with the interface of ``KeypointSystem``."""
 
     name: str
@@ -118,81 +118,29 @@ class HatSystem:
     _levels: list[tuple[list[Rule], list[np.ndarray], list[np.ndarray]]] = field(default_factory=list)
     _bounds: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
 
-    # ------------------------------------------------------------------ shared API
-    @property
-    def n(self) -> int:
-        return len(self.labels)
-
-    @property
-    def tiles(self) -> list[Prototile]:
-        return [self.tile]
-
-    @property
-    def prototiles(self) -> list[Prototile]:
-        return [self.tile]
-
-    @property
-    def output_prototiles(self) -> list[Prototile]:
-        return [self.tile]
-
-    @property
-    def scale(self) -> float:
-        """Linear growth per level: the square root of the Perron-Frobenius eigenvalue."""
-        return math.sqrt(self.perron_frobenius()[0])
-
     @property
     def rules(self) -> list[np.ndarray]:
         """Per label, the labels of its children (for ``describe``)."""
         lab = self.cluster_labels()
         return [lab[c] for c in self.cluster_children]
 
+    def child_labels(self) -> list[np.ndarray]:
+        return self.rules
+
     def cluster_labels(self) -> np.ndarray:
         index = {nm: i for i, nm in enumerate(self.labels)}
         return np.array([index[a[-2] if len(a) > 1 else a[0]] for a in self.attach], dtype=np.int64)
 
-    def substitution_matrix(self) -> np.ndarray:
-        """Column j counts the children of label j by label."""
-        m = np.zeros((self.n, self.n), dtype=np.int64)
-        for j, kids in enumerate(self.rules):
-            np.add.at(m[:, j], kids, 1)
-        return m
-
-    def perron_frobenius(self) -> tuple[float, np.ndarray]:
-        m = self.substitution_matrix().astype(float)
-        vals, vecs = np.linalg.eig(m)
-        k = int(np.argmax(vals.real))
-        vec = np.abs(vecs[:, k].real)
-        return float(vals[k].real), vec / vec.sum()
-
-    def counts(self, generations: int, start: int | None = None) -> list[list[int]]:
-        """Label counts after 0..generations substitutions of one ``start`` supertile."""
-        m = self.substitution_matrix().astype(object)
-        v = np.zeros(self.n, dtype=object)
-        v[self.seed if start is None else start] = 1
-        out = [[int(x) for x in v]]
-        for _ in range(generations):
-            v = m.dot(v)
-            out.append([int(x) for x in v])
-        return out
-
     def hats_per_label(self) -> np.ndarray:
-        return np.array([len(b) for b in self.base], dtype=np.int64)
+        return self.tiles_per_label()
 
     def reflected_per_label(self) -> np.ndarray:
         return np.array([int((np.linalg.det(b[:, :2, :2]) < 0).sum()) for b in self.base], dtype=np.int64)
-
-    def tile_counts(self, generations: int, start: int | None = None) -> list[int]:
-        """Number of hats in a level-n supertile, n = 0..generations."""
-        per_label = self.hats_per_label()
-        return [int(np.dot(c, per_label)) for c in self.counts(generations, start)]
 
     def reflected_fraction_limit(self) -> float:
         """Limit share of reflected hats: from the Perron-Frobenius frequencies of the labels."""
         _, freq = self.perron_frobenius()
         return float(freq @ self.reflected_per_label() / (freq @ self.hats_per_label()))
-
-    def rep_tile(self) -> None:
-        return None
 
     # ------------------------------------------------------------------ levels
     def outlines(self, n: int) -> list[np.ndarray]:

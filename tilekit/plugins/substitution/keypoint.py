@@ -21,35 +21,20 @@ import shapely
 from tilekit.errors import ParseError
 from tilekit.geometry import Affine
 from tilekit.plugins.substitution.expr import constants_with, evaluate
-from tilekit.plugins.substitution.system import Rule
+from tilekit.plugins.substitution.system import MatrixFacts, Rule
 from tilekit.tiling import Prototile
 
 REFLECT_Y = np.diag([-1.0, 1.0, 1.0])
 
 
-@dataclass
-class KeypointSystem:
-    """A keypoint substitution (see the module docstring and catalogue/substitution/spectre.toml)."""
+class MonotileSystem(MatrixFacts):
+    """What the monotile systems (spectre, hat) share: one tile shape, carried by supertiles
+    whose geometry is recomputed per level, with ``base[label]`` the tiles of a level-0 label."""
 
-    name: str
-    title: str
-    labels: list[str]
     tile: Prototile
-    quad: np.ndarray  # (4, 2) level-0 keypoints
-    base: list[np.ndarray]  # per label: (m, 3, 3) level-0 tile placements
-    steps: list[tuple[float, int, int]]
-    reflect: bool
-    next_quad: list[tuple[int, int]]
-    rules: list[np.ndarray]  # per label: slot -> child label index, -1 for an empty slot
-    seed: int = 0
-    facts: dict[str, Any] = field(default_factory=dict)
-    source: str = "<data>"
-    data: dict[str, Any] = field(default_factory=dict)
-    kind: str = "keypoint"
-    _levels: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
-    _bounds: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
+    labels: Sequence[str]
+    base: Sequence[np.ndarray]
 
-    # ------------------------------------------------------------------ shared API
     @property
     def n(self) -> int:
         return len(self.labels)
@@ -71,38 +56,42 @@ class KeypointSystem:
         """Linear growth per level: the square root of the Perron-Frobenius eigenvalue."""
         return math.sqrt(self.perron_frobenius()[0])
 
-    def substitution_matrix(self) -> np.ndarray:
-        m = np.zeros((self.n, self.n), dtype=np.int64)
-        for j, slots in enumerate(self.rules):
-            kids = slots[slots >= 0]
-            np.add.at(m[:, j], kids, 1)
-        return m
-
-    def perron_frobenius(self) -> tuple[float, np.ndarray]:
-        m = self.substitution_matrix().astype(float)
-        vals, vecs = np.linalg.eig(m)
-        k = int(np.argmax(vals.real))
-        vec = np.abs(vecs[:, k].real)
-        return float(vals[k].real), vec / vec.sum()
-
-    def counts(self, generations: int, start: int | None = None) -> list[list[int]]:
-        """Label counts after 0..generations substitutions of one ``start`` supertile."""
-        m = self.substitution_matrix().astype(object)
-        v = np.zeros(self.n, dtype=object)
-        v[self.seed if start is None else start] = 1
-        out = [[int(x) for x in v]]
-        for _ in range(generations):
-            v = m.dot(v)
-            out.append([int(x) for x in v])
-        return out
+    def tiles_per_label(self) -> np.ndarray:
+        return np.array([len(b) for b in self.base], dtype=np.int64)
 
     def tile_counts(self, generations: int, start: int | None = None) -> list[int]:
         """Number of actual tiles in a level-n supertile, n = 0..generations."""
-        per_label = np.array([len(b) for b in self.base])
+        per_label = self.tiles_per_label()
         return [int(np.dot(c, per_label)) for c in self.counts(generations, start)]
 
     def rep_tile(self) -> None:
         return None
+
+
+@dataclass
+class KeypointSystem(MonotileSystem):
+    """A keypoint substitution (see the module docstring and catalogue/substitution/spectre.toml)."""
+
+    name: str
+    title: str
+    labels: list[str]
+    tile: Prototile
+    quad: np.ndarray  # (4, 2) level-0 keypoints
+    base: list[np.ndarray]  # per label: (m, 3, 3) level-0 tile placements
+    steps: list[tuple[float, int, int]]
+    reflect: bool
+    next_quad: list[tuple[int, int]]
+    rules: list[np.ndarray]  # per label: slot -> child label index, -1 for an empty slot
+    seed: int = 0
+    facts: dict[str, Any] = field(default_factory=dict)
+    source: str = "<data>"
+    data: dict[str, Any] = field(default_factory=dict)
+    kind: str = "keypoint"
+    _levels: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
+    _bounds: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
+
+    def child_labels(self) -> list[np.ndarray]:
+        return [slots[slots >= 0] for slots in self.rules]
 
     # ------------------------------------------------------------------ levels
     def level(self, n: int) -> tuple[np.ndarray, np.ndarray]:
