@@ -30,7 +30,7 @@ import shapely
 
 from tilekit.errors import ParameterError, ParseError
 from tilekit.geometry import Affine
-from tilekit.plugins.substitution.keypoint import MonotileSystem, _meets
+from tilekit.plugins.substitution.keypoint import MonotileSystem, _meets, expand_by_label
 from tilekit.plugins.substitution.system import Rule
 from tilekit.resources import catalogue_dir
 from tilekit.tiling import Prototile
@@ -251,16 +251,8 @@ class HatSystem(MonotileSystem):
         return label, _placed(seed_transform, lattice)
 
     def _expand(self, label: np.ndarray, lattice: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
-        labels, maps = [], []
-        for j, (rule, exact) in enumerate(zip(self.rules_at(n), self.lattice_rules_at(n), strict=True)):
-            idx = np.flatnonzero(label == j)
-            if not len(idx):
-                continue
-            maps.append(np.matmul(lattice[idx][:, None], exact[None]).reshape(-1, 3, 3))
-            labels.append(np.tile(rule.children, len(idx)))
-        if not labels:
-            return np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3), dtype=np.int64)
-        return np.concatenate(labels), np.concatenate(maps)
+        children = [rule.children for rule in self.rules_at(n)]
+        return expand_by_label(label, lattice, children, self.lattice_rules_at(n))
 
     def generate(
         self,

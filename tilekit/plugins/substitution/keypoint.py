@@ -177,17 +177,12 @@ class KeypointSystem(MonotileSystem):
             if box is not None:
                 keep = _meets(label, transform, self.bounds(n), box)
                 label, transform = label[keep], transform[keep]
-            labels, transforms = [], []
-            for j, rule in enumerate(self.rules_at(n)):
-                idx = np.flatnonzero(label == j)
-                if not len(idx):
-                    continue
-                kids = np.matmul(transform[idx][:, None], rule.matrices[None])
-                transforms.append(kids.reshape(-1, 3, 3))
-                labels.append(np.tile(rule.children, len(idx)))
-            if not labels:
+            rules = self.rules_at(n)
+            label, transform = expand_by_label(
+                label, transform, [r.children for r in rules], [r.matrices for r in rules]
+            )
+            if not len(label):
                 return np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3)), np.zeros(0, dtype=np.int64)
-            label, transform = np.concatenate(labels), np.concatenate(transforms)
         if box is not None:
             keep = _meets(label, transform, self.bounds(0), box)
             label, transform = label[keep], transform[keep]
@@ -203,6 +198,30 @@ class KeypointSystem(MonotileSystem):
             return np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3)), np.zeros(0, dtype=np.int64)
         transform = np.concatenate(out_t)
         return np.zeros(len(transform), dtype=np.int64), transform, np.concatenate(out_c)
+
+
+def expand_by_label(
+    label: np.ndarray,
+    maps: np.ndarray,
+    children: Sequence[np.ndarray],
+    matrices: Sequence[np.ndarray],
+) -> tuple[np.ndarray, np.ndarray]:
+    """One substitution level as arrays: every placed supertile of label j (``maps[k]``)
+    becomes its children ``children[j]`` placed by ``maps[k] @ matrices[j]``.
+
+    One batched matmul per label; the dtype of ``maps`` is kept (integer lattice maps stay
+    exact). Returns the children's labels and maps.
+    """
+    labels, out = [], []
+    for j, (kids, mats) in enumerate(zip(children, matrices, strict=True)):
+        idx = np.flatnonzero(label == j)
+        if not len(idx):
+            continue
+        out.append(np.matmul(maps[idx][:, None], mats[None]).reshape(-1, 3, 3))
+        labels.append(np.tile(kids, len(idx)))
+    if not labels:
+        return np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3), dtype=maps.dtype)
+    return np.concatenate(labels), np.concatenate(out)
 
 
 def _meets(label: np.ndarray, transform: np.ndarray, bounds: tuple[np.ndarray, np.ndarray], box: Sequence[float]) -> np.ndarray:
