@@ -333,7 +333,7 @@ class WangProcedureResult:
     def statement(self) -> str:
         if self.outcome == "periodic":
             return (
-                f"set {self.set_name!r} tiles the plane periodically: an {self.m} x {self.m} torus tiling "
+                f"set {self.set_name!r} tiles the plane periodically: a torus tiling of size {self.m} x {self.m} "
                 f"(translational unit) exists"
             )
         if self.outcome == "does_not_tile":
