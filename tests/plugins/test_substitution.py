@@ -21,27 +21,8 @@ PHI = (1 + math.sqrt(5)) / 2
 
 
 def assert_valid(patch: Patch, region=None) -> None:
-    """Patch.validate, with one workaround: GEOS 3.14's floating overlay sometimes returns a
-    whole triangle as the intersection of two triangles that only share an edge whose
-    endpoints differ by an ulp. Pairs validate() reports are re-measured with snap rounding
-    (grid 1e-9 of the tile size); a real overlap survives that, the artefact does not."""
-    import shapely
-
+    """Patch.validate: no overlaps and (with a region) no gaps; the report names offenders."""
     report = patch.validate(region)
-    if report.overlaps:
-        g = patch.geometries()
-        grid = 1e-9 * math.sqrt(float(np.median(shapely.area(g))))
-        left = np.array([i for i, _, _ in report.overlaps])
-        right = np.array([j for _, j, _ in report.overlaps])
-        area = shapely.area(shapely.intersection(g[left], g[right], grid_size=grid))
-        spurious = len(report.overlaps)
-        report.overlaps = [o for o, a in zip(report.overlaps, area) if a > report.area_tolerance]
-        if region is not None and spurious != len(report.overlaps):
-            # validate() subtracted the phantom overlap from the covered area: measure again
-            from tilekit.geometry import as_region
-
-            rest = shapely.difference(as_region(region), shapely.union_all(g, grid_size=grid), grid_size=grid)
-            report.uncovered_area = float(rest.area)
     assert report, report.summary()
 
 
