@@ -197,3 +197,13 @@ def test_colouring_notation_base_is_read_from_the_permutations() -> None:
     """Figure 5.13 numbers colours from 1, Appendix A from 0; both parse to the same colouring."""
     assert Colouring.parse("(0 1 2 0)(1 2 0)(0 1 2)") == Colouring.parse("(1 2 3 1)(2 3 1)(1 2 3)")
     assert str(Colouring.parse("(0 1)(1 0)(0 1)")) == "(1 2)(2 1)(1 2)"
+
+
+def test_covered_area_counts_each_tile_inside_the_region() -> None:
+    """Unit squares over (0.5, 0.5)-(2.5, 1.5): the clipped areas sum to the region's area 2;
+    a disc's covered area equals its area to the snap-rounding grid."""
+    p = squares().patch((0, 0, 3, 2))
+    assert p.covered_area((0.5, 0.5, 2.5, 1.5)) == pytest.approx(2.0)
+    disc = shapely.Point(1.5, 1.0).buffer(0.8)
+    assert p.covered_area(disc) == pytest.approx(disc.area, rel=1e-9)
+    assert p.subset(slice(0, 0)).covered_area(disc) == 0.0

@@ -352,11 +352,7 @@ class Patch:
             # there: one vectorised clip instead of a union of every tile. The (slow) union
             # runs only to locate a gap once one is known to exist.
             near = tree.query(reg, predicate="intersects")
-            if _is_box(reg):  # rectangle clipping is exact and immune to overlay robustness bugs
-                clipped = shapely.clip_by_rect(geoms[near], *reg.bounds)
-            else:
-                clipped = shapely.intersection(geoms[near], reg, grid_size=grid)
-            covered = float(shapely.area(clipped).sum())
+            covered = self.covered_area(reg, _tiles=near, _grid=grid)
             if report.overlaps:
                 ov = shapely.intersection(
                     geoms[[i for i, _, _ in report.overlaps]],
@@ -371,6 +367,26 @@ class Patch:
                 if not rest.is_empty:
                     report.uncovered_bounds = tuple(float(v) for v in rest.bounds)
         return report
+
+    def covered_area(self, region: Any, *, _tiles: np.ndarray | None = None, _grid: float | None = None) -> float:
+        """The sum over tiles of the area of tile ∩ region (overlaps counted twice).
+
+        For a patch without overlaps, ``region.area - covered_area(region)`` is the gap.
+        Box regions are clipped with ``clip_by_rect`` (exact, immune to overlay robustness
+        problems); other regions with a snap-rounded intersection.
+        """
+        reg = as_region(region)
+        geoms = self.geometries()
+        if _tiles is not None:
+            geoms = geoms[_tiles]
+        if not len(geoms):
+            return 0.0
+        if _is_box(reg):
+            clipped = shapely.clip_by_rect(geoms, *reg.bounds)
+        else:
+            grid = _grid if _grid is not None else 1e-9 * math.sqrt(float(np.median(shapely.area(geoms))))
+            clipped = shapely.intersection(geoms, reg, grid_size=grid)
+        return float(shapely.area(clipped).sum())
 
     # output ------------------------------------------------------------------
     def to_svg(self, **options: Any) -> str:

@@ -399,11 +399,8 @@ class KeypointTiling(SubstitutionTiling):
 
 
 def _covers(patch: Patch, region: BaseGeometry) -> bool:
-    """Whether the tiles cover the region (areas of the clipped tiles, snap-rounded)."""
-    g = patch.geometries()
-    grid = 1e-9 * math.sqrt(region.area)
-    covered = shapely.area(shapely.intersection(g, region, grid_size=grid)).sum()
-    return bool(region.area - covered <= 1e-7 * region.area)
+    """Whether the (non-overlapping) tiles cover the region, up to 1e-7 of its area."""
+    return bool(region.area - patch.covered_area(region) <= 1e-7 * region.area)
 
 
 def _shape_key(p: Prototile) -> tuple[int, ...]:
