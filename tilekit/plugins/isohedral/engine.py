@@ -368,27 +368,19 @@ class IsohedralTiling(PeriodicTiling):
     def check_overlaps(self) -> None:
         """GeometryError if tiles of the unit and its 8 neighbour units overlap (§5.4.5)."""
         unit = self.unit()
-        geoms = unit.geometries()
-        shifts = [(a, b) for a in (-1, 0, 1) for b in (-1, 0, 1)]
-        others = []
-        for a, b in shifts:
-            moved = unit.transformed(Affine.translation(*(a * self.v1 + b * self.v2)))
-            others.append(moved.geometries())
-        allg = np.concatenate(others)
-        area = self.prototile.area
-        tree = shapely.STRtree(allg)
-        left, right = tree.query(geoms, predicate="intersects")
-        for i, j in zip(left, right):
-            g1, g2 = geoms[i], allg[j]
-            if g1.equals_exact(g2, 1e-7):
-                continue
-            inter = shapely.area(shapely.intersection(g1, g2))
-            if inter > 1e-6 * area:
-                raise GeometryError(
-                    f"{self.name}: with parameters {list(self.params)} and edge shapes "
-                    f"{ {k: v.to_text() for k, v in self.edge_shapes.items()} } neighbouring tiles overlap "
-                    f"(area {inter:.3g}); use smaller edge shapes or parameters nearer the default"
-                )
+        ring = [
+            unit.transformed(Affine.translation(*(a * self.v1 + b * self.v2)))
+            for a in (-1, 0, 1)
+            for b in (-1, 0, 1)
+        ]
+        report = Patch.concat(ring).validate()
+        if report.overlaps:
+            inter = max(area for _, _, area in report.overlaps)
+            raise GeometryError(
+                f"{self.name}: with parameters {list(self.params)} and edge shapes "
+                f"{ {k: v.to_text() for k, v in self.edge_shapes.items()} } neighbouring tiles overlap "
+                f"(area {inter:.3g}); use smaller edge shapes or parameters nearer the default"
+            )
 
     # Tiling API ----------------------------------------------------------------------
     def patch(self, region: Any) -> Patch:
