@@ -261,3 +261,123 @@ def test_any_triangle_or_quadrilateral_tiles(k, angles, radii):
     assert res.ok, res.stats.reason
     report = res.patch.validate(_disc(res, 1.5))
     assert report, report.summary()
+
+
+# ---------------------------------------------------------------------- periodic mode (a torus)
+
+SQRT3 = math.sqrt(3.0)
+
+
+def _images(result, period, k: int = 1):
+    """The representatives and their lattice images in a (2k+1)^2 block, as one patch."""
+    patch = result.patch
+    per = np.asarray(period, dtype=float)
+    transforms, protos = [], []
+    for a in range(-k, k + 1):
+        for b in range(-k, k + 1):
+            t = patch.transform.copy()
+            t[:, :2, 2] += a * per[0] + b * per[1]
+            transforms.append(t)
+            protos.append(patch.prototile)
+    pr = np.concatenate(protos)
+    from tilekit.tiling import Patch
+
+    return Patch(patch.prototiles, pr, np.concatenate(transforms), pr.copy(), np.zeros(len(pr), dtype=np.int64))
+
+
+def _cell(result, period):
+    per = np.asarray(period, dtype=float)
+    o = np.asarray(result.patch.centres()[0]) - 0.5 * (per[0] + per[1])
+    return shapely.Polygon([o, o + per[0], o + per[0] + per[1], o + per[1]])
+
+
+@pytest.mark.parametrize(
+    "sides, period, count",
+    [
+        ((4,), ((3, 0), (0, 2)), 6),  # 3 x 2 squares
+        ((4,), ((1, 0), (0, 1)), 1),  # one square is its own translational unit
+        ((4,), ((2, 1), (0, 2)), 4),  # a sheared sublattice of Z^2 is a period of (4^4) too
+        ((3,), ((1, 0), (0.5, SQRT3 / 2)), 2),  # (3^6): two triangles per lattice cell
+        ((3,), ((3, 0), (1, SQRT3)), 12),
+        ((6,), ((1.5, SQRT3 / 2), (0, SQRT3)), 1),  # (6^3): one hexagon per cell
+        ((6,), ((3, 0), (0, 2 * SQRT3)), 4),
+        ((4, 8), ((1 + math.sqrt(2), 0), (0, 1 + math.sqrt(2))), 2),  # (4.8^2): one of each
+    ],
+)
+def test_regular_and_archimedean_tori_close(sides, period, count):
+    """The regular tilings (4^4), (3^6), (6^3) and the Archimedean (4.8^2) (§4.1) have these
+    lattices as periods, so the torus closes; the representatives number area / tile area
+    (per prototile mix) and their lattice images tile the fundamental cell exactly."""
+    protos = [Prototile(regular_polygon(n)) for n in sides]
+    res = build_patch(protos, period=period, seed=len(protos) - 1, max_nodes=20_000)
+    assert res.status == "complete", res.stats.reason
+    assert len(res.patch) == count and "closed torus" in res.stats.reason
+    report = _images(res, period).validate(_cell(res, period))
+    assert report, report.summary()
+
+
+@pytest.mark.parametrize("period", [((1, 0.5), (0, 1)), ((2.5, 0), (0, 2)), ((1.5, 0), (0, 1))])
+def test_lattices_that_are_no_period_of_the_square_grid_are_exhausted(period):
+    """The only edge-to-edge tiling by congruent squares is (4^4), whose periods are the
+    vectors of Z^2 (edge length 1): a lattice with another vector admits no torus (the
+    column shift of (1, 0.5) would give a brick tiling, which is not edge to edge)."""
+    res = build_patch([Prototile(regular_polygon(4))], period=period, max_nodes=20_000)
+    assert res.status == "exhausted", res.stats.reason
+    assert res.patch is None
+
+
+@pytest.mark.parametrize("period", [((3, 0), (0, 3)), ((2, 0), (1, 2)), ((1.618, 0), (0.5, 1.539))])
+@pytest.mark.parametrize("angle_check", [True, False])
+def test_regular_pentagons_never_close_a_torus(period, angle_check):
+    """Regular pentagons do not tile the plane (108 does not divide 360), so no torus."""
+    res = build_patch([Prototile(regular_polygon(5))], period=period, angle_check=angle_check, max_nodes=50_000)
+    assert res.status == "exhausted", res.stats.reason
+
+
+def test_periodic_tile_goal_counts_representatives_and_backtracks_past_a_closed_torus():
+    """A 2 x 2 square torus holds exactly 4 tiles: tiles=3 stops on a partial torus, tiles=5
+    finds every branch closing at 4 and is exhausted (not 'complete', not a plane answer)."""
+    square = [Prototile(regular_polygon(4))]
+    part = build_patch(square, period=((2, 0), (0, 2)), tiles=3)
+    assert part.status == "complete" and len(part.patch) == 3
+    over = build_patch(square, period=((2, 0), (0, 2)), tiles=5)
+    assert over.status == "exhausted" and "torus with 5 tiles" in over.stats.reason
+
+
+def test_periodic_labels_must_match_across_the_cell_boundary():
+    """Exercise 6.2 labels on a 1 x 1 square torus: the tile meets its own images, so its E
+    edge meets its own W edge and N meets S; labels (1, 2, -1, -2) close it, (1, 2, 1, -2)
+    cannot (1 meets 1, not -1)."""
+    sq = regular_polygon(4)
+    good = Prototile(sq, edge_labels=(1, 2, -1, -2))
+    bad = Prototile(sq, edge_labels=(1, 2, 1, -2))
+    assert build_patch([good], period=((1, 0), (0, 1))).status == "complete"
+    res = build_patch([bad], period=((1, 0), (0, 1)))
+    assert res.status == "exhausted" and res.stats.rejections.get("edge labels", 0) >= 1
+
+
+def test_periodic_fill_goal_sees_representatives_only():
+    """With a period, the fill predicate and the frontier order only ever see the open edges
+    of representatives (their images' edges are filled through them)."""
+    seen: list[int] = []
+
+    def fill(edge):
+        seen.append(edge["tile"])
+        return True
+
+    builder = PatchBuilder([Prototile(regular_polygon(4))], period=((3, 0), (0, 2)))
+    res = builder.build(fill=fill)
+    assert res.status == "complete" and len(res.patch) == 6
+    assert set(seen) <= builder._canon | {0}
+
+
+def test_period_is_validated():
+    square = [Prototile(regular_polygon(4))]
+    with pytest.raises(ParameterError, match="parallel"):
+        PatchBuilder(square, period=((1, 0), (2, 0)))
+    with pytest.raises(ParameterError, match="two lattice vectors"):
+        PatchBuilder(square, period=(1, 0))
+    with pytest.raises(ParameterError, match="radius=R is a goal in the plane"):
+        build_patch(square, period=((1, 0), (0, 1)), radius=2.0)
+    with pytest.raises(ParameterError, match="at most one goal"):
+        build_patch(square, period=((1, 0), (0, 1)), tiles=1, fill=lambda e: True)

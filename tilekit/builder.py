@@ -9,6 +9,13 @@ vertex it changes (``closed`` when a vertex becomes surrounded, ``open`` otherwi
 Backtracking uses an explicit stack, so there is no recursion limit, and the search order is
 fixed by the inputs, so results are deterministic.
 
+With ``period=(v1, v2)`` the builder tiles a torus instead: every placement stands for its
+whole orbit under the lattice of v1 and v2. One representative per orbit lies in a
+fundamental domain round the seed; its images in the surrounding block of lattice cells are
+placed as real tiles, so overlap, edge matching, vertex angle sums and the rule see the
+neighbours across the domain's boundary, and only the representatives' open edges are
+filled. The default goal is then a closed torus (no open edge left on a representative).
+
 The result is honest: ``complete`` with a patch that meets the goal, ``exhausted`` when every
 branch died (a proof, for a radius goal, that no edge-to-edge patch covering the disc of that
 radius around the seed exists), or ``limit`` when the node or time budget ran out.
@@ -139,6 +146,29 @@ def labels_match(a: Hashable, b: Hashable) -> bool:
 
 # --------------------------------------------------------------------------- internals
 
+#: Fractional lattice coordinates of the fundamental domain are [-a, 1 - a) with this a: a
+#: generic number, so that no tile centroid of a regular tiling falls on the boundary.
+_DOMAIN_OFFSET = 0.4142135623730951
+
+
+def _lattice(period: Sequence[Sequence[float]]) -> np.ndarray:
+    """Validate ``period=(v1, v2)``: a (2, 2) array of two independent lattice vectors."""
+    try:
+        lat = np.asarray(period, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(f"period={period!r} must be two lattice vectors ((x1, y1), (x2, y2))") from None
+    if lat.shape != (2, 2) or not np.all(np.isfinite(lat)):
+        raise ParameterError(f"period={period!r} must be two lattice vectors ((x1, y1), (x2, y2))")
+    if abs(float(np.linalg.det(lat))) <= 1e-9 * max(1.0, float(np.abs(lat).max()) ** 2):
+        raise ParameterError(f"period={period!r}: the two lattice vectors are parallel (the cell has no area)")
+    return lat
+
+
+def _shoelace(pts: np.ndarray) -> float:
+    x, y = pts[:, 0], pts[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
+
+
 
 def _segment_distance(p: np.ndarray, q: np.ndarray, cx: float, cy: float) -> float:
     px, py, qx, qy = float(p[0]), float(p[1]), float(q[0]), float(q[1])
@@ -257,6 +287,8 @@ class PatchBuilder:
     ``edge`` is a dict with ``serial``, ``distance``, ``midpoint``, ``angle_sum``.
     ``angle_check`` rejects a placement early when a vertex's remaining angle is no sum of
     corner angles of the prototiles (off: such dead ends are found later, by overlap).
+    ``period=(v1, v2)``: two independent lattice vectors; patches are built on the torus
+    R^2 / (Z v1 + Z v2) (see the module docstring).
     """
 
     def __init__(
@@ -269,9 +301,11 @@ class PatchBuilder:
         order: str | Callable[[dict[str, Any]], Any] = "bfs",
         tolerance: float = 1e-6,
         angle_check: bool = True,
+        period: Sequence[Sequence[float]] | None = None,
     ) -> None:
         if not prototiles:
             raise ParameterError("the builder needs at least one prototile")
+        self.period = None if period is None else _lattice(period)
         if isinstance(order, str) and order not in ORDERS:
             raise ParameterError(f"builder order {order!r} is not one of {', '.join(ORDERS)} or a callable")
         self.prototiles = list(prototiles)
@@ -371,6 +405,33 @@ class PatchBuilder:
             diam = max(diam, float(np.sqrt((d**2).sum(-1)).max()))
         self._cell = diam
         self._angle_set = self._fillable_angles() if self.angle_check else None
+        if self.period is not None:
+            self._prepare_period()
+
+    def _prepare_period(self) -> None:
+        """The block of lattice offsets whose images a representative needs round it.
+
+        A representative's centroid (vertex mean) has fractional lattice coordinates in
+        [-a, 1 - a) (a generic a, so no centroid sits on the boundary). A tile touching it
+        has its centroid within D = 2 r + 2 tol (r: the largest centroid-to-vertex
+        distance), i.e. fractional coordinates moved by at most d_i = D |row i of the
+        inverse lattice matrix|, hence lattice offsets floor(-d_i) .. floor(1 + d_i)."""
+        lattice = self.period
+        assert lattice is not None
+        r = max(float(np.linalg.norm(c.local - c.local.mean(axis=0), axis=1).max()) for c in self._cands)
+        inv = np.linalg.inv(lattice.T)  # fractional coordinates of a point: inv @ point
+        reach = (2 * r + 2 * self.tol) * np.linalg.norm(inv, axis=1)
+        ranges = [range(math.floor(-d), math.floor(1 + d) + 1) for d in reach]
+        offsets = [(0, 0)] + [(a, b) for a in ranges[0] for b in ranges[1] if (a, b) != (0, 0)]
+        self._lattice_inv = inv
+        self._offsets = np.array(offsets, dtype=float) @ lattice  # (m, 2) vectors, 0 first
+        self._period_area = abs(float(np.linalg.det(lattice)))
+        self._proto_area = [abs(_shoelace(p.outline)) for p in self.prototiles]
+
+    def _canonical_shift(self, point: np.ndarray) -> np.ndarray:
+        """The lattice vector moving ``point`` into the fundamental domain round the seed."""
+        frac = self._lattice_inv @ (np.asarray(point) - self._origin)
+        return -(np.floor(frac + _DOMAIN_OFFSET) @ self.period)
 
     def _signature(self, pts: np.ndarray, labels: Sequence[Hashable]) -> list[tuple]:
         edges = np.roll(pts, -1, axis=0) - pts
@@ -433,6 +494,8 @@ class PatchBuilder:
         self._tpts = np.zeros((cap, self._K, 2))
         self._tnext = np.zeros((cap, self._K, 2))
         self._tbox = np.zeros((cap, 4))
+        self._canon: set[int] = set()  # periodic: the tiles that represent their orbit
+        self._groups: list[int] = []  # periodic: tiles (images) per placement
 
     def _find_vertex(self, x: float, y: float) -> int | None:
         q = self.tol
@@ -754,7 +817,7 @@ class PatchBuilder:
         self, centre: np.ndarray, radius: float | None, fill: Callable[[dict[str, Any]], bool] | None = None
     ) -> tuple[tuple[int, int] | None, float]:
         """The open edge to fill next, and the radius of the disc the patch covers."""
-        if callable(self.order) or fill is not None:
+        if callable(self.order) or fill is not None or self.period is not None:
             return self._choose_by_scan(radius, fill)
         dheap = self._dheap
         while dheap and not self._valid(dheap[0]):
@@ -793,8 +856,11 @@ class PatchBuilder:
         best = None
         best_key = None
         covered = math.inf
+        canon = self._canon if self.period is not None else None
         for e in self._open:  # the key ends with the serial, so the choice is order-free
             info = self._edges[e]
+            if canon is not None and info[0] not in canon:
+                continue  # an image's edge: filled through its representative
             dist = info[3]
             covered = min(covered, dist)
             if radius is not None and dist >= radius - self.tol:
@@ -867,8 +933,20 @@ class PatchBuilder:
         seed's centroid, or has no open edge that ``fill(edge)`` accepts (``edge`` as for a
         callable order, plus ``tile`` and ``prototile`` of the tile that owns it: e.g. "every
         edge inside this box", or "every edge of the seed" for a first corona). Stops at
-        ``max_nodes`` candidate placements or ``max_seconds``."""
-        if sum(g is not None for g in (tiles, radius, fill)) != 1:
+        ``max_nodes`` candidate placements or ``max_seconds``.
+
+        With a ``period`` the goal may be left out: it is then a closed torus (every open
+        edge of the representatives filled, so their lattice images tile the plane and the
+        representatives cover the fundamental domain's area); ``tiles`` counts
+        representatives, ``fill`` sees their open edges only, and the patch returned holds
+        the representatives (one tile per orbit). A radius goal needs the plane."""
+        goals = sum(g is not None for g in (tiles, radius, fill))
+        if self.period is not None:
+            if radius is not None:
+                raise ParameterError("radius=R is a goal in the plane; with a period give tiles=N, fill=predicate or no goal (a closed torus)")
+            if goals > 1:
+                raise ParameterError("give at most one goal with a period: tiles=N or fill=predicate (none: a closed torus)")
+        elif goals != 1:
             raise ParameterError("give exactly one goal: tiles=N, radius=R or fill=predicate")
         if tiles is not None and tiles < 1:
             raise ParameterError(f"tiles={tiles}: the goal must be at least 1 tile")
@@ -892,22 +970,36 @@ class PatchBuilder:
         normals = cand.normals @ frame[:2, :2].T
         nxt = cand.outline_next @ frame[:2, :2].T + frame[:2, 2]
         bbox = (float(pts[:, 0].min()), float(pts[:, 1].min()), float(pts[:, 0].max()), float(pts[:, 1].max()))
-        centre = pts.mean(axis=0) if tiles is not None else np.asarray(
+        centre = pts.mean(axis=0) if tiles is not None or self.period is not None else np.asarray(
             Patch(self.prototiles, [seed], [placement]).centres()[0]
         )
         self._centre = centre
+        self._origin = pts.mean(axis=0)
         shift = normals @ frame[:2, 2]
         self._commit(seed_ci, frame @ cand.base, pts, [None] * len(pts), pieces, bbox, normals, nxt,
                      cand.proj_min + shift, cand.proj_max + shift)
         stats.placements = 1
+        if self.period is not None:
+            self._canon.add(0)
+            self._groups.append(1)
+            for off in self._offsets[1:]:  # the seed's images must fit round it
+                image = frame.copy()
+                image[:2, 2] += off
+                if not self._try_place(seed_ci, image, stats):
+                    stats.seconds = time.perf_counter() - started
+                    stats.reason = ("exhausted: the seed tile's own lattice images already fail ("
+                                    + ", ".join(sorted(stats.rejections)) + ")")
+                    return BuildResult("exhausted", None, stats)
+                self._groups[0] += 1
         if not self._vertices_ok(self._tiles[0].vids, stats):
             stats.seconds = time.perf_counter() - started
             stats.reason = "exhausted: the seed tile alone already fails (" + ", ".join(sorted(stats.rejections)) + ")"
             return BuildResult("exhausted", None, stats)
         stack: list[list[Any]] = []  # frames: [candidate ids, next index, frame matrix]
         deadline = None if max_seconds is None else started + max_seconds
+        periodic = self.period is not None
         while True:
-            n = len(self._tiles)
+            n = len(self._tiles) if not periodic else len(self._canon)
             stats.max_tiles = max(stats.max_tiles, n)
             edge, covered = self._choose(centre, radius, fill)
             if radius is not None:
@@ -917,15 +1009,21 @@ class PatchBuilder:
                 goal = (
                     f"{tiles} tiles" if tiles is not None
                     else f"the disc of radius {radius:g}" if radius is not None
-                    else "every edge the fill predicate asks for"
+                    else "every edge the fill predicate asks for" if fill is not None
+                    else "a closed torus"
                 )
                 stats.reason = f"reached {goal} with {n} tiles"
+                if periodic and tiles is None and fill is None:
+                    self._check_area(n)
                 return BuildResult("complete", self._patch(), stats)
-            if edge is None:  # a tile goal and no open edge: impossible in the plane
+            if edge is None and not periodic:  # a tile goal and no open edge: impossible in the plane
                 stats.seconds = time.perf_counter() - started
                 stats.reason = "no open edge left"
                 return BuildResult("exhausted", None, stats)
-            ids, fr = self._candidates_for(edge)
+            if edge is None:  # the torus closed below the tile goal: a dead branch
+                ids, fr = [], np.eye(3)
+            else:
+                ids, fr = self._candidates_for(edge)
             stack.append([ids, 0, fr])
             while True:
                 top = stack[-1]
@@ -934,7 +1032,7 @@ class PatchBuilder:
                     ci = top[0][top[1]]
                     top[1] += 1
                     stats.nodes += 1
-                    if self._try_place(ci, top[2], stats):
+                    if self._place(ci, top[2], stats):
                         stats.placements += 1
                         placed = True
                         break
@@ -947,7 +1045,13 @@ class PatchBuilder:
                 stack.pop()
                 if not stack:
                     stats.seconds = time.perf_counter() - started
-                    if fill is not None:
+                    if periodic and fill is None:
+                        stats.reason = (
+                            "exhausted: no tiling of the torus "
+                            + (f"with {tiles} tiles " if tiles is not None else "")
+                            + f"exists from this seed (largest patch {stats.max_tiles} tiles)"
+                        )
+                    elif fill is not None:
                         stats.reason = (
                             "exhausted: no patch from this seed closes every edge the fill predicate "
                             f"asks for (largest patch {stats.max_tiles} tiles)"
@@ -964,7 +1068,7 @@ class PatchBuilder:
                             f"(largest {stats.max_tiles} tiles)"
                         )
                     return BuildResult("exhausted", None, stats)
-                self._undo()
+                self._unplace()
                 stats.backtracks += 1
             if stats.nodes >= max_nodes or (deadline is not None and time.perf_counter() > deadline):
                 return self._give_up(stats, started, max_nodes, max_seconds)
@@ -975,13 +1079,51 @@ class PatchBuilder:
         stats.reason = f"gave up at the {which} (largest patch {stats.max_tiles} tiles)"
         return BuildResult("limit", None, stats)
 
+    def _place(self, ci: int, frame: np.ndarray, stats: BuildStats) -> bool:
+        """Place candidate ``ci`` by ``frame``; with a period, its representative in the
+        fundamental domain and then every image of the offset block, all or nothing."""
+        if self.period is None:
+            return self._try_place(ci, frame, stats)
+        cand = self._cands[ci]
+        pts = cand.local @ frame[:2, :2].T + frame[:2, 2]
+        shift = self._canonical_shift(pts.mean(axis=0))
+        first = len(self._tiles)
+        for off in self._offsets:
+            image = frame.copy()
+            image[:2, 2] += shift + off
+            if not self._try_place(ci, image, stats):
+                for _ in range(len(self._tiles) - first):
+                    self._undo()
+                return False
+        self._canon.add(first)
+        self._groups.append(len(self._tiles) - first)
+        return True
+
+    def _unplace(self) -> None:
+        """Undo the last placement (with a period: the representative and its images)."""
+        if self.period is None:
+            self._undo()
+            return
+        count = self._groups.pop()
+        self._canon.discard(len(self._tiles) - count)
+        for _ in range(count):
+            self._undo()
+
+    def _check_area(self, n: int) -> None:
+        """A closed torus: the representatives must cover the fundamental domain's area."""
+        area = sum(self._proto_area[self._cands[self._tiles[t].cand].prototile] for t in self._canon)
+        if abs(area - self._period_area) > 1e-6 * self._period_area:
+            raise GeometryError(
+                f"closed torus with {n} tiles covers area {area:.9g}, not the cell's {self._period_area:.9g} "
+                "(the image block is too small: report this as a builder bug)"
+            )
+
     def _patch(self) -> Patch:
-        protos = np.array([self._cands[t.cand].prototile for t in self._tiles], dtype=np.int64)
-        # rounding to 12 decimals removes float noise below 1e-12 (e.g. 6e-16 versus 5e-16 at
-        # a shared vertex near an axis), which trips GEOS's overlay into wrong intersections
+        tiles = self._tiles if self.period is None else [self._tiles[t] for t in sorted(self._canon)]
+        protos = np.array([self._cands[t.cand].prototile for t in tiles], dtype=np.int64)
         # float noise below 1e-12 is set to zero (e.g. 6e-16 versus 5e-16 at a shared vertex
         # on an axis), which otherwise trips GEOS's overlay in Patch.validate
-        transforms = np.array([t.transform for t in self._tiles])
+        transforms = np.array([t.transform for t in tiles])
         transforms[np.abs(transforms) < 1e-12] = 0.0
         return Patch(self.prototiles, protos, transforms, protos.copy(), np.zeros(len(protos), dtype=np.int64))
 
@@ -994,6 +1136,6 @@ class PatchBuilder:
 
 def build_patch(prototiles: Sequence[Prototile], **options: Any) -> BuildResult:
     """One-call form: ``build_patch(tiles, tiles=50)``; constructor and ``build`` options mixed."""
-    names = ("reflections", "compatible", "rule", "order", "tolerance", "angle_check")
+    names = ("reflections", "compatible", "rule", "order", "tolerance", "angle_check", "period")
     ctor = {k: options.pop(k) for k in names if k in options}
     return PatchBuilder(prototiles, **ctor).build(**options)

@@ -65,7 +65,8 @@ def test_builder_tiles_aperiodic_rectangles():
 
 
 def _methods(torus: bool) -> tuple[str, ...]:
-    return ("sat", "backtrack") if torus else ("sat", "backtrack", "builder")
+    """Every solver answers both questions (the builder's torus is its periodic mode)."""
+    return ("sat", "backtrack", "builder")
 
 
 def test_cycle_3_torus_exists_exactly_when_the_width_is_a_multiple_of_3():
@@ -100,7 +101,7 @@ def test_counter_4_rectangles_need_width_at_most_4():
 
 def test_solvers_agree_on_random_small_sets():
     """Random 2-colour sets of 3-6 tiles: SAT, backtracking and the builder give the same
-    answer on 3 x 3 rectangles, and SAT and backtracking on 2 x 3 tori."""
+    answer on 3 x 3 rectangles and on 2 x 3 tori."""
     rng = np.random.default_rng(7)
     agreed = {True: 0, False: 0}
     for _ in range(25):
@@ -154,8 +155,8 @@ def test_bad_solver_requests():
     ts = get_tileset("cycle-3")
     with pytest.raises(ParameterError, match="not one of sat, builder, backtrack"):
         solve(ts, 2, 2, method="guess")
-    with pytest.raises(ParameterError, match="no torus mode"):
-        builder_solve(ts, 3, 3, torus=True)
+    with pytest.raises(ParameterError, match="fixed tiles clash"):
+        builder_solve(get_tileset("checkerboard-2"), 2, 2, torus=True, fixed={(0, 0): "a", (0, 1): "a"})
     with pytest.raises(ParameterError, match="at least 1 x 1"):
         sat_solve(ts, 0, 3)
     with pytest.raises(ParameterError, match="SAT solver 'nope'"):
@@ -183,6 +184,47 @@ def test_other_sat_solvers_give_the_same_answers():
         assert not sat_solve(ts, 3, 4, torus=True, solver=solver).tiles
 
 
+def test_builder_torus_answers_agree_with_sat_on_random_sets():
+    """The builder's periodic mode against SAT on random 2- and 3-colour sets, on tori of
+    shapes 1 x 4, 2 x 2, 3 x 3 and 2 x 4 (thin tori make a tile meet its own images);
+    every builder tiling is re-checked with the torus checker."""
+    rng = np.random.default_rng(11)
+    agreed = {True: 0, False: 0}
+    for trial in range(30):
+        colours = 2 if trial % 2 == 0 else 3
+        k = int(rng.integers(3, 8))
+        rows = {tuple(r) for r in rng.integers(0, colours, size=(k, 4)).tolist()}
+        ts = from_tuples("random", sorted(rows))
+        for shape in ((1, 4), (2, 2), (3, 3), (2, 4)):
+            built = builder_solve(ts, *shape, torus=True)
+            assert built.tiles == sat_solve(ts, *shape, torus=True).tiles, (sorted(rows), shape)
+            if built.tiles:
+                assert built.torus and grid_mismatches(built.grid, ts, torus=True) == []
+            agreed[built.tiles] += 1
+    assert agreed[True] and agreed[False]
+
+
+def test_builder_torus_with_fixed_tiles():
+    """checkerboard-2 on a torus: a at (0, 0) forces a on every cell with i + j even, so
+    fixing a at (1, 1) is consistent and fixing b there is not (on the 4 x 4 torus);
+    every torus of the set needs even sides, whatever is fixed."""
+    ts = get_tileset("checkerboard-2")
+    ok = builder_solve(ts, 4, 4, torus=True, fixed={(0, 0): "a", (1, 1): "a"})
+    assert ok.tiles and ok.grid[0, 0] == ok.grid[1, 1] == ts.tile_names.index("a")
+    assert grid_mismatches(ok.grid, ts, torus=True) == []
+    assert not builder_solve(ts, 4, 4, torus=True, fixed={(0, 0): "a", (1, 1): "b"}).tiles
+    assert not builder_solve(ts, 3, 4, torus=True, fixed={(2, 3): "b"}).tiles
+
+
+@pytest.mark.parametrize("name", APERIODIC)
+def test_builder_finds_no_small_torus_for_aperiodic_sets(name):
+    """As for SAT above: no torus exists for an aperiodic set; the builder's exhausted
+    periodic searches prove it for the small tori."""
+    ts = get_tileset(name)
+    for rows, cols in ((1, 1), (1, 3), (2, 2), (2, 3)):
+        assert not builder_solve(ts, rows, cols, torus=True).tiles, (rows, cols)
+
+
 # ---------------------------------------------------------------------- Wang's procedure
 
 
@@ -193,6 +235,9 @@ def test_wang_procedure_finds_the_periodic_units():
         ts = get_tileset(name)
         result = wang_procedure(ts, 6)
         assert result.outcome == "periodic" and result.m == m
+        built = wang_procedure(ts, 6, method="builder")  # the builder answers the tori too
+        assert (built.outcome, built.m) == ("periodic", m)
+        assert grid_mismatches(built.unit, ts, torus=True) == []
         assert result.unit.shape == (m, m) and grid_mismatches(result.unit, ts, torus=True) == []
         assert "tiles the plane periodically" in result.statement()
 

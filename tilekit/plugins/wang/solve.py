@@ -7,10 +7,11 @@ Three solvers, one question, one independent checker (:func:`check_grid`) on eve
   as unit squares whose edge labels are (side, colour) and a colour-equality compatibility
   rule; the builder's fill goal is "every open edge inside the rectangle is filled", a
   vertex rule keeps tiles inside the rectangle and on their fixed cells, and the frontier
-  order is scanline order. Rectangles only (the builder works in the plane and has no
-  notion of a torus);
+  order is scanline order. For a torus the builder runs with ``period=((cols, 0), (0,
+  rows))``: every tile stands for its lattice orbit, the goal is a closed torus, and the
+  rule reads cells modulo the torus;
 - ``backtrack``: a Wang-specific scanline backtracking search with an explicit stack, for
-  rectangles and tori (used for tori, and as a second opinion).
+  rectangles and tori (a second opinion).
 
 :func:`wang_procedure` is the algorithm of §6.2: for m = 1, 2, ... look for an m x m torus
 (a translational unit, so the set tiles periodically) and for an m x m square that cannot be
@@ -164,10 +165,11 @@ def wang_compatible(a: Any, b: Any) -> bool:
 
 class _GridRule:
     """Vertex rule for the builder: every tile lies in the rows x cols rectangle (its SW
-    corner at (j, rows - 1 - i) for cell (i, j)) and fixed cells hold their fixed tile."""
+    corner at (j, rows - 1 - i) for cell (i, j)) and fixed cells hold their fixed tile. On a
+    torus the cell is read modulo (rows, cols) and every position is allowed."""
 
-    def __init__(self, rows: int, cols: int, fixed: Mapping[tuple[int, int], int]) -> None:
-        self.rows, self.cols, self.fixed = rows, cols, dict(fixed)
+    def __init__(self, rows: int, cols: int, fixed: Mapping[tuple[int, int], int], torus: bool = False) -> None:
+        self.rows, self.cols, self.fixed, self.torus = rows, cols, dict(fixed), torus
 
     def _ok(self, view: Any) -> bool:
         px, py = view.point
@@ -175,7 +177,9 @@ class _GridRule:
             dx, dy = _CORNER_OFFSET[c.index]
             x, y = round(px - dx), round(py - dy)
             i, j = self.rows - 1 - y, x
-            if not (0 <= i < self.rows and 0 <= j < self.cols):
+            if self.torus:
+                i, j = i % self.rows, j % self.cols
+            elif not (0 <= i < self.rows and 0 <= j < self.cols):
                 return False
             f = self.fixed.get((i, j))
             if f is not None and f != c.prototile:
@@ -189,6 +193,8 @@ class _GridRule:
         return self._ok(view)
 
     def describe(self) -> str:
+        if self.torus:
+            return f"cells read modulo the {self.rows} x {self.cols} torus, fixed tiles in place"
         return f"inside the {self.rows} x {self.cols} rectangle, fixed tiles in place"
 
 
@@ -201,22 +207,19 @@ def builder_solve(
     max_nodes: int | None = 2_000_000,
     time_limit: float | None = None,
 ) -> SolveResult:
-    """Decide the rectangle question with :class:`tilekit.builder.PatchBuilder`.
+    """Decide the rectangle or torus question with :class:`tilekit.builder.PatchBuilder`.
 
     The seed is the north-west cell; the builder is run once per candidate seed tile (the
     fixed one if that cell is fixed), and "no tiling" is claimed only when every run is
-    exhausted. The patch found is converted back to a grid and checked independently.
+    exhausted. A rectangle is the builder's fill goal "every open edge inside the rectangle";
+    a torus is the builder's periodic mode with lattice ((cols, 0), (0, rows)) and its goal
+    of a closed torus. The patch found is converted back to a grid and checked independently.
     """
     from tilekit.builder import PatchBuilder
 
-    if torus:
-        raise ParameterError(
-            "the patch builder grows patches in the plane and has no torus mode; "
-            "use method='sat' or method='backtrack' for tori"
-        )
     rows, cols = _size(rows, cols)
     fixed_n = normalise_fixed(tileset, rows, cols, fixed)
-    clash = fixed_conflict(tileset, rows, cols, fixed_n, False)
+    clash = fixed_conflict(tileset, rows, cols, fixed_n, torus)
     if clash:
         raise ParameterError(clash)
     start = time.perf_counter()
@@ -232,7 +235,8 @@ def builder_solve(
         return (-round(y, 6), round(x, 6))
 
     builder = PatchBuilder(
-        builder_prototiles(tileset), compatible=wang_compatible, rule=_GridRule(rows, cols, fixed_n), order=scanline
+        builder_prototiles(tileset), compatible=wang_compatible, rule=_GridRule(rows, cols, fixed_n, torus),
+        order=scanline, period=((cols, 0), (0, rows)) if torus else None,
     )
     seeds = [fixed_n[(0, 0)]] if (0, 0) in fixed_n else list(range(len(tileset)))
     corner = np.eye(3)
@@ -242,36 +246,40 @@ def builder_solve(
         budget = None if max_nodes is None else max_nodes - nodes
         remaining = None if time_limit is None else time_limit - (time.perf_counter() - start)
         if (budget is not None and budget < 1) or (remaining is not None and remaining <= 0):
-            raise SolverLimit(_limit_message(tileset, rows, cols, nodes, start))
+            raise SolverLimit(_limit_message(tileset, rows, cols, torus, nodes, start))
         result = builder.build(
-            fill=inside, seed=seed, seed_transform=corner,
+            fill=None if torus else inside, seed=seed, seed_transform=corner,
             max_nodes=budget if budget is not None else 10**12, max_seconds=remaining,
         )
         nodes += result.stats.nodes
         if result.status == "limit":
-            raise SolverLimit(_limit_message(tileset, rows, cols, nodes, start))
+            raise SolverLimit(_limit_message(tileset, rows, cols, torus, nodes, start))
         if result.status == "complete":
-            grid = patch_to_grid(result.patch, rows, cols)
-            check_grid(grid, tileset, fixed=fixed_n)
+            grid = patch_to_grid(result.patch, rows, cols, torus)
+            check_grid(grid, tileset, torus=torus, fixed=fixed_n)
             stats = {"nodes": nodes, "seed_runs": seeds.index(seed) + 1}
-            return SolveResult(True, grid, rows, cols, False, "builder", time.perf_counter() - start, stats)
+            return SolveResult(True, grid, rows, cols, torus, "builder", time.perf_counter() - start, stats)
     stats = {"nodes": nodes, "seed_runs": len(seeds)}
-    return SolveResult(False, None, rows, cols, False, "builder", time.perf_counter() - start, stats)
+    return SolveResult(False, None, rows, cols, torus, "builder", time.perf_counter() - start, stats)
 
 
-def _limit_message(tileset: WangTileSet, rows: int, cols: int, nodes: int, start: float) -> str:
+def _limit_message(tileset: WangTileSet, rows: int, cols: int, torus: bool, nodes: int, start: float) -> str:
+    shape = "torus" if torus else "rectangle"
     return (
-        f"the patch builder gave no answer for set {tileset.name!r} on a {rows} x {cols} rectangle "
+        f"the patch builder gave no answer for set {tileset.name!r} on a {rows} x {cols} {shape} "
         f"within {nodes} nodes / {time.perf_counter() - start:.3g} s; raise max_nodes or time_limit, "
         "or use method='sat'"
     )
 
 
-def patch_to_grid(patch: Any, rows: int, cols: int) -> np.ndarray:
-    """The grid of a patch of unit squares covering [0, cols] x [0, rows] (row 0 north)."""
+def patch_to_grid(patch: Any, rows: int, cols: int, torus: bool = False) -> np.ndarray:
+    """The grid of a patch of unit squares covering [0, cols] x [0, rows] (row 0 north); on
+    a torus, of one tile per orbit of the lattice ((cols, 0), (0, rows)), anywhere."""
     pos = np.rint(patch.transform[:, :2, 2]).astype(np.int64)
     i = rows - 1 - pos[:, 1]
     j = pos[:, 0]
+    if torus:
+        i, j = i % rows, j % cols
     if len(patch) != rows * cols or i.min() < 0 or i.max() >= rows or j.min() < 0 or j.max() >= cols:
         raise ParameterError(f"patch of {len(patch)} tiles does not fill the {rows} x {cols} rectangle")
     grid = np.full((rows, cols), -1, dtype=np.int64)
@@ -297,7 +305,7 @@ def solve(
     """Does ``tileset`` tile a rows x cols rectangle (or torus) with the ``fixed`` tiles?
 
     ``fixed`` maps (row, column) to a tile index or name. ``method`` is 'sat' (default),
-    'builder' (rectangles) or 'backtrack'. Every tiling returned has passed the independent
+    'builder' or 'backtrack'. Every tiling returned has passed the independent
     checker; "does not tile" is a proof (exhausted search or an UNSAT answer).
     """
     if method == "sat":
@@ -378,11 +386,10 @@ def wang_procedure(
         raise ParameterError(f"max_m must be an integer, got {max_m!r}") from None
     if max_m < 1 or start_m < 1 or start_m > max_m:
         raise ParameterError(f"Wang's procedure needs 1 <= start_m <= max_m, got start_m={start_m}, max_m={max_m}")
-    torus_method = "sat" if method == "builder" else method
     began = time.perf_counter()
     steps: list[dict[str, Any]] = []
     for m in range(start_m, max_m + 1):
-        tor = solve(tileset, m, m, torus=True, method=torus_method, time_limit=time_limit)
+        tor = solve(tileset, m, m, torus=True, method=method, time_limit=time_limit)
         step: dict[str, Any] = {"m": m, "torus": tor.tiles, "torus_seconds": round(tor.seconds, 6)}
         if tor.tiles:
             steps.append(step)
