@@ -370,7 +370,7 @@ PERIODICITY = Search(
     params=(
         SearchParam("set", str, None, "a shipped Wang set name or a .wang file", required=True),
         SearchParam("max_m", int, 8, "largest m to try"),
-        SearchParam("method", str, "sat", "solver for squares: sat, builder or backtrack"),
+        SearchParam("method", str, "sat", "solver for the tori and squares: sat, builder or backtrack"),
         SearchParam("time_limit", float, None, "seconds per solver call (none: no limit)"),
     ),
     chunks=periodicity_chunks,
