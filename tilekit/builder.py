@@ -164,11 +164,6 @@ def _lattice(period: Sequence[Sequence[float]]) -> np.ndarray:
     return lat
 
 
-def _shoelace(pts: np.ndarray) -> float:
-    x, y = pts[:, 0], pts[:, 1]
-    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
-
-
 
 def _segment_distance(p: np.ndarray, q: np.ndarray, cx: float, cy: float) -> float:
     px, py, qx, qy = float(p[0]), float(p[1]), float(q[0]), float(q[1])
@@ -426,7 +421,7 @@ class PatchBuilder:
         self._lattice_inv = inv
         self._offsets = np.array(offsets, dtype=float) @ lattice  # (m, 2) vectors, 0 first
         self._period_area = abs(float(np.linalg.det(lattice)))
-        self._proto_area = [abs(_shoelace(p.outline)) for p in self.prototiles]
+        self._proto_area = [abs(p.area) for p in self.prototiles]
 
     def _canonical_shift(self, point: np.ndarray) -> np.ndarray:
         """The lattice vector moving ``point`` into the fundamental domain round the seed."""
