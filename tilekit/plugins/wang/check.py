@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -147,3 +148,16 @@ def patch_mismatches(patch) -> list[Mismatch]:
                 )
             )
     return out
+
+
+def grid_size(rows: Any, cols: Any, what: str = "grid", limit: int | None = None) -> tuple[int, int]:
+    """``rows`` and ``cols`` as positive ints (ParameterError naming ``what`` otherwise)."""
+    try:
+        r, c = int(rows), int(cols)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{what} size must be two integers, got {rows!r} x {cols!r}") from None
+    if r < 1 or c < 1:
+        raise ParameterError(f"{what} size {r} x {c} must be at least 1 x 1")
+    if limit is not None and r * c > limit:
+        raise ParameterError(f"{what} size {r} x {c} exceeds the limit of {limit} tiles")
+    return r, c

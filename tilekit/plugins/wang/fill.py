@@ -19,23 +19,12 @@ from __future__ import annotations
 import numpy as np
 
 from tilekit.errors import ParameterError
+from tilekit.plugins.wang.check import grid_size
 from tilekit.plugins.wang.tileset import E, N, S, W, WangTileSet, tile_prototiles
 from tilekit.tiling import Patch
 
 #: Refuse fills larger than this many tiles (a typo guard: 10^8 tiles is ~1 GB of indices).
 MAX_FILL_TILES = 100_000_000
-
-
-def _check_size(rows: int, cols: int) -> tuple[int, int]:
-    try:
-        r, c = int(rows), int(cols)
-    except (TypeError, ValueError):
-        raise ParameterError(f"fill size must be two integers, got {rows!r} x {cols!r}") from None
-    if r < 1 or c < 1:
-        raise ParameterError(f"fill size {r} x {c} must be at least 1 x 1")
-    if r * c > MAX_FILL_TILES:
-        raise ParameterError(f"fill size {r} x {c} exceeds the limit of {MAX_FILL_TILES} tiles")
-    return r, c
 
 
 # ---------------------------------------------------------------------- scanline fill
@@ -79,7 +68,7 @@ def scanline_fill(
     fewer, the corner none). The set must be complete (a tile for every (N, W) pair that
     can occur), or the fill could get stuck; ``seed`` makes the fill repeatable.
     """
-    rows, cols = _check_size(rows, cols)
+    rows, cols = grid_size(rows, cols, "fill", MAX_FILL_TILES)
     if not tileset.complete:
         raise ParameterError(
             f"set {tileset.name!r} is not complete (some north/west colour pair has no tile), so "
@@ -218,7 +207,7 @@ def random_access_fill(
     Computes each lattice point's (or edge's) colour once and looks tiles up in bulk; the
     result equals :func:`random_access_tiles` cell by cell.
     """
-    rows, cols = _check_size(rows, cols)
+    rows, cols = grid_size(rows, cols, "fill", MAX_FILL_TILES)
     if not supports_random_access(tileset):
         return random_access_tiles(tileset, np.zeros(1), np.zeros(1), seed)  # raises the error
     ys = y0 + rows - 1 - np.arange(rows)  # row 0 is the northernmost

@@ -27,7 +27,7 @@ from typing import Any
 import numpy as np
 
 from tilekit.errors import ParameterError, SolverLimit
-from tilekit.plugins.wang.check import check_grid
+from tilekit.plugins.wang.check import check_grid, grid_size
 from tilekit.plugins.wang.tileset import E, N, S, W, WangTileSet
 
 #: python-sat solver names we accept.
@@ -219,14 +219,10 @@ def sat_solve(
     With ``time_limit`` (seconds) the solver is interrupted (or, for CaDiCaL, which python-sat
     cannot interrupt, run in a child process that is killed) and :class:`SolverLimit` raised.
     """
-    rows, cols = _size(rows, cols)
     if solver not in SAT_SOLVERS:
         raise ParameterError(f"SAT solver {solver!r} is not supported; choose one of {', '.join(SAT_SOLVERS)}")
-    fixed_n = normalise_fixed(tileset, rows, cols, fixed)
+    rows, cols, fixed_n = prepare_question(tileset, rows, cols, fixed, torus)
     start = time.perf_counter()
-    clash = fixed_conflict(tileset, rows, cols, fixed_n, torus)
-    if clash:
-        raise ParameterError(clash)
     enc = _Encoding(tileset, rows, cols, torus)
     clauses = enc.clauses()
     assumptions = [int(enc.x(i, j, t)) for (i, j), t in fixed_n.items()]
@@ -239,10 +235,7 @@ def sat_solve(
     stats = {"variables": enc.top, "clauses": len(clauses), "solver": solver, **extra}
     seconds = time.perf_counter() - start
     if answer is None:
-        raise SolverLimit(
-            f"{solver} gave no answer for set {tileset.name!r} on a {rows} x {cols} "
-            f"{'torus' if torus else 'rectangle'} within {time_limit} s; raise time_limit"
-        )
+        raise no_answer(solver, tileset, rows, cols, torus, f"{time_limit} s", "raise time_limit")
     grid = None
     if answer:
         grid = enc.decode(model)
@@ -304,11 +297,21 @@ def _solve_in_child(
         parent.close()
 
 
-def _size(rows: Any, cols: Any) -> tuple[int, int]:
-    try:
-        r, c = int(rows), int(cols)
-    except (TypeError, ValueError):
-        raise ParameterError(f"grid size must be two integers, got {rows!r} x {cols!r}") from None
-    if r < 1 or c < 1:
-        raise ParameterError(f"grid size {r} x {c} must be at least 1 x 1")
-    return r, c
+def prepare_question(
+    tileset: WangTileSet, rows: Any, cols: Any, fixed: Mapping[Any, Any] | None, torus: bool
+) -> tuple[int, int, dict[tuple[int, int], int]]:
+    """What every solver checks first: the size, the fixed tiles, and that they agree."""
+    rows, cols = grid_size(rows, cols)
+    fixed_n = normalise_fixed(tileset, rows, cols, fixed)
+    clash = fixed_conflict(tileset, rows, cols, fixed_n, torus)
+    if clash:
+        raise ParameterError(clash)
+    return rows, cols, fixed_n
+
+
+def no_answer(who: str, tileset: WangTileSet, rows: int, cols: int, torus: bool, spent: str, advice: str) -> SolverLimit:
+    """The SolverLimit every solver raises when its budget ran out."""
+    shape = "torus" if torus else "rectangle"
+    return SolverLimit(
+        f"{who} gave no answer for set {tileset.name!r} on a {rows} x {cols} {shape} within {spent}; {advice}"
+    )

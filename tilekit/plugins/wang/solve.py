@@ -33,9 +33,8 @@ from tilekit.plugins.wang.check import check_grid
 from tilekit.plugins.wang.sat import (
     DEFAULT_SAT_SOLVER,
     SolveResult,
-    _size,
-    fixed_conflict,
-    normalise_fixed,
+    no_answer,
+    prepare_question,
     sat_solve,
 )
 from tilekit.plugins.wang.tileset import E, N, S, W, WangTileSet
@@ -62,11 +61,7 @@ def backtrack_solve(
     first row). Exhausting the stack proves that no tiling exists. Raises
     :class:`SolverLimit` at ``max_nodes`` tile placements or ``time_limit`` seconds.
     """
-    rows, cols = _size(rows, cols)
-    fixed_n = normalise_fixed(tileset, rows, cols, fixed)
-    clash = fixed_conflict(tileset, rows, cols, fixed_n, torus)
-    if clash:
-        raise ParameterError(clash)
+    rows, cols, fixed_n = prepare_question(tileset, rows, cols, fixed, torus)
     start = time.perf_counter()
     tiles = tileset.tiles.tolist()
     T = len(tiles)
@@ -120,11 +115,8 @@ def backtrack_solve(
         if max_nodes is not None and nodes > max_nodes or (
             deadline is not None and (nodes & 1023) == 0 and time.perf_counter() > deadline
         ):
-            raise SolverLimit(
-                f"backtracking gave no answer for set {tileset.name!r} on a {rows} x {cols} "
-                f"{'torus' if torus else 'rectangle'} within {nodes - 1} placements / "
-                f"{time.perf_counter() - start:.3g} s; raise max_nodes or time_limit, or use method='sat'"
-            )
+            spent = f"{nodes - 1} placements / {time.perf_counter() - start:.3g} s"
+            raise no_answer("backtracking", tileset, rows, cols, torus, spent, _ADVICE)
         if k == cells - 1:
             found = True
             break
@@ -217,11 +209,7 @@ def builder_solve(
     """
     from tilekit.builder import PatchBuilder
 
-    rows, cols = _size(rows, cols)
-    fixed_n = normalise_fixed(tileset, rows, cols, fixed)
-    clash = fixed_conflict(tileset, rows, cols, fixed_n, torus)
-    if clash:
-        raise ParameterError(clash)
+    rows, cols, fixed_n = prepare_question(tileset, rows, cols, fixed, torus)
     start = time.perf_counter()
     top = float(rows)
 
@@ -246,14 +234,14 @@ def builder_solve(
         budget = None if max_nodes is None else max_nodes - nodes
         remaining = None if time_limit is None else time_limit - (time.perf_counter() - start)
         if (budget is not None and budget < 1) or (remaining is not None and remaining <= 0):
-            raise SolverLimit(_limit_message(tileset, rows, cols, torus, nodes, start))
+            raise _limit_message(tileset, rows, cols, torus, nodes, start)
         result = builder.build(
             fill=None if torus else inside, seed=seed, seed_transform=corner,
             max_nodes=budget if budget is not None else 10**12, max_seconds=remaining,
         )
         nodes += result.stats.nodes
         if result.status == "limit":
-            raise SolverLimit(_limit_message(tileset, rows, cols, torus, nodes, start))
+            raise _limit_message(tileset, rows, cols, torus, nodes, start)
         if result.status == "complete":
             grid = patch_to_grid(result.patch, rows, cols, torus)
             check_grid(grid, tileset, torus=torus, fixed=fixed_n)
@@ -263,13 +251,12 @@ def builder_solve(
     return SolveResult(False, None, rows, cols, torus, "builder", time.perf_counter() - start, stats)
 
 
-def _limit_message(tileset: WangTileSet, rows: int, cols: int, torus: bool, nodes: int, start: float) -> str:
-    shape = "torus" if torus else "rectangle"
-    return (
-        f"the patch builder gave no answer for set {tileset.name!r} on a {rows} x {cols} {shape} "
-        f"within {nodes} nodes / {time.perf_counter() - start:.3g} s; raise max_nodes or time_limit, "
-        "or use method='sat'"
-    )
+_ADVICE = "raise max_nodes or time_limit, or use method='sat'"
+
+
+def _limit_message(tileset: WangTileSet, rows: int, cols: int, torus: bool, nodes: int, start: float) -> SolverLimit:
+    spent = f"{nodes} nodes / {time.perf_counter() - start:.3g} s"
+    return no_answer("the patch builder", tileset, rows, cols, torus, spent, _ADVICE)
 
 
 def patch_to_grid(patch: Any, rows: int, cols: int, torus: bool = False) -> np.ndarray:
