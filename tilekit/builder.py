@@ -372,6 +372,8 @@ class PatchBuilder:
                 frame = Affine.segment_map((0.0, 0.0), (length, 0.0), q0, q1)
                 local = Affine.apply(frame, pts)
                 pieces = np.stack([_pad(Affine.apply(frame, pc), kmax) for pc in convex_pieces[vi]])
+                normals = _normals(pieces)
+                proj = np.einsum("cad,ckd->cak", normals, pieces)
                 cands.append(
                     _Candidate(
                         prototile=p,
@@ -384,9 +386,9 @@ class PatchBuilder:
                         labels=labs,
                         vertex_map=vmap,
                         pieces=pieces,
-                        normals=_normals(pieces),
-                        proj_min=np.einsum("cad,ckd->cak", _normals(pieces), pieces).min(-1),
-                        proj_max=np.einsum("cad,ckd->cak", _normals(pieces), pieces).max(-1),
+                        normals=normals,
+                        proj_min=proj.min(-1),
+                        proj_max=proj.max(-1),
                         base=frame @ base,
                         outline_next=np.roll(local, -1, axis=0),
                     )

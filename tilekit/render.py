@@ -174,13 +174,12 @@ def svg_to_png(svg: str, path: str | Path) -> None:
     cairosvg.svg2png(bytestring=svg.encode("utf-8"), write_to=str(path))
 
 
-def write_image(patch: Any, path: str | Path, **options: Any) -> Path:
-    """Write ``patch`` to ``path`` as .svg or .png (chosen by the suffix)."""
+def write_svg(svg: str, path: str | Path) -> Path:
+    """Write SVG text to ``path`` as .svg, or as .png through cairosvg (chosen by the suffix)."""
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix not in (".svg", ".png"):
         raise ParameterError(f"output file {str(path)!r} must end in .svg or .png")
-    svg = patch_to_svg(patch, **options)
     try:
         if suffix == ".svg":
             path.write_text(svg, encoding="utf-8")
@@ -189,3 +188,10 @@ def write_image(patch: Any, path: str | Path, **options: Any) -> Path:
     except OSError as exc:
         raise TilekitError(f"cannot write {str(path)!r}: {exc.strerror or exc}") from None
     return path
+
+
+def write_image(patch: Any, path: str | Path, **options: Any) -> Path:
+    """Write ``patch`` to ``path`` as .svg or .png (chosen by the suffix)."""
+    if Path(path).suffix.lower() not in (".svg", ".png"):  # fail before drawing
+        raise ParameterError(f"output file {str(path)!r} must end in .svg or .png")
+    return write_svg(patch_to_svg(patch, **options), path)

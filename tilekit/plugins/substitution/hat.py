@@ -19,7 +19,6 @@ hat of a T, 3 hats of a P, 4 hats of an F.
 from __future__ import annotations
 
 import math
-import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -32,7 +31,7 @@ from tilekit.errors import ParameterError, ParseError
 from tilekit.geometry import Affine
 from tilekit.plugins.substitution.keypoint import MonotileSystem, _meets, expand_by_label
 from tilekit.plugins.substitution.system import Rule
-from tilekit.resources import catalogue_dir
+from tilekit.resources import catalogue_dir, read_toml
 from tilekit.tiling import Prototile
 
 SQRT3 = math.sqrt(3.0)
@@ -470,13 +469,7 @@ def check_hat_system(system: HatSystem, levels: int = 2) -> None:
 def load_hat(path: str | Path | None = None) -> HatSystem:
     """Read and check the hat data file (the shipped one by default)."""
     p = Path(path) if path is not None else hat_data_path()
-    try:
-        data = tomllib.loads(p.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise ParseError(f"substitution system {str(p)!r} cannot be read: {exc.strerror}") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise ParseError(f"substitution system {p.name}: not valid TOML ({exc})") from None
-    return hat_system_from_data(data, source=p.name)
+    return hat_system_from_data(read_toml(p, "substitution system"), source=p.name)
 
 
 def hat_systems() -> dict[str, HatSystem]:

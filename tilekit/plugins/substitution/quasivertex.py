@@ -101,9 +101,8 @@ def _u(a: float) -> np.ndarray:
 
 
 def _rot(p: np.ndarray, a: float, q: np.ndarray) -> np.ndarray:
-    c, s = math.cos(a), math.sin(a)
-    d = q - p
-    return p + np.array([c * d[0] - s * d[1], s * d[0] + c * d[1]])
+    """The book's rotate(p, a, q): q rotated by a about p."""
+    return Affine.apply(Affine.rotation(a, (float(p[0]), float(p[1]))), q)
 
 
 def thick_points(params: QuasivertexParams) -> dict[str, np.ndarray]:

@@ -22,7 +22,6 @@ in the half-tile's frame; generation then emits the whole tiles, each exactly on
 from __future__ import annotations
 
 import math
-import tomllib
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -34,6 +33,7 @@ import shapely
 from tilekit.errors import GeometryError, ParseError
 from tilekit.geometry import Affine
 from tilekit.plugins.substitution.expr import constants_with, evaluate
+from tilekit.resources import read_toml
 from tilekit.tiling import Prototile
 
 KINDS = ("exact", "indented", "overlapping")
@@ -146,16 +146,7 @@ class SubstitutionSystem(MatrixFacts):
 def load_system(path: str | Path) -> Any:
     """Read and validate a system file (TOML): a SubstitutionSystem, or a KeypointSystem
     when the file says ``engine = "keypoint"``."""
-    p = Path(path)
-    try:
-        text = p.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise ParseError(f"substitution system {str(p)!r} cannot be read: {exc.strerror}") from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise ParseError(f"substitution system {p.name}: not valid TOML ({exc})") from None
-    return load_data(data, source=p.name)
+    return load_data(read_toml(path, "substitution system"), source=Path(path).name)
 
 
 def load_data(data: Mapping[str, Any], source: str = "<data>") -> Any:

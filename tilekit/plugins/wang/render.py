@@ -17,7 +17,6 @@ TOML files (:func:`load_texture`) so the markings live outside the program.
 from __future__ import annotations
 
 import html
-import tomllib
 from collections.abc import Mapping
 from pathlib import Path
 
@@ -25,6 +24,7 @@ import numpy as np
 
 from tilekit.errors import ParameterError, ParseError
 from tilekit.plugins.wang.tileset import CORNERS, SIDES, WangTileSet
+from tilekit.resources import read_toml
 
 #: Fallback colours for tokens without a palette entry.
 DEFAULT_COLOURS = (
@@ -63,12 +63,7 @@ def load_texture(path: str | Path) -> dict[str, str]:
     Errors name the file and, from tomllib, the line.
     """
     p = Path(path)
-    try:
-        data = tomllib.loads(p.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise ParseError(f"{p}: cannot read the texture file ({exc.strerror or exc})") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise ParseError(f"{p}: not valid TOML: {exc}") from None
+    data = read_toml(p, "texture file")
     table = data.get("colours")
     if not isinstance(table, dict) or not table:
         raise ParseError(f"{p}: needs a [colours] table mapping colour tokens to SVG fragments")
@@ -172,14 +167,6 @@ def write_wang_image(
     grid: np.ndarray, tileset: WangTileSet, path: str | Path, **options: object
 ) -> Path:
     """Write :func:`wang_svg` to ``path`` (.svg, or .png through cairosvg)."""
-    p = Path(path)
-    svg = wang_svg(grid, tileset, **options)  # type: ignore[arg-type]
-    if p.suffix.lower() == ".svg":
-        p.write_text(svg, encoding="utf-8")
-    elif p.suffix.lower() == ".png":
-        from tilekit.render import svg_to_png
+    from tilekit.render import write_svg
 
-        svg_to_png(svg, p)
-    else:
-        raise ParameterError(f"image path {str(p)!r} must end in .svg or .png")
-    return p
+    return write_svg(wang_svg(grid, tileset, **options), path)  # type: ignore[arg-type]
