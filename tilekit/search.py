@@ -123,6 +123,15 @@ def _run_local(search, params, pending, record) -> None:
         record(index, result, seconds)
 
 
+def _record_future(future: Any, index: int, record: Any) -> None:
+    """Record a finished pool or dask future's chunk; a chunk that raised fails the run."""
+    try:
+        result, seconds = future.result()
+    except Exception as exc:
+        raise _ChunkFailed(index, exc) from exc
+    record(index, result, seconds)
+
+
 def _run_process(search, params, pending, record, workers: int | None) -> None:
     from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 
@@ -133,11 +142,7 @@ def _run_process(search, params, pending, record, workers: int | None) -> None:
         while remaining:
             done, remaining = wait(remaining, return_when=FIRST_COMPLETED)
             for future in sorted(done, key=futures.__getitem__):
-                try:
-                    result, seconds = future.result()
-                except Exception as exc:
-                    raise _ChunkFailed(futures[future], exc) from exc
-                record(futures[future], result, seconds)
+                _record_future(future, futures[future], record)
     except BaseException:
         pool.shutdown(wait=True, cancel_futures=True)
         raise
@@ -167,11 +172,7 @@ def _run_dask(search, params, pending, record, workers: int | None, scheduler: s
             future = client.submit(_timed, search.run_chunk, params, chunk, pure=False)
             futures[future] = index
         for future in as_completed(list(futures)):
-            try:
-                result, seconds = future.result()
-            except Exception as exc:
-                raise _ChunkFailed(futures[future], exc) from exc
-            record(futures[future], result, seconds)
+            _record_future(future, futures[future], record)
     except BaseException:
         client.cancel(list(futures))
         raise
