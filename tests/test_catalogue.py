@@ -71,7 +71,7 @@ def test_fresh_url_is_migrated_and_seeded_on_first_open(url, pm, tmp_path):
     assert {"tilings", "tiling_aliases", "tiling_properties", "runs", "run_chunks", "run_results",
             "alembic_version"} <= tables
     current, heads = cat.revisions()
-    assert current == heads == {"0002"}
+    assert current == heads == {"0003"}
     assert cat.count() == 11  # the 11 Archimedean tilings (Grünbaum & Shephard §2.1)
     cat.close()
     # opening again neither duplicates nor re-seeds
@@ -102,7 +102,7 @@ def test_downgrade_base_then_upgrade_head(cat):
     assert set(sa.inspect(cat.engine).get_table_names()) <= {"alembic_version"}
     assert cat.revisions()[0] == set()
     cat.upgrade()
-    assert cat.revisions()[0] == {"0002"}
+    assert cat.revisions()[0] == {"0003"}
     assert cat.count() == 0  # data went with the tables; the schema is back
     assert cat.seed() == (11, 0)
     # the migrated schema is exactly the models' schema (tables, columns, indexes, constraints)
