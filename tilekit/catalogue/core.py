@@ -543,10 +543,14 @@ class Catalogue(RunsMixin, ResultsMixin):
         """The :class:`tilekit.Tiling` called ``name``, rebuilt by its family's ``from_spec``."""
         entry = name if isinstance(name, Entry) else self.get(name)
         fams = families(self.pm)
-        if entry.family not in fams:
-            raise NotFoundError("family", entry.family, fams)
+        family = entry.family
+        rt = self.family_table(family)
+        if family not in fams and rt is not None and rt.tiling_family:
+            family = rt.tiling_family
+        if family not in fams:
+            raise NotFoundError("family", family, fams)
         try:
-            return fams[entry.family].from_spec(entry.spec)
+            return fams[family].from_spec(entry.spec)
         except TilekitError:
             raise
         except Exception as exc:

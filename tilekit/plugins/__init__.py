@@ -114,7 +114,8 @@ class ResultTable:
     With ``family`` set, ``tilekit list --family F`` and ``Catalogue.query(family=F)`` read
     this table, filtering on its columns; ``name_column`` is where ``tilekit show NAME``
     looks names up, and ``spec(row)`` turns a row into the spec the family's ``from_spec``
-    rebuilds (for show and render).
+    rebuilds (for show and render); ``tiling_family`` names that family when it is not
+    ``family`` itself (e.g. rows listed as ``vertex-species`` rebuilt as ``archimedean``).
     """
 
     table: Any  # sqlalchemy.Table
@@ -123,6 +124,7 @@ class ResultTable:
     name_column: str | None = None
     spec: Callable[[Mapping[str, Any]], dict[str, Any]] | None = None
     title: Callable[[Mapping[str, Any]], str] | None = None
+    tiling_family: str | None = None
 
     @property
     def name(self) -> str:
