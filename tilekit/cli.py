@@ -134,8 +134,11 @@ class TilekitGroup(SuggestingGroup):
             _fail(exc.message, exc.code)
         except TilekitError as exc:
             _fail(str(exc))
-        except click.exceptions.Abort:
-            _fail("aborted", 1)
+        except click.exceptions.Abort as exc:  # click's wrapping of KeyboardInterrupt
+            cause = exc.__cause__ or exc.__context__
+            if isinstance(cause, Terminated):
+                _fail("terminated", 143)
+            _fail("interrupted", 130)
         except click.exceptions.NoArgsIsHelpError as exc:
             click.echo(exc.ctx.get_help())
             rv = 0

@@ -48,6 +48,9 @@ from tilekit.resources import catalogue_dir, migrations_dir
 #: SQLite waits this long (ms) for a lock held by another writer before giving up.
 BUSY_TIMEOUT_MS = 30_000
 
+#: One step of waiting for SQLite's write lock (ms); see _begin_immediate.
+_STEP_MS = 50
+
 #: Alembic keeps its migration context in module globals: one migration at a time per process.
 _MIGRATION_LOCK = threading.RLock()
 
@@ -160,7 +163,7 @@ class Catalogue(RunsMixin, ResultsMixin):
                 "queries, show and render work, writing does not"
             )
         if conn.dialect.name == "sqlite":
-            conn.exec_driver_sql("BEGIN IMMEDIATE")
+            _begin_immediate(conn)
         elif conn.dialect.name == "postgresql" and records:
             conn.execute(sa.text("SELECT pg_advisory_xact_lock(:key)"), {"key": _PG_LOCK})
 
@@ -597,6 +600,28 @@ class Catalogue(RunsMixin, ResultsMixin):
             stmt = stmt.join(TILINGS, TILINGS.c.id == PROPS.c.tiling_id).where(TILINGS.c.family == family)
         with self._errors("reading property keys"), self.engine.connect() as conn:
             return sorted(conn.execute(stmt).scalars().all())
+
+def _begin_immediate(conn: Connection) -> None:
+    """BEGIN IMMEDIATE, waiting for another writer in short steps (not one long wait inside
+    SQLite's C code), so that Ctrl-C and SIGTERM are answered at once even while a catalogue
+    is busy; gives up after the busy timeout."""
+    import time
+
+    from sqlalchemy.exc import OperationalError
+
+    deadline = time.monotonic() + BUSY_TIMEOUT_MS / 1000.0
+    conn.exec_driver_sql(f"PRAGMA busy_timeout = {_STEP_MS}")
+    try:
+        while True:
+            try:
+                conn.exec_driver_sql("BEGIN IMMEDIATE")
+                return
+            except OperationalError as exc:
+                if "locked" not in str(exc) or time.monotonic() > deadline:
+                    raise
+    finally:
+        conn.exec_driver_sql(f"PRAGMA busy_timeout = {BUSY_TIMEOUT_MS}")
+
 
 def _sqlite_pragmas(dbapi_connection: Any, _record: Any) -> None:
     cursor = dbapi_connection.cursor()
