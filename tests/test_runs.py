@@ -235,3 +235,42 @@ def test_concurrent_first_opens_of_a_new_catalogue(db_url):
     for p, (out, err) in zip(procs, results):
         assert p.returncode == 0, err
         assert out.strip() == "24"  # 12 Archimedean (3^4.6 in both hands) + 12 Laves records
+
+
+def _species_rows(cat) -> list[dict]:
+    drop = {"run_id", "seconds"}
+    return sorted(({k: v for k, v in row.items() if k not in drop} for row in cat.iter_result_rows("vertex_species")),
+                  key=lambda r: r["vertex_type"])
+
+
+@pytest.mark.slow
+def test_dask_local_cluster_gives_the_rows_of_an_in_process_run(tmp_path, monkeypatch):
+    """The same search in-process and on a 2-worker dask LocalCluster (whose workers claim
+    chunks and write through leases themselves) stores the same rows and tilings."""
+    pytest.importorskip("dask.distributed")
+    from tilekit.search import run_search
+
+    monkeypatch.setenv("TILEKIT_PLUGINS", "archimedean")
+    from tilekit.plugins import reset_plugin_manager
+
+    reset_plugin_manager()
+    local_url = f"sqlite:///{tmp_path / 'local.sqlite'}"
+    dask_url = f"sqlite:///{tmp_path / 'dask.sqlite'}"
+    with open_catalogue(local_url) as local, open_catalogue(dask_url) as remote:
+        a = run_search(local, "vertex-species", {})
+        b = run_search(remote, "vertex-species", {}, executor="dask", workers=2)
+        ia, ib = local.run(a), remote.run(b)
+        assert ia.status == ib.status == "done" and ia.summary == ib.summary
+        assert ia.summary["tiling_types"] == 11 and ia.summary["euclidean_species"] == 17
+        rows = _species_rows(local)
+        assert rows == _species_rows(remote)
+        assert len(rows) + len(local.results(a)) == ia.rows  # table rows plus the JSON survivors
+        assert [e.name for e in local.query(family="archimedean")] == [e.name for e in remote.query(family="archimedean")]
+        import sqlalchemy as sa
+
+        from tilekit.catalogue.tables import WORKERS
+
+        with remote.engine.connect() as conn:  # the dask workers registered themselves
+            pids = set(conn.execute(sa.select(WORKERS.c.pid).where(WORKERS.c.run_id == b)).scalars())
+        assert os.getpid() not in pids and len(pids) >= 1
+    reset_plugin_manager()

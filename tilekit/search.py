@@ -376,7 +376,7 @@ def _dask_client(workers: int | None, scheduler: str | None) -> Any:
     previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if _main_thread() else None
     try:
         cluster = LocalCluster(n_workers=workers or 1, threads_per_worker=1, processes=True,
-                               dashboard_address=None, silence_logs=logging.ERROR)
+                               dashboard_address=":0", silence_logs=logging.CRITICAL)
     finally:
         if previous is not None:
             signal.signal(signal.SIGINT, previous)
@@ -394,7 +394,10 @@ def _run_dask(catalogue: Catalogue, run_id: int, search: Search, params: Mapping
     client, cluster = _dask_client(workers, scheduler)
     url = catalogue.engine.url.render_as_string(hide_password=False)
     futures: list[Any] = []
+    local_pids: list[int] = []
     try:
+        if cluster is not None:  # our own cluster's processes: ended for sure when we end
+            local_pids = [int(p) for p in client.run(os.getpid).values() if int(p) != os.getpid()]
         count = workers or max(1, len(client.scheduler_info().get("workers", {})))
         futures = [client.submit(_dask_worker, url, run_id, session, search.name, dict(params),
                                  pure=False, key=f"tilekit-{session}-{i}") for i in range(count)]
@@ -420,6 +423,9 @@ def _run_dask(catalogue: Catalogue, run_id: int, search: Search, params: Mapping
         if cluster is not None:
             with contextlib.suppress(Exception):
                 cluster.close(timeout=2)
+            for pid in local_pids:
+                with contextlib.suppress(OSError):
+                    os.kill(pid, signal.SIGKILL)
 
 
 # --------------------------------------------------------------------------- run_search
