@@ -48,12 +48,14 @@ def pm(monkeypatch):
 
 @pytest.fixture
 def url(tmp_path):
+    """A SQLite file: the tests that take it check SQLite-only things (files, WAL, locks)."""
     return f"sqlite:///{tmp_path / 'catalogue.sqlite'}"
 
 
 @pytest.fixture
-def cat(url, pm):
-    catalogue = open_catalogue(url, pm=pm)
+def cat(db_url, pm):
+    """A seeded catalogue on each backend (SQLite, and PostgreSQL when a server is given)."""
+    catalogue = open_catalogue(db_url, pm=pm)
     yield catalogue
     catalogue.close()
 
