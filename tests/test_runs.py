@@ -164,8 +164,10 @@ def test_ctrl_c_and_sigterm_keep_chunks_and_exit_cleanly(tmp_path, sig, code, ex
         assert sorted(cat.results(1), key=lambda r: r["i"]) == expected(n)
 
 
-def test_ctrl_c_while_the_catalogue_is_opening(tmp_path):
-    """Opening waits for another writer's lock; Ctrl-C then exits 130 at once, one line."""
+@pytest.mark.parametrize("sig, code, word", [(signal.SIGINT, 130, "interrupted"), (signal.SIGTERM, 143, "terminated")])
+def test_ctrl_c_while_the_catalogue_is_opening(tmp_path, sig, code, word):
+    """Opening waits for another writer's lock; Ctrl-C (SIGTERM) then exits 130 (143) at once,
+    one line."""
     import sqlite3
 
     path = tmp_path / "c.sqlite"
@@ -177,13 +179,13 @@ def test_ctrl_c_while_the_catalogue_is_opening(tmp_path):
         time.sleep(2.0)
         assert proc.poll() is None  # still waiting for the lock
         sent = time.monotonic()
-        proc.send_signal(signal.SIGINT)
+        proc.send_signal(sig)
         out, err = proc.communicate(timeout=10)
         assert time.monotonic() - sent < 2.0
     finally:
         holder.execute("ROLLBACK")
         holder.close()
-    assert proc.returncode == 130 and err.strip() == "error: interrupted", err
+    assert proc.returncode == code and err.strip() == f"error: {word}", err
 
 
 def test_a_bad_parameter_creates_no_run(tmp_path):
@@ -274,3 +276,26 @@ def test_dask_local_cluster_gives_the_rows_of_an_in_process_run(tmp_path, monkey
             pids = set(conn.execute(sa.select(WORKERS.c.pid).where(WORKERS.c.run_id == b)).scalars())
         assert os.getpid() not in pids and len(pids) >= 1
     reset_plugin_manager()
+
+
+@pytest.mark.slow
+def test_ctrl_c_with_the_dask_executor(tmp_path):
+    """Ctrl-C during a dask run: exit 130, one error line and no tracebacks from the cluster,
+    recorded chunks kept, the run interrupted, and no worker process of the local cluster left."""
+    pytest.importorskip("dask.distributed")
+    url = f"sqlite:///{tmp_path / 'c.sqlite'}"
+    env = {**os.environ, "TILEKIT_PLUGINS": "archimedean", "TILEKIT_LEASE_SECONDS": "3"}
+    proc = subprocess.Popen([sys.executable, "-m", "tilekit.cli", "--catalogue", url, "search", "vertex-species",
+                             "--radius", "10", "--executor", "dask", "--workers", "2"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    wait_for(run_exists(url), timeout=120)
+    wait_for(lambda: chunks_done(url) >= 2, timeout=120)
+    pids = worker_pids(url)
+    proc.send_signal(signal.SIGINT)
+    out, err = proc.communicate(timeout=30)
+    assert proc.returncode == 130, err
+    assert "Traceback" not in err and err.strip().splitlines()[-1].startswith("error: run 1 interrupted"), err
+    wait_for(lambda: not any(pid_alive(p) for p in pids), timeout=5.0)
+    with reader(url) as cat:
+        info = cat.run(1)
+        assert info.status == "interrupted" and info.chunks_done >= 2 and info.chunks_leased == 0

@@ -537,6 +537,8 @@ class _Reporter:
         self.last_line = 0.0
         self.started = 0.0
         self.first_done: int | None = None
+        self.rows = 0
+        self.rows_at = -1e9
 
     def __call__(self, done: int, total: int) -> None:
         import time
@@ -544,9 +546,10 @@ class _Reporter:
         now = time.monotonic()
         if self.first_done is None:
             self.first_done, self.started = done, now
-        rows = None
-        if self.run_id is not None and (self.tty or now - self.last_line >= 5.0 or done == total):
-            rows = self.cat.run(self.run_id).rows
+        if self.run_id is not None and (now - self.rows_at >= 1.0 or done == total):
+            self.rows_at = now
+            self.rows = self.cat.run(self.run_id).rows
+        rows = self.rows
         if self.tty:
             if self.bar is None:
                 from rich.progress import (

@@ -295,21 +295,36 @@ def _child_main(url: str, run_id: int, session: str, search: Search, params: Map
 
 
 class _Monitor:
-    """Reports progress from the catalogue while workers elsewhere record chunks."""
+    """Reports progress: counted here for chunks this process records, read from the
+    catalogue (at most every POLL_SECONDS) while workers elsewhere record them."""
 
-    def __init__(self, catalogue: Catalogue, run_id: int, progress: Progress | None) -> None:
+    def __init__(self, catalogue: Catalogue, run_id: int, progress: Progress | None, done: int, total: int) -> None:
         self.catalogue = catalogue
         self.run_id = run_id
         self.progress = progress
-        self.last = -1
+        self.done = done
+        self.total = total
+        self.read_at = 0.0
+
+    def recorded(self, _index: int) -> None:
+        """A chunk recorded in this process (others' chunks are counted at the next read)."""
+        self.done += 1
+        if self.progress is None:
+            return
+        now = time.monotonic()
+        if now - self.read_at >= 1.0:
+            self.read_at = now
+            self.done = max(self.done, self.catalogue.chunks_done(self.run_id))
+        self.progress(min(self.done, self.total), self.total)
 
     def poll(self) -> None:
         if self.progress is None:
             return
-        info = self.catalogue.run(self.run_id)
-        if info.chunks_done != self.last:
-            self.last = info.chunks_done
-            self.progress(info.chunks_done, info.chunks_total)
+        self.read_at = time.monotonic()
+        done = self.catalogue.chunks_done(self.run_id)
+        if done != self.done:
+            self.done = done
+            self.progress(done, self.total)
 
 
 def _run_process(catalogue: Catalogue, run_id: int, search: Search, params: Mapping[str, Any],
@@ -516,12 +531,11 @@ def run_search(
     info = catalogue.run(run_id)
     if progress:
         progress(info.chunks_done, info.chunks_total)
-    monitor = _Monitor(catalogue, run_id, progress)
-    monitor.last = info.chunks_done
+    monitor = _Monitor(catalogue, run_id, progress, info.chunks_done, info.chunks_total)
     with sigterm_raises():
         try:
             if executor == "local":
-                work(catalogue, run_id, search, params, session, on_record=lambda _i: monitor.poll())
+                work(catalogue, run_id, search, params, session, on_record=monitor.recorded)
             elif executor == "process":
                 _run_process(catalogue, run_id, search, params, session, workers, monitor)
             else:

@@ -212,6 +212,13 @@ class RunsMixin:
                 raise NotFoundError("run", str(run_id), [str(i) for i in ids])
             return self._info(conn, row)
 
+    def chunks_done(self, run_id: int) -> int:
+        """How many chunks of the run are recorded (one indexed count)."""
+        with self._errors("reading a run"), self.engine.connect() as conn:
+            return int(conn.execute(
+                sa.select(sa.func.count()).where(CHUNKS.c.run_id == run_id, CHUNKS.c.status == "done")
+            ).scalar_one())
+
     def run_chunks(self, run_id: int) -> list[dict[str, Any]]:
         """Every chunk of a run: index, status, seconds, rows, lease owner, spec."""
         with self._errors("reading chunks"), self.engine.connect() as conn:
