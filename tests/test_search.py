@@ -279,3 +279,34 @@ def test_failing_summary_fails_the_run_but_keeps_its_results(cat, pm):
     (info,) = cat.runs(kind="flaky")
     assert info.status == "failed" and "no squares" in info.error
     assert info.chunks_done == 4 and cat.results(info.id) == expected_results(4)
+
+
+def test_a_failing_chunk_in_a_process_pool_fails_the_run_naming_the_chunk(cat, pm):
+    FAIL_AT.add(5)
+    with pytest.raises(SearchError) as info:
+        run_search(cat, "rects", {"max_area": 12, "store": False}, executor="process", workers=2, pm=pm)
+    assert "cannot do area 5" in str(info.value) and "chunk 4" in str(info.value)
+    run = cat.run(1)
+    assert run.status == "failed" and run.chunks_leased == 0 and run.workers_alive == 0
+    FAIL_AT.clear()
+    run_search(cat, None, resume_run=1, executor="process", workers=2, pm=pm)
+    assert cat.run(1).status == "done"
+    assert sorted(cat.results(1), key=lambda r: (r["area"], r["width"])) == expected_results(12)
+
+
+def test_parameters_outside_their_declared_range_create_no_run(cat, pm):
+    ranged = Search("ranged", "bounded", testkit.FAMILY,
+                    [SearchParam("n", int, 3, min=1, max=10), SearchParam("how", str, "fast", choices=("fast", "slow"))],
+                    rect_chunks, rect_run_chunk)
+
+    class RangedPlugin:
+        @tilekit.hookimpl
+        def tilekit_searches(self):
+            return [ranged]
+
+    pm.register(RangedPlugin())
+    with pytest.raises(ParameterError, match="'n' takes a value from 1 to 10, got 11"):
+        run_search(cat, "ranged", {"n": 11}, pm=pm)
+    with pytest.raises(ParameterError, match="did you mean 'slow'"):
+        run_search(cat, "ranged", {"how": "slwo"}, pm=pm)
+    assert cat.runs(kind="ranged") == []

@@ -121,7 +121,7 @@ class TilekitGroup(SuggestingGroup):
 
     def main(self, args: Sequence[str] | None = None, prog_name: str | None = None,
              complete_var: str | None = None, standalone_mode: bool = True, **extra: Any) -> Any:
-        from tilekit.search import Terminated, sigterm_raises
+        from tilekit.signals import Terminated, sigterm_raises
 
         try:
             with sigterm_raises():
@@ -586,7 +586,8 @@ class _Reporter:
 
 def _run_search_cli(state: State, name: str, params: dict[str, Any] | None, executor: str,
                     workers: int | None, resume: int | None, scheduler: str | None = None) -> None:
-    from tilekit.search import Terminated, run_search
+    from tilekit.search import run_search
+    from tilekit.signals import Terminated
 
     cat = state.catalogue()
     reporter = _Reporter(cat, name)

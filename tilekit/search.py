@@ -28,6 +28,7 @@ import pluggy
 from tilekit.catalogue import Catalogue, auto_type, lease_seconds
 from tilekit.errors import NotFoundError, ParameterError, SearchError, TilekitError
 from tilekit.plugins import ChunkResult, Search, get_plugin_manager, get_search
+from tilekit.signals import Terminated, sigterm_raises
 
 __all__ = ["EXECUTORS", "Terminated", "describe_params", "run_search", "validate_params", "work"]
 
@@ -38,27 +39,6 @@ Progress = Callable[[int, int], None]
 
 #: How often a waiting worker or a coordinator looks at the catalogue again (seconds).
 POLL_SECONDS = 0.2
-
-
-class Terminated(KeyboardInterrupt):
-    """SIGTERM, raised in the main thread so that a run stops as on Ctrl-C (exit 143)."""
-
-
-@contextlib.contextmanager
-def sigterm_raises() -> Any:
-    """While active, SIGTERM raises :class:`Terminated` in the main thread."""
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-
-    def handler(signum: int, frame: Any) -> None:
-        raise Terminated()
-
-    previous = signal.signal(signal.SIGTERM, handler)
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGTERM, previous)
 
 
 # --------------------------------------------------------------------------- parameters

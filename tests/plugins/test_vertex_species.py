@@ -7,7 +7,6 @@ from fractions import Fraction
 import pytest
 
 import tilekit
-
 from tilekit.errors import ParameterError
 from tilekit.plugins import get_search
 from tilekit.plugins.archimedean import archimedean_tiling
