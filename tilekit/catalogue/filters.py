@@ -4,6 +4,7 @@ tilings' property rows or over the typed columns of a plugin's result table."""
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass
 from typing import Any
@@ -18,8 +19,6 @@ from tilekit.models import SHARED_COLUMNS, TEXT_COLUMNS
 #: float written with 10 significant digits finds the stored double.
 NUMBER_RTOL = 1e-9
 
-#: Longest number a filter takes (Python refuses int() of 4,300 digits and more).
-_MAX_DIGITS = 400
 
 _FILTER_RE = re.compile(r"^\s*([A-Za-z_][A-Za-z0-9_\-]*)\s*(!=|>=|<=|=|>|<|~)(.*)$", re.S)
 _INT_RE = re.compile(r"^[+-]?\d+$")
@@ -34,12 +33,13 @@ def auto_type(text: str) -> bool | int | float | str:
     if low in ("true", "false"):
         return low == "true"
     stripped = text.strip()
-    if len(stripped) > _MAX_DIGITS and (_INT_RE.match(stripped) or _FLOAT_RE.match(stripped)):
-        raise ParseError(f"the number {stripped[:20]}... has {len(stripped)} characters; at most {_MAX_DIGITS}")
-    if _INT_RE.match(stripped):
+    if _INT_RE.match(stripped) and len(stripped) <= 18:
         return int(stripped)
-    if _FLOAT_RE.match(stripped):
-        return float(stripped)
+    if _INT_RE.match(stripped) or _FLOAT_RE.match(stripped):
+        value = float(stripped)  # a huge integer compares as a float
+        if not math.isfinite(value):
+            raise ParseError(f"number {stripped[:24]}{'...' if len(stripped) > 24 else ''} is out of range")
+        return value
     return text
 
 
@@ -108,6 +108,10 @@ def condition(f: Filter) -> Any:
     """The SQLAlchemy condition of one filter (values are always bound parameters)."""
     t, p = TILINGS, PROPS
     if f.key in TEXT_COLUMNS or f.key in SHARED_COLUMNS:
+        names = group_names(f.key, f.raw) if f.op in ("=", "!=") else [f.raw]
+        if len(names) > 1:  # p6m or *632
+            column = t.c[f.key]
+            return column.in_(names) if f.op == "=" else sa.and_(column.is_not(None), column.not_in(names))
         return column_condition(t.c[f.key], f)
 
     # Uncorrelated "id IN (SELECT tiling_id ...)" subqueries: each is evaluated once through
@@ -126,7 +130,7 @@ def condition(f: Filter) -> Any:
             eps = NUMBER_RTOL * max(1.0, abs(v))
             alternatives = [p.c.value_num.between(v - eps, v + eps), p.c.value_text == f.raw]
         else:
-            alternatives = [p.c.value_text == f.raw]
+            alternatives = [p.c.value_text == name for name in group_names(f.key, f.raw)]
         equal = sa.or_(*(having(c) for c in alternatives))
         if f.op == "=":
             return equal
@@ -161,3 +165,12 @@ def column_condition(column: Any, f: Filter) -> Any:
     if f.op in ("=", "!="):
         return _compare(column, f.op, f.raw)
     raise _type_error(f, f"is text and takes =, != or ~ (not {f.op})")
+
+
+def group_names(key: str, value: str) -> list[str]:
+    """A wallpaper group matches by its IUC name (p6m) and its orbifold symbol (*632) alike."""
+    if key not in ("symmetry_group", "wallpaper_group", "orbifold"):
+        return [value]
+    from tilekit.symmetry import IUC, ORBIFOLD  # the 17 groups' names (symmetry loads NumPy: lazily)
+
+    return sorted({value, ORBIFOLD.get(value, value), IUC.get(value, value)})
