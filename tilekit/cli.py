@@ -691,10 +691,14 @@ def runs(state: State, words: tuple[str, ...], fmt: str) -> None:
     if pending:
         shown = ", ".join(pending[:40]) + (f", ... ({len(pending)} in all)" if len(pending) > 40 else "")
         click.echo(f"  pending chunks: {shown}")
+    if info.chunks_done and info.seconds > 0:
+        click.echo(f"  rate: {info.chunks_done / info.seconds:.2f} chunks/s, {info.rows / info.seconds:,.0f} rows/s (wall)")
     if info.chunks_done and info.status in ("running", "interrupted") and info.worker_seconds > 0:
         per_chunk = info.worker_seconds / info.chunks_done
-        click.echo(f"  worker time per chunk: {per_chunk:.3f} s; left: about "
-                   f"{per_chunk * (info.chunks_total - info.chunks_done):.0f} worker-seconds")
+        left = per_chunk * (info.chunks_total - info.chunks_done)
+        click.echo(f"  worker time per chunk: {per_chunk:.3f} s; left: about {left:.0f} worker-seconds"
+                   + (f" (about {left / info.workers_alive:.0f} s with {info.workers_alive} workers)"
+                      if info.workers_alive else ""))
     click.echo(f"  results: {sum(1 for _ in cat.iter_results(info.id))}")
 
 
