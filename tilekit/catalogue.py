@@ -226,10 +226,13 @@ def auto_type(text: str) -> bool | int | float | str:
     if low in ("true", "false"):
         return low == "true"
     stripped = text.strip()
-    if _INT_RE.match(stripped):
+    if _INT_RE.match(stripped) and len(stripped) <= 18:
         return int(stripped)
-    if _FLOAT_RE.match(stripped):
-        return float(stripped)
+    if _INT_RE.match(stripped) or _FLOAT_RE.match(stripped):
+        value = float(stripped)  # a huge integer compares as a float
+        if not math.isfinite(value):
+            raise ParseError(f"number {stripped[:24]}{'...' if len(stripped) > 24 else ''} is out of range")
+        return value
     return text
 
 

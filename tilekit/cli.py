@@ -18,6 +18,8 @@ from typing import Any
 import click
 import pluggy
 
+from tilekit import limits
+from tilekit.cli_types import COUNT, INT64_MAX, POSITIVE, RUN_ID, BoundedInt, FiniteFloat
 from tilekit.errors import NotFoundError, ParameterError, ParseError, TilekitError
 
 __all__ = ["cli", "main", "plugin_manager"]
@@ -248,8 +250,8 @@ def families(state: State, fmt: str) -> None:
 @click.option("--text", help="Case-insensitive text in the name, title, an alias or a text property.")
 @click.option("--order", "order_by", default="name", show_default=True,
               help="Sort key: name, family, title, a shared column or any property; -KEY descends.")
-@click.option("--limit", type=click.IntRange(min=0), help="At most N tilings.")
-@click.option("--offset", type=click.IntRange(min=0), default=0, help="Skip the first N tilings.")
+@click.option("--limit", type=COUNT, help="At most N tilings.")
+@click.option("--offset", type=COUNT, default=0, help="Skip the first N tilings.")
 @click.option("--format", "fmt", type=FORMAT, default="table", show_default=True)
 @pass_state
 def list_(state: State, family: str | None, where: tuple[str, ...], text: str | None, order_by: str,
@@ -317,7 +319,12 @@ def show(state: State, name: str) -> None:
 # --------------------------------------------------------------------------- render
 
 
-def _floats(text: str, what: str) -> list[float]:
+#: Largest |value| of a tiling parameter (--param): shapes are unit-sized, so beyond this a
+#: value is a typo and would only overflow the geometry.
+MAX_PARAM = 1e6
+
+
+def _floats(text: str, what: str, bound: float = limits.MAX_COORDINATE) -> list[float]:
     out: list[float] = []
     for part in text.split(","):
         part = part.strip()
@@ -329,6 +336,8 @@ def _floats(text: str, what: str) -> list[float]:
             raise ParseError(f"{what} {text!r}: {part!r} is not a number") from None
         if not math.isfinite(value):
             raise ParseError(f"{what} {text!r}: {part!r} is not a finite number")
+        if abs(value) > bound:
+            raise ParseError(f"{what} {text!r}: {part!r} is outside ±{bound:g}")
         out.append(value)
     return out
 
@@ -373,7 +382,7 @@ def _vectors(tiling: Any, region: tuple[float, float, float, float]) -> tuple[An
 @click.option("-o", "--output", "out", required=True, type=click.Path(dir_okay=False), help="Output .svg or .png file.")
 @click.option("--param", "params", multiple=True, metavar="X[,X...]", help="Tiling parameters (repeatable, or comma-separated).")
 @click.option("--edge", "edges", multiple=True, metavar="SPEC", help="Edge shape 'name=x,y:x,y:...' (repeatable).")
-@click.option("--depth", type=click.IntRange(min=0), help="Substitution depth.")
+@click.option("--depth", type=BoundedInt(0, limits.MAX_DEPTH), help="Substitution depth.")
 @click.option("--set", "settings", multiple=True, metavar="KEY=VALUE", help="A family-specific option (repeatable).")
 @click.option("--region", metavar="x0,y0,x1,y1", help="The region to cover (default: the tiling's own).")
 @click.option("--colours", "--colors", "colours", metavar="c1,c2,...", help="Fill colours, CSS names or #rrggbb.")
@@ -381,11 +390,20 @@ def _vectors(tiling: Any, region: tuple[float, float, float, float]) -> tuple[An
 @click.option("--vectors", is_flag=True, help="Draw the translation vectors (periodic tilings).")
 @click.option("--system", type=click.Path(exists=True, dir_okay=False), help="Build the tiling from this data file instead of the catalogue.")
 @click.option("--family", help="Family that reads --system (default: substitution).")
+@click.option("--max-tiles", type=POSITIVE, default=limits.MAX_TILES, show_default=True,
+              help="Refuse (before drawing) a patch estimated at more than N tiles.")
 @pass_state
 def render(state: State, name: str | None, out: str, params: tuple[str, ...], edges: tuple[str, ...],
            depth: int | None, settings: tuple[str, ...], region: str | None, colours: str | None,
-           labels: bool, vectors: bool, system: str | None, family: str | None) -> None:
-    """Render a catalogue tiling (or a --system file) to SVG or PNG."""
+           labels: bool, vectors: bool, system: str | None, family: str | None, max_tiles: int) -> None:
+    """Render a catalogue tiling (or a --system file) to SVG or PNG.
+
+    \b
+    Examples:
+      tilekit render 3.4.6.4 -o rhombitrihexagonal.svg --vectors
+      tilekit render penrose-p3 --depth 6 -o p3.png
+      tilekit render IH41 --param 0.1,0.2 --region -5,-5,5,5 -o ih41.svg
+    """
     from tilekit.geometry import as_region
     from tilekit.plugins import get_family
     from tilekit.render import parse_palette, write_image
@@ -406,7 +424,7 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
 
     options: dict[str, Any] = {}
     if params:
-        options["params"] = [v for p in params for v in _floats(p, "--param")]
+        options["params"] = [v for p in params for v in _floats(p, "--param", MAX_PARAM)]
     if edges:
         options["edges"] = list(edges)
     if depth is not None:
@@ -415,10 +433,18 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
     if options:
         tiling = tiling.configure(**options)
 
+    palette = parse_palette(colours)  # a bad colour fails before any work
     box = parse_region(region) if region is not None else None
+    # estimate first: nothing is allocated for a patch over the limit
+    estimate = tiling.estimate_tiles(as_region(box) if box is not None else None)
+    limits.refuse_over("tiles", estimate, max_tiles, "--max-tiles")
     area = as_region(box) if box is not None else tiling.default_region()
+    if estimate > 50_000 and sys.stderr.isatty():
+        click.echo(f"making about {int(estimate):,} tiles ...", err=True)
     patch = tiling.patch(area)
-    drawn = {"palette": parse_palette(colours), "labels": labels, "region": area}
+    if sys.stderr.isatty() and len(patch) > 50_000:
+        click.echo(f"drawing {len(patch):,} tiles to {out} ...", err=True)
+    drawn = {"palette": palette, "labels": labels, "region": area}
     if vectors:
         drawn["vectors"] = _vectors(tiling, area.bounds)
     path = write_image(patch, out, **drawn)
@@ -428,7 +454,8 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
 # --------------------------------------------------------------------------- search / runs
 
 
-_PARAM_TYPES: dict[type, click.ParamType] = {int: click.INT, float: click.FLOAT, str: click.STRING}
+_PARAM_TYPES: dict[type, click.ParamType] = {int: BoundedInt(-INT64_MAX, INT64_MAX),
+                                             float: FiniteFloat(1e300), str: click.STRING}
 
 
 def _search_command(search: Any) -> click.Command:
@@ -467,8 +494,8 @@ def _search_command(search: Any) -> click.Command:
     options += [
         click.Option(["--executor"], type=click.Choice(["local", "process", "dask"]), default="local",
                      show_default=True, help="Where chunks run: this process, a process pool, or dask."),
-        click.Option(["--workers"], type=click.IntRange(min=1), help="Parallel workers (process/dask)."),
-        click.Option(["--resume"], type=int, metavar="RUN_ID", help="Continue an interrupted or failed run."),
+        click.Option(["--workers"], type=BoundedInt(1, 4096), help="Parallel workers (process/dask)."),
+        click.Option(["--resume"], type=RUN_ID, metavar="RUN_ID", help="Continue an interrupted or failed run."),
     ]
     return click.Command(search.name, callback=callback, params=options,
                          help=f"{search.summary} (family {search.family}).", short_help=search.summary)
@@ -526,7 +553,7 @@ def search() -> None:
 
 
 @cli.command()
-@click.argument("run_id", required=False, type=int)
+@click.argument("run_id", required=False, type=RUN_ID, metavar="[RUN_ID]")
 @click.option("--format", "fmt", type=click.Choice(["table", "json"]), default="table", show_default=True)
 @pass_state
 def runs(state: State, run_id: int | None, fmt: str) -> None:

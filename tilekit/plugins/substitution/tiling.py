@@ -20,12 +20,10 @@ from shapely.geometry.base import BaseGeometry
 
 from tilekit.errors import ParameterError, ParseError
 from tilekit.geometry import Affine, as_region
+from tilekit.limits import MAX_DEPTH  # the depth range; the tile estimate is the real bound
 from tilekit.plugins.substitution import engine
 from tilekit.plugins.substitution.system import SubstitutionSystem, inscribed_disc
-from tilekit.tiling import Patch, Prototile, Tiling
-
-#: Refuse depths whose full expansion would be absurd even with region culling.
-MAX_DEPTH = 60
+from tilekit.tiling import Patch, Prototile, Tiling, region_tile_estimate
 
 
 class SubstitutionTiling(Tiling):
@@ -212,6 +210,19 @@ class SubstitutionTiling(Tiling):
         size = math.sqrt(max(abs(p.area) for p in self.system.tiles))
         return shapely.box(-6 * size, -6 * size, 6 * size, 6 * size)
 
+    def estimate_tiles(self, region: Any = None) -> float:
+        """Tiles of ``patch(region)``: with a fixed depth, at most the seed's count after
+        ``depth`` substitutions (the substitution matrix's M^d e, exact), and at most what fits
+        in the region at the prototiles' areas."""
+        reg = as_region(region) if region is not None else None
+        if self.depth is not None:
+            full = float(self._full_count(self.depth))
+            return full if reg is None else min(full, region_tile_estimate(reg, self.system.prototiles))
+        return region_tile_estimate(reg if reg is not None else self.default_region(), self.system.prototiles)
+
+    def _full_count(self, depth: int) -> int:
+        return int(sum(self.system.counts(depth, self._seed_index())[-1]))
+
     def configure(self, **options: Any) -> SubstitutionTiling:
         """Options: ``depth`` (int, fixed substitution depth), ``seed`` (prototile name),
         ``params`` (tooth heights of the free edge shapes a, b, ... of assembled systems) and
@@ -364,9 +375,22 @@ class KeypointTiling(SubstitutionTiling):
         p = self.patch(region)
         return p.prototile, p.transform
 
+    def _full_count(self, depth: int) -> int:
+        return int(self.system.tile_counts(depth, self._seed_index())[-1])
+
     def default_region(self) -> BaseGeometry:
-        """About 12 tiles across, or, with a fixed depth, the level-d supertile's bounding box."""
+        """About 12 tiles across, or, with a fixed depth, the level-d supertile's bounding box
+        (its tiles are generated only when there are few enough to be drawn)."""
         if self.depth is not None:
+            from tilekit.limits import MAX_TILES
+
+            if self._full_count(self.depth) > MAX_TILES:  # the bounding disc's box, no tiles made
+                centres, radii = self.system.bounds(self.depth)
+                label = self._seed_index()
+                c, r = np.array(centres[label], dtype=float), float(radii[label])
+                if self.depth % 2 == 1 and getattr(self.system, "reflect", False):
+                    c = np.array([-c[0], c[1]])
+                return shapely.box(c[0] - r, c[1] - r, c[0] + r, c[1] + r)
             _, tr, _ = self.system.generate(self.depth, seed_label=self._seed_index())
             pts = Affine.apply(tr, self.system.tile.outline).reshape(-1, 2)
             x0, y0 = pts.min(axis=0)

@@ -178,6 +178,12 @@ class WangTiling(Tiling):
         is_box = abs(reg.area - (bx1 - bx0) * (by1 - by0)) <= 1e-12 * max(1.0, reg.area)
         return patch if is_box else patch.clip(reg)
 
+    def estimate_tiles(self, region: Any = None) -> float:
+        """The lattice squares meeting the region's box (one tile each)."""
+        reg = self.default_region() if region is None else as_region(region)
+        x0, y0, x1, y1 = reg.bounds
+        return float((math.ceil(x1 - 1e-9) - math.floor(x0 + 1e-9)) * (math.ceil(y1 - 1e-9) - math.floor(y0 + 1e-9)))
+
     def default_region(self) -> BaseGeometry:
         return shapely.box(0, 0, 12, 8)
 
