@@ -420,12 +420,24 @@ class IsohedralTiling(PeriodicTiling):
             if key == "params":
                 if value is None:
                     continue
-                params = tuple(float(v) for v in value)
+                if isinstance(value, str):  # --set params=0.1,0.2
+                    value = [v for v in value.split(",") if v.strip()]
+                try:
+                    params = tuple(float(v) for v in value)
+                except (TypeError, ValueError):
+                    raise ParameterError(f"{self.name}: params {value!r} are not numbers") from None
             elif key == "edges":
-                for item in value or ():
-                    label, shape = parse_edge_option(item) if isinstance(item, str) else item
+                for item in [value] if isinstance(value, str) else value or ():
+                    if isinstance(item, str):
+                        label, shape = parse_edge_option(item)
+                    elif isinstance(item, tuple) and len(item) == 2 and isinstance(item[1], EdgeShape):
+                        label, shape = item
+                    else:
+                        raise ParameterError(f"{self.name}: edge {item!r} is not 'LABEL=x,y:x,y:...'")
                     edges[label] = shape
             elif key in ("colours", "colouring"):
+                if not isinstance(value, str | Colouring):
+                    raise ParameterError(f"{self.name}: colouring {value!r} is not text like '(1 2)(2 1)(2 1)'")
                 colouring = Colouring.parse(value) if isinstance(value, str) else value
             else:
                 raise ParameterError(
