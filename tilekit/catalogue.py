@@ -1067,6 +1067,9 @@ def _condition(f: Filter) -> Any:
         if f.op == "~":
             return sa.func.lower(column).contains(f.raw.lower(), autoescape=True)
         if f.op in ("=", "!="):
+            names = _group_names(f.key, f.raw)
+            if len(names) > 1:  # p6m or *632
+                return column.in_(names) if f.op == "=" else sa.and_(column.is_not(None), column.not_in(names))
             return _compare(column, f.op, f.raw)
         raise _type_error(f, f"is text and takes =, != or ~ (not {f.op})")
     if f.key in SHARED_COLUMNS:
@@ -1095,12 +1098,21 @@ def _condition(f: Filter) -> Any:
             eps = NUMBER_RTOL * max(1.0, abs(v))
             alternatives = [p.c.value_num.between(v - eps, v + eps), p.c.value_text == f.raw]
         else:
-            alternatives = [p.c.value_text == f.raw]
+            alternatives = [p.c.value_text == name for name in _group_names(f.key, f.raw)]
         equal = sa.or_(*(having(c) for c in alternatives))
         if f.op == "=":
             return equal
         return sa.and_(having(), ~equal)
     return having(_compare(p.c.value_num, f.op, float(f.value)))
+
+
+def _group_names(key: str, value: str) -> list[str]:
+    """A wallpaper group matches by its IUC name (p6m) and its orbifold symbol (*632) alike."""
+    if key not in ("symmetry_group", "wallpaper_group", "orbifold"):
+        return [value]
+    from tilekit.symmetry import IUC, ORBIFOLD
+
+    return sorted({value, ORBIFOLD.get(value, value), IUC.get(value, value)})
 
 
 # --------------------------------------------------------------------------- upsert

@@ -225,7 +225,13 @@ FORMAT = click.Choice(["table", "json", "csv"])
 @click.option("--format", "fmt", type=click.Choice(["table", "json"]), default="table", show_default=True)
 @pass_state
 def families(state: State, fmt: str) -> None:
-    """List the tiling families the installed plugins provide."""
+    """List the tiling families the installed plugins provide.
+
+    \b
+    Examples:
+      tilekit families
+      tilekit families --format json
+    """
     from tilekit.plugins import families as all_families
 
     fams = all_families(state.pm)
@@ -256,7 +262,14 @@ def families(state: State, fmt: str) -> None:
 @pass_state
 def list_(state: State, family: str | None, where: tuple[str, ...], text: str | None, order_by: str,
           limit: int | None, offset: int, fmt: str) -> None:
-    """List catalogue tilings matching the filters (Catalogue.query)."""
+    """List catalogue tilings matching the filters (Catalogue.query).
+
+    \b
+    Examples:
+      tilekit list --family archimedean
+      tilekit list --where polygons=6 --where symmetry_group=p6m
+      tilekit list --text penrose --limit 5 --format json
+    """
     from tilekit.catalogue import entries_text
     from tilekit.plugins import families as all_families
 
@@ -279,7 +292,14 @@ def list_(state: State, family: str | None, where: tuple[str, ...], text: str | 
 @click.argument("name")
 @pass_state
 def show(state: State, name: str) -> None:
-    """Show a tiling: every catalogue property, then its family's description."""
+    """Show a tiling: every catalogue property, then its family's description.
+
+    \b
+    Examples:
+      tilekit show IH16
+      tilekit show cairo
+      tilekit show penrose-p3
+    """
     from tilekit.plugins import families as all_families
 
     cat = state.catalogue()
@@ -392,10 +412,17 @@ def _vectors(tiling: Any, region: tuple[float, float, float, float]) -> tuple[An
 @click.option("--family", help="Family that reads --system (default: substitution).")
 @click.option("--max-tiles", type=POSITIVE, default=limits.MAX_TILES, show_default=True,
               help="Refuse (before drawing) a patch estimated at more than N tiles.")
+@click.option("--width", type=BoundedInt(16, 20_000), help="Image width in pixels (default: longer side 800).")
+@click.option("--height", type=BoundedInt(16, 20_000), help="Image height in pixels (instead of --width).")
+@click.option("--dpi", type=FiniteFloat(2400, min=10), default=96.0, show_default=True,
+              help="PNG resolution: pixels are scaled by DPI/96.")
+@click.option("--stroke", default="#222", show_default=True, metavar="COLOUR", help="Outline colour (CSS name or #rrggbb).")
+@click.option("--stroke-width", type=FiniteFloat(1e3, min=0.0), help="Outline width in pixels (default 1.2).")
 @pass_state
 def render(state: State, name: str | None, out: str, params: tuple[str, ...], edges: tuple[str, ...],
            depth: int | None, settings: tuple[str, ...], region: str | None, colours: str | None,
-           labels: bool, vectors: bool, system: str | None, family: str | None, max_tiles: int) -> None:
+           labels: bool, vectors: bool, system: str | None, family: str | None, max_tiles: int,
+           width: int | None, height: int | None, dpi: float, stroke: str, stroke_width: float | None) -> None:
     """Render a catalogue tiling (or a --system file) to SVG or PNG.
 
     \b
@@ -434,6 +461,9 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
         tiling = tiling.configure(**options)
 
     palette = parse_palette(colours)  # a bad colour fails before any work
+    parse_palette(stroke)
+    if width is not None and height is not None:
+        raise ParameterError("give --width or --height, not both (the other follows the region's shape)")
     box = parse_region(region) if region is not None else None
     # estimate first: nothing is allocated for a patch over the limit
     estimate = tiling.estimate_tiles(as_region(box) if box is not None else None)
@@ -444,7 +474,10 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
     patch = tiling.patch(area)
     if sys.stderr.isatty() and len(patch) > 50_000:
         click.echo(f"drawing {len(patch):,} tiles to {out} ...", err=True)
-    drawn = {"palette": palette, "labels": labels, "region": area}
+    drawn: dict[str, Any] = {"palette": palette, "labels": labels, "region": area, "stroke": stroke,
+                             "width": width, "height": height, "dpi": dpi}
+    if stroke_width is not None:
+        drawn["stroke_width_px"] = stroke_width
     if vectors:
         drawn["vectors"] = _vectors(tiling, area.bounds)
     path = write_image(patch, out, **drawn)
@@ -549,7 +582,14 @@ def _print_run(info: Any) -> None:
 
 @cli.group(cls=SearchGroup)
 def search() -> None:
-    """Run a search a family provides (tilekit search KIND --help for its options)."""
+    """Run a search a family provides (tilekit search KIND --help for its options).
+
+    \b
+    Examples:
+      tilekit search
+      tilekit search vertex-species
+      tilekit search vertex-species --resume 3
+    """
 
 
 @cli.command()
@@ -557,7 +597,13 @@ def search() -> None:
 @click.option("--format", "fmt", type=click.Choice(["table", "json"]), default="table", show_default=True)
 @pass_state
 def runs(state: State, run_id: int | None, fmt: str) -> None:
-    """Search runs: status, progress, seconds, summary (one run in detail with RUN_ID)."""
+    """Search runs: status, progress, seconds, summary (one run in detail with RUN_ID).
+
+    \b
+    Examples:
+      tilekit runs
+      tilekit runs 1 --format json
+    """
     cat = state.catalogue()
     infos = [cat.run(run_id)] if run_id is not None else cat.runs()
     if fmt == "json":
@@ -636,8 +682,18 @@ def catalogue_upgrade(state: State) -> None:
 @click.option("--where", "where", multiple=True, metavar="EXPR", help="Filter, as for tilekit list.")
 @pass_state
 def catalogue_export(state: State, fmt: str, out: str | None, family: str | None, where: tuple[str, ...]) -> None:
-    """Export tilings (name, family, title, aliases, properties, spec) as JSON or CSV."""
+    """Export tilings (name, family, title, aliases, properties, spec) as JSON or CSV.
+
+    \b
+    Examples:
+      tilekit catalogue export -o all.json
+      tilekit catalogue export --format csv --family archimedean -o arch.csv
+    """
+    from tilekit.plugins import families as all_families
+
     cat = state.catalogue()
+    if family is not None and family not in all_families(state.pm) and cat.count(family) == 0:
+        raise NotFoundError("family", family, set(all_families(state.pm)))
     if out is None:
         cat.export(sys.stdout, fmt, family=family, where=list(where))
         return

@@ -1,0 +1,133 @@
+"""What a new user expects to see (issue 14): names, filters, colours, image options, help.
+
+Each test cites the command it covers and runs it on the real built-in catalogue.
+"""
+
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from tilekit.cli import cli
+
+
+@pytest.fixture(scope="module")
+def cat(tmp_path_factory) -> Path:
+    path = tmp_path_factory.mktemp("user") / "cat.sqlite"
+    assert CliRunner().invoke(cli, ["--catalogue", f"sqlite:///{path}", "list", "--limit", "1"]).exit_code == 0
+    return path
+
+
+def run(cat: Path, *args: str):
+    return CliRunner().invoke(cli, ["--catalogue", f"sqlite:///{cat}", *args])
+
+
+def one_line_error(result, fragment: str = "") -> str:
+    assert result.exit_code == 2, (result.exit_code, result.output)
+    lines = result.stderr.splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), result.stderr
+    assert fragment in lines[0], lines[0]
+    return lines[0]
+
+
+@pytest.mark.parametrize("alias,name", [
+    ("cairo", "[3^2.4.3.4]"), ("snub square", "3^2.4.3.4"), ("snub hexagonal", "3^4.6l"),
+    ("rhombitrihexagonal", "3.4.6.4"), ("truncated square", "4.8^2"), ("kisrhombille", "[4.6.12]"),
+    ("floret pentagonal", "[3^4.6]l"), ("prismatic pentagonal", "[3^3.4^2]"), ("tetrille", "[3.4.6.4]"),
+    ("Snub-Square", "3^2.4.3.4"), ("kagome", "3.6.3.6"),
+])
+def test_common_names_are_aliases(cat, tmp_path, alias, name):
+    # tilekit show cairo / tilekit render "snub square" -o x.svg / tilekit list --text tetrille
+    shown = run(cat, "show", alias)
+    assert shown.exit_code == 0, shown.output
+    assert shown.stdout.splitlines()[0] == f"name: {name}"
+    drawn = run(cat, "render", alias, "-o", str(tmp_path / "x.svg"))
+    assert drawn.exit_code == 0, drawn.output
+    listed = run(cat, "list", "--text", alias.lower(), "--format", "csv")
+    assert name in listed.stdout
+
+
+def test_symmetry_group_by_either_name(cat):
+    # tilekit list --where symmetry_group=p6m (IUC) and =*632 (orbifold) find the same tilings
+    iuc = run(cat, "list", "--where", "symmetry_group=p6m", "--format", "csv").stdout
+    orb = run(cat, "list", "--where", "symmetry_group=*632", "--format", "csv").stdout
+    assert iuc == orb and "4.6.12" in iuc and "3^6" in iuc
+    wall = run(cat, "list", "--where", "wallpaper_group=*632", "--format", "csv").stdout
+    assert wall.splitlines()[1:] and {r.split(",")[0] for r in wall.splitlines()[1:]} == \
+        {r.split(",")[0] for r in iuc.splitlines()[1:]}
+    not_iuc = run(cat, "list", "--where", "symmetry_group!=p6m", "--format", "csv").stdout
+    assert "4.6.12" not in not_iuc and "3^4.6l" in not_iuc
+
+
+def test_catalogue_doc_keys_exist(cat):
+    # docs/catalogue.md's examples: valence>=5 with symmetry_group!=p6m, expansion_constant=phi
+    docs = (Path(__file__).parent.parent / "docs" / "catalogue.md").read_text(encoding="utf-8")
+    assert "vertex_degree" not in docs and "polygon_area" not in docs
+    assert "3^4.6l" in run(cat, "list", "--where", "valence>=5", "--where", "symmetry_group!=p6m").stdout
+    assert "penrose-p2" in run(cat, "list", "--where", "expansion_constant=1.6180339887").stdout
+
+
+def test_export_unknown_family_is_an_error(cat):
+    # tilekit catalogue export --family nope, like tilekit list --family nope
+    one_line_error(run(cat, "catalogue", "export", "--family", "nope"), "unknown family 'nope'")
+    one_line_error(run(cat, "list", "--family", "nope"), "unknown family 'nope'")
+
+
+@pytest.mark.parametrize("args,fragment", [
+    (["--colours", "notacolour"], "not a CSS colour name"),
+    (["--colours", "redd"], "did you mean 'red'"),
+    (["--stroke", "notacolour"], "not a CSS colour name"),
+    (["--width", "100", "--height", "100"], "not both"),
+    (["--width", "99999999"], "--width"),
+])
+def test_render_image_options_validated(cat, tmp_path, args, fragment):
+    # tilekit render 4^4 --colours notacolour: an error, not fill="notacolour"
+    out = tmp_path / "x.svg"
+    one_line_error(run(cat, "render", "4^4", "-o", str(out), *args), fragment)
+    assert not out.exists()
+
+
+def test_render_width_height_dpi_stroke(cat, tmp_path):
+    # tilekit render 4^4 --width 300 --stroke navy --stroke-width 3 -o x.png; --height 200 --dpi 192
+    pytest.importorskip("cairosvg")
+    from PIL import Image
+
+    a, b = tmp_path / "a.png", tmp_path / "b.png"
+    assert run(cat, "render", "4^4", "--width", "300", "--stroke", "navy", "-o", str(a)).exit_code == 0
+    assert Image.open(a).size == (300, 300)
+    assert run(cat, "render", "4^4", "--height", "200", "--dpi", "192", "-o", str(b)).exit_code == 0
+    assert Image.open(b).size == (400, 400)
+    svg = tmp_path / "c.svg"
+    assert run(cat, "render", "4^4", "--stroke", "navy", "--stroke-width", "3", "--width", "300",
+               "-o", str(svg)).exit_code == 0
+    g = [e for e in ET.parse(svg).getroot().iter() if e.get("stroke") == "navy"]
+    assert g, "the stroke colour is used"
+
+
+@pytest.mark.parametrize("command", [
+    ["render"], ["list"], ["show"], ["families"], ["search"], ["runs"], ["catalogue", "export"],
+    ["wang", "render"], ["wang", "solve"],
+])
+def test_help_has_an_example(cat, command):
+    # tilekit COMMAND --help shows at least one example invocation
+    result = run(cat, *command, "--help")
+    assert result.exit_code == 0
+    assert "tilekit " in result.stdout.split("Options:")[0], result.stdout
+
+
+def test_cli_doc_covers_every_command(cat):
+    # docs/cli.md has a section per command, the wang group included, and --max-tiles
+    doc = (Path(__file__).parent.parent / "docs" / "cli.md").read_text(encoding="utf-8")
+    for cmd in ("families", "list", "show", "render", "search", "runs", "catalogue", "wang render", "wang solve"):
+        assert f"## `tilekit {cmd}" in doc, cmd
+    assert "--max-tiles" in doc and "--max-variables" in doc
+
+
+def test_readme_names_the_png_extra():
+    # README: the first PNG example says PNG needs the png extra
+    readme = (Path(__file__).parent.parent / "README.md").read_text(encoding="utf-8")
+    first_png = readme.index(".png", readme.index("## Command line"))
+    assert "tilekit[png]" in readme[first_png - 400: first_png + 400]
