@@ -82,10 +82,15 @@ def test_refused_quickly_under_memory_cap(catalogue, tmp_path, args, fragment):
 
 
 def test_refusal_names_estimate_limit_and_option(catalogue):
-    # tilekit render penrose-p3 --depth 20: 267,914,296 half-tiles (Fibonacci) over 2,000,000
+    # tilekit render penrose-p3 --depth 20: the star's ten halves, each M^20 e (Fibonacci
+    # numbers), over 2,000,000
+    import tilekit.plugins.substitution as sub
+
+    estimate = sub.tiling("penrose-p3", depth=20).estimate_tiles()
+    assert estimate == 10 * (102_334_155 + 165_580_141)  # per half: F(40) acute + F(41) obtuse
     code, err, _ = capped(catalogue, "render", "penrose-p3", "--depth", "20", "-o", "/nonexistent/x.svg")
     assert code == 2
-    assert "267,914,296 tiles" in err and f"{limits.MAX_TILES:,}" in err and "--max-tiles N" in err
+    assert f"{int(estimate):,} tiles" in err and f"{limits.MAX_TILES:,}" in err and "--max-tiles N" in err
 
 
 def test_max_tiles_raises_the_limit(catalogue, tmp_path):
