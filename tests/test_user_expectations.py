@@ -131,3 +131,57 @@ def test_readme_names_the_png_extra():
     readme = (Path(__file__).parent.parent / "README.md").read_text(encoding="utf-8")
     first_png = readme.index(".png", readme.index("## Command line"))
     assert "tilekit[png]" in readme[first_png - 400: first_png + 400]
+
+
+@pytest.mark.parametrize("name,ok", [("IH16", True), ("stochastic-2colour", True), ("4^4", False),
+                                     ("penrose-p3", False), ("hat", False)])
+def test_labels_label_edges_or_say_they_cannot(cat, tmp_path, name, ok):
+    # tilekit render IH16 --labels draws the incidence-symbol labels; 4^4 --labels says it can't
+    out = tmp_path / "l.svg"
+    result = run(cat, "render", name, "--labels", "-o", str(out))
+    if ok:
+        assert result.exit_code == 0, result.output
+        texts = [e.text for e in ET.parse(out).getroot().iter("{http://www.w3.org/2000/svg}text")]
+        assert texts
+        if name == "IH16":
+            assert {"a+", "a-"} <= set(texts)
+    else:
+        one_line_error(result, "carry no edge labels")
+
+
+@pytest.mark.parametrize("name,least", [("chair", 4), ("sphinx", 6), ("pinwheel", 4)])
+def test_one_prototile_systems_coloured_by_orientation(cat, tmp_path, name, least):
+    # tilekit render chair --depth 3: one fill per orientation, not one colour for all
+    out = tmp_path / "c.svg"
+    assert run(cat, "render", name, "--depth", "3", "-o", str(out)).exit_code == 0
+    fills = {e.get("fill") for e in ET.parse(out).getroot().iter("{http://www.w3.org/2000/svg}path")
+             if e.get("fill") not in (None, "none")}
+    assert len(fills) >= least
+
+
+def test_render_of_a_wang_set_shows_edge_colours(cat, tmp_path):
+    # tilekit render stochastic-2colour draws the triangles of tilekit wang render
+    a, b = tmp_path / "a.svg", tmp_path / "b.svg"
+    assert run(cat, "render", "stochastic-2colour", "-o", str(a)).exit_code == 0
+    assert run(cat, "wang", "render", "stochastic-2colour", "--rows", "8", "--cols", "12", "-o", str(b)).exit_code == 0
+    for svg in (a.read_text(), b.read_text()):
+        assert "clipN" in svg and "<use" in svg
+
+
+def test_one_edge_syntax_for_every_family(cat, tmp_path):
+    # --edge NAME=x,y:... with or without the end points (0,0) and (1,0), isohedral and substitution
+    for name, short, full in (("IH16", "b=0.3,0.2", "b=0,0:0.3,0.2:1,0"),
+                              ("penrose-p2", "a=0.3,0.1", "a=0,0:0.3,0.1:1,0")):
+        x, y = tmp_path / "x.svg", tmp_path / "y.svg"
+        assert run(cat, "render", name, "--edge", short, "-o", str(x)).exit_code == 0
+        assert run(cat, "render", name, "--edge", full, "-o", str(y)).exit_code == 0
+        assert x.read_text() == y.read_text()
+
+
+@pytest.mark.parametrize("family,key", [("substitution", "--depth"), ("wang", "method="),
+                                        ("isohedral", "colouring="), ("archimedean", "no options")])
+def test_show_family_lists_its_options(cat, family, key):
+    # tilekit show substitution: the family, its size and the --set keys its tilings take
+    result = run(cat, "show", family)
+    assert result.exit_code == 0, result.output
+    assert result.stdout.startswith(f"family: {family}") and key in result.stdout

@@ -13,6 +13,7 @@ import math
 import os
 import sys
 from collections.abc import Sequence
+from pathlib import Path
 from typing import Any
 
 import click
@@ -303,6 +304,10 @@ def show(state: State, name: str) -> None:
     from tilekit.plugins import families as all_families
 
     cat = state.catalogue()
+    fams = all_families(state.pm)
+    if name in fams and not cat.query(where=[f"name={name}"]):
+        _show_family(cat, fams[name])
+        return
     entry = cat.get(name)
     click.echo(f"name: {entry.name}")
     click.echo(f"family: {entry.family}")
@@ -334,6 +339,25 @@ def show(state: State, name: str) -> None:
     if text:
         click.echo("")
         click.echo(text.rstrip("\n"))
+
+
+def _show_family(cat: Any, fam: Any) -> None:
+    """``tilekit show FAMILY``: its summary, description, size and the options its tilings take."""
+    click.echo(f"family: {fam.name}")
+    click.echo(f"summary: {fam.summary}")
+    if getattr(fam, "description", ""):
+        click.echo(f"description: {fam.description}")
+    click.echo(f"tilings: {cat.count(fam.name)} (tilekit list --family {fam.name})")
+    sample = cat.query(family=fam.name, limit=1)
+    if sample:
+        try:
+            text = cat.tiling(sample[0].name).options_help()
+        except TilekitError:
+            text = ""
+        if text:
+            click.echo(f"options of tilekit render (e.g. {sample[0].name}):")
+            for line in text.splitlines():
+                click.echo(f"  {line}")
 
 
 # --------------------------------------------------------------------------- render
@@ -433,7 +457,7 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
     """
     from tilekit.geometry import as_region
     from tilekit.plugins import get_family
-    from tilekit.render import parse_palette, write_image
+    from tilekit.render import parse_palette, write_svg
 
     if system is not None:
         if name is not None:
@@ -480,7 +504,15 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
         drawn["stroke_width_px"] = stroke_width
     if vectors:
         drawn["vectors"] = _vectors(tiling, area.bounds)
-    path = write_image(patch, out, **drawn)
+    if labels and not any(p.edge_labels is not None for p in patch.prototiles):
+        raise ParameterError(
+            f"--labels: the tiles of {tiling.name or 'this tiling'} carry no edge labels "
+            "to draw (isohedral types and Wang sets do)"
+        )
+    dpi_ = drawn.pop("dpi")
+    if Path(out).suffix.lower() not in (".svg", ".png"):  # fail before drawing
+        raise ParameterError(f"output file {out!r} must end in .svg or .png")
+    path = write_svg(tiling.render_svg(patch, **drawn), out, dpi_)
     click.echo(f"wrote {path} ({len(patch)} tiles)")
 
 

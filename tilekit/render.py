@@ -175,12 +175,18 @@ def patch_to_svg(
                 mark_paths.extend(_path_data(mpts, closed=False))
         if labels and proto.edge_labels is not None:
             outline = proto.outline
-            mids = (outline + np.roll(outline, -1, axis=0)) / 2
+            if proto.corners is not None:  # shaped edges: one label per tiling edge, on its chord
+                corner_pts = outline[list(proto.corners)]
+                mids = (corner_pts + np.roll(corner_pts, -1, axis=0)) / 2
+                texts = [proto.edge_labels[c] for c in proto.corners]
+            else:
+                mids = (outline + np.roll(outline, -1, axis=0)) / 2
+                texts = list(proto.edge_labels)
             cen = outline.mean(axis=0)
             inset = mids + 0.18 * (cen - mids)
             where = Affine.apply(patch.transform[idx], inset)  # (m, k, 2)
             for tile_pts in where:
-                for (lx, ly), lab in zip(tile_pts.tolist(), proto.edge_labels):
+                for (lx, ly), lab in zip(tile_pts.tolist(), texts):
                     label_items.append((lx, ly, str(lab)))
     for c in sorted(by_colour):
         fill = palette[c % len(palette)]
@@ -230,11 +236,14 @@ def svg_to_png(svg: str, path: str | Path, dpi: float = 96.0) -> None:
 
 
 def write_svg(svg: str, path: str | Path, dpi: float = 96.0) -> Path:
-    """Write SVG text to ``path`` as .svg, or as .png through cairosvg (chosen by the suffix)."""
+    """Write SVG text to ``path`` as .svg, or as .png through cairosvg (chosen by the suffix;
+    a PNG has the SVG's pixel size scaled by ``dpi``/96, within MAX_PNG_PIXELS)."""
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix not in (".svg", ".png"):
         raise ParameterError(f"output file {str(path)!r} must end in .svg or .png")
+    if suffix == ".png":
+        _check_pixels(svg, dpi)
     try:
         if suffix == ".svg":
             path.write_text(svg, encoding="utf-8")
@@ -245,20 +254,22 @@ def write_svg(svg: str, path: str | Path, dpi: float = 96.0) -> Path:
     return path
 
 
+def _check_pixels(svg: str, dpi: float) -> None:
+    from tilekit.limits import MAX_PNG_PIXELS, refuse_over
+
+    head = svg[: svg.index(">")]
+    try:
+        w = float(head.split(' width="')[1].split('"')[0]) * dpi / 96
+        h = float(head.split(' height="')[1].split('"')[0]) * dpi / 96
+    except (IndexError, ValueError):
+        return
+    refuse_over("pixels", w * h, MAX_PNG_PIXELS, hint=f"a {w:.0f} x {h:.0f} PNG; give a smaller --width/--height/--dpi")
+
+
 def write_image(patch: Any, path: str | Path, **options: Any) -> Path:
-    """Write ``patch`` to ``path`` as .svg or .png (chosen by the suffix)."""
+    """Write ``patch`` to ``path`` as .svg or .png (chosen by the suffix); ``dpi`` scales a PNG,
+    the other options are :func:`patch_to_svg`'s."""
     if Path(path).suffix.lower() not in (".svg", ".png"):  # fail before drawing
         raise ParameterError(f"output file {str(path)!r} must end in .svg or .png")
     dpi = float(options.pop("dpi", 96.0) or 96.0)
-    if Path(path).suffix.lower() == ".png":
-        from tilekit.limits import MAX_PNG_PIXELS
-
-        svg = patch_to_svg(patch, **options)
-        head = svg[: svg.index(">")]
-        w = float(head.split('width="')[1].split('"')[0]) * dpi / 96
-        h = float(head.split('height="')[1].split('"')[0]) * dpi / 96
-        from tilekit.limits import refuse_over
-
-        refuse_over("pixels", w * h, MAX_PNG_PIXELS, hint=f"a {w:.0f} x {h:.0f} PNG; give a smaller --width/--height/--dpi")
-        return write_svg(svg, path, dpi)
-    return write_svg(patch_to_svg(patch, **options), path)
+    return write_svg(patch_to_svg(patch, **options), path, dpi)

@@ -461,6 +461,11 @@ class Tiling(ABC):
             )
         return self
 
+    def options_help(self) -> str:
+        """The options ``configure`` takes (``tilekit render --set KEY=VALUE``, --param, --edge,
+        --depth), one line each, for ``tilekit show FAMILY``."""
+        return "(no options)"
+
     def default_region(self) -> BaseGeometry:
         """A region showing a representative piece of the tiling (used when none is given)."""
         scale = math.sqrt(max(abs(p.area) for p in self.prototiles))
@@ -477,6 +482,14 @@ class Tiling(ABC):
         """
         reg = self.default_region() if region is None else as_region(region)
         return region_tile_estimate(reg, self.prototiles)
+
+    def render_svg(self, patch: Patch, **options: Any) -> str:
+        """SVG text of a patch of this tiling (``tilekit render`` draws through it); options as
+        for :func:`tilekit.render.patch_to_svg`. Families with their own picture (Wang tiles'
+        edge colours) override it."""
+        from tilekit.render import patch_to_svg
+
+        return patch_to_svg(patch, **options)
 
     def __repr__(self) -> str:
         return f"<{type(self).__name__} {self.family}/{self.name}>"

@@ -272,7 +272,7 @@ class IsohedralTiling(PeriodicTiling):
         outline, corners, paths = engine.outline(self.edge_shapes)
         self.edge_paths = paths
         self._check_outline(paths)
-        proto = Prototile(outline, name=t.name, corners=corners)
+        proto = Prototile(outline, name=t.name, corners=corners, edge_labels=_symbol_labels(t.symbol, outline, corners))
         if isinstance(colouring, str):
             colouring = Colouring.parse(colouring)
         col = colouring or t.colouring
@@ -411,6 +411,13 @@ class IsohedralTiling(PeriodicTiling):
             )
         return "\n".join(lines)
 
+    def options_help(self) -> str:
+        return "\n".join([
+            "--param X[,X...]       the type's tiling vertex parameters (tilekit show IHn lists them)",
+            "--edge b=x,y:x,y:...   an edge shape for a label (end points (0,0), (1,0) optional)",
+            "--set colouring=(c..)(p..)(q..)   a colouring of §5.4.3",
+        ])
+
     def configure(self, **options: Any) -> IsohedralTiling:
         """A new tiling with ``params`` (floats), ``edges`` ('b=x,y:...'), ``colours``/``colouring``."""
         params = self.params
@@ -501,3 +508,22 @@ def tiling_from_spec(spec: Mapping[str, Any]) -> PeriodicTiling:
     edges = {k: EdgeShape.parse(v) for k, v in (spec.get("edges") or {}).items()}
     col = spec.get("colouring")
     return IsohedralTiling(t.ih, spec.get("params"), edges, col)
+
+
+def _symbol_labels(symbol: Any, outline: Any, corners: Any) -> tuple[str, ...] | None:
+    """Per outline segment, the incidence-symbol label of the tiling edge it belongs to
+    (``a+``, ``b-``, ``c``), for ``tilekit render --labels``; None if the outline is not
+    counter-clockwise with one corner per symbol edge."""
+    import numpy as np
+
+    from tilekit.geometry import signed_area
+
+    pts = np.asarray(outline, dtype=float)
+    if corners is None or len(corners) != len(symbol.edges) or signed_area(pts) <= 0:
+        return None
+    text = [lab + {1: "+", -1: "-", 0: ""}[sg] for lab, sg in symbol.edges]
+    out = []
+    for i in range(len(pts)):
+        e = max(k for k, c in enumerate(corners) if c <= i) if i >= corners[0] else len(corners) - 1
+        out.append(text[e])
+    return tuple(out)

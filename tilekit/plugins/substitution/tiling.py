@@ -254,7 +254,7 @@ class SubstitutionTiling(Tiling):
             from tilekit.plugins.substitution.shapes import canonical_transforms
 
             transform = canonical_transforms(proto, transform, self._mirrors)
-        patch = Patch(self.prototiles, proto, transform, colour=proto)
+        patch = Patch(self.prototiles, proto, transform, colour=_colours(proto, transform, len(self.prototiles)))
         if reg is not None:
             patch = patch.clip(reg)
         return patch
@@ -300,6 +300,15 @@ class SubstitutionTiling(Tiling):
         """Rule tiles after ``depth`` substitutions of the seed cluster (M^d applied to it)."""
         proto, _ = self.seed_cluster()
         return sum(int(sum(self.system.counts(depth, int(p))[-1])) for p in proto)
+
+    def options_help(self) -> str:
+        return "\n".join([
+            "--depth N              substitutions of the seed cluster (0..60)",
+            "--set seed=NAME        substitute this rule prototile instead of the seed cluster",
+            "--param H[,H...]       tooth heights of the free edge shapes a, b, ... (assembled systems)",
+            "--edge a=x,y:x,y       an edge shape from (0,0) to (1,0) (assembled systems)",
+            "--set r1=R --set theta1=DEG --set r2=R --set theta2=DEG   quasivertex deformation (P2, P3)",
+        ])
 
     def configure(self, **options: Any) -> SubstitutionTiling:
         """Options: ``depth`` (int, fixed substitution depth), ``seed`` (prototile name),
@@ -497,6 +506,9 @@ class KeypointTiling(SubstitutionTiling):
         size = math.sqrt(abs(self.system.tile.area))
         return shapely.box(-6 * size, -6 * size, 6 * size, 6 * size)
 
+    def options_help(self) -> str:
+        return "--depth N              level of the supertile (0..15)\n--set seed=LABEL       the supertile label to start from"
+
     def configure(self, **options: Any) -> KeypointTiling:
         depth = options.pop("depth", self.depth)
         seed = options.pop("seed", self.seed)
@@ -518,6 +530,28 @@ class KeypointTiling(SubstitutionTiling):
             kids = ", ".join(s.labels[k] if k >= 0 else "-" for k in slots)
             lines.append(f"  {s.labels[j]} -> {kids}")
         return "\n".join(lines)
+
+
+#: Orientation classes a one-prototile system is coloured by (turns are binned when more).
+ORIENTATION_COLOURS = 8
+
+
+def _colours(proto: np.ndarray, transform: np.ndarray, prototiles: int) -> np.ndarray:
+    """Colour by prototile; a system of one prototile (chair, sphinx, pinwheel) by the tile's
+    orientation instead: its turn (the distinct angles, or 4 bins when there are more than
+    ORIENTATION_COLOURS, as for the pinwheel) and, doubling them, its handedness."""
+    if prototiles > 1 or not len(proto):
+        return proto
+    det = transform[:, 0, 0] * transform[:, 1, 1] - transform[:, 0, 1] * transform[:, 1, 0]
+    angle = np.mod(np.arctan2(transform[:, 1, 0], transform[:, 0, 0]), 2 * np.pi)
+    key = np.round(angle * 1e4).astype(np.int64)
+    turns, index = np.unique(key, return_inverse=True)
+    if len(turns) > ORIENTATION_COLOURS:
+        index = (angle // (np.pi / 2)).astype(np.int64) % 4
+        n = 4
+    else:
+        n = len(turns)
+    return index.astype(np.int64) + n * (det < 0)
 
 
 def _rounded(bounds: Sequence[float]) -> tuple[float, ...]:
