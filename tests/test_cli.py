@@ -139,7 +139,7 @@ def test_show_unknown_name_suggests(pm, db):
 def test_render_svg_and_png(pm, db, tmp_path):
     svg = tmp_path / "squares.svg"
     result = run(db, "render", "4^4", "-o", str(svg), "--region", "0,0,3,2", "--colours", "red,#00ff00",
-                 "--vectors", "--labels")
+                 "--vectors")
     assert result.exit_code == 0, result.output
     assert result.stdout.strip() == f"wrote {svg} (6 tiles)"  # a 3 x 2 box of unit squares
     text = svg.read_text()

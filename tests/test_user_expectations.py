@@ -185,3 +185,11 @@ def test_show_family_lists_its_options(cat, family, key):
     result = run(cat, "show", family)
     assert result.exit_code == 0, result.output
     assert result.stdout.startswith(f"family: {family}") and key in result.stdout
+
+
+def test_clipped_tiles_end_on_a_frame(cat, tmp_path):
+    # tilekit render penrose-p3 --region -5,-5,5,5: edges cut by the border end on a drawn frame
+    out = tmp_path / "f.svg"
+    assert run(cat, "render", "penrose-p3", "--region", "-5,-5,5,5", "-o", str(out)).exit_code == 0
+    rects = [e for e in ET.parse(out).getroot().iter("{http://www.w3.org/2000/svg}rect") if e.get("fill") == "none"]
+    assert len(rects) == 1 and [float(rects[0].get(k)) for k in ("x", "y", "width", "height")] == [-5, -5, 10, 10]

@@ -193,6 +193,11 @@ def patch_to_svg(
         out.append(f'<path fill="{html.escape(fill)}" d="{" ".join(by_colour[c])}"/>')
     if mark_paths:
         out.append(f'<path fill="none" stroke-width="{sw * 0.8:.4g}" d="{" ".join(mark_paths)}"/>')
+    if region is not None and len(patch):
+        # a frame on the region's border: tiles cut by the clip end on a line, not in stubs
+        # (drawn at twice the width, half of it inside the clip)
+        out.append(f'<rect x="{x0:.6g}" y="{y0:.6g}" width="{w:.6g}" height="{h:.6g}" fill="none" '
+                   f'stroke-width="{2 * sw:.4g}"/>')
     if vectors is not None:
         o, v1, v2 = (np.asarray(v, dtype=float) for v in vectors)
         out.append(

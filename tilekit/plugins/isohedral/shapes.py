@@ -109,9 +109,7 @@ class EdgeShape:
             raise ParseError(f"edge shape {text!r}: points must be finite numbers")
         # one --edge syntax for every family: the end points (0,0) and (1,0) may be left out
         if not smooth and (not pts or not np.allclose(pts[0], (0.0, 0.0), atol=1e-9)):
-            pts.insert(0, (0.0, 0.0))
-        if not smooth and not np.allclose(pts[-1], (1.0, 0.0), atol=1e-9):
-            pts.append((1.0, 0.0))
+            pts = [(0.0, 0.0), *pts, (1.0, 0.0)]  # interior points only, as for substitution edges
         return cls(np.array(pts), smooth)
 
 
