@@ -274,7 +274,7 @@ def test_periodic_spec_never_crashes() -> None:
 
 CONFIGURE_CASES = [
     ("penrose-p3", "substitution"), ("chair", "substitution"), ("spectre", "substitution"),
-    ("IH41", "isohedral"), ("stochastic-2colour", "wang"),
+    ("hat", "substitution"), ("IH41", "isohedral"), ("stochastic-2colour", "wang"),
 ]
 
 
@@ -316,3 +316,44 @@ def test_cli_option_types_never_crash() -> None:
     for kind in types:
         with pytest.raises(click.BadParameter):
             kind.convert("9" * 5000, None, None)
+
+
+@pytest.fixture(scope="module")
+def catalogue_url(tmp_path_factory) -> str:
+    from click.testing import CliRunner
+
+    from tilekit.cli import cli
+
+    url = f"sqlite:///{tmp_path_factory.mktemp('fuzzcat') / 'cat.sqlite'}"
+    assert CliRunner().invoke(cli, ["--catalogue", url, "list", "--limit", "1"]).exit_code == 0
+    return url
+
+
+OPTION_TEXT = st.text(alphabet="0123456789.,-e:=ab#fx inf", max_size=24)
+
+
+def test_render_options_through_the_cli(catalogue_url, tmp_path) -> None:
+    # tilekit render NAME --region/--param/--colours/--set/--edge/--depth/--width with generated
+    # values: exit 0 with a file, or exit 2 with one line "error: ..." (never a traceback)
+    from click.testing import CliRunner
+
+    from tilekit.cli import cli
+
+    options = ["--region", "--param", "--colours", "--set", "--edge", "--depth", "--width", "--max-tiles", "--stroke"]
+
+    @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow,
+                                                                    HealthCheck.function_scoped_fixture])
+    @given(st.sampled_from(["4^4", "IH16", "penrose-p3", "chair", "stochastic-2colour"]),
+           st.lists(st.tuples(st.sampled_from(options), OPTION_TEXT), min_size=1, max_size=3))
+    def run(name: str, opts: list[tuple[str, str]]) -> None:
+        argv = ["--catalogue", catalogue_url, "render", name, "-o", str(tmp_path / "f.svg"), "--max-tiles", "20000"]
+        for flag, value in opts:
+            argv += [flag, value]
+        result = CliRunner().invoke(cli, argv)
+        assert "Traceback" not in result.output
+        assert result.exception is None or isinstance(result.exception, SystemExit), repr(result.exception)
+        if result.exit_code != 0:
+            lines = result.stderr.splitlines()
+            assert result.exit_code == 2 and len(lines) == 1 and lines[0].startswith("error: "), result.stderr
+
+    run()

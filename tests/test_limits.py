@@ -165,3 +165,17 @@ def test_hundred_colour_colouring_is_cheap():
     got = col.colour(np.zeros(5, dtype=np.int64), a, np.zeros(5, dtype=np.int64))
     # perm^a(0) on the 2-cycle {0, 1}: parity of a
     assert got.tolist() == [0, 1, 0, 1, 0]
+
+
+def test_hundred_colour_set_renders_under_memory_cap(catalogue, tmp_path):
+    # tilekit render IH41 --set colouring=(1)(p)(p), 100 colours in cycles 2, 3, 5, ..., 23
+    # (order 223,092,870; a power table would take 166 GiB): drawn quickly under the cap
+    perm, base = [], 0
+    for p in (2, 3, 5, 7, 11, 13, 17, 19, 23):
+        perm += [base + (i + 1) % p for i in range(p)]
+        base += p
+    cycle = "(" + " ".join(str(v + 1) for v in perm) + ")"
+    out = tmp_path / "c.svg"
+    code, err, seconds = capped(catalogue, "render", "IH41", "--set", f"colouring=(1){cycle}{cycle}", "-o", str(out))
+    assert code == 0, err
+    assert out.exists() and seconds < 60
