@@ -357,3 +357,14 @@ def test_render_options_through_the_cli(catalogue_url, tmp_path) -> None:
             assert result.exit_code == 2 and len(lines) == 1 and lines[0].startswith("error: "), result.stderr
 
     run()
+
+
+@pytest.mark.parametrize("name,family,n", [("IH41", "isohedral", 2), ("penrose-p2", "substitution", 1)])
+@pytest.mark.parametrize("value", ["1e308", "-1e300", "1e200", "nan", "inf"])
+def test_huge_params_are_errors_without_warnings(name, family, n, value):
+    # tilekit render IH41 --param 1e308 (library side): a ParameterError, no NumPy overflow warning
+    from tilekit.plugins import families
+
+    fam = families()[family]
+    tiling = fam.from_spec({"ih": 41} if family == "isohedral" else {"system": name})
+    parses_or_tilekit_error(lambda: tiling.configure(params=[value] * n).patch((-3, -3, 3, 3)))

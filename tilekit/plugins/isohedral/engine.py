@@ -215,6 +215,10 @@ def _snap(x: np.ndarray) -> np.ndarray:
 # --------------------------------------------------------------------------- the tiling
 
 
+#: Largest |parameter| accepted (the tiling vertex parameters are O(1) shape values).
+MAX_PARAM = 1e6
+
+
 class IsohedralTiling(PeriodicTiling):
     """A tiling of one of the 93 isohedral types with given parameters, edge shapes and colouring.
 
@@ -249,6 +253,11 @@ class IsohedralTiling(PeriodicTiling):
             )
         if not all(math.isfinite(p) for p in params):
             raise ParameterError(f"{t.name}: parameters {list(params)} must be finite numbers")
+        if any(abs(p) > MAX_PARAM for p in params):
+            raise ParameterError(
+                f"{t.name}: parameters {list(params)} must lie within ±{MAX_PARAM:g} (tiling vertex "
+                "parameters are of the tile's own size; larger ones only overflow)"
+            )
         self.params = params
         self.edge_shapes: dict[str, EdgeShape] = {}
         classes = shape_classes(t.symbol)

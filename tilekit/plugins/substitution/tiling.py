@@ -54,6 +54,10 @@ class SubstitutionTiling(Tiling):
         self.seed = seed
         self._spec_source = dict(spec_source) if spec_source is not None else {"system": system.name}
         self.params = [float(v) for v in params] if params is not None else None
+        if self.params is not None and not all(math.isfinite(v) and abs(v) <= 1.0 for v in self.params):
+            raise ParameterError(
+                f"params {self.params} are tooth heights of unit edges and must be finite numbers in -1..1"
+            )
         self.edges = list(edges) if edges is not None else None
         self.quasivertex = dict(quasivertex) if quasivertex is not None else None
         self._shaped: list[Prototile] | None = None
