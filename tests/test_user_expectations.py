@@ -108,8 +108,9 @@ def test_render_width_height_dpi_stroke(cat, tmp_path):
 
 
 @pytest.mark.parametrize("command", [
-    ["render"], ["list"], ["show"], ["families"], ["search"], ["runs"], ["catalogue", "export"],
-    ["wang", "render"], ["wang", "solve"],
+    [], ["render"], ["list"], ["show"], ["families"], ["search"], ["search", "vertex-species"], ["runs"],
+    ["catalogue"], ["catalogue", "export"], ["catalogue", "path"], ["catalogue", "upgrade"], ["catalogue", "seed"],
+    ["wang"], ["wang", "render"], ["wang", "solve"],
 ])
 def test_help_has_an_example(cat, command):
     # tilekit COMMAND --help shows at least one example invocation
@@ -193,3 +194,17 @@ def test_clipped_tiles_end_on_a_frame(cat, tmp_path):
     assert run(cat, "render", "penrose-p3", "--region", "-5,-5,5,5", "-o", str(out)).exit_code == 0
     rects = [e for e in ET.parse(out).getroot().iter("{http://www.w3.org/2000/svg}rect") if e.get("fill") == "none"]
     assert len(rects) == 1 and [float(rects[0].get(k)) for k in ("x", "y", "width", "height")] == [-5, -5, 10, 10]
+
+
+def test_long_render_shows_progress_on_a_terminal(cat, tmp_path, monkeypatch):
+    # tilekit render penrose-p3 --depth 7 on a terminal: what it makes, then what it draws
+    import tilekit.cli as cli_module
+
+    monkeypatch.setattr(cli_module, "PROGRESS_TILES", 1000)
+    out = tmp_path / "p.svg"
+    quiet = run(cat, "render", "penrose-p3", "--depth", "6", "-o", str(out))
+    assert quiet.exit_code == 0 and quiet.stderr == ""  # not a terminal: no progress lines
+    monkeypatch.setattr(cli_module, "on_terminal", lambda: True)
+    loud = run(cat, "render", "penrose-p3", "--depth", "6", "-o", str(out))
+    assert loud.exit_code == 0
+    assert "making about" in loud.stderr and "drawing 1,925 tiles" in loud.stderr

@@ -169,7 +169,14 @@ class SearchGroup(SuggestingGroup):
 @click.version_option(package_name="tilekit")
 @click.pass_context
 def cli(ctx: click.Context, catalogue_url: str | None) -> None:
-    """tilekit: computational tiling theory after Kaplan's Introductory Tiling Theory."""
+    """tilekit: computational tiling theory after Kaplan's Introductory Tiling Theory.
+
+    \b
+    Examples:
+      tilekit list --family archimedean
+      tilekit show cairo
+      tilekit render penrose-p3 --depth 6 -o p3.svg
+    """
     state = State(catalogue_url)
     ctx.obj = state
     ctx.call_on_close(state.close)
@@ -409,6 +416,15 @@ def parse_settings(items: Sequence[str]) -> dict[str, str]:
     return out
 
 
+#: Renders estimated above this many tiles say what they are doing on a terminal.
+PROGRESS_TILES = 50_000
+
+
+def on_terminal() -> bool:
+    """Whether progress lines go to a terminal (tests replace this function)."""
+    return sys.stderr.isatty()
+
+
 def _vectors(tiling: Any, region: tuple[float, float, float, float]) -> tuple[Any, Any, Any]:
     import numpy as np
 
@@ -493,10 +509,10 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
     estimate = tiling.estimate_tiles(as_region(box) if box is not None else None)
     limits.refuse_over("tiles", estimate, max_tiles, "--max-tiles")
     area = as_region(box) if box is not None else tiling.default_region()
-    if estimate > 50_000 and sys.stderr.isatty():
+    if estimate > PROGRESS_TILES and on_terminal():
         click.echo(f"making about {int(estimate):,} tiles ...", err=True)
     patch = tiling.patch(area)
-    if sys.stderr.isatty() and len(patch) > 50_000:
+    if len(patch) > PROGRESS_TILES and on_terminal():
         click.echo(f"drawing {len(patch):,} tiles to {out} ...", err=True)
     drawn: dict[str, Any] = {"palette": palette, "labels": labels, "region": area, "stroke": stroke,
                              "width": width, "height": height, "dpi": dpi}
@@ -563,7 +579,10 @@ def _search_command(search: Any) -> click.Command:
         click.Option(["--resume"], type=RUN_ID, metavar="RUN_ID", help="Continue an interrupted or failed run."),
     ]
     return click.Command(search.name, callback=callback, params=options,
-                         help=f"{search.summary} (family {search.family}).", short_help=search.summary)
+                         help=f"{search.summary} (family {search.family}).\n\n\b\nExamples:\n"
+                              f"  tilekit search {search.name}\n  tilekit search {search.name} --executor process --workers 2\n"
+                              f"  tilekit search {search.name} --resume RUN_ID",
+                         short_help=search.summary)
 
 
 def _run_search_cli(state: State, name: str, params: dict[str, Any] | None, executor: str,
@@ -680,13 +699,24 @@ def runs(state: State, run_id: int | None, fmt: str) -> None:
 
 @cli.group(name="catalogue", cls=SuggestingGroup)
 def catalogue_group() -> None:
-    """The catalogue database: where it is, migrate, export, seed."""
+    """The catalogue database: where it is, migrate, export, seed.
+
+    \b
+    Examples:
+      tilekit catalogue path
+      tilekit catalogue export --format csv -o all.csv
+    """
 
 
 @catalogue_group.command(name="path")
 @pass_state
 def catalogue_path(state: State) -> None:
-    """Print the catalogue's file (SQLite) or URL (password hidden), without opening it."""
+    """Print the catalogue's file (SQLite) or URL (password hidden), without opening it.
+
+    \b
+    Example:
+      tilekit --catalogue shared.sqlite catalogue path
+    """
     from sqlalchemy.engine import make_url
 
     from tilekit.catalogue import resolve_url
@@ -701,7 +731,12 @@ def catalogue_path(state: State) -> None:
 @catalogue_group.command(name="upgrade")
 @pass_state
 def catalogue_upgrade(state: State) -> None:
-    """Run the Alembic migrations (core and plugins) to head."""
+    """Run the Alembic migrations (core and plugins) to head.
+
+    \b
+    Example:
+      tilekit catalogue upgrade
+    """
     cat = state.catalogue(seed=False)
     current, heads = cat.revisions()
     click.echo(f"catalogue {cat.url} at revision {', '.join(sorted(current)) or 'base'} (heads: {', '.join(sorted(heads))})")
@@ -737,7 +772,13 @@ def catalogue_export(state: State, fmt: str, out: str | None, family: str | None
 @click.option("--replace", is_flag=True, help="Overwrite tilings the plugins ship (keeps others).")
 @pass_state
 def catalogue_seed(state: State, replace: bool) -> None:
-    """Load the tilings the installed plugins ship (new names; all with --replace)."""
+    """Load the tilings the installed plugins ship (new names; all with --replace).
+
+    \b
+    Examples:
+      tilekit catalogue seed
+      tilekit catalogue seed --replace
+    """
     cat = state.catalogue(seed=False)
     added, replaced = cat.seed(replace=replace)
     click.echo(f"added {added}, replaced {replaced} tilings ({cat.count()} in the catalogue)")

@@ -46,7 +46,13 @@ def _fixed(items: tuple[str, ...]) -> dict[tuple[int, int], str | int]:
 
 @click.group(name="wang")
 def wang_group() -> None:
-    """Wang tiles: render fills with coloured triangles or textures, solve rectangles and tori."""
+    """Wang tiles: render fills with coloured triangles or textures, solve rectangles and tori.
+
+    \b
+    Examples:
+      tilekit wang render stochastic-2colour -o wang.svg
+      tilekit wang solve jeandel-rao --rows 10 --cols 10
+    """
 
 
 @wang_group.command(name="render")
