@@ -139,7 +139,7 @@ def test_show_unknown_name_suggests(pm, db):
 def test_render_svg_and_png(pm, db, tmp_path):
     svg = tmp_path / "squares.svg"
     result = run(db, "render", "4^4", "-o", str(svg), "--region", "0,0,3,2", "--colours", "red,#00ff00",
-                 "--vectors", "--labels")
+                 "--vectors")
     assert result.exit_code == 0, result.output
     assert result.stdout.strip() == f"wrote {svg} (6 tiles)"  # a 3 x 2 box of unit squares
     text = svg.read_text()
@@ -169,7 +169,7 @@ def test_render_from_a_system_file(pm, db, tmp_path):
         (["render", "4^4", "-o", "X.svg", "--param", "0.1,0.2"], "takes no options (params given)"),
         (["render", "4^4", "-o", "X.svg", "--set", "colour"], "is not KEY=VALUE"),
         (["render", "4^4", "-o", "X.gif"], "must end in .svg or .png"),
-        (["render", "4^4", "-o", "X.svg", "--colours", "not a colour!"], "is not a CSS name"),
+        (["render", "4^4", "-o", "X.svg", "--colours", "not a colour!"], "is not a CSS colour name"),
         (["render", "-o", "X.svg"], "needs a tiling NAME"),
         (["render", "4^4", "-o", "X.svg", "--family", "testgrid"], "--family only goes with --system"),
         (["render", "squares", "-o", "X.svg"], "unknown tiling 'squares'"),

@@ -48,7 +48,7 @@ def test_png_is_written(tmp_path) -> None:
 def test_bad_requests_are_one_line_errors(tmp_path) -> None:
     with pytest.raises(ParameterError, match=r"\.svg or \.png"):
         write_image(triangle_patch(), tmp_path / "t.jpg")
-    with pytest.raises(ParseError, match="not a CSS name"):
+    with pytest.raises(ParseError, match="not a CSS colour name"):
         parse_palette("red,#12345")
     assert parse_palette("red, #abc") == ("red", "#abc")
 

@@ -13,11 +13,14 @@ import math
 import os
 import sys
 from collections.abc import Sequence
+from pathlib import Path
 from typing import Any
 
 import click
 import pluggy
 
+from tilekit import limits
+from tilekit.cli_types import COUNT, INT64_MAX, POSITIVE, RUN_ID, BoundedInt, FiniteFloat
 from tilekit.errors import NotFoundError, ParameterError, ParseError, TilekitError
 
 __all__ = ["cli", "main", "plugin_manager"]
@@ -187,7 +190,14 @@ class SearchGroup(SuggestingGroup):
 @click.version_option(package_name="tilekit")
 @click.pass_context
 def cli(ctx: click.Context, catalogue_url: str | None) -> None:
-    """tilekit: computational tiling theory after Kaplan's Introductory Tiling Theory."""
+    """tilekit: computational tiling theory after Kaplan's Introductory Tiling Theory.
+
+    \b
+    Examples:
+      tilekit list --family archimedean
+      tilekit show cairo
+      tilekit render penrose-p3 --depth 6 -o p3.svg
+    """
     state = State(catalogue_url)
     ctx.obj = state
     ctx.call_on_close(state.close)
@@ -244,7 +254,13 @@ FORMAT = click.Choice(["table", "json", "csv"])
 @click.option("--format", "fmt", type=click.Choice(["table", "json"]), default="table", show_default=True)
 @pass_state
 def families(state: State, fmt: str) -> None:
-    """List the tiling families the installed plugins provide."""
+    """List the tiling families the installed plugins provide.
+
+    \b
+    Examples:
+      tilekit families
+      tilekit families --format json
+    """
     from tilekit.plugins import families as all_families
 
     fams = all_families(state.pm)
@@ -269,17 +285,23 @@ def families(state: State, fmt: str) -> None:
 @click.option("--text", help="Case-insensitive text in the name, title, an alias or a text property.")
 @click.option("--order", "order_by", default="name", show_default=True,
               help="Sort key: name, family, title, a shared column or any property; -KEY descends.")
-@click.option("--limit", type=click.IntRange(min=0, max=2**62), help="At most N tilings.")
-@click.option("--offset", type=click.IntRange(min=0, max=2**62), default=0, help="Skip the first N tilings.")
+@click.option("--limit", type=COUNT, help="At most N tilings.")
+@click.option("--offset", type=COUNT, default=0, help="Skip the first N tilings.")
 @click.option("--count", "count_only", is_flag=True, help="Print only how many match.")
 @click.option("--format", "fmt", type=click.Choice(["table", "json", "csv", "jsonl"]), default="table",
               show_default=True)
 @pass_state
 def list_(state: State, family: str | None, where: tuple[str, ...], text: str | None, order_by: str,
           limit: int | None, offset: int, count_only: bool, fmt: str) -> None:
-    """List catalogue tilings matching the filters (Catalogue.iter_query), streamed.
+    """List catalogue tilings matching the filters (Catalogue.iter_query), streamed; a family
+    with a result table lists its rows.
 
-    Example: tilekit list --family archimedean --where polygons=6 --format json
+    \b
+    Examples:
+      tilekit list --family archimedean
+      tilekit list --where polygons=6 --where symmetry_group=p6m
+      tilekit list --text penrose --limit 5 --format json
+      tilekit list --family vertex-species --where status=impossible --count
     """
     from tilekit.catalogue import write_entries
 
@@ -313,10 +335,21 @@ def list_(state: State, family: str | None, where: tuple[str, ...], text: str | 
 @click.argument("name")
 @pass_state
 def show(state: State, name: str) -> None:
-    """Show a tiling: every catalogue property, then its family's description."""
+    """Show a tiling: every catalogue property, then its family's description.
+
+    \b
+    Examples:
+      tilekit show IH16
+      tilekit show cairo
+      tilekit show penrose-p3
+    """
     from tilekit.plugins import families as all_families
 
     cat = state.catalogue()
+    fams = all_families(state.pm)
+    if name in fams and not cat.query(where=[f"name={name}"]):
+        _show_family(cat, fams[name])
+        return
     entry = cat.get(name)
     click.echo(f"name: {entry.name}")
     click.echo(f"family: {entry.family}")
@@ -350,10 +383,34 @@ def show(state: State, name: str) -> None:
         click.echo(text.rstrip("\n"))
 
 
+def _show_family(cat: Any, fam: Any) -> None:
+    """``tilekit show FAMILY``: its summary, description, size and the options its tilings take."""
+    click.echo(f"family: {fam.name}")
+    click.echo(f"summary: {fam.summary}")
+    if getattr(fam, "description", ""):
+        click.echo(f"description: {fam.description}")
+    click.echo(f"tilings: {cat.count(fam.name)} (tilekit list --family {fam.name})")
+    sample = cat.query(family=fam.name, limit=1)
+    if sample:
+        try:
+            text = cat.tiling(sample[0].name).options_help()
+        except TilekitError:
+            text = ""
+        if text:
+            click.echo(f"options of tilekit render (e.g. {sample[0].name}):")
+            for line in text.splitlines():
+                click.echo(f"  {line}")
+
+
 # --------------------------------------------------------------------------- render
 
 
-def _floats(text: str, what: str) -> list[float]:
+#: Largest |value| of a tiling parameter (--param): shapes are unit-sized, so beyond this a
+#: value is a typo and would only overflow the geometry.
+MAX_PARAM = 1e6
+
+
+def _floats(text: str, what: str, bound: float = limits.MAX_COORDINATE) -> list[float]:
     out: list[float] = []
     for part in text.split(","):
         part = part.strip()
@@ -365,6 +422,8 @@ def _floats(text: str, what: str) -> list[float]:
             raise ParseError(f"{what} {text!r}: {part!r} is not a number") from None
         if not math.isfinite(value):
             raise ParseError(f"{what} {text!r}: {part!r} is not a finite number")
+        if abs(value) > bound:
+            raise ParseError(f"{what} {text!r}: {part!r} is outside ±{bound:g}")
         out.append(value)
     return out
 
@@ -392,6 +451,15 @@ def parse_settings(items: Sequence[str]) -> dict[str, str]:
     return out
 
 
+#: Renders estimated above this many tiles say what they are doing on a terminal.
+PROGRESS_TILES = 50_000
+
+
+def on_terminal() -> bool:
+    """Whether progress lines go to a terminal (tests replace this function)."""
+    return sys.stderr.isatty()
+
+
 def _vectors(tiling: Any, region: tuple[float, float, float, float]) -> tuple[Any, Any, Any]:
     import numpy as np
 
@@ -409,7 +477,7 @@ def _vectors(tiling: Any, region: tuple[float, float, float, float]) -> tuple[An
 @click.option("-o", "--output", "out", required=True, type=click.Path(dir_okay=False), help="Output .svg or .png file.")
 @click.option("--param", "params", multiple=True, metavar="X[,X...]", help="Tiling parameters (repeatable, or comma-separated).")
 @click.option("--edge", "edges", multiple=True, metavar="SPEC", help="Edge shape 'name=x,y:x,y:...' (repeatable).")
-@click.option("--depth", type=click.IntRange(min=0), help="Substitution depth.")
+@click.option("--depth", type=BoundedInt(0, limits.MAX_DEPTH), help="Substitution depth.")
 @click.option("--set", "settings", multiple=True, metavar="KEY=VALUE", help="A family-specific option (repeatable).")
 @click.option("--region", metavar="x0,y0,x1,y1", help="The region to cover (default: the tiling's own).")
 @click.option("--colours", "--colors", "colours", metavar="c1,c2,...", help="Fill colours, CSS names or #rrggbb.")
@@ -417,14 +485,30 @@ def _vectors(tiling: Any, region: tuple[float, float, float, float]) -> tuple[An
 @click.option("--vectors", is_flag=True, help="Draw the translation vectors (periodic tilings).")
 @click.option("--system", type=click.Path(exists=True, dir_okay=False), help="Build the tiling from this data file instead of the catalogue.")
 @click.option("--family", help="Family that reads --system (default: substitution).")
+@click.option("--max-tiles", type=POSITIVE, default=limits.MAX_TILES, show_default=True,
+              help="Refuse (before drawing) a patch estimated at more than N tiles.")
+@click.option("--width", type=BoundedInt(16, 20_000), help="Image width in pixels (default: longer side 800).")
+@click.option("--height", type=BoundedInt(16, 20_000), help="Image height in pixels (instead of --width).")
+@click.option("--dpi", type=FiniteFloat(2400, min=10), default=96.0, show_default=True,
+              help="PNG resolution: pixels are scaled by DPI/96.")
+@click.option("--stroke", default="#222", show_default=True, metavar="COLOUR", help="Outline colour (CSS name or #rrggbb).")
+@click.option("--stroke-width", type=FiniteFloat(1e3, min=0.0), help="Outline width in pixels (default 1.2).")
 @pass_state
 def render(state: State, name: str | None, out: str, params: tuple[str, ...], edges: tuple[str, ...],
            depth: int | None, settings: tuple[str, ...], region: str | None, colours: str | None,
-           labels: bool, vectors: bool, system: str | None, family: str | None) -> None:
-    """Render a catalogue tiling (or a --system file) to SVG or PNG."""
+           labels: bool, vectors: bool, system: str | None, family: str | None, max_tiles: int,
+           width: int | None, height: int | None, dpi: float, stroke: str, stroke_width: float | None) -> None:
+    """Render a catalogue tiling (or a --system file) to SVG or PNG.
+
+    \b
+    Examples:
+      tilekit render 3.4.6.4 -o rhombitrihexagonal.svg --vectors
+      tilekit render penrose-p3 --depth 6 -o p3.png
+      tilekit render IH41 --param 0.1,0.2 --region -5,-5,5,5 -o ih41.svg
+    """
     from tilekit.geometry import as_region
     from tilekit.plugins import get_family
-    from tilekit.render import parse_palette, write_image
+    from tilekit.render import parse_palette, write_svg
 
     if system is not None:
         if name is not None:
@@ -442,7 +526,7 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
 
     options: dict[str, Any] = {}
     if params:
-        options["params"] = [v for p in params for v in _floats(p, "--param")]
+        options["params"] = [v for p in params for v in _floats(p, "--param", MAX_PARAM)]
     if edges:
         options["edges"] = list(edges)
     if depth is not None:
@@ -451,20 +535,43 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
     if options:
         tiling = tiling.configure(**options)
 
+    palette = parse_palette(colours)  # a bad colour fails before any work
+    parse_palette(stroke)
+    if width is not None and height is not None:
+        raise ParameterError("give --width or --height, not both (the other follows the region's shape)")
     box = parse_region(region) if region is not None else None
+    # estimate first: nothing is allocated for a patch over the limit
+    estimate = tiling.estimate_tiles(as_region(box) if box is not None else None)
+    limits.refuse_over("tiles", estimate, max_tiles, "--max-tiles")
     area = as_region(box) if box is not None else tiling.default_region()
+    if estimate > PROGRESS_TILES and on_terminal():
+        click.echo(f"making about {int(estimate):,} tiles ...", err=True)
     patch = tiling.patch(area)
-    drawn = {"palette": parse_palette(colours), "labels": labels, "region": area}
+    if len(patch) > PROGRESS_TILES and on_terminal():
+        click.echo(f"drawing {len(patch):,} tiles to {out} ...", err=True)
+    drawn: dict[str, Any] = {"palette": palette, "labels": labels, "region": area, "stroke": stroke,
+                             "width": width, "height": height, "dpi": dpi}
+    if stroke_width is not None:
+        drawn["stroke_width_px"] = stroke_width
     if vectors:
         drawn["vectors"] = _vectors(tiling, area.bounds)
-    path = write_image(patch, out, **drawn)
+    if labels and not any(p.edge_labels is not None for p in patch.prototiles):
+        raise ParameterError(
+            f"--labels: the tiles of {tiling.name or 'this tiling'} carry no edge labels "
+            "to draw (isohedral types and Wang sets do)"
+        )
+    dpi_ = drawn.pop("dpi")
+    if Path(out).suffix.lower() not in (".svg", ".png"):  # fail before drawing
+        raise ParameterError(f"output file {out!r} must end in .svg or .png")
+    path = write_svg(tiling.render_svg(patch, **drawn), out, dpi_)
     click.echo(f"wrote {path} ({len(patch)} tiles)")
 
 
 # --------------------------------------------------------------------------- search / runs
 
 
-_PARAM_TYPES: dict[type, click.ParamType] = {int: click.INT, float: click.FLOAT, str: click.STRING}
+_PARAM_TYPES: dict[type, click.ParamType] = {int: BoundedInt(-INT64_MAX, INT64_MAX),
+                                             float: FiniteFloat(1e300), str: click.STRING}
 
 
 def _search_command(search: Any) -> click.Command:
@@ -510,17 +617,16 @@ def _search_command(search: Any) -> click.Command:
     options += [
         click.Option(["--executor"], type=click.Choice(["local", "process", "dask"]), default="local",
                      show_default=True, help="Where chunks run: this process, a process pool, or dask."),
-        click.Option(["--workers"], type=click.IntRange(min=1, max=4096), help="Parallel workers (process/dask)."),
+        click.Option(["--workers"], type=BoundedInt(1, 4096), help="Parallel workers (process/dask)."),
         click.Option(["--scheduler"], metavar="ADDRESS",
                      help="A running dask scheduler (default: $TILEKIT_DASK_SCHEDULER, else a local cluster)."),
-        click.Option(["--resume"], type=click.IntRange(min=1, max=2**62), metavar="RUN_ID",
+        click.Option(["--resume"], type=RUN_ID, metavar="RUN_ID",
                      help="Continue an interrupted or failed run, or join one that is running."),
     ]
-    example = f"tilekit search {search.name} " + " ".join(
-        f"--{p.name.replace('_', '-')} {p.default}" for p in search.params[:1] if p.default is not None
-    ) + " --executor process --workers 2"
     return click.Command(search.name, callback=callback, params=options,
-                         help=f"{search.summary} (family {search.family}).\n\nExample: {example}",
+                         help=f"{search.summary} (family {search.family}).\n\n\b\nExamples:\n"
+                              f"  tilekit search {search.name}\n  tilekit search {search.name} --executor process --workers 2\n"
+                              f"  tilekit search {search.name} --resume RUN_ID",
                          short_help=search.summary)
 
 
@@ -623,7 +729,11 @@ def _print_run(info: Any) -> None:
 def search() -> None:
     """Run a search a family provides (tilekit search KIND --help for its options).
 
-    Example: tilekit search vertex-species --executor process --workers 2
+    \b
+    Examples:
+      tilekit search
+      tilekit search vertex-species --executor process --workers 2
+      tilekit search vertex-species --resume 3
     """
 
 
@@ -642,7 +752,11 @@ def runs(state: State, words: tuple[str, ...], fmt: str) -> None:
     chunk; recorded chunks are kept); tilekit runs delete RUN_ID removes a run with its
     chunks and results.
 
-    Example: tilekit runs show 3
+    \b
+    Examples:
+      tilekit runs
+      tilekit runs show 3 --format json
+      tilekit runs cancel 3
     """
     from tilekit.catalogue import run_json
 
@@ -726,13 +840,24 @@ def _run_words(words: tuple[str, ...]) -> tuple[str, int | None]:
 
 @cli.group(name="catalogue", cls=SuggestingGroup)
 def catalogue_group() -> None:
-    """The catalogue database: where it is, migrate, export, seed."""
+    """The catalogue database: where it is, migrate, export, seed.
+
+    \b
+    Examples:
+      tilekit catalogue path
+      tilekit catalogue export --format csv -o all.csv
+    """
 
 
 @catalogue_group.command(name="path")
 @pass_state
 def catalogue_path(state: State) -> None:
-    """Print the catalogue's file (SQLite) or URL (password hidden), without opening it."""
+    """Print the catalogue's file (SQLite) or URL (password hidden), without opening it.
+
+    \b
+    Example:
+      tilekit --catalogue shared.sqlite catalogue path
+    """
     from sqlalchemy.engine import make_url
 
     from tilekit.catalogue import resolve_url
@@ -747,7 +872,12 @@ def catalogue_path(state: State) -> None:
 @catalogue_group.command(name="upgrade")
 @pass_state
 def catalogue_upgrade(state: State) -> None:
-    """Run the Alembic migrations (core and plugins) to head."""
+    """Run the Alembic migrations (core and plugins) to head.
+
+    \b
+    Example:
+      tilekit catalogue upgrade
+    """
     cat = state.catalogue(seed=False)
     current, heads = cat.revisions()
     click.echo(f"catalogue {cat.url} at revision {', '.join(sorted(current)) or 'base'} (heads: {', '.join(sorted(heads))})")
@@ -764,7 +894,11 @@ def catalogue_export(state: State, fmt: str, out: str | None, family: str | None
     """Export tilings (name, family, title, aliases, properties, spec) as JSON, JSON Lines or
     CSV, streamed in constant memory (a family with a result table exports its rows).
 
-    Example: tilekit catalogue export --family archimedean --format jsonl -o arch.jsonl
+    \b
+    Examples:
+      tilekit catalogue export -o all.json
+      tilekit catalogue export --format csv --family archimedean -o arch.csv
+      tilekit catalogue export --family vertex-species --format jsonl -o species.jsonl
     """
     cat = state.catalogue()
     if out is None:
@@ -778,7 +912,13 @@ def catalogue_export(state: State, fmt: str, out: str | None, family: str | None
 @click.option("--replace", is_flag=True, help="Overwrite tilings the plugins ship (keeps others).")
 @pass_state
 def catalogue_seed(state: State, replace: bool) -> None:
-    """Load the tilings the installed plugins ship (new names; all with --replace)."""
+    """Load the tilings the installed plugins ship (new names; all with --replace).
+
+    \b
+    Examples:
+      tilekit catalogue seed
+      tilekit catalogue seed --replace
+    """
     cat = state.catalogue(seed=False)
     added, replaced = cat.seed(replace=replace)
     click.echo(f"added {added}, replaced {replaced} tilings ({cat.count()} in the catalogue)")

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from tilekit.errors import ParseError
+from tilekit.limits import MAX_COLOURS
 
 _GROUP = re.compile(r"\(([^()]*)\)")
 
@@ -48,6 +49,37 @@ def power_table(perm: Sequence[int]) -> np.ndarray:
     return table
 
 
+def _cycles(perm: Sequence[int]) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Per element: its cycle's start offset in ``flat``, the cycle length, its position in
+    the cycle; and ``flat``, the cycles laid end to end."""
+    k = len(perm)
+    start = np.zeros(k, dtype=np.int64)
+    length = np.zeros(k, dtype=np.int64)
+    pos = np.zeros(k, dtype=np.int64)
+    flat: list[int] = []
+    seen = [False] * k
+    for s0 in range(k):
+        if seen[s0]:
+            continue
+        cyc = []
+        j = s0
+        while not seen[j]:
+            seen[j] = True
+            cyc.append(j)
+            j = perm[j]
+        for i, c in enumerate(cyc):
+            start[c], length[c], pos[c] = len(flat), len(cyc), i
+        flat.extend(cyc)
+    return start, length, pos, np.asarray(flat, dtype=np.int64)
+
+
+def apply_power(perm: Sequence[int], exponent: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """``perm^exponent[i](x[i])`` elementwise, for any (negative or huge) integer exponents."""
+    start, length, pos, flat = _cycles(perm)
+    x = np.asarray(x, dtype=np.int64)
+    return flat[start[x] + (pos[x] + exponent) % length[x]]
+
+
 @dataclass(frozen=True)
 class Colouring:
     """Aspect colours and the two translation permutations, all 0-based internally."""
@@ -68,6 +100,8 @@ class Colouring:
                     f"colouring: the {name} permutation ({' '.join(str(i + 1) for i in perm)}) "
                     f"is not a permutation of 1..{k}"
                 )
+        if k > MAX_COLOURS:
+            raise ParseError(f"colouring has {k} colours; the limit is {MAX_COLOURS}")
         bad = [c + 1 for c in self.aspects if not 0 <= c < k]
         if bad:
             raise ParseError(f"colouring: aspect colour(s) {bad} outside 1..{k}")
@@ -123,10 +157,11 @@ class Colouring:
         return grp(self.aspects) + grp(self.p) + grp(self.q)
 
     def colour(self, aspect: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-        """Colours (0-based) of aspects ``aspect`` in the units at lattice points (a, b)."""
-        t1 = power_table(self.p)
-        t2 = power_table(self.q)
+        """Colours (0-based) of aspects ``aspect`` in the units at lattice points (a, b).
+
+        ``perm^e(c)`` is read off c's cycle: the element ``e mod len`` steps further along it,
+        so the cost is O(k + tiles) whatever the permutation's order (which, for k colours in
+        cycles of distinct prime lengths, is astronomically larger than k).
+        """
         base = np.asarray(self.aspects, dtype=np.int64)[np.asarray(aspect, dtype=np.int64)]
-        a = np.asarray(a, dtype=np.int64) % len(t1)
-        b = np.asarray(b, dtype=np.int64) % len(t2)
-        return t2[b, t1[a, base]]
+        return apply_power(self.q, np.asarray(b, dtype=np.int64), apply_power(self.p, np.asarray(a, dtype=np.int64), base))

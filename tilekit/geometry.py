@@ -15,6 +15,7 @@ import shapely
 from shapely.geometry.base import BaseGeometry
 
 from tilekit.errors import GeometryError, ParseError
+from tilekit.limits import check_coordinates
 
 #: Absolute tolerance for coordinates that should coincide (tilings are drawn at unit scale).
 EPS = 1e-9
@@ -255,6 +256,7 @@ def as_region(region: Any) -> BaseGeometry:
     if isinstance(region, BaseGeometry):
         if region.is_empty or region.area <= 0:
             raise GeometryError("region is empty or has no area")
+        check_coordinates(region.bounds)
         return region
     if isinstance(region, str):
         parts = region.replace(" ", "").split(",")
@@ -271,4 +273,5 @@ def as_region(region: Any) -> BaseGeometry:
         raise GeometryError(f"region {region!r} has a non-finite coordinate")
     if x1 <= x0 or y1 <= y0:
         raise GeometryError(f"region {region!r} is empty: need x0 < x1 and y0 < y1")
+    check_coordinates((x0, y0, x1, y1))
     return shapely.box(x0, y0, x1, y1)

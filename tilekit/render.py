@@ -34,6 +34,38 @@ PALETTE: tuple[str, ...] = (
 )
 
 
+#: The CSS named colours (CSS Color Module Level 4), accepted by --colours and palettes.
+CSS_COLOURS: frozenset[str] = frozenset(
+    """
+    aliceblue antiquewhite aqua aquamarine azure beige bisque black blanchedalmond blue
+    blueviolet brown burlywood cadetblue chartreuse chocolate coral cornflowerblue cornsilk
+    crimson cyan darkblue darkcyan darkgoldenrod darkgray darkgreen darkgrey darkkhaki
+    darkmagenta darkolivegreen darkorange darkorchid darkred darksalmon darkseagreen
+    darkslateblue darkslategray darkslategrey darkturquoise darkviolet deeppink deepskyblue
+    dimgray dimgrey dodgerblue firebrick floralwhite forestgreen fuchsia gainsboro ghostwhite
+    gold goldenrod gray green greenyellow grey honeydew hotpink indianred indigo ivory khaki
+    lavender lavenderblush lawngreen lemonchiffon lightblue lightcoral lightcyan
+    lightgoldenrodyellow lightgray lightgreen lightgrey lightpink lightsalmon lightseagreen
+    lightskyblue lightslategray lightslategrey lightsteelblue lightyellow lime limegreen linen
+    magenta maroon mediumaquamarine mediumblue mediumorchid mediumpurple mediumseagreen
+    mediumslateblue mediumspringgreen mediumturquoise mediumvioletred midnightblue mintcream
+    mistyrose moccasin navajowhite navy oldlace olive olivedrab orange orangered orchid
+    palegoldenrod palegreen paleturquoise palevioletred papayawhip peachpuff peru pink plum
+    powderblue purple rebeccapurple red rosybrown royalblue saddlebrown salmon sandybrown
+    seagreen seashell sienna silver skyblue slateblue slategray slategrey snow springgreen
+    steelblue tan teal thistle tomato turquoise violet wheat white whitesmoke yellow yellowgreen
+    """.split()
+)
+
+
+def is_colour(text: str) -> bool:
+    """Whether ``text`` is a CSS colour name or #rgb / #rrggbb."""
+    c = text.strip()
+    if c.startswith("#"):
+        return len(c) in (4, 7) and all(ch in "0123456789abcdefABCDEF" for ch in c[1:])
+    return c.lower() in CSS_COLOURS or c.lower() == "none"
+
+
 def parse_palette(text: str | Sequence[str] | None) -> tuple[str, ...] | None:
     """Colours from 'red,#00ff00,...' (CSS names or #rgb/#rrggbb); None keeps the default."""
     if text is None:
@@ -42,11 +74,12 @@ def parse_palette(text: str | Sequence[str] | None) -> tuple[str, ...] | None:
     if not items:
         raise ParseError("--colours needs at least one colour, e.g. '#f4c27a,#7fb3d5'")
     for c in items:
-        ok = (c.startswith("#") and len(c) in (4, 7) and all(ch in "0123456789abcdefABCDEF" for ch in c[1:])) or (
-            c.isalpha() and c.isascii()
-        )
-        if not ok:
-            raise ParseError(f"colour {c!r} is not a CSS name or #rgb / #rrggbb")
+        if not is_colour(c):
+            import difflib
+
+            close = difflib.get_close_matches(c.lower(), sorted(CSS_COLOURS), n=3, cutoff=0.6)
+            hint = f"; did you mean {', '.join(repr(x) for x in close)}?" if close else ""
+            raise ParseError(f"colour {c[:40]!r} is not a CSS colour name or #rgb / #rrggbb{hint}")
     return tuple(items)
 
 
@@ -71,13 +104,17 @@ def patch_to_svg(
     size: int = 800,
     region: Any = None,
     background: str | None = "#ffffff",
+    width: int | None = None,
+    height: int | None = None,
+    stroke_width_px: float | None = None,
 ) -> str:
     """SVG text for a patch.
 
     ``palette[c % len(palette)]`` fills tiles of colour c; ``labels`` writes each edge's label
     inside the tile near its midpoint; ``markings`` draws prototile markings; ``vectors`` =
     (origin, v1, v2) draws the translation vectors as arrows; ``region`` sets the view box and
-    clips to it (default: the patch's bounds).
+    clips to it (default: the patch's bounds). The image's longer side is ``size`` pixels,
+    or its width is ``width`` / its height ``height`` (the other side follows the aspect).
     """
     palette = tuple(palette) if palette else PALETTE
     if size <= 0:
@@ -91,10 +128,21 @@ def patch_to_svg(
     w, h = x1 - x0, y1 - y0
     pad = 0.02 * max(w, h)
     vb = (x0 - pad, -(y1 + pad), w + 2 * pad, h + 2 * pad)
-    scale = size / max(vb[2], vb[3])
-    sw = stroke_width if stroke_width is not None else 1.2 / scale
+    if width is not None:
+        scale = width / vb[2]
+    elif height is not None:
+        scale = height / vb[3]
+    else:
+        scale = size / max(vb[2], vb[3])
+    sw = stroke_width if stroke_width is not None else (1.2 if stroke_width_px is None else stroke_width_px) / scale
     width_px = round(vb[2] * scale)
     height_px = round(vb[3] * scale)
+    from tilekit.limits import MAX_PNG_PIXELS, refuse_over
+
+    refuse_over("pixels", width_px * height_px, MAX_PNG_PIXELS, hint=f"a {width_px} x {height_px} image; "
+                "give a smaller --width/--height/--dpi")
+    if not is_colour(stroke):
+        raise ParseError(f"stroke colour {stroke[:40]!r} is not a CSS colour name or #rgb / #rrggbb")
     out: list[str] = [
         f'<svg xmlns="http://www.w3.org/2000/svg" width="{width_px}" height="{height_px}" '
         f'viewBox="{vb[0]:.6g} {vb[1]:.6g} {vb[2]:.6g} {vb[3]:.6g}">'
@@ -127,18 +175,29 @@ def patch_to_svg(
                 mark_paths.extend(_path_data(mpts, closed=False))
         if labels and proto.edge_labels is not None:
             outline = proto.outline
-            mids = (outline + np.roll(outline, -1, axis=0)) / 2
+            if proto.corners is not None:  # shaped edges: one label per tiling edge, on its chord
+                corner_pts = outline[list(proto.corners)]
+                mids = (corner_pts + np.roll(corner_pts, -1, axis=0)) / 2
+                texts = [proto.edge_labels[c] for c in proto.corners]
+            else:
+                mids = (outline + np.roll(outline, -1, axis=0)) / 2
+                texts = list(proto.edge_labels)
             cen = outline.mean(axis=0)
             inset = mids + 0.18 * (cen - mids)
             where = Affine.apply(patch.transform[idx], inset)  # (m, k, 2)
             for tile_pts in where:
-                for (lx, ly), lab in zip(tile_pts.tolist(), proto.edge_labels):
+                for (lx, ly), lab in zip(tile_pts.tolist(), texts):
                     label_items.append((lx, ly, str(lab)))
     for c in sorted(by_colour):
         fill = palette[c % len(palette)]
         out.append(f'<path fill="{html.escape(fill)}" d="{" ".join(by_colour[c])}"/>')
     if mark_paths:
         out.append(f'<path fill="none" stroke-width="{sw * 0.8:.4g}" d="{" ".join(mark_paths)}"/>')
+    if region is not None and len(patch):
+        # a frame on the region's border: tiles cut by the clip end on a line, not in stubs
+        # (drawn at twice the width, half of it inside the clip)
+        out.append(f'<rect x="{x0:.6g}" y="{y0:.6g}" width="{w:.6g}" height="{h:.6g}" fill="none" '
+                   f'stroke-width="{2 * sw:.4g}"/>')
     if vectors is not None:
         o, v1, v2 = (np.asarray(v, dtype=float) for v in vectors)
         out.append(
@@ -162,7 +221,7 @@ def patch_to_svg(
     return "\n".join(out)
 
 
-def svg_to_png(svg: str, path: str | Path) -> None:
+def svg_to_png(svg: str, path: str | Path, dpi: float = 96.0) -> None:
     """Write SVG text as a PNG file (needs cairosvg: ``pip install 'tilekit[png]'``)."""
     try:
         import cairosvg
@@ -171,27 +230,51 @@ def svg_to_png(svg: str, path: str | Path) -> None:
             f"PNG output needs cairosvg and the cairo library ({exc.__class__.__name__}); "
             "install it with: pip install 'tilekit[png]', or write .svg instead"
         ) from None
-    cairosvg.svg2png(bytestring=svg.encode("utf-8"), write_to=str(path))
+    try:
+        cairosvg.svg2png(bytestring=svg.encode("utf-8"), write_to=str(path), scale=dpi / 96.0)
+    except MemoryError:
+        raise TilekitError("the PNG is too large to draw; give a smaller --width/--height/--dpi") from None
+    except Exception as exc:  # cairo's own errors (e.g. an image larger than 32767 pixels)
+        if type(exc).__name__ in ("CairoError", "Error"):
+            raise TilekitError(f"cannot draw the PNG ({exc}); give a smaller --width/--height/--dpi") from None
+        raise
 
 
-def write_svg(svg: str, path: str | Path) -> Path:
-    """Write SVG text to ``path`` as .svg, or as .png through cairosvg (chosen by the suffix)."""
+def write_svg(svg: str, path: str | Path, dpi: float = 96.0) -> Path:
+    """Write SVG text to ``path`` as .svg, or as .png through cairosvg (chosen by the suffix;
+    a PNG has the SVG's pixel size scaled by ``dpi``/96, within MAX_PNG_PIXELS)."""
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix not in (".svg", ".png"):
         raise ParameterError(f"output file {str(path)!r} must end in .svg or .png")
+    if suffix == ".png":
+        _check_pixels(svg, dpi)
     try:
         if suffix == ".svg":
             path.write_text(svg, encoding="utf-8")
         else:
-            svg_to_png(svg, path)
+            svg_to_png(svg, path, dpi)
     except OSError as exc:
         raise TilekitError(f"cannot write {str(path)!r}: {exc.strerror or exc}") from None
     return path
 
 
+def _check_pixels(svg: str, dpi: float) -> None:
+    from tilekit.limits import MAX_PNG_PIXELS, refuse_over
+
+    head = svg[: svg.index(">")]
+    try:
+        w = float(head.split(' width="')[1].split('"')[0]) * dpi / 96
+        h = float(head.split(' height="')[1].split('"')[0]) * dpi / 96
+    except (IndexError, ValueError):
+        return
+    refuse_over("pixels", w * h, MAX_PNG_PIXELS, hint=f"a {w:.0f} x {h:.0f} PNG; give a smaller --width/--height/--dpi")
+
+
 def write_image(patch: Any, path: str | Path, **options: Any) -> Path:
-    """Write ``patch`` to ``path`` as .svg or .png (chosen by the suffix)."""
+    """Write ``patch`` to ``path`` as .svg or .png (chosen by the suffix); ``dpi`` scales a PNG,
+    the other options are :func:`patch_to_svg`'s."""
     if Path(path).suffix.lower() not in (".svg", ".png"):  # fail before drawing
         raise ParameterError(f"output file {str(path)!r} must end in .svg or .png")
-    return write_svg(patch_to_svg(patch, **options), path)
+    dpi = float(options.pop("dpi", 96.0) or 96.0)
+    return write_svg(patch_to_svg(patch, **options), path, dpi)

@@ -396,6 +396,17 @@ class Patch:
         return patch_to_svg(self, **options)
 
 
+def region_tile_estimate(region: BaseGeometry, prototiles: Sequence[Prototile]) -> float:
+    """Tiles of the smallest prototile area that fit in ``region``'s box grown by the largest
+    prototile diameter: an upper bound on the tiles meeting the region of any tiling without
+    overlaps by these prototiles (float: may be inf for absurd regions)."""
+    x0, y0, x1, y1 = region.bounds
+    diam = max(float(np.ptp(p.outline, axis=0).max()) for p in prototiles)
+    small = min(abs(p.area) for p in prototiles)
+    with np.errstate(over="ignore"):
+        return float((x1 - x0 + 2 * diam) * (y1 - y0 + 2 * diam) / small)
+
+
 def _is_box(geom: BaseGeometry) -> bool:
     x0, y0, x1, y1 = geom.bounds
     return abs(geom.area - (x1 - x0) * (y1 - y0)) <= 1e-12 * max(1.0, geom.area)
@@ -450,10 +461,35 @@ class Tiling(ABC):
             )
         return self
 
+    def options_help(self) -> str:
+        """The options ``configure`` takes (``tilekit render --set KEY=VALUE``, --param, --edge,
+        --depth), one line each, for ``tilekit show FAMILY``."""
+        return "(no options)"
+
     def default_region(self) -> BaseGeometry:
         """A region showing a representative piece of the tiling (used when none is given)."""
         scale = math.sqrt(max(abs(p.area) for p in self.prototiles))
         return shapely.box(-4 * scale, -4 * scale, 4 * scale, 4 * scale)
+
+    def estimate_tiles(self, region: Any = None) -> float:
+        """About how many tiles ``patch(region)`` makes (``region=None``: the default region),
+        computed cheaply and before anything is allocated; an upper bound up to a small factor.
+
+        Callers compare it with :data:`tilekit.limits.MAX_TILES` (``tilekit render
+        --max-tiles``). The default counts tiles of the smallest prototile's area in the
+        region grown by the largest prototile's diameter; families override it with what they
+        know (lattice cells times unit size, substitution counts).
+        """
+        reg = self.default_region() if region is None else as_region(region)
+        return region_tile_estimate(reg, self.prototiles)
+
+    def render_svg(self, patch: Patch, **options: Any) -> str:
+        """SVG text of a patch of this tiling (``tilekit render`` draws through it); options as
+        for :func:`tilekit.render.patch_to_svg`. Families with their own picture (Wang tiles'
+        edge colours) override it."""
+        from tilekit.render import patch_to_svg
+
+        return patch_to_svg(patch, **options)
 
     def __repr__(self) -> str:
         return f"<{type(self).__name__} {self.family}/{self.name}>"
@@ -533,14 +569,7 @@ class PeriodicTiling(Tiling):
             self._unit_bounds = Patch(self._prototiles, self.unit_prototile, self.unit_transform).tile_bounds()
         return self._unit_bounds
 
-    def lattice_points(self, region: Any) -> np.ndarray:
-        """Integer (a, b) whose unit copy's bounding box can meet the region's bounding box.
-
-        The set of translations t for which the unit's box meets the region's box is the box
-        R (-) U (Minkowski difference); its preimage under the lattice basis is a
-        parallelogram whose integer points we enumerate. No ring count is guessed (§3.5).
-        """
-        reg = as_region(region)
+    def _lattice_corners(self, reg: BaseGeometry) -> tuple[tuple[float, float, float, float], np.ndarray]:
         rx0, ry0, rx1, ry1 = reg.bounds
         ub = self.unit_tile_bounds()
         ux0, uy0 = ub[:, 0].min(), ub[:, 1].min()
@@ -549,14 +578,43 @@ class PeriodicTiling(Tiling):
         ey0, ey1 = ry0 - uy1, ry1 - uy0
         inv = np.linalg.inv(self.basis)
         corners = np.array([[ex0, ey0], [ex1, ey0], [ex1, ey1], [ex0, ey1]]) @ inv.T
+        return (float(ex0), float(ey0), float(ex1), float(ey1)), corners
+
+    def _lattice_box(self, reg: BaseGeometry) -> tuple[tuple[float, float, float, float], float]:
+        """The translation box R (-) U and the number of lattice cells to enumerate (a float,
+        computed without allocating; inf for absurd regions)."""
+        box, corners = self._lattice_corners(reg)
+        span = np.floor(corners.max(axis=0) + 1e-9) - np.floor(corners.min(axis=0) - 1e-9) + 2
+        with np.errstate(over="ignore", invalid="ignore"):
+            cells = float(span[0] * span[1])
+        return box, cells if math.isfinite(cells) else math.inf
+
+    def _lattice_range(self, reg: BaseGeometry) -> tuple[np.ndarray, np.ndarray]:
+        _, corners = self._lattice_corners(reg)
         lo = np.floor(corners.min(axis=0) - 1e-9).astype(np.int64)
         hi = np.ceil(corners.max(axis=0) + 1e-9).astype(np.int64)
-        cells = int(hi[0] - lo[0] + 1) * int(hi[1] - lo[1] + 1)
+        return lo, hi
+
+    def estimate_tiles(self, region: Any = None) -> float:
+        """Lattice cells the rasterization enumerates times the tiles of the unit."""
+        reg = self.default_region() if region is None else as_region(region)
+        return self._lattice_box(reg)[1] * len(self.unit_prototile)
+
+    def lattice_points(self, region: Any) -> np.ndarray:
+        """Integer (a, b) whose unit copy's bounding box can meet the region's bounding box.
+
+        The set of translations t for which the unit's box meets the region's box is the box
+        R (-) U (Minkowski difference); its preimage under the lattice basis is a
+        parallelogram whose integer points we enumerate. No ring count is guessed (§3.5).
+        """
+        reg = as_region(region)
+        (ex0, ey0, ex1, ey1), cells = self._lattice_box(reg)
         if cells > MAX_LATTICE_CELLS:
             raise ParameterError(
-                f"region {tuple(round(v, 3) for v in reg.bounds)} needs {cells} translational units; "
+                f"region {tuple(round(v, 3) for v in reg.bounds)} needs {cells:.3g} translational units; "
                 f"the limit is {MAX_LATTICE_CELLS} (use a smaller region)"
             )
+        lo, hi = self._lattice_range(reg)
         a, b = np.meshgrid(np.arange(lo[0], hi[0] + 1), np.arange(lo[1], hi[1] + 1), indexing="ij")
         ab = np.column_stack([a.ravel(), b.ravel()])
         t = ab @ self.basis.T

@@ -198,7 +198,8 @@ def test_cli_renders_hat(tmp_path) -> None:
     from tilekit.cli import cli
 
     out = tmp_path / "hat.svg"
-    result = CliRunner().invoke(cli, ["render", "hat", "--depth", "2", "-o", str(out)])
+    db = f"sqlite:///{tmp_path / 'cat.sqlite'}"  # not the user's catalogue (another version may own it)
+    result = CliRunner().invoke(cli, ["--catalogue", db, "render", "hat", "--depth", "2", "-o", str(out)])
     assert result.exit_code == 0, result.output
     assert "(169 tiles)" in result.output
     assert out.read_text().count("<path") >= 1

@@ -166,7 +166,13 @@ def test_catalogue_records_and_family() -> None:
         assert props["k_hedral"] >= 1
         assert props["periodic"] is False
         assert props["perron_frobenius_eigenvalue"] == pytest.approx(props["expansion_constant"] ** 2)
-        assert props["tiles_per_generation"][:2] == [1, sum(row[builtin_systems()[name].seed] for row in props["substitution_matrix"])]
+        system = builtin_systems()[name]
+        if system.output_prototiles is None:  # whole tiles: M^n e_seed
+            assert props["tiles_per_generation"][:2] == [1, sum(row[system.seed] for row in props["substitution_matrix"])]
+        else:  # assembled from halves: the whole tiles of `render NAME --depth n` (issue 14)
+            assert props["tiles_per_generation"] == [
+                len(tiling(name, depth=n).patch()) for n in range(len(props["tiles_per_generation"]))
+            ]
     assert records["penrose-p3"].properties["k_hedral"] == 2
     assert records["sphinx"].properties["k_hedral"] == 1
     fam = get_family("substitution")

@@ -143,6 +143,8 @@ def parse_sequence(text: str) -> tuple[int, ...]:
     """Parse ``3.3.3.3.6``, ``3^4.6``, ``(3^4.6)``, ``[3^4.6]``, ``3⁴.6`` into a sequence (as written)."""
     if not isinstance(text, str):
         raise ParseError(f"vertex type {text!r} is not text like '3^4.6'")
+    if len(text) > 200:
+        raise ParseError(f"vertex type {text[:30]!r}... is {len(text)} characters; a vertex has at most 6 polygons")
     raw = text.strip().replace(" ", "")
     body = raw
     if len(body) >= 2 and ((body[0], body[-1]) in (("(", ")"), ("[", "]"))):
@@ -163,6 +165,8 @@ def parse_sequence(text: str) -> tuple[int, ...]:
                 )
         else:
             m_base, m_exp = m.group(1), m.group(2)
+        if len(m_base) > 4 or (m_exp and len(m_exp) > 4):
+            raise ParseError(f"vertex type {text!r}: {part!r} is out of range (polygon sizes 3..{MAX_SIDES})")
         p = int(m_base)
         n = int(m_exp) if m_exp else 1
         if n < 1:

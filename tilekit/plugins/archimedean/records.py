@@ -39,6 +39,42 @@ def _group(name: str) -> dict[str, Any]:
             "k_isohedral": int(data["k_isohedral"]), "k_isogonal": int(data["k_isogonal"])}
 
 
+#: The names people use (Grünbaum & Shephard, Conway's "tille" names), found by show, render
+#: and list --text. Chiral types get them on their left-handed record, as for the plain name.
+COMMON_NAMES: dict[str, list[str]] = {
+    "3^6": ["triangular", "deltille"],
+    "4^4": ["square", "quadrille"],
+    "6^3": ["hexagonal", "hextille"],
+    "3.6.3.6": ["trihexagonal", "kagome", "hexadeltille"],
+    "4.8^2": ["truncated square", "truncquadrille"],
+    "3.12^2": ["truncated hexagonal", "truncated hextille"],
+    "3.4.6.4": ["rhombitrihexagonal", "rhombihexadeltille"],
+    "4.6.12": ["truncated trihexagonal", "truncated rhombitrihexagonal", "truncated trihexadeltille"],
+    "3^4.6": ["snub hexagonal", "snub trihexagonal", "snub hextille"],
+    "3^3.4^2": ["elongated triangular", "isosnub quadrille"],
+    "3^2.4.3.4": ["snub square", "snub quadrille"],
+}
+LAVES_NAMES: dict[str, list[str]] = {
+    "3.6.3.6": ["rhombille"],
+    "4.8^2": ["tetrakis square", "kisquadrille"],
+    "3.12^2": ["triakis triangular", "kisdeltille"],
+    "3.4.6.4": ["deltoidal trihexagonal", "tetrille"],
+    "4.6.12": ["kisrhombille"],
+    "3^4.6": ["floret pentagonal", "6-fold pentille"],
+    "3^3.4^2": ["prismatic pentagonal", "iso(4-)pentille"],
+    "3^2.4.3.4": ["cairo", "cairo pentagonal", "4-fold pentille"],
+}
+
+
+def common_aliases(names: list[str], suffix: str = "") -> list[str]:
+    """Each name, its dashed spelling, and both with ``suffix`` (' tiling')."""
+    out = []
+    for n in names:
+        for v in (n, n.replace(" ", "-")):
+            out += [v, v + suffix] if suffix else [v]
+    return list(dict.fromkeys(out))
+
+
 def _hand_word(hand: str) -> str:
     return {"l": ", left-handed", "r": ", right-handed"}.get(hand, "")
 
@@ -58,6 +94,8 @@ def archimedean_record(vt: VertexType, hand: str, extra: Mapping[str, Any] | Non
         aliases = [str(vt)] + aliases
     if hand:
         aliases.append(f"({vt}){hand}")
+    if hand != "r":
+        aliases += common_aliases(COMMON_NAMES.get(str(vt), []))
     return CatalogueRecord(
         family="archimedean",
         name=t.name,
@@ -78,6 +116,8 @@ def laves_record(vt: VertexType, hand: str) -> CatalogueRecord:
     if hand == "l":
         aliases.append(f"[{vt}]")
         aliases.append(f"[{vt.dotted}]")
+    if hand != "r":
+        aliases += common_aliases(LAVES_NAMES.get(str(vt), []))
     return CatalogueRecord(
         family="laves",
         name=t.name,

@@ -215,6 +215,10 @@ def _snap(x: np.ndarray) -> np.ndarray:
 # --------------------------------------------------------------------------- the tiling
 
 
+#: Largest |parameter| accepted (the tiling vertex parameters are O(1) shape values).
+MAX_PARAM = 1e6
+
+
 class IsohedralTiling(PeriodicTiling):
     """A tiling of one of the 93 isohedral types with given parameters, edge shapes and colouring.
 
@@ -249,6 +253,11 @@ class IsohedralTiling(PeriodicTiling):
             )
         if not all(math.isfinite(p) for p in params):
             raise ParameterError(f"{t.name}: parameters {list(params)} must be finite numbers")
+        if any(abs(p) > MAX_PARAM for p in params):
+            raise ParameterError(
+                f"{t.name}: parameters {list(params)} must lie within ±{MAX_PARAM:g} (tiling vertex "
+                "parameters are of the tile's own size; larger ones only overflow)"
+            )
         self.params = params
         self.edge_shapes: dict[str, EdgeShape] = {}
         classes = shape_classes(t.symbol)
@@ -272,7 +281,7 @@ class IsohedralTiling(PeriodicTiling):
         outline, corners, paths = engine.outline(self.edge_shapes)
         self.edge_paths = paths
         self._check_outline(paths)
-        proto = Prototile(outline, name=t.name, corners=corners)
+        proto = Prototile(outline, name=t.name, corners=corners, edge_labels=_symbol_labels(t.symbol, outline, corners))
         if isinstance(colouring, str):
             colouring = Colouring.parse(colouring)
         col = colouring or t.colouring
@@ -411,6 +420,13 @@ class IsohedralTiling(PeriodicTiling):
             )
         return "\n".join(lines)
 
+    def options_help(self) -> str:
+        return "\n".join([
+            "--param X[,X...]       the type's tiling vertex parameters (tilekit show IHn lists them)",
+            "--edge b=x,y:x,y:...   an edge shape for a label (end points (0,0), (1,0) optional)",
+            "--set colouring=(c..)(p..)(q..)   a colouring of §5.4.3",
+        ])
+
     def configure(self, **options: Any) -> IsohedralTiling:
         """A new tiling with ``params`` (floats), ``edges`` ('b=x,y:...'), ``colours``/``colouring``."""
         params = self.params
@@ -420,12 +436,24 @@ class IsohedralTiling(PeriodicTiling):
             if key == "params":
                 if value is None:
                     continue
-                params = tuple(float(v) for v in value)
+                if isinstance(value, str):  # --set params=0.1,0.2
+                    value = [v for v in value.split(",") if v.strip()]
+                try:
+                    params = tuple(float(v) for v in value)
+                except (TypeError, ValueError):
+                    raise ParameterError(f"{self.name}: params {value!r} are not numbers") from None
             elif key == "edges":
-                for item in value or ():
-                    label, shape = parse_edge_option(item) if isinstance(item, str) else item
+                for item in [value] if isinstance(value, str) else value or ():
+                    if isinstance(item, str):
+                        label, shape = parse_edge_option(item)
+                    elif isinstance(item, tuple) and len(item) == 2 and isinstance(item[1], EdgeShape):
+                        label, shape = item
+                    else:
+                        raise ParameterError(f"{self.name}: edge {item!r} is not 'LABEL=x,y:x,y:...'")
                     edges[label] = shape
             elif key in ("colours", "colouring"):
+                if not isinstance(value, str | Colouring):
+                    raise ParameterError(f"{self.name}: colouring {value!r} is not text like '(1 2)(2 1)(2 1)'")
                 colouring = Colouring.parse(value) if isinstance(value, str) else value
             else:
                 raise ParameterError(
@@ -489,3 +517,22 @@ def tiling_from_spec(spec: Mapping[str, Any]) -> PeriodicTiling:
     edges = {k: EdgeShape.parse(v) for k, v in (spec.get("edges") or {}).items()}
     col = spec.get("colouring")
     return IsohedralTiling(t.ih, spec.get("params"), edges, col)
+
+
+def _symbol_labels(symbol: Any, outline: Any, corners: Any) -> tuple[str, ...] | None:
+    """Per outline segment, the incidence-symbol label of the tiling edge it belongs to
+    (``a+``, ``b-``, ``c``), for ``tilekit render --labels``; None if the outline is not
+    counter-clockwise with one corner per symbol edge."""
+    import numpy as np
+
+    from tilekit.geometry import signed_area
+
+    pts = np.asarray(outline, dtype=float)
+    if corners is None or len(corners) != len(symbol.edges) or signed_area(pts) <= 0:
+        return None
+    text = [lab + {1: "+", -1: "-", 0: ""}[sg] for lab, sg in symbol.edges]
+    out = []
+    for i in range(len(pts)):
+        e = max(k for k, c in enumerate(corners) if c <= i) if i >= corners[0] else len(corners) - 1
+        out.append(text[e])
+    return tuple(out)

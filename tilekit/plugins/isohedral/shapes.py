@@ -12,6 +12,7 @@ Editing one fundamental shape therefore changes every tiling edge that depends o
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass
 
@@ -104,6 +105,11 @@ class EdgeShape:
             raise ParseError(f"edge shape {text!r} is not points 'x,y:x,y:...' (numbers)") from None
         if any(len(p) != 2 for p in pts):
             raise ParseError(f"edge shape {text!r}: every point must be 'x,y'")
+        if not all(math.isfinite(v) for p in pts for v in p):
+            raise ParseError(f"edge shape {text!r}: points must be finite numbers")
+        # one --edge syntax for every family: the end points (0,0) and (1,0) may be left out
+        if not smooth and (not pts or not np.allclose(pts[0], (0.0, 0.0), atol=1e-9)):
+            pts = [(0.0, 0.0), *pts, (1.0, 0.0)]  # interior points only, as for substitution edges
         return cls(np.array(pts), smooth)
 
 

@@ -19,6 +19,11 @@ from tilekit.errors import ParseError
 #: One labelled edge: (label, sign) with sign +1, -1 or 0 (undirected).
 Edge = tuple[str, int]
 
+#: Most tiling edges a symbol may list (isohedral tiles have 3 to 6; generous for variants),
+#: and the longest text parsed (the book's superscript form takes about 8 characters an edge).
+MAX_EDGES = 12
+MAX_TEXT = 400
+
 _TOKEN = re.compile(r"([a-z])(\^?\{?([+-])\}?)?")
 _SIGN = {"+": 1, "-": -1, None: 0}
 _SIGN_TEXT = {1: "+", -1: "-", 0: ""}
@@ -60,6 +65,13 @@ class IncidenceSymbol:
     @classmethod
     def parse(cls, text: str) -> IncidenceSymbol:
         """Parse the ASCII form ``[a+b+a-; b-a+]`` or the book's ``$[a^+b^+ ...]$`` form."""
+        if not isinstance(text, str):
+            raise ParseError(f"incidence symbol {text!r} is not text like '[a+b+a-; b-a+]'")
+        if len(text) > MAX_TEXT:
+            raise ParseError(
+                f"incidence symbol {text[:30]!r}... is {len(text)} characters long; an isohedral tile "
+                f"has at most {MAX_EDGES} tiling edges (§5.2)"
+            )
         s = _normalise(text)
         m = re.fullmatch(r"\[([^;\]]*);([^;\]]*)\]", s)
         if not m:
@@ -68,6 +80,11 @@ class IncidenceSymbol:
                 "(edge labels, a semicolon, adjacent labels, in square brackets)"
             )
         edges = _parse_part(m.group(1), text, "first")
+        if len(edges) > MAX_EDGES:
+            raise ParseError(
+                f"incidence symbol {text!r} has {len(edges)} edges; an isohedral tile has at most "
+                f"{MAX_EDGES} tiling edges (§5.2)"
+            )
         adjacency = _parse_part(m.group(2), text, "second")
         sym = cls(tuple(edges), tuple(adjacency))
         sym.check(text)

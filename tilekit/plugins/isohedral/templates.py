@@ -386,7 +386,7 @@ def parse_ih_name(name: str | int) -> int:
     if isinstance(name, int):
         n = name
     else:
-        m = re.fullmatch(r"(?i)\s*(?:ih)?0*(\d+)\s*", str(name))
+        m = re.fullmatch(r"(?i)\s*(?:ih)?0*(\d{1,4})\s*", str(name))
         if not m:
             raise NotFoundError("isohedral type", str(name), [f"IH{i}" for i in range(1, 94)])
         n = int(m.group(1))

@@ -30,7 +30,7 @@ import shapely
 from tilekit.errors import ParameterError, ParseError
 from tilekit.geometry import Affine
 from tilekit.plugins.substitution.keypoint import MonotileSystem, _meets, expand_by_label
-from tilekit.plugins.substitution.system import Rule
+from tilekit.plugins.substitution.system import Rule, guarded_loader
 from tilekit.resources import catalogue_dir, read_toml
 from tilekit.tiling import Prototile
 
@@ -341,6 +341,7 @@ def hat_data_path() -> Path:
     return catalogue_dir() / "substitution" / "hat" / "hat.toml"
 
 
+@guarded_loader
 def hat_system_from_data(data: Mapping[str, Any], source: str = "<data>") -> HatSystem:
     """Build and check the hat system from parsed TOML (errors name the file and part)."""
 

@@ -244,7 +244,12 @@ def keypoint_system_from_data(data: Mapping[str, Any], source: str = "<data>") -
     def fail(msg: str) -> ParseError:
         return ParseError(f"{where}: {msg}")
 
-    env = constants_with(data.get("constants", {}))
+    if not isinstance(data, Mapping):
+        raise fail("top level must be a table")
+    try:
+        env = constants_with(data.get("constants", {}))
+    except ParseError as exc:
+        raise fail(str(exc)) from None
 
     def num(v: Any, ctx: str) -> float:
         try:
@@ -259,42 +264,52 @@ def keypoint_system_from_data(data: Mapping[str, Any], source: str = "<data>") -
     tile_data = data.get("tile")
     if not isinstance(tile_data, Mapping) or "outline" not in tile_data:
         raise fail("[tile] needs an 'outline'")
-    outline = np.array([[num(c, "tile outline") for c in p] for p in tile_data["outline"]])
+    raw_outline = tile_data["outline"]
+    if not isinstance(raw_outline, list) or len(raw_outline) < 3 or not all(
+        isinstance(p, list) and len(p) == 2 for p in raw_outline
+    ):
+        raise fail("[tile] outline must be a list of at least 3 [x, y] points")
+    outline = np.array([[num(c, "tile outline") for c in p] for p in raw_outline])
     try:
         tile = Prototile(outline, name=str(tile_data.get("name", "tile")))
     except Exception as exc:  # GeometryError
         raise fail(f"[tile]: {exc}") from None
     quad_idx = tile_data.get("quad")
     if not isinstance(quad_idx, list) or len(quad_idx) != 4 or not all(
-        isinstance(i, int) and 0 <= i < len(outline) for i in quad_idx
+        _index_in(i, len(outline)) for i in quad_idx
     ):
         raise fail(f"[tile] quad must be 4 vertex indices in 0..{len(outline) - 1}")
     base: list[np.ndarray] = []
-    base_data = data.get("base", {})
+    base_data = _mapping(data.get("base", {}), "[base]", fail)
     for nm in labels:
         entries = base_data.get(nm, [{"rotate": 0, "translate": [0, 0]}])
+        if not isinstance(entries, list) or not entries or not all(isinstance(e, Mapping) for e in entries):
+            raise fail(f"[base] {nm} must be a non-empty list of {{rotate = A, translate = [x, y]}} tables")
         mats = []
         for e in entries:
             ang = math.radians(num(e.get("rotate", 0), f"[base] {nm} rotate"))
-            tx, ty = (num(v, f"[base] {nm} translate") for v in e.get("translate", [0, 0]))
+            tr = e.get("translate", [0, 0])
+            if not isinstance(tr, list) or len(tr) != 2:
+                raise fail(f"[base] {nm} translate must be [x, y], got {tr!r}")
+            tx, ty = (num(v, f"[base] {nm} translate") for v in tr)
             mats.append(Affine.translation(tx, ty) @ Affine.rotation(ang))
         base.append(np.array(mats))
-    placement = data.get("placement", {})
+    placement = _mapping(data.get("placement", {}), "[placement]", fail)
     steps_raw = placement.get("steps")
     if not isinstance(steps_raw, list) or not steps_raw:
         raise fail("[placement] needs 'steps' = [[angle, from, to], ...]")
     steps = []
     for k, st in enumerate(steps_raw):
-        if not isinstance(st, list) or len(st) != 3 or not all(isinstance(i, int) and 0 <= i < 4 for i in st[1:]):
+        if not isinstance(st, list) or len(st) != 3 or not all(_index_in(i, 4) for i in st[1:]):
             raise fail(f"[placement] step #{k + 1} must be [angle, from keypoint 0..3, to keypoint 0..3]")
         steps.append((num(st[0], f"step #{k + 1}"), int(st[1]), int(st[2])))
     slots = len(steps) + 1
     next_quad = placement.get("next_quad")
     if not isinstance(next_quad, list) or len(next_quad) != 4 or not all(
-        isinstance(p, list) and len(p) == 2 and 0 <= p[0] < slots and 0 <= p[1] < 4 for p in next_quad
+        isinstance(p, list) and len(p) == 2 and all(_index_in(v, n) for v, n in zip(p, (slots, 4))) for p in next_quad
     ):
         raise fail(f"[placement] next_quad must be four [slot 0..{slots - 1}, keypoint 0..3] pairs")
-    rules_data = data.get("rules", {})
+    rules_data = _mapping(data.get("rules", {}), "[rules]", fail)
     rules = []
     for nm in labels:
         row = rules_data.get(nm)
@@ -304,7 +319,7 @@ def keypoint_system_from_data(data: Mapping[str, Any], source: str = "<data>") -
         for s in row:
             if s == "":
                 kids.append(-1)
-            elif s in index:
+            elif isinstance(s, str) and s in index:
                 kids.append(index[s])
             else:
                 raise fail(f"rule for {nm!r}: unknown label {s!r}; known: {', '.join(labels)}")
@@ -324,12 +339,23 @@ def keypoint_system_from_data(data: Mapping[str, Any], source: str = "<data>") -
         next_quad=[(int(a), int(b)) for a, b in next_quad],
         rules=rules,
         seed=seed,
-        facts=dict(data.get("properties", {})),
+        facts=dict(_mapping(data.get("properties", {}), "[properties]", fail)),
         source=source,
         data=dict(data),
     )
     check_keypoint_system(system)
     return system
+
+
+def _mapping(value: Any, ctx: str, fail: Any) -> Mapping[str, Any]:
+    if not isinstance(value, Mapping):
+        raise fail(f"{ctx} must be a table, not {type(value).__name__}")
+    return value
+
+
+def _index_in(value: Any, n: int) -> bool:
+    """Whether ``value`` is an int (not a bool) in 0..n-1."""
+    return isinstance(value, int) and not isinstance(value, bool) and 0 <= value < n
 
 
 def check_keypoint_system(system: KeypointSystem, levels: int = 2) -> None:

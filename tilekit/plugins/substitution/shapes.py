@@ -166,6 +166,11 @@ def parse_edge_shape(text: str) -> tuple[str, np.ndarray]:
         if not (np.isfinite(x) and np.isfinite(y)):
             raise ParseError(f"edge shape {text!r}: point {part!r} is not finite")
         pts.append((x, y))
+    # one --edge syntax for every family: the end points (0,0) and (1,0) may be written too
+    if pts and np.allclose(pts[0], (0.0, 0.0), atol=1e-9):
+        pts = pts[1:]
+    if pts and np.allclose(pts[-1], (1.0, 0.0), atol=1e-9):
+        pts = pts[:-1]
     return name.strip(), np.array(pts, dtype=float).reshape(-1, 2)
 
 

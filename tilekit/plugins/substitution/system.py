@@ -21,8 +21,10 @@ in the half-tile's frame; generation then emits the whole tiles, each exactly on
 
 from __future__ import annotations
 
+import functools
 import math
-from collections.abc import Mapping, Sequence
+import warnings
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -30,7 +32,7 @@ from typing import Any
 import numpy as np
 import shapely
 
-from tilekit.errors import GeometryError, ParseError
+from tilekit.errors import GeometryError, ParseError, TilekitError
 from tilekit.geometry import Affine
 from tilekit.plugins.substitution.expr import constants_with, evaluate
 from tilekit.resources import read_toml
@@ -149,6 +151,30 @@ def load_system(path: str | Path) -> Any:
     return load_data(read_toml(path, "substitution system"), source=Path(path).name)
 
 
+def guarded_loader(fn: Callable[..., Any]) -> Callable[..., Any]:
+    """Wrap a ``*_from_data(data, source)`` loader so that data of a wrong shape the explicit
+    checks did not foresee is still one ParseError naming the file (never a traceback), and
+    NumPy's floating-point warnings stay quiet (non-finite results are rejected instead)."""
+
+    @functools.wraps(fn)
+    def wrapper(data: Any, source: str = "<data>", *args: Any, **kwargs: Any) -> Any:
+        try:
+            with np.errstate(all="ignore"), warnings.catch_warnings():
+                warnings.simplefilter("ignore", RuntimeWarning)
+                return fn(data, source, *args, **kwargs)
+        except TilekitError:
+            raise
+        except (TypeError, ValueError, AttributeError, KeyError, IndexError, ArithmeticError,
+                RecursionError, np.linalg.LinAlgError, shapely.errors.ShapelyError) as exc:
+            raise ParseError(
+                f"substitution system {source}: malformed data ({type(exc).__name__}: {str(exc)[:120]}); "
+                "see docs/families/substitution.md for the file format"
+            ) from None
+
+    return wrapper
+
+
+@guarded_loader
 def load_data(data: Mapping[str, Any], source: str = "<data>") -> Any:
     """A system of either engine from parsed data."""
     engine = data.get("engine", "similarity") if isinstance(data, Mapping) else None
@@ -327,6 +353,8 @@ def _prototiles(raw: Any, key: str, num: Any, point: Any, fail: Any) -> tuple[li
         nm = str(entry.get("name", f"T{i + 1}"))
         if nm in names:
             raise fail(f"[[{key}]] name {nm!r} used twice")
+        if not isinstance(entry["outline"], list):
+            raise fail(f"{key} {nm!r}: outline must be a list of [x, y] points")
         pts = np.array([point(p, f"{key} {nm!r} outline") for p in entry["outline"]])
         if len(pts) < 3:
             raise fail(f"{key} {nm!r}: outline needs at least 3 points")
@@ -335,9 +363,10 @@ def _prototiles(raw: Any, key: str, num: Any, point: Any, fail: Any) -> tuple[li
         area = 0.5 * float(np.sum(pts[:, 0] * np.roll(pts[:, 1], -1) - np.roll(pts[:, 0], -1) * pts[:, 1]))
         if area <= 0:
             raise fail(f"{key} {nm!r}: outline must be counter-clockwise with positive area")
-        marking = tuple(
-            np.array([point(p, f"{key} {nm!r} marking") for p in line]) for line in entry.get("marking", [])
-        )
+        lines = entry.get("marking", [])
+        if not isinstance(lines, list) or not all(isinstance(line, list) and len(line) >= 2 for line in lines):
+            raise fail(f"{key} {nm!r}: marking must be a list of polylines, each a list of [x, y] points")
+        marking = tuple(np.array([point(p, f"{key} {nm!r} marking") for p in line]) for line in lines)
         try:
             protos.append(Prototile(pts, marking=marking, name=nm))
         except GeometryError as exc:

@@ -12,20 +12,20 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
+from functools import partial
 from typing import Any
 
 import numpy as np
 import shapely
 from shapely.geometry.base import BaseGeometry
+from shapely.geometry.polygon import orient
 
 from tilekit.errors import ParameterError, ParseError
 from tilekit.geometry import Affine, as_region
+from tilekit.limits import MAX_DEPTH  # the depth range; the tile estimate is the real bound
 from tilekit.plugins.substitution import engine
 from tilekit.plugins.substitution.system import SubstitutionSystem, inscribed_disc
-from tilekit.tiling import Patch, Prototile, Tiling
-
-#: Refuse depths whose full expansion would be absurd even with region culling.
-MAX_DEPTH = 60
+from tilekit.tiling import Patch, Prototile, Tiling, region_tile_estimate
 
 
 class SubstitutionTiling(Tiling):
@@ -54,9 +54,14 @@ class SubstitutionTiling(Tiling):
         self.seed = seed
         self._spec_source = dict(spec_source) if spec_source is not None else {"system": system.name}
         self.params = [float(v) for v in params] if params is not None else None
+        if self.params is not None and not all(math.isfinite(v) and abs(v) <= 1.0 for v in self.params):
+            raise ParameterError(
+                f"params {self.params} are tooth heights of unit edges and must be finite numbers in -1..1"
+            )
         self.edges = list(edges) if edges is not None else None
         self.quasivertex = dict(quasivertex) if quasivertex is not None else None
         self._shaped: list[Prototile] | None = None
+        self._cluster: tuple[np.ndarray, np.ndarray] | None = None
         self._classes: Any = None
         self._mirrors: Any = None
         if self.quasivertex is not None:
@@ -131,11 +136,11 @@ class SubstitutionTiling(Tiling):
             return [p.name for p in self.system.prototiles].index(self.seed)
         return self.system.seed
 
-    def seed_placement(self, region: BaseGeometry) -> tuple[int, np.ndarray, int]:
-        """(seed prototile, seed transform, depth) whose substitution covers ``region``."""
-        if self.depth is not None:
-            d = self.depth
-            return self._seed_index(), Affine.scaling(self.system.scale**d), d
+    def seed_placement(self, region: BaseGeometry, depth: int | None = None) -> tuple[int, np.ndarray, int]:
+        """(seed prototile, seed transform, depth) whose substitution covers ``region``: the
+        prototile with the largest inscribed disc, scaled by s**d about that disc's centre
+        placed on the region's centre, d the least depth whose disc holds the region (or the
+        given ``depth``, when it is enough)."""
         x0, y0, x1, y1 = region.bounds
         centre = np.array([(x0 + x1) / 2, (y0 + y1) / 2])
         need = math.hypot(x1 - x0, y1 - y0) / 2
@@ -149,35 +154,99 @@ class SubstitutionTiling(Tiling):
         assert best is not None
         r, i, c = best
         d = max(0, math.ceil(math.log(max(need, 1e-12) / r) / math.log(self.system.scale) - 1e-12))
+        if depth is not None:
+            if d > depth:
+                raise ParameterError(
+                    f"depth {depth} covers at most a disc of radius {r * self.system.scale**depth:.4g} "
+                    f"(or the depth-{depth} patch, box {_rounded(self.default_region().bounds)}); region "
+                    f"{_rounded(region.bounds)} needs depth {d}: give --depth {d} or more, or leave out --depth"
+                )
+            d = depth
         if d > MAX_DEPTH:
             raise ParameterError(f"region {region.bounds} needs depth {d}; the limit is {MAX_DEPTH}")
         lam = self.system.scale**d
         t = Affine.translation(*centre) @ Affine.scaling(lam) @ Affine.translation(-c[0], -c[1])
         return i, t, d
 
+    # ------------------------------------------------------------------ the depth-N patch
+    def seed_cluster(self) -> tuple[np.ndarray, np.ndarray]:
+        """The depth-0 patch as rule prototiles and transforms: ``depth=N`` substitutes each
+        of them N times (scaled by s**N about the origin).
+
+        For a system of whole tiles it is the seed tile. For a system assembled from halves
+        (exercise 6.10) it is *whole* tiles, never a lone half: the seed's whole tile, and,
+        when that tile has a vertex with equal edges and angle 360/n degrees, n copies of it
+        turned about that vertex (the sun or star of Penrose's P2 and P3, the eight-rhomb star
+        of Ammann-Beenker). With ``seed=NAME`` it is that one prototile.
+        """
+        if self._cluster is not None:
+            return self._cluster
+        s = self.system
+        seed = self._seed_index()
+        one = (np.array([seed], dtype=np.int64), np.eye(3)[None])
+        if s.output_prototiles is None or self.seed is not None:
+            self._cluster = one
+            return one
+        halves = _whole_tile_halves(s, seed)
+        whole = shapely.union_all([shapely.Polygon(Affine.apply(h, s.prototiles[seed].outline)) for h in halves],
+                                  grid_size=1e-9)
+        maps = list(halves)
+        if isinstance(whole, shapely.Polygon):
+            whole = orient(whole.simplify(0), 1.0)  # counter-clockwise, no collinear points
+            turn = _star_vertex(np.asarray(whole.exterior.coords)[:-1])
+            if turn is not None:
+                v, n = turn
+                rots = [Affine.translation(*v) @ Affine.rotation(2 * math.pi * k / n) @ Affine.translation(-v[0], -v[1])
+                        for k in range(n)]
+                # the star's centre at the origin, so that depth N scales it about its centre
+                centre = Affine.translation(-v[0], -v[1])
+                maps = [centre @ r @ h for r in rots for h in halves]
+        self._cluster = (np.full(len(maps), seed, dtype=np.int64), np.array(maps))
+        return self._cluster
+
+    def _cluster_polygon(self, depth: int) -> BaseGeometry:
+        proto, maps = self.seed_cluster()
+        lam = Affine.scaling(self.system.scale**depth)
+        return shapely.union_all(
+            [shapely.Polygon(Affine.apply(lam @ m, self.system.prototiles[p].outline)) for p, m in zip(proto, maps)],
+            grid_size=1e-9,
+        )
+
     def raw(self, region: Any = None) -> tuple[np.ndarray, np.ndarray]:
         """The (prototile, transform) arrays before clipping (whole tiles after assembly)."""
         reg = as_region(region) if region is not None else None
         if reg is None and self.depth is None:
             raise ParameterError("a region or a fixed depth is needed")
-        seed, t, d = self.seed_placement(reg) if reg is not None else (
-            self._seed_index(),
-            Affine.scaling(self.system.scale**self.depth),  # type: ignore[operator]
-            int(self.depth),  # type: ignore[arg-type]
-        )
         box = tuple(reg.bounds) if reg is not None else None
         if box is not None and self.system.pairing_edge is not None:
             # a half whose partner lies outside the generated set is dropped: add a margin
             margin = 2 * max(float(np.ptp(p.outline, axis=0).max()) for p in self.system.tiles)
             box = (box[0] - margin, box[1] - margin, box[2] + margin, box[3] + margin)
-            if self.depth is None:
-                seed, t, d = self.seed_placement(shapely.box(*box))
-        proto, transform = engine.generate(self.system, d, t, seed, box=box)
-        return engine.assemble(self.system, proto, transform)
+        if self.depth is None:
+            assert reg is not None and box is not None
+            seed, t, d = self.seed_placement(shapely.box(*box))
+            members = [(seed, t)]
+        else:
+            d = int(self.depth)
+            lam = Affine.scaling(self.system.scale**d)
+            members = [(int(p), lam @ m) for p, m in zip(*self.seed_cluster())]
+            if reg is not None and not self._cluster_polygon(d).buffer(1e-9).contains(reg):
+                # a depth with a region covers the region: move the seed onto it
+                seed, t, d = self.seed_placement(shapely.box(*box) if box else reg, depth=d)
+                members = [(seed, t)]
+        protos, transforms = [], []
+        for seed, t in members:
+            proto, transform = engine.generate(self.system, d, t, seed, box=box)
+            protos.append(proto)
+            transforms.append(transform)
+        return engine.assemble(self.system, np.concatenate(protos), np.concatenate(transforms))
 
     def patch(self, region: Any = None) -> Patch:
         """Tiles meeting ``region`` (every tile of the fixed-depth patch when region is None)."""
         reg = as_region(region) if region is not None else None
+        if reg is not None and self.depth is not None and self._is_frame(reg):
+            # the default region of a fixed depth frames the whole depth-N patch: draw all of it
+            return self.patch(None).clip(reg)
         if self._shaped is not None and reg is not None:
             # shaped tiles reach beyond their straight tiles: generate for a wider box
             margin = self._shape_margin()
@@ -189,10 +258,17 @@ class SubstitutionTiling(Tiling):
             from tilekit.plugins.substitution.shapes import canonical_transforms
 
             transform = canonical_transforms(proto, transform, self._mirrors)
-        patch = Patch(self.prototiles, proto, transform, colour=proto)
+        patch = Patch(self.prototiles, proto, transform, colour=_colours(proto, transform, len(self.prototiles)))
         if reg is not None:
             patch = patch.clip(reg)
         return patch
+
+    def _is_frame(self, reg: BaseGeometry) -> bool:
+        """Whether ``reg`` is (or holds) the box of the whole depth-N patch, default_region()."""
+        x0, y0, x1, y1 = self.default_region().bounds
+        tol = 1e-6 * max(x1 - x0, y1 - y0)
+        r0, s0, r1, s1 = reg.bounds
+        return abs(r0 - x0) <= tol and abs(s0 - y0) <= tol and abs(r1 - x1) <= tol and abs(s1 - y1) <= tol
 
     def _shape_margin(self) -> float:
         """How far any shaped tile reaches outside its straight tile (Hausdorff bound)."""
@@ -205,12 +281,38 @@ class SubstitutionTiling(Tiling):
     def default_region(self) -> BaseGeometry:
         """A window of about 12 tiles across, or, with a fixed depth, the whole inflated seed."""
         if self.depth is not None:
-            pts = Affine.apply(Affine.scaling(self.system.scale**self.depth), self.system.prototiles[self._seed_index()].outline)
-            x0, y0 = pts.min(axis=0)
-            x1, y1 = pts.max(axis=0)
-            return shapely.box(x0, y0, x1, y1)
+            # whole tiles assembled from boundary halves reach up to one tile beyond the seed
+            reach = 0.0
+            if self.system.output_prototiles is not None:
+                reach = max(float(np.ptp(p.outline, axis=0).max()) for p in self.prototiles)
+            x0, y0, x1, y1 = self._cluster_polygon(self.depth).bounds
+            return shapely.box(x0 - reach, y0 - reach, x1 + reach, y1 + reach)
         size = math.sqrt(max(abs(p.area) for p in self.system.tiles))
         return shapely.box(-6 * size, -6 * size, 6 * size, 6 * size)
+
+    def estimate_tiles(self, region: Any = None) -> float:
+        """Tiles of ``patch(region)``: with a fixed depth, at most the seed's count after
+        ``depth`` substitutions (the substitution matrix's M^d e, exact), and at most what fits
+        in the region at the prototiles' areas."""
+        reg = as_region(region) if region is not None else None
+        if self.depth is not None:
+            full = float(self._full_count(self.depth))
+            return full if reg is None else min(full, region_tile_estimate(reg, self.system.prototiles))
+        return region_tile_estimate(reg if reg is not None else self.default_region(), self.system.prototiles)
+
+    def _full_count(self, depth: int) -> int:
+        """Rule tiles after ``depth`` substitutions of the seed cluster (M^d applied to it)."""
+        proto, _ = self.seed_cluster()
+        return sum(int(sum(self.system.counts(depth, int(p))[-1])) for p in proto)
+
+    def options_help(self) -> str:
+        return "\n".join([
+            "--depth N              substitutions of the seed cluster (0..60)",
+            "--set seed=NAME        substitute this rule prototile instead of the seed cluster",
+            "--param H[,H...]       tooth heights of the free edge shapes a, b, ... (assembled systems)",
+            "--edge a=x,y:x,y       an edge shape from (0,0) to (1,0) (assembled systems)",
+            "--set r1=R --set theta1=DEG --set r2=R --set theta2=DEG   quasivertex deformation (P2, P3)",
+        ])
 
     def configure(self, **options: Any) -> SubstitutionTiling:
         """Options: ``depth`` (int, fixed substitution depth), ``seed`` (prototile name),
@@ -275,6 +377,8 @@ def system_properties(system: SubstitutionSystem, generations: int = 6) -> dict[
     eig, freq = system.perron_frobenius()
     counts = system.counts(generations)
     tile_counts = getattr(system, "tile_counts", None)
+    if tile_counts is None and system.output_prototiles is not None:
+        tile_counts = partial(patch_counts, system)
     props: dict[str, Any] = {
         "expansion_constant": round(system.scale, 12),
         "substitution_matrix": [[int(v) for v in row] for row in system.substitution_matrix()],
@@ -297,6 +401,24 @@ def system_properties(system: SubstitutionSystem, generations: int = 6) -> dict[
         if key not in props and isinstance(value, str | int | float | bool | list):
             props[key] = value
     return props
+
+
+#: Most rule tiles ``patch_counts`` generates for one depth (its list stops before).
+COUNT_BUDGET = 50_000
+
+
+def patch_counts(system: SubstitutionSystem, generations: int) -> list[int]:
+    """Tiles of the depth-n patch (``render NAME --depth n``), n = 0..generations, counted on
+    the generated patches; for systems assembled from halves this is the meaning of
+    ``tiles_per_generation`` (whole tiles, each once). Stops early at COUNT_BUDGET rule tiles."""
+    base = SubstitutionTiling(system)
+    out = []
+    for n in range(generations + 1):
+        t = base.configure(depth=n)
+        if t._full_count(n) > COUNT_BUDGET:
+            break
+        out.append(len(t.patch()))
+    return out
 
 
 class KeypointTiling(SubstitutionTiling):
@@ -364,9 +486,22 @@ class KeypointTiling(SubstitutionTiling):
         p = self.patch(region)
         return p.prototile, p.transform
 
+    def _full_count(self, depth: int) -> int:
+        return int(self.system.tile_counts(depth, self._seed_index())[-1])
+
     def default_region(self) -> BaseGeometry:
-        """About 12 tiles across, or, with a fixed depth, the level-d supertile's bounding box."""
+        """About 12 tiles across, or, with a fixed depth, the level-d supertile's bounding box
+        (its tiles are generated only when there are few enough to be drawn)."""
         if self.depth is not None:
+            from tilekit.limits import MAX_TILES
+
+            if self._full_count(self.depth) > MAX_TILES:  # the bounding disc's box, no tiles made
+                centres, radii = self.system.bounds(self.depth)
+                label = self._seed_index()
+                c, r = np.array(centres[label], dtype=float), float(radii[label])
+                if self.depth % 2 == 1 and getattr(self.system, "reflect", False):
+                    c = np.array([-c[0], c[1]])
+                return shapely.box(c[0] - r, c[1] - r, c[0] + r, c[1] + r)
             _, tr, _ = self.system.generate(self.depth, seed_label=self._seed_index())
             pts = Affine.apply(tr, self.system.tile.outline).reshape(-1, 2)
             x0, y0 = pts.min(axis=0)
@@ -374,6 +509,9 @@ class KeypointTiling(SubstitutionTiling):
             return shapely.box(x0, y0, x1, y1)
         size = math.sqrt(abs(self.system.tile.area))
         return shapely.box(-6 * size, -6 * size, 6 * size, 6 * size)
+
+    def options_help(self) -> str:
+        return "--depth N              level of the supertile (0..15)\n--set seed=LABEL       the supertile label to start from"
 
     def configure(self, **options: Any) -> KeypointTiling:
         depth = options.pop("depth", self.depth)
@@ -396,6 +534,90 @@ class KeypointTiling(SubstitutionTiling):
             kids = ", ".join(s.labels[k] if k >= 0 else "-" for k in slots)
             lines.append(f"  {s.labels[j]} -> {kids}")
         return "\n".join(lines)
+
+
+#: Orientation classes a one-prototile system is coloured by (turns are binned when more).
+ORIENTATION_COLOURS = 8
+
+
+def _colours(proto: np.ndarray, transform: np.ndarray, prototiles: int) -> np.ndarray:
+    """Colour by prototile; a system of one prototile (chair, sphinx, pinwheel) by the tile's
+    orientation instead: its turn (the distinct angles, or 4 bins when there are more than
+    ORIENTATION_COLOURS, as for the pinwheel) and, doubling them, its handedness."""
+    if prototiles > 1 or not len(proto):
+        return proto
+    det = transform[:, 0, 0] * transform[:, 1, 1] - transform[:, 0, 1] * transform[:, 1, 0]
+    angle = np.mod(np.arctan2(transform[:, 1, 0], transform[:, 0, 0]), 2 * np.pi)
+    key = np.round(angle * 1e4).astype(np.int64)
+    turns, index = np.unique(key, return_inverse=True)
+    if len(turns) > ORIENTATION_COLOURS:
+        index = (angle // (np.pi / 2)).astype(np.int64) % 4
+        n = 4
+    else:
+        n = len(turns)
+    return index.astype(np.int64) + n * (det < 0)
+
+
+def _rounded(bounds: Sequence[float]) -> tuple[float, ...]:
+    return tuple(round(float(v), 3) for v in bounds)
+
+
+def _whole_tile_halves(system: SubstitutionSystem, seed: int) -> list[np.ndarray]:
+    """Placements (in the seed half's frame) of the halves making up the seed's whole tile,
+    the seed half itself first."""
+    outline = system.prototiles[seed].outline
+    if system.pairing_edge is not None:
+        a, b = (outline[i] for i in system.pairing_edge)
+        if "mirror" in system.pairing:  # the partner is the half reflected across the edge
+            ang = math.atan2(b[1] - a[1], b[0] - a[0])
+            other = (Affine.translation(*a) @ Affine.rotation(ang) @ np.diag([1.0, -1.0, 1.0])
+                     @ Affine.rotation(-ang) @ Affine.translation(-a[0], -a[1]))
+        else:  # "turn": the half turned about the edge's midpoint
+            mid = (a + b) / 2
+            other = Affine.translation(*mid) @ Affine.rotation(math.pi) @ Affine.translation(-mid[0], -mid[1])
+        return [np.eye(3), other]
+    assert system.assemble_tile is not None and system.assemble_matrix is not None
+    # The partner is the half the substitution itself puts beside a seed half (a symmetry of
+    # the whole tile's outline may map the half onto the partner's place with the wrong
+    # orientation, e.g. the thick rhomb's half-turn): find two seed halves of one whole tile
+    # in a generated patch and take their relative placement.
+    t = int(system.assemble_tile[seed])
+    whole = system.output_prototiles[t].outline if system.output_prototiles else outline
+    for depth in range(1, 7):
+        proto, transform = engine.generate(system, depth, np.eye(3), seed)
+        idx = np.flatnonzero((proto == seed) & (system.assemble_tile[proto] == t))
+        if len(idx) < 2:
+            continue
+        wholes = np.matmul(transform[idx], system.assemble_matrix[seed])
+        centres = Affine.apply(wholes, whole).mean(axis=1)  # (k, 2)
+        keys = np.round(centres / (1e-6 * system.scale**-depth)).astype(np.int64)
+        _, first, counts = np.unique(keys, axis=0, return_index=True, return_counts=True)
+        for f, c in zip(first, counts):
+            if c < 2:
+                continue
+            i = idx[f]
+            same = np.flatnonzero(np.all(keys == keys[f], axis=1))
+            j = idx[same[same != f][0]]
+            return [np.eye(3), np.linalg.inv(transform[i]) @ transform[j]]
+    return [np.eye(3)]  # the seed's whole tile is the seed itself
+
+
+def _star_vertex(outline: np.ndarray) -> tuple[np.ndarray, int] | None:
+    """A vertex of the (counter-clockwise) outline with equal edges and angle 360/n degrees,
+    n >= 3, the one with the largest n: (vertex, n), or None."""
+    k = len(outline)
+    best: tuple[np.ndarray, int] | None = None
+    for i in range(k):
+        p, prev, nxt = outline[i], outline[i - 1], outline[(i + 1) % k]
+        u, w = nxt - p, prev - p
+        lu, lw = float(np.hypot(*u)), float(np.hypot(*w))
+        if lu < 1e-9 or abs(lu - lw) > 1e-7 * max(lu, lw):
+            continue
+        angle = math.atan2(u[0] * w[1] - u[1] * w[0], float(u @ w)) % (2 * math.pi)
+        n = round(2 * math.pi / angle) if angle > 1e-9 else 0
+        if n >= 3 and abs(n * angle - 2 * math.pi) < 1e-7 and (best is None or n > best[1]):
+            best = (p.copy(), n)
+    return best
 
 
 def _covers(patch: Patch, region: BaseGeometry) -> bool:

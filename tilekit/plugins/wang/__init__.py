@@ -178,8 +178,39 @@ class WangTiling(Tiling):
         is_box = abs(reg.area - (bx1 - bx0) * (by1 - by0)) <= 1e-12 * max(1.0, reg.area)
         return patch if is_box else patch.clip(reg)
 
+    def estimate_tiles(self, region: Any = None) -> float:
+        """The lattice squares meeting the region's box (one tile each)."""
+        reg = self.default_region() if region is None else as_region(region)
+        x0, y0, x1, y1 = reg.bounds
+        return float((math.ceil(x1 - 1e-9) - math.floor(x0 + 1e-9)) * (math.ceil(y1 - 1e-9) - math.floor(y0 + 1e-9)))
+
     def default_region(self) -> BaseGeometry:
         return shapely.box(0, 0, 12, 8)
+
+    def render_svg(self, patch: Patch, **options: Any) -> str:
+        """The picture ``tilekit wang render`` draws (each side a triangle of its edge colour),
+        for a patch of whole lattice squares; other patches are drawn as plain squares."""
+        from tilekit.plugins.wang.render import wang_svg
+
+        t = patch.transform
+        if not len(patch) or not np.allclose(t[:, :2, 2], np.round(t[:, :2, 2])) or options.get("labels"):
+            return super().render_svg(patch, **options)
+        xy = np.round(t[:, :2, 2]).astype(np.int64)
+        x0, y0 = xy.min(axis=0)
+        cols, rows = (xy.max(axis=0) - (x0, y0) + 1).tolist()
+        if rows * cols != len(patch):
+            return super().render_svg(patch, **options)
+        grid = np.full((rows, cols), -1, dtype=np.int64)
+        grid[rows - 1 - (xy[:, 1] - y0), xy[:, 0] - x0] = patch.prototile
+        if (grid < 0).any():
+            return super().render_svg(patch, **options)
+        width, height = options.get("width"), options.get("height")
+        size = int(options.get("size", 800))
+        if width is not None:
+            size = int(width * max(rows, cols) / cols)
+        elif height is not None:
+            size = int(height * max(rows, cols) / rows)
+        return wang_svg(grid, self.tileset, size=size, stroke=str(options.get("stroke", "#222")))
 
     def spec(self) -> dict[str, Any]:
         out: dict[str, Any] = {"set": self.tileset.name, "seed": self.seed, "method": self.method}
@@ -207,6 +238,13 @@ class WangTiling(Tiling):
         ts = self.tileset
         head = f"{len(ts)} {ts.kind} tiles; patches fill by {self.fill_method()} (seed {self.seed})"
         return head + "\n" + ts.to_text().rstrip()
+
+    def options_help(self) -> str:
+        return "\n".join([
+            "--set seed=N           the fill's random seed",
+            "--set method=M         " + ", ".join(FILL_METHODS),
+            "--set time_limit=S     seconds for the exact solver",
+        ])
 
     def configure(self, **options: Any) -> WangTiling:
         """Options: ``seed`` (int), ``method`` (one of FILL_METHODS), ``time_limit`` (s)."""

@@ -11,10 +11,15 @@ from pathlib import Path
 
 import click
 
+from tilekit import limits
+from tilekit.cli_types import POSITIVE, BoundedInt, FiniteFloat
 from tilekit.errors import ParseError
 from tilekit.plugins.wang.render import write_wang_image
 from tilekit.plugins.wang.solve import METHODS, solve
 from tilekit.plugins.wang.tileset import WangTileSet, get_tileset, load_tileset
+
+#: Largest image side of ``wang render --size`` (pixels): limits.MAX_PNG_PIXELS is its square.
+MAX_SIZE = 10_000
 
 
 def _tileset(name: str) -> WangTileSet:
@@ -27,36 +32,54 @@ def _fixed(items: tuple[str, ...]) -> dict[tuple[int, int], str | int]:
     out: dict[tuple[int, int], str | int] = {}
     for item in items:
         pos, sep, tile = item.partition("=")
-        try:
-            i, j = (int(v) for v in pos.split(","))
-        except ValueError:
-            raise ParseError(f"--fix {item!r} is not ROW,COL=TILE (e.g. 0,3=a or 0,3=5)") from None
+        bad = ParseError(f"--fix {item[:60]!r} is not ROW,COL=TILE (e.g. 0,3=a or 0,3=5)")
+        parts = pos.split(",")
+        if len(parts) != 2 or not all(p.strip().isascii() and p.strip().isdigit() and len(p.strip()) < 10 for p in parts):
+            raise bad
+        i, j = (int(v) for v in parts)
         if not sep or not tile:
-            raise ParseError(f"--fix {item!r} is not ROW,COL=TILE (e.g. 0,3=a or 0,3=5)")
-        out[(i, j)] = int(tile) if tile.isdigit() else tile
+            raise bad
+        small_int = tile.isascii() and tile.isdigit() and len(tile) < 10
+        out[(i, j)] = int(tile) if small_int else tile
     return out
 
 
 @click.group(name="wang")
 def wang_group() -> None:
-    """Wang tiles: render fills with coloured triangles or textures, solve rectangles and tori."""
+    """Wang tiles: render fills with coloured triangles or textures, solve rectangles and tori.
+
+    \b
+    Examples:
+      tilekit wang render stochastic-2colour -o wang.svg
+      tilekit wang solve jeandel-rao --rows 10 --cols 10
+    """
 
 
 @wang_group.command(name="render")
 @click.argument("set_name", metavar="SET")
 @click.option("-o", "--output", "out", required=True, type=click.Path(dir_okay=False), help="Output .svg or .png.")
-@click.option("--rows", type=click.IntRange(min=1), default=12, show_default=True)
-@click.option("--cols", type=click.IntRange(min=1), default=16, show_default=True)
-@click.option("--seed", type=int, default=0, show_default=True)
+@click.option("--rows", type=POSITIVE, default=12, show_default=True)
+@click.option("--cols", type=POSITIVE, default=16, show_default=True)
+@click.option("--seed", type=BoundedInt(0), default=0, show_default=True)
 @click.option("--method", type=click.Choice(["auto", "random-access", "scanline", "periodic", "solver"]), default="auto",
               show_default=True, help="How to fill the grid.")
 @click.option("--texture", type=click.Path(exists=True, dir_okay=False), help="TOML file of SVG motifs per edge colour.")
-@click.option("--size", type=click.IntRange(min=16), default=800, show_default=True, help="Image size in pixels.")
+@click.option("--size", type=BoundedInt(16, MAX_SIZE), default=800, show_default=True,
+              help="Image size in pixels (the longer side).")
+@click.option("--max-tiles", type=POSITIVE, default=limits.MAX_GRID_CELLS, show_default=True,
+              help="Refuse grids of more than N cells.")
 def render_command(set_name: str, out: str, rows: int, cols: int, seed: int, method: str, texture: str | None,
-                   size: int) -> None:
-    """Fill a ROWS x COLS grid with SET and draw it."""
+                   size: int, max_tiles: int) -> None:
+    """Fill a ROWS x COLS grid with SET and draw it.
+
+    \b
+    Examples:
+      tilekit wang render stochastic-2colour --rows 20 --cols 30 -o wang.svg
+      tilekit wang render jeandel-rao --rows 8 --cols 8 --method solver -o jr.png
+    """
     from tilekit.plugins.wang import WangTiling
 
+    limits.refuse_over("grid cells", rows * cols, max_tiles, "--max-tiles")
     ts = _tileset(set_name)
     grid = WangTiling(ts, seed=seed, method=method).grid(0, 0, rows, cols)
     path = write_wang_image(grid, ts, out, texture=texture, size=size)
@@ -65,17 +88,32 @@ def render_command(set_name: str, out: str, rows: int, cols: int, seed: int, met
 
 @wang_group.command(name="solve")
 @click.argument("set_name", metavar="SET")
-@click.option("--rows", type=click.IntRange(min=1), required=True)
-@click.option("--cols", type=click.IntRange(min=1), required=True)
+@click.option("--rows", type=POSITIVE, required=True)
+@click.option("--cols", type=POSITIVE, required=True)
 @click.option("--torus", is_flag=True, help="Ask for a torus (a periodic unit) instead of a rectangle.")
 @click.option("--method", type=click.Choice(METHODS), default="sat", show_default=True)
 @click.option("--fix", "fixes", multiple=True, metavar="ROW,COL=TILE", help="Fix a tile (index or name); repeatable.")
-@click.option("--time-limit", type=float, help="Seconds before giving up.")
+@click.option("--time-limit", type=FiniteFloat(1e7, min=0.0), help="Seconds before giving up.")
 @click.option("-o", "--output", "out", type=click.Path(dir_okay=False), help="Also draw the tiling found (.svg/.png).")
+@click.option("--max-tiles", type=POSITIVE, default=limits.MAX_SOLVE_CELLS, show_default=True,
+              help="Refuse grids of more than N cells.")
+@click.option("--max-variables", type=POSITIVE, default=limits.MAX_SAT_VARIABLES, show_default=True,
+              help="Refuse SAT encodings of more than N variables (cells x tiles).")
 def solve_command(set_name: str, rows: int, cols: int, torus: bool, method: str, fixes: tuple[str, ...],
-                  time_limit: float | None, out: str | None) -> None:
-    """Does SET tile a ROWS x COLS rectangle (or torus) with the fixed tiles?"""
+                  time_limit: float | None, out: str | None, max_tiles: int, max_variables: int) -> None:
+    """Does SET tile a ROWS x COLS rectangle (or torus) with the fixed tiles?
+
+    \b
+    Examples:
+      tilekit wang solve jeandel-rao --rows 10 --cols 10
+      tilekit wang solve jeandel-rao --rows 6 --cols 6 --torus --method builder
+      tilekit wang solve my.wang --rows 4 --cols 4 --fix 0,0=a -o found.svg
+    """
+    limits.refuse_over("grid cells", rows * cols, max_tiles, "--max-tiles")
     ts = _tileset(set_name)
+    if method == "sat":
+        limits.refuse_over("SAT variables", rows * cols * len(ts), max_variables, "--max-variables",
+                           hint=f"{rows} x {cols} cells x {len(ts)} tiles")
     result = solve(ts, rows, cols, torus=torus, fixed=_fixed(fixes), method=method, time_limit=time_limit)
     click.echo(f"{ts.name}: {result.describe()}")
     if result.tiles:

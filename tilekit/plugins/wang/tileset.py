@@ -461,6 +461,8 @@ def load_tileset(path: str | Path) -> WangTileSet:
         text = p.read_text(encoding="utf-8")
     except OSError as exc:
         raise ParseError(f"{p}: cannot read the tile set file ({exc.strerror or exc})") from None
+    except UnicodeDecodeError as exc:
+        raise ParseError(f"{p}: not UTF-8 text (byte {exc.start}); save the tile set as UTF-8") from None
     return parse_tileset(text, filename=str(p))
 
 

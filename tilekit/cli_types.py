@@ -1,0 +1,84 @@
+"""Bounded click option types: values outside a sane range are one-line errors, never an
+OverflowError deep in SQLite or NumPy.
+
+``BoundedInt`` rejects huge integers (``--limit 10**30``) and over-long digit strings before
+converting them (Python refuses ``int()`` of more than 4,300 digits with a ValueError whose
+text is about the interpreter, not the option); ``FiniteFloat`` rejects ``inf``, ``nan`` and
+magnitudes beyond a bound.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import click
+
+#: The largest integer any option accepts by default (SQLite's and NumPy's int64).
+INT64_MAX = 2**63 - 1
+
+
+class BoundedInt(click.ParamType):
+    """An integer in ``[min, max]`` (defaults: 0 .. 2**63 - 1)."""
+
+    name = "integer"
+
+    def __init__(self, min: int = 0, max: int = INT64_MAX, what: str = "") -> None:
+        self.min = min
+        self.max = max
+        self.what = what
+
+    def get_metavar(self, param: click.Parameter, ctx: click.Context | None = None) -> str:  # type: ignore[override]
+        return "N"
+
+    def _range(self) -> str:
+        return f"{self.min}..{self.max}"
+
+    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None) -> int:
+        if isinstance(value, int) and not isinstance(value, bool):
+            number = value
+        else:
+            text = str(value).strip().replace("_", "")
+            digits = text.lstrip("+-")
+            if not digits.isdigit() or not digits.isascii():
+                self.fail(f"{str(value)[:40]!r} is not a valid integer ({self._range()})", param, ctx)
+            if len(digits) > 19:
+                self.fail(f"{text[:20]}... ({len(digits)} digits) is out of range {self._range()}", param, ctx)
+            number = int(text)
+        if not self.min <= number <= self.max:
+            self.fail(f"{number} is out of range {self._range()}", param, ctx)
+        return number
+
+    def __repr__(self) -> str:
+        return f"BoundedInt({self.min}, {self.max})"
+
+
+class FiniteFloat(click.ParamType):
+    """A finite float with ``|x| <= bound`` (default 1e9) and optionally ``x >= min``."""
+
+    name = "number"
+
+    def __init__(self, bound: float = 1e9, min: float | None = None) -> None:
+        self.bound = bound
+        self.min = min
+
+    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None) -> float:
+        try:
+            number = float(value)
+        except (TypeError, ValueError, OverflowError):
+            self.fail(f"{str(value)[:40]!r} is not a valid number", param, ctx)
+        if not math.isfinite(number) or abs(number) > self.bound:
+            self.fail(f"{str(value)[:40]} is not a finite number within ±{self.bound:g}", param, ctx)
+        if self.min is not None and number < self.min:
+            self.fail(f"{number:g} is below the minimum {self.min:g}", param, ctx)
+        return number
+
+    def __repr__(self) -> str:
+        return f"FiniteFloat({self.bound})"
+
+
+#: Counts and sizes: 0 or more / 1 or more, int64-bounded.
+COUNT = BoundedInt(0)
+POSITIVE = BoundedInt(1)
+#: A run id (SQLite integer primary key).
+RUN_ID = BoundedInt(1)
