@@ -16,6 +16,7 @@ placed by the rigid motion taking the first onto it.
 
 from __future__ import annotations
 
+import json
 import math
 from functools import cache
 from typing import Any
@@ -26,7 +27,14 @@ from tilekit.builder import TWO_PI, BuildResult, PatchBuilder, VertexView
 from tilekit.colouring import Colouring
 from tilekit.errors import GeometryError, ParseError
 from tilekit.geometry import Affine, regular_polygon
-from tilekit.plugins.archimedean.notation import VertexType, arrangements, parse_vertex_type
+from tilekit.plugins.archimedean.notation import (
+    VertexType,
+    arrangements,
+    canonical,
+    parse_vertex_type,
+)
+from tilekit.resources import catalogue_dir
+from tilekit.symmetry import canonical_basis, symmetries
 from tilekit.tiling import Patch, PeriodicTiling, Prototile
 
 #: Colour of a polygon by its number of sides (the same colour in every tiling).
@@ -146,49 +154,6 @@ def _tile_keys(patch: Patch, sides: list[int]) -> tuple[np.ndarray, np.ndarray, 
     return centres, n, orient
 
 
-def _reduce(v1: np.ndarray, v2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Lagrange-Gauss reduction of a 2D lattice basis (shortest vectors, |v1| <= |v2|)."""
-    if v1 @ v1 > v2 @ v2:
-        v1, v2 = v2, v1
-    while True:
-        mu = round(float(v1 @ v2) / float(v1 @ v1))
-        if mu == 0:
-            break
-        v2 = v2 - mu * v1
-        if v2 @ v2 < v1 @ v1:
-            v1, v2 = v2, v1
-        else:
-            break
-    if v1[0] * v2[1] - v1[1] * v2[0] < 0:
-        v2 = -v2
-    return v1, v2
-
-
-def canonical_basis(g1: np.ndarray, g2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """A deterministic reduced basis of the lattice spanned by g1, g2: v1 a shortest vector
-    with the least direction angle in [0, 2π); v2 a shortest vector completing a
-    positively oriented basis, least angle from v1 on ties (float noise cannot flip ties)."""
-    g1, g2 = _reduce(np.asarray(g1, float), np.asarray(g2, float))
-    det = abs(g1[0] * g2[1] - g1[1] * g2[0])
-    combos = np.array([a * g1 + b * g2 for a in range(-2, 3) for b in range(-2, 3) if (a, b) != (0, 0)])
-    lengths = np.hypot(combos[:, 0], combos[:, 1])
-    ang = np.round(np.mod(np.arctan2(combos[:, 1], combos[:, 0]), TWO_PI), 6) % round(TWO_PI, 6)
-    shortest = np.flatnonzero(lengths <= lengths.min() + 1e-6)
-    i1 = shortest[np.lexsort((ang[shortest],))[0]]
-    v1 = combos[i1]
-    best = None
-    for j in np.argsort(np.round(lengths, 6), kind="stable"):
-        w = combos[j]
-        d = v1[0] * w[1] - v1[1] * w[0]
-        if abs(abs(d) - det) > 1e-6 * max(1.0, det) or d <= 0:
-            continue
-        key = (round(float(lengths[j]), 6), round(float(np.mod(np.arctan2(w[1], w[0]) - np.arctan2(v1[1], v1[0]), TWO_PI)), 6))
-        if best is None or key < best[0]:
-            best = (key, w)
-    assert best is not None
-    return v1, best[1]
-
-
 def find_lattice(patch: Patch, sides: list[int], radius: float) -> tuple[np.ndarray, np.ndarray] | None:
     """Two independent translations mapping the patch's core onto the patch, or None.
 
@@ -245,7 +210,6 @@ def unit_from_patch(patch: Patch, v1: np.ndarray, v2: np.ndarray) -> np.ndarray:
 def _vertex_sequences(patch: Patch, sides: list[int], region_radius: float) -> dict[tuple[int, ...], int]:
     """Canonical polygon sequence (CCW) round every vertex within ``region_radius`` whose
     surrounding angle is complete, counted; used to check a construction."""
-    from tilekit.plugins.archimedean.notation import canonical
 
     polys = patch.polygons()
     corners: dict[tuple[int, int], list[tuple[float, int, float]]] = {}
@@ -397,10 +361,6 @@ def cached_data() -> dict[str, Any]:
     """The shipped construction results (empty when the data file is absent)."""
     global _CACHE
     if _CACHE is None:
-        import json
-
-        from tilekit.resources import catalogue_dir
-
         path = catalogue_dir() / "archimedean" / "tilings.json"
         _CACHE = json.loads(path.read_text()) if path.exists() else {}
     return _CACHE
@@ -598,7 +558,6 @@ def laves_properties(t: LavesTiling) -> dict[str, Any]:
 def orbit_count(points: np.ndarray, tiling: PeriodicTiling) -> int:
     """How many orbits the symmetry group of ``tiling`` has on ``points`` (one per point of a
     translational unit, given modulo the lattice v1, v2): 1 means transitive."""
-    from tilekit.symmetry import symmetries
 
     group = symmetries(tiling)
     basis = np.column_stack([tiling.v1, tiling.v2])

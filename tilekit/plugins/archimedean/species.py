@@ -25,6 +25,8 @@ from typing import Any
 
 from tilekit.errors import ParameterError
 from tilekit.plugins import CatalogueRecord, ChunkResult, Search, SearchParam
+from tilekit.plugins.archimedean import construct
+from tilekit.plugins.archimedean import records as rec
 from tilekit.plugins.archimedean.notation import (
     VertexType,
     bounded_species,
@@ -121,8 +123,6 @@ def _base_properties(vt: VertexType) -> dict[str, Any]:
 
 def classify_euclidean(vt: VertexType, radius: float, max_nodes: int) -> dict[str, Any]:
     """Try to extend type vt with the builder; construct it when it survives."""
-    from tilekit.plugins.archimedean import construct
-
     started = time.perf_counter()
     r = construct.seed_radius(vt) + radius
     res = construct.grow(vt, r, max_nodes=max_nodes)
@@ -194,8 +194,6 @@ def chunks(params: Mapping[str, Any]) -> list[dict[str, Any]]:
 
 def run_chunk(params: Mapping[str, Any], chunk: Mapping[str, Any]) -> ChunkResult:
     """Classify the vertex types of one chunk; results and catalogue records."""
-    from tilekit.plugins.archimedean import records as rec
-
     p = _params(params)
     results: list[dict[str, Any]] = []
     records: list[CatalogueRecord] = []

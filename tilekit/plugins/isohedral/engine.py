@@ -20,6 +20,8 @@ import shapely
 from tilekit.colouring import Colouring
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.geometry import Affine, signed_area
+from tilekit.plugins.isohedral.analysis import is_perfect_colouring
+from tilekit.plugins.isohedral.properties import type_properties
 from tilekit.plugins.isohedral.shapes import (
     FLIP,
     IDENTITY,
@@ -443,13 +445,15 @@ class IsohedralTiling(PeriodicTiling):
 
     @classmethod
     def from_spec(cls, spec: Mapping[str, Any]) -> IsohedralTiling:  # type: ignore[override]
-        return tiling_from_spec(spec)  # type: ignore[return-value]
+        """An unmarked type from its spec (:func:`tilekit.plugins.isohedral.spec.tiling_from_spec`
+        also builds the marked ones)."""
+        ih = _spec_ih(spec)
+        if get_template(ih).marked:
+            raise ParameterError(f"IH{ih} is a marked type; build it with tilekit.plugins.isohedral.spec.tiling_from_spec")
+        return unmarked_from_spec(spec)
 
     def properties(self) -> dict[str, Any]:
         """The type's catalogue properties; colour facts follow this tiling's own colouring."""
-        from tilekit.plugins.isohedral.analysis import is_perfect_colouring
-        from tilekit.plugins.isohedral.records import type_properties
-
         props = dict(type_properties(self.template.ih))
         if self.colouring != self.template.colouring:
             props["colours"] = self.colouring.colours
@@ -475,17 +479,15 @@ def _transfer_shape(
     return EdgeShape(c, shape.smooth)
 
 
-def tiling_from_spec(spec: Mapping[str, Any]) -> PeriodicTiling:
-    """Rebuild an isohedral tiling from ``{"ih": 16, "params": [...], "edges": {...}}``."""
+def _spec_ih(spec: Mapping[str, Any]) -> Any:
     try:
-        ih = spec["ih"]
+        return spec["ih"]
     except (KeyError, TypeError):
         raise ParseError(f"isohedral spec {dict(spec) if isinstance(spec, Mapping) else spec!r} has no 'ih'") from None
-    from tilekit.plugins.isohedral.marked import marked_tiling
 
-    t = get_template(ih)
-    if t.marked:
-        return marked_tiling(t.ih)
+
+def unmarked_from_spec(spec: Mapping[str, Any]) -> IsohedralTiling:
+    """An unmarked isohedral tiling from ``{"ih": 16, "params": [...], "edges": {...}}``."""
+    t = get_template(_spec_ih(spec))
     edges = {k: EdgeShape.parse(v) for k, v in (spec.get("edges") or {}).items()}
-    col = spec.get("colouring")
-    return IsohedralTiling(t.ih, spec.get("params"), edges, col)
+    return IsohedralTiling(t.ih, spec.get("params"), edges, spec.get("colouring"))

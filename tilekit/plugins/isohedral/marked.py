@@ -28,9 +28,11 @@ from tilekit.colouring import Colouring
 from tilekit.errors import GeometryError, ParameterError
 from tilekit.geometry import Affine
 from tilekit.plugins.isohedral.engine import HopEngine, edge_frames, laves_polygon
+from tilekit.plugins.isohedral.properties import type_properties
 from tilekit.plugins.isohedral.shapes import FLIP, IDENTITY, ROFL
 from tilekit.plugins.isohedral.symbols import IncidenceSymbol
 from tilekit.plugins.isohedral.templates import get_template
+from tilekit.symmetry import successive_minima
 from tilekit.tiling import Patch, PeriodicTiling, Prototile
 
 
@@ -66,14 +68,10 @@ def unit_from_group(verts: np.ndarray, gens: list[np.ndarray]) -> tuple[np.ndarr
     scale = float(np.ptp(verts, axis=0).max())
     elements = _ball(verts, gens, 8 * scale)
     trans = [m[:2, 2] for m in elements if np.allclose(m[:2, :2], np.eye(2), atol=1e-9)]
-    vecs = np.array([t for t in trans if np.hypot(*t) > 1e-7])
-    if len(vecs) < 2:
-        raise GeometryError("the group has no two independent translations within reach")
-    order = np.argsort(np.hypot(vecs[:, 0], vecs[:, 1]))
-    v1 = vecs[order[0]]
-    v2 = next(vecs[i] for i in order[1:] if abs(v1[0] * vecs[i][1] - v1[1] * vecs[i][0]) > 1e-7)
-    if v1[0] * v2[1] - v1[1] * v2[0] < 0:
-        v2 = -v2
+    try:
+        v1, v2 = successive_minima(np.array(trans).reshape(-1, 2))
+    except GeometryError:
+        raise GeometryError("the group has no two independent translations within reach") from None
     basis = np.column_stack([v1, v2])
     centre = verts.mean(axis=0)
     aspects: dict[tuple[float, float], np.ndarray] = {}
@@ -148,8 +146,6 @@ class MarkedTiling(PeriodicTiling):
         )
 
     def properties(self) -> dict[str, Any]:
-        from tilekit.plugins.isohedral.records import type_properties
-
         return type_properties(self.template.ih)
 
 

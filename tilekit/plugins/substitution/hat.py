@@ -30,7 +30,7 @@ import shapely
 from tilekit.errors import ParameterError, ParseError
 from tilekit.geometry import Affine
 from tilekit.plugins.substitution.keypoint import MonotileSystem, _meets, expand_by_label
-from tilekit.plugins.substitution.system import Rule
+from tilekit.plugins.substitution.rules import Rule
 from tilekit.resources import catalogue_dir, read_toml
 from tilekit.tiling import Prototile
 

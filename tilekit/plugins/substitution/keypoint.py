@@ -21,7 +21,7 @@ import shapely
 from tilekit.errors import ParseError
 from tilekit.geometry import Affine
 from tilekit.plugins.substitution.expr import constants_with, evaluate
-from tilekit.plugins.substitution.system import MatrixFacts, Rule
+from tilekit.plugins.substitution.rules import MatrixFacts, Rule
 from tilekit.tiling import Prototile
 
 REFLECT_Y = np.diag([-1.0, 1.0, 1.0])

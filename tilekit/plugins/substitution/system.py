@@ -33,66 +33,17 @@ import shapely
 from tilekit.errors import GeometryError, ParseError
 from tilekit.geometry import Affine
 from tilekit.plugins.substitution.expr import constants_with, evaluate
+from tilekit.plugins.substitution.keypoint import keypoint_system_from_data
+from tilekit.plugins.substitution.rules import MatrixFacts, Rule
 from tilekit.resources import read_toml
 from tilekit.tiling import Prototile
+
+__all__ = ["MatrixFacts", "Rule", "SubstitutionSystem", "load_data", "load_system", "system_from_data"]
 
 KINDS = ("exact", "indented", "overlapping")
 
 #: Relative tolerance of the loader's geometric checks (areas as a fraction of the parent).
 CHECK_TOL = 1e-7
-
-
-@dataclass
-class Rule:
-    """The substitution of one prototile: child prototile indices and their maps (m, 3, 3)."""
-
-    children: np.ndarray
-    matrices: np.ndarray
-
-
-class MatrixFacts:
-    """Substitution-matrix facts shared by every kind of system (similarity, keypoint, hat).
-
-    A system provides ``n`` (number of labels), ``seed`` and ``child_labels()`` (per label,
-    the labels of its children); the rest follows from the matrix.
-    """
-
-    n: int
-    seed: int
-
-    def child_labels(self) -> list[np.ndarray]:
-        """Per label j, the labels of the children in j's rule."""
-        raise TypeError(f"{type(self).__name__} must define child_labels()")
-
-    def substitution_matrix(self) -> np.ndarray:
-        """M[i, j] = number of label-i children in the rule of label j."""
-        m = np.zeros((self.n, self.n), dtype=np.int64)
-        for j, kids in enumerate(self.child_labels()):
-            np.add.at(m[:, j], kids, 1)
-        return m
-
-    def perron_frobenius(self) -> tuple[float, np.ndarray]:
-        """The dominant eigenvalue of the substitution matrix and its eigenvector (sum 1).
-
-        For a primitive matrix the normalised right eigenvector gives the limiting relative
-        frequencies of the labels; for a self-similar system the eigenvalue is s**2.
-        """
-        m = self.substitution_matrix().astype(float)
-        vals, vecs = np.linalg.eig(m)
-        k = int(np.argmax(vals.real))
-        vec = np.abs(vecs[:, k].real)
-        return float(vals[k].real), vec / vec.sum()
-
-    def counts(self, generations: int, start: int | None = None) -> list[list[int]]:
-        """Label counts after 0..generations substitutions of one ``start`` tile (M^n e), exact."""
-        mo = self.substitution_matrix().astype(object)
-        v = np.zeros(self.n, dtype=object)
-        v[self.seed if start is None else start] = 1
-        out = [[int(x) for x in v]]
-        for _ in range(generations):
-            v = mo.dot(v)
-            out.append([int(x) for x in v])
-        return out
 
 
 @dataclass
@@ -153,8 +104,6 @@ def load_data(data: Mapping[str, Any], source: str = "<data>") -> Any:
     """A system of either engine from parsed data."""
     engine = data.get("engine", "similarity") if isinstance(data, Mapping) else None
     if engine == "keypoint":
-        from tilekit.plugins.substitution.keypoint import keypoint_system_from_data
-
         return keypoint_system_from_data(data, source)
     if engine not in ("similarity", None):
         raise ParseError(f"substitution system {source}: engine {engine!r} is not 'similarity' or 'keypoint'")

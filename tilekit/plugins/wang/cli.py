@@ -15,6 +15,7 @@ from tilekit.errors import ParseError
 from tilekit.plugins.wang.render import write_wang_image
 from tilekit.plugins.wang.solve import METHODS, solve
 from tilekit.plugins.wang.tileset import WangTileSet, get_tileset, load_tileset
+from tilekit.plugins.wang.tiling import WangTiling
 
 
 def _tileset(name: str) -> WangTileSet:
@@ -55,8 +56,6 @@ def wang_group() -> None:
 def render_command(set_name: str, out: str, rows: int, cols: int, seed: int, method: str, texture: str | None,
                    size: int) -> None:
     """Fill a ROWS x COLS grid with SET and draw it."""
-    from tilekit.plugins.wang import WangTiling
-
     ts = _tileset(set_name)
     grid = WangTiling(ts, seed=seed, method=method).grid(0, 0, rows, cols)
     path = write_wang_image(grid, ts, out, texture=texture, size=size)
