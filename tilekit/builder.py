@@ -33,7 +33,14 @@ from typing import Any, Protocol
 import numpy as np
 
 from tilekit.errors import GeometryError, ParameterError
-from tilekit.geometry import Affine
+from tilekit.geometry import Affine, snap_noise
+from tilekit.polygon import (
+    cyclic_equal,
+    ear_clip,
+    edge_signature,
+    interior_angles,
+    signature_rotations,
+)
 from tilekit.tiling import Patch, Prototile
 
 TWO_PI = 2.0 * math.pi
@@ -173,49 +180,6 @@ def _segment_distance(p: np.ndarray, q: np.ndarray, cx: float, cy: float) -> flo
     return math.hypot(px + u * dx - cx, py + u * dy - cy)
 
 
-def _interior_angles(pts: np.ndarray) -> np.ndarray:
-    nxt = np.roll(pts, -1, axis=0) - pts
-    prv = np.roll(pts, 1, axis=0) - pts
-    cross = nxt[:, 0] * prv[:, 1] - nxt[:, 1] * prv[:, 0]
-    dot = (nxt * prv).sum(axis=1)
-    return np.mod(np.arctan2(cross, dot), TWO_PI)
-
-
-def _ear_clip(pts: np.ndarray) -> list[np.ndarray]:
-    """Triangulate a simple CCW polygon (used to split non-convex prototiles into convex pieces)."""
-    idx = list(range(len(pts)))
-    out: list[np.ndarray] = []
-
-    def cross(o, a, b) -> float:
-        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
-
-    guard = 0
-    while len(idx) > 3 and guard < 10000:
-        guard += 1
-        n = len(idx)
-        for k in range(n):
-            i0, i1, i2 = idx[k - 1], idx[k], idx[(k + 1) % n]
-            a, b, c = pts[i0], pts[i1], pts[i2]
-            if cross(a, b, c) <= 1e-12:
-                continue
-            inside = False
-            for j in idx:
-                if j in (i0, i1, i2):
-                    continue
-                p = pts[j]
-                if cross(a, b, p) >= -1e-12 and cross(b, c, p) >= -1e-12 and cross(c, a, p) >= -1e-12:
-                    inside = True
-                    break
-            if not inside:
-                out.append(np.array([a, b, c]))
-                del idx[k]
-                break
-        else:
-            raise GeometryError("prototile outline could not be triangulated (is it simple?)")
-    out.append(pts[idx])
-    return out
-
-
 def _pad(pts: np.ndarray, k: int) -> np.ndarray:
     if len(pts) == k:
         return pts
@@ -340,7 +304,7 @@ class PatchBuilder:
                 forms.append((pts, rl, vmap, Affine.scaling(1.0, -1.0)))
             for pts, labs, vmap, base in forms:
                 sig = self._signature(pts, labs)
-                if any(q == p and self._cyclic_equal(sig, s) for q, s in signatures):
+                if any(q == p and cyclic_equal(sig, s) for q, s in signatures):
                     continue  # the mirror image is a rotated copy: no new placements
                 signatures.append((p, sig))
                 variants.append((p, pts, labs, vmap, base))
@@ -348,11 +312,11 @@ class PatchBuilder:
         convex_pieces: list[list[np.ndarray]] = []
         kmax = 3
         for _, pts, _, _, _ in variants:
-            ang = _interior_angles(pts)
+            ang = interior_angles(pts)
             if np.all(ang <= math.pi + ANGLE_TOL):
                 pieces = [pts]
             else:
-                pieces = _ear_clip(pts)
+                pieces = ear_clip(pts)
             convex_pieces.append(pieces)
             kmax = max(kmax, max(len(pc) for pc in pieces), len(pts))
         self._K = kmax
@@ -360,13 +324,9 @@ class PatchBuilder:
         for vi, (p, pts, labs, vmap, base) in enumerate(variants):
             k = len(pts)
             sig = self._signature(pts, labs)
-            seen: list[list[tuple]] = []
-            ang = _interior_angles(pts)
-            for j in range(k):
-                rot = sig[j:] + sig[:j]
-                if any(rot == s for s in seen):
-                    continue  # a symmetry of the tile maps edge j onto an earlier edge
-                seen.append(rot)
+            ang = interior_angles(pts)
+            # one edge per orbit of the tile's rotational symmetries (labels respected)
+            for j in signature_rotations(sig):
                 q0, q1 = pts[j], pts[(j + 1) % k]
                 length = float(np.hypot(*(q1 - q0)))
                 frame = Affine.segment_map((0.0, 0.0), (length, 0.0), q0, q1)
@@ -431,25 +391,12 @@ class PatchBuilder:
         return -(np.floor(frac + _DOMAIN_OFFSET) @ self.period)
 
     def _signature(self, pts: np.ndarray, labels: Sequence[Hashable]) -> list[tuple]:
-        edges = np.roll(pts, -1, axis=0) - pts
-        lengths = np.hypot(edges[:, 0], edges[:, 1])
-        ang = _interior_angles(pts)
-        q = self.tol if hasattr(self, "tol") else 1e-6
-        return [
-            (round(float(lengths[i]) / (100 * q)), round(float(ang[i]) / 1e-4), labels[i])
-            for i in range(len(pts))
-        ]
-
-    @staticmethod
-    def _cyclic_equal(a: list[tuple], b: list[tuple]) -> bool:
-        if len(a) != len(b):
-            return False
-        return any(a[s:] + a[:s] == b for s in range(len(a)))
+        return edge_signature(pts, labels, 100 * (self.tol if hasattr(self, "tol") else 1e-6))
 
     def _fillable_angles(self) -> np.ndarray | None:
         """Sorted sums (<= 2π) of corner angles with repetition: the angles an open vertex's
         gap can still be filled with. None when there are too many to be a useful test."""
-        angles = sorted({round(float(a), 9) for _, pts, _, _, _ in self._variants for a in _interior_angles(pts)})
+        angles = sorted({round(float(a), 9) for _, pts, _, _, _ in self._variants for a in interior_angles(pts)})
         sums = {0.0}
         frontier = {0.0}
         while frontier:
@@ -1120,8 +1067,7 @@ class PatchBuilder:
         protos = np.array([self._cands[t.cand].prototile for t in tiles], dtype=np.int64)
         # float noise below 1e-12 is set to zero (e.g. 6e-16 versus 5e-16 at a shared vertex
         # on an axis), which otherwise trips GEOS's overlay in Patch.validate
-        transforms = np.array([t.transform for t in tiles])
-        transforms[np.abs(transforms) < 1e-12] = 0.0
+        transforms = snap_noise(np.array([t.transform for t in tiles]))
         return Patch(self.prototiles, protos, transforms, protos.copy(), np.zeros(len(protos), dtype=np.int64))
 
     # ------------------------------------------------------------------ inspection

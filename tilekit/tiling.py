@@ -20,7 +20,8 @@ from shapely.geometry.base import BaseGeometry
 
 from tilekit.colouring import Colouring
 from tilekit.errors import GeometryError, ParameterError, ParseError
-from tilekit.geometry import AREA_TOL, EPS, Affine, as_region, centroid, signed_area
+from tilekit.geometry import AREA_TOL, EPS, Affine, as_region
+from tilekit.polygon import centroid, signed_area
 from tilekit.render import patch_to_svg
 
 #: Refuse to rasterize more lattice cells than this in one patch (a typo guard, not a limit

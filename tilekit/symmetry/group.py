@@ -10,6 +10,7 @@ import numpy as np
 
 from tilekit.errors import GeometryError
 from tilekit.geometry import Affine
+from tilekit.polygon import congruences
 from tilekit.symmetry.cell import DEFAULT_TOL, _abs_tol, _base_cell, _Cell, _check, _colour_cell
 from tilekit.symmetry.lattice import (
     _cell_area,
@@ -18,7 +19,7 @@ from tilekit.symmetry.lattice import (
     _lattice_residual,
     _small_combos,
 )
-from tilekit.symmetry.matching import _congruences, _images, _locate
+from tilekit.symmetry.matching import _images, _locate
 from tilekit.symmetry.results import Operation, SymmetryGroup, _operation
 from tilekit.tiling import PeriodicTiling
 
@@ -141,7 +142,7 @@ def _group_of_cell(cell: _Cell) -> SymmetryGroup:
     anchor = int(np.argmin(counts[cell.label] * 10_000 + np.arange(len(cell))))
     a = cell.outlines[anchor]
     cands = [
-        _congruences(a, cell.outlines[j], cell.tol)
+        congruences(a, cell.outlines[j], cell.tol)
         for j in range(len(cell))
         if cell.label[j] == cell.label[anchor]
     ]

@@ -15,43 +15,6 @@ from tilekit.symmetry.lattice import _inv2
 _BLOCK_PAIRS = 2_000_000
 
 
-def _congruences(a: np.ndarray, b: np.ndarray, tol: float) -> np.ndarray:
-    """Every isometry mapping the cyclic outline ``a`` onto ``b`` (same point count), (c, 3, 3)."""
-    k = len(a)
-    za = a[:, 0] + 1j * a[:, 1]
-    zb = b[:, 0] + 1j * b[:, 1]
-    ca, cb = za.mean(), zb.mean()
-    a0, b0 = za - ca, zb - cb
-    i = int(np.argmax(np.abs(a0)))
-    if abs(a0[i]) < tol:
-        return np.zeros((0, 3, 3))
-    j = np.arange(k)
-    out = []
-    forward = (j[:, None] + j[None, :]) % k  # row s: b[(s + j) % k]
-    backward = (j[:, None] - j[None, :]) % k  # row s: b[(s - j) % k]
-    # placed outlines may run either way round (a reflected placement reverses its
-    # order), so both traversal directions are tried for direct and opposite maps
-    for opposite, idx in ((False, forward), (False, backward), (True, forward), (True, backward)):
-        src = np.conj(a0) if opposite else a0
-        tgt = b0[idx]
-        r = tgt[:, i] / src[i]
-        ok = np.abs(np.abs(r) - 1.0) < tol / abs(a0[i])
-        r = r / np.where(np.abs(r) > 0, np.abs(r), 1.0)
-        ok &= np.max(np.abs(r[:, None] * src[None, :] - tgt), axis=1) < tol
-        for rr in r[ok]:
-            if opposite:
-                lin = np.array([[rr.real, rr.imag], [rr.imag, -rr.real]])
-                t = cb - rr * np.conj(ca)
-            else:
-                lin = np.array([[rr.real, -rr.imag], [rr.imag, rr.real]])
-                t = cb - rr * ca
-            m = np.eye(3)
-            m[:2, :2] = lin
-            m[:2, 2] = (t.real, t.imag)
-            out.append(m)
-    return np.array(out) if out else np.zeros((0, 3, 3))
-
-
 def _candidate_pairs(cell: _Cell, centre: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(image, cell tile) pairs whose centres may agree modulo the lattice: a grid hash.
 

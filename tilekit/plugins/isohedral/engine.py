@@ -19,7 +19,7 @@ import shapely
 
 from tilekit.colouring import Colouring
 from tilekit.errors import GeometryError, ParameterError, ParseError
-from tilekit.geometry import Affine, signed_area
+from tilekit.geometry import Affine, snap_noise
 from tilekit.plugins.isohedral.analysis import is_perfect_colouring
 from tilekit.plugins.isohedral.properties import type_properties
 from tilekit.plugins.isohedral.shapes import (
@@ -40,6 +40,7 @@ from tilekit.plugins.isohedral.templates import (
     load_parameterizations,
     topology_valences,
 )
+from tilekit.polygon import signed_area
 from tilekit.tiling import Patch, PeriodicTiling, Prototile
 
 FAMILY = "isohedral"
@@ -200,18 +201,13 @@ def compute_unit(template: Template, verts: np.ndarray) -> tuple[np.ndarray, np.
         else:
             known[rule.target] = m
     aspects = np.stack([known[a] for a in template.aspects])
-    return _snap(aspects), _snap(vectors["v1"]), _snap(vectors["v2"]), engine
+    return snap_noise(aspects, 1e-10), snap_noise(vectors["v1"], 1e-10), snap_noise(vectors["v2"], 1e-10), engine
 
 
 def tile_outlines(patch: Patch, prototile: int = 0) -> np.ndarray:
     """(n, k, 2) outlines of the patch's tiles of one prototile (one batched transform)."""
     idx = np.flatnonzero(patch.prototile == prototile)
     return Affine.apply(patch.transform[idx], patch.prototiles[prototile].outline)
-
-
-def _snap(x: np.ndarray) -> np.ndarray:
-    """Round float noise (|x| < 1e-10) to zero, so lattice rows stay exactly axis-aligned."""
-    return np.where(np.abs(x) < 1e-10, 0.0, x)
 
 
 # --------------------------------------------------------------------------- the tiling
@@ -392,7 +388,7 @@ class IsohedralTiling(PeriodicTiling):
         bit for bit; GEOS overlays of nearly-but-not-exactly coincident edges are not robust.
         """
         out = super().patch(region)
-        out.transform = np.round(out.transform, 12)
+        out.transform = snap_noise(out.transform, 0.0, decimals=12)
         out._geoms = None
         return out
 

@@ -29,9 +29,10 @@ from tilekit.errors import GeometryError, ParameterError
 from tilekit.geometry import Affine
 from tilekit.plugins.isohedral.engine import HopEngine, edge_frames, laves_polygon
 from tilekit.plugins.isohedral.properties import type_properties
-from tilekit.plugins.isohedral.shapes import FLIP, IDENTITY, ROFL
+from tilekit.plugins.isohedral.shapes import ROFL
 from tilekit.plugins.isohedral.symbols import IncidenceSymbol
 from tilekit.plugins.isohedral.templates import get_template
+from tilekit.polygon import vertex_symmetries
 from tilekit.symmetry import successive_minima
 from tilekit.tiling import Patch, PeriodicTiling, Prototile
 
@@ -157,19 +158,11 @@ def marked_tiling(ih: int) -> MarkedTiling:
 
 
 def _polygon_symmetries(verts: np.ndarray) -> list[tuple[int, bool, np.ndarray]]:
+    """The Laves tile's symmetries as (shift, reflect, matrix): edge 0 goes to edge ``shift``,
+    reversed when ``reflect`` (from :func:`tilekit.polygon.vertex_symmetries`)."""
     n = len(verts)
-    frames = edge_frames(verts)
-    inv = Affine.inverse(frames)
-    out = []
-    for reflect in (False, True):
-        for shift in range(n):
-            m = frames[shift] @ (FLIP if reflect else IDENTITY) @ inv[0]
-            if not Affine.is_isometry(m):
-                continue
-            img = Affine.apply(m, verts)
-            if np.all(np.linalg.norm(img[:, None] - verts[None], axis=2).min(axis=1) < 1e-7):
-                out.append((shift, reflect, m))
-    return out
+    out = [((j if d == 1 else j - 1) % n, d == -1, m) for j, d, m in vertex_symmetries(verts)]
+    return sorted(out, key=lambda s: (s[1], s[0]))
 
 
 def _subgroups(mats: list[np.ndarray]) -> list[dict[tuple[float, ...], np.ndarray]]:

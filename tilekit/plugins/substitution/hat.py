@@ -31,6 +31,7 @@ from tilekit.errors import ParameterError, ParseError
 from tilekit.geometry import Affine
 from tilekit.plugins.substitution.keypoint import MonotileSystem, _meets, expand_by_label
 from tilekit.plugins.substitution.rules import Rule
+from tilekit.polygon import signed_area
 from tilekit.resources import catalogue_dir, read_toml
 from tilekit.tiling import Prototile
 
@@ -356,7 +357,7 @@ def hat_system_from_data(data: Mapping[str, Any], source: str = "<data>") -> Hat
     raw = _pairs(tile_data["outline"], "[tile] outline", fail)
     outline = lattice_points(raw)
     # Prototile wants a CCW outline; placements below are computed on the raw vertex order.
-    ccw = outline if _signed_area(outline) > 0 else outline[::-1]
+    ccw = outline if signed_area(outline) > 0 else outline[::-1]
     try:
         tile = Prototile(ccw, name=str(tile_data.get("name", "hat")))
     except Exception as exc:  # GeometryError
@@ -445,11 +446,6 @@ def _pairs(value: Any, ctx: str, fail: Any) -> np.ndarray:
     if arr.ndim != 2 or arr.shape[1] != 2 or len(arr) < 1:
         raise fail(f"{ctx} must be a list of [a, b] lattice pairs")
     return arr
-
-
-def _signed_area(pts: np.ndarray) -> float:
-    x, y = pts[:, 0], pts[:, 1]
-    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
 
 
 def check_hat_system(system: HatSystem, levels: int = 2) -> None:

@@ -35,6 +35,8 @@ from tilekit.geometry import Affine
 from tilekit.plugins.substitution.expr import constants_with, evaluate
 from tilekit.plugins.substitution.keypoint import keypoint_system_from_data
 from tilekit.plugins.substitution.rules import MatrixFacts, Rule
+from tilekit.polygon import inscribed_disc as inscribed_disc  # moved to tilekit.polygon
+from tilekit.polygon import symmetry_maps as outline_symmetries  # moved to tilekit.polygon
 from tilekit.resources import read_toml
 from tilekit.tiling import Prototile
 
@@ -396,30 +398,6 @@ def check_system(system: SubstitutionSystem, names: Sequence[str]) -> None:
 # ---------------------------------------------------------------------- symmetry
 
 
-def outline_symmetries(outline: np.ndarray, tol: float = 1e-7) -> np.ndarray:
-    """All isometries mapping the outline onto itself (k, 3, 3), identity first."""
-    pts = np.asarray(outline, dtype=float)
-    k = len(pts)
-    out = [np.eye(3)]
-    for j in range(k):
-        for direction in (1, -1):
-            if j == 0 and direction == 1:
-                continue
-            src = pts[[0, 1, 2]]
-            dst = pts[[j % k, (j + direction) % k, (j + 2 * direction) % k]]
-            try:
-                m = affine_from_points(src, dst)
-            except GeometryError:
-                continue
-            if not Affine.is_isometry(m, tol=1e-6):
-                continue
-            img = Affine.apply(m, pts)
-            perm = pts[[(j + direction * i) % k for i in range(k)]]
-            if np.allclose(img, perm, atol=tol * max(1.0, float(np.abs(pts).max()))):
-                out.append(m)
-    return np.array(out)
-
-
 def rule_symmetries(system: SubstitutionSystem) -> list[np.ndarray]:
     """Per prototile, the outline symmetries that also preserve its substitution (exercise 6.7).
 
@@ -473,13 +451,3 @@ def inflation_radii(system: SubstitutionSystem) -> tuple[np.ndarray, np.ndarray]
             break
         radius = new
     return centres, radius * (1 + 1e-9) + 1e-12
-
-
-def inscribed_disc(outline: np.ndarray) -> tuple[np.ndarray, float]:
-    """A large disc inside the outline (centre, radius), by shapely's polylabel."""
-    from shapely.ops import polylabel
-
-    poly = shapely.Polygon(outline)
-    tol = math.sqrt(poly.area) * 1e-4
-    c = polylabel(poly, tolerance=tol)
-    return np.array([c.x, c.y]), float(poly.exterior.distance(c))

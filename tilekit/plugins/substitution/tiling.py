@@ -28,7 +28,8 @@ from tilekit.plugins.substitution.shapes import (
     halves_mirror,
     parse_edge_shape,
 )
-from tilekit.plugins.substitution.system import SubstitutionSystem, inscribed_disc, load_data
+from tilekit.plugins.substitution.system import SubstitutionSystem, load_data
+from tilekit.polygon import inscribed_disc
 from tilekit.tiling import Patch, Prototile, Tiling
 
 #: Refuse depths whose full expansion would be absurd even with region culling.
