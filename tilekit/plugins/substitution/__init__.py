@@ -99,3 +99,9 @@ def tilekit_catalogue_records() -> list[CatalogueRecord]:
             )
         )
     return records
+
+
+@tilekit.hookimpl
+def tilekit_claim_file(path: str) -> str | None:
+    """Substitution systems are TOML (or JSON) files."""
+    return "substitution" if Path(path).suffix.lower() in (".toml", ".json") else None

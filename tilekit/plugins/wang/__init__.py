@@ -201,3 +201,9 @@ def tilekit_searches() -> list[Search]:
 @tilekit.hookimpl
 def tilekit_cli_commands(cli: Any) -> None:
     cli.add_command(wang_group)
+
+
+@tilekit.hookimpl
+def tilekit_claim_file(path: str) -> str | None:
+    """Wang tile sets are ``.wang`` files."""
+    return FAMILY if Path(path).suffix.lower() == ".wang" else None
