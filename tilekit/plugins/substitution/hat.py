@@ -29,7 +29,13 @@ import shapely
 
 from tilekit.errors import ParameterError, ParseError
 from tilekit.geometry import Affine
-from tilekit.plugins.substitution.keypoint import MonotileSystem, _meets, expand_by_label
+from tilekit.plugins.substitution.keypoint import MonotileSystem
+from tilekit.plugins.substitution.levels import (
+    expand_base,
+    expand_by_label,
+    meets_discs,
+    substitute_levels,
+)
 from tilekit.plugins.substitution.rules import Rule
 from tilekit.polygon import signed_area
 from tilekit.resources import catalogue_dir, read_toml
@@ -274,28 +280,22 @@ class HatSystem(MonotileSystem):
                 f"hat depth {depth} would make {count} hats; the limit is {MAX_TILES} (give a smaller depth or a region)"
             )
         lattice = np.eye(3, dtype=np.int64)[None]
-        for n in range(depth, 0, -1):
-            if box is not None:
-                keep = _meets(label, _placed(seed_transform, lattice), self.bounds(n), box)
-                label, lattice = label[keep], lattice[keep]
-            label, lattice = self._expand(label, lattice, n)
-        if box is not None and len(label):
-            keep = _meets(label, _placed(seed_transform, lattice), self.bounds(0), box)
-            label, lattice = label[keep], lattice[keep]
-        out_t, out_c = [], []
+
+        def cull(label: np.ndarray, lattice: np.ndarray, n: int) -> np.ndarray:
+            return meets_discs(label, _placed(seed_transform, lattice), self.bounds(n), box)
+
+        label, lattice = substitute_levels(label, lattice, depth, self._expand, cull if box is not None else None)
+        colours = []
         for j, placements in enumerate(self.base):
-            idx = np.flatnonzero(label == j)
-            if not len(idx):
-                continue
-            out_t.append(np.matmul(lattice[idx][:, None], placements[None]).reshape(-1, 3, 3))
             colour = np.full(len(placements), 1 + j, dtype=np.int64)
             if j == 0:
                 colour = (np.linalg.det(placements[:, :2, :2]) < 0).astype(np.int64)
-            out_c.append(np.tile(colour, len(idx)))
-        if not out_t:
+            colours.append(colour)
+        lattice, colour = expand_base(label, lattice, self.base, colours)
+        if not len(lattice):
             return np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3)), np.zeros(0, dtype=np.int64)
-        transform = _placed(seed_transform, np.concatenate(out_t))
-        return np.zeros(len(transform), dtype=np.int64), transform, np.concatenate(out_c)
+        transform = _placed(seed_transform, lattice)
+        return np.zeros(len(transform), dtype=np.int64), transform, colour
 
 
 def _placed(seed_transform: np.ndarray | None, lattice: np.ndarray) -> np.ndarray:
