@@ -235,7 +235,7 @@ def _polygon_from(angles: list[float], radii: list[float]) -> np.ndarray | None:
         proto = Prototile(pts)
     except Exception:
         return None
-    from tilekit.builder import _interior_angles
+    from tilekit.polygon import interior_angles as _interior_angles
 
     ang = _interior_angles(proto.outline)
     if ang.min() < math.radians(20) or ang.max() > math.radians(160):

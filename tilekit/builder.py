@@ -33,7 +33,14 @@ from typing import Any, Protocol
 import numpy as np
 
 from tilekit.errors import GeometryError, ParameterError
-from tilekit.geometry import Affine
+from tilekit.geometry import Affine, snap_noise
+from tilekit.polygon import (
+    cyclic_equal,
+    ear_clip,
+    edge_signature,
+    interior_angles,
+    signature_rotations,
+)
 from tilekit.tiling import Patch, Prototile
 
 TWO_PI = 2.0 * math.pi
@@ -173,49 +180,6 @@ def _segment_distance(p: np.ndarray, q: np.ndarray, cx: float, cy: float) -> flo
     return math.hypot(px + u * dx - cx, py + u * dy - cy)
 
 
-def _interior_angles(pts: np.ndarray) -> np.ndarray:
-    nxt = np.roll(pts, -1, axis=0) - pts
-    prv = np.roll(pts, 1, axis=0) - pts
-    cross = nxt[:, 0] * prv[:, 1] - nxt[:, 1] * prv[:, 0]
-    dot = (nxt * prv).sum(axis=1)
-    return np.mod(np.arctan2(cross, dot), TWO_PI)
-
-
-def _ear_clip(pts: np.ndarray) -> list[np.ndarray]:
-    """Triangulate a simple CCW polygon (used to split non-convex prototiles into convex pieces)."""
-    idx = list(range(len(pts)))
-    out: list[np.ndarray] = []
-
-    def cross(o, a, b) -> float:
-        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
-
-    guard = 0
-    while len(idx) > 3 and guard < 10000:
-        guard += 1
-        n = len(idx)
-        for k in range(n):
-            i0, i1, i2 = idx[k - 1], idx[k], idx[(k + 1) % n]
-            a, b, c = pts[i0], pts[i1], pts[i2]
-            if cross(a, b, c) <= 1e-12:
-                continue
-            inside = False
-            for j in idx:
-                if j in (i0, i1, i2):
-                    continue
-                p = pts[j]
-                if cross(a, b, p) >= -1e-12 and cross(b, c, p) >= -1e-12 and cross(c, a, p) >= -1e-12:
-                    inside = True
-                    break
-            if not inside:
-                out.append(np.array([a, b, c]))
-                del idx[k]
-                break
-        else:
-            raise GeometryError("prototile outline could not be triangulated (is it simple?)")
-    out.append(pts[idx])
-    return out
-
-
 def _pad(pts: np.ndarray, k: int) -> np.ndarray:
     if len(pts) == k:
         return pts
@@ -269,6 +233,153 @@ class _Tile:
     pieces: list[int]
     cells: list[tuple[int, int]]
     bbox: tuple[float, float, float, float]
+
+
+
+@dataclass
+class _Run:
+    """One call of :meth:`PatchBuilder.build`: its goal, statistics and budget."""
+
+    tiles: int | None
+    radius: float | None
+    fill: Callable[[dict[str, Any]], bool] | None
+    periodic: bool
+    stats: BuildStats
+    started: float
+    deadline: float | None
+    max_nodes: int
+    max_seconds: float | None
+
+    def goal_text(self) -> str:
+        if self.tiles is not None:
+            return f"{self.tiles} tiles"
+        if self.radius is not None:
+            return f"the disc of radius {self.radius:g}"
+        return "every edge the fill predicate asks for" if self.fill is not None else "a closed torus"
+
+    def over_budget(self, strict: bool) -> bool:
+        """Node or time budget spent. Between failed candidates the clock is read every 64
+        nodes only (``strict=False``); after a placement, always."""
+        if self.stats.nodes >= self.max_nodes:
+            return True
+        if self.deadline is None:
+            return False
+        if not strict and (self.stats.nodes & 63) != 0:
+            return False
+        return time.perf_counter() > self.deadline
+
+
+Edge = tuple[int, int]
+
+
+class _Frontier:
+    """The open edges of the patch, in a heap keyed by the builder's order and kept up to
+    date incrementally, so choosing the next edge costs O(log n), never a scan of every open
+    edge (which made periodic, fill and callable-order builds quadratic).
+
+    Static orders (bfs, dfs, nearest) key an edge once, when it opens. A callable order or a
+    fill predicate may read an edge's ``angle_sum``, which changes as tiles are placed and
+    undone round its end points: such edges are marked dirty when an end point's angle sum
+    changes and re-keyed (or, for ``fill``, re-asked) before the next choice, with a version
+    number per edge so that superseded heap entries are skipped. Every open edge has exactly
+    one live entry with its current key, and keys end with the edge's serial number, so the
+    choice is the same as the scan's minimum. With a period, edges of lattice images are
+    never chosen (they are filled through their representative)."""
+
+    def __init__(self, builder: PatchBuilder, radius: float | None, fill: Callable[[dict[str, Any]], bool] | None) -> None:
+        self.b = builder
+        self.order = builder.order
+        self.fill = fill
+        self.limit = None if radius is None else radius - builder.tol
+        self.dynamic = callable(self.order) or fill is not None
+        self.heap: list[tuple[Any, int, int, Edge]] = []  # (key, serial, version, edge)
+        self.dheap: list[tuple[float, int, Edge]] = []  # (distance, serial, edge): the covered disc
+        self.version: dict[Edge, int] = {}
+        self.dirty: set[Edge] = set()
+        self.at_vertex: dict[int, set[Edge]] = {}
+
+    def opened(self, e: Edge) -> None:
+        """``e`` became open: placed with no partner, or its partner was undone."""
+        _, _, serial, dist = self.b._edges[e]
+        heapq.heappush(self.dheap, (dist, serial, e))
+        if self.dynamic:
+            for v in e:
+                self.at_vertex.setdefault(v, set()).add(e)
+            self.dirty.add(e)
+        else:
+            order = self.order
+            key: Any = serial if order == "bfs" else (-serial if order == "dfs" else (round(dist, 9), serial))
+            heapq.heappush(self.heap, (key, serial, 0, e))
+
+    def closed(self, e: Edge) -> None:
+        """``e`` stopped being open (its heap entries die lazily)."""
+        if self.dynamic:
+            for v in e:
+                edges = self.at_vertex.get(v)
+                if edges is not None:
+                    edges.discard(e)
+
+    def touched(self, vertices: Sequence[int]) -> None:
+        """The angle sums at ``vertices`` changed: re-key their open edges before the next choice."""
+        if self.dynamic:
+            for v in vertices:
+                self.dirty.update(self.at_vertex.get(v, ()))
+
+    def _live(self, e: Edge, serial: int) -> bool:
+        return e in self.b._open and self.b._edges[e][2] == serial
+
+    def _rekey(self) -> None:
+        b, canon = self.b, (self.b._canon if self.b.period is not None else None)
+        for e in self.dirty:
+            if e not in b._open:
+                continue
+            info = b._edges[e]
+            if canon is not None and info[0] not in canon:
+                continue
+            if self.limit is not None and info[3] >= self.limit:
+                continue
+            version = self.version.get(e, 0) + 1
+            self.version[e] = version
+            data = b._edge_info(e)
+            if self.fill is not None and not self.fill(data):
+                continue
+            order = self.order
+            if order == "bfs":
+                key: Any = info[2]
+            elif order == "dfs":
+                key = -info[2]
+            elif order == "nearest":
+                key = (round(info[3], 9), info[2])
+            else:
+                key = (order(data), info[2])
+            heapq.heappush(self.heap, (key, info[2], version, e))
+        self.dirty.clear()
+
+    def choose(self) -> tuple[Edge | None, float]:
+        """The open edge to fill next (None: none left that the goal wants) and the radius of
+        the disc round the centre that the patch covers (the nearest open edge's distance)."""
+        if self.dirty:
+            self._rekey()
+        dheap = self.dheap
+        while dheap and not self._live(dheap[0][2], dheap[0][1]):
+            heapq.heappop(dheap)
+        covered = dheap[0][0] if dheap else math.inf
+        heap, b = self.heap, self.b
+        canon = b._canon if b.period is not None else None
+        while heap:
+            _, serial, version, e = heap[0]
+            if not self._live(e, serial) or (self.dynamic and self.version.get(e) != version):
+                heapq.heappop(heap)
+                continue
+            info = b._edges[e]
+            if canon is not None and info[0] not in canon:
+                heapq.heappop(heap)  # an image's edge: filled through its representative
+                continue
+            if self.limit is not None and info[3] >= self.limit:
+                heapq.heappop(heap)  # outside the disc for good: its distance never changes
+                continue
+            return e, covered
+        return None, covered
 
 
 class PatchBuilder:
@@ -340,7 +451,7 @@ class PatchBuilder:
                 forms.append((pts, rl, vmap, Affine.scaling(1.0, -1.0)))
             for pts, labs, vmap, base in forms:
                 sig = self._signature(pts, labs)
-                if any(q == p and self._cyclic_equal(sig, s) for q, s in signatures):
+                if any(q == p and cyclic_equal(sig, s) for q, s in signatures):
                     continue  # the mirror image is a rotated copy: no new placements
                 signatures.append((p, sig))
                 variants.append((p, pts, labs, vmap, base))
@@ -348,11 +459,11 @@ class PatchBuilder:
         convex_pieces: list[list[np.ndarray]] = []
         kmax = 3
         for _, pts, _, _, _ in variants:
-            ang = _interior_angles(pts)
+            ang = interior_angles(pts)
             if np.all(ang <= math.pi + ANGLE_TOL):
                 pieces = [pts]
             else:
-                pieces = _ear_clip(pts)
+                pieces = ear_clip(pts)
             convex_pieces.append(pieces)
             kmax = max(kmax, max(len(pc) for pc in pieces), len(pts))
         self._K = kmax
@@ -360,13 +471,9 @@ class PatchBuilder:
         for vi, (p, pts, labs, vmap, base) in enumerate(variants):
             k = len(pts)
             sig = self._signature(pts, labs)
-            seen: list[list[tuple]] = []
-            ang = _interior_angles(pts)
-            for j in range(k):
-                rot = sig[j:] + sig[:j]
-                if any(rot == s for s in seen):
-                    continue  # a symmetry of the tile maps edge j onto an earlier edge
-                seen.append(rot)
+            ang = interior_angles(pts)
+            # one edge per orbit of the tile's rotational symmetries (labels respected)
+            for j in signature_rotations(sig):
                 q0, q1 = pts[j], pts[(j + 1) % k]
                 length = float(np.hypot(*(q1 - q0)))
                 frame = Affine.segment_map((0.0, 0.0), (length, 0.0), q0, q1)
@@ -431,25 +538,12 @@ class PatchBuilder:
         return -(np.floor(frac + _DOMAIN_OFFSET) @ self.period)
 
     def _signature(self, pts: np.ndarray, labels: Sequence[Hashable]) -> list[tuple]:
-        edges = np.roll(pts, -1, axis=0) - pts
-        lengths = np.hypot(edges[:, 0], edges[:, 1])
-        ang = _interior_angles(pts)
-        q = self.tol if hasattr(self, "tol") else 1e-6
-        return [
-            (round(float(lengths[i]) / (100 * q)), round(float(ang[i]) / 1e-4), labels[i])
-            for i in range(len(pts))
-        ]
-
-    @staticmethod
-    def _cyclic_equal(a: list[tuple], b: list[tuple]) -> bool:
-        if len(a) != len(b):
-            return False
-        return any(a[s:] + a[:s] == b for s in range(len(a)))
+        return edge_signature(pts, labels, 100 * (self.tol if hasattr(self, "tol") else 1e-6))
 
     def _fillable_angles(self) -> np.ndarray | None:
         """Sorted sums (<= 2π) of corner angles with repetition: the angles an open vertex's
         gap can still be filled with. None when there are too many to be a useful test."""
-        angles = sorted({round(float(a), 9) for _, pts, _, _, _ in self._variants for a in _interior_angles(pts)})
+        angles = sorted({round(float(a), 9) for _, pts, _, _, _ in self._variants for a in interior_angles(pts)})
         sums = {0.0}
         frontier = {0.0}
         while frontier:
@@ -466,7 +560,7 @@ class PatchBuilder:
         return np.array(sorted(sums))
 
     # ------------------------------------------------------------------ state
-    def _reset(self) -> None:
+    def _reset(self, radius: float | None = None, fill: Callable[[dict[str, Any]], bool] | None = None) -> None:
         self._tiles: list[_Tile] = []
         self._vkey: dict[tuple[int, int], int] = {}
         self._vpos: list[tuple[float, float]] = []
@@ -483,9 +577,8 @@ class PatchBuilder:
         self._pnorm = np.zeros((cap, self._K, 2))
         self._pmin = np.zeros((cap, self._K))
         self._pmax = np.zeros((cap, self._K))
-        self._heap: list[tuple[Any, int, tuple[int, int]]] = []
+        self._frontier = _Frontier(self, radius, fill)
         self._directions: dict[int, float] = {}
-        self._dheap: list[tuple[float, int, tuple[int, int]]] = []
         self._pcount = 0
         self._pfree: list[int] = []
         self._tpts = np.zeros((cap, self._K, 2))
@@ -678,6 +771,7 @@ class PatchBuilder:
                 Corner(t, cand.prototile, cand.vertex_map[i], float(cand.angles[i]), start)
             )
             self._vsum[v] += float(cand.angles[i])
+        self._frontier.touched(full)
         edges = []
         cx, cy = float(self._centre[0]), float(self._centre[1])
         for i in range(k):
@@ -688,9 +782,10 @@ class PatchBuilder:
             edges.append((a, b))
             if (b, a) in self._open:
                 self._open.discard((b, a))
+                self._frontier.closed((b, a))
             else:
                 self._open.add((a, b))
-                self._push((a, b))
+                self._frontier.opened((a, b))
         piece_ids = []
         for pc, pn, lo, hi in zip(pieces, normals, amin, amax):
             pid = self._alloc_piece()
@@ -725,9 +820,10 @@ class PatchBuilder:
             del self._edges[(a, b)]
             if (a, b) in self._open:
                 self._open.discard((a, b))
+                self._frontier.closed((a, b))
             elif (b, a) in self._edges:
                 self._open.add((b, a))
-                self._push((b, a))
+                self._frontier.opened((b, a))
         for v in tile.vids:
             corners = self._vcorners[v]
             for idx in range(len(corners) - 1, -1, -1):
@@ -735,6 +831,7 @@ class PatchBuilder:
                     self._vsum[v] -= corners[idx].angle
                     del corners[idx]
                     break
+        self._frontier.touched(tile.vids)
         for v in reversed(tile.new_vids):
             self._drop_vertex(v)
 
@@ -797,42 +894,6 @@ class PatchBuilder:
         return True
 
     # ------------------------------------------------------------------ frontier
-    def _push(self, e: tuple[int, int]) -> None:
-        """Queue an edge that just became open (static keys: serial and distance)."""
-        if callable(self.order):
-            return
-        _, _, serial, dist = self._edges[e]
-        key: Any = serial if self.order == "bfs" else (-serial if self.order == "dfs" else (round(dist, 9), serial))
-        heapq.heappush(self._heap, (key, serial, e))
-        heapq.heappush(self._dheap, (dist, serial, e))
-
-    def _valid(self, entry: tuple[Any, int, tuple[int, int]]) -> bool:
-        e = entry[2]
-        return e in self._open and self._edges[e][2] == entry[1]
-
-    def _choose(
-        self, centre: np.ndarray, radius: float | None, fill: Callable[[dict[str, Any]], bool] | None = None
-    ) -> tuple[tuple[int, int] | None, float]:
-        """The open edge to fill next, and the radius of the disc the patch covers."""
-        if callable(self.order) or fill is not None or self.period is not None:
-            return self._choose_by_scan(radius, fill)
-        dheap = self._dheap
-        while dheap and not self._valid(dheap[0]):
-            heapq.heappop(dheap)
-        covered = dheap[0][0] if dheap else math.inf
-        heap = self._heap
-        limit = None if radius is None else radius - self.tol
-        while heap:
-            top = heap[0]
-            if not self._valid(top):
-                heapq.heappop(heap)
-                continue
-            if limit is not None and self._edges[top[2]][3] >= limit:
-                heapq.heappop(heap)  # outside the disc for good: its distance never changes
-                continue
-            return top[2], covered
-        return None, covered
-
     def _edge_info(self, e: tuple[int, int]) -> dict[str, Any]:
         info = self._edges[e]
         pa, pb = self._vpos[e[0]], self._vpos[e[1]]
@@ -846,36 +907,6 @@ class PatchBuilder:
             "tile": info[0],
             "prototile": self._cands[self._tiles[info[0]].cand].prototile,
         }
-
-    def _choose_by_scan(
-        self, radius: float | None, fill: Callable[[dict[str, Any]], bool] | None = None
-    ) -> tuple[tuple[int, int] | None, float]:
-        best = None
-        best_key = None
-        covered = math.inf
-        canon = self._canon if self.period is not None else None
-        for e in self._open:  # the key ends with the serial, so the choice is order-free
-            info = self._edges[e]
-            if canon is not None and info[0] not in canon:
-                continue  # an image's edge: filled through its representative
-            dist = info[3]
-            covered = min(covered, dist)
-            if radius is not None and dist >= radius - self.tol:
-                continue
-            data = self._edge_info(e)
-            if fill is not None and not fill(data):
-                continue
-            if self.order == "bfs":
-                key: Any = info[2]
-            elif self.order == "dfs":
-                key = -info[2]
-            elif self.order == "nearest":
-                key = (round(dist, 9), info[2])
-            else:
-                key = (self.order(data), info[2])
-            if best_key is None or key < best_key:
-                best, best_key = e, key
-        return best, covered
 
     def _snap_direction(self, theta: float) -> float:
         """The first direction seen within 1e-9 rad of ``theta``, so tiles placed along
@@ -937,6 +968,15 @@ class PatchBuilder:
         representatives cover the fundamental domain's area); ``tiles`` counts
         representatives, ``fill`` sees their open edges only, and the patch returned holds
         the representatives (one tile per orbit). A radius goal needs the plane."""
+        self._check_goal(tiles, radius, fill, seed, max_nodes)
+        started = time.perf_counter()
+        run = _Run(tiles, radius, fill, self.period is not None, BuildStats(), started,
+                   None if max_seconds is None else started + max_seconds, max_nodes, max_seconds)
+        self._reset(radius, fill)
+        failed = self._place_seed(seed, seed_transform, run)
+        return failed if failed is not None else self._search(run)
+
+    def _check_goal(self, tiles: int | None, radius: float | None, fill: Any, seed: int, max_nodes: int) -> None:
         goals = sum(g is not None for g in (tiles, radius, fill))
         if self.period is not None:
             if radius is not None:
@@ -953,10 +993,11 @@ class PatchBuilder:
             raise ParameterError(f"seed={seed} is not a prototile index 0..{len(self.prototiles) - 1}")
         if max_nodes < 1:
             raise ParameterError(f"max_nodes={max_nodes} must be at least 1")
-        started = time.perf_counter()
-        stats = BuildStats()
-        self._reset()
-        # the seed tile: its variant 0 as given, edge 0 in the local frame
+
+    def _place_seed(self, seed: int, seed_transform: np.ndarray | None, run: _Run) -> BuildResult | None:
+        """Place the seed tile (its variant 0 as given, edge 0 in the local frame) and, on a
+        torus, its lattice images; an exhausted result when that already fails."""
+        stats = run.stats
         seed_ci = next(i for i, c in enumerate(self._cands) if c.prototile == seed and c.variant == min(
             c2.variant for c2 in self._cands if c2.prototile == seed))
         cand = self._cands[seed_ci]
@@ -967,108 +1008,125 @@ class PatchBuilder:
         normals = cand.normals @ frame[:2, :2].T
         nxt = cand.outline_next @ frame[:2, :2].T + frame[:2, 2]
         bbox = (float(pts[:, 0].min()), float(pts[:, 1].min()), float(pts[:, 0].max()), float(pts[:, 1].max()))
-        centre = pts.mean(axis=0) if tiles is not None or self.period is not None else np.asarray(
+        self._centre = pts.mean(axis=0) if run.tiles is not None or run.periodic else np.asarray(
             Patch(self.prototiles, [seed], [placement]).centres()[0]
         )
-        self._centre = centre
         self._origin = pts.mean(axis=0)
         shift = normals @ frame[:2, 2]
         self._commit(seed_ci, frame @ cand.base, pts, [None] * len(pts), pieces, bbox, normals, nxt,
                      cand.proj_min + shift, cand.proj_max + shift)
         stats.placements = 1
-        if self.period is not None:
+        if run.periodic:
             self._canon.add(0)
             self._groups.append(1)
             for off in self._offsets[1:]:  # the seed's images must fit round it
                 image = frame.copy()
                 image[:2, 2] += off
                 if not self._try_place(seed_ci, image, stats):
-                    stats.seconds = time.perf_counter() - started
+                    stats.seconds = time.perf_counter() - run.started
                     stats.reason = ("exhausted: the seed tile's own lattice images already fail ("
                                     + ", ".join(sorted(stats.rejections)) + ")")
                     return BuildResult("exhausted", None, stats)
                 self._groups[0] += 1
         if not self._vertices_ok(self._tiles[0].vids, stats):
-            stats.seconds = time.perf_counter() - started
+            stats.seconds = time.perf_counter() - run.started
             stats.reason = "exhausted: the seed tile alone already fails (" + ", ".join(sorted(stats.rejections)) + ")"
             return BuildResult("exhausted", None, stats)
-        stack: list[list[Any]] = []  # frames: [candidate ids, next index, frame matrix]
-        deadline = None if max_seconds is None else started + max_seconds
-        periodic = self.period is not None
+        return None
+
+    def _search(self, run: _Run) -> BuildResult:
+        """The search, a state machine over the frontier and a stack of frames (candidate ids,
+        next index, frame map): *choose* the next open edge (or finish) and push its
+        candidates; *try* the top frame's next candidates until one is placed (then choose
+        again) or none is left; *backtrack*: pop the frame and undo the placement below it.
+        No recursion, so depth is unlimited; budgets end the search as a *limit* outcome."""
+        stack: list[list[Any]] = []
+        state = "choose"
         while True:
-            n = len(self._tiles) if not periodic else len(self._canon)
-            stats.max_tiles = max(stats.max_tiles, n)
-            edge, covered = self._choose(centre, radius, fill)
-            if radius is not None:
-                stats.max_radius = max(stats.max_radius, min(covered, radius))
-            if (tiles is not None and n >= tiles) or (tiles is None and edge is None):
-                stats.seconds = time.perf_counter() - started
-                goal = (
-                    f"{tiles} tiles" if tiles is not None
-                    else f"the disc of radius {radius:g}" if radius is not None
-                    else "every edge the fill predicate asks for" if fill is not None
-                    else "a closed torus"
-                )
-                stats.reason = f"reached {goal} with {n} tiles"
-                if periodic and tiles is None and fill is None:
-                    self._check_area(n)
-                return BuildResult("complete", self._patch(), stats)
-            if edge is None and not periodic:  # a tile goal and no open edge: impossible in the plane
-                stats.seconds = time.perf_counter() - started
-                stats.reason = "no open edge left"
-                return BuildResult("exhausted", None, stats)
-            if edge is None:  # the torus closed below the tile goal: a dead branch
-                ids, fr = [], np.eye(3)
-            else:
-                ids, fr = self._candidates_for(edge)
-            stack.append([ids, 0, fr])
-            while True:
-                top = stack[-1]
-                placed = False
-                while top[1] < len(top[0]):
-                    ci = top[0][top[1]]
-                    top[1] += 1
-                    stats.nodes += 1
-                    if self._place(ci, top[2], stats):
-                        stats.placements += 1
-                        placed = True
-                        break
-                    if stats.nodes >= max_nodes or (
-                        deadline is not None and (stats.nodes & 63) == 0 and time.perf_counter() > deadline
-                    ):
-                        return self._give_up(stats, started, max_nodes, max_seconds)
-                if placed:
-                    break
+            if state == "choose":
+                result = self._choose_step(run, stack)
+                if result is not None:
+                    return result
+                state = "try"
+            elif state == "try":
+                state = self._try_step(run, stack[-1])
+                if state == "placed":
+                    state = "limit" if run.over_budget(strict=True) else "choose"
+            elif state == "backtrack":
                 stack.pop()
                 if not stack:
-                    stats.seconds = time.perf_counter() - started
-                    if periodic and fill is None:
-                        stats.reason = (
-                            "exhausted: no tiling of the torus "
-                            + (f"with {tiles} tiles " if tiles is not None else "")
-                            + f"exists from this seed (largest patch {stats.max_tiles} tiles)"
-                        )
-                    elif fill is not None:
-                        stats.reason = (
-                            "exhausted: no patch from this seed closes every edge the fill predicate "
-                            f"asks for (largest patch {stats.max_tiles} tiles)"
-                        )
-                    elif radius is not None:
-                        stats.reason = (
-                            f"exhausted: no patch covering the disc of radius {radius:g} round the seed "
-                            f"exists; every branch died by radius {stats.max_radius:.3g} "
-                            f"(largest patch {stats.max_tiles} tiles)"
-                        )
-                    else:
-                        stats.reason = (
-                            f"exhausted: no patch of {tiles} tiles exists from this seed "
-                            f"(largest {stats.max_tiles} tiles)"
-                        )
-                    return BuildResult("exhausted", None, stats)
+                    return self._exhausted(run)
                 self._unplace()
-                stats.backtracks += 1
-            if stats.nodes >= max_nodes or (deadline is not None and time.perf_counter() > deadline):
-                return self._give_up(stats, started, max_nodes, max_seconds)
+                run.stats.backtracks += 1
+                state = "try"
+            else:  # "limit"
+                return self._give_up(run.stats, run.started, run.max_nodes, run.max_seconds)
+
+    def _choose_step(self, run: _Run, stack: list[list[Any]]) -> BuildResult | None:
+        """Finish (goal met, or no edge left in the plane), or push the next edge's candidates."""
+        stats = run.stats
+        n = len(self._tiles) if not run.periodic else len(self._canon)
+        stats.max_tiles = max(stats.max_tiles, n)
+        edge, covered = self._frontier.choose()
+        if run.radius is not None:
+            stats.max_radius = max(stats.max_radius, min(covered, run.radius))
+        if (run.tiles is not None and n >= run.tiles) or (run.tiles is None and edge is None):
+            stats.seconds = time.perf_counter() - run.started
+            stats.reason = f"reached {run.goal_text()} with {n} tiles"
+            if run.periodic and run.tiles is None and run.fill is None:
+                self._check_area(n)
+            return BuildResult("complete", self._patch(), stats)
+        if edge is None and not run.periodic:  # a tile goal and no open edge: impossible in the plane
+            stats.seconds = time.perf_counter() - run.started
+            stats.reason = "no open edge left"
+            return BuildResult("exhausted", None, stats)
+        if edge is None:  # the torus closed below the tile goal: a dead branch
+            ids, fr = [], np.eye(3)
+        else:
+            ids, fr = self._candidates_for(edge)
+        stack.append([ids, 0, fr])
+        return None
+
+    def _try_step(self, run: _Run, top: list[Any]) -> str:
+        """Try the frame's remaining candidates: "placed", "backtrack" (none fits) or "limit"."""
+        stats = run.stats
+        while top[1] < len(top[0]):
+            ci = top[0][top[1]]
+            top[1] += 1
+            stats.nodes += 1
+            if self._place(ci, top[2], stats):
+                stats.placements += 1
+                return "placed"
+            if run.over_budget(strict=False):
+                return "limit"
+        return "backtrack"
+
+    def _exhausted(self, run: _Run) -> BuildResult:
+        stats = run.stats
+        stats.seconds = time.perf_counter() - run.started
+        if run.periodic and run.fill is None:
+            stats.reason = (
+                "exhausted: no tiling of the torus "
+                + (f"with {run.tiles} tiles " if run.tiles is not None else "")
+                + f"exists from this seed (largest patch {stats.max_tiles} tiles)"
+            )
+        elif run.fill is not None:
+            stats.reason = (
+                "exhausted: no patch from this seed closes every edge the fill predicate "
+                f"asks for (largest patch {stats.max_tiles} tiles)"
+            )
+        elif run.radius is not None:
+            stats.reason = (
+                f"exhausted: no patch covering the disc of radius {run.radius:g} round the seed "
+                f"exists; every branch died by radius {stats.max_radius:.3g} "
+                f"(largest patch {stats.max_tiles} tiles)"
+            )
+        else:
+            stats.reason = (
+                f"exhausted: no patch of {run.tiles} tiles exists from this seed "
+                f"(largest {stats.max_tiles} tiles)"
+            )
+        return BuildResult("exhausted", None, stats)
 
     def _give_up(self, stats: BuildStats, started: float, max_nodes: int, max_seconds: float | None) -> BuildResult:
         stats.seconds = time.perf_counter() - started
@@ -1120,8 +1178,7 @@ class PatchBuilder:
         protos = np.array([self._cands[t.cand].prototile for t in tiles], dtype=np.int64)
         # float noise below 1e-12 is set to zero (e.g. 6e-16 versus 5e-16 at a shared vertex
         # on an axis), which otherwise trips GEOS's overlay in Patch.validate
-        transforms = np.array([t.transform for t in tiles])
-        transforms[np.abs(transforms) < 1e-12] = 0.0
+        transforms = snap_noise(np.array([t.transform for t in tiles]))
         return Patch(self.prototiles, protos, transforms, protos.copy(), np.zeros(len(protos), dtype=np.int64))
 
     # ------------------------------------------------------------------ inspection

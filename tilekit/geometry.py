@@ -17,6 +17,11 @@ from shapely.geometry.base import BaseGeometry
 from tilekit.errors import GeometryError, ParseError
 from tilekit.limits import check_coordinates
 
+# re-exported: their home is tilekit.polygon
+from tilekit.polygon import centroid as centroid
+from tilekit.polygon import regular_polygon as regular_polygon
+from tilekit.polygon import signed_area as signed_area
+
 #: Absolute tolerance for coordinates that should coincide (tilings are drawn at unit scale).
 EPS = 1e-9
 #: Tolerance for comparing points produced by chains of transforms.
@@ -218,39 +223,6 @@ def translations_into(transforms: np.ndarray, vectors: np.ndarray) -> np.ndarray
     return out.reshape(-1, 3, 3)
 
 
-def signed_area(points: np.ndarray) -> float:
-    """Shoelace signed area (positive for counter-clockwise)."""
-    p = np.asarray(points, dtype=float)
-    x, y = p[:, 0], p[:, 1]
-    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
-
-
-def centroid(points: np.ndarray) -> np.ndarray:
-    """Area centroid of a simple polygon."""
-    p = np.asarray(points, dtype=float)
-    x, y = p[:, 0], p[:, 1]
-    x1, y1 = np.roll(x, -1), np.roll(y, -1)
-    cross = x * y1 - x1 * y
-    a = cross.sum() / 2
-    if abs(a) < EPS:
-        return p.mean(axis=0)
-    return np.array([((x + x1) * cross).sum() / (6 * a), ((y + y1) * cross).sum() / (6 * a)])
-
-
-def regular_polygon(n: int, side: float = 1.0) -> np.ndarray:
-    """A regular n-gon with the given side, first edge from (0,0) to (side,0), counter-clockwise."""
-    if n < 3:
-        raise GeometryError(f"a regular polygon needs at least 3 sides, not {n}")
-    ext = 2 * math.pi / n
-    pts = [(0.0, 0.0)]
-    x = y = 0.0
-    for i in range(n - 1):
-        x += side * math.cos(i * ext)
-        y += side * math.sin(i * ext)
-        pts.append((x, y))
-    return np.array(pts)
-
-
 def as_region(region: Any) -> BaseGeometry:
     """A shapely geometry from a geometry, a (x0, y0, x1, y1) tuple, or the text 'x0,y0,x1,y1'."""
     if isinstance(region, BaseGeometry):
@@ -275,3 +247,24 @@ def as_region(region: Any) -> BaseGeometry:
         raise GeometryError(f"region {region!r} is empty: need x0 < x1 and y0 < y1")
     check_coordinates((x0, y0, x1, y1))
     return shapely.box(x0, y0, x1, y1)
+
+
+#: Coordinates closer to zero than this are float noise (e.g. -4e-16 in a lattice vector).
+NOISE = 1e-12
+
+
+def snap_noise(a: np.ndarray, zero: float = NOISE, decimals: int | None = None) -> np.ndarray:
+    """A copy of ``a`` with float noise removed so that shapely (GEOS) overlays behave:
+    entries with ``|x| < zero`` become exactly 0.0, and with ``decimals`` every entry is also
+    rounded to that many decimals. Tiles that share a vertex on an axis, or an edge, then
+    share its coordinates bit for bit; GEOS's overlay of nearly-but-not-exactly coincident
+    edges is not robust (``Patch.validate`` uses a snap-rounded overlay for the same reason).
+
+    >>> snap_noise(np.array([-4e-16, 0.5, 1.0 + 1e-14]), decimals=12).tolist()
+    [0.0, 0.5, 1.0]
+    """
+    out = np.array(a, dtype=float)
+    out[np.abs(out) < zero] = 0.0
+    if decimals is not None:
+        out = np.round(out, decimals)
+    return out

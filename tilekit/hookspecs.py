@@ -17,7 +17,9 @@ hookimpl = pluggy.HookimplMarker("tilekit")
 def tilekit_families():
     """Return a list of :class:`tilekit.plugins.Family` this plugin contributes.
 
-    Called once when the plugin manager is built. Family names must be unique across
+    Called by :func:`tilekit.plugins.families` every time families are looked up (the CLI's
+    ``families``, ``list``, ``show`` and ``render``; checking a catalogue's records), so it
+    must be cheap and give the same answer each time. Family names must be unique across
     all plugins; a clash is a :class:`tilekit.errors.PluginError`.
     """
 
@@ -26,8 +28,10 @@ def tilekit_families():
 def tilekit_catalogue_records():
     """Return an iterable of :class:`tilekit.plugins.CatalogueRecord` this plugin ships.
 
-    Called when a catalogue is empty (first open) or re-seeded, to load the known tilings
-    of the plugin's families. Records carry a JSON ``spec`` that the family's
+    Called by :func:`tilekit.plugins.catalogue_records` when a catalogue is opened empty, is
+    re-seeded (``tilekit catalogue seed``), or is opened after the fingerprint of the
+    installed plugins and shipped data changed, to load the known tilings of the plugin's
+    families. Records carry a JSON ``spec`` that the family's
     ``from_spec`` turns back into a :class:`tilekit.Tiling`.
     """
 
@@ -36,9 +40,10 @@ def tilekit_catalogue_records():
 def tilekit_searches():
     """Return a list of :class:`tilekit.plugins.Search` (enumeration / search jobs).
 
-    Each search names its parameters, splits a run into chunks and computes the results of
-    one chunk; tilekit.search stores them, resumes interrupted runs and runs chunks in
-    parallel.
+    Called by :func:`tilekit.plugins.searches` whenever searches are looked up (``tilekit
+    search``, ``tilekit runs``, resuming a run). Each search names its parameters, splits a
+    run into chunks and computes the results of one chunk; tilekit.search stores them,
+    resumes interrupted runs and runs chunks in parallel.
     """
 
 
@@ -55,7 +60,8 @@ def tilekit_result_tables():
 def tilekit_cli_commands(cli):
     """Add click commands or groups to the ``tilekit`` command group ``cli``.
 
-    Called once while the command line is assembled; return value ignored.
+    Called once per plugin manager, the first time the ``tilekit`` command lists or looks
+    up a command (``tilekit --help`` included); return value ignored.
     """
 
 
@@ -63,6 +69,29 @@ def tilekit_cli_commands(cli):
 def tilekit_migration_locations():
     """Return a list of directories holding Alembic version scripts for a plugin's own tables.
 
-    Each directory is added to Alembic's ``version_locations``; give its revisions their own
+    Called by :func:`tilekit.plugins.migration_locations` each time a catalogue is opened
+    (before its migrations run). Each directory is added to Alembic's ``version_locations``; give its revisions their own
     ``branch_labels`` so they upgrade independently of the core tables.
+    """
+
+
+@hookspec(firstresult=True)
+def tilekit_claim_file(path):
+    """Return the name of the family that reads the data file ``path`` (a ``str``), or None.
+
+    Called by :func:`tilekit.plugins.family_for_file` when ``tilekit render --system FILE``
+    is given no ``--family``; decide by the file's suffix (or a cheap look inside). The
+    first non-None answer wins; plugins registered later are asked first (pluggy's order).
+    """
+
+
+@hookspec
+def tilekit_extra_properties(record):
+    """Return a dict of properties to add to ``record`` (a :class:`tilekit.plugins.CatalogueRecord`
+    of any family, usually another plugin's), or None.
+
+    Called by :func:`tilekit.plugins.catalogue_records` once per record, after every plugin's
+    ``tilekit_catalogue_records`` has been collected (so whenever records are built: seeding,
+    re-seeding, a changed fingerprint). A key the record already has is kept; among plugins, the first
+    answer for a key wins. Values follow the rules of ``CatalogueRecord.properties``.
     """

@@ -20,7 +20,9 @@ from shapely.geometry.base import BaseGeometry
 
 from tilekit.colouring import Colouring
 from tilekit.errors import GeometryError, ParameterError, ParseError
-from tilekit.geometry import AREA_TOL, EPS, Affine, as_region, signed_area
+from tilekit.geometry import AREA_TOL, EPS, Affine, as_region
+from tilekit.polygon import centroid, signed_area
+from tilekit.render import patch_to_svg
 
 #: Refuse to rasterize more lattice cells than this in one patch (a typo guard, not a limit
 #: of the method: 20 million cells is already hundreds of millions of tiles).
@@ -275,7 +277,6 @@ class Patch:
 
     def centres(self) -> np.ndarray:
         """(n, 2) centroids of the tiles (each prototile's centroid, transformed)."""
-        from tilekit.geometry import centroid
 
         out = np.zeros((len(self), 2))
         for p, idx, _ in self.groups():
@@ -391,7 +392,6 @@ class Patch:
     # output ------------------------------------------------------------------
     def to_svg(self, **options: Any) -> str:
         """SVG text of the patch; options as for :func:`tilekit.render.patch_to_svg`."""
-        from tilekit.render import patch_to_svg
 
         return patch_to_svg(self, **options)
 

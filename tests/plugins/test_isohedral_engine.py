@@ -10,7 +10,8 @@ import pytest
 from tilekit.errors import GeometryError, NotFoundError, ParameterError, ParseError
 from tilekit.geometry import Affine
 from tilekit.plugins.isohedral import EdgeShape, IsohedralTiling, isohedral_tiling
-from tilekit.plugins.isohedral.engine import shape_classes, tiling_from_spec
+from tilekit.plugins.isohedral.engine import shape_classes
+from tilekit.plugins.isohedral.spec import tiling_from_spec
 from tilekit.plugins.isohedral.templates import load_parameterizations, load_templates
 
 UNMARKED = sorted(ih for ih, t in load_templates().items() if not t.marked)

@@ -232,9 +232,56 @@ def get_family(name: str, pm: pluggy.PluginManager | None = None) -> Family:
 
 
 def catalogue_records(pm: pluggy.PluginManager | None = None) -> list[CatalogueRecord]:
-    """Every record the plugins ship, in registration order."""
+    """Every record the plugins ship, in registration order, with the properties that
+    ``tilekit_extra_properties`` hooks add (a record's own keys are never overwritten)."""
     pm = pm or get_plugin_manager()
-    return _flatten(pm.hook.tilekit_catalogue_records())
+    records = _flatten(pm.hook.tilekit_catalogue_records())
+    if not pm.hook.tilekit_extra_properties.get_hookimpls():
+        return records
+    for record in records:
+        for extra in pm.hook.tilekit_extra_properties(record=record):
+            if not extra:
+                continue
+            if not isinstance(extra, Mapping):
+                raise PluginError(f"tilekit_extra_properties returned {type(extra).__name__}, not a dict")
+            for key, value in extra.items():
+                record.properties.setdefault(key, value)
+    return records
+
+
+def family_for_file(path: str, pm: pluggy.PluginManager | None = None) -> str | None:
+    """The family that claims the data file ``path`` (``tilekit_claim_file``), or None."""
+    pm = pm or get_plugin_manager()
+    return pm.hook.tilekit_claim_file(path=str(path))
+
+
+@dataclass(frozen=True)
+class PluginInfo:
+    """One loaded plugin: its registered name, where it came from, the hooks it implements."""
+
+    name: str
+    source: str
+    hooks: tuple[str, ...]
+    distribution: str | None = None
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"name": self.name, "source": self.source, "hooks": list(self.hooks), "distribution": self.distribution}
+
+
+def plugin_info(pm: pluggy.PluginManager | None = None) -> list[PluginInfo]:
+    """What ``tilekit plugins`` shows (like ``pytest --trace-config``): every registered plugin
+    in registration order, the file (or object) it came from, its hooks, and the
+    distribution (name==version) for plugins loaded from the ``tilekit`` entry points."""
+    pm = pm or get_plugin_manager()
+    dists = {id(plugin): f"{dist.project_name}=={dist.version}" for plugin, dist in pm.list_plugin_distinfo()}
+    out = []
+    for name, plugin in pm.list_name_plugin():
+        if plugin is None:  # blocked
+            continue
+        source = getattr(plugin, "__file__", None) or f"{type(plugin).__module__}.{type(plugin).__qualname__}"
+        hooks = tuple(sorted(caller.name for caller in (pm.get_hookcallers(plugin) or [])))
+        out.append(PluginInfo(str(name), str(source), hooks, dists.get(id(plugin))))
+    return out
 
 
 def searches(pm: pluggy.PluginManager | None = None) -> dict[str, Search]:

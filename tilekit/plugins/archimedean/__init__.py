@@ -15,28 +15,24 @@ from tilekit.plugins.archimedean.construct import (
     laves_tiling,
 )
 from tilekit.plugins.archimedean.notation import VertexType, parse_vertex_type
+from tilekit.plugins.archimedean.records import FAMILIES, catalogue_records
+from tilekit.plugins.archimedean.species import SEARCH
 
 __all__ = ["VertexType", "archimedean_tiling", "laves_prototile", "laves_tiling", "parse_vertex_type"]
 
 
 @hookimpl
 def tilekit_families():
-    from tilekit.plugins.archimedean.records import FAMILIES
-
     return FAMILIES
 
 
 @hookimpl
 def tilekit_catalogue_records():
-    from tilekit.plugins.archimedean.records import catalogue_records
-
     return catalogue_records()
 
 
 @hookimpl
 def tilekit_searches():
-    from tilekit.plugins.archimedean.species import SEARCH
-
     return [SEARCH]
 
 

@@ -16,6 +16,7 @@ placed by the rigid motion taking the first onto it.
 
 from __future__ import annotations
 
+import json
 import math
 from functools import cache
 from typing import Any
@@ -25,8 +26,16 @@ import numpy as np
 from tilekit.builder import TWO_PI, BuildResult, PatchBuilder, VertexView
 from tilekit.colouring import Colouring
 from tilekit.errors import GeometryError, ParseError
-from tilekit.geometry import Affine, regular_polygon
-from tilekit.plugins.archimedean.notation import VertexType, arrangements, parse_vertex_type
+from tilekit.geometry import Affine, snap_noise
+from tilekit.plugins.archimedean.notation import (
+    VertexType,
+    arrangements,
+    canonical,
+    parse_vertex_type,
+)
+from tilekit.polygon import regular_polygon, vertex_stars
+from tilekit.resources import catalogue_dir
+from tilekit.symmetry import canonical_basis, symmetries
 from tilekit.tiling import Patch, PeriodicTiling, Prototile
 
 #: Colour of a polygon by its number of sides (the same colour in every tiling).
@@ -35,14 +44,6 @@ SIZE_COLOURS = (3, 4, 6, 8, 12)
 
 def _fmt_vec(v: np.ndarray) -> str:
     return "(" + ", ".join(f"{float(x):.6g}" for x in np.asarray(v).ravel()) + ")"
-
-
-def _zap(a: np.ndarray) -> np.ndarray:
-    """Float noise below 1e-12 set to exact zero (e.g. -4e-16 in a lattice vector), which
-    keeps shared vertices on an axis bit-identical for GEOS's overlay in Patch.validate."""
-    a = np.array(a, dtype=float)
-    a[np.abs(a) < 1e-12] = 0.0
-    return a
 
 
 def polygon_angle(p: int) -> float:
@@ -146,49 +147,6 @@ def _tile_keys(patch: Patch, sides: list[int]) -> tuple[np.ndarray, np.ndarray, 
     return centres, n, orient
 
 
-def _reduce(v1: np.ndarray, v2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Lagrange-Gauss reduction of a 2D lattice basis (shortest vectors, |v1| <= |v2|)."""
-    if v1 @ v1 > v2 @ v2:
-        v1, v2 = v2, v1
-    while True:
-        mu = round(float(v1 @ v2) / float(v1 @ v1))
-        if mu == 0:
-            break
-        v2 = v2 - mu * v1
-        if v2 @ v2 < v1 @ v1:
-            v1, v2 = v2, v1
-        else:
-            break
-    if v1[0] * v2[1] - v1[1] * v2[0] < 0:
-        v2 = -v2
-    return v1, v2
-
-
-def canonical_basis(g1: np.ndarray, g2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """A deterministic reduced basis of the lattice spanned by g1, g2: v1 a shortest vector
-    with the least direction angle in [0, 2π); v2 a shortest vector completing a
-    positively oriented basis, least angle from v1 on ties (float noise cannot flip ties)."""
-    g1, g2 = _reduce(np.asarray(g1, float), np.asarray(g2, float))
-    det = abs(g1[0] * g2[1] - g1[1] * g2[0])
-    combos = np.array([a * g1 + b * g2 for a in range(-2, 3) for b in range(-2, 3) if (a, b) != (0, 0)])
-    lengths = np.hypot(combos[:, 0], combos[:, 1])
-    ang = np.round(np.mod(np.arctan2(combos[:, 1], combos[:, 0]), TWO_PI), 6) % round(TWO_PI, 6)
-    shortest = np.flatnonzero(lengths <= lengths.min() + 1e-6)
-    i1 = shortest[np.lexsort((ang[shortest],))[0]]
-    v1 = combos[i1]
-    best = None
-    for j in np.argsort(np.round(lengths, 6), kind="stable"):
-        w = combos[j]
-        d = v1[0] * w[1] - v1[1] * w[0]
-        if abs(abs(d) - det) > 1e-6 * max(1.0, det) or d <= 0:
-            continue
-        key = (round(float(lengths[j]), 6), round(float(np.mod(np.arctan2(w[1], w[0]) - np.arctan2(v1[1], v1[0]), TWO_PI)), 6))
-        if best is None or key < best[0]:
-            best = (key, w)
-    assert best is not None
-    return v1, best[1]
-
-
 def find_lattice(patch: Patch, sides: list[int], radius: float) -> tuple[np.ndarray, np.ndarray] | None:
     """Two independent translations mapping the patch's core onto the patch, or None.
 
@@ -245,23 +203,25 @@ def unit_from_patch(patch: Patch, v1: np.ndarray, v2: np.ndarray) -> np.ndarray:
 def _vertex_sequences(patch: Patch, sides: list[int], region_radius: float) -> dict[tuple[int, ...], int]:
     """Canonical polygon sequence (CCW) round every vertex within ``region_radius`` whose
     surrounding angle is complete, counted; used to check a construction."""
-    from tilekit.plugins.archimedean.notation import canonical
 
     polys = patch.polygons()
-    corners: dict[tuple[int, int], list[tuple[float, int, float]]] = {}
-    q = 1e-6
-    for t, pts in enumerate(polys):
-        k = len(pts)
-        p = sides[int(patch.prototile[t])]
-        for i in range(k):
+    stars = vertex_stars(polys)
+    corners: list[list[tuple[float, int, float]]] = []
+    for v in range(len(stars)):
+        lst = []
+        for c in stars.members(v):
+            t, i = int(stars.tile[c]), int(stars.index[c])
+            pts = polys[t]
             x, y = pts[i]
             if math.hypot(x, y) > region_radius:
                 continue
-            d = pts[(i + 1) % k] - pts[i]
-            key = (round(x / q), round(y / q))
-            corners.setdefault(key, []).append((math.atan2(d[1], d[0]), p, polygon_angle(p)))
+            d = pts[(i + 1) % len(pts)] - pts[i]
+            p = sides[int(patch.prototile[t])]
+            lst.append((math.atan2(d[1], d[0]), p, polygon_angle(p)))
+        if lst:
+            corners.append(lst)
     out: dict[tuple[int, ...], int] = {}
-    for lst in corners.values():
+    for lst in corners:
         total = sum(c[2] for c in lst)
         if abs(total - TWO_PI) > 1e-6:
             continue
@@ -299,7 +259,7 @@ def _construct(polygons: tuple[int, ...]) -> tuple[list[int], np.ndarray, np.nda
             if abs(area - abs(v1[0] * v2[1] - v1[1] * v2[0])) < 1e-6:
                 info = {"radius": radius, "nodes": res.stats.nodes, "backtracks": res.stats.backtracks,
                         "seconds": res.stats.seconds}
-                return list(unit.prototile), _zap(unit.transform), _zap(v1), _zap(v2), info
+                return list(unit.prototile), snap_noise(unit.transform), snap_noise(v1), snap_noise(v2), info
         radius *= 1.5
     raise GeometryError(
         f"vertex type {vt}: no translational unit found up to radius 40 ({last.stats.reason if last else ''})"
@@ -329,7 +289,7 @@ def _mirror(transforms: np.ndarray, v1: np.ndarray, v2: np.ndarray) -> tuple[np.
     m = Affine.scaling(1.0, -1.0)
     bisector = Affine.reflection(math.pi / 2, (0.5, 0.0))
     w1, w2 = canonical_basis(m[:2, :2] @ v1, m[:2, :2] @ v2)
-    return _zap(m @ transforms @ bisector), _zap(w1), _zap(w2)
+    return snap_noise(m @ transforms @ bisector), snap_noise(w1), snap_noise(w2)
 
 
 def _unit(vt: VertexType, hand: str, rebuild: bool = False) -> tuple[list[int], np.ndarray, np.ndarray, np.ndarray]:
@@ -397,10 +357,6 @@ def cached_data() -> dict[str, Any]:
     """The shipped construction results (empty when the data file is absent)."""
     global _CACHE
     if _CACHE is None:
-        import json
-
-        from tilekit.resources import catalogue_dir
-
         path = catalogue_dir() / "archimedean" / "tilings.json"
         _CACHE = json.loads(path.read_text()) if path.exists() else {}
     return _CACHE
@@ -499,21 +455,18 @@ def _laves(
     patch = arch.patch((-span, -span, span, span))
     centres = patch.centres()
     polys = patch.polygons()
-    q = 1e-6
-    around: dict[tuple[int, int], list[tuple[float, int]]] = {}
-    pos: dict[tuple[int, int], np.ndarray] = {}
-    for t, pts in enumerate(polys):
-        for x, y in pts:
-            key = (round(x / q), round(y / q))
-            pos[key] = np.array([x, y])
-            c = centres[t]
-            around.setdefault(key, []).append((math.atan2(c[1] - y, c[0] - x), t))
+    stars = vertex_stars(polys)
     basis = np.column_stack([v1, v2])
     inv = np.linalg.inv(basis)
     offset = np.array([0.0123, 0.0171])
     tiles = []
-    for key, lst in sorted(around.items()):
-        p = pos[key]
+    for v in sorted(range(len(stars)), key=lambda v: stars.keys[v]):
+        p = stars.points[v]
+        lst = []
+        for c in stars.members(v):
+            t = int(stars.tile[c])
+            x, y = polys[t][int(stars.index[c])]  # the corner's own coordinates decide ±π ties
+            lst.append((math.atan2(centres[t][1] - y, centres[t][0] - x), t))
         ab = (p - offset) @ inv.T + 0.5
         if not np.all((ab >= 0) & (ab < 1)):
             continue
@@ -532,7 +485,7 @@ def _laves(
         if m is None:
             raise GeometryError(f"[{arch.vertex_type}]: dual tiles are not congruent")
         transforms.append(m)
-    return _zap(outline), _zap(np.array(transforms)), v1, v2
+    return snap_noise(outline), snap_noise(np.array(transforms)), v1, v2
 
 
 def laves_tiling(vertex_type: VertexType | str, hand: str = "", *, rebuild: bool = False) -> LavesTiling:
@@ -598,7 +551,6 @@ def laves_properties(t: LavesTiling) -> dict[str, Any]:
 def orbit_count(points: np.ndarray, tiling: PeriodicTiling) -> int:
     """How many orbits the symmetry group of ``tiling`` has on ``points`` (one per point of a
     translational unit, given modulo the lattice v1, v2): 1 means transitive."""
-    from tilekit.symmetry import symmetries
 
     group = symmetries(tiling)
     basis = np.column_stack([tiling.v1, tiling.v2])

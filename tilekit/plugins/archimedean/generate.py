@@ -17,7 +17,14 @@ from typing import Any
 import numpy as np
 
 from tilekit.plugins.archimedean import construct
-from tilekit.plugins.archimedean.notation import VertexType, euclidean_species, types_of_species
+from tilekit.plugins.archimedean.notation import (
+    VertexType,
+    euclidean_species,
+    parse_sequence,
+    types_of_species,
+)
+from tilekit.resources import catalogue_dir
+from tilekit.symmetry import wallpaper_group
 
 #: Radius (edge lengths) to which a vertex type must extend before it is constructed.
 SCREEN_RADIUS = 4.0
@@ -59,17 +66,12 @@ def generate() -> dict[str, Any]:
             }
     construct._CACHE = {"archimedean": arch, "laves": laves}
     groups: dict[str, dict[str, Any]] = {}
-    try:
-        from tilekit.symmetry import wallpaper_group
-    except ImportError:  # pragma: no cover - symmetry.py ships with tilekit
-        wallpaper_group = None
-    if wallpaper_group is not None:
-        for key in arch:
-            vt = VertexType.of(_polys(key))
-            for hand in (["l", "r"] if construct.is_chiral(vt) else [""]):
-                for tiling in (construct.archimedean_tiling(vt, hand), construct.laves_tiling(vt, hand)):
-                    groups[tiling.name] = {"wallpaper_group": wallpaper_group(tiling).iuc,
-                                           **construct.transitivity(tiling)}
+    for key in arch:
+        vt = VertexType.of(_polys(key))
+        for hand in (["l", "r"] if construct.is_chiral(vt) else [""]):
+            for tiling in (construct.archimedean_tiling(vt, hand), construct.laves_tiling(vt, hand)):
+                groups[tiling.name] = {"wallpaper_group": wallpaper_group(tiling).iuc,
+                                       **construct.transitivity(tiling)}
     construct._CACHE = None
     construct._laves.cache_clear()
     return {
@@ -81,13 +83,11 @@ def generate() -> dict[str, Any]:
 
 
 def _polys(text: str) -> tuple[int, ...]:
-    from tilekit.plugins.archimedean.notation import parse_sequence
 
     return parse_sequence(text)
 
 
 def default_path() -> Path:
-    from tilekit.resources import catalogue_dir
 
     return catalogue_dir() / "archimedean" / "tilings.json"
 

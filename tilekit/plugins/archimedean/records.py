@@ -14,11 +14,8 @@ from tilekit.errors import ParameterError, ParseError
 from tilekit.plugins import CatalogueRecord, Family
 from tilekit.plugins.archimedean import construct
 from tilekit.plugins.archimedean.notation import VertexType, format_sequence, parse_sequence
+from tilekit.symmetry import ORBIFOLD
 from tilekit.tiling import Tiling
-
-_ORBIFOLD = {"p1": "o", "p2": "2222", "pm": "**", "pg": "xx", "cm": "*x", "pmm": "*2222",
-             "pmg": "22*", "pgg": "22x", "cmm": "2*22", "p4": "442", "p4m": "*442", "p4g": "4*2",
-             "p3": "333", "p3m1": "*333", "p31m": "3*3", "p6": "632", "p6m": "*632"}
 
 
 def species_text(vt: VertexType) -> str:
@@ -35,7 +32,7 @@ def _group(name: str) -> dict[str, Any]:
     if data is None:
         return {}
     iuc = data["wallpaper_group"]
-    return {"symmetry_group": _ORBIFOLD[iuc], "wallpaper_group": iuc, "orbifold": _ORBIFOLD[iuc],
+    return {"symmetry_group": ORBIFOLD[iuc], "wallpaper_group": iuc, "orbifold": ORBIFOLD[iuc],
             "k_isohedral": int(data["k_isohedral"]), "k_isogonal": int(data["k_isogonal"])}
 
 

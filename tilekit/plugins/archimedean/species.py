@@ -25,6 +25,8 @@ from typing import Any
 
 from tilekit.errors import ParameterError
 from tilekit.plugins import CatalogueRecord, ChunkResult, Search, SearchParam
+from tilekit.plugins.archimedean import construct
+from tilekit.plugins.archimedean import records as rec
 from tilekit.plugins.archimedean.notation import (
     VertexType,
     bounded_species,
@@ -121,8 +123,6 @@ def _base_properties(vt: VertexType) -> dict[str, Any]:
 
 def classify_euclidean(vt: VertexType, radius: float, max_nodes: int) -> dict[str, Any]:
     """Try to extend type vt with the builder; construct it when it survives."""
-    from tilekit.plugins.archimedean import construct
-
     started = time.perf_counter()
     r = construct.seed_radius(vt) + radius
     res = construct.grow(vt, r, max_nodes=max_nodes)
@@ -193,7 +193,6 @@ def chunks(params: Mapping[str, Any]) -> list[dict[str, Any]]:
 def run_chunk(params: Mapping[str, Any], chunk: Mapping[str, Any]) -> ChunkResult:
     """Classify the vertex types of one chunk: a ``vertex_species`` row per type, a
     catalogue tiling for each type that tiles, the survivors as JSON results, and counts."""
-    from tilekit.plugins.archimedean import records as rec
     from tilekit.plugins.archimedean.tables import row_of
 
     p = _params(params)

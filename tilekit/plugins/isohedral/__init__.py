@@ -10,9 +10,11 @@ from __future__ import annotations
 
 from tilekit.hookspecs import hookimpl
 from tilekit.plugins import Family
-from tilekit.plugins.isohedral.engine import IsohedralTiling, tiling_from_spec
+from tilekit.plugins.isohedral.engine import IsohedralTiling
 from tilekit.plugins.isohedral.lookup import lookup
-from tilekit.plugins.isohedral.shapes import EdgeShape
+from tilekit.plugins.isohedral.records import records
+from tilekit.plugins.isohedral.shapes import EdgeShape, parse_edge_option
+from tilekit.plugins.isohedral.spec import tiling_from_spec
 from tilekit.plugins.isohedral.symbols import IncidenceSymbol
 
 __all__ = ["EdgeShape", "IncidenceSymbol", "IsohedralTiling", "isohedral_tiling", "lookup"]
@@ -28,8 +30,6 @@ as the Laves tile of their topology with a marking."""
 
 def isohedral_tiling(name: str | int, **options) -> IsohedralTiling:
     """IsohedralTiling('IH16', params=[0.3], edges=['b=0,0:0.3,0.2:1,0'])-style convenience."""
-    from tilekit.plugins.isohedral.shapes import parse_edge_option
-
     edges = options.pop("edges", None) or []
     shapes = dict(parse_edge_option(e) if isinstance(e, str) else e for e in edges)
     return IsohedralTiling(name, options.pop("params", None), shapes, options.pop("colouring", None), **options)
@@ -49,6 +49,4 @@ def tilekit_families():
 
 @hookimpl
 def tilekit_catalogue_records():
-    from tilekit.plugins.isohedral.records import records
-
     return records()

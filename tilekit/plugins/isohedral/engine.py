@@ -19,7 +19,9 @@ import shapely
 
 from tilekit.colouring import Colouring
 from tilekit.errors import GeometryError, ParameterError, ParseError
-from tilekit.geometry import Affine, signed_area
+from tilekit.geometry import Affine, snap_noise
+from tilekit.plugins.isohedral.analysis import is_perfect_colouring
+from tilekit.plugins.isohedral.properties import type_properties
 from tilekit.plugins.isohedral.shapes import (
     FLIP,
     IDENTITY,
@@ -38,6 +40,7 @@ from tilekit.plugins.isohedral.templates import (
     load_parameterizations,
     topology_valences,
 )
+from tilekit.polygon import signed_area
 from tilekit.tiling import Patch, PeriodicTiling, Prototile
 
 FAMILY = "isohedral"
@@ -198,18 +201,13 @@ def compute_unit(template: Template, verts: np.ndarray) -> tuple[np.ndarray, np.
         else:
             known[rule.target] = m
     aspects = np.stack([known[a] for a in template.aspects])
-    return _snap(aspects), _snap(vectors["v1"]), _snap(vectors["v2"]), engine
+    return snap_noise(aspects, 1e-10), snap_noise(vectors["v1"], 1e-10), snap_noise(vectors["v2"], 1e-10), engine
 
 
 def tile_outlines(patch: Patch, prototile: int = 0) -> np.ndarray:
     """(n, k, 2) outlines of the patch's tiles of one prototile (one batched transform)."""
     idx = np.flatnonzero(patch.prototile == prototile)
     return Affine.apply(patch.transform[idx], patch.prototiles[prototile].outline)
-
-
-def _snap(x: np.ndarray) -> np.ndarray:
-    """Round float noise (|x| < 1e-10) to zero, so lattice rows stay exactly axis-aligned."""
-    return np.where(np.abs(x) < 1e-10, 0.0, x)
 
 
 # --------------------------------------------------------------------------- the tiling
@@ -399,7 +397,7 @@ class IsohedralTiling(PeriodicTiling):
         bit for bit; GEOS overlays of nearly-but-not-exactly coincident edges are not robust.
         """
         out = super().patch(region)
-        out.transform = np.round(out.transform, 12)
+        out.transform = snap_noise(out.transform, 0.0, decimals=12)
         out._geoms = None
         return out
 
@@ -471,13 +469,15 @@ class IsohedralTiling(PeriodicTiling):
 
     @classmethod
     def from_spec(cls, spec: Mapping[str, Any]) -> IsohedralTiling:  # type: ignore[override]
-        return tiling_from_spec(spec)  # type: ignore[return-value]
+        """An unmarked type from its spec (:func:`tilekit.plugins.isohedral.spec.tiling_from_spec`
+        also builds the marked ones)."""
+        ih = _spec_ih(spec)
+        if get_template(ih).marked:
+            raise ParameterError(f"IH{ih} is a marked type; build it with tilekit.plugins.isohedral.spec.tiling_from_spec")
+        return unmarked_from_spec(spec)
 
     def properties(self) -> dict[str, Any]:
         """The type's catalogue properties; colour facts follow this tiling's own colouring."""
-        from tilekit.plugins.isohedral.analysis import is_perfect_colouring
-        from tilekit.plugins.isohedral.records import type_properties
-
         props = dict(type_properties(self.template.ih))
         if self.colouring != self.template.colouring:
             props["colours"] = self.colouring.colours
@@ -503,17 +503,16 @@ def _transfer_shape(
     return EdgeShape(c, shape.smooth)
 
 
-def tiling_from_spec(spec: Mapping[str, Any]) -> PeriodicTiling:
-    """Rebuild an isohedral tiling from ``{"ih": 16, "params": [...], "edges": {...}}``."""
+def _spec_ih(spec: Mapping[str, Any]) -> Any:
     try:
-        ih = spec["ih"]
+        return spec["ih"]
     except (KeyError, TypeError):
         raise ParseError(f"isohedral spec {dict(spec) if isinstance(spec, Mapping) else spec!r} has no 'ih'") from None
-    from tilekit.plugins.isohedral.marked import marked_tiling
 
-    t = get_template(ih)
-    if t.marked:
-        return marked_tiling(t.ih)
+
+def unmarked_from_spec(spec: Mapping[str, Any]) -> IsohedralTiling:
+    """An unmarked isohedral tiling from ``{"ih": 16, "params": [...], "edges": {...}}``."""
+    t = get_template(_spec_ih(spec))
     edges = {k: EdgeShape.parse(v) for k, v in (spec.get("edges") or {}).items()}
     col = spec.get("colouring")
     return IsohedralTiling(t.ih, spec.get("params"), edges, col)

@@ -28,9 +28,12 @@ from tilekit.colouring import Colouring
 from tilekit.errors import GeometryError, ParameterError
 from tilekit.geometry import Affine
 from tilekit.plugins.isohedral.engine import HopEngine, edge_frames, laves_polygon
-from tilekit.plugins.isohedral.shapes import FLIP, IDENTITY, ROFL
+from tilekit.plugins.isohedral.properties import type_properties
+from tilekit.plugins.isohedral.shapes import ROFL
 from tilekit.plugins.isohedral.symbols import IncidenceSymbol
 from tilekit.plugins.isohedral.templates import get_template
+from tilekit.polygon import vertex_symmetries
+from tilekit.symmetry import successive_minima
 from tilekit.tiling import Patch, PeriodicTiling, Prototile
 
 
@@ -66,14 +69,10 @@ def unit_from_group(verts: np.ndarray, gens: list[np.ndarray]) -> tuple[np.ndarr
     scale = float(np.ptp(verts, axis=0).max())
     elements = _ball(verts, gens, 8 * scale)
     trans = [m[:2, 2] for m in elements if np.allclose(m[:2, :2], np.eye(2), atol=1e-9)]
-    vecs = np.array([t for t in trans if np.hypot(*t) > 1e-7])
-    if len(vecs) < 2:
-        raise GeometryError("the group has no two independent translations within reach")
-    order = np.argsort(np.hypot(vecs[:, 0], vecs[:, 1]))
-    v1 = vecs[order[0]]
-    v2 = next(vecs[i] for i in order[1:] if abs(v1[0] * vecs[i][1] - v1[1] * vecs[i][0]) > 1e-7)
-    if v1[0] * v2[1] - v1[1] * v2[0] < 0:
-        v2 = -v2
+    try:
+        v1, v2 = successive_minima(np.array(trans).reshape(-1, 2))
+    except GeometryError:
+        raise GeometryError("the group has no two independent translations within reach") from None
     basis = np.column_stack([v1, v2])
     centre = verts.mean(axis=0)
     aspects: dict[tuple[float, float], np.ndarray] = {}
@@ -148,8 +147,6 @@ class MarkedTiling(PeriodicTiling):
         )
 
     def properties(self) -> dict[str, Any]:
-        from tilekit.plugins.isohedral.records import type_properties
-
         return type_properties(self.template.ih)
 
 
@@ -161,19 +158,11 @@ def marked_tiling(ih: int) -> MarkedTiling:
 
 
 def _polygon_symmetries(verts: np.ndarray) -> list[tuple[int, bool, np.ndarray]]:
+    """The Laves tile's symmetries as (shift, reflect, matrix): edge 0 goes to edge ``shift``,
+    reversed when ``reflect`` (from :func:`tilekit.polygon.vertex_symmetries`)."""
     n = len(verts)
-    frames = edge_frames(verts)
-    inv = Affine.inverse(frames)
-    out = []
-    for reflect in (False, True):
-        for shift in range(n):
-            m = frames[shift] @ (FLIP if reflect else IDENTITY) @ inv[0]
-            if not Affine.is_isometry(m):
-                continue
-            img = Affine.apply(m, verts)
-            if np.all(np.linalg.norm(img[:, None] - verts[None], axis=2).min(axis=1) < 1e-7):
-                out.append((shift, reflect, m))
-    return out
+    out = [((j if d == 1 else j - 1) % n, d == -1, m) for j, d, m in vertex_symmetries(verts)]
+    return sorted(out, key=lambda s: (s[1], s[0]))
 
 
 def _subgroups(mats: list[np.ndarray]) -> list[dict[tuple[float, ...], np.ndarray]]:

@@ -14,6 +14,7 @@ from typing import Any
 
 import tilekit
 from tilekit.plugins import CatalogueRecord, Family
+from tilekit.plugins.substitution.hat import hat_systems  # the hat's own data format
 from tilekit.plugins.substitution.system import SubstitutionSystem, load_system
 from tilekit.plugins.substitution.tiling import (
     SubstitutionTiling,
@@ -46,8 +47,6 @@ def builtin_systems() -> dict[str, Any]:
     for path in sorted(system_dir().glob("*.toml")):
         system = load_system(path)
         out[system.name] = system
-    from tilekit.plugins.substitution.hat import hat_systems  # the hat's own data format
-
     out.update(hat_systems())
     return out
 
@@ -100,3 +99,9 @@ def tilekit_catalogue_records() -> list[CatalogueRecord]:
             )
         )
     return records
+
+
+@tilekit.hookimpl
+def tilekit_claim_file(path: str) -> str | None:
+    """Substitution systems are TOML (or JSON) files."""
+    return "substitution" if Path(path).suffix.lower() in (".toml", ".json") else None

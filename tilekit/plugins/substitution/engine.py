@@ -15,6 +15,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from tilekit.geometry import Affine
+from tilekit.plugins.substitution.levels import expand_by_label, substitute_levels
 from tilekit.plugins.substitution.system import SubstitutionSystem, inflation_radii
 
 #: Quantum of the duplicate keys, relative to the tiles' linear size.
@@ -23,17 +24,7 @@ KEY_QUANTUM = 1e-6
 
 def expand_level(system: SubstitutionSystem, proto: np.ndarray, transform: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """One substitution step applied to every tile: children of tile t are T_t @ M_c."""
-    protos, transforms = [], []
-    for i, rule in enumerate(system.rules):
-        idx = np.flatnonzero(proto == i)
-        if not len(idx):
-            continue
-        kids = np.matmul(transform[idx][:, None, :, :], rule.matrices[None, :, :, :])
-        transforms.append(kids.reshape(-1, 3, 3))
-        protos.append(np.tile(rule.children, len(idx)))
-    if not protos:
-        return np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3))
-    return np.concatenate(protos), np.concatenate(transforms)
+    return expand_by_label(proto, transform, [r.children for r in system.rules], [r.matrices for r in system.rules])
 
 
 def meets_box(
@@ -75,17 +66,21 @@ def generate(
     transform = (np.eye(3) if seed_transform is None else np.asarray(seed_transform, dtype=float)).reshape(1, 3, 3)
     radii = inflation_radii(system) if box is not None else None
     per_level = system.kind == "overlapping" if dedupe is None else dedupe
-    for _ in range(depth):
-        if box is not None:
-            keep = meets_box(system, proto, transform, box, radii)
-            proto, transform = proto[keep], transform[keep]
-        proto, transform = expand_level(system, proto, transform)
-        if per_level:
-            keep = unique_tiles(proto, transform, system.symmetries)
-            proto, transform = proto[keep], transform[keep]
-    if box is not None and len(proto):
-        keep = meets_box(system, proto, transform, box, radii)
-        proto, transform = proto[keep], transform[keep]
+    children = [rule.children for rule in system.rules]
+    matrices = [rule.matrices for rule in system.rules]
+
+    def expand(proto: np.ndarray, transform: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+        return expand_by_label(proto, transform, children, matrices)
+
+    def cull(proto: np.ndarray, transform: np.ndarray, n: int) -> np.ndarray:
+        return meets_box(system, proto, transform, box, radii)
+
+    def dedupe_level(proto: np.ndarray, transform: np.ndarray) -> np.ndarray:
+        return unique_tiles(proto, transform, system.symmetries)
+
+    proto, transform = substitute_levels(
+        proto, transform, depth, expand, cull if box is not None else None, dedupe_level if per_level else None
+    )
     if dedupe is not False and not per_level and system.kind == "overlapping":
         keep = unique_tiles(proto, transform, system.symmetries)
         proto, transform = proto[keep], transform[keep]

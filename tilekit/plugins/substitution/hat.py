@@ -29,8 +29,16 @@ import shapely
 
 from tilekit.errors import ParameterError, ParseError
 from tilekit.geometry import Affine
-from tilekit.plugins.substitution.keypoint import MonotileSystem, _meets, expand_by_label
-from tilekit.plugins.substitution.system import Rule, guarded_loader
+from tilekit.plugins.substitution.keypoint import MonotileSystem
+from tilekit.plugins.substitution.levels import (
+    expand_base,
+    expand_by_label,
+    meets_discs,
+    substitute_levels,
+)
+from tilekit.plugins.substitution.rules import Rule
+from tilekit.plugins.substitution.system import guarded_loader
+from tilekit.polygon import signed_area
 from tilekit.resources import catalogue_dir, read_toml
 from tilekit.tiling import Prototile
 
@@ -273,28 +281,22 @@ class HatSystem(MonotileSystem):
                 f"hat depth {depth} would make {count} hats; the limit is {MAX_TILES} (give a smaller depth or a region)"
             )
         lattice = np.eye(3, dtype=np.int64)[None]
-        for n in range(depth, 0, -1):
-            if box is not None:
-                keep = _meets(label, _placed(seed_transform, lattice), self.bounds(n), box)
-                label, lattice = label[keep], lattice[keep]
-            label, lattice = self._expand(label, lattice, n)
-        if box is not None and len(label):
-            keep = _meets(label, _placed(seed_transform, lattice), self.bounds(0), box)
-            label, lattice = label[keep], lattice[keep]
-        out_t, out_c = [], []
+
+        def cull(label: np.ndarray, lattice: np.ndarray, n: int) -> np.ndarray:
+            return meets_discs(label, _placed(seed_transform, lattice), self.bounds(n), box)
+
+        label, lattice = substitute_levels(label, lattice, depth, self._expand, cull if box is not None else None)
+        colours = []
         for j, placements in enumerate(self.base):
-            idx = np.flatnonzero(label == j)
-            if not len(idx):
-                continue
-            out_t.append(np.matmul(lattice[idx][:, None], placements[None]).reshape(-1, 3, 3))
             colour = np.full(len(placements), 1 + j, dtype=np.int64)
             if j == 0:
                 colour = (np.linalg.det(placements[:, :2, :2]) < 0).astype(np.int64)
-            out_c.append(np.tile(colour, len(idx)))
-        if not out_t:
+            colours.append(colour)
+        lattice, colour = expand_base(label, lattice, self.base, colours)
+        if not len(lattice):
             return np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3)), np.zeros(0, dtype=np.int64)
-        transform = _placed(seed_transform, np.concatenate(out_t))
-        return np.zeros(len(transform), dtype=np.int64), transform, np.concatenate(out_c)
+        transform = _placed(seed_transform, lattice)
+        return np.zeros(len(transform), dtype=np.int64), transform, colour
 
 
 def _placed(seed_transform: np.ndarray | None, lattice: np.ndarray) -> np.ndarray:
@@ -357,7 +359,7 @@ def hat_system_from_data(data: Mapping[str, Any], source: str = "<data>") -> Hat
     raw = _pairs(tile_data["outline"], "[tile] outline", fail)
     outline = lattice_points(raw)
     # Prototile wants a CCW outline; placements below are computed on the raw vertex order.
-    ccw = outline if _signed_area(outline) > 0 else outline[::-1]
+    ccw = outline if signed_area(outline) > 0 else outline[::-1]
     try:
         tile = Prototile(ccw, name=str(tile_data.get("name", "hat")))
     except Exception as exc:  # GeometryError
@@ -446,11 +448,6 @@ def _pairs(value: Any, ctx: str, fail: Any) -> np.ndarray:
     if arr.ndim != 2 or arr.shape[1] != 2 or len(arr) < 1:
         raise fail(f"{ctx} must be a list of [a, b] lattice pairs")
     return arr
-
-
-def _signed_area(pts: np.ndarray) -> float:
-    x, y = pts[:, 0], pts[:, 1]
-    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
 
 
 def check_hat_system(system: HatSystem, levels: int = 2) -> None:

@@ -21,7 +21,13 @@ import shapely
 from tilekit.errors import ParseError
 from tilekit.geometry import Affine
 from tilekit.plugins.substitution.expr import constants_with, evaluate
-from tilekit.plugins.substitution.system import MatrixFacts, Rule
+from tilekit.plugins.substitution.levels import (
+    expand_base,
+    expand_by_label,
+    meets_discs,
+    substitute_levels,
+)
+from tilekit.plugins.substitution.rules import MatrixFacts, Rule
 from tilekit.tiling import Prototile
 
 REFLECT_Y = np.diag([-1.0, 1.0, 1.0])
@@ -173,65 +179,18 @@ class KeypointSystem(MonotileSystem):
         if depth % 2 == 1 and self.reflect:
             t0 = t0 @ REFLECT_Y
         transform = t0.reshape(1, 3, 3)
-        for n in range(depth, 0, -1):
-            if box is not None:
-                keep = _meets(label, transform, self.bounds(n), box)
-                label, transform = label[keep], transform[keep]
+
+        def expand(label: np.ndarray, maps: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
             rules = self.rules_at(n)
-            label, transform = expand_by_label(
-                label, transform, [r.children for r in rules], [r.matrices for r in rules]
-            )
-            if not len(label):
-                return np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3)), np.zeros(0, dtype=np.int64)
-        if box is not None:
-            keep = _meets(label, transform, self.bounds(0), box)
-            label, transform = label[keep], transform[keep]
-        out_t, out_c = [], []
-        for j, placements in enumerate(self.base):
-            idx = np.flatnonzero(label == j)
-            if not len(idx):
-                continue
-            tiles = np.matmul(transform[idx][:, None], placements[None]).reshape(-1, 3, 3)
-            out_t.append(tiles)
-            out_c.append(np.tile(np.arange(len(placements)) > 0, len(idx)).astype(np.int64))
-        if not out_t:
-            return np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3)), np.zeros(0, dtype=np.int64)
-        transform = np.concatenate(out_t)
-        return np.zeros(len(transform), dtype=np.int64), transform, np.concatenate(out_c)
+            return expand_by_label(label, maps, [r.children for r in rules], [r.matrices for r in rules])
 
+        def cull(label: np.ndarray, maps: np.ndarray, n: int) -> np.ndarray:
+            return meets_discs(label, maps, self.bounds(n), box)
 
-def expand_by_label(
-    label: np.ndarray,
-    maps: np.ndarray,
-    children: Sequence[np.ndarray],
-    matrices: Sequence[np.ndarray],
-) -> tuple[np.ndarray, np.ndarray]:
-    """One substitution level as arrays: every placed supertile of label j (``maps[k]``)
-    becomes its children ``children[j]`` placed by ``maps[k] @ matrices[j]``.
-
-    One batched matmul per label; the dtype of ``maps`` is kept (integer lattice maps stay
-    exact). Returns the children's labels and maps.
-    """
-    labels, out = [], []
-    for j, (kids, mats) in enumerate(zip(children, matrices, strict=True)):
-        idx = np.flatnonzero(label == j)
-        if not len(idx):
-            continue
-        out.append(np.matmul(maps[idx][:, None], mats[None]).reshape(-1, 3, 3))
-        labels.append(np.tile(kids, len(idx)))
-    if not labels:
-        return np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3), dtype=maps.dtype)
-    return np.concatenate(labels), np.concatenate(out)
-
-
-def _meets(label: np.ndarray, transform: np.ndarray, bounds: tuple[np.ndarray, np.ndarray], box: Sequence[float]) -> np.ndarray:
-    centres, radii = bounds
-    img = np.einsum("nij,nj->ni", transform[:, :2, :2], centres[label]) + transform[:, :2, 2]
-    x0, y0, x1, y1 = box
-    dx = np.maximum(np.maximum(x0 - img[:, 0], img[:, 0] - x1), 0.0)
-    dy = np.maximum(np.maximum(y0 - img[:, 1], img[:, 1] - y1), 0.0)
-    r = radii[label] * (1 + 1e-9) + 1e-9
-    return dx * dx + dy * dy <= r * r
+        label, transform = substitute_levels(label, transform, depth, expand, cull if box is not None else None)
+        colours = [(np.arange(len(p)) > 0).astype(np.int64) for p in self.base]
+        transform, colour = expand_base(label, transform, self.base, colours)
+        return np.zeros(len(transform), dtype=np.int64), transform.astype(float), colour
 
 
 # ---------------------------------------------------------------------- loading

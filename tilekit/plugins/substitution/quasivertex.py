@@ -44,6 +44,7 @@ import shapely
 
 from tilekit.errors import GeometryError, ParameterError
 from tilekit.geometry import Affine
+from tilekit.plugins.substitution.shapes import complement
 from tilekit.tiling import Prototile
 
 #: Point order around the deformed tiles (counter-clockwise, from A / A').
@@ -264,8 +265,6 @@ def validate_params(params: QuasivertexParams) -> None:
 
 def resolve_shapes(shapes: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
     """Edge shapes per label a..h: a shape given on a label puts its complement on the partner."""
-    from tilekit.plugins.substitution.shapes import complement
-
     out: dict[str, np.ndarray] = {}
     for name, pts in shapes.items():
         if name not in PARTNER:

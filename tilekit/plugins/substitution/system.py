@@ -35,66 +35,19 @@ import shapely
 from tilekit.errors import GeometryError, ParseError, TilekitError
 from tilekit.geometry import Affine
 from tilekit.plugins.substitution.expr import constants_with, evaluate
+from tilekit.plugins.substitution.keypoint import keypoint_system_from_data
+from tilekit.plugins.substitution.rules import MatrixFacts, Rule
+from tilekit.polygon import inscribed_disc as inscribed_disc  # moved to tilekit.polygon
+from tilekit.polygon import symmetry_maps as outline_symmetries  # moved to tilekit.polygon
 from tilekit.resources import read_toml
 from tilekit.tiling import Prototile
+
+__all__ = ["MatrixFacts", "Rule", "SubstitutionSystem", "load_data", "load_system", "system_from_data"]
 
 KINDS = ("exact", "indented", "overlapping")
 
 #: Relative tolerance of the loader's geometric checks (areas as a fraction of the parent).
 CHECK_TOL = 1e-7
-
-
-@dataclass
-class Rule:
-    """The substitution of one prototile: child prototile indices and their maps (m, 3, 3)."""
-
-    children: np.ndarray
-    matrices: np.ndarray
-
-
-class MatrixFacts:
-    """Substitution-matrix facts shared by every kind of system (similarity, keypoint, hat).
-
-    A system provides ``n`` (number of labels), ``seed`` and ``child_labels()`` (per label,
-    the labels of its children); the rest follows from the matrix.
-    """
-
-    n: int
-    seed: int
-
-    def child_labels(self) -> list[np.ndarray]:
-        """Per label j, the labels of the children in j's rule."""
-        raise TypeError(f"{type(self).__name__} must define child_labels()")
-
-    def substitution_matrix(self) -> np.ndarray:
-        """M[i, j] = number of label-i children in the rule of label j."""
-        m = np.zeros((self.n, self.n), dtype=np.int64)
-        for j, kids in enumerate(self.child_labels()):
-            np.add.at(m[:, j], kids, 1)
-        return m
-
-    def perron_frobenius(self) -> tuple[float, np.ndarray]:
-        """The dominant eigenvalue of the substitution matrix and its eigenvector (sum 1).
-
-        For a primitive matrix the normalised right eigenvector gives the limiting relative
-        frequencies of the labels; for a self-similar system the eigenvalue is s**2.
-        """
-        m = self.substitution_matrix().astype(float)
-        vals, vecs = np.linalg.eig(m)
-        k = int(np.argmax(vals.real))
-        vec = np.abs(vecs[:, k].real)
-        return float(vals[k].real), vec / vec.sum()
-
-    def counts(self, generations: int, start: int | None = None) -> list[list[int]]:
-        """Label counts after 0..generations substitutions of one ``start`` tile (M^n e), exact."""
-        mo = self.substitution_matrix().astype(object)
-        v = np.zeros(self.n, dtype=object)
-        v[self.seed if start is None else start] = 1
-        out = [[int(x) for x in v]]
-        for _ in range(generations):
-            v = mo.dot(v)
-            out.append([int(x) for x in v])
-        return out
 
 
 @dataclass
@@ -179,8 +132,6 @@ def load_data(data: Mapping[str, Any], source: str = "<data>") -> Any:
     """A system of either engine from parsed data."""
     engine = data.get("engine", "similarity") if isinstance(data, Mapping) else None
     if engine == "keypoint":
-        from tilekit.plugins.substitution.keypoint import keypoint_system_from_data
-
         return keypoint_system_from_data(data, source)
     if engine not in ("similarity", None):
         raise ParseError(f"substitution system {source}: engine {engine!r} is not 'similarity' or 'keypoint'")
@@ -476,30 +427,6 @@ def check_system(system: SubstitutionSystem, names: Sequence[str]) -> None:
 # ---------------------------------------------------------------------- symmetry
 
 
-def outline_symmetries(outline: np.ndarray, tol: float = 1e-7) -> np.ndarray:
-    """All isometries mapping the outline onto itself (k, 3, 3), identity first."""
-    pts = np.asarray(outline, dtype=float)
-    k = len(pts)
-    out = [np.eye(3)]
-    for j in range(k):
-        for direction in (1, -1):
-            if j == 0 and direction == 1:
-                continue
-            src = pts[[0, 1, 2]]
-            dst = pts[[j % k, (j + direction) % k, (j + 2 * direction) % k]]
-            try:
-                m = affine_from_points(src, dst)
-            except GeometryError:
-                continue
-            if not Affine.is_isometry(m, tol=1e-6):
-                continue
-            img = Affine.apply(m, pts)
-            perm = pts[[(j + direction * i) % k for i in range(k)]]
-            if np.allclose(img, perm, atol=tol * max(1.0, float(np.abs(pts).max()))):
-                out.append(m)
-    return np.array(out)
-
-
 def rule_symmetries(system: SubstitutionSystem) -> list[np.ndarray]:
     """Per prototile, the outline symmetries that also preserve its substitution (exercise 6.7).
 
@@ -553,13 +480,3 @@ def inflation_radii(system: SubstitutionSystem) -> tuple[np.ndarray, np.ndarray]
             break
         radius = new
     return centres, radius * (1 + 1e-9) + 1e-12
-
-
-def inscribed_disc(outline: np.ndarray) -> tuple[np.ndarray, float]:
-    """A large disc inside the outline (centre, radius), by shapely's polylabel."""
-    from shapely.ops import polylabel
-
-    poly = shapely.Polygon(outline)
-    tol = math.sqrt(poly.area) * 1e-4
-    c = polylabel(poly, tolerance=tol)
-    return np.array([c.x, c.y]), float(poly.exterior.distance(c))

@@ -20,11 +20,19 @@ import shapely
 from shapely.geometry.base import BaseGeometry
 from shapely.geometry.polygon import orient
 
-from tilekit.errors import ParameterError, ParseError
+from tilekit.errors import GeometryError, NotFoundError, ParameterError, ParseError
 from tilekit.geometry import Affine, as_region
 from tilekit.limits import MAX_DEPTH  # the depth range; the tile estimate is the real bound
-from tilekit.plugins.substitution import engine
-from tilekit.plugins.substitution.system import SubstitutionSystem, inscribed_disc
+from tilekit.plugins.substitution import engine, shapes
+from tilekit.plugins.substitution import quasivertex as qv
+from tilekit.plugins.substitution.shapes import (
+    canonical_transforms,
+    edge_classes,
+    halves_mirror,
+    parse_edge_shape,
+)
+from tilekit.plugins.substitution.system import SubstitutionSystem, load_data
+from tilekit.polygon import inscribed_disc
 from tilekit.tiling import Patch, Prototile, Tiling, region_tile_estimate
 
 
@@ -76,9 +84,6 @@ class SubstitutionTiling(Tiling):
 
     def _quasivertex_tiles(self) -> list[Prototile]:
         """The rhombs deformed by Figure 6.13's quasivertices, with Figure 6.14's edge shapes."""
-        from tilekit.plugins.substitution import quasivertex as qv
-        from tilekit.plugins.substitution.shapes import halves_mirror, parse_edge_shape
-
         params = qv.QuasivertexParams.from_options(self.quasivertex or {})
         self.quasivertex = params.as_dict()
         shapes = {}
@@ -93,9 +98,6 @@ class SubstitutionTiling(Tiling):
 
     def _shape_tiles(self) -> list[Prototile]:
         """Shaped whole tiles from params (tooth heights) and/or named edge shapes (§6.3)."""
-        from tilekit.errors import GeometryError
-        from tilekit.plugins.substitution import shapes
-
         if self.system.output_prototiles is None:
             raise ParameterError(
                 f"{self.name} has no assembled whole tiles; edge shapes apply to penrose-p2, "
@@ -255,8 +257,6 @@ class SubstitutionTiling(Tiling):
         else:
             proto, transform = self.raw(reg)
         if self._shaped is not None:
-            from tilekit.plugins.substitution.shapes import canonical_transforms
-
             transform = canonical_transforms(proto, transform, self._mirrors)
         patch = Patch(self.prototiles, proto, transform, colour=_colours(proto, transform, len(self.prototiles)))
         if reg is not None:
@@ -634,9 +634,6 @@ def _shape_key(p: Prototile) -> tuple[int, ...]:
 
 def tiling_from_spec(spec: Mapping[str, Any], systems: Mapping[str, SubstitutionSystem]) -> SubstitutionTiling:
     """Rebuild a tiling from ``{"system": name}`` or ``{"system_data": {...}}`` plus options."""
-    from tilekit.errors import NotFoundError
-    from tilekit.plugins.substitution.system import load_data
-
     if "system_data" in spec:
         system = load_data(spec["system_data"], source=str(spec.get("source", "<spec>")))
     elif "system" in spec:
@@ -656,8 +653,6 @@ _EDGE_CLASS_CACHE: dict[int, Any] = {}
 
 
 def _edge_classes(system: SubstitutionSystem) -> Any:
-    from tilekit.plugins.substitution.shapes import edge_classes
-
     key = id(system)
     if key not in _EDGE_CLASS_CACHE:
         _EDGE_CLASS_CACHE[key] = edge_classes(system)

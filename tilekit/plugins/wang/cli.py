@@ -17,6 +17,7 @@ from tilekit.errors import ParseError
 from tilekit.plugins.wang.render import write_wang_image
 from tilekit.plugins.wang.solve import METHODS, solve
 from tilekit.plugins.wang.tileset import WangTileSet, get_tileset, load_tileset
+from tilekit.plugins.wang.tiling import WangTiling
 
 #: Largest image side of ``wang render --size`` (pixels): limits.MAX_PNG_PIXELS is its square.
 MAX_SIZE = 10_000
@@ -77,8 +78,6 @@ def render_command(set_name: str, out: str, rows: int, cols: int, seed: int, met
       tilekit wang render stochastic-2colour --rows 20 --cols 30 -o wang.svg
       tilekit wang render jeandel-rao --rows 8 --cols 8 --method solver -o jr.png
     """
-    from tilekit.plugins.wang import WangTiling
-
     limits.refuse_over("grid cells", rows * cols, max_tiles, "--max-tiles")
     ts = _tileset(set_name)
     grid = WangTiling(ts, seed=seed, method=method).grid(0, 0, rows, cols)

@@ -24,6 +24,7 @@ import numpy as np
 
 from tilekit.errors import ParameterError, ParseError
 from tilekit.plugins.wang.tileset import CORNERS, SIDES, WangTileSet
+from tilekit.render import write_svg
 from tilekit.resources import read_toml
 
 #: Fallback colours for tokens without a palette entry.
@@ -167,6 +168,4 @@ def write_wang_image(
     grid: np.ndarray, tileset: WangTileSet, path: str | Path, **options: object
 ) -> Path:
     """Write :func:`wang_svg` to ``path`` (.svg, or .png through cairosvg)."""
-    from tilekit.render import write_svg
-
     return write_svg(wang_svg(grid, tileset, **options), path)  # type: ignore[arg-type]

@@ -13,12 +13,12 @@ has colour k). Clauses, all linear in the grid size:
 
 Compared with the plain encoding of FACTS.md (pairwise at-most-one over tiles, adjacency as
 pairs of incompatible tiles), the number of clauses per cell drops from O(T^2) to O(T + k^2).
-The default solver is CaDiCaL 1.9.5 through python-sat.
+The default solver is CaDiCaL 1.9.5 through python-sat; solving, solver choice and time
+limits are the core's :mod:`tilekit.sat`.
 """
 
 from __future__ import annotations
 
-import threading
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -29,13 +29,14 @@ import numpy as np
 from tilekit.errors import ParameterError, SolverLimit
 from tilekit.plugins.wang.check import check_grid, grid_size
 from tilekit.plugins.wang.tileset import E, N, S, W, WangTileSet
-
-#: python-sat solver names we accept.
-SAT_SOLVERS = ("cadical195", "cadical153", "glucose4", "glucose42", "minisat22", "maplechrono", "lingeling")
-#: Solvers python-sat can interrupt in process; the others run in a forked child under a
-#: time limit, killed when it expires.
-INTERRUPTIBLE = ("glucose4", "glucose42", "minisat22", "maplechrono")
-DEFAULT_SAT_SOLVER = "cadical195"
+from tilekit.sat import (  # re-exported: the names this module had before tilekit.sat
+    CNF,
+    DEFAULT_SAT_SOLVER,
+    INTERRUPTIBLE,  # noqa: F401
+    SAT_SOLVERS,  # noqa: F401
+    check_solver,
+    solve,
+)
 
 
 @dataclass
@@ -219,82 +220,23 @@ def sat_solve(
     With ``time_limit`` (seconds) the solver is interrupted (or, for CaDiCaL, which python-sat
     cannot interrupt, run in a child process that is killed) and :class:`SolverLimit` raised.
     """
-    if solver not in SAT_SOLVERS:
-        raise ParameterError(f"SAT solver {solver!r} is not supported; choose one of {', '.join(SAT_SOLVERS)}")
+    check_solver(solver)
     rows, cols, fixed_n = prepare_question(tileset, rows, cols, fixed, torus)
     start = time.perf_counter()
     enc = _Encoding(tileset, rows, cols, torus)
-    clauses = enc.clauses()
+    cnf = CNF(top=enc.top)
+    cnf.clauses = enc.clauses()
     assumptions = [int(enc.x(i, j, t)) for (i, j), t in fixed_n.items()]
-    if time_limit is None:
-        answer, model, extra = _solve_here(solver, clauses, assumptions)
-    elif solver in INTERRUPTIBLE:
-        answer, model, extra = _solve_here(solver, clauses, assumptions, float(time_limit))
-    else:
-        answer, model, extra = _solve_in_child(solver, clauses, assumptions, float(time_limit))
-    stats = {"variables": enc.top, "clauses": len(clauses), "solver": solver, **extra}
+    answer = solve(cnf, assumptions, solver=solver, time_limit=time_limit)
+    stats = {"variables": enc.top, "clauses": len(cnf), "solver": solver, **answer.stats}
     seconds = time.perf_counter() - start
-    if answer is None:
+    if answer.satisfiable is None:
         raise no_answer(solver, tileset, rows, cols, torus, f"{time_limit} s", "raise time_limit")
     grid = None
-    if answer:
-        grid = enc.decode(model)
+    if answer.satisfiable:
+        grid = enc.decode(answer.model)
         check_grid(grid, tileset, torus=torus, fixed=fixed_n)
-    return SolveResult(bool(answer), grid, rows, cols, torus, f"sat:{solver}", seconds, stats)
-
-
-def _solve_here(
-    solver: str, clauses: list[list[int]], assumptions: list[int], time_limit: float | None = None
-) -> tuple[bool | None, list[int] | None, dict[str, int]]:
-    """Solve in this process (interrupting by a timer when ``time_limit`` is given)."""
-    from pysat.solvers import Solver
-
-    with Solver(name=solver, bootstrap_with=clauses) as s:
-        if time_limit is None:
-            answer = s.solve(assumptions=assumptions)
-        else:
-            timer = threading.Timer(time_limit, s.interrupt)
-            timer.start()
-            try:
-                answer = s.solve_limited(assumptions=assumptions, expect_interrupt=True)
-            finally:
-                timer.cancel()
-        try:
-            extra = {k: int(v) for k, v in (s.accum_stats() or {}).items()}
-        except (NotImplementedError, AttributeError):
-            extra = {}
-        return answer, (s.get_model() if answer else None), extra
-
-
-def _child(conn: Any, solver: str, clauses: list[list[int]], assumptions: list[int]) -> None:
-    conn.send(_solve_here(solver, clauses, assumptions))
-    conn.close()
-
-
-def _solve_in_child(
-    solver: str, clauses: list[list[int]], assumptions: list[int], time_limit: float
-) -> tuple[bool | None, list[int] | None, dict[str, int]]:
-    """Solve in a forked process and kill it at the time limit (for solvers such as CaDiCaL
-    that python-sat cannot interrupt). The child inherits the clauses by fork, not pickling."""
-    import multiprocessing
-
-    ctx = multiprocessing.get_context("fork")
-    parent, child = ctx.Pipe(duplex=False)
-    proc = ctx.Process(target=_child, args=(child, solver, clauses, assumptions), daemon=True)
-    proc.start()
-    child.close()
-    try:
-        if parent.poll(time_limit):
-            try:
-                return parent.recv()
-            except EOFError:
-                raise SolverLimit(f"the {solver} process ended without an answer (exit code {proc.exitcode})") from None
-        return None, None, {}
-    finally:
-        if proc.is_alive():
-            proc.kill()
-        proc.join()
-        parent.close()
+    return SolveResult(bool(answer.satisfiable), grid, rows, cols, torus, f"sat:{solver}", seconds, stats)
 
 
 def prepare_question(

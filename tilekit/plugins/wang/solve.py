@@ -28,6 +28,7 @@ from typing import Any
 
 import numpy as np
 
+from tilekit.builder import PatchBuilder
 from tilekit.errors import ParameterError, SolverLimit
 from tilekit.plugins.wang.check import check_grid
 from tilekit.plugins.wang.sat import (
@@ -38,6 +39,7 @@ from tilekit.plugins.wang.sat import (
     sat_solve,
 )
 from tilekit.plugins.wang.tileset import E, N, S, W, WangTileSet
+from tilekit.tiling import Prototile
 
 METHODS = ("sat", "builder", "backtrack")
 
@@ -141,7 +143,6 @@ _CORNER_OFFSET = ((0, 0), (1, 0), (1, 1), (0, 1))
 
 def builder_prototiles(tileset: WangTileSet) -> list:
     """Unit squares with edge labels ('S', c), ('E', c), ('N', c), ('W', c) (outline order)."""
-    from tilekit.tiling import Prototile
 
     square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
     return [
@@ -207,7 +208,6 @@ def builder_solve(
     a torus is the builder's periodic mode with lattice ((cols, 0), (0, rows)) and its goal
     of a closed torus. The patch found is converted back to a grid and checked independently.
     """
-    from tilekit.builder import PatchBuilder
 
     rows, cols, fixed_n = prepare_question(tileset, rows, cols, fixed, torus)
     start = time.perf_counter()

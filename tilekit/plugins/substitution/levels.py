@@ -1,0 +1,99 @@
+"""The level-by-level substitution loop that every generator shares (§6.1, §7.4).
+
+The similarity engine, the keypoint (spectre) systems and the hat all substitute a seed
+supertile level by level: drop the placed supertiles that cannot reach the region, replace
+every survivor by its children (one batched matrix product per label), and at the end place
+the base tiles. Only the rules per level, the culling test and the base differ; they are
+arguments here.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+
+import numpy as np
+
+Expand = Callable[[np.ndarray, np.ndarray, int], tuple[np.ndarray, np.ndarray]]
+Cull = Callable[[np.ndarray, np.ndarray, int], np.ndarray]
+
+
+def substitute_levels(
+    label: np.ndarray,
+    maps: np.ndarray,
+    depth: int,
+    expand: Expand,
+    cull: Cull | None = None,
+    after_level: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Substitute the placed supertiles (``label``, ``maps``) of level ``depth`` down to level 0.
+
+    For n = depth .. 1: keep the supertiles for which ``cull(label, maps, n)`` is true (when
+    given), then ``expand(label, maps, n)`` replaces each level-n supertile by its level-(n-1)
+    children; ``after_level(label, maps)`` may return a mask to keep (duplicates removed, for
+    overlapping systems). Finally ``cull(label, maps, 0)`` drops tiles that miss the region.
+    """
+    for n in range(depth, 0, -1):
+        if cull is not None:
+            keep = cull(label, maps, n)
+            label, maps = label[keep], maps[keep]
+        label, maps = expand(label, maps, n)
+        if after_level is not None:
+            keep = after_level(label, maps)
+            label, maps = label[keep], maps[keep]
+    if cull is not None:
+        keep = cull(label, maps, 0)
+        label, maps = label[keep], maps[keep]
+    return label, maps
+
+
+def expand_base(
+    label: np.ndarray, maps: np.ndarray, base: Sequence[np.ndarray], colours: Sequence[np.ndarray]
+) -> tuple[np.ndarray, np.ndarray]:
+    """The base tiles of level-0 supertiles: label j's tiles are placed by ``maps @ base[j]``
+    and coloured ``colours[j]``. Returns (transforms, colours); the dtype of ``maps`` is kept."""
+    out_t, out_c = [], []
+    for j, placements in enumerate(base):
+        idx = np.flatnonzero(label == j)
+        if not len(idx):
+            continue
+        out_t.append(np.matmul(maps[idx][:, None], placements[None]).reshape(-1, 3, 3))
+        out_c.append(np.tile(colours[j], len(idx)))
+    if not out_t:
+        return np.zeros((0, 3, 3), dtype=maps.dtype), np.zeros(0, dtype=np.int64)
+    return np.concatenate(out_t), np.concatenate(out_c)
+
+
+def expand_by_label(
+    label: np.ndarray,
+    maps: np.ndarray,
+    children: Sequence[np.ndarray],
+    matrices: Sequence[np.ndarray],
+) -> tuple[np.ndarray, np.ndarray]:
+    """One substitution level as arrays: every placed supertile of label j (``maps[k]``)
+    becomes its children ``children[j]`` placed by ``maps[k] @ matrices[j]``.
+
+    One batched matmul per label; the dtype of ``maps`` is kept (integer lattice maps stay
+    exact). Returns the children's labels and maps.
+    """
+    labels, out = [], []
+    for j, (kids, mats) in enumerate(zip(children, matrices, strict=True)):
+        idx = np.flatnonzero(label == j)
+        if not len(idx):
+            continue
+        out.append(np.matmul(maps[idx][:, None], mats[None]).reshape(-1, 3, 3))
+        labels.append(np.tile(kids, len(idx)))
+    if not labels:
+        return np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3), dtype=maps.dtype)
+    return np.concatenate(labels), np.concatenate(out)
+
+
+def meets_discs(label: np.ndarray, transform: np.ndarray, bounds: tuple[np.ndarray, np.ndarray], box: Sequence[float]) -> np.ndarray:
+    """Mask of placed supertiles (rigid ``transform``) whose bounding disc (``bounds``:
+    centre and radius per label) meets the box (x0, y0, x1, y1)."""
+    centres, radii = bounds
+    img = np.einsum("nij,nj->ni", transform[:, :2, :2], centres[label]) + transform[:, :2, 2]
+    x0, y0, x1, y1 = box
+    dx = np.maximum(np.maximum(x0 - img[:, 0], img[:, 0] - x1), 0.0)
+    dy = np.maximum(np.maximum(y0 - img[:, 1], img[:, 1] - y1), 0.0)
+    r = radii[label] * (1 + 1e-9) + 1e-9
+    return dx * dx + dy * dy <= r * r

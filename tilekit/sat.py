@@ -1,0 +1,279 @@
+"""The SAT layer every family shares: build a CNF, add cardinality constraints, solve.
+
+One small vocabulary over python-sat, so that the Wang rectangle/torus encoding, the
+polyomino Heesch and periodic-tiling searches and anything a third party writes agree on
+solver names, time limits and the shape of an answer::
+
+    >>> from tilekit.sat import CNF, solve
+    >>> cnf = CNF()
+    >>> a, b, c = cnf.new_vars(3)
+    >>> cnf.add([a, b, c])
+    >>> cnf.at_most([a, b, c], 1)           # pysat.card encoding, auxiliaries numbered for you
+    >>> answer = solve(cnf, assumptions=[-a, -b])
+    >>> answer.satisfiable, answer.value(c)
+    (True, True)
+    >>> solve(cnf, assumptions=[a, b]).satisfiable
+    False
+
+Incremental use keeps one solver alive between questions (learned clauses survive)::
+
+    >>> with IncrementalSolver(cnf) as s:
+    ...     first = s.solve(assumptions=[a]).satisfiable
+    ...     s.add([-a])
+    ...     second = s.solve(assumptions=[a]).satisfiable
+    >>> first, second
+    (True, False)
+
+**Time limits.** ``time_limit`` (seconds) on :func:`solve` or :meth:`IncrementalSolver.solve`
+gives ``satisfiable=None`` when it expires. Solvers that python-sat can interrupt
+(:data:`INTERRUPTIBLE`) are stopped by a timer in this process; the others (CaDiCaL,
+Lingeling) solve in a forked child process that is killed at the limit — the child inherits
+the clauses (and an incremental solver's state) by fork, nothing is pickled. The answer of a
+child does not teach the parent's incremental solver its learned clauses.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import threading
+import time
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from tilekit.errors import ParameterError, SolverLimit
+
+#: python-sat solver names we accept.
+SAT_SOLVERS = ("cadical195", "cadical153", "glucose4", "glucose42", "minisat22", "maplechrono", "lingeling")
+#: Solvers python-sat can interrupt in process; the others run in a forked child under a
+#: time limit, killed when it expires.
+INTERRUPTIBLE = ("glucose4", "glucose42", "minisat22", "maplechrono")
+DEFAULT_SAT_SOLVER = "cadical195"
+#: pysat.card encodings by name (``CNF.at_most(..., encoding="totalizer")``).
+CARD_ENCODINGS = ("seqcounter", "totalizer", "kmtotalizer", "sortnetwrk", "cardnetwrk", "mtotalizer", "ladder", "pairwise")
+DEFAULT_CARD_ENCODING = "seqcounter"
+
+
+def check_solver(solver: str) -> str:
+    """``solver`` itself, or a ParameterError naming the supported ones."""
+    if solver not in SAT_SOLVERS:
+        raise ParameterError(f"SAT solver {solver!r} is not supported; choose one of {', '.join(SAT_SOLVERS)}")
+    return solver
+
+
+class CNF:
+    """Clauses over variables ``1..top``, with fresh-variable numbering and cardinality encodings.
+
+    ``clauses`` is a plain list of lists of non-zero ints (DIMACS literals), so array code can
+    ``extend`` it with ``ndarray.tolist()`` rows directly.
+    """
+
+    def __init__(self, clauses: Iterable[Sequence[int]] = (), top: int = 0) -> None:
+        self.clauses: list[list[int]] = [list(map(int, c)) for c in clauses]
+        self.top = max([top, *(abs(v) for c in self.clauses for v in c)])
+
+    def __len__(self) -> int:
+        return len(self.clauses)
+
+    def new_var(self) -> int:
+        """One fresh variable."""
+        self.top += 1
+        return self.top
+
+    def new_vars(self, n: int) -> range:
+        """``n`` fresh consecutive variables."""
+        start = self.top + 1
+        self.top += int(n)
+        return range(start, self.top + 1)
+
+    def reserve(self, top: int) -> None:
+        """Declare that variables up to ``top`` are in use (an encoding numbered its own)."""
+        self.top = max(self.top, int(top))
+
+    def add(self, clause: Sequence[int]) -> None:
+        """Add one clause (a disjunction of literals)."""
+        clause = [int(v) for v in clause]
+        if not clause or 0 in clause:
+            raise ParameterError(f"a clause is a non-empty list of non-zero literals, not {clause!r}")
+        self.top = max(self.top, *(abs(v) for v in clause))
+        self.clauses.append(clause)
+
+    def extend(self, clauses: Iterable[Sequence[int]]) -> None:
+        """Add many clauses; literals above ``top`` raise ``top``."""
+        rows = [list(c) for c in clauses]
+        if rows:
+            self.top = max(self.top, max(abs(v) for c in rows for v in c))
+        self.clauses.extend(rows)
+
+    def _card(self, kind: str, lits: Sequence[int], k: int, encoding: str) -> None:
+        from pysat.card import CardEnc, EncType  # loaded with pysat.solvers only when used
+
+        if encoding not in CARD_ENCODINGS:
+            raise ParameterError(f"cardinality encoding {encoding!r} is unknown; choose one of {', '.join(CARD_ENCODINGS)}")
+        lits = [int(v) for v in lits]
+        if lits:
+            self.top = max(self.top, max(abs(v) for v in lits))
+        enc = getattr(CardEnc, kind)(lits=lits, bound=int(k), top_id=self.top, encoding=getattr(EncType, encoding))
+        self.top = max(self.top, enc.nv)
+        self.clauses.extend(enc.clauses)
+
+    def at_most(self, lits: Sequence[int], k: int, encoding: str = DEFAULT_CARD_ENCODING) -> None:
+        """At most ``k`` of ``lits`` are true."""
+        self._card("atmost", lits, k, encoding)
+
+    def at_least(self, lits: Sequence[int], k: int, encoding: str = DEFAULT_CARD_ENCODING) -> None:
+        """At least ``k`` of ``lits`` are true."""
+        self._card("atleast", lits, k, encoding)
+
+    def exactly(self, lits: Sequence[int], k: int, encoding: str = DEFAULT_CARD_ENCODING) -> None:
+        """Exactly ``k`` of ``lits`` are true."""
+        self._card("equals", lits, k, encoding)
+
+
+@dataclass
+class SatAnswer:
+    """One solver call: ``satisfiable`` is True (with a ``model``), False (proved), or None
+    (the time limit expired first)."""
+
+    satisfiable: bool | None
+    model: list[int] | None
+    solver: str
+    seconds: float
+    stats: dict[str, int] = field(default_factory=dict)
+
+    def value(self, var: int) -> bool:
+        """The model's value of variable ``var`` (variables the solver never saw are False)."""
+        if self.model is None:
+            raise ParameterError("no model: the answer is not satisfiable")
+        return 0 < var <= len(self.model) and self.model[var - 1] > 0
+
+    def true_vars(self) -> list[int]:
+        """The variables set true in the model."""
+        return [v for v in (self.model or ()) if v > 0]
+
+
+def _clauses_of(cnf: CNF | Iterable[Sequence[int]]) -> list[list[int]]:
+    return cnf.clauses if isinstance(cnf, CNF) else [list(c) for c in cnf]
+
+
+def _stats(s: Any) -> dict[str, int]:
+    try:
+        return {k: int(v) for k, v in (s.accum_stats() or {}).items()}
+    except (NotImplementedError, AttributeError):
+        return {}
+
+
+def _run(s: Any, assumptions: list[int], time_limit: float | None) -> tuple[bool | None, list[int] | None, dict[str, int]]:
+    """Solve on the live pysat solver ``s`` (interrupting by a timer when a limit is given)."""
+    if time_limit is None:
+        answer = s.solve(assumptions=assumptions)
+    else:
+        timer = threading.Timer(time_limit, s.interrupt)
+        timer.start()
+        try:
+            answer = s.solve_limited(assumptions=assumptions, expect_interrupt=True)
+        finally:
+            timer.cancel()
+        if answer is None:
+            s.clear_interrupt()
+    return answer, (s.get_model() if answer else None), _stats(s)
+
+
+def _in_child(job: Any, solver: str, time_limit: float) -> tuple[bool | None, list[int] | None, dict[str, int]]:
+    """Run ``job()`` in a forked process and kill it at the time limit (for solvers such as
+    CaDiCaL that python-sat cannot interrupt). The child inherits everything by fork."""
+    ctx = multiprocessing.get_context("fork")
+    parent, child = ctx.Pipe(duplex=False)
+
+    def target() -> None:
+        child.send(job())
+        child.close()
+
+    proc = ctx.Process(target=target, daemon=True)
+    proc.start()
+    child.close()
+    try:
+        if parent.poll(time_limit):
+            try:
+                return parent.recv()
+            except EOFError:
+                raise SolverLimit(f"the {solver} process ended without an answer (exit code {proc.exitcode})") from None
+        return None, None, {}
+    finally:
+        if proc.is_alive():
+            proc.kill()
+        proc.join()
+        parent.close()
+
+
+def solve(
+    cnf: CNF | Iterable[Sequence[int]],
+    assumptions: Sequence[int] = (),
+    solver: str = DEFAULT_SAT_SOLVER,
+    time_limit: float | None = None,
+) -> SatAnswer:
+    """Solve ``cnf`` once under ``assumptions`` with ``solver`` (a name in :data:`SAT_SOLVERS`).
+
+    With ``time_limit`` the answer is ``satisfiable=None`` when the limit expires (see the
+    module docstring for how it is enforced).
+    """
+    from pysat.solvers import Solver  # measured start-up cost: ~45 ms, only when solving
+
+    check_solver(solver)
+    clauses = _clauses_of(cnf)
+    assumptions = [int(v) for v in assumptions]
+    start = time.perf_counter()
+
+    here = time_limit is None or solver in INTERRUPTIBLE
+
+    def job() -> tuple[bool | None, list[int] | None, dict[str, int]]:
+        with Solver(name=solver, bootstrap_with=clauses) as s:
+            # in a child the parent kills at the limit; here a timer interrupts
+            return _run(s, assumptions, float(time_limit) if here and time_limit is not None else None)
+
+    answer, model, stats = job() if here else _in_child(job, solver, float(time_limit))
+    return SatAnswer(answer, model, solver, time.perf_counter() - start, stats)
+
+
+class IncrementalSolver:
+    """One live solver for a sequence of questions: add clauses, solve under assumptions,
+    add more, solve again. Use as a context manager (or call :meth:`close`)."""
+
+    def __init__(self, cnf: CNF | Iterable[Sequence[int]] = (), solver: str = DEFAULT_SAT_SOLVER) -> None:
+        from pysat.solvers import Solver  # measured start-up cost: ~45 ms, only when solving
+
+        self.solver = check_solver(solver)
+        self._s = Solver(name=solver, bootstrap_with=_clauses_of(cnf))
+        self.calls = 0
+
+    def __enter__(self) -> IncrementalSolver:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def close(self) -> None:
+        """Free the solver."""
+        if self._s is not None:
+            self._s.delete()
+            self._s = None
+
+    def add(self, clause: Sequence[int]) -> None:
+        """Add one clause for every later question."""
+        self._s.add_clause([int(v) for v in clause])
+
+    def extend(self, clauses: Iterable[Sequence[int]]) -> None:
+        """Add many clauses (a :class:`CNF` or rows of literals)."""
+        self._s.append_formula(_clauses_of(clauses))
+
+    def solve(self, assumptions: Sequence[int] = (), time_limit: float | None = None) -> SatAnswer:
+        """Answer the formula so far under ``assumptions``; ``None`` when ``time_limit`` expires."""
+        assumptions = [int(v) for v in assumptions]
+        start = time.perf_counter()
+        self.calls += 1
+        if time_limit is None or self.solver in INTERRUPTIBLE:
+            answer, model, stats = _run(self._s, assumptions, None if time_limit is None else float(time_limit))
+        else:
+            s = self._s
+            answer, model, stats = _in_child(lambda: _run(s, assumptions, None), self.solver, float(time_limit))
+        return SatAnswer(answer, model, self.solver, time.perf_counter() - start, stats)
