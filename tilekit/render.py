@@ -16,6 +16,7 @@ import numpy as np
 
 from tilekit.errors import ParameterError, ParseError, TilekitError
 from tilekit.geometry import Affine, as_region
+from tilekit.limits import MAX_PNG_PIXELS, refuse_over
 
 #: The default palette: soft, distinguishable fills (colour 0 first).
 PALETTE: tuple[str, ...] = (
@@ -137,8 +138,6 @@ def patch_to_svg(
     sw = stroke_width if stroke_width is not None else (1.2 if stroke_width_px is None else stroke_width_px) / scale
     width_px = round(vb[2] * scale)
     height_px = round(vb[3] * scale)
-    from tilekit.limits import MAX_PNG_PIXELS, refuse_over
-
     refuse_over("pixels", width_px * height_px, MAX_PNG_PIXELS, hint=f"a {width_px} x {height_px} image; "
                 "give a smaller --width/--height/--dpi")
     if not is_colour(stroke):
@@ -260,8 +259,6 @@ def write_svg(svg: str, path: str | Path, dpi: float = 96.0) -> Path:
 
 
 def _check_pixels(svg: str, dpi: float) -> None:
-    from tilekit.limits import MAX_PNG_PIXELS, refuse_over
-
     head = svg[: svg.index(">")]
     try:
         w = float(head.split(' width="')[1].split('"')[0]) * dpi / 96

@@ -487,8 +487,6 @@ class Tiling(ABC):
         """SVG text of a patch of this tiling (``tilekit render`` draws through it); options as
         for :func:`tilekit.render.patch_to_svg`. Families with their own picture (Wang tiles'
         edge colours) override it."""
-        from tilekit.render import patch_to_svg
-
         return patch_to_svg(patch, **options)
 
     def __repr__(self) -> str:

@@ -20,6 +20,7 @@ from sqlalchemy import event
 from sqlalchemy.engine import Connection, Engine, make_url
 from sqlalchemy.exc import ArgumentError, SQLAlchemyError
 
+from tilekit import __version__
 from tilekit.catalogue.codec import Entry, batches, restore_value, upsert
 from tilekit.catalogue.filters import Filter, condition, parse_filter
 from tilekit.catalogue.output import FORMATS, write_entries
@@ -74,8 +75,6 @@ def shipped_fingerprint(pm: pluggy.PluginManager) -> str:
     Computing it reads about a megabyte of files (milliseconds); building the records
     themselves takes a second, so it is done only when the fingerprint changes.
     """
-    from tilekit import __version__
-
     digest = hashlib.sha256(__version__.encode())
     paths: set[Path] = set()
     for name, plugin in sorted(pm.list_name_plugin(), key=lambda item: str(item[0])):

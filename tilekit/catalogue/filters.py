@@ -171,7 +171,7 @@ def group_names(key: str, value: str) -> list[str]:
     """A wallpaper group matches by its IUC name (p6m) and its orbifold symbol (*632) alike."""
     if key not in ("symmetry_group", "wallpaper_group", "orbifold"):
         return [value]
-    from tilekit.symmetry import (  # the 17 groups' names (symmetry loads NumPy: lazily)
+    from tilekit.symmetry import (  # start-up cost: tilekit.symmetry loads NumPy; only group filters need it
         IUC,
         ORBIFOLD,
     )

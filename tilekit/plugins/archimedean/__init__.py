@@ -17,6 +17,7 @@ from tilekit.plugins.archimedean.construct import (
 from tilekit.plugins.archimedean.notation import VertexType, parse_vertex_type
 from tilekit.plugins.archimedean.records import FAMILIES, catalogue_records
 from tilekit.plugins.archimedean.species import SEARCH
+from tilekit.plugins.archimedean.tables import MIGRATIONS, RESULT_TABLE
 
 __all__ = ["VertexType", "archimedean_tiling", "laves_prototile", "laves_tiling", "parse_vertex_type"]
 
@@ -38,13 +39,9 @@ def tilekit_searches():
 
 @hookimpl
 def tilekit_result_tables():
-    from tilekit.plugins.archimedean.tables import RESULT_TABLE
-
     return [RESULT_TABLE]
 
 
 @hookimpl
 def tilekit_migration_locations():
-    from tilekit.plugins.archimedean.tables import MIGRATIONS
-
     return [str(MIGRATIONS)]

@@ -34,6 +34,7 @@ from tilekit.plugins.archimedean.notation import (
     geometry_of,
     types_of_species,
 )
+from tilekit.plugins.archimedean.tables import row_of
 
 #: Vertex types of the Platonic and Archimedean solids (Cromwell, *Polyhedra*, 1997, ch. 2
 #: and 5; Grünbaum & Shephard, *Tilings and Patterns*, §2.1) with their published vertex
@@ -193,7 +194,6 @@ def chunks(params: Mapping[str, Any]) -> list[dict[str, Any]]:
 def run_chunk(params: Mapping[str, Any], chunk: Mapping[str, Any]) -> ChunkResult:
     """Classify the vertex types of one chunk: a ``vertex_species`` row per type, a
     catalogue tiling for each type that tiles, the survivors as JSON results, and counts."""
-    from tilekit.plugins.archimedean.tables import row_of
 
     p = _params(params)
     found: list[dict[str, Any]] = []

@@ -522,10 +522,6 @@ def _symbol_labels(symbol: Any, outline: Any, corners: Any) -> tuple[str, ...] |
     """Per outline segment, the incidence-symbol label of the tiling edge it belongs to
     (``a+``, ``b-``, ``c``), for ``tilekit render --labels``; None if the outline is not
     counter-clockwise with one corner per symbol edge."""
-    import numpy as np
-
-    from tilekit.geometry import signed_area
-
     pts = np.asarray(outline, dtype=float)
     if corners is None or len(corners) != len(symbol.edges) or signed_area(pts) <= 0:
         return None

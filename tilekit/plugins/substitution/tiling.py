@@ -22,7 +22,10 @@ from shapely.geometry.polygon import orient
 
 from tilekit.errors import GeometryError, NotFoundError, ParameterError, ParseError
 from tilekit.geometry import Affine, as_region
-from tilekit.limits import MAX_DEPTH  # the depth range; the tile estimate is the real bound
+from tilekit.limits import (  # MAX_DEPTH: the depth range; the tile estimate is the real bound
+    MAX_DEPTH,
+    MAX_TILES,
+)
 from tilekit.plugins.substitution import engine, shapes
 from tilekit.plugins.substitution import quasivertex as qv
 from tilekit.plugins.substitution.shapes import (
@@ -493,8 +496,6 @@ class KeypointTiling(SubstitutionTiling):
         """About 12 tiles across, or, with a fixed depth, the level-d supertile's bounding box
         (its tiles are generated only when there are few enough to be drawn)."""
         if self.depth is not None:
-            from tilekit.limits import MAX_TILES
-
             if self._full_count(self.depth) > MAX_TILES:  # the bounding disc's box, no tiles made
                 centres, radii = self.system.bounds(self.depth)
                 label = self._seed_index()

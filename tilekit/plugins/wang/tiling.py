@@ -20,6 +20,7 @@ from tilekit.plugins.wang.fill import (
     scanline_fill,
     supports_random_access,
 )
+from tilekit.plugins.wang.render import wang_svg
 from tilekit.plugins.wang.sat import sat_solve
 from tilekit.plugins.wang.solve import (
     WangProcedureResult,
@@ -137,8 +138,6 @@ class WangTiling(Tiling):
     def render_svg(self, patch: Patch, **options: Any) -> str:
         """The picture ``tilekit wang render`` draws (each side a triangle of its edge colour),
         for a patch of whole lattice squares; other patches are drawn as plain squares."""
-        from tilekit.plugins.wang.render import wang_svg
-
         t = patch.transform
         if not len(patch) or not np.allclose(t[:, :2, 2], np.round(t[:, :2, 2])) or options.get("labels"):
             return super().render_svg(patch, **options)
