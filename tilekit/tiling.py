@@ -519,10 +519,16 @@ class PeriodicTiling(Tiling):
         m = len(self.unit_prototile)
         if m == 0:
             raise GeometryError("a translational unit needs at least one tile")
+        if self.unit_prototile.min() < 0 or self.unit_prototile.max() >= len(self._prototiles):
+            raise GeometryError(
+                f"translational unit names prototile(s) outside 0..{len(self._prototiles) - 1}"
+            )
         self.unit_transform = np.asarray(unit_transform, dtype=float).reshape(m, 3, 3)
         self.unit_aspect = (
             np.arange(m, dtype=np.int64) if unit_aspect is None else np.asarray(unit_aspect, dtype=np.int64)
         )
+        if len(self.unit_aspect) != m or (m and self.unit_aspect.min() < 0):
+            raise GeometryError(f"translational unit needs {m} aspect numbers >= 0, got {self.unit_aspect.tolist()}")
         self.v1 = np.asarray(v1, dtype=float).reshape(2)
         self.v2 = np.asarray(v2, dtype=float).reshape(2)
         det = self.v1[0] * self.v2[1] - self.v1[1] * self.v2[0]
@@ -691,7 +697,7 @@ class PeriodicTiling(Tiling):
                 family=spec.get("family", ""),
                 name=spec.get("name", ""),
             )
-        except (KeyError, TypeError, ValueError) as exc:
-            if isinstance(exc, ParseError | GeometryError):
+        except (KeyError, TypeError, ValueError, IndexError, AttributeError, OverflowError) as exc:
+            if isinstance(exc, ParseError | GeometryError | ParameterError):
                 raise
-            raise ParseError(f"periodic tiling spec is malformed: {exc!r}") from None
+            raise ParseError(f"periodic tiling spec is malformed: {str(exc)[:120]!r}") from None
