@@ -298,10 +298,14 @@ class _Frontier:
         self.dirty: set[Edge] = set()
         self.at_vertex: dict[int, set[Edge]] = {}
 
-    def opened(self, e: Edge) -> None:
-        """``e`` became open: placed with no partner, or its partner was undone."""
+    def opened(self, e: Edge, image: bool = False) -> None:
+        """``e`` became open: placed with no partner, or its partner was undone. ``image``: it
+        belongs to a lattice image on a torus, never chosen, so it is not queued at all."""
+        if image:
+            return
         _, _, serial, dist = self.b._edges[e]
-        heapq.heappush(self.dheap, (dist, serial, e))
+        if self.limit is not None:  # the covered disc matters for a radius goal only
+            heapq.heappush(self.dheap, (dist, serial, e))
         if self.dynamic:
             for v in e:
                 self.at_vertex.setdefault(v, set()).add(e)
@@ -578,6 +582,7 @@ class PatchBuilder:
         self._pmin = np.zeros((cap, self._K))
         self._pmax = np.zeros((cap, self._K))
         self._frontier = _Frontier(self, radius, fill)
+        self._committing_image = False  # periodic: placing a lattice image, not a representative
         self._directions: dict[int, float] = {}
         self._pcount = 0
         self._pfree: list[int] = []
@@ -785,7 +790,7 @@ class PatchBuilder:
                 self._frontier.closed((b, a))
             else:
                 self._open.add((a, b))
-                self._frontier.opened((a, b))
+                self._frontier.opened((a, b), self._committing_image)
         piece_ids = []
         for pc, pn, lo, hi in zip(pieces, normals, amin, amax):
             pid = self._alloc_piece()
@@ -823,7 +828,8 @@ class PatchBuilder:
                 self._frontier.closed((a, b))
             elif (b, a) in self._edges:
                 self._open.add((b, a))
-                self._frontier.opened((b, a))
+                image = self.period is not None and self._edges[(b, a)][0] not in self._canon
+                self._frontier.opened((b, a), image)
         for v in tile.vids:
             corners = self._vcorners[v]
             for idx in range(len(corners) - 1, -1, -1):
@@ -1022,7 +1028,12 @@ class PatchBuilder:
             for off in self._offsets[1:]:  # the seed's images must fit round it
                 image = frame.copy()
                 image[:2, 2] += off
-                if not self._try_place(seed_ci, image, stats):
+                self._committing_image = True
+                try:
+                    placed = self._try_place(seed_ci, image, stats)
+                finally:
+                    self._committing_image = False
+                if not placed:
                     stats.seconds = time.perf_counter() - run.started
                     stats.reason = ("exhausted: the seed tile's own lattice images already fail ("
                                     + ", ".join(sorted(stats.rejections)) + ")")
@@ -1143,13 +1154,18 @@ class PatchBuilder:
         pts = cand.local @ frame[:2, :2].T + frame[:2, 2]
         shift = self._canonical_shift(pts.mean(axis=0))
         first = len(self._tiles)
-        for off in self._offsets:
-            image = frame.copy()
-            image[:2, 2] += shift + off
-            if not self._try_place(ci, image, stats):
-                for _ in range(len(self._tiles) - first):
-                    self._undo()
-                return False
+        try:
+            for k, off in enumerate(self._offsets):
+                image = frame.copy()
+                image[:2, 2] += shift + off
+                self._committing_image = k > 0  # offsets[0] is the representative's own cell
+                if not self._try_place(ci, image, stats):
+                    self._committing_image = False
+                    for _ in range(len(self._tiles) - first):
+                        self._undo()
+                    return False
+        finally:
+            self._committing_image = False
         self._canon.add(first)
         self._groups.append(len(self._tiles) - first)
         return True
