@@ -324,7 +324,7 @@ def boundary_cycles(grid: Grid, cells: np.ndarray) -> list[tuple[np.ndarray, np.
                 if not choices:
                     break
                 if len(choices) > 1:
-                    def turn(q, e=e):
+                    def turn(q, e=e, b=b):
                         e2 = int(np.nonzero((dirs == np.subtract(q, b)).all(axis=1))[0][0])
                         return -((angle[e2] - angle[e] + math.pi) % (2 * math.pi))
                     choices.sort(key=turn)
@@ -340,8 +340,99 @@ def _signed_area(p: np.ndarray) -> float:
 
 
 def boundary_word(grid: Grid, cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The outer boundary: (vertices, letters), counter-clockwise from the least vertex."""
+    """The outer boundary: (vertices, letters), counter-clockwise from the least vertex.
+
+    Hole-free polyforms (one simple boundary cycle) are traced in compiled code; others
+    through :func:`boundary_cycles`.
+    """
+    c = np.asarray(cells, dtype=np.int64).reshape(-1, 2)
+    ea, eb, en, el = _edge_tables(grid)
+    out_v = np.zeros((8 * len(c) + 8, 2), np.int64)
+    out_l = np.zeros(8 * len(c) + 8, np.int64)
+    m = _trace(c, grid.cell_type(c), ea, eb, en, el, np.int64(grid.period), out_v, out_l)
+    if m > 0:
+        return out_v[:m].copy(), out_l[:m].copy()
     return boundary_cycles(grid, cells)[0]
+
+
+_EDGE_CACHE: dict[str, tuple] = {}
+
+
+def _edge_tables(grid: Grid):
+    """Per cell type and edge: start and end vertex offsets, neighbour offset, letter."""
+    if grid.name not in _EDGE_CACHE:
+        R, V = grid.vertices.shape[:2]
+        ea = np.zeros((R, V, 2), np.int64)
+        eb = np.zeros((R, V, 2), np.int64)
+        en = np.zeros((R, V, 2), np.int64)
+        el = np.zeros((R, V), np.int64)
+        for r in range(R):
+            for k in range(V):
+                a, b = grid.vertices[r, k], grid.vertices[r, (k + 1) % V]
+                nbs = grid.neighbours[r]
+                j = int(np.argmin(((2 * nbs - (a + b)) ** 2).sum(axis=1)))
+                ea[r, k], eb[r, k], en[r, k] = a, b, nbs[j]
+                el[r, k] = int(np.nonzero((grid.edge_dirs == b - a).all(axis=1))[0][0])
+        _EDGE_CACHE[grid.name] = (ea, eb, en, el)
+    return _EDGE_CACHE[grid.name]
+
+
+@njit(cache=True)
+def _trace(c, types, ea, eb, en, el, period, out_v, out_l):
+    """Trace the single boundary cycle; returns its length, or -1 if there is more than one."""
+    n = c.shape[0]
+    x0 = c[0, 0]
+    y0 = c[0, 1]
+    x1 = x0
+    y1 = y0
+    for i in range(n):
+        x0 = min(x0, c[i, 0])
+        y0 = min(y0, c[i, 1])
+        x1 = max(x1, c[i, 0])
+        y1 = max(y1, c[i, 1])
+    m = 2 * period
+    x0 -= m
+    y0 -= m
+    w = x1 - x0 + m + 1
+    h = y1 - y0 + m + 1
+    occ = np.zeros(w * h, np.uint8)
+    for i in range(n):
+        occ[(c[i, 1] - y0) * w + c[i, 0] - x0] = 1
+    nxt = np.full(w * h, -1, np.int64)
+    let = np.zeros(w * h, np.int64)
+    edges = 0
+    for i in range(n):
+        t = types[i]
+        for k in range(ea.shape[1]):
+            qx = c[i, 0] + en[t, k, 0]
+            qy = c[i, 1] + en[t, k, 1]
+            if occ[(qy - y0) * w + qx - x0] == 1:
+                continue
+            a = (c[i, 1] + ea[t, k, 1] - y0) * w + c[i, 0] + ea[t, k, 0] - x0
+            b = (c[i, 1] + eb[t, k, 1] - y0) * w + c[i, 0] + eb[t, k, 0] - x0
+            if nxt[a] != -1:
+                return -1  # a pinch vertex: not a simple boundary
+            nxt[a] = b
+            let[a] = el[t, k]
+            edges += 1
+    start = -1
+    for v in range(w * h):
+        if nxt[v] != -1:
+            start = v
+            break
+    v = start
+    cnt = 0
+    while True:
+        out_v[cnt, 0] = v % w + x0
+        out_v[cnt, 1] = v // w + y0
+        out_l[cnt] = let[v]
+        cnt += 1
+        v = nxt[v]
+        if v == start or cnt > edges:
+            break
+    if cnt != edges:
+        return -1
+    return cnt
 
 
 def word_text(letters) -> str:

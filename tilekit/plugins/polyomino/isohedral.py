@@ -1,0 +1,533 @@
+"""The isohedral test of a polyform from its boundary word, after Langerman and Winslow.
+
+S. Langerman and A. Winslow, "A quasilinear-time algorithm for tiling the plane isohedrally
+with a polyomino", SoCG 2016 (LIPIcs 51, 50:1-50:15; arXiv:1507.02762). A polyomino tiles
+the plane isohedrally exactly when its boundary word has one of seven factorisations:
+translation (Beauquier-Nivat), half-turn (Conway's criterion), quarter-turn, and type-1 /
+type-2 reflection and half-turn-reflection forms. Each is a *template* here (data): a cyclic
+sequence of factors, each paired with a partner factor (or itself) by a kind of isometry
+(T translation, C half-turn, Q quarter-turn, G glide reflection). One generic matcher
+(numba, depth-first over factor lengths with pruning, O(1) factor comparisons from
+precomputed extension tables) finds every factorisation of every template.
+
+A factorisation found is then *built*: each factor's isometry maps the tile onto its
+neighbour across that factor; the group they generate gives placements, its translations a
+lattice (Hermite normal form), and the placements modulo the lattice the translational unit.
+The tiling is accepted only if the unit's cells are distinct modulo the lattice and fill it
+exactly (|unit cells| = lattice index), an exact integer proof that it tiles. The isohedral
+type is read from the Heesch type of the nonempty factors, matched against the isohedral
+family's table (``catalogue/isohedral/properties.tsv``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+from tilekit.lattice import SQUARE, Grid, boundary_word, outline
+
+try:
+    from numba import njit
+except ImportError:  # pragma: no cover
+    def njit(*a, **k):  # type: ignore[no-redef]
+        return a[0] if a and callable(a[0]) else (lambda f: f)
+
+# kinds of factor pairing
+T, C, Q, G = 0, 1, 2, 3
+KIND_LETTER = {T: "T", C: "C", Q: "C4", G: "G"}
+
+#: (name, factorisation family, partner of each factor, kind of each factor, glide rule):
+#: glide rule 1 = all glide pairs share one reflection (parallel axes, pg), 2 = the second
+#: pair's reflection is the first's turned by a half-turn (perpendicular axes, pgg).
+TEMPLATES: tuple[tuple[str, str, tuple[int, ...], tuple[int, ...], int], ...] = (
+    ("translation", "translation", (3, 4, 5, 0, 1, 2), (T, T, T, T, T, T), 0),
+    ("halfturn", "halfturn", (3, 1, 2, 0, 4, 5), (T, C, C, T, C, C), 0),
+    ("quarterturn", "quarterturn", (0, 2, 1, 4, 3), (C, Q, Q, Q, Q), 0),
+    ("reflection-1", "reflection", (3, 2, 1, 0, 5, 4), (T, G, G, T, G, G), 1),
+    ("reflection-2", "reflection", (3, 5, 4, 0, 2, 1), (T, G, G, T, G, G), 1),
+    ("halfturn-reflection-1", "reflection", (3, 1, 2, 0, 5, 4), (T, C, C, T, G, G), 0),
+    ("halfturn-reflection-2", "reflection", (0, 4, 2, 5, 1, 3), (C, G, C, G, G, G), 2),
+)
+
+
+@njit(cache=True)
+def _tables(W, perm, neg):
+    Gn = perm.shape[0]
+    L = W.shape[0]
+    ext = np.zeros((Gn, L, L), np.int64)  # consecutive k: perm[g][W[a+k]] == neg[W[b-k]]
+    fwd = np.zeros((Gn, L, L), np.int64)  # consecutive k: perm[g][W[a+k]] == W[b+k]
+    for g in range(Gn):
+        for a in range(L):
+            for b in range(L):
+                k = 0
+                while k < L and perm[g, W[(a + k) % L]] == neg[W[(b - k) % L]]:
+                    k += 1
+                ext[g, a, b] = k
+                k = 0
+                while k < L and perm[g, W[(a + k) % L]] == W[(b + k) % L]:
+                    k += 1
+                fwd[g, a, b] = k
+    return ext, fwd
+
+
+@njit(cache=True)
+def _match(W, ext, fwd, det, partner, kind, cands, ncand, glide, mul, half, out, maxout):
+    """Every factorisation of the cyclic word W into the template (partner, kind).
+
+    out rows: [start, len_0..len_{k-1}, g_0..g_{k-1}]; returns the number found.
+    """
+    L = W.shape[0]
+    k = partner.shape[0]
+    lens = np.zeros(k, np.int64)
+    gs = np.zeros(k, np.int64)
+    pos = np.zeros(k + 1, np.int64)
+    trial = np.zeros(k, np.int64)  # next length to try (free factors) / state for forced
+    found = 0
+    for s in range(L):
+        f = 0
+        pos[0] = 0
+        trial[0] = 0
+        while f >= 0:
+            if f == k:
+                if pos[k] == L:
+                    if found < maxout:
+                        out[found, 0] = s
+                        for i in range(k):
+                            out[found, 1 + i] = lens[i]
+                            out[found, 1 + k + i] = gs[i]
+                    found += 1
+                f -= 1
+                continue
+            p = partner[f]
+            ok = False
+            if p < f:
+                # forced length: check the relation once
+                if trial[f] == 0:
+                    trial[f] = 1
+                    ln = lens[p]
+                    if pos[f] + ln <= L:
+                        a = (s + pos[p]) % L
+                        bstart = (s + pos[f]) % L
+                        g0 = -1
+                        if kind[f] == 3 and glide > 0:
+                            for i in range(f):
+                                if kind[i] == 3 and partner[i] < i and lens[i] > 0:
+                                    g0 = gs[i] if glide == 1 else mul[half, gs[i]]
+                                    break
+                        for ci in range(ncand[kind[f]]):
+                            g = cands[kind[f], ci]
+                            if g0 >= 0 and ln > 0 and g != g0:
+                                continue
+                            if ln == 0:
+                                good = True
+                            elif det[g] > 0:
+                                good = ext[g, a, (bstart + ln - 1) % L] >= ln
+                            else:
+                                good = fwd[g, a, bstart] >= ln
+                            if good:
+                                lens[f] = ln
+                                gs[f] = g
+                                ok = True
+                                break
+            elif p == f and f == k - 1:
+                # the last factor (a palindrome) takes what is left
+                if trial[f] == 0:
+                    trial[f] = 1
+                    ln = L - pos[f]
+                    a = (s + pos[f]) % L
+                    g = cands[kind[f], 0]
+                    if ln == 0 or ext[g, a, (a + ln - 1) % L] >= ln:
+                        lens[f] = ln
+                        gs[f] = g
+                        ok = True
+            else:
+                while True:
+                    ln = trial[f]
+                    need = ln if p == f else 2 * ln
+                    if pos[f] + need > L:
+                        break
+                    trial[f] += 1
+                    if p == f:
+                        a = (s + pos[f]) % L
+                        g = cands[kind[f], 0]
+                        if ln > 0 and ext[g, a, (a + ln - 1) % L] < ln:
+                            continue
+                        gs[f] = g
+                    else:
+                        gs[f] = -1
+                    lens[f] = ln
+                    ok = True
+                    break
+            if ok:
+                pos[f + 1] = pos[f] + lens[f]
+                if pos[f + 1] > L:
+                    continue
+                f += 1
+                if f < k:
+                    trial[f] = 0
+            else:
+                f -= 1
+    return found
+
+
+@dataclass
+class Factorisation:
+    template: str
+    family: str
+    start: int
+    lengths: tuple[int, ...]
+    maps: tuple[int, ...]  # group element of each factor (for the second of a pair / self)
+    partner: tuple[int, ...]
+    kind: tuple[int, ...]
+
+    def signature(self) -> list[str]:
+        labels: dict[int, str] = {}
+        out = []
+        gn = 0
+        for i, (ln, kd) in enumerate(zip(self.lengths, self.kind)):
+            if ln == 0:
+                continue
+            if kd == G:
+                root = min(i, self.partner[i])
+                if root not in labels:
+                    gn += 1
+                    labels[root] = str(gn)
+                out.append("G" + labels[root])
+            else:
+                out.append(KIND_LETTER[kd])
+        return out
+
+    def to_json(self) -> dict:
+        return {"template": self.template, "start": self.start, "lengths": list(self.lengths),
+                "heesch": "".join(self.signature())}
+
+
+def _cands(grid: Grid) -> tuple[np.ndarray, np.ndarray]:
+    r = grid.rotation_order
+    kinds = {T: [0], C: [r // 2], Q: [r // 4, 3 * r // 4] if r % 4 == 0 else [], G: list(range(r, 2 * r))}
+    cands = np.zeros((4, 2 * r), np.int64)
+    ncand = np.zeros(4, np.int64)
+    for kd, lst in kinds.items():
+        cands[kd, :len(lst)] = lst
+        ncand[kd] = len(lst)
+    return cands, ncand
+
+
+def factorisations(grid: Grid, letters: np.ndarray, maxout: int = 256, dedupe: bool = False) -> list[Factorisation]:
+    """Every match of every template (``dedupe``: one per pattern of nonempty factors)."""
+    W = np.asarray(letters, dtype=np.int64)
+    perm = grid.letter_perm
+    cands, ncand = _cands(grid)
+    ext, fwd = _tables(W, perm, grid.neg)
+    out: list[Factorisation] = []
+    mul = np.array(_group_mul(grid), dtype=np.int64)
+    half = grid.rotation_order // 2
+    for name, fam, partner, kind, glide in TEMPLATES:
+        if any(ncand[kd] == 0 for kd in kind):
+            continue
+        pa = np.array(partner, np.int64)
+        ki = np.array(kind, np.int64)
+        k = len(partner)
+        buf = np.zeros((maxout, 1 + 2 * k), np.int64)
+        m = _match(W, ext, fwd, grid.det, pa, ki, cands, ncand, glide, mul, half, buf, maxout)
+        rows = buf[:min(m, maxout)]
+        if not len(rows):
+            continue
+        nonempty = rows[:, 1:1 + k] > 0
+        keep = nonempty.sum(axis=1) >= 3
+        rows, nonempty = rows[keep], nonempty[keep]
+        if dedupe and len(rows):
+            # one factorisation per pattern of nonempty factors (the Heesch type depends on nothing else)
+            _, first = np.unique(np.packbits(nonempty, axis=1), axis=0, return_index=True)
+            rows = rows[np.sort(first)]
+        for row in rows:
+            out.append(Factorisation(name, fam, int(row[0]), tuple(int(v) for v in row[1:1 + k]),
+                                     tuple(int(v) for v in row[1 + k:]), partner, kind))
+    return out
+
+
+# --------------------------------------------------------------------------- IH types
+
+@lru_cache(maxsize=1)
+def heesch_table() -> dict[tuple[str, ...], int]:
+    """Canonical Heesch-type letter sequences -> IH number (from the isohedral family's data)."""
+    from tilekit.resources import catalogue_dir
+
+    out: dict[tuple[str, ...], int] = {}
+    path = catalogue_dir() / "isohedral" / "properties.tsv"
+    for line in path.read_text().splitlines():
+        if not line.strip() or line.startswith("#"):
+            continue
+        parts = line.split("\t")
+        ih, heesch = int(parts[0]), parts[4].strip()
+        if heesch in ("-", ""):
+            continue
+        out.setdefault(_canon_sig(_split(heesch)), ih)
+    return out
+
+
+def ih_groups() -> dict[int, str]:
+    from tilekit.resources import catalogue_dir
+
+    out = {}
+    for line in (catalogue_dir() / "isohedral" / "properties.tsv").read_text().splitlines():
+        if line.strip() and not line.startswith("#"):
+            parts = line.split("\t")
+            out[int(parts[0])] = parts[2]
+    return out
+
+
+def _split(heesch: str) -> list[str]:
+    out, i = [], 0
+    while i < len(heesch):
+        j = i + 1
+        while j < len(heesch) and heesch[j].isdigit():
+            j += 1
+        out.append(heesch[i:j])
+        i = j
+    return out
+
+
+def _relabel(seq: list[str]) -> tuple[str, ...]:
+    names: dict[str, str] = {}
+    out = []
+    for s in seq:
+        if s.startswith("G"):
+            if s not in names:
+                names[s] = "G" + str(len(names) + 1)
+            out.append(names[s])
+        else:
+            out.append(s)
+    # a single glide pair is written plain G
+    if len(names) == 1:
+        out = ["G" if s.startswith("G") else s for s in out]
+    return tuple(out)
+
+
+@lru_cache(maxsize=4096)
+def _canon_sig_cached(seq: tuple[str, ...]) -> tuple[str, ...]:
+    return _canon_sig(list(seq))
+
+
+def _canon_sig(seq: list[str]) -> tuple[str, ...]:
+    n = len(seq)
+    cands = []
+    for s in (seq, seq[::-1]):
+        for i in range(n):
+            cands.append(_relabel(s[i:] + s[:i]))
+    return min(cands)
+
+
+def ih_type(f: Factorisation) -> int | None:
+    return heesch_table().get(_canon_sig_cached(tuple(f.signature())))
+
+
+# --------------------------------------------------------------------------- construction
+
+def _hnf_add(basis: tuple[int, int, int] | None, v: tuple[int, int]) -> tuple[int, int, int]:
+    """Insert integer vector v into a 2D lattice basis in Hermite normal form (a, b, d):
+    rows (a, b) and (0, d), a >= 0, d >= 0, 0 <= b < d when d > 0."""
+    a, b, d = basis or (0, 0, 0)
+    vx, vy = int(v[0]), int(v[1])
+    if vx != 0 or a != 0:
+        g, s, t = _egcd(a, vx)
+        na, nb = s * a + t * vx, s * b + t * vy
+        wy = (vx // g) * b - (a // g) * vy  # the combination with x component 0
+        a, b = na, nb
+        d = _gcd(d, wy)
+    else:
+        d = _gcd(d, vy)
+    if a < 0:
+        a, b = -a, -b
+    if d:
+        b %= d
+    return a, b, d
+
+
+def _gcd(x: int, y: int) -> int:
+    x, y = abs(x), abs(y)
+    while y:
+        x, y = y, x % y
+    return x
+
+
+def _egcd(a: int, b: int) -> tuple[int, int, int]:
+    x0, y0, x1, y1 = 1, 0, 0, 1
+    while b:
+        q = a // b
+        a, b = b, a - q * b
+        x0, x1 = x1, x0 - q * x1
+        y0, y1 = y1, y0 - q * y1
+    if a < 0:
+        a, x0, y0 = -a, -x0, -y0
+    return a, x0, y0
+
+
+@dataclass
+class BuiltTiling:
+    factorisation: Factorisation
+    ih: int | None
+    unit: list[tuple[np.ndarray, np.ndarray]]  # (M 2x2, t) fine-coordinate placements
+    lattice: np.ndarray  # (2, 2) rows: fine-coordinate translation vectors
+
+
+def _generators(grid: Grid, verts: np.ndarray, f: Factorisation) -> list[tuple[int, tuple[int, int]]]:
+    """(group index, translation) of the isometry taking the tile to its neighbour across each factor."""
+    L = len(verts)
+    starts = []
+    p = f.start
+    for ln in f.lengths:
+        starts.append(p)
+        p += ln
+    inv = _group_inverse(grid)
+    gens = []
+    for i, ln in enumerate(f.lengths):
+        j = f.partner[i]
+        if ln == 0 or j > i:
+            continue
+        g = f.maps[i]
+        M = grid.group[g]
+        sj = verts[starts[j] % L]
+        target = verts[(starts[i] + ln) % L] if grid.det[g] > 0 else verts[starts[i] % L]
+        t = target - M @ sj
+        gens.append((g, (int(t[0]), int(t[1]))))
+        if j != i:
+            gi = inv[g]
+            ti = -(grid.group[gi] @ t)
+            gens.append((gi, (int(ti[0]), int(ti[1]))))
+    return gens
+
+
+@lru_cache(maxsize=8)
+def _group_inverse(grid: Grid) -> tuple[int, ...]:
+    out = []
+    for m in grid.group:
+        mi = np.round(np.linalg.inv(m)).astype(np.int64)
+        out.append(int(np.nonzero((grid.group == mi).all(axis=(1, 2)))[0][0]))
+    return tuple(out)
+
+
+@lru_cache(maxsize=8)
+def _group_mul(grid: Grid) -> tuple[tuple[int, ...], ...]:
+    G = grid.group
+    return tuple(tuple(int(np.nonzero((G == G[a] @ G[b]).all(axis=(1, 2)))[0][0]) for b in range(len(G)))
+                 for a in range(len(G)))
+
+
+def build(grid: Grid, cells: np.ndarray, verts: np.ndarray, f: Factorisation) -> BuiltTiling | None:
+    """The tiling of a factorisation, proved exact in integers, or None if it does not tile.
+
+    Coset enumeration of the generated group modulo its translations: one representative
+    per linear part; every product that lands on a known linear part gives a translation
+    (Schreier generators), so the Hermite normal form of those is the translation lattice.
+    """
+    gens = _generators(grid, verts, f)
+    mul = _group_mul(grid)
+    G = grid.group
+    reps: dict[int, tuple[int, int]] = {0: (0, 0)}
+    order = [0]
+    basis = None
+    k = 0
+    while k < len(order):
+        m = order[k]
+        tx, ty = reps[m]
+        M = G[m]
+        for a, (bx, by) in gens:
+            m2 = mul[m][a]
+            t2 = (int(M[0, 0] * bx + M[0, 1] * by + tx), int(M[1, 0] * bx + M[1, 1] * by + ty))
+            if m2 in reps:
+                r = reps[m2]
+                if r != t2:
+                    basis = _hnf_add(basis, (t2[0] - r[0], t2[1] - r[1]))
+            else:
+                reps[m2] = t2
+                order.append(m2)
+        k += 1
+    if basis is None or basis[0] == 0 or basis[2] == 0:
+        return None
+    a, b, d = basis
+    area = a * d
+    cell_area = grid.period * grid.period // len(grid.roots)
+    if len(reps) * len(cells) * cell_area != area:
+        return None
+    lat = np.array([[a, b], [0, d]], dtype=np.int64)
+    seen: set[tuple[int, int]] = set()
+    unit = []
+    for m in order:
+        t = np.array(reps[m], dtype=np.int64)
+        img = cells @ G[m].T + t
+        # reduce modulo the lattice rows (a, b), (0, d): first x into [0, a), then y into [0, d)
+        q = np.floor_divide(img[:, 0], a)
+        x = img[:, 0] - q * a
+        y = np.mod(img[:, 1] - q * b, d)
+        for c in zip(x.tolist(), y.tolist()):
+            if c in seen:
+                return None
+            seen.add(c)
+        unit.append((G[m].copy(), t))
+    return BuiltTiling(f, ih_type(f), unit, lat)
+
+
+#: Templates whose every match tiles: Langerman-Winslow's theorem for their forms, and the
+#: tests build every match of every polyomino up to 8 cells and prove each tiling exact.
+SOUND = frozenset(t[0] for t in TEMPLATES)
+
+
+def analyse(grid: Grid, cells: np.ndarray, *, construct: bool = True, build_all: bool = False) -> dict:
+    """Factorisations, verdict, IH types and (with ``construct``) built tilings of a hole-free polyform.
+
+    Without ``construct`` (the bulk enumeration), matches of the sound templates are taken
+    as proved by the theorem and only the others are built; with it, one tiling per Heesch
+    type is built and proved exact (``build_all``: every match).
+    """
+    verts, letters = boundary_word(grid, cells)
+    facts = factorisations(grid, letters, dedupe=not build_all)
+    fams = {fam: False for fam in ("translation", "halfturn", "quarterturn", "reflection")}
+    tilings: list[BuiltTiling] = []
+    found: list[dict] = []
+    sigs_done: set[tuple] = set()
+    for f in facts:
+        sig = _canon_sig_cached(tuple(f.signature()))
+        if sig in sigs_done and not build_all:
+            continue
+        if construct or f.template not in SOUND:
+            bt = build(grid, cells, verts, f)
+            if bt is None:
+                continue
+            tilings.append(bt)
+        sigs_done.add(sig)
+        fams[f.family] = True
+        found.append(f.to_json() | {"ih": ih_type(f)})
+    ihs = sorted({d["ih"] for d in found if d["ih"] is not None})
+    return {
+        **fams,
+        "isohedral": bool(found),
+        "ih_types": ihs,
+        "factorisations": found,
+        "tilings": tilings,
+        "boundary": letters,
+    }
+
+
+def periodic_tiling(grid: Grid, cells: np.ndarray, bt: BuiltTiling, name: str = "", family: str = "polyomino"):
+    """A built tiling as a PeriodicTiling in Cartesian coordinates."""
+    from tilekit.tiling import PeriodicTiling
+
+    S = grid.to_xy
+    Si = np.linalg.inv(S)
+    proto = outline(grid, cells, name=name)
+    transforms = []
+    for M, t in bt.unit:
+        A = np.eye(3)
+        A[:2, :2] = S @ M @ Si
+        A[:2, 2] = S @ t
+        transforms.append(A)
+    v1 = S @ bt.lattice[0]
+    v2 = S @ bt.lattice[1]
+    return PeriodicTiling([proto], [0] * len(transforms), np.array(transforms), v1, v2,
+                          family=family, name=name)
+
+
+__all__ = ["SQUARE", "TEMPLATES", "analyse", "build", "factorisations", "ih_type", "periodic_tiling"]
