@@ -667,14 +667,17 @@ def _redelmeier(nb, bx, by, n, prefix, plen, maxsize, mats, period, roots, nbr, 
                     ok, sym = _canon_check(poly, size, bx, by, mats, period, keys, tmp)
                     if ok:
                         free[size] += 1
-                        if size >= hole_min and _has_hole(poly, size, bx, by, roots, nbr, period, gbuf, stack):
+                        hh = size >= hole_min and _has_hole(poly, size, bx, by, roots, nbr, period, gbuf, stack)
+                        if hh:
                             holey[size] += 1
                         if mode == 2:
                             if rows < outcap:
+                                w = n + 1
                                 for k in range(size):
-                                    out[rows * n + k] = poly[k]
+                                    out[rows * w + k] = poly[k]
                                 for k in range(size, n):
-                                    out[rows * n + k] = -1
+                                    out[rows * w + k] = -1
+                                out[rows * w + n] = 1 if hh else 0
                             rows += 1
             if size < maxsize:
                 s = end[d]
@@ -742,9 +745,12 @@ def prefixes(grid: Grid, n: int, depth: int, root: int) -> list[list[int]]:
     return [out[i * n:i * n + depth].tolist() for i in range(rows)]
 
 
-def enumerate_free(grid: Grid, n: int, prefix=(), root: int = 0, maxsize: int | None = None
-                   ) -> tuple[list[np.ndarray], dict[str, np.ndarray]]:
-    """The free polyforms (canonical representatives, as centres) in one subtree, with counts."""
+def enumerate_free(grid: Grid, n: int, prefix=(), root: int = 0, maxsize: int | None = None,
+                   with_holes: bool = False):
+    """The free polyforms (canonical representatives, as centres) in one subtree, with counts.
+
+    Returns (polyforms, counts), or with ``with_holes`` (polyforms, has-hole flags, counts).
+    """
     mats, period, roots, nbr, hmin = _tables(grid)
     cells, nb = redelmeier_board(grid, n, root)
     bx, by = cells[:, 0].copy(), cells[:, 1].copy()
@@ -752,11 +758,14 @@ def enumerate_free(grid: Grid, n: int, prefix=(), root: int = 0, maxsize: int | 
     ms = n if maxsize is None else maxsize
     args = (nb, bx, by, n, pre, len(prefix), ms, mats, period, roots, nbr, hmin, 2)
     f, a, h, rows = _redelmeier(*args, np.zeros(1, np.int64), 0)
-    out = np.zeros(max(rows, 1) * n, np.int64)
+    out = np.zeros(max(rows, 1) * (n + 1), np.int64)
     _redelmeier(*args, out, rows)
-    out = out.reshape(-1, n)[:rows]
-    polys = [cells[r[r >= 0]] for r in out]
-    return polys, {"fixed": f, "free": a, "holey": h}
+    out = out.reshape(-1, n + 1)[:rows]
+    polys = [cells[r[:n][r[:n] >= 0]] for r in out]
+    counts = {"fixed": f, "free": a, "holey": h}
+    if with_holes:
+        return polys, out[:, n].astype(bool), counts
+    return polys, counts
 
 
 # --------------------------------------------------------------------------- codes

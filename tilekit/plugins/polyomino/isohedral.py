@@ -73,9 +73,38 @@ def _tables(W, perm, neg):
 
 
 @njit(cache=True)
-def _match(W, ext, fwd, det, partner, kind, cands, ncand, glide, mul, half, out, maxout):
+def _splits(ext, half, L):
+    """sp[a, l]: a split point of W[a:a+l] (cyclic) into two palindromes, -1 if none.
+
+    A split with an empty part is preferred (the simpler Heesch type), else the first.
+    """
+    sp = np.full((L, L + 1), -1, np.int64)
+    for a in range(L):
+        for ln in range(L + 1):
+            best = -1
+            for m in range(ln + 1):
+                p1 = m == 0 or ext[half, a, (a + m - 1) % L] >= m
+                if not p1:
+                    continue
+                r = ln - m
+                b = (a + m) % L
+                p2 = r == 0 or ext[half, b, (b + r - 1) % L] >= r
+                if p2:
+                    if m == 0 or m == ln:
+                        best = m
+                        break
+                    if best < 0:
+                        best = m
+            sp[a, ln] = best
+    return sp
+
+
+@njit(cache=True)
+def _match(W, ext, fwd, sp, det, partner, kind, cands, ncand, glide, mul, half, out, maxout):
     """Every factorisation of the cyclic word W into the template (partner, kind).
 
+    Depth-first over the factors' lengths with every comparison O(1) from the extension
+    tables; two consecutive palindromes are one step through the split table ``sp``.
     out rows: [start, len_0..len_{k-1}, g_0..g_{k-1}]; returns the number found.
     """
     L = W.shape[0]
@@ -83,8 +112,31 @@ def _match(W, ext, fwd, det, partner, kind, cands, ncand, glide, mul, half, out,
     lens = np.zeros(k, np.int64)
     gs = np.zeros(k, np.int64)
     pos = np.zeros(k + 1, np.int64)
-    trial = np.zeros(k, np.int64)  # next length to try (free factors) / state for forced
+    trial = np.zeros(k + 1, np.int64)
+    # combined[f]: factor f and f+1 are both palindromes, taken together
+    combined = np.zeros(k, np.int64)
+    prevf = np.zeros(k + 1, np.int64)
+    f = 0
+    while f < k:
+        if f + 1 < k and kind[f] == 1 and partner[f] == f and kind[f + 1] == 1 and partner[f + 1] == f + 1:
+            combined[f] = 1
+            prevf[f + 2] = f
+            f += 2
+        else:
+            prevf[f + 1] = f
+            f += 1
+    # freeafter[f]: free (not forced) steps after factor f; when 0, f's length is forced by the total
+    freeafter = np.zeros(k + 1, np.int64)
+    for f in range(k):
+        cnt = 0
+        j = f + 2 if combined[f] == 1 else f + 1
+        while j < k:
+            if partner[j] >= j:
+                cnt += 1
+            j += 2 if combined[j] == 1 else 1
+        freeafter[f] = cnt
     found = 0
+    hg = cands[1, 0]
     for s in range(L):
         f = 0
         pos[0] = 0
@@ -98,11 +150,48 @@ def _match(W, ext, fwd, det, partner, kind, cands, ncand, glide, mul, half, out,
                             out[found, 1 + i] = lens[i]
                             out[found, 1 + k + i] = gs[i]
                     found += 1
-                f -= 1
+                f = prevf[f] if f > 0 else -1
                 continue
             p = partner[f]
             ok = False
-            if p < f:
+            nf = f + 1
+            target = -1
+            if freeafter[f] == 0:
+                known = 0
+                mult = 1
+                for j in range(f + 1, k):
+                    if partner[j] < f:
+                        known += lens[partner[j]]
+                    elif partner[j] == f and j != f:
+                        mult = 2
+                rest = L - pos[f] - known
+                if rest < 0 or rest % mult != 0:
+                    target = -2
+                else:
+                    target = rest // mult
+            if combined[f] == 1:
+                nf = f + 2
+                while target != -2:
+                    ln = trial[f]
+                    if target >= 0:
+                        if ln > 0:
+                            break
+                        ln = target
+                    if pos[f] + ln > L:
+                        break
+                    trial[f] += 1
+                    a = (s + pos[f]) % L
+                    m = sp[a, ln]
+                    if m < 0:
+                        continue
+                    lens[f] = m
+                    lens[f + 1] = ln - m
+                    gs[f] = hg
+                    gs[f + 1] = hg
+                    pos[f + 1] = pos[f] + m
+                    ok = True
+                    break
+            elif p < f:
                 # forced length: check the relation once
                 if trial[f] == 0:
                     trial[f] = 1
@@ -132,7 +221,6 @@ def _match(W, ext, fwd, det, partner, kind, cands, ncand, glide, mul, half, out,
                                 ok = True
                                 break
             elif p == f and f == k - 1:
-                # the last factor (a palindrome) takes what is left
                 if trial[f] == 0:
                     trial[f] = 1
                     ln = L - pos[f]
@@ -143,12 +231,16 @@ def _match(W, ext, fwd, det, partner, kind, cands, ncand, glide, mul, half, out,
                         gs[f] = g
                         ok = True
             else:
-                while True:
+                while target != -2:
                     ln = trial[f]
+                    if target >= 0:
+                        if ln > 0:
+                            break
+                        ln = target
                     need = ln if p == f else 2 * ln
                     if pos[f] + need > L:
                         break
-                    trial[f] += 1
+                    trial[f] = ln + 1 if target < 0 else 1
                     if p == f:
                         a = (s + pos[f]) % L
                         g = cands[kind[f], 0]
@@ -161,14 +253,14 @@ def _match(W, ext, fwd, det, partner, kind, cands, ncand, glide, mul, half, out,
                     ok = True
                     break
             if ok:
-                pos[f + 1] = pos[f] + lens[f]
-                if pos[f + 1] > L:
+                pos[nf] = pos[f] + lens[f] + (lens[f + 1] if nf == f + 2 else 0)
+                if pos[nf] > L:
                     continue
-                f += 1
+                f = nf
                 if f < k:
                     trial[f] = 0
             else:
-                f -= 1
+                f = prevf[f] if f > 0 else -1
     return found
 
 
@@ -221,6 +313,7 @@ def factorisations(grid: Grid, letters: np.ndarray, maxout: int = 256, dedupe: b
     perm = grid.letter_perm
     cands, ncand = _cands(grid)
     ext, fwd = _tables(W, perm, grid.neg)
+    sp = _splits(ext, grid.rotation_order // 2, len(W))
     out: list[Factorisation] = []
     mul = np.array(_group_mul(grid), dtype=np.int64)
     half = grid.rotation_order // 2
@@ -231,7 +324,7 @@ def factorisations(grid: Grid, letters: np.ndarray, maxout: int = 256, dedupe: b
         ki = np.array(kind, np.int64)
         k = len(partner)
         buf = np.zeros((maxout, 1 + 2 * k), np.int64)
-        m = _match(W, ext, fwd, grid.det, pa, ki, cands, ncand, glide, mul, half, buf, maxout)
+        m = _match(W, ext, fwd, sp, grid.det, pa, ki, cands, ncand, glide, mul, half, buf, maxout)
         rows = buf[:min(m, maxout)]
         if not len(rows):
             continue
@@ -240,8 +333,11 @@ def factorisations(grid: Grid, letters: np.ndarray, maxout: int = 256, dedupe: b
         rows, nonempty = rows[keep], nonempty[keep]
         if dedupe and len(rows):
             # one factorisation per pattern of nonempty factors (the Heesch type depends on nothing else)
-            _, first = np.unique(np.packbits(nonempty, axis=1), axis=0, return_index=True)
-            rows = rows[np.sort(first)]
+            masks = (nonempty * (1 << np.arange(k))).sum(axis=1).tolist()
+            first: dict[int, int] = {}
+            for i, mk in enumerate(masks):
+                first.setdefault(mk, i)
+            rows = rows[sorted(first.values())]
         for row in rows:
             out.append(Factorisation(name, fam, int(row[0]), tuple(int(v) for v in row[1:1 + k]),
                                      tuple(int(v) for v in row[1 + k:]), partner, kind))
