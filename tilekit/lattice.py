@@ -287,8 +287,8 @@ def holes(grid: Grid, cells: np.ndarray) -> list[np.ndarray]:
 def boundary_cycles(grid: Grid, cells: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
     """Every boundary cycle as (vertices (k, 2), letters (k,)), counter-clockwise for the outer one.
 
-    Interior on the left; at a vertex where two cycles touch, the traversal turns left first,
-    so cells meeting only at a corner stay apart.
+    Interior on the left; at a vertex where two cycles touch (a hole meeting the outside
+    at a corner), the traversal turns right first, so the two cycles come out separate.
     """
     c = np.asarray(cells, dtype=np.int64).reshape(-1, 2)
     keys = {tuple(p) for p in c.tolist()}
@@ -326,7 +326,7 @@ def boundary_cycles(grid: Grid, cells: np.ndarray) -> list[tuple[np.ndarray, np.
                 if len(choices) > 1:
                     def turn(q, e=e, b=b):
                         e2 = int(np.nonzero((dirs == np.subtract(q, b)).all(axis=1))[0][0])
-                        return -((angle[e2] - angle[e] + math.pi) % (2 * math.pi))
+                        return (angle[e2] - angle[e] + math.pi) % (2 * math.pi)
                     choices.sort(key=turn)
                 a, b = b, choices[0]
             cycles.append((np.array(verts, dtype=np.int64), np.array(letters, dtype=np.int64)))
