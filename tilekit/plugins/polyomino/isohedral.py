@@ -546,10 +546,9 @@ def build(grid: Grid, cells: np.ndarray, verts: np.ndarray, f: Factorisation) ->
     a, b, d = basis
     area = a * d
     cell_area = grid.period * grid.period // len(grid.roots)
-    if len(reps) * len(cells) * cell_area != area:
-        return None
     lat = np.array([[a, b], [0, d]], dtype=np.int64)
     seen: set[tuple[int, int]] = set()
+    tiles: set[tuple] = set()
     unit = []
     for m in order:
         t = np.array(reps[m], dtype=np.int64)
@@ -558,11 +557,17 @@ def build(grid: Grid, cells: np.ndarray, verts: np.ndarray, f: Factorisation) ->
         q = np.floor_divide(img[:, 0], a)
         x = img[:, 0] - q * a
         y = np.mod(img[:, 1] - q * b, d)
-        for c in zip(x.tolist(), y.tolist()):
+        red = tuple(sorted(zip(x.tolist(), y.tolist())))
+        if red in tiles:
+            continue  # the same tile again: an element of the tile's own stabiliser
+        tiles.add(red)
+        for c in red:
             if c in seen:
                 return None
             seen.add(c)
         unit.append((G[m].copy(), t))
+    if len(unit) * len(cells) * cell_area != area:
+        return None
     return BuiltTiling(f, ih_type(f), unit, lat)
 
 
