@@ -216,6 +216,10 @@ class PolyominoTiling(PeriodicTiling):
                          unit_aspect=np.arange(len(base.unit_prototile)), family=FAMILY,
                          name=poly.name or poly.code)
 
+    def _default_colours(self) -> list[int]:
+        """One colour per tile of the unit (the tile's orientations), so neighbours differ."""
+        return list(range(int(self.unit_aspect.max()) + 1))
+
     @property
     def ih(self) -> int | None:
         return self.built.ih
