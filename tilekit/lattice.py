@@ -185,7 +185,9 @@ def fixed_form(grid: Grid, cells: np.ndarray) -> np.ndarray:
 
 
 def _key(cells: np.ndarray) -> tuple:
-    return tuple(map(tuple, cells.tolist()))
+    """Order of forms: the (y, x) pairs in (y, x) order, compared lexicographically (the compiled
+    canonical test uses the same order, so both pick the same representative)."""
+    return tuple((y, x) for x, y in cells.tolist())
 
 
 def images(grid: Grid, cells: np.ndarray, which: str = "free") -> list[np.ndarray]:
@@ -487,7 +489,7 @@ def redelmeier_board(grid: Grid, n: int, root: int) -> tuple[np.ndarray, np.ndar
 def _canon_check(poly, size, bx, by, mats, period, keys, tmp):
     """True if the fixed polyform (board indices poly[:size]) is the least image of its class.
 
-    Also returns the number of group elements whose image equals it (the symmetry order).
+    Also returns the bitmask of the group elements whose image equals it (its own symmetry).
     """
     ng = mats.shape[0]
     span = 8 * period * (size + 2)
@@ -532,7 +534,7 @@ def _canon_check(poly, size, bx, by, mats, period, keys, tmp):
             if cmp < 0:
                 return False, 0
             if cmp == 0:
-                sym += 1
+                sym |= 1 << g
     return True, sym
 
 
@@ -672,12 +674,13 @@ def _redelmeier(nb, bx, by, n, prefix, plen, maxsize, mats, period, roots, nbr, 
                             holey[size] += 1
                         if mode == 2:
                             if rows < outcap:
-                                w = n + 1
+                                w = n + 2
                                 for k in range(size):
                                     out[rows * w + k] = poly[k]
                                 for k in range(size, n):
                                     out[rows * w + k] = -1
                                 out[rows * w + n] = 1 if hh else 0
+                                out[rows * w + n + 1] = sym
                             rows += 1
             if size < maxsize:
                 s = end[d]
@@ -746,10 +749,12 @@ def prefixes(grid: Grid, n: int, depth: int, root: int) -> list[list[int]]:
 
 
 def enumerate_free(grid: Grid, n: int, prefix=(), root: int = 0, maxsize: int | None = None,
-                   with_holes: bool = False):
+                   with_holes: bool = False, with_symmetry: bool = False):
     """The free polyforms (canonical representatives, as centres) in one subtree, with counts.
 
-    Returns (polyforms, counts), or with ``with_holes`` (polyforms, has-hole flags, counts).
+    Returns (polyforms, counts), or with ``with_holes`` (polyforms, has-hole flags, counts),
+    or with ``with_symmetry`` (polyforms, has-hole flags, symmetry bitmasks, counts). The
+    polyforms are already canonical (each is the least image of its class).
     """
     mats, period, roots, nbr, hmin = _tables(grid)
     cells, nb = redelmeier_board(grid, n, root)
@@ -758,22 +763,29 @@ def enumerate_free(grid: Grid, n: int, prefix=(), root: int = 0, maxsize: int | 
     ms = n if maxsize is None else maxsize
     args = (nb, bx, by, n, pre, len(prefix), ms, mats, period, roots, nbr, hmin, 2)
     f, a, h, rows = _redelmeier(*args, np.zeros(1, np.int64), 0)
-    out = np.zeros(max(rows, 1) * (n + 1), np.int64)
+    out = np.zeros(max(rows, 1) * (n + 2), np.int64)
     _redelmeier(*args, out, rows)
-    out = out.reshape(-1, n + 1)[:rows]
+    out = out.reshape(-1, n + 2)[:rows]
     polys = [cells[r[:n][r[:n] >= 0]] for r in out]
     counts = {"fixed": f, "free": a, "holey": h}
+    if with_symmetry:
+        return polys, out[:, n].astype(bool), out[:, n + 1].copy(), counts
     if with_holes:
         return polys, out[:, n].astype(bool), counts
     return polys, counts
 
 
+def symmetry_from_mask(grid: Grid, mask: int) -> str:
+    """symmetry_name of the group elements in a bitmask (as enumerate_free reports them)."""
+    return symmetry_name(grid, [g for g in range(len(grid.group)) if mask >> g & 1])
+
+
 # --------------------------------------------------------------------------- codes
 
-def encode(grid: Grid, cells: np.ndarray) -> str:
+def encode(grid: Grid, cells: np.ndarray, *, is_canonical: bool = False) -> str:
     """Text code of the canonical free form: rows top to bottom, 'x' a cell, '.' none (square);
-    'x,y;x,y...' of fine centres for the other grids."""
-    c = canonical(grid, cells, "free")
+    'x,y;x,y...' of fine centres for the other grids (``is_canonical`` skips the minimisation)."""
+    c = np.asarray(cells, dtype=np.int64) if is_canonical else canonical(grid, cells, "free")
     if grid is SQUARE:
         q = (c - 1) // 2
         q = q - q.min(axis=0)

@@ -100,7 +100,7 @@ def _splits(ext, half, L):
 
 
 @njit(cache=True)
-def _match(W, ext, fwd, sp, det, partner, kind, cands, ncand, glide, mul, half, out, maxout):
+def _match(W, ext, fwd, sp, det, partner, kind, cands, ncand, glide, mul, half, out, maxout, smax):
     """Every factorisation of the cyclic word W into the template (partner, kind).
 
     Depth-first over the factors' lengths with every comparison O(1) from the extension
@@ -137,7 +137,7 @@ def _match(W, ext, fwd, sp, det, partner, kind, cands, ncand, glide, mul, half, 
         freeafter[f] = cnt
     found = 0
     hg = cands[1, 0]
-    for s in range(L):
+    for s in range(min(L, smax)):
         f = 0
         pos[0] = 0
         trial[0] = 0
@@ -264,6 +264,18 @@ def _match(W, ext, fwd, sp, det, partner, kind, cands, ncand, glide, mul, half, 
     return found
 
 
+@njit(cache=True)
+def _match_all(W, perm, neg, det, cands, ncand, mul, half, partners, kinds, ks, glides, smaxdiv, out, maxout, found):
+    """Every template at once: tables and splits computed once, one compiled call per word."""
+    ext, fwd = _tables(W, perm, neg)
+    sp = _splits(ext, half, W.shape[0])
+    for t in range(partners.shape[0]):
+        k = ks[t]
+        smax = W.shape[0] // smaxdiv[t]
+        found[t] = _match(W, ext, fwd, sp, det, partners[t, :k], kinds[t, :k], cands, ncand, glides[t],
+                          mul, half, out[t], maxout, smax)
+
+
 @dataclass
 class Factorisation:
     template: str
@@ -310,22 +322,21 @@ def _cands(grid: Grid) -> tuple[np.ndarray, np.ndarray]:
 def factorisations(grid: Grid, letters: np.ndarray, maxout: int = 256, dedupe: bool = False) -> list[Factorisation]:
     """Every match of every template (``dedupe``: one per pattern of nonempty factors)."""
     W = np.asarray(letters, dtype=np.int64)
-    perm = grid.letter_perm
+    tabs = _template_arrays(grid)
+    if tabs is None:
+        return []
+    partners, kinds, ks, glides, smaxdiv, usable = tabs
     cands, ncand = _cands(grid)
-    ext, fwd = _tables(W, perm, grid.neg)
-    sp = _splits(ext, grid.rotation_order // 2, len(W))
-    out: list[Factorisation] = []
     mul = np.array(_group_mul(grid), dtype=np.int64)
     half = grid.rotation_order // 2
-    for name, fam, partner, kind, glide in TEMPLATES:
-        if any(ncand[kd] == 0 for kd in kind):
-            continue
-        pa = np.array(partner, np.int64)
-        ki = np.array(kind, np.int64)
+    out = np.zeros((len(ks), maxout, 13), np.int64)
+    found = np.zeros(len(ks), np.int64)
+    _match_all(W, grid.letter_perm, grid.neg, grid.det, cands, ncand, mul, half, partners, kinds, ks,
+               glides, smaxdiv, out, maxout, found)
+    res: list[Factorisation] = []
+    for t, (name, fam, partner, kind, _glide) in enumerate(usable):
         k = len(partner)
-        buf = np.zeros((maxout, 1 + 2 * k), np.int64)
-        m = _match(W, ext, fwd, sp, grid.det, pa, ki, cands, ncand, glide, mul, half, buf, maxout)
-        rows = buf[:min(m, maxout)]
+        rows = out[t, :min(int(found[t]), maxout), :1 + 2 * k]
         if not len(rows):
             continue
         nonempty = rows[:, 1:1 + k] > 0
@@ -338,10 +349,33 @@ def factorisations(grid: Grid, letters: np.ndarray, maxout: int = 256, dedupe: b
             for i, mk in enumerate(masks):
                 first.setdefault(mk, i)
             rows = rows[sorted(first.values())]
-        for row in rows:
-            out.append(Factorisation(name, fam, int(row[0]), tuple(int(v) for v in row[1:1 + k]),
-                                     tuple(int(v) for v in row[1 + k:]), partner, kind))
-    return out
+        for row in rows.tolist():
+            res.append(Factorisation(name, fam, row[0], tuple(row[1:1 + k]), tuple(row[1 + k:]), partner, kind))
+    return res
+
+
+@lru_cache(maxsize=8)
+def _template_arrays(grid: Grid):
+    """The templates usable on a grid, packed into arrays for the compiled matcher."""
+    _, ncand = _cands(grid)
+    usable = [t for t in TEMPLATES if all(ncand[kd] > 0 for kd in t[3])]
+    if not usable:
+        return None
+    n = len(usable)
+    partners = np.zeros((n, 6), np.int64)
+    kinds = np.zeros((n, 6), np.int64)
+    ks = np.zeros(n, np.int64)
+    glides = np.zeros(n, np.int64)
+    smaxdiv = np.ones(n, np.int64)
+    for i, (name, _fam, partner, kind, glide) in enumerate(usable):
+        k = len(partner)
+        partners[i, :k] = partner
+        kinds[i, :k] = kind
+        ks[i] = k
+        glides[i] = glide
+        # A B C Â B̂ Ĉ read from Â is the same factorisation: starts in the first half suffice
+        smaxdiv[i] = 2 if name == "translation" else 1
+    return partners, kinds, ks, glides, smaxdiv, tuple(usable)
 
 
 # --------------------------------------------------------------------------- IH types

@@ -160,7 +160,7 @@ class Polyomino:
 
 
 def make_row(cells: np.ndarray, has_holes: bool, hole_count: int, analysis: dict | None,
-             name: str | None = None, code: str | None = None) -> dict[str, Any]:
+             name: str | None = None, code: str | None = None, symmetry: str | None = None) -> dict[str, Any]:
     """One row of the polyominoes table from canonical cells and an analysis (None for a holey one)."""
     from tilekit.lattice import boundary_word
 
@@ -174,10 +174,10 @@ def make_row(cells: np.ndarray, has_holes: bool, hole_count: int, analysis: dict
         "name": name if name is not None else usual_name(code),
         "grid": "square",
         "cells": int(len(cells)),
-        "cell_list": json.dumps(sorted(q.tolist(), key=lambda p: (p[1], p[0]))),
+        "cell_list": json.dumps(q.tolist()),
         "holes": bool(has_holes),
         "hole_count": int(hole_count),
-        "symmetry": symmetry_name(SQUARE, symmetry_elements(SQUARE, cells)),
+        "symmetry": symmetry or symmetry_name(SQUARE, symmetry_elements(SQUARE, cells)),
         "boundary": word_text(a["boundary"]) if "boundary" in a else word_text(boundary_word(SQUARE, cells)[1]),
         "translation": bool(a.get("translation", False)),
         "halfturn": bool(a.get("halfturn", False)),

@@ -14,7 +14,15 @@ from collections.abc import Mapping
 from typing import Any
 
 from tilekit.errors import ParameterError
-from tilekit.lattice import SQUARE, count_fixed, enumerate_free, prefixes
+from tilekit.lattice import (
+    SQUARE,
+    count_fixed,
+    encode,
+    enumerate_free,
+    holes,
+    prefixes,
+    symmetry_from_mask,
+)
 from tilekit.plugins import ChunkResult, Search, SearchParam
 
 #: The stored enumeration holds polyominoes up to this size; beyond it, --count-only.
@@ -72,17 +80,14 @@ def chunk_rows(params: Mapping[str, Any], chunk: Mapping[str, Any]) -> tuple[dic
                         root=int(chunk.get("root", 0)), maxsize=maxsize)
         rows: list[dict] = []
     else:
-        polys, hole_flags, c = enumerate_free(SQUARE, n, prefix=prefix, root=int(chunk.get("root", 0)),
-                                              maxsize=maxsize, with_holes=True)
+        polys, hole_flags, masks, c = enumerate_free(SQUARE, n, prefix=prefix, root=int(chunk.get("root", 0)),
+                                                     maxsize=maxsize, with_symmetry=True)
         rows = []
-        for cells, holey in zip(polys, hole_flags):
+        for cells, holey, mask in zip(polys, hole_flags, masks.tolist()):
             analysis = None if holey else analyse(SQUARE, cells, construct=False)
-            hc = 0
-            if holey:
-                from tilekit.lattice import holes
-
-                hc = len(holes(SQUARE, cells))
-            rows.append(make_row(cells, bool(holey), hc, analysis))
+            hc = len(holes(SQUARE, cells)) if holey else 0
+            rows.append(make_row(cells, bool(holey), hc, analysis, code=encode(SQUARE, cells, is_canonical=True),
+                                 symmetry=symmetry_from_mask(SQUARE, mask)))
         for r in rows:
             for key in ("translation", "halfturn", "quarterturn", "reflection", "isohedral"):
                 if r[key]:
