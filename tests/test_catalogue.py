@@ -48,12 +48,14 @@ def pm(monkeypatch):
 
 @pytest.fixture
 def url(tmp_path):
+    """A SQLite file: the tests that take it check SQLite-only things (files, WAL, locks)."""
     return f"sqlite:///{tmp_path / 'catalogue.sqlite'}"
 
 
 @pytest.fixture
-def cat(url, pm):
-    catalogue = open_catalogue(url, pm=pm)
+def cat(db_url, pm):
+    """A seeded catalogue on each backend (SQLite, and PostgreSQL when a server is given)."""
+    catalogue = open_catalogue(db_url, pm=pm)
     yield catalogue
     catalogue.close()
 
@@ -71,7 +73,7 @@ def test_fresh_url_is_migrated_and_seeded_on_first_open(url, pm, tmp_path):
     assert {"tilings", "tiling_aliases", "tiling_properties", "runs", "run_chunks", "run_results",
             "alembic_version"} <= tables
     current, heads = cat.revisions()
-    assert current == heads == {"0002"}
+    assert current == heads == {"0003"}
     assert cat.count() == 11  # the 11 Archimedean tilings (Grünbaum & Shephard §2.1)
     cat.close()
     # opening again neither duplicates nor re-seeds
@@ -102,7 +104,7 @@ def test_downgrade_base_then_upgrade_head(cat):
     assert set(sa.inspect(cat.engine).get_table_names()) <= {"alembic_version"}
     assert cat.revisions()[0] == set()
     cat.upgrade()
-    assert cat.revisions()[0] == {"0002"}
+    assert cat.revisions()[0] == {"0003"}
     assert cat.count() == 0  # data went with the tables; the schema is back
     assert cat.seed() == (11, 0)
     # the migrated schema is exactly the models' schema (tables, columns, indexes, constraints)

@@ -251,7 +251,7 @@ def test_catalogue_commands(pm, db, tmp_path):
     assert run(db, "catalogue", "path").stdout.strip() == str(db)
     assert not db.exists()  # path does not create the catalogue
     upgrade = run(db, "catalogue", "upgrade")
-    assert upgrade.exit_code == 0 and "at revision 0002" in upgrade.stdout
+    assert upgrade.exit_code == 0 and "at revision 0003" in upgrade.stdout
     seeded = run(db, "catalogue", "seed")
     assert seeded.stdout.strip() == "added 11, replaced 0 tilings (11 in the catalogue)"
     assert run(db, "catalogue", "seed", "--replace").stdout.startswith("added 0, replaced 11")

@@ -114,3 +114,55 @@ def test_installed_family_appears_in_cli_and_catalogue(demo_installed, tmp_path,
     drawn = CliRunner().invoke(cli, ["--catalogue", url, "render", "running-bond", "--param", "3,1", "-o", str(out)])
     assert drawn.exit_code == 0, drawn.output
     assert out.read_text().count("<svg") == 1
+
+
+def test_installed_plugin_owns_a_result_table(demo_installed, tmp_path, monkeypatch):
+    """A plugin's result table is created by its own Alembic branch on open, written by its
+    search in the chunk's transaction, queried with typed filters, and migrated down and up
+    again with data present (the other tables keep theirs)."""
+    import sqlalchemy as sa
+
+    from tilekit.search import run_search
+
+    monkeypatch.setenv("TILEKIT_PLUGINS", "demo_bricks")
+    pm = make_plugin_manager()
+    url = f"sqlite:///{tmp_path / 'rows.sqlite'}"
+    with open_catalogue(url, pm=pm) as cat:
+        assert "brick_sizes" in sa.inspect(cat.engine).get_table_names()
+        current, heads = cat.revisions()
+        assert current == heads and "d0001" in current
+        run_id = run_search(cat, "brick-sizes", {"max_area": 24}, pm=pm)
+        info = cat.run(run_id)
+        # bricks a x b with a >= b, a*b = n: A038548(n) of them; sum for n <= 24 is 44
+        assert info.status == "done" and info.rows == 44 and info.summary["bricks"] == 44
+        assert cat.count_matching(family="brick-sizes") == 44
+        assert cat.count_matching(family="brick-sizes", where=["square=true"]) == 4  # 1, 4, 9, 16
+        assert [e.name for e in cat.query(family="brick-sizes", where=["area>=20", "b>=4"], order_by="area")] == [
+            "bricks-5x4-0.5", "bricks-6x4-0.5"]
+        with pytest.raises(Exception, match="no column 'colour'|column 'colour'"):
+            cat.query(family="brick-sizes", where=["colour=red"])
+        # a second run writing the same keys updates them: nothing doubled
+        run_search(cat, "brick-sizes", {"max_area": 24}, pm=pm)
+        assert cat.count_matching(family="brick-sizes") == 44
+        # a row renders through the family's from_spec
+        tiling = cat.tiling("bricks-6x4-0.5")
+        assert tiling.patch((0, 0, 20, 20)).validate((0, 0, 20, 20))
+        cat.downgrade("demo_bricks@base")
+        assert "brick_sizes" not in sa.inspect(cat.engine).get_table_names()
+        assert cat.count() == 1  # the tilings table kept the shipped running-bond
+        cat.upgrade()
+        assert "brick_sizes" in sa.inspect(cat.engine).get_table_names()
+        assert cat.count_matching(family="brick-sizes") == 0
+    out = tmp_path / "sizes.jsonl"
+    reset_plugin_manager()
+    done = CliRunner().invoke(cli, ["--catalogue", url, "search", "brick-sizes", "--max-area", "6"])
+    assert done.exit_code == 0, done.output
+    done = CliRunner().invoke(cli, ["--catalogue", url, "catalogue", "export", "--family", "brick-sizes",
+                                    "--format", "jsonl", "-o", str(out)])
+    assert done.exit_code == 0, done.output
+    rows = [json.loads(line) for line in out.read_text().splitlines()]
+    assert sorted(r["name"] for r in rows) == ["bricks-1x1-0.5", "bricks-2x1-0.5", "bricks-2x2-0.5",
+                                               "bricks-3x1-0.5", "bricks-3x2-0.5", "bricks-4x1-0.5",
+                                               "bricks-5x1-0.5", "bricks-6x1-0.5"]
+    bad = CliRunner().invoke(cli, ["--catalogue", url, "search", "brick-sizes", "--max-area", "0"])
+    assert bad.exit_code == 2 and "from 1 to 10000" in bad.stderr

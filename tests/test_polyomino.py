@@ -249,21 +249,45 @@ def test_migration_branch_upgrades_and_downgrades_with_data(tmp_path):
     assert "polyominoes" in sa.inspect(cat.engine).get_table_names()
 
 
-def test_catalogue_records_and_render(tmp_path):
+def test_catalogue_search_list_show_render(tmp_path):
+    """The stored run through the run layer: rows in the polyominoes table, typed --where filters."""
     from tilekit.cli import cli
 
     db = f"sqlite:///{tmp_path / 'r.sqlite'}"
-    run = CliRunner().invoke
-    res = run(cli, ["--catalogue", db, "show", "pentomino-X"], catch_exceptions=False)
+
+    def run(*args):
+        return CliRunner().invoke(cli, ["--catalogue", db, *args], catch_exceptions=False)
+
+    res = run("search", "polyominoes", "--max-cells", "8", "--executor", "process", "--workers", "2")
+    assert res.exit_code == 0, res.output
+
+    def count(*where):
+        args = ["list", "--family", "polyomino", "--count"]
+        for w in where:
+            args += ["--where", w]
+        r = run(*args)
+        assert r.exit_code == 0, r.output
+        return int(r.output.split()[-1])
+
+    assert count("cells=8") == 369  # A000105
+    assert count("cells=8", "isohedral=false") == 369 - 342  # 6 with holes + 21 (A075205)
+    assert count("holes=true") == 1 + 6  # A001419
+    assert count("cells=8", "translation=true") == 121
+    assert count("cells=8", "halfturn=true") == 320
+    code = tilekit.polyomino("pentomino-F").code
+    res = run("show", code)
+    assert res.exit_code == 0 and code in res.output
+    res = run("show", "pentomino-X")
     assert res.exit_code == 0 and "pentomino-X" in res.output
-    res = run(cli, ["--catalogue", db, "list", "--family", "polyomino", "--where", "cells=5", "--format", "json"],
-              catch_exceptions=False)
-    assert res.exit_code == 0 and len(json.loads(res.output)) == 12
     out = tmp_path / "x.svg"
-    res = run(cli, ["--catalogue", db, "render", "pentomino-X", "-o", str(out)], catch_exceptions=False)
+    res = run("render", "pentomino-X", "-o", str(out))
     assert res.exit_code == 0 and out.read_text().startswith("<")
-    res = run(cli, ["--catalogue", db, "search", "polyominoes", "--max-cells", "20"], catch_exceptions=False)
+    res = run("render", code, "--set", "tiling=IH28", "-o", str(out))
+    assert res.exit_code == 0, res.output
+    res = run("search", "polyominoes", "--max-cells", "20")
     assert res.exit_code == 2 and res.stderr.count("\n") == 1 and "--count-only" in res.stderr
+    res = run("search", "polyominoes", "--max-cells", "30", "--count-only")
+    assert res.exit_code == 2 and res.stderr.count("\n") == 1
 
 
 def test_gcd_helper_sanity():

@@ -102,8 +102,8 @@ def pm(monkeypatch):
 
 
 @pytest.fixture
-def cat(tmp_path, pm):
-    catalogue = open_catalogue(f"sqlite:///{tmp_path / 'c.sqlite'}", pm=pm)
+def cat(db_url, pm):
+    catalogue = open_catalogue(db_url, pm=pm)
     yield catalogue
     catalogue.close()
 

@@ -39,6 +39,15 @@ def _fail(message: str, code: int = 2) -> None:
     sys.exit(code)
 
 
+class _Stopped(Exception):
+    """A run stopped by Ctrl-C (exit 130) or SIGTERM (exit 143), with the line to print."""
+
+    def __init__(self, message: str, code: int) -> None:
+        super().__init__(message)
+        self.message = message
+        self.code = code
+
+
 # --------------------------------------------------------------------------- state
 
 
@@ -112,12 +121,24 @@ class TilekitGroup(SuggestingGroup):
 
     def main(self, args: Sequence[str] | None = None, prog_name: str | None = None,
              complete_var: str | None = None, standalone_mode: bool = True, **extra: Any) -> Any:
+        from tilekit.search import Terminated, sigterm_raises
+
         try:
-            rv = super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
+            with sigterm_raises():
+                rv = super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
+        except Terminated:
+            _fail("terminated", 143)
+        except KeyboardInterrupt:
+            _fail("interrupted", 130)
+        except _Stopped as exc:
+            _fail(exc.message, exc.code)
         except TilekitError as exc:
             _fail(str(exc))
-        except click.exceptions.Abort:
-            _fail("aborted", 1)
+        except click.exceptions.Abort as exc:  # click's wrapping of KeyboardInterrupt
+            cause = exc.__cause__ or exc.__context__
+            if isinstance(cause, Terminated):
+                _fail("terminated", 143)
+            _fail("interrupted", 130)
         except click.exceptions.NoArgsIsHelpError as exc:
             click.echo(exc.ctx.get_help())
             rv = 0
@@ -242,35 +263,50 @@ def families(state: State, fmt: str) -> None:
 
 
 @cli.command(name="list")
-@click.option("--family", help="Only tilings of this family.")
+@click.option("--family", help="Only tilings of this family (a family with a result table lists its rows).")
 @click.option("--where", "where", multiple=True, metavar="EXPR",
               help="Filter KEY=V, KEY!=V, KEY>=N, KEY<=N, KEY>N, KEY<N or KEY~TEXT (repeatable; all must hold).")
 @click.option("--text", help="Case-insensitive text in the name, title, an alias or a text property.")
 @click.option("--order", "order_by", default="name", show_default=True,
               help="Sort key: name, family, title, a shared column or any property; -KEY descends.")
-@click.option("--limit", type=click.IntRange(min=0), help="At most N tilings.")
-@click.option("--offset", type=click.IntRange(min=0), default=0, help="Skip the first N tilings.")
-@click.option("--format", "fmt", type=FORMAT, default="table", show_default=True)
+@click.option("--limit", type=click.IntRange(min=0, max=2**62), help="At most N tilings.")
+@click.option("--offset", type=click.IntRange(min=0, max=2**62), default=0, help="Skip the first N tilings.")
+@click.option("--count", "count_only", is_flag=True, help="Print only how many match.")
+@click.option("--format", "fmt", type=click.Choice(["table", "json", "csv", "jsonl"]), default="table",
+              show_default=True)
 @pass_state
 def list_(state: State, family: str | None, where: tuple[str, ...], text: str | None, order_by: str,
-          limit: int | None, offset: int, fmt: str) -> None:
-    """List catalogue tilings matching the filters (Catalogue.query)."""
-    from tilekit.catalogue import entries_text
-    from tilekit.plugins import families as all_families
+          limit: int | None, offset: int, count_only: bool, fmt: str) -> None:
+    """List catalogue tilings matching the filters (Catalogue.iter_query), streamed.
+
+    Example: tilekit list --family archimedean --where polygons=6 --format json
+    """
+    from tilekit.catalogue import write_entries
 
     cat = state.catalogue()
-    if family is not None:
-        fams = set(all_families(state.pm))
-        if family not in fams and cat.count(family) == 0:
-            raise NotFoundError("family", family, fams)
-    entries = cat.query(family=family, where=list(where), text=text, order_by=order_by, limit=limit, offset=offset)
-    if fmt in ("json", "csv"):
-        click.echo(entries_text(entries, fmt), nl=False)
+    cat.check_family(family)
+    if count_only:
+        click.echo(cat.count_matching(family=family, where=list(where), text=text))
         return
-    if not entries:
-        click.echo("no tilings match", err=True)
+    entries = cat.iter_query(family=family, where=list(where), text=text, order_by=order_by,
+                             limit=limit, offset=offset)
+    if fmt in ("json", "csv", "jsonl"):
+        keys = cat._export_keys(family) if fmt == "csv" and cat.family_table(family) is not None else None
+        write_entries(entries, sys.stdout, fmt, keys=keys)
         return
-    click.echo(_table(["name", "family", "title"], [[e.name, e.family, e.title] for e in entries], {2: 60}))
+    shown = 0
+    batch: list[Any] = []
+    for entry in entries:
+        batch.append([entry.name, entry.family, entry.title])
+        if len(batch) == 1000:
+            click.echo(_table(["name", "family", "title"], batch, {2: 60}))
+            shown += len(batch)
+            batch = []
+    if batch or not shown:
+        if not batch:
+            click.echo("no tilings match", err=True)
+            return
+        click.echo(_table(["name", "family", "title"], batch, {2: 60}))
 
 
 @cli.command()
@@ -292,11 +328,11 @@ def show(state: State, name: str) -> None:
     width = max((len(k) for k in entry.properties), default=0)
     for key, value in entry.properties.items():
         click.echo(f"  {key.ljust(width)}  {_format_value(value)}")
-    if entry.family not in all_families(state.pm):
+    if entry.family not in all_families(state.pm) and cat.family_table(entry.family) is None:
         click.echo(f"(family {entry.family!r} is not installed: no geometry)", err=True)
         return
     try:
-        tiling = cat.tiling(entry.name)
+        tiling = cat.tiling(entry)
     except TilekitError as exc:  # a record without geometry, e.g. a vertex type that cannot tile
         click.echo(f"(no geometry: {exc})")
         return
@@ -440,6 +476,7 @@ def _search_command(search: Any) -> click.Command:
         executor = kwargs.pop("executor")
         workers = kwargs.pop("workers")
         resume = kwargs.pop("resume")
+        scheduler = kwargs.pop("scheduler")
         given = {
             p.name: kwargs[p.name]
             for p in search.params
@@ -451,12 +488,18 @@ def _search_command(search: Any) -> click.Command:
                 + ", ".join("--" + k.replace("_", "-") for k in given)
             )
         params = None if resume is not None else {k: v for k, v in kwargs.items() if v is not None}
-        _run_search_cli(state, search.name, params, executor, workers, resume)
+        _run_search_cli(state, search.name, params, executor, workers, resume, scheduler)
+
+    from tilekit.search import describe_params
 
     options: list[click.Parameter] = []
-    for p in search.params:
+    for p, line in zip(search.params, describe_params(search)):
         flag = "--" + p.name.replace("_", "-")
-        help_text = p.help + (" [required]" if p.required else "")
+        help_text = line.split(": ", 1)[-1] + (" [required]" if p.required else "")
+        if p.choices is not None:
+            help_text += f" (one of {', '.join(map(str, p.choices))})"
+        elif p.min is not None or p.max is not None:
+            help_text += f" (range {p.min if p.min is not None else '-inf'}..{p.max if p.max is not None else 'inf'})"
         if p.type is bool:
             options.append(click.Option([f"{flag}/--no-{flag[2:]}", p.name], default=p.default,
                                         help=help_text, show_default=p.default is not None))
@@ -467,82 +510,159 @@ def _search_command(search: Any) -> click.Command:
     options += [
         click.Option(["--executor"], type=click.Choice(["local", "process", "dask"]), default="local",
                      show_default=True, help="Where chunks run: this process, a process pool, or dask."),
-        click.Option(["--workers"], type=click.IntRange(min=1), help="Parallel workers (process/dask)."),
-        click.Option(["--resume"], type=int, metavar="RUN_ID", help="Continue an interrupted or failed run."),
+        click.Option(["--workers"], type=click.IntRange(min=1, max=4096), help="Parallel workers (process/dask)."),
+        click.Option(["--scheduler"], metavar="ADDRESS",
+                     help="A running dask scheduler (default: $TILEKIT_DASK_SCHEDULER, else a local cluster)."),
+        click.Option(["--resume"], type=click.IntRange(min=1, max=2**62), metavar="RUN_ID",
+                     help="Continue an interrupted or failed run, or join one that is running."),
     ]
+    example = f"tilekit search {search.name} " + " ".join(
+        f"--{p.name.replace('_', '-')} {p.default}" for p in search.params[:1] if p.default is not None
+    ) + " --executor process --workers 2"
     return click.Command(search.name, callback=callback, params=options,
-                         help=f"{search.summary} (family {search.family}).", short_help=search.summary)
+                         help=f"{search.summary} (family {search.family}).\n\nExample: {example}",
+                         short_help=search.summary)
+
+
+class _Reporter:
+    """Progress of a run: a rich bar on a terminal, a plain line every few seconds otherwise."""
+
+    def __init__(self, cat: Any, name: str) -> None:
+        self.cat = cat
+        self.name = name
+        self.run_id: int | None = None
+        self.tty = sys.stderr.isatty()
+        self.bar: Any = None
+        self.task: Any = None
+        self.last_line = 0.0
+        self.started = 0.0
+        self.first_done: int | None = None
+        self.rows = 0
+        self.rows_at = -1e9
+
+    def __call__(self, done: int, total: int) -> None:
+        import time
+
+        now = time.monotonic()
+        if self.first_done is None:
+            self.first_done, self.started = done, now
+        if self.run_id is not None and (now - self.rows_at >= 1.0 or done == total):
+            self.rows_at = now
+            self.rows = self.cat.run(self.run_id).rows
+        rows = self.rows
+        if self.tty:
+            if self.bar is None:
+                from rich.progress import (
+                    BarColumn,
+                    MofNCompleteColumn,
+                    Progress,
+                    TextColumn,
+                    TimeElapsedColumn,
+                    TimeRemainingColumn,
+                )
+
+                self.bar = Progress(TextColumn("[bold]{task.description}"), BarColumn(), MofNCompleteColumn(),
+                                    TextColumn("chunks, {task.fields[rows]} rows"), TimeElapsedColumn(),
+                                    TimeRemainingColumn(), transient=False,
+                                    console=__import__("rich.console").console.Console(stderr=True))
+                self.bar.start()
+                self.task = self.bar.add_task(f"run {self.run_id}: {self.name}", total=total, completed=done,
+                                              rows=rows or 0)
+            self.bar.update(self.task, completed=done, total=total, rows=rows or 0)
+            return
+        if now - self.last_line < 5.0 and done != total:
+            return
+        self.last_line = now
+        rate = (done - (self.first_done or 0)) / max(now - self.started, 1e-9)
+        left = f", about {(total - done) / rate:.0f} s left" if rate > 0 and done < total else ""
+        click.echo(f"run {self.run_id}: {done}/{total} chunks, {rows or 0} rows, "
+                   f"{rate:.2f} chunks/s{left}", err=True)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.stop()
+            self.bar = None
 
 
 def _run_search_cli(state: State, name: str, params: dict[str, Any] | None, executor: str,
-                    workers: int | None, resume: int | None) -> None:
-    from tilekit.search import run_search
+                    workers: int | None, resume: int | None, scheduler: str | None = None) -> None:
+    from tilekit.search import Terminated, run_search
 
     cat = state.catalogue()
-    bar: Any = None
-    show_bar = sys.stderr.isatty()
+    reporter = _Reporter(cat, name)
 
-    def progress(done: int, total: int) -> None:
-        nonlocal bar
-        if not show_bar:
-            return
-        if bar is None:
-            bar = click.progressbar(length=total, label=f"{name}", file=sys.stderr)
-            bar.__enter__()
-        bar.update(done - bar.pos)
-
-    started: list[int] = []
-
-    def close_bar() -> None:
-        nonlocal bar
-        if bar is not None:
-            bar.__exit__(None, None, None)
-            bar = None
+    def announce(run_id: int) -> None:
+        reporter.run_id = run_id
 
     try:
         run_id = run_search(cat, name, params, executor=executor, workers=workers, resume_run=resume,
-                            progress=progress, pm=state.pm, on_run=started.append)
-    except KeyboardInterrupt:
-        close_bar()
-        if not started:
-            _fail("interrupted before the run was created", 130)
-        info = cat.run(started[0])
-        _fail(f"run {info.id} interrupted after {info.progress} chunks; continue it with: "
-              f"tilekit search {name} --resume {info.id}", 130)
+                            progress=reporter, pm=state.pm, on_run=announce, scheduler=scheduler)
+    except KeyboardInterrupt as exc:
+        reporter.close()
+        code = 143 if isinstance(exc, Terminated) else 130
+        what = "terminated" if code == 143 else "interrupted"
+        if reporter.run_id is None:
+            raise _Stopped(f"{what} before the run was created", code) from None
+        info = cat.run(reporter.run_id)
+        raise _Stopped(f"run {info.id} {what} after {info.progress} chunks (kept); continue it with: "
+                       f"tilekit search {name} --resume {info.id}", code) from None
     finally:
-        close_bar()
+        reporter.close()
     _print_run(cat.run(run_id))
 
 
 def _print_run(info: Any) -> None:
-    click.echo(f"run {info.id}: {info.kind} {info.status} ({info.progress} chunks, {info.seconds:.2f} s)")
+    click.echo(f"run {info.id}: {info.kind} {info.status} ({info.progress} chunks, {info.rows} rows, "
+               f"{info.seconds:.2f} s wall, {info.worker_seconds:.2f} s worker time)")
     for key, value in (info.summary or {}).items():
         click.echo(f"  {key}: {_format_value(value)}")
 
 
 @cli.group(cls=SearchGroup)
 def search() -> None:
-    """Run a search a family provides (tilekit search KIND --help for its options)."""
+    """Run a search a family provides (tilekit search KIND --help for its options).
+
+    Example: tilekit search vertex-species --executor process --workers 2
+    """
 
 
-@cli.command()
-@click.argument("run_id", required=False, type=int)
+_RUN_ACTIONS = ("show", "cancel", "delete")
+
+
+@cli.command(context_settings={"ignore_unknown_options": False})
+@click.argument("words", nargs=-1, metavar="[show|cancel|delete] [RUN_ID]")
 @click.option("--format", "fmt", type=click.Choice(["table", "json"]), default="table", show_default=True)
 @pass_state
-def runs(state: State, run_id: int | None, fmt: str) -> None:
-    """Search runs: status, progress, seconds, summary (one run in detail with RUN_ID)."""
+def runs(state: State, words: tuple[str, ...], fmt: str) -> None:
+    """Search runs: status, progress, wall and worker time, summary.
+
+    tilekit runs lists every run; tilekit runs RUN_ID (or runs show RUN_ID) shows one;
+    tilekit runs cancel RUN_ID stops a run for good (its workers stop after their current
+    chunk; recorded chunks are kept); tilekit runs delete RUN_ID removes a run with its
+    chunks and results.
+
+    Example: tilekit runs show 3
+    """
+    from tilekit.catalogue import run_json
+
+    action, run_id = _run_words(words)
     cat = state.catalogue()
+    if action == "cancel":
+        info = cat.cancel_run(run_id)
+        click.echo(f"run {info.id} cancelled ({info.progress} chunks recorded)")
+        return
+    if action == "delete":
+        rows = cat.delete_run(run_id)
+        click.echo(f"run {run_id} deleted ({rows} result rows)")
+        return
     infos = [cat.run(run_id)] if run_id is not None else cat.runs()
     if fmt == "json":
         data = []
         for info in infos:
-            item = {k: getattr(info, k) for k in ("id", "kind", "params", "status", "chunks_total",
-                                                   "chunks_done", "seconds", "summary", "error")}
-            for k in ("created_at", "started_at", "finished_at"):
-                value = getattr(info, k)
-                item[k] = value.isoformat() if value is not None else None
+            item = run_json(info)
             if run_id is not None:
                 item["results"] = cat.results(info.id)
+                item["counts"] = cat.run_counts(info.id)
             data.append(item)
         click.echo(json.dumps(data, indent=2, ensure_ascii=False, default=str))
         return
@@ -550,9 +670,9 @@ def runs(state: State, run_id: int | None, fmt: str) -> None:
         if not infos:
             click.echo("no runs yet", err=True)
             return
-        rows = [[str(i.id), i.kind, i.status, i.progress, f"{i.seconds:.2f}",
+        rows = [[str(i.id), i.kind, i.status, i.progress, f"{i.seconds:.2f}", str(i.rows),
                  json.dumps(i.summary, ensure_ascii=False) if i.summary else (i.error or "")] for i in infos]
-        click.echo(_table(["id", "kind", "status", "progress", "seconds", "summary"], rows, {5: 70}))
+        click.echo(_table(["id", "kind", "status", "progress", "seconds", "rows", "summary"], rows, {6: 70}))
         return
     info = infos[0]
     _print_run(info)
@@ -561,13 +681,39 @@ def runs(state: State, run_id: int | None, fmt: str) -> None:
         value = getattr(info, k)
         if value is not None:
             click.echo(f"  {k}: {value.isoformat(sep=' ', timespec='seconds')}")
+    if info.workers_alive or info.chunks_leased:
+        click.echo(f"  workers alive: {info.workers_alive}, chunks leased: {info.chunks_leased}")
     if info.error:
         click.echo(f"  error: {info.error}")
     chunks = cat.run_chunks(info.id)
     pending = [str(c["index"]) for c in chunks if c["status"] != "done"]
     if pending:
-        click.echo(f"  pending chunks: {', '.join(pending)}")
-    click.echo(f"  results: {len(cat.results(info.id))}")
+        shown = ", ".join(pending[:40]) + (f", ... ({len(pending)} in all)" if len(pending) > 40 else "")
+        click.echo(f"  pending chunks: {shown}")
+    if info.chunks_done and info.status in ("running", "interrupted") and info.worker_seconds > 0:
+        per_chunk = info.worker_seconds / info.chunks_done
+        click.echo(f"  worker time per chunk: {per_chunk:.3f} s; left: about "
+                   f"{per_chunk * (info.chunks_total - info.chunks_done):.0f} worker-seconds")
+    click.echo(f"  results: {sum(1 for _ in cat.iter_results(info.id))}")
+
+
+def _run_words(words: tuple[str, ...]) -> tuple[str, int | None]:
+    """``()``, ``(N,)``, ``(ACTION, N)`` -> (action, run id); one-line errors otherwise."""
+    def number(text: str) -> int:
+        if not text.isdigit() or len(text) > 18:
+            raise ParameterError(f"run id {text!r} is not a run number (see tilekit runs)")
+        return int(text)
+
+    if not words:
+        return "list", None
+    if len(words) == 1:
+        if words[0] in _RUN_ACTIONS:
+            raise ParameterError(f"tilekit runs {words[0]} needs a RUN_ID")
+        return "show", number(words[0])
+    if len(words) == 2 and words[0] in _RUN_ACTIONS:
+        return words[0], number(words[1])
+    close = NotFoundError("runs action", words[0], _RUN_ACTIONS)
+    raise ParameterError(f"{close}; usage: tilekit runs [show|cancel|delete] RUN_ID")
 
 
 # --------------------------------------------------------------------------- catalogue
@@ -603,13 +749,18 @@ def catalogue_upgrade(state: State) -> None:
 
 
 @catalogue_group.command(name="export")
-@click.option("--format", "fmt", type=click.Choice(["json", "csv"]), default="json", show_default=True)
+@click.option("--format", "fmt", type=click.Choice(["json", "jsonl", "csv"]), default="json", show_default=True,
+              help="A JSON array, JSON Lines (one object a line) or CSV; all streamed.")
 @click.option("-o", "--output", "out", type=click.Path(dir_okay=False), help="Output file (default: stdout).")
 @click.option("--family", help="Only tilings of this family.")
 @click.option("--where", "where", multiple=True, metavar="EXPR", help="Filter, as for tilekit list.")
 @pass_state
 def catalogue_export(state: State, fmt: str, out: str | None, family: str | None, where: tuple[str, ...]) -> None:
-    """Export tilings (name, family, title, aliases, properties, spec) as JSON or CSV."""
+    """Export tilings (name, family, title, aliases, properties, spec) as JSON, JSON Lines or
+    CSV, streamed in constant memory (a family with a result table exports its rows).
+
+    Example: tilekit catalogue export --family archimedean --format jsonl -o arch.jsonl
+    """
     cat = state.catalogue()
     if out is None:
         cat.export(sys.stdout, fmt, family=family, where=list(where))

@@ -43,6 +43,15 @@ def tilekit_searches():
 
 
 @hookspec
+def tilekit_result_tables():
+    """Return a list of :class:`tilekit.plugins.ResultTable` this plugin's searches write.
+
+    Called when a catalogue is opened and when a chunk's rows are recorded. Each table must
+    be created by the plugin's own Alembic branch (:func:`tilekit_migration_locations`).
+    """
+
+
+@hookspec
 def tilekit_cli_commands(cli):
     """Add click commands or groups to the ``tilekit`` command group ``cli``.
 

@@ -43,10 +43,11 @@ SHARED_COLUMNS: dict[str, type] = {
 #: Columns of ``tilings`` a filter or ``order_by`` may name directly (besides SHARED_COLUMNS).
 TEXT_COLUMNS: tuple[str, ...] = ("name", "family", "title")
 
-#: A run is queued, then running, then done, failed (a chunk raised) or interrupted.
-RUN_STATUSES: tuple[str, ...] = ("queued", "running", "done", "failed", "interrupted")
-#: A chunk is pending until its results are recorded, then done.
-CHUNK_STATUSES: tuple[str, ...] = ("pending", "done")
+#: A run is queued, then running (while some worker's lease is alive), then done, failed (a
+#: chunk raised), interrupted (stopped, or every worker died) or cancelled (by the user).
+RUN_STATUSES: tuple[str, ...] = ("queued", "running", "done", "failed", "interrupted", "cancelled")
+#: A chunk is pending, leased by one worker (until its lease expires), then done.
+CHUNK_STATUSES: tuple[str, ...] = ("pending", "leased", "done")
 
 
 def utcnow() -> datetime:
@@ -162,10 +163,19 @@ class RunRow(Base):
 
 
 class RunChunkRow(Base):
-    """One chunk of a run: the unit of parallel work and of resume."""
+    """One chunk of a run: the unit of parallel work, of leases and of resume.
+
+    A worker claims a pending chunk (or one whose lease expired) by setting ``lease_owner``
+    and ``lease_expires`` (seconds since the epoch); its heartbeat pushes the expiry on while
+    it computes; recording the chunk sets it done. ``seconds`` is the worker time it took,
+    ``rows`` how many result rows it wrote, ``counts`` the tallies it reported.
+    """
 
     __tablename__ = "run_chunks"
-    __table_args__ = (UniqueConstraint("run_id", "index"),)
+    __table_args__ = (
+        UniqueConstraint("run_id", "index"),
+        Index("ix_run_chunks_run_status", "run_id", "status", "index"),
+    )
 
     id: Mapped[int] = mapped_column(Integer, primary_key=True)
     run_id: Mapped[int] = mapped_column(ForeignKey("runs.id", ondelete="CASCADE"), index=True)
@@ -174,6 +184,34 @@ class RunChunkRow(Base):
     status: Mapped[str] = mapped_column(String(16), default="pending")
     seconds: Mapped[float | None] = mapped_column(Float)
     finished_at: Mapped[datetime | None] = mapped_column(DateTime(timezone=True))
+    lease_owner: Mapped[str | None] = mapped_column(String(200))
+    lease_expires: Mapped[float | None] = mapped_column(Float)
+    attempts: Mapped[int] = mapped_column(Integer, default=0)
+    rows: Mapped[int | None] = mapped_column(Integer)
+    counts: Mapped[dict[str, Any] | None] = mapped_column(JSONType)
+
+
+class RunWorkerRow(Base):
+    """One worker of a run (a process running the claim-compute-record loop).
+
+    ``owner`` is ``host/pid/token``; ``heartbeat`` (epoch seconds) is refreshed while it
+    lives; ``stop`` asks it to stop after its current chunk; ``finished`` is set when it ends.
+    A run is running exactly while one of its workers has a fresh heartbeat.
+    """
+
+    __tablename__ = "run_workers"
+
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    run_id: Mapped[int] = mapped_column(ForeignKey("runs.id", ondelete="CASCADE"), index=True)
+    owner: Mapped[str] = mapped_column(String(200), unique=True)
+    session: Mapped[str] = mapped_column(String(200), index=True)
+    host: Mapped[str] = mapped_column(String(200))
+    pid: Mapped[int] = mapped_column(Integer)
+    started: Mapped[float] = mapped_column(Float)
+    heartbeat: Mapped[float] = mapped_column(Float)
+    finished: Mapped[float | None] = mapped_column(Float)
+    stop: Mapped[bool] = mapped_column(Boolean, default=False)
+    chunks_done: Mapped[int] = mapped_column(Integer, default=0)
 
 
 class RunResultRow(Base):

@@ -1,31 +1,67 @@
-"""Search runs: validate parameters, split into chunks, run them, record each as it finishes.
+"""Search runs: validate parameters, split into chunks, and work the chunks through leases.
 
-A run's chunks are stored when it is created; each finished chunk's results, its catalogue
-records and its "done" mark are written in one transaction
-(:meth:`tilekit.catalogue.Catalogue.record_chunk`), so a run that is interrupted and resumed
-loses nothing and repeats nothing. Executors: ``local`` (in this process), ``process``
-(a ``concurrent.futures`` process pool) and ``dask`` (a ``dask.distributed`` cluster).
+Every worker — this process (``local``), each process of a pool (``process``), each task on a
+dask cluster (``dask``), or another ``tilekit search --resume RUN`` on any machine — runs the
+same loop (:func:`work`): claim a chunk (a lease in the catalogue), compute it, record its
+results, rows, records and done mark in one transaction, repeat. A heartbeat thread keeps its
+leases alive; a worker that dies leaves leases that expire and are claimed again, so a run
+is never computed twice in the ordinary case, loses nothing when killed, and any number of
+processes can work on it together. Ctrl-C and SIGTERM stop a run within a second or two,
+keeping every recorded chunk (:class:`Interrupted`).
 """
 
 from __future__ import annotations
 
+import contextlib
+import logging
+import math
 import os
+import signal
+import threading
 import time
+import uuid
 from collections.abc import Callable, Iterable, Mapping
 from typing import Any
 
 import pluggy
 
-from tilekit.catalogue import Catalogue, auto_type
+from tilekit.catalogue import Catalogue, auto_type, lease_seconds
 from tilekit.errors import NotFoundError, ParameterError, SearchError, TilekitError
 from tilekit.plugins import ChunkResult, Search, get_plugin_manager, get_search
 
-__all__ = ["EXECUTORS", "run_search", "validate_params"]
+__all__ = ["EXECUTORS", "Terminated", "describe_params", "run_search", "validate_params", "work"]
 
 EXECUTORS: tuple[str, ...] = ("local", "process", "dask")
 
-#: ``progress(done, total)`` is called once at the start and after every recorded chunk.
+#: ``progress(done, total)`` is called at the start and whenever the number of done chunks changes.
 Progress = Callable[[int, int], None]
+
+#: How often a waiting worker or a coordinator looks at the catalogue again (seconds).
+POLL_SECONDS = 0.2
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised in the main thread so that a run stops as on Ctrl-C (exit 143)."""
+
+
+@contextlib.contextmanager
+def sigterm_raises() -> Any:
+    """While active, SIGTERM raises :class:`Terminated` in the main thread."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def handler(signum: int, frame: Any) -> None:
+        raise Terminated()
+
+    previous = signal.signal(signal.SIGTERM, handler)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+# --------------------------------------------------------------------------- parameters
 
 
 def _coerce(search: Search, name: str, typ: type, value: Any) -> Any:
@@ -45,18 +81,24 @@ def _coerce(search: Search, name: str, typ: type, value: Any) -> Any:
             return value
         if isinstance(value, float) and value.is_integer():
             return int(value)
-        if isinstance(value, str) and isinstance(auto_type(value), int) and not isinstance(auto_type(value), bool):
-            return int(value)
+        if isinstance(value, str):
+            try:
+                parsed = auto_type(value)
+            except TilekitError:
+                parsed = None
+            if isinstance(parsed, int) and not isinstance(parsed, bool):
+                return int(parsed)
         raise ParameterError(f"{where} takes an integer, got {value!r}")
     if typ is float:
         if isinstance(value, bool):
             raise ParameterError(f"{where} takes a number, got {value!r}")
-        if isinstance(value, int | float):
-            return float(value)
         try:
-            return float(value)
-        except (TypeError, ValueError):
+            number = float(value)
+        except (TypeError, ValueError, OverflowError):
             raise ParameterError(f"{where} takes a number, got {value!r}") from None
+        if not math.isfinite(number):
+            raise ParameterError(f"{where} takes a finite number, got {value!r}")
+        return number
     if typ is str:
         if isinstance(value, str):
             return value
@@ -64,11 +106,26 @@ def _coerce(search: Search, name: str, typ: type, value: Any) -> Any:
     return typ(value)
 
 
+def _in_range(search: Search, p: Any, value: Any) -> None:
+    where = f"search {search.name!r}: parameter {p.name!r}"
+    if p.choices is not None and value not in p.choices:
+        close = NotFoundError(f"{p.name} value", str(value), list(p.choices))
+        raise ParameterError(f"search {search.name!r}: {close}")
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        low, high = p.min, p.max
+        if (low is not None and value < low) or (high is not None and value > high):
+            shown = " to ".join(str(b) for b in (low, high) if b is not None)
+            span = (f"from {low} to {high}" if low is not None and high is not None
+                    else f"at least {low}" if low is not None else f"at most {high}")
+            raise ParameterError(f"{where} takes a value {span}, got {value}" if shown else where)
+
+
 def validate_params(search: Search, params: Mapping[str, Any] | None) -> dict[str, Any]:
-    """Check ``params`` against the search's SearchParams: names, required ones, types.
+    """Check ``params`` against the search's SearchParams: names, required ones, types,
+    ranges and choices.
 
     Returns the complete parameter dict (defaults filled in). Raises ParameterError naming
-    the offending parameter and the valid ones.
+    the offending parameter and what is valid.
     """
     params = dict(params or {})
     declared = {p.name: p for p in search.params}
@@ -84,100 +141,321 @@ def validate_params(search: Search, params: Mapping[str, Any] | None) -> dict[st
                 f"search {search.name!r} needs the parameter {p.name!r}"
                 + (f" ({p.help})" if p.help else "")
             )
-        out[p.name] = _coerce(search, p.name, p.type, value)
+        value = _coerce(search, p.name, p.type, value)
+        if value is not None:
+            _in_range(search, p, value)
+        out[p.name] = value
     return out
 
 
-def _timed(run_chunk: Callable[[Mapping[str, Any], Mapping[str, Any]], ChunkResult],
-           params: Mapping[str, Any], chunk: Mapping[str, Any]) -> tuple[ChunkResult, float]:
-    """Run one chunk and time it (module level, so process pools and dask can pickle it)."""
-    start = time.perf_counter()
-    result = run_chunk(params, chunk)
-    return result, time.perf_counter() - start
+def describe_params(search: Search) -> Iterable[str]:
+    """One line per parameter: ``name (type, default, range): help``."""
+    for p in search.params:
+        default = "required" if p.required else f"default {p.default!r}"
+        extra = ""
+        if p.choices is not None:
+            extra = ", one of " + "/".join(map(str, p.choices))
+        elif p.min is not None or p.max is not None:
+            extra = f", {p.min if p.min is not None else ''}..{p.max if p.max is not None else ''}"
+        yield f"{p.name} ({p.type.__name__}, {default}{extra}): {p.help}"
 
 
-def _check_result(search: Search, index: int, result: Any) -> ChunkResult:
-    if not isinstance(result, ChunkResult):
-        raise SearchError(
-            f"search {search.name!r}: run_chunk returned {type(result).__name__} for chunk {index}, "
-            "not a ChunkResult"
-        )
-    return result
+# --------------------------------------------------------------------------- the worker loop
 
 
 class _ChunkFailed(Exception):
     """A chunk's run_chunk raised ``error`` (an ordinary exception, not an interrupt)."""
 
-    def __init__(self, index: int, error: Exception) -> None:
+    def __init__(self, index: int, error: BaseException) -> None:
         super().__init__(index, error)
         self.index = index
         self.error = error
 
-
-def _run_local(search, params, pending, record) -> None:
-    for index, chunk in pending:
-        try:
-            result, seconds = _timed(search.run_chunk, params, chunk)
-        except Exception as exc:
-            raise _ChunkFailed(index, exc) from exc
-        record(index, result, seconds)
+    def message(self) -> str:
+        cause = self.error
+        return f"{type(cause).__name__}: {' '.join(str(cause).split())}"
 
 
-def _record_future(future: Any, index: int, record: Any) -> None:
-    """Record a finished pool or dask future's chunk; a chunk that raised fails the run."""
+class _Heartbeat(threading.Thread):
+    """Refreshes a worker's heartbeat and leases every third of the lease time; sets
+    ``stop`` when the worker is asked to stop or the run ended meanwhile."""
+
+    def __init__(self, catalogue: Catalogue, owner: str) -> None:
+        super().__init__(name=f"tilekit-heartbeat-{owner}", daemon=True)
+        self.catalogue = catalogue
+        self.owner = owner
+        self.stop = threading.Event()
+        self._end = threading.Event()
+
+    def run(self) -> None:
+        interval = lease_seconds() / 3.0
+        while not self._end.wait(interval):
+            try:
+                if self.catalogue.heartbeat(self.owner):
+                    self.stop.set()
+            except Exception:  # a busy database: try again at the next beat
+                continue
+
+    def end(self) -> None:
+        self._end.set()
+
+
+def work(
+    catalogue: Catalogue,
+    run_id: int,
+    search: Search,
+    params: Mapping[str, Any],
+    session: str,
+    *,
+    on_record: Callable[[int], None] | None = None,
+) -> int:
+    """Work on a run until nothing is left to claim: claim, compute, record. Returns the
+    number of chunks this worker recorded.
+
+    Waits (polling) while the only chunks left are leased by other live workers, and claims
+    them when their leases expire. A chunk that raises releases its lease, marks the run
+    failed and raises :class:`_ChunkFailed`; an interrupt releases the lease and propagates.
+    """
+    owner = catalogue.start_worker(run_id, session)
+    beat = _Heartbeat(catalogue, owner)
+    beat.start()
+    recorded = 0
     try:
-        result, seconds = future.result()
-    except Exception as exc:
-        raise _ChunkFailed(index, exc) from exc
-    record(index, result, seconds)
-
-
-def _run_process(search, params, pending, record, workers: int | None) -> None:
-    from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
-
-    pool = ProcessPoolExecutor(max_workers=workers)
-    try:
-        futures = {pool.submit(_timed, search.run_chunk, params, chunk): index for index, chunk in pending}
-        remaining = set(futures)
-        while remaining:
-            done, remaining = wait(remaining, return_when=FIRST_COMPLETED)
-            for future in sorted(done, key=futures.__getitem__):
-                _record_future(future, futures[future], record)
-    except BaseException:
-        pool.shutdown(wait=True, cancel_futures=True)
+        while not beat.stop.is_set():
+            claimed = catalogue.claim(run_id, owner)
+            if claimed is None:
+                break
+            if not claimed:
+                beat.stop.wait(POLL_SECONDS)
+                continue
+            for index, chunk in claimed:
+                started = time.perf_counter()
+                try:
+                    result = search.run_chunk(params, chunk)
+                except Exception as exc:
+                    raise _ChunkFailed(index, exc) from exc
+                if not isinstance(result, ChunkResult):
+                    raise _ChunkFailed(index, SearchError(
+                        f"search {search.name!r}: run_chunk returned {type(result).__name__} "
+                        f"for chunk {index}, not a ChunkResult"))
+                if catalogue.record_chunk(run_id, index, result, time.perf_counter() - started, owner=owner):
+                    recorded += 1
+                if on_record is not None:
+                    on_record(index)
+    except _ChunkFailed as exc:
+        with contextlib.suppress(TilekitError):
+            catalogue.finish_run(run_id, "failed", error=f"{exc.message()} in chunk {exc.index}")
         raise
-    pool.shutdown(wait=True)
+    finally:
+        beat.end()
+        catalogue.finish_worker(owner)
+    return recorded
+
+
+# --------------------------------------------------------------------------- executors
+
+
+def _set_parent_death_signal() -> None:
+    """Linux: the kernel sends this process SIGKILL when its parent dies, so pool workers
+    never outlive the run that started them (not even a SIGKILLed one)."""
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(1, signal.SIGKILL, 0, 0, 0)  # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):  # not Linux: the getppid watch below still applies
+        pass
+
+
+def _child_main(url: str, run_id: int, session: str, search: Search, params: Mapping[str, Any],
+                pm: pluggy.PluginManager, parent: int) -> None:
+    """A pool process: ignore Ctrl-C (the parent handles it), die with the parent, work."""
+    _set_parent_death_signal()
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    if os.getppid() != parent:
+        os._exit(1)
+
+    def watch() -> None:
+        while True:
+            time.sleep(1.0)
+            if os.getppid() != parent:
+                os._exit(1)
+
+    threading.Thread(target=watch, daemon=True).start()
+    from tilekit.catalogue import open_catalogue
+
+    catalogue = open_catalogue(url, seed=False, migrate=False, pm=pm)
+    try:
+        work(catalogue, run_id, search, params, session)
+    except _ChunkFailed:
+        os._exit(3)
+    finally:
+        catalogue.close()
+
+
+class _Monitor:
+    """Reports progress: counted here for chunks this process records, read from the
+    catalogue (at most every POLL_SECONDS) while workers elsewhere record them."""
+
+    def __init__(self, catalogue: Catalogue, run_id: int, progress: Progress | None, done: int, total: int) -> None:
+        self.catalogue = catalogue
+        self.run_id = run_id
+        self.progress = progress
+        self.done = done
+        self.total = total
+        self.read_at = 0.0
+
+    def recorded(self, _index: int) -> None:
+        """A chunk recorded in this process (others' chunks are counted at the next read)."""
+        self.done += 1
+        if self.progress is None:
+            return
+        now = time.monotonic()
+        if now - self.read_at >= 1.0:
+            self.read_at = now
+            self.done = max(self.done, self.catalogue.chunks_done(self.run_id))
+        self.progress(min(self.done, self.total), self.total)
+
+    def poll(self) -> None:
+        if self.progress is None:
+            return
+        self.read_at = time.monotonic()
+        done = self.catalogue.chunks_done(self.run_id)
+        if done != self.done:
+            self.done = done
+            self.progress(done, self.total)
+
+
+def _run_process(catalogue: Catalogue, run_id: int, search: Search, params: Mapping[str, Any],
+                 session: str, workers: int | None, monitor: _Monitor) -> None:
+    import multiprocessing
+
+    if catalogue.path is None and catalogue.engine.url.get_backend_name() == "sqlite":
+        raise ParameterError("the process executor needs a catalogue file or server, not an in-memory database")
+    ctx = multiprocessing.get_context("fork" if hasattr(os, "fork") else "spawn")
+    url = catalogue.engine.url.render_as_string(hide_password=False)
+    count = workers or os.cpu_count() or 1
+    procs = [ctx.Process(target=_child_main, name=f"tilekit-worker-{i}",
+                         args=(url, run_id, session, search, params, catalogue.pm, os.getpid()),
+                         daemon=True)
+             for i in range(count)]
+    try:
+        for proc in procs:
+            proc.start()
+        while any(proc.is_alive() for proc in procs):
+            monitor.poll()
+            time.sleep(POLL_SECONDS)
+        monitor.poll()
+    finally:
+        for proc in procs:
+            if proc.is_alive():
+                proc.terminate()
+        deadline = time.monotonic() + 1.0
+        for proc in procs:
+            proc.join(max(0.0, deadline - time.monotonic()))
+            if proc.is_alive():
+                proc.kill()
+                proc.join(0.5)
+    if any(proc.exitcode not in (0, None) for proc in procs):
+        info = catalogue.run(run_id)
+        if info.status != "failed":
+            raise SearchError(f"a worker of run {run_id} exited with status "
+                              f"{[p.exitcode for p in procs if p.exitcode]}")
+
+
+def _dask_worker(url: str, run_id: int, session: str, name: str, params: Mapping[str, Any]) -> int:
+    """A dask task: open the catalogue on the worker and work on the run through leases."""
+    from tilekit.catalogue import open_catalogue
+
+    catalogue = open_catalogue(url, seed=False, migrate=False)
+    try:
+        return work(catalogue, run_id, get_search(name, catalogue.pm), params, session)
+    except _ChunkFailed as exc:
+        raise SearchError(f"{exc.message()} in chunk {exc.index}") from None
+    finally:
+        catalogue.close()
 
 
 def _dask_client(workers: int | None, scheduler: str | None) -> Any:
     try:
-        from dask.distributed import Client
+        from dask.distributed import Client, LocalCluster
     except ImportError:
         raise SearchError(
             "the dask executor needs dask.distributed; install it with: pip install 'tilekit[dask]'"
         ) from None
     address = scheduler or os.environ.get("TILEKIT_DASK_SCHEDULER")
     if address:
-        return Client(address)
-    return Client(n_workers=workers or 1, threads_per_worker=1, processes=True, dashboard_address=None)
-
-
-def _run_dask(search, params, pending, record, workers: int | None, scheduler: str | None) -> None:
-    from dask.distributed import as_completed
-
-    client = _dask_client(workers, scheduler)
-    futures: dict[Any, int] = {}
+        return Client(address), None
+    # the cluster's processes inherit "ignore Ctrl-C", so an interrupt reaches only us
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if _main_thread() else None
     try:
-        for index, chunk in pending:
-            future = client.submit(_timed, search.run_chunk, params, chunk, pure=False)
-            futures[future] = index
-        for future in as_completed(list(futures)):
-            _record_future(future, futures[future], record)
+        cluster = LocalCluster(n_workers=workers or 1, threads_per_worker=1, processes=True,
+                               dashboard_address=":0", silence_logs=logging.CRITICAL)
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGINT, previous)
+    return Client(cluster), cluster
+
+
+def _main_thread() -> bool:
+    return threading.current_thread() is threading.main_thread()
+
+
+def _run_dask(catalogue: Catalogue, run_id: int, search: Search, params: Mapping[str, Any],
+              session: str, workers: int | None, scheduler: str | None, monitor: _Monitor) -> None:
+    if catalogue.path is None and catalogue.engine.url.get_backend_name() == "sqlite":
+        raise ParameterError("the dask executor needs a catalogue file or server, not an in-memory database")
+    client, cluster = _dask_client(workers, scheduler)
+    url = catalogue.engine.url.render_as_string(hide_password=False)
+    futures: list[Any] = []
+    local_pids: list[int] = []
+    try:
+        if cluster is not None:  # our own cluster's processes: ended for sure when we end
+            local_pids = [int(p) for p in client.run(os.getpid).values() if int(p) != os.getpid()]
+        count = workers or max(1, len(client.scheduler_info().get("workers", {})))
+        futures = [client.submit(_dask_worker, url, run_id, session, search.name, dict(params),
+                                 pure=False, key=f"tilekit-{session}-{i}") for i in range(count)]
+        while not all(f.done() for f in futures):
+            monitor.poll()
+            time.sleep(POLL_SECONDS)
+        monitor.poll()
+        for f in futures:
+            if f.status == "error":
+                exc = f.exception()
+                if catalogue.run(run_id).status != "failed":
+                    raise SearchError(f"a dask worker of run {run_id} failed: {exc}")
     except BaseException:
-        client.cancel(list(futures))
+        with contextlib.suppress(Exception):
+            catalogue.stop_session(session)
         raise
     finally:
-        client.close()
+        logging.getLogger("distributed").setLevel(logging.CRITICAL)
+        with contextlib.suppress(Exception):
+            client.cancel(futures)
+        with contextlib.suppress(Exception):
+            client.close(timeout=2)
+        if cluster is not None:
+            with contextlib.suppress(Exception):
+                cluster.close(timeout=2)
+            for pid in local_pids:
+                with contextlib.suppress(OSError):
+                    os.kill(pid, signal.SIGKILL)
+
+
+# --------------------------------------------------------------------------- run_search
+
+
+def _check_executor(executor: str, workers: int | None, scheduler: str | None) -> None:
+    if executor not in EXECUTORS:
+        raise ParameterError(f"executor {executor!r} is not one of: {', '.join(EXECUTORS)}")
+    if workers is not None and workers < 1:
+        raise ParameterError(f"workers must be at least 1, got {workers}")
+    if executor == "dask":  # fail before creating or touching a run if dask is missing
+        try:
+            import dask.distributed  # noqa: F401
+        except ImportError:
+            _dask_client(workers, scheduler)
 
 
 def run_search(
@@ -193,41 +471,41 @@ def run_search(
     scheduler: str | None = None,
     on_run: Callable[[int], None] | None = None,
 ) -> int:
-    """Run (or resume) the search ``name`` and return the run id.
+    """Run (or resume, or join) the search ``name`` and return the run id.
 
-    A new run validates ``params`` against the search's SearchParams, stores the chunks and
-    runs them; ``resume_run`` continues an earlier run of the same search with its stored
-    parameters, running only the chunks not yet done. Chunks run with ``executor``:
-    ``local`` (in-process), ``process`` (a process pool of ``workers``) or ``dask``
+    A new run validates ``params`` (types, ranges, choices) before anything is stored, then
+    stores the chunks and works them. ``resume_run`` works on an earlier run with its stored
+    parameters: an interrupted or failed run continues, a run that other workers are
+    working on is joined (leases keep them from computing a chunk twice). Chunks run with
+    ``executor``: ``local`` (in-process), ``process`` (``workers`` processes) or ``dask``
     (``scheduler`` address, ``$TILEKIT_DASK_SCHEDULER``, or a local cluster of ``workers``).
-    The run ends ``done``; ``failed`` (SearchError) if a chunk raised; ``interrupted`` if
-    interrupted (e.g. Ctrl-C; the interrupt propagates). ``on_run(run_id)`` is called once
-    the run exists (so a caller knows which run to resume); ``progress(done, total)`` at the
-    start and after every recorded chunk.
+    The run ends ``done``; ``failed`` (SearchError) if a chunk raised; on Ctrl-C or SIGTERM
+    the recorded chunks are kept, the run reads ``interrupted`` and the interrupt
+    (KeyboardInterrupt, or :class:`Terminated`) propagates. ``on_run(run_id)`` is called
+    once the run exists; ``progress(done, total)`` at the start and as chunks are recorded.
     """
     pm = pm or catalogue._pm or get_plugin_manager()
-    if executor not in EXECUTORS:
-        raise ParameterError(f"executor {executor!r} is not one of: {', '.join(EXECUTORS)}")
-    if workers is not None and workers < 1:
-        raise ParameterError(f"workers must be at least 1, got {workers}")
-    if executor == "dask":  # fail before creating or touching a run if dask is missing
-        try:
-            import dask.distributed  # noqa: F401
-        except ImportError:
-            _dask_client(workers, scheduler)
+    _check_executor(executor, workers, scheduler)
 
     if resume_run is not None:
         info = catalogue.run(resume_run)
         if name is not None and name != info.kind:
             raise SearchError(f"run {info.id} is a {info.kind!r} search, not {name!r}")
         search = get_search(info.kind, pm)
-        stored = validate_params(search, info.params)
+        try:
+            stored = validate_params(search, info.params)
+        except ParameterError as exc:
+            raise SearchError(f"run {info.id} was stored with parameters this version refuses: {exc}") from None
         if params is not None and validate_params(search, params) != stored:
             raise SearchError(
                 f"run {info.id} was started with {stored}; resume it without new parameters"
             )
+        if info.status == "cancelled":
+            raise SearchError(f"run {info.id} was cancelled; start a new run (runs delete {info.id} removes it)")
         params = stored
         run_id = info.id
+        if info.status == "failed":
+            catalogue.reopen_run(run_id)
         if on_run:
             on_run(run_id)
         if info.status == "done":
@@ -240,76 +518,93 @@ def run_search(
         search = get_search(name, pm)
         params = validate_params(search, params)
         try:
-            chunks = list(search.chunks(params))
+            chunks = search.chunks(params)
+            run_id = catalogue.create_run(search.name, params, chunks)
         except TilekitError:
             raise
         except Exception as exc:
             raise SearchError(f"search {search.name!r} could not split its work: {exc}") from exc
-        run_id = catalogue.create_run(search.name, params, chunks)
         if on_run:
             on_run(run_id)
 
+    session = uuid.uuid4().hex
     info = catalogue.run(run_id)
-    total = info.chunks_total
-    done = info.chunks_done
-    pending = catalogue.pending_chunks(run_id)
-    catalogue.start_run(run_id)
     if progress:
-        progress(done, total)
-    started = time.perf_counter()
+        progress(info.chunks_done, info.chunks_total)
+    monitor = _Monitor(catalogue, run_id, progress, info.chunks_done, info.chunks_total)
+    with sigterm_raises():
+        try:
+            if executor == "local":
+                work(catalogue, run_id, search, params, session, on_record=monitor.recorded)
+            elif executor == "process":
+                _run_process(catalogue, run_id, search, params, session, workers, monitor)
+            else:
+                _run_dask(catalogue, run_id, search, params, session, workers, scheduler, monitor)
+        except KeyboardInterrupt:  # Ctrl-C, or SIGTERM (Terminated)
+            _close_session(catalogue, session)
+            with contextlib.suppress(TilekitError):
+                catalogue.finish_run(run_id, "interrupted", error="interrupted")
+            raise
+        except _ChunkFailed as exc:
+            raise SearchError(
+                f"run {run_id} ({search.name}) failed in chunk {exc.index}: {exc.message()}; "
+                f"fix the cause and resume it (tilekit search {search.name} --resume {run_id})"
+            ) from exc.error
+        except SearchError:
+            _close_session(catalogue, session)
+            info = catalogue.run(run_id)
+            if info.status == "failed" and info.error:
+                raise SearchError(
+                    f"run {run_id} ({search.name}) failed: {info.error}; "
+                    f"fix the cause and resume it (tilekit search {search.name} --resume {run_id})"
+                ) from None
+            raise
+        _close_session(catalogue, session)
+        return _finish(catalogue, run_id, search, params)
 
-    def record(index: int, result: Any, seconds: float) -> None:
-        nonlocal done
-        result = _check_result(search, index, result)
-        if catalogue.record_chunk(run_id, index, result, seconds):
-            done += 1
-        if progress:
-            progress(done, total)
 
-    try:
-        if executor == "local":
-            _run_local(search, params, pending, record)
-        elif executor == "process":
-            _run_process(search, params, pending, record, workers)
-        else:
-            _run_dask(search, params, pending, record, workers, scheduler)
-    except (KeyboardInterrupt, SystemExit):
-        catalogue.finish_run(run_id, "interrupted", error="interrupted", seconds=time.perf_counter() - started)
-        raise
-    except Exception as exc:
-        where, cause = "", exc
-        if isinstance(exc, _ChunkFailed):
-            where, cause = f" in chunk {exc.index}", exc.error
-        message = f"{type(cause).__name__}: {' '.join(str(cause).split())}"
-        catalogue.finish_run(run_id, "failed", error=message + where, seconds=time.perf_counter() - started)
+def _close_session(catalogue: Catalogue, session: str) -> None:
+    """Release the leases of every worker of this session (dead pool processes included)."""
+    with contextlib.suppress(TilekitError):
+        for owner in catalogue.session_owners(session):
+            catalogue.finish_worker(owner)
+
+
+def _finish(catalogue: Catalogue, run_id: int, search: Search, params: Mapping[str, Any]) -> int:
+    """After this session's workers stopped: a run with every chunk done is summarised and
+    marked done; a failed or cancelled one says so; otherwise other workers still hold it."""
+    info = catalogue.run(run_id)
+    if info.status == "failed":
         raise SearchError(
-            f"run {run_id} ({search.name}) failed{where}: {message}; "
+            f"run {run_id} ({search.name}) failed: {info.error}; "
             f"fix the cause and resume it (tilekit search {search.name} --resume {run_id})"
-        ) from cause
-
+        )
+    if info.status in ("cancelled", "done"):
+        return run_id
+    if info.chunks_done < info.chunks_total:
+        return run_id  # stopped while other workers hold the remaining chunks
     try:
-        summary = _summarize(search, params, catalogue.results(run_id))
+        summary = _summarize(catalogue, search, params, run_id)
     except TilekitError as exc:
-        catalogue.finish_run(run_id, "failed", error=str(exc), seconds=time.perf_counter() - started)
+        catalogue.finish_run(run_id, "failed", error=str(exc))
         raise
-    catalogue.finish_run(run_id, "done", summary=summary, seconds=time.perf_counter() - started)
+    catalogue.finish_run(run_id, "done", summary=summary)
     return run_id
 
 
-def _summarize(search: Search, params: Mapping[str, Any], results: list[dict[str, Any]]) -> dict[str, Any]:
+def _summarize(catalogue: Catalogue, search: Search, params: Mapping[str, Any], run_id: int) -> dict[str, Any]:
+    counts = catalogue.run_counts(run_id)
     if search.summarize is None:
-        return {"results": len(results)}
+        info = catalogue.run(run_id)
+        n_results = sum(1 for _ in catalogue.iter_results(run_id))
+        out: dict[str, Any] = {"results": n_results}
+        if info.rows > n_results:
+            out["rows"] = info.rows - n_results
+        return {**out, **counts}
     try:
-        summary = search.summarize(params, results)
+        summary = search.summarize(params, catalogue.results(run_id))
     except TilekitError:
         raise
     except Exception as exc:
         raise SearchError(f"search {search.name!r} could not summarise its results: {exc}") from exc
-    return dict(summary or {})
-
-
-def describe_params(search: Search) -> Iterable[str]:
-    """One line per parameter: ``name (type, default): help``."""
-    for p in search.params:
-        default = "required" if p.required else f"default {p.default!r}"
-        yield f"{p.name} ({p.type.__name__}, {default}): {p.help}"
+    return {**dict(summary or {}), **counts}

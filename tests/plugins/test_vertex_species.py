@@ -6,6 +6,7 @@ from fractions import Fraction
 
 import pytest
 
+import tilekit
 from tilekit.errors import ParameterError
 from tilekit.plugins import get_search
 from tilekit.plugins.archimedean import archimedean_tiling
@@ -46,12 +47,24 @@ def test_counts_of_types_and_species():
 
 @pytest.fixture(scope="module")
 def results():
+    """Every chunk's vertex_species rows (one per classified type), in chunk order."""
     search = get_search("vertex-species")
     params: dict = {}
     out = []
     for chunk in search.chunks(params):
-        out.extend(search.run_chunk(params, chunk).results)
+        out.extend(search.run_chunk(params, chunk).rows["vertex_species"])
     return search, params, out
+
+
+def _summary(search, params):
+    """The run summary as the run layer builds it: summarize(JSON results) + summed counts."""
+    results, counts = [], {}
+    for chunk in search.chunks(params):
+        out = search.run_chunk(params, chunk)
+        results.extend(out.results)
+        for k, v in out.counts.items():
+            counts[k] = counts.get(k, 0) + v
+    return {**search.summarize(params, results), **counts}
 
 
 def test_exactly_eleven_survivors(results):
@@ -77,7 +90,8 @@ def test_exactly_eleven_survivors(results):
 
 def test_summary(results):
     search, params, res = results
-    s = search.summarize(params, res)
+    s = _summary(search, params)
+    assert sorted(s["survivors"]) == sorted(ARCHIMEDEAN)
     assert s["euclidean_types"] == 21 and s["euclidean_species"] == 17
     assert s["tiling_types"] == 11 and s["impossible_types"] == 10 and s["undecided_types"] == 0
     # the 11 types fall into 10 species (3^3.4^2 and 3^2.4.3.4 share one); species such as
@@ -142,21 +156,24 @@ def test_results_bounded_enumeration(results):
 
 
 def test_records_for_the_catalogue(results):
-    """Chunks yield catalogue records: the tiling record (with the search's findings) for a
-    survivor, a vertex-type record otherwise, each with species and status."""
+    """Chunks yield catalogue records only for the types that tile (issue: impossible,
+    spherical and hyperbolic types are not tilings); every type is a vertex_species row."""
     search, params, _ = results
     chunk = {"geometry": "euclidean", "species": [3, 3, 3, 4, 4]}
     out = search.run_chunk(params, chunk)
-    assert {r["vertex_type"] for r in out.results} == {"3^3.4^2", "3^2.4.3.4"}
+    assert {r["vertex_type"] for r in out.rows["vertex_species"]} == {"3^3.4^2", "3^2.4.3.4"}
     assert {r.name for r in out.records} == {"3^3.4^2", "3^2.4.3.4"}
     for rec in out.records:
         assert rec.properties["species"] == "3^3.4^2"
         assert rec.properties["status"] == "tiles"
         assert rec.properties["kind"] == "tiling"
     out = search.run_chunk(params, {"geometry": "euclidean", "species": [3, 7, 42]})
-    (rec,) = out.records
-    assert rec.name == "3.7.42" and rec.properties["status"] == "impossible"
-    assert rec.properties["periodic"] is False
+    assert out.records == []
+    (row,) = out.rows["vertex_species"]
+    assert row["vertex_type"] == "3.7.42" and row["status"] == "impossible"
+    out = search.run_chunk(params, {"geometry": "non-euclidean", "k": 3, "max_sides": 12,
+                                    "hyperbolic_max_sides": 6})
+    assert out.records == [] and len(out.rows["vertex_species"]) > 10
 
 
 def test_bad_parameters():
@@ -165,6 +182,11 @@ def test_bad_parameters():
         search.chunks({"radius": -1.0})
     with pytest.raises(ParameterError, match="max_sides"):
         search.chunks({"max_sides": 2})
+    # the issue's case: accepted before, then ran out of memory; now refused before any run
+    from tilekit.search import validate_params
+
+    with pytest.raises(ParameterError, match="max_sides.*from 3 to 24"):
+        validate_params(search, {"max_sides": 50, "hyperbolic_max_sides": 20})
 
 
 def test_search_through_the_catalogue(tmp_path):
@@ -184,8 +206,22 @@ def test_search_through_the_catalogue(tmp_path):
 
     rows = json.loads(res.output)
     assert {r["name"] for r in rows} == {"3^3.4^2", "3^2.4.3.4"}
-    res = runner.invoke(cli, ["--catalogue", url, "list", "--family", "archimedean",
+    # every classified type is a row of the search's own table, not an archimedean tiling
+    res = runner.invoke(cli, ["--catalogue", url, "list", "--family", "vertex-species",
                               "--where", "status=impossible", "--format", "json"])
     assert len(json.loads(res.output)) == 10
+    res = runner.invoke(cli, ["--catalogue", url, "list", "--family", "archimedean",
+                              "--where", "status=impossible", "--count"])
+    assert res.output.strip() == "0"
+    res = runner.invoke(cli, ["--catalogue", url, "list", "--family", "vertex-species",
+                              "--where", "geometry=spherical", "--where", "status=polyhedron", "--count"])
+    assert int(res.output) >= 18 + 9 + 9  # the 18 solids, prisms 4^2.n and antiprisms 3^3.n
+    res = runner.invoke(cli, ["--catalogue", url, "list", "--family", "archimedean", "--count"])
+    assert res.output.strip() == "12"  # the 11 Archimedean tilings, 3^4.6 in both hands
     res = runner.invoke(cli, ["--catalogue", url, "runs"])
     assert res.exit_code == 0 and "vertex-species" in res.output
+    # the README's Python example works after the search (it failed with a KeyError before)
+    cat = tilekit.open_catalogue(url)
+    for entry in cat.query(family="archimedean", where=["polygons=12"]):
+        assert entry.properties["symmetry_group"]
+    cat.close()

@@ -71,26 +71,65 @@ class CatalogueRecord:
 
 @dataclass(frozen=True)
 class SearchParam:
-    """One parameter of a search, shown as a ``--name`` option of ``tilekit search KIND``."""
+    """One parameter of a search, shown as a ``--name`` option of ``tilekit search KIND``.
+
+    ``min`` / ``max`` bound a number (inclusive) and ``choices`` lists the values a text
+    parameter takes; both are checked before a run is created, so a stored run's parameters
+    are always valid.
+    """
 
     name: str
     type: type = str  # str, int, float or bool
     default: Any = None
     help: str = ""
     required: bool = False
+    min: float | None = None
+    max: float | None = None
+    choices: Sequence[str] | None = None
 
 
 @dataclass
 class ChunkResult:
-    """What one chunk of a search yields.
+    """What one chunk of a search yields, all written in ONE transaction with its done mark.
 
-    ``results`` are JSON objects stored in the run's result table; ``records`` are
-    catalogue records (new tilings or updated properties) upserted in the same transaction
-    as the chunk's done mark.
+    ``results`` are small JSON objects kept with the run (``run_results``); ``rows`` maps a
+    plugin result table's name (:class:`ResultTable`) to rows of plain column values,
+    bulk-upserted by the table's key; ``records`` are catalogue tilings (new, or updated
+    properties); ``counts`` are tallies summed over all chunks into the run's summary.
     """
 
     results: list[dict[str, Any]] = field(default_factory=list)
     records: list[CatalogueRecord] = field(default_factory=list)
+    rows: dict[str, list[dict[str, Any]]] = field(default_factory=dict)
+    counts: dict[str, int | float] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class ResultTable:
+    """A table of search results that a plugin owns (one row per result, typed columns).
+
+    ``table`` is defined on the plugin's own ``sqlalchemy.MetaData`` and created by the
+    plugin's Alembic branch (``tilekit_migration_locations``). ``key`` names the natural key:
+    a row whose key exists is updated (only the columns the row gives), never doubled. A
+    ``run_id`` column, if the table has one, is filled with the run that wrote the row.
+    With ``family`` set, ``tilekit list --family F`` and ``Catalogue.query(family=F)`` read
+    this table, filtering on its columns; ``name_column`` is where ``tilekit show NAME``
+    looks names up, and ``spec(row)`` turns a row into the spec the family's ``from_spec``
+    rebuilds (for show and render); ``tiling_family`` names that family when it is not
+    ``family`` itself (e.g. rows listed as ``vertex-species`` rebuilt as ``archimedean``).
+    """
+
+    table: Any  # sqlalchemy.Table
+    key: tuple[str, ...]
+    family: str | None = None
+    name_column: str | None = None
+    spec: Callable[[Mapping[str, Any]], dict[str, Any]] | None = None
+    title: Callable[[Mapping[str, Any]], str] | None = None
+    tiling_family: str | None = None
+
+    @property
+    def name(self) -> str:
+        return str(self.table.name)
 
 
 @dataclass(frozen=True)
@@ -98,17 +137,19 @@ class Search:
     """An enumeration or search job a family contributes.
 
     ``chunks(params)`` splits a run into JSON-serialisable chunk descriptions (the unit of
-    resume and of parallel work); ``run_chunk(params, chunk)`` computes one chunk and must
-    be a module-level function or otherwise picklable, so process pools and dask workers can
-    run it. ``summarize(params, results)`` (optional) turns all results into a short dict
-    shown by ``tilekit runs``.
+    resume, of leases and of parallel work): a list or any iterable, stored in batches as
+    it is produced; ``run_chunk(params, chunk)`` computes one chunk and must be a
+    module-level function or otherwise picklable, so process pools and dask workers can run
+    it. ``summarize(params, results)`` (optional) turns the run's JSON ``results`` (a list:
+    keep them small, and write large outputs as result-table ``rows``) into a short dict
+    shown by ``tilekit runs``; the summed ``counts`` of the chunks are added to it.
     """
 
     name: str
     summary: str
     family: str
     params: Sequence[SearchParam]
-    chunks: Callable[[Mapping[str, Any]], list[dict[str, Any]]]
+    chunks: Callable[[Mapping[str, Any]], Iterable[dict[str, Any]]]
     run_chunk: Callable[[Mapping[str, Any], Mapping[str, Any]], ChunkResult]
     summarize: Callable[[Mapping[str, Any], list[dict[str, Any]]], dict[str, Any]] | None = None
 
@@ -214,6 +255,22 @@ def get_search(name: str, pm: pluggy.PluginManager | None = None) -> Search:
         return found[name]
     except KeyError:
         raise NotFoundError("search", name, found) from None
+
+
+def result_tables(pm: pluggy.PluginManager | None = None) -> dict[str, ResultTable]:
+    """Every plugin result table by table name."""
+    pm = pm or get_plugin_manager()
+    out: dict[str, ResultTable] = {}
+    for rt in _flatten(pm.hook.tilekit_result_tables()):
+        if not isinstance(rt, ResultTable):
+            raise PluginError(f"tilekit_result_tables returned {type(rt).__name__}, not ResultTable")
+        if rt.name in out:
+            raise PluginError(f"two plugins define the result table {rt.name!r}")
+        missing = [k for k in (*rt.key, *( [rt.name_column] if rt.name_column else [])) if k not in rt.table.c]
+        if not rt.key or missing:
+            raise PluginError(f"result table {rt.name!r}: key or name column {missing or '()'} is not a column")
+        out[rt.name] = rt
+    return out
 
 
 def migration_locations(pm: pluggy.PluginManager | None = None) -> list[str]:

@@ -38,3 +38,17 @@ def tilekit_searches():
     from tilekit.plugins.archimedean.species import SEARCH
 
     return [SEARCH]
+
+
+@hookimpl
+def tilekit_result_tables():
+    from tilekit.plugins.archimedean.tables import RESULT_TABLE
+
+    return [RESULT_TABLE]
+
+
+@hookimpl
+def tilekit_migration_locations():
+    from tilekit.plugins.archimedean.tables import MIGRATIONS
+
+    return [str(MIGRATIONS)]

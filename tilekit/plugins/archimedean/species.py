@@ -166,16 +166,14 @@ def _vec(v) -> str:
 
 
 def _params(params: Mapping[str, Any]) -> dict[str, Any]:
+    """Defaults filled in and every value checked against the declared ranges (the same
+    check :func:`tilekit.search.validate_params` makes before a run is created)."""
     p = dict(DEFAULTS)
     p.update({k: v for k, v in params.items() if v is not None})
-    if not float(p["radius"]) > 0:
-        raise ParameterError(f"radius={p['radius']} must be positive (edge lengths beyond the seed)")
-    if int(p["max_nodes"]) < 1:
-        raise ParameterError(f"max_nodes={p['max_nodes']} must be at least 1")
-    if not 3 <= int(p["max_sides"]) <= 50:
-        raise ParameterError(f"max_sides={p['max_sides']} must be between 3 and 50")
-    if not 3 <= int(p["hyperbolic_max_sides"]) <= 20:
-        raise ParameterError(f"hyperbolic_max_sides={p['hyperbolic_max_sides']} must be between 3 and 20")
+    for decl in SEARCH.params:
+        value = float(p[decl.name])
+        if not decl.min <= value <= decl.max:
+            raise ParameterError(f"{decl.name}={p[decl.name]} must be between {decl.min:g} and {decl.max:g}")
     return p
 
 
@@ -193,27 +191,33 @@ def chunks(params: Mapping[str, Any]) -> list[dict[str, Any]]:
 
 
 def run_chunk(params: Mapping[str, Any], chunk: Mapping[str, Any]) -> ChunkResult:
-    """Classify the vertex types of one chunk; results and catalogue records."""
+    """Classify the vertex types of one chunk: a ``vertex_species`` row per type, a
+    catalogue tiling for each type that tiles, the survivors as JSON results, and counts."""
     from tilekit.plugins.archimedean import records as rec
+    from tilekit.plugins.archimedean.tables import row_of
 
     p = _params(params)
-    results: list[dict[str, Any]] = []
+    found: list[dict[str, Any]] = []
     records: list[CatalogueRecord] = []
+    counts: dict[str, int] = {}
     if chunk["geometry"] == "euclidean":
         species = tuple(int(x) for x in chunk["species"])
         types = types_of_species(species)
-        found = []
+        classified = []
         for vt in types:
             props = _base_properties(vt)
             props["types_in_species"] = len(types)
             props.update(classify_euclidean(vt, float(p["radius"]), int(p["max_nodes"])))
-            found.append((vt, props))
+            classified.append((vt, props))
         # a species tiles when one of its types does (exercise 4.10)
-        species_tiles = any(props["status"] == "tiles" for _, props in found)
-        for vt, props in found:
+        species_tiles = any(props["status"] == "tiles" for _, props in classified)
+        counts["euclidean_species"] = 1
+        counts["tiling_species"] = int(species_tiles)
+        for vt, props in classified:
             props["species_tiles"] = species_tiles
-            results.append(props)
-            records.extend(rec.vertex_type_records(vt, props))
+            found.append(props)
+            if props["status"] == "tiles":
+                records.extend(rec.vertex_type_records(vt, props))
     else:
         k = int(chunk["k"])
         for species in bounded_species(int(chunk["max_sides"]), k, k):
@@ -227,27 +231,32 @@ def run_chunk(params: Mapping[str, Any], chunk: Mapping[str, Any]) -> ChunkResul
                 props = _base_properties(vt)
                 props["types_in_species"] = len(types)
                 props.update(classify_sequence(vt))
-                results.append(props)
-                records.extend(rec.vertex_type_records(vt, props))
-    return ChunkResult(results=results, records=records)
+                found.append(props)
+    for props in found:
+        geometry, status = props["geometry"], props.get("status")
+        if geometry == "euclidean":
+            counts["euclidean_types"] = counts.get("euclidean_types", 0) + 1
+            key = {"tiles": "tiling_types", "impossible": "impossible_types"}.get(status, "undecided_types")
+            counts[key] = counts.get(key, 0) + 1
+        elif geometry == "spherical":
+            counts["spherical_types"] = counts.get("spherical_types", 0) + 1
+            counts["polyhedra"] = counts.get("polyhedra", 0) + int(status == "polyhedron")
+        else:
+            counts["hyperbolic_types"] = counts.get("hyperbolic_types", 0) + 1
+    survivors = [{"vertex_type": r["vertex_type"], "species": r["species"]}
+                 for r in found if r.get("status") == "tiles"]
+    return ChunkResult(results=survivors, records=records,
+                       rows={"vertex_species": [row_of(r) for r in found]}, counts=counts)
+
+
+#: the counts every summary has, zero when no chunk reported them
+_COUNT_KEYS = ("euclidean_types", "euclidean_species", "tiling_species", "tiling_types",
+               "impossible_types", "undecided_types", "spherical_types", "polyhedra", "hyperbolic_types")
 
 
 def summarize(params: Mapping[str, Any], results: list[dict[str, Any]]) -> dict[str, Any]:
-    eu = [r for r in results if r.get("geometry") == "euclidean"]
-    tiles = sorted(r["vertex_type"] for r in eu if r.get("status") == "tiles")
-    sph = [r for r in results if r.get("geometry") == "spherical"]
-    return {
-        "euclidean_types": len(eu),
-        "euclidean_species": len({r["species"] for r in eu}),
-        "tiling_species": len({r["species"] for r in eu if r.get("species_tiles")}),
-        "tiling_types": len(tiles),
-        "impossible_types": sum(1 for r in eu if r.get("status") == "impossible"),
-        "undecided_types": sum(1 for r in eu if r.get("status") == "undecided"),
-        "survivors": tiles,
-        "spherical_types": len(sph),
-        "polyhedra": sum(1 for r in sph if r.get("status") == "polyhedron"),
-        "hyperbolic_types": sum(1 for r in results if r.get("geometry") == "hyperbolic"),
-    }
+    """The survivors (the JSON results); the tallies come from the chunks' summed counts."""
+    return {**dict.fromkeys(_COUNT_KEYS, 0), "survivors": sorted(r["vertex_type"] for r in results)}
 
 
 SEARCH = Search(
@@ -256,12 +265,13 @@ SEARCH = Search(
     family="archimedean",
     params=(
         SearchParam("radius", float, DEFAULTS["radius"],
-                    "edge lengths beyond the seed polygon that a type must extend to"),
-        SearchParam("max_nodes", int, DEFAULTS["max_nodes"], "builder node limit per vertex type"),
+                    "edge lengths beyond the seed polygon that a type must extend to", min=0.5, max=12.0),
+        SearchParam("max_nodes", int, DEFAULTS["max_nodes"], "builder node limit per vertex type",
+                    min=1, max=10_000_000),
         SearchParam("max_sides", int, DEFAULTS["max_sides"],
-                    "largest polygon in the bounded spherical enumeration"),
+                    "largest polygon in the bounded spherical enumeration", min=3, max=24),
         SearchParam("hyperbolic_max_sides", int, DEFAULTS["hyperbolic_max_sides"],
-                    "largest polygon in the bounded hyperbolic enumeration"),
+                    "largest polygon in the bounded hyperbolic enumeration", min=3, max=10),
     ),
     chunks=chunks,
     run_chunk=run_chunk,

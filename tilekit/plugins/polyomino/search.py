@@ -105,30 +105,14 @@ def chunk_rows(params: Mapping[str, Any], chunk: Mapping[str, Any]) -> tuple[dic
 
 
 def run_chunk(params: Mapping[str, Any], chunk: Mapping[str, Any]) -> ChunkResult:
-    """The Search's run_chunk: a ChunkResult carrying rows and counts (set as attributes while
-    the run layer's ChunkResult has no such fields)."""
+    """One chunk: its rows for the polyominoes table and its counts (summed into the run summary)."""
     rows, counts = chunk_rows(params, chunk)
-    result = ChunkResult(results=[{"counts": counts}])
-    try:
-        result.rows = rows  # type: ignore[attr-defined]
-        result.counts = counts  # type: ignore[attr-defined]
-    except AttributeError:  # pragma: no cover - a frozen or slotted ChunkResult
-        pass
-    return result
+    return ChunkResult(rows=rows, counts=counts)
 
 
 def summarize(params: Mapping[str, Any], results: list[dict[str, Any]]) -> dict[str, Any]:
-    total: dict[str, int] = {}
-    for r in results:
-        for k, v in (r.get("counts") or {}).items():
-            total[k] = total.get(k, 0) + int(v)
-    n = int(params["max_cells"])
-    return {
-        "fixed": [total.get(f"fixed_{i}", 0) for i in range(1, n + 1)],
-        "free": [total.get(f"free_{i}", 0) for i in range(1, n + 1)],
-        "holey": [total.get(f"holey_{i}", 0) for i in range(1, n + 1)],
-        "isohedral": [total.get(f"isohedral_{i}", 0) for i in range(1, n + 1)],
-    }
+    """Nothing beyond the summed counts (``fixed_N``, ``free_N``, ``holey_N``, ``isohedral_N`` ...)."""
+    return {"max_cells": int(params["max_cells"]), "count_only": bool(params.get("count_only"))}
 
 
 SEARCH = Search(
@@ -136,11 +120,11 @@ SEARCH = Search(
     "free polyominoes by Redelmeier's algorithm, with holes, symmetry, boundary word and the isohedral test",
     "polyomino",
     [
-        # range 1..14 stored (1..22 with count_only): SearchParam(min=1, max=...) once supported
-        SearchParam("max_cells", int, 12, f"largest size (stored up to {MAX_STORED}; beyond, use --count-only)"),
+        SearchParam("max_cells", int, 12, f"largest size (stored up to {MAX_STORED}; beyond, use --count-only)",
+                    min=1, max=MAX_COUNT),
         SearchParam("count_only", bool, False, "count fixed/free/holey polyominoes per size, store no rows"),
         SearchParam("free_counts", bool, True, "in counting mode also count free and holey ones (slower)"),
-        SearchParam("prefix_depth", int, 0, "size of the tree prefix naming a chunk (0: automatic)"),
+        SearchParam("prefix_depth", int, 0, "size of the tree prefix naming a chunk (0: automatic)", min=0, max=10),
     ],
     chunks,
     run_chunk,

@@ -1,8 +1,7 @@
 """The polyomino family's result table, on the plugin's own metadata (created by its Alembic branch).
 
-One row per free polyomino: the canonical code is the natural key. The lead wraps ``TABLE`` in
-``tilekit.plugins.ResultTable(TABLE, key=KEY, family="polyomino", name_column="code",
-spec=row_spec)`` (see ``result_table()``).
+One row per free polyomino: the canonical code is the natural key; ``result_table()`` is the
+``tilekit.plugins.ResultTable`` the ``tilekit_result_tables`` hook returns.
 """
 
 from __future__ import annotations
@@ -52,11 +51,17 @@ def row_spec(row: Mapping[str, Any]) -> dict:
     return {"code": row["code"], "name": row.get("name") or row["code"]}
 
 
+def row_title(row: Mapping[str, Any]) -> str:
+    kind = "isohedral" if row.get("isohedral") else ("with holes" if row.get("holes") else "not isohedral")
+    return f"{row.get('name') or row['code']}: {row['cells']}-omino, {row.get('symmetry', '')}, {kind}"
+
+
 def result_table():
-    """The ResultTable for the run layer, or None while tilekit.plugins has no ResultTable."""
+    """The ResultTable for the run layer (None with a tilekit.plugins that has no ResultTable)."""
     import tilekit.plugins as plugins
 
     cls = getattr(plugins, "ResultTable", None)
-    if cls is None:
+    if cls is None:  # pragma: no cover - an older run layer
         return None
-    return cls(table=TABLE, key=KEY, family="polyomino", name_column=NAME_COLUMN, spec=row_spec)
+    return cls(table=TABLE, key=KEY, family="polyomino", name_column=NAME_COLUMN, spec=row_spec,
+               title=row_title)

@@ -369,9 +369,9 @@ PERIODICITY = Search(
     family=FAMILY,
     params=(
         SearchParam("set", str, None, "a shipped Wang set name or a .wang file", required=True),
-        SearchParam("max_m", int, 8, "largest m to try"),
-        SearchParam("method", str, "sat", "solver for the tori and squares: sat, builder or backtrack"),
-        SearchParam("time_limit", float, None, "seconds per solver call (none: no limit)"),
+        SearchParam("max_m", int, 8, "largest m to try", min=1, max=64),
+        SearchParam("method", str, "sat", "solver for the tori and squares", choices=("sat", "builder", "backtrack")),
+        SearchParam("time_limit", float, None, "seconds per solver call (none: no limit)", min=0.01, max=86_400.0),
     ),
     chunks=periodicity_chunks,
     run_chunk=periodicity_run_chunk,

@@ -1,19 +1,23 @@
 """A tilekit family plugin: running-bond brick walls (rows of a x b bricks, each row shifted).
 
 The whole plugin is this module and one entry point in pyproject.toml:
-``[project.entry-points.tilekit] demo_bricks = "tilekit_demo_family"``.
+``[project.entry-points.tilekit] demo_bricks = "tilekit_demo_family"``. It also owns a result
+table, ``brick_sizes`` (created by its Alembic branch in ``migrations/``), which its search
+``brick-sizes`` fills with one row per brick a x b (integer sides, a >= b, area <= N).
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
+from pathlib import Path
 from typing import Any
 
 import numpy as np
+import sqlalchemy as sa
 
 import tilekit
 from tilekit.errors import ParameterError
-from tilekit.plugins import CatalogueRecord, Family
+from tilekit.plugins import CatalogueRecord, ChunkResult, Family, ResultTable, Search, SearchParam
 from tilekit.tiling import PeriodicTiling, Prototile
 
 FAMILY = "bricks"
@@ -87,3 +91,49 @@ def tilekit_catalogue_records():
             aliases=["stretcher-bond"],
         )
     ]
+
+
+METADATA = sa.MetaData()
+BRICK_SIZES = sa.Table(
+    "brick_sizes",
+    METADATA,
+    sa.Column("name", sa.String(80), primary_key=True),
+    sa.Column("a", sa.Integer, nullable=False),
+    sa.Column("b", sa.Integer, nullable=False),
+    sa.Column("area", sa.Integer, nullable=False, index=True),
+    sa.Column("square", sa.Boolean, nullable=False),
+    sa.Column("run_id", sa.Integer),
+)
+
+
+def size_chunks(params):
+    return [{"area": n} for n in range(1, params["max_area"] + 1)]
+
+
+def size_run_chunk(params, chunk):
+    n = chunk["area"]
+    rows = [{"name": f"bricks-{n // b}x{b}-0.5", "a": n // b, "b": b, "area": n, "square": n // b == b}
+            for b in range(1, int(n ** 0.5) + 1) if n % b == 0]
+    return ChunkResult(rows={"brick_sizes": rows}, counts={"bricks": len(rows)})
+
+
+SIZES = Search("brick-sizes", "integer bricks a x b with a >= b and area up to max_area", FAMILY,
+               [SearchParam("max_area", int, 12, "largest area", min=1, max=10_000)],
+               size_chunks, size_run_chunk)
+
+
+@tilekit.hookimpl
+def tilekit_searches():
+    return [SIZES]
+
+
+@tilekit.hookimpl
+def tilekit_result_tables():
+    return [ResultTable(BRICK_SIZES, key=("name",), family="brick-sizes", name_column="name",
+                        spec=lambda row: {"a": row["a"], "b": row["b"], "shift": 0.5, "name": row["name"]},
+                        tiling_family=FAMILY)]
+
+
+@tilekit.hookimpl
+def tilekit_migration_locations():
+    return [str(Path(__file__).parent / "migrations")]

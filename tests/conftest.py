@@ -1,0 +1,57 @@
+"""Shared fixtures: catalogue URLs on SQLite and, when a server is given, PostgreSQL.
+
+``TILEKIT_TEST_POSTGRES`` (or ``--postgres URL``) names a PostgreSQL server URL whose user may
+create databases, e.g. ``postgresql+psycopg://tilekit:tilekit@127.0.0.1:5432/postgres``
+(.ci/run starts one). Tests that take ``db_url`` run once per backend; each PostgreSQL test
+gets a database of its own, dropped afterwards. Without a server the PostgreSQL cases skip,
+except under CI, where a missing server is an error.
+"""
+
+from __future__ import annotations
+
+import os
+import uuid
+
+import pytest
+
+ENV = "TILEKIT_TEST_POSTGRES"
+
+
+def pytest_addoption(parser):
+    parser.addoption("--postgres", default=None, metavar="URL",
+                     help=f"PostgreSQL server URL for the catalogue tests (default: ${ENV})")
+
+
+def postgres_server(config) -> str | None:
+    return config.getoption("--postgres") or os.environ.get(ENV) or None
+
+
+@pytest.fixture
+def postgres_url(request):
+    """A fresh, empty PostgreSQL database on the test server (skips without a server)."""
+    server = postgres_server(request.config)
+    if not server:
+        if os.environ.get("CI") == "true":
+            pytest.fail(f"CI runs the PostgreSQL tests: set {ENV} (.ci/run starts a server)")
+        pytest.skip(f"no PostgreSQL server: set {ENV} or --postgres")
+    import sqlalchemy as sa
+
+    admin = sa.create_engine(server, isolation_level="AUTOCOMMIT")
+    name = f"tilekit_test_{uuid.uuid4().hex[:12]}"
+    with admin.connect() as conn:
+        conn.execute(sa.text(f'CREATE DATABASE "{name}"'))
+    url = sa.engine.make_url(server).set(database=name).render_as_string(hide_password=False)
+    try:
+        yield url
+    finally:
+        with admin.connect() as conn:
+            conn.execute(sa.text(f'DROP DATABASE IF EXISTS "{name}" WITH (FORCE)'))
+        admin.dispose()
+
+
+@pytest.fixture(params=["sqlite", "postgresql"])
+def db_url(request, tmp_path):
+    """A catalogue URL: a new SQLite file, or a new PostgreSQL database."""
+    if request.param == "sqlite":
+        return f"sqlite:///{tmp_path / 'catalogue.sqlite'}"
+    return request.getfixturevalue("postgres_url")

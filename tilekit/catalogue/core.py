@@ -1,0 +1,768 @@
+"""The :class:`Catalogue`: opening (checks, migrations, seeding), tilings by name, typed
+queries (streamed), export; its run and result-table methods come from
+:mod:`tilekit.catalogue.runs` and :mod:`tilekit.catalogue.results`."""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import sys
+import threading
+import types
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from contextlib import contextmanager
+from pathlib import Path
+from typing import IO, Any
+
+import pluggy
+import sqlalchemy as sa
+from sqlalchemy import event
+from sqlalchemy.engine import Connection, Engine, make_url
+from sqlalchemy.exc import ArgumentError, SQLAlchemyError
+
+from tilekit.catalogue.codec import Entry, batches, restore_value, upsert
+from tilekit.catalogue.filters import Filter, condition, parse_filter
+from tilekit.catalogue.output import FORMATS, write_entries
+from tilekit.catalogue.results import ResultsMixin, _paged
+from tilekit.catalogue.runs import RunsMixin
+from tilekit.catalogue.tables import ALIASES, META, PROPS, TILINGS
+from tilekit.catalogue.urls import (
+    ENV_VAR,
+    check_sqlite_file,
+    display,
+    one_line,
+    resolve_url,
+    sqlite_file,
+)
+from tilekit.errors import CatalogueError, NotFoundError, ParameterError, PluginError, TilekitError
+from tilekit.models import SHARED_COLUMNS, TEXT_COLUMNS
+from tilekit.plugins import (
+    CatalogueRecord,
+    catalogue_records,
+    families,
+    get_plugin_manager,
+    migration_locations,
+)
+from tilekit.resources import catalogue_dir, migrations_dir
+
+#: SQLite waits this long (ms) for a lock held by another writer before giving up.
+BUSY_TIMEOUT_MS = 30_000
+
+#: One step of waiting for SQLite's write lock (ms); see _begin_immediate.
+_STEP_MS = 50
+
+#: Alembic keeps its migration context in module globals: one migration at a time per process.
+_MIGRATION_LOCK = threading.RLock()
+
+#: catalogue_meta key holding the fingerprint of the records the plugins shipped at last seeding
+SEED_KEY = "seed_fingerprint"
+
+#: Names offered as suggestions at most (a catalogue of a million results is not read for them).
+_MAX_NAMES = 20_000
+
+#: catalogue_meta key: the hash of the migration scripts and the heads they were at, last upgrade
+_SCRIPTS_KEY = "migration_scripts"
+
+#: PostgreSQL advisory lock key that serialises migrations, seeding and tiling upserts.
+_PG_LOCK = 0x7415_E417
+
+
+def shipped_fingerprint(pm: pluggy.PluginManager) -> str:
+    """A hash of what determines the shipped records: tilekit's version, the registered
+    plugins' names and source files, and the shipped catalogue/ data.
+
+    Computing it reads about a megabyte of files (milliseconds); building the records
+    themselves takes a second, so it is done only when the fingerprint changes.
+    """
+    from tilekit import __version__
+
+    digest = hashlib.sha256(__version__.encode())
+    paths: set[Path] = set()
+    for name, plugin in sorted(pm.list_name_plugin(), key=lambda item: str(item[0])):
+        digest.update(str(name).encode())
+        module = plugin if isinstance(plugin, types.ModuleType) else sys.modules.get(type(plugin).__module__)
+        source = getattr(module, "__file__", None)
+        if source:
+            src = Path(source)
+            paths |= set(src.parent.rglob("*.py")) if src.name == "__init__.py" else {src}
+    data = catalogue_dir()
+    if data.is_dir():
+        paths |= {f for f in data.rglob("*") if f.is_file() and "__pycache__" not in f.parts}
+    for path in sorted(paths):
+        digest.update(path.name.encode())
+        try:
+            digest.update(path.read_bytes())
+        except OSError:
+            continue
+    return digest.hexdigest()
+
+
+
+class Catalogue(RunsMixin, ResultsMixin):
+    """An open catalogue database. Build one with :func:`open_catalogue`."""
+
+    def __init__(self, engine: Engine, pm: pluggy.PluginManager | None = None, *,
+                 read_only: bool = False) -> None:
+        self.engine = engine
+        self._pm = pm
+        self._result_tables = None
+        #: True when the file (or its folder) cannot be written: queries work, writes are
+        #: refused with one line.
+        self.read_only = read_only
+
+    # ----------------------------------------------------------------- basics
+
+    @property
+    def pm(self) -> pluggy.PluginManager:
+        return self._pm or get_plugin_manager()
+
+    @property
+    def url(self) -> str:
+        """The database URL, password hidden."""
+        return display(self.engine.url)
+
+    @property
+    def path(self) -> Path | None:
+        """The SQLite file, or None for other databases."""
+        return sqlite_file(self.engine.url)
+
+    def close(self) -> None:
+        self.engine.dispose()
+
+    def __enter__(self) -> Catalogue:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def __repr__(self) -> str:
+        return f"<Catalogue {self.url}>"
+
+    @contextmanager
+    def _errors(self, action: str) -> Iterator[None]:
+        try:
+            yield
+        except SQLAlchemyError as exc:
+            text = one_line(exc)
+            if "readonly database" in text or "read-only" in text:
+                raise CatalogueError(
+                    f"catalogue {self.url} is read-only (the file or its folder cannot be written): "
+                    f"{action} is not possible; queries, show and render still work"
+                ) from None
+            raise CatalogueError(f"catalogue {self.url}: {action} failed: {text}") from None
+
+    def _lock_for_writing(self, conn: Connection, records: bool = True) -> None:
+        """Take the write lock a check-then-write sequence needs, so it is atomic.
+
+        On SQLite, BEGIN IMMEDIATE (other writers wait through the busy timeout; pysqlite
+        would otherwise run DDL and the leading SELECTs outside any transaction). On
+        PostgreSQL, with ``records`` (migrations, seeding, tiling upserts by name), a
+        transaction-level advisory lock, so concurrent first opens and writers of the same
+        names queue instead of failing on a duplicate key; leases need only row locks.
+        """
+        if self.read_only:
+            raise CatalogueError(
+                f"catalogue {self.url} is read-only (the file or its folder cannot be written); "
+                "queries, show and render work, writing does not"
+            )
+        if conn.dialect.name == "sqlite":
+            _begin_immediate(conn)
+        elif conn.dialect.name == "postgresql" and records:
+            conn.execute(sa.text("SELECT pg_advisory_xact_lock(:key)"), {"key": _PG_LOCK})
+
+    # ----------------------------------------------------------------- migrations
+
+    def _alembic_config(self) -> Any:
+        from alembic.config import Config
+
+        cfg = Config()
+        cfg.set_main_option("script_location", str(migrations_dir()).replace("%", "%%"))
+        locations = [str(migrations_dir() / "versions"), *migration_locations(self.pm)]
+        cfg.set_main_option("path_separator", "os")
+        cfg.set_main_option("version_path_separator", "os")
+        cfg.set_main_option("version_locations", os.pathsep.join(locations).replace("%", "%%"))
+        cfg.set_main_option("sqlalchemy.url", self.engine.url.render_as_string(hide_password=False).replace("%", "%%"))
+        return cfg
+
+    def revisions(self) -> tuple[set[str], set[str]]:
+        """(the revisions the database is at, the head revisions of the migration scripts)."""
+        from alembic.runtime.migration import MigrationContext
+        from alembic.script import ScriptDirectory
+
+        script = ScriptDirectory.from_config(self._alembic_config())
+        with self._errors("reading the migration state"), self.engine.connect() as conn:
+            current = set(MigrationContext.configure(conn).get_current_heads())
+        return current, set(script.get_heads())
+
+    def _scripts_key(self) -> str:
+        """A hash of every migration script (core and plugins): equal keys, equal heads."""
+        locations = [migrations_dir() / "versions", *map(Path, migration_locations(self.pm))]
+        digest = hashlib.sha256()
+        for folder in locations:
+            for path in sorted(folder.glob("*.py")):
+                digest.update(path.name.encode())
+                digest.update(path.read_bytes())
+        return digest.hexdigest()
+
+    def _known_current(self) -> set[str] | None:
+        """The database's revisions, when it is known to be at the heads of exactly these
+        scripts (the key stored at the last upgrade matches): opening then needs neither
+        Alembic nor the write lock. None when that cannot be told cheaply."""
+        try:
+            key = self._scripts_key()
+            with self.engine.connect() as conn:
+                stored = conn.execute(sa.select(META.c.value).where(META.c.key == _SCRIPTS_KEY)).scalar()
+                current = set(conn.execute(sa.text("SELECT version_num FROM alembic_version")).scalars())
+        except (SQLAlchemyError, OSError):
+            return None
+        if stored is None or stored != f"{key}:{','.join(sorted(current))}":
+            return None
+        return current
+
+    def upgrade(self, revision: str = "heads") -> set[str]:
+        """Run the Alembic migrations (core and plugins) up to ``revision``; return the new state.
+
+        An open of a catalogue already at the heads of the installed scripts (recorded in
+        ``catalogue_meta`` at the last upgrade) reads two rows and returns.
+        """
+        if revision == "heads":
+            known = self._known_current()
+            if known is not None:
+                return known
+        from alembic import command
+        from alembic.runtime.migration import MigrationContext
+        from alembic.script import ScriptDirectory
+        from alembic.script.revision import RevisionError
+        from alembic.util import CommandError
+
+        cfg = self._alembic_config()
+        script = ScriptDirectory.from_config(cfg)
+        with _MIGRATION_LOCK, self._errors("migrating"), self.engine.begin() as conn:
+            self._lock_for_writing(conn)
+            current = set(MigrationContext.configure(conn).get_current_heads())
+            for rev in current:
+                try:
+                    known = script.get_revision(rev)
+                except (CommandError, RevisionError):
+                    known = None
+                if known is None:
+                    raise CatalogueError(
+                        f"catalogue {self.url} is at migration {rev!r}, which this tilekit does not "
+                        "know (made by a newer version or a missing plugin?); left untouched"
+                    )
+            if revision == "heads" and current == set(script.get_heads()):
+                self._remember_scripts(conn, current)
+                return current
+            cfg.attributes["connection"] = conn
+            try:
+                command.upgrade(cfg, revision)
+            except (CommandError, RevisionError) as exc:
+                raise CatalogueError(f"catalogue {self.url}: migration to {revision!r} failed: {exc}") from None
+            current = set(MigrationContext.configure(conn).get_current_heads())
+            if revision == "heads":
+                self._remember_scripts(conn, current)
+            return current
+
+    def _remember_scripts(self, conn: Connection, current: set[str]) -> None:
+        if "catalogue_meta" not in sa.inspect(conn).get_table_names():
+            return
+        value = f"{self._scripts_key()}:{','.join(sorted(current))}"
+        conn.execute(sa.delete(META).where(META.c.key == _SCRIPTS_KEY))
+        conn.execute(sa.insert(META).values(key=_SCRIPTS_KEY, value=value))
+
+    def downgrade(self, revision: str) -> None:
+        """Run migrations down to ``revision`` (``"base"`` drops every tilekit table)."""
+        from alembic import command
+        from alembic.script.revision import RevisionError
+        from alembic.util import CommandError
+
+        cfg = self._alembic_config()
+        with _MIGRATION_LOCK, self._errors("migrating"), self.engine.begin() as conn:
+            self._lock_for_writing(conn)
+            cfg.attributes["connection"] = conn
+            try:
+                command.downgrade(cfg, revision)
+            except (CommandError, RevisionError) as exc:
+                raise CatalogueError(f"catalogue {self.url}: downgrade to {revision!r} failed: {exc}") from None
+
+    # ----------------------------------------------------------------- writing tilings
+
+    def count(self, family: str | None = None) -> int:
+        """Number of tilings (of one family)."""
+        stmt = sa.select(sa.func.count()).select_from(TILINGS)
+        if family is not None:
+            stmt = stmt.where(TILINGS.c.family == family)
+        with self._errors("counting"), self.engine.connect() as conn:
+            return int(conn.execute(stmt).scalar_one())
+
+    def seed(self, replace: bool = False) -> tuple[int, int]:
+        """Load the records every plugin ships; return (added, replaced).
+
+        Records whose name is already in the catalogue are left alone unless ``replace``;
+        tilings not shipped by any plugin (e.g. search results) are never removed.
+        """
+        records = catalogue_records(self.pm)
+        return self.upsert(records, replace=replace)
+
+    def seed_if_empty(self) -> tuple[int, int]:
+        """Seed only if the catalogue has no tilings, checked and written in one transaction."""
+        records = catalogue_records(self.pm)
+        with self._errors("seeding"), self.engine.begin() as conn:
+            self._lock_for_writing(conn)
+            if conn.execute(sa.select(sa.func.count()).select_from(TILINGS)).scalar_one():
+                return 0, 0
+            return upsert(conn, list(records), replace=False)
+
+    def refresh_shipped(self) -> tuple[int, int] | None:
+        """Bring the shipped records up to date when the plugins or their data changed.
+
+        Compares :func:`shipped_fingerprint` with the one stored at the last seeding; when
+        they differ, inserts new shipped records and updates existing ones (spec, title,
+        aliases, shipped properties), keeping properties that searches added and every
+        tiling no plugin ships. Returns (added, updated), or None when nothing changed.
+        """
+        fingerprint = shipped_fingerprint(self.pm)
+        with self._errors("reading the catalogue's metadata"), self.engine.connect() as conn:
+            stored = conn.execute(sa.select(META.c.value).where(META.c.key == SEED_KEY)).scalar()
+        if stored == fingerprint:
+            return None
+        records = list(catalogue_records(self.pm))
+        with self._errors("seeding"), self.engine.begin() as conn:
+            self._lock_for_writing(conn)
+            stored = conn.execute(sa.select(META.c.value).where(META.c.key == SEED_KEY)).scalar()
+            if stored == fingerprint:  # another process refreshed it meanwhile
+                return None
+            names = [r.name for r in records]
+            rows = []
+            for batch in batches(names):
+                rows += conn.execute(
+                    sa.select(TILINGS.c.id, TILINGS.c.name, TILINGS.c.family, TILINGS.c.title, TILINGS.c.spec)
+                    .where(TILINGS.c.name.in_(batch))
+                ).all()
+            existing = {e.name: e for e in self._entries(conn, rows)}
+            merged = []
+            for rec in records:
+                old = existing.get(rec.name)
+                if old is not None:
+                    rec = CatalogueRecord(
+                        family=rec.family,
+                        name=rec.name,
+                        spec=rec.spec,
+                        title=rec.title,
+                        properties={**old.properties, **rec.properties},
+                        aliases=list(rec.aliases),
+                    )
+                merged.append(rec)
+            result = upsert(conn, merged, replace=True)
+            conn.execute(sa.delete(META).where(META.c.key == SEED_KEY))
+            conn.execute(sa.insert(META).values(key=SEED_KEY, value=fingerprint))
+            return result
+
+    def upsert(self, records: Iterable[CatalogueRecord], *, replace: bool = True) -> tuple[int, int]:
+        """Insert records by name (replacing existing ones if ``replace``); return (added, replaced)."""
+        records = list(records)
+        with self._errors("writing tilings"), self.engine.begin() as conn:
+            self._lock_for_writing(conn)
+            return upsert(conn, records, replace=replace)
+
+    def delete(self, name: str) -> None:
+        """Remove a tiling (by name or alias) with its properties and aliases."""
+        entry = self.get(name)
+        with self._errors("deleting"), self.engine.begin() as conn:
+            conn.execute(sa.delete(PROPS).where(PROPS.c.tiling_id == entry.id))
+            conn.execute(sa.delete(ALIASES).where(ALIASES.c.tiling_id == entry.id))
+            conn.execute(sa.delete(TILINGS).where(TILINGS.c.id == entry.id))
+
+    # ----------------------------------------------------------------- reading tilings
+
+    def property_keys(self) -> list[str]:
+        """Every property key present in the catalogue, sorted."""
+        with self._errors("reading property keys"), self.engine.connect() as conn:
+            keys = conn.execute(sa.select(PROPS.c.key).distinct()).scalars().all()
+        return sorted(keys)
+
+    def query(
+        self,
+        family: str | None = None,
+        where: Iterable[str | Filter] = (),
+        text: str | None = None,
+        order_by: str = "name",
+        limit: int | None = None,
+        offset: int = 0,
+    ) -> list[Entry]:
+        """Tilings matching every filter, ordered and paged, as a list (see :meth:`iter_query`)."""
+        return list(self.iter_query(family, where, text, order_by, limit, offset))
+
+    def iter_query(
+        self,
+        family: str | None = None,
+        where: Iterable[str | Filter] = (),
+        text: str | None = None,
+        order_by: str = "name",
+        limit: int | None = None,
+        offset: int = 0,
+    ) -> Iterator[Entry]:
+        """Tilings matching every filter, ordered and paged, streamed.
+
+        ``family`` restricts to one family; a family whose plugin declares a result table
+        (:class:`tilekit.plugins.ResultTable`) is read from that table, its filters typed by
+        the table's columns. ``where`` holds filter expressions (see :func:`parse_filter`):
+        ``=`` on numbers allows a relative tolerance of 1e-9; on a list property ``=`` means
+        "some element equals", ``!=`` means "has the property and no element equals", ranges
+        mean "some element is in range". ``text`` is a case-insensitive substring of the
+        name, title, an alias or a text property. ``order_by`` is a column or property key,
+        ``-key`` for descending.
+        """
+        where = list(where)
+        if limit is not None and limit < 0:
+            raise ParameterError(f"limit must be >= 0, got {limit}")
+        if offset < 0:
+            raise ParameterError(f"offset must be >= 0, got {offset}")
+        rt = self.family_table(family)
+        if rt is not None:
+            for row in self.iter_result_rows(rt, where, text, order_by, limit, offset):
+                yield self._row_entry(rt, row)
+            return
+        stmt = self._select(family, where, text).order_by(*self._ordering(order_by))
+        remaining = limit
+        position = offset
+        page = 1000
+        while remaining is None or remaining > 0:
+            size = page if remaining is None else min(page, remaining)
+            paged = _paged(stmt, size, position)
+            with self._errors("querying"), self.engine.connect() as conn:
+                rows = conn.execute(paged).all()
+                entries = self._entries(conn, rows)
+            yield from entries
+            if len(rows) < size:
+                return
+            position += len(rows)
+            if remaining is not None:
+                remaining -= len(rows)
+
+    def check_family(self, family: str | None) -> None:
+        """NotFoundError (with suggestions) for a family that is neither installed nor present."""
+        if family is None:
+            return
+        fams = set(families(self.pm))
+        if family not in fams and self.family_table(family) is None and self.count(family) == 0:
+            raise NotFoundError("family", family, fams)
+
+    def count_matching(
+        self, family: str | None = None, where: Iterable[str | Filter] = (), text: str | None = None
+    ) -> int:
+        """How many tilings :meth:`query` would return without a limit."""
+        rt = self.family_table(family)
+        if rt is not None:
+            return self.count_result_rows(rt, where, text)
+        sub = self._select(family, where, text).subquery()
+        with self._errors("counting"), self.engine.connect() as conn:
+            return int(conn.execute(sa.select(sa.func.count()).select_from(sub)).scalar_one())
+
+    def _select(self, family: str | None, where: Iterable[str | Filter], text: str | None) -> sa.Select:
+        t = TILINGS
+        stmt = sa.select(t.c.id, t.c.name, t.c.family, t.c.title, t.c.spec)
+        if family is not None:
+            stmt = stmt.where(t.c.family == family)
+        filters = [parse_filter(w) for w in where]
+        unknown = [
+            f.key for f in filters if f.key not in TEXT_COLUMNS and f.key not in SHARED_COLUMNS
+        ]
+        if unknown:
+            known = set(self.property_keys())
+            for key in unknown:
+                if key not in known:
+                    raise NotFoundError("property", key, [*TEXT_COLUMNS, *SHARED_COLUMNS, *sorted(known)])
+        for f in filters:
+            stmt = stmt.where(condition(f))
+        if text:
+            needle = text.lower()
+            p, a = PROPS, ALIASES
+            stmt = stmt.where(
+                sa.or_(
+                    sa.func.lower(t.c.name).contains(needle, autoescape=True),
+                    sa.func.lower(t.c.title).contains(needle, autoescape=True),
+                    t.c.id.in_(
+                        sa.select(a.c.tiling_id).where(
+                            sa.func.lower(a.c.alias).contains(needle, autoescape=True)
+                        )
+                    ),
+                    t.c.id.in_(
+                        sa.select(p.c.tiling_id).where(
+                            sa.func.lower(p.c.value_text).contains(needle, autoescape=True)
+                        )
+                    ),
+                )
+            )
+        return stmt
+
+    def _ordering(self, order_by: str) -> list[Any]:
+        key = (order_by or "name").strip()
+        descending = key.startswith("-")
+        key = key.lstrip("-+").replace("-", "_").lower()
+        t, p = TILINGS, PROPS
+        columns = {*TEXT_COLUMNS, *SHARED_COLUMNS, "id", "created_at", "updated_at"}
+        if key in columns:
+            exprs = [t.c[key]]
+        else:
+            known = self.property_keys()
+            if key not in known:
+                raise NotFoundError("order key", key, [*sorted(columns), *known])
+            num = (
+                sa.select(sa.func.min(p.c.value_num))
+                .where(p.c.tiling_id == t.c.id, p.c.key == key)
+                .scalar_subquery()
+            )
+            txt = (
+                sa.select(sa.func.min(p.c.value_text))
+                .where(p.c.tiling_id == t.c.id, p.c.key == key)
+                .scalar_subquery()
+            )
+            exprs = [num, txt]
+        ordered = [(e.desc() if descending else e.asc()).nulls_last() for e in exprs]
+        return [*ordered, t.c.name.asc(), t.c.id.asc()]
+
+    def _entries(self, conn: Connection, rows: Sequence[Any]) -> list[Entry]:
+        entries = {
+            r.id: Entry(name=r.name, family=r.family, title=r.title or "", spec=r.spec, id=r.id)
+            for r in rows
+        }
+        ids = list(entries)
+        lists: dict[tuple[int, str], list[Any]] = {}
+        for batch in batches(ids):
+            prop_rows = conn.execute(
+                sa.select(
+                    PROPS.c.tiling_id, PROPS.c.key, PROPS.c.position, PROPS.c.kind,
+                    PROPS.c.value_text, PROPS.c.value_num, PROPS.c.value_bool,
+                )
+                .where(PROPS.c.tiling_id.in_(batch))
+                .order_by(PROPS.c.tiling_id, PROPS.c.id)
+            ).all()
+            for tid, key, position, kind, text, num, flag in prop_rows:
+                props = entries[tid].properties
+                if kind == "empty":
+                    props[key] = []
+                elif position is None:
+                    props[key] = restore_value(kind, text, num, flag)
+                else:
+                    bucket = lists.setdefault((tid, key), [])
+                    bucket.append((position, restore_value(kind, text, num, flag)))
+                    props.setdefault(key, [])
+            alias_rows = conn.execute(
+                sa.select(ALIASES.c.tiling_id, ALIASES.c.alias)
+                .where(ALIASES.c.tiling_id.in_(batch))
+                .order_by(ALIASES.c.id)
+            ).all()
+            for tid, alias in alias_rows:
+                entries[tid].aliases.append(alias)
+        for (tid, key), items in lists.items():
+            entries[tid].properties[key] = [v for _, v in sorted(items, key=lambda pv: pv[0])]
+        return [entries[r.id] for r in rows]
+
+    def names(self) -> list[str]:
+        """Every tiling name and alias (for suggestions)."""
+        with self._errors("reading names"), self.engine.connect() as conn:
+            names = conn.execute(sa.select(TILINGS.c.name).limit(_MAX_NAMES)).scalars().all()
+            aliases = conn.execute(sa.select(ALIASES.c.alias).limit(_MAX_NAMES)).scalars().all()
+        return [*names, *aliases]
+
+    def get(self, name: str) -> Entry:
+        """The tiling called ``name`` or having it as an alias (exact, then case-insensitive).
+
+        Raises NotFoundError suggesting the closest names.
+        """
+        t, a = TILINGS, ALIASES
+        cols = (t.c.id, t.c.name, t.c.family, t.c.title, t.c.spec)
+        attempts = [
+            sa.select(*cols).where(t.c.name == name),
+            sa.select(*cols).join(a, a.c.tiling_id == t.c.id).where(a.c.alias == name),
+            sa.select(*cols).where(sa.func.lower(t.c.name) == name.lower()),
+            sa.select(*cols).join(a, a.c.tiling_id == t.c.id).where(sa.func.lower(a.c.alias) == name.lower()),
+        ]
+        with self._errors("looking up a tiling"), self.engine.connect() as conn:
+            for stmt in attempts:
+                rows = conn.execute(stmt.order_by(t.c.id)).all()
+                if len(rows) >= 1:
+                    return self._entries(conn, rows[:1])[0]
+        found = self._result_lookup(name)
+        if found is not None:
+            return found
+        raise NotFoundError("tiling", name, self.names())
+
+    def tiling(self, name: str) -> Any:
+        """The :class:`tilekit.Tiling` called ``name``, rebuilt by its family's ``from_spec``."""
+        entry = name if isinstance(name, Entry) else self.get(name)
+        fams = families(self.pm)
+        family = entry.family
+        rt = self.family_table(family)
+        if family not in fams and rt is not None and rt.tiling_family:
+            family = rt.tiling_family
+        if family not in fams:
+            raise NotFoundError("family", family, fams)
+        try:
+            return fams[family].from_spec(entry.spec)
+        except TilekitError:
+            raise
+        except Exception as exc:
+            raise PluginError(
+                f"family {entry.family!r} could not rebuild {entry.name!r} from its spec: "
+                f"{type(exc).__name__}: {one_line(exc)}"
+            ) from exc
+
+    # ----------------------------------------------------------------- export
+
+    def export(
+        self,
+        path_or_stream: str | os.PathLike[str] | IO[str],
+        format: str = "json",
+        **query: Any,
+    ) -> int:
+        """Write every tiling (or those matching ``query`` keywords of :meth:`iter_query`)
+        as a JSON array, JSON Lines or CSV, streamed in constant memory; return the count.
+
+        Each item is ``{name, family, title, aliases, properties, spec}``; CSV has one column
+        per property (lists and the spec as JSON text).
+        """
+        if format not in FORMATS:
+            raise ParameterError(f"export format {format!r} is not one of: {', '.join(FORMATS)}")
+        family = query.get("family")
+        self.check_family(family)
+        rt = self.family_table(family)
+
+        def write(stream: IO[str]) -> int:
+            if rt is not None and set(query) <= {"family", "where", "text", "order_by"}:
+                return self.export_rows(rt, stream, format, query.get("where", ()), query.get("text"),
+                                        query.get("order_by"))
+            keys = self._export_keys(family) if format == "csv" else None
+            return write_entries(self.iter_query(**query), stream, format, full=True, keys=keys)
+
+        if isinstance(path_or_stream, str | os.PathLike):
+            try:
+                with open(path_or_stream, "w", encoding="utf-8", newline="") as fh:
+                    return write(fh)
+            except OSError as exc:
+                raise CatalogueError(f"cannot write {os.fspath(path_or_stream)}: {exc.strerror}") from None
+        return write(path_or_stream)
+
+    def _export_keys(self, family: str | None) -> list[str]:
+        """The CSV columns of an export: a result table's columns, or the property keys."""
+        rt = self.family_table(family)
+        if rt is not None:
+            return [c.name for c in rt.table.c if c.name not in ("name", "family", "title", "spec")]
+        stmt = sa.select(PROPS.c.key).distinct()
+        if family is not None:
+            stmt = stmt.join(TILINGS, TILINGS.c.id == PROPS.c.tiling_id).where(TILINGS.c.family == family)
+        with self._errors("reading property keys"), self.engine.connect() as conn:
+            return sorted(conn.execute(stmt).scalars().all())
+
+def _begin_immediate(conn: Connection) -> None:
+    """BEGIN IMMEDIATE, waiting for another writer in short steps (not one long wait inside
+    SQLite's C code), so that Ctrl-C and SIGTERM are answered at once even while a catalogue
+    is busy; gives up after the busy timeout."""
+    import time
+
+    from sqlalchemy.exc import OperationalError
+
+    deadline = time.monotonic() + BUSY_TIMEOUT_MS / 1000.0
+    conn.exec_driver_sql(f"PRAGMA busy_timeout = {_STEP_MS}")
+    try:
+        while True:
+            try:
+                conn.exec_driver_sql("BEGIN IMMEDIATE")
+                return
+            except OperationalError as exc:
+                if "locked" not in str(exc) or time.monotonic() > deadline:
+                    raise
+    finally:
+        conn.exec_driver_sql(f"PRAGMA busy_timeout = {BUSY_TIMEOUT_MS}")
+
+
+def _sqlite_pragmas(dbapi_connection: Any, _record: Any) -> None:
+    cursor = dbapi_connection.cursor()
+    try:
+        cursor.execute(f"PRAGMA busy_timeout = {BUSY_TIMEOUT_MS}")
+        cursor.execute("PRAGMA foreign_keys = ON")
+        cursor.execute("PRAGMA journal_mode = WAL")
+        # in WAL mode, NORMAL is durable across process crashes (SIGKILL loses nothing
+        # committed); only a power cut may lose the last transactions. It saves an fsync per commit.
+        cursor.execute("PRAGMA synchronous = NORMAL")
+    finally:
+        cursor.close()
+
+
+def _read_only_engine(sa_url: sa.URL, path: Path) -> Engine:
+    """A SQLite engine that only reads (immutable: no lock, no -wal or -shm file is made)."""
+    import sqlite3
+
+    uri = f"{path.resolve().as_uri()}?mode=ro&immutable=1"
+    return sa.create_engine(sa_url, creator=lambda: sqlite3.connect(uri, uri=True, check_same_thread=False))
+
+
+def open_catalogue(
+    url: str | os.PathLike[str] | None = None,
+    *,
+    seed: bool = True,
+    pm: pluggy.PluginManager | None = None,
+    migrate: bool = True,
+    engine_factory: Callable[..., Engine] | None = None,
+) -> Catalogue:
+    """Open the catalogue at ``url`` (or ``$TILEKIT_CATALOGUE``, or the default SQLite file).
+
+    Runs the migrations (core and plugins) to head, and, if ``seed``, loads the records the
+    plugins ship when they are new or changed. ``pm`` is the plugin manager to use (default:
+    the process-wide one). Raises CatalogueError (one line) if the database cannot be opened;
+    an existing file that is not a database, or a SQLite database tilekit did not create, is
+    never modified. A catalogue file that cannot be written is opened read-only.
+    """
+    resolved = resolve_url(url)
+    try:
+        sa_url = make_url(resolved)
+    except ArgumentError:
+        raise CatalogueError(
+            f"catalogue URL {resolved!r} is not a database URL (e.g. sqlite:///path/catalogue.sqlite, "
+            "postgresql+psycopg://user@host/db) or a file path"
+        ) from None
+    path = sqlite_file(sa_url)
+    read_only = False
+    if path is not None:
+        explicit = url is not None or bool(os.environ.get(ENV_VAR, "").strip())
+        read_only = check_sqlite_file(path, create_parent=not explicit)
+    try:
+        if read_only and engine_factory is None:
+            engine = _read_only_engine(sa_url, path)
+        else:
+            engine = (engine_factory or sa.create_engine)(sa_url)
+    except (ArgumentError, ImportError, SQLAlchemyError) as exc:
+        raise CatalogueError(f"cannot open catalogue {display(sa_url)}: {one_line(exc)}") from None
+    if sa_url.get_backend_name() == "sqlite" and not read_only:
+        event.listen(engine, "connect", _sqlite_pragmas)
+    catalogue = Catalogue(engine, pm, read_only=read_only)
+    try:
+        with engine.connect() as conn:
+            conn.execute(sa.text("SELECT 1"))
+        if read_only:
+            current, heads = catalogue.revisions()
+            if current != heads:
+                raise CatalogueError(
+                    f"catalogue {catalogue.url} is read-only and at migration "
+                    f"{', '.join(sorted(current)) or 'none'}, not {', '.join(sorted(heads))}; "
+                    "open it once where it can be written to upgrade it"
+                )
+        elif migrate:
+            try:
+                catalogue.upgrade()
+            except CatalogueError:
+                # on a server, another process may have migrated the same new catalogue at
+                # the same moment (SQLite serialises this through BEGIN IMMEDIATE)
+                current, heads = catalogue.revisions()
+                if current != heads:
+                    raise
+        if seed and migrate and not read_only:
+            catalogue.refresh_shipped()
+    except SQLAlchemyError as exc:
+        engine.dispose()
+        raise CatalogueError(f"cannot open catalogue {display(sa_url)}: {one_line(exc)}") from None
+    except BaseException:
+        engine.dispose()
+        raise
+    return catalogue

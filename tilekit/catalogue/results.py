@@ -1,0 +1,258 @@
+"""Plugin result tables: bulk upserts of a chunk's rows by the table's key, and typed queries
+over their columns (streamed), so a family's millions of search results are queried like its
+tilings (``tilekit list --family F --where ...``)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Iterator, Mapping
+from typing import Any
+
+import sqlalchemy as sa
+from sqlalchemy.engine import Connection
+
+from tilekit.catalogue.codec import Entry, json_ok
+from tilekit.catalogue.filters import column_condition, parse_filter
+from tilekit.errors import CatalogueError, NotFoundError, ParameterError
+from tilekit.plugins import ResultTable, result_tables
+
+#: Bound parameters per statement on SQLite (its limit is 32,766).
+_MAX_PARAMS = 30_000
+
+
+def _plain(value: Any) -> Any:
+    """NumPy scalars and the like as plain Python values; non-finite floats refused."""
+    if value is None or isinstance(value, str | bool | int):
+        return value
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            raise ValueError(f"{value} is not a finite number")
+        return value
+    item = getattr(value, "item", None)
+    if callable(item) and getattr(value, "shape", None) == ():
+        return _plain(item())
+    return value
+
+
+class ResultsMixin:
+    """The result-table methods of :class:`tilekit.catalogue.Catalogue`."""
+
+    engine: Any
+    pm: Any
+    _result_tables: dict[str, ResultTable] | None = None
+
+    @property
+    def result_tables(self) -> dict[str, ResultTable]:
+        """Every installed plugin's result tables, by table name."""
+        if self._result_tables is None:
+            self._result_tables = result_tables(self.pm)
+        return self._result_tables
+
+    def family_table(self, family: str | None) -> ResultTable | None:
+        """The result table that holds ``family``'s entries, if it has one."""
+        if family is None:
+            return None
+        for rt in self.result_tables.values():
+            if rt.family == family:
+                return rt
+        return None
+
+    def _prepare_rows(
+        self, run_id: int, index: int, rows: Mapping[str, Iterable[Mapping[str, Any]]]
+    ) -> list[tuple[ResultTable, list[dict[str, Any]]]]:
+        """Check a chunk's rows against their tables (names, columns, JSON, finite numbers)."""
+        out = []
+        for name, items in (rows or {}).items():
+            rt = self.result_tables.get(name)
+            if rt is None:
+                raise NotFoundError("result table", name, self.result_tables)
+            columns = rt.table.c
+            has_run = "run_id" in columns
+            prepared = []
+            for item in items:
+                if not isinstance(item, Mapping):
+                    raise CatalogueError(f"run {run_id} chunk {index}: a row of {name!r} is a "
+                                         f"{type(item).__name__}, not a mapping")
+                row: dict[str, Any] = {}
+                for key, value in item.items():
+                    if key not in columns:
+                        raise CatalogueError(
+                            f"run {run_id} chunk {index}: table {name!r} has no column {key!r} "
+                            f"(columns: {', '.join(c.name for c in columns)})"
+                        )
+                    try:
+                        value = _plain(value)
+                    except ValueError as exc:
+                        raise CatalogueError(f"run {run_id} chunk {index}: {name}.{key}: {exc}") from None
+                    if isinstance(columns[key].type, sa.JSON):
+                        json_ok(f"run {run_id} chunk {index}", f"{name}.{key}", value)
+                    row[key] = value
+                missing = [k for k in rt.key if row.get(k) is None]
+                if missing:
+                    raise CatalogueError(f"run {run_id} chunk {index}: a row of {name!r} has no key {missing}")
+                if has_run:
+                    row["run_id"] = run_id
+                prepared.append(row)
+            if prepared:
+                out.append((rt, prepared))
+        return out
+
+    def _upsert_rows(self, conn: Connection, rt: ResultTable, rows: list[dict[str, Any]]) -> None:
+        """Insert rows, updating (only the given columns of) rows whose key exists."""
+        groups: dict[tuple[str, ...], dict[tuple[Any, ...], dict[str, Any]]] = {}
+        for row in rows:
+            cols = tuple(sorted(row))
+            groups.setdefault(cols, {})[tuple(row[k] for k in rt.key)] = row  # last one wins
+        dialect = conn.dialect.name
+        for cols, by_key in groups.items():
+            items = list(by_key.values())
+            update = [c for c in cols if c not in rt.key]
+            if dialect in ("sqlite", "postgresql"):
+                if dialect == "sqlite":
+                    from sqlalchemy.dialects.sqlite import insert
+                else:
+                    from sqlalchemy.dialects.postgresql import insert
+                ins = insert(rt.table)
+                if update:
+                    stmt = ins.on_conflict_do_update(index_elements=list(rt.key),
+                                                     set_={c: ins.excluded[c] for c in update})
+                else:
+                    stmt = ins.on_conflict_do_nothing(index_elements=list(rt.key))
+                size = max(1, _MAX_PARAMS // max(1, len(cols)))
+                for start in range(0, len(items), size):
+                    conn.execute(stmt, items[start : start + size])
+            else:  # any other database: look the keys up, then insert or update
+                for row in items:
+                    where = sa.and_(*(rt.table.c[k] == row[k] for k in rt.key))
+                    if conn.execute(sa.select(sa.literal(1)).where(where)).first():
+                        if update:
+                            conn.execute(sa.update(rt.table).where(where).values({c: row[c] for c in update}))
+                    else:
+                        conn.execute(sa.insert(rt.table).values(row))
+
+    # ------------------------------------------------------------------ queries
+
+    def _result_select(self, rt: ResultTable, where: Iterable[Any], text: str | None,
+                       order_by: str | None) -> sa.Select:
+        t = rt.table
+        stmt = sa.select(t)
+        for f in (parse_filter(w) for w in where):
+            if f.key not in t.c:
+                raise NotFoundError("column", f.key, [c.name for c in t.c])
+            stmt = stmt.where(column_condition(t.c[f.key], f))
+        if text:
+            needle = text.lower()
+            texts = [c for c in t.c if isinstance(c.type, sa.String | sa.Text)]
+            if texts:
+                stmt = stmt.where(sa.or_(*(sa.func.lower(c).contains(needle, autoescape=True) for c in texts)))
+        if order_by is not None:
+            key = order_by.strip()
+            descending = key.startswith("-")
+            key = key.lstrip("-+").replace("-", "_").lower()
+            if key == "name":
+                key = rt.name_column or rt.key[0]
+            if key not in t.c:
+                raise NotFoundError("order key", key, [c.name for c in t.c])
+            col = t.c[key]
+            stmt = stmt.order_by((col.desc() if descending else col.asc()).nulls_last(),
+                                 *(t.c[k].asc() for k in rt.key))
+        return stmt
+
+    def _row_entry(self, rt: ResultTable, row: Mapping[str, Any]) -> Entry:
+        name_col = rt.name_column or rt.key[0]
+        name = row.get(name_col) if row.get(name_col) is not None else row.get(rt.key[0])
+        props = {k: v for k, v in row.items() if k not in ("name", "family", "title", "spec")}
+        spec = rt.spec(row) if rt.spec is not None else {}
+        title = rt.title(row) if rt.title is not None else ""
+        return Entry(name=str(name), family=rt.family or rt.name, title=title, spec=spec, properties=props)
+
+    def iter_result_rows(self, table: str | ResultTable, where: Iterable[Any] = (), text: str | None = None,
+                         order_by: str | None = None, limit: int | None = None, offset: int = 0,
+                         ) -> Iterator[dict[str, Any]]:
+        """Rows of a result table matching every filter, streamed (server-side cursor)."""
+        rt = table if isinstance(table, ResultTable) else self.result_tables.get(table)
+        if rt is None:
+            raise NotFoundError("result table", str(table), self.result_tables)
+        stmt = self._result_select(rt, where, text, order_by or "name")
+        stmt = _paged(stmt, limit, offset)
+        with self._errors("querying"), self.engine.connect() as conn:
+            result = conn.execution_options(stream_results=True, yield_per=2000).execute(stmt)
+            for row in result.mappings():
+                yield dict(row)
+
+    def export_rows(self, rt: ResultTable, stream: Any, format: str, where: Iterable[Any] = (),
+                    text: str | None = None, order_by: str | None = None) -> int:
+        """Write a result table's matching rows straight from the cursor (no Entry objects):
+        CSV with one column per table column, JSON Lines or a JSON array of row objects."""
+        import csv
+        import json
+
+        stmt = self._result_select(rt, where, text, order_by or "name")
+        columns = [c.name for c in rt.table.c]
+        json_cols = {i for i, c in enumerate(rt.table.c) if isinstance(c.type, sa.JSON)}
+        bool_cols = {i for i, c in enumerate(rt.table.c) if isinstance(c.type, sa.Boolean)}
+        count = 0
+        with self._errors("exporting"), self.engine.connect() as conn:
+            result = conn.execution_options(stream_results=True, yield_per=5000).execute(stmt)
+            if format == "csv":
+                writer = csv.writer(stream, lineterminator="\n")
+                writer.writerow(columns)
+                for row in result:
+                    if json_cols or bool_cols:
+                        row = [("" if v is None else json.dumps(v)) if i in json_cols
+                               else ("" if v is None else ("true" if v else "false")) if i in bool_cols
+                               else v for i, v in enumerate(row)]
+                    writer.writerow(row)
+                    count += 1
+                return count
+            dumps = json.JSONEncoder(ensure_ascii=False).encode
+            if format == "json":
+                stream.write("[")
+            for row in result:
+                if format == "json":
+                    stream.write(",\n  " if count else "\n  ")
+                stream.write(dumps(dict(zip(columns, row))))
+                if format == "jsonl":
+                    stream.write("\n")
+                count += 1
+            if format == "json":
+                stream.write("\n]\n" if count else "]\n")
+        return count
+
+    def count_result_rows(self, table: str | ResultTable, where: Iterable[Any] = (), text: str | None = None) -> int:
+        rt = table if isinstance(table, ResultTable) else self.result_tables.get(table)
+        if rt is None:
+            raise NotFoundError("result table", str(table), self.result_tables)
+        sub = self._result_select(rt, where, text, None).subquery()
+        with self._errors("counting"), self.engine.connect() as conn:
+            return int(conn.execute(sa.select(sa.func.count()).select_from(sub)).scalar_one())
+
+    def _result_lookup(self, name: str) -> Entry | None:
+        """A result-table row named ``name`` (in a table's name column or key)."""
+        with self._errors("looking up a tiling"), self.engine.connect() as conn:
+            for rt in self.result_tables.values():
+                if rt.family is None:
+                    continue
+                t = rt.table
+                cols = [t.c[rt.name_column]] if rt.name_column else []
+                if len(rt.key) == 1 and t.c[rt.key[0]] not in cols:
+                    cols.append(t.c[rt.key[0]])
+                for col in cols:
+                    if not isinstance(col.type, sa.String | sa.Text):
+                        continue
+                    row = conn.execute(sa.select(t).where(col == name).limit(1)).mappings().first()
+                    if row is not None:
+                        return self._row_entry(rt, dict(row))
+        return None
+
+
+def _paged(stmt: sa.Select, limit: int | None, offset: int) -> sa.Select:
+    if limit is not None:
+        if limit < 0:
+            raise ParameterError(f"limit must be >= 0, got {limit}")
+        stmt = stmt.limit(limit)
+    if offset:
+        if offset < 0:
+            raise ParameterError(f"offset must be >= 0, got {offset}")
+        stmt = stmt.offset(offset)
+    return stmt
