@@ -35,7 +35,7 @@ def _depth(params: Mapping[str, Any]) -> int:
     n = int(params["max_cells"])
     d = int(params.get("prefix_depth") or 0)
     if d <= 0:
-        d = max(2, min(7, n - 8))
+        d = max(2, min(7, n - 6))
     return min(d, n)
 
 
