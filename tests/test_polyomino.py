@@ -284,6 +284,10 @@ def test_catalogue_search_list_show_render(tmp_path):
     assert res.exit_code == 0 and out.read_text().startswith("<")
     res = run("render", code, "--set", "tiling=IH28", "-o", str(out))
     assert res.exit_code == 0, res.output
+    res = run("render", "pentomino-F", "--tiling", "IH4", "-o", str(out))
+    assert res.exit_code == 0, res.output
+    res = run("render", "pentomino-F", "--tiling", "IH41", "-o", str(out))
+    assert res.exit_code == 2 and "no tiling of type IH41" in res.stderr
     res = run("search", "polyominoes", "--max-cells", "20")
     assert res.exit_code == 2 and res.stderr.count("\n") == 1 and "--count-only" in res.stderr
     res = run("search", "polyominoes", "--max-cells", "30", "--count-only")

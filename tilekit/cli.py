@@ -411,6 +411,7 @@ def _vectors(tiling: Any, region: tuple[float, float, float, float]) -> tuple[An
 @click.option("--edge", "edges", multiple=True, metavar="SPEC", help="Edge shape 'name=x,y:x,y:...' (repeatable).")
 @click.option("--depth", type=click.IntRange(min=0), help="Substitution depth.")
 @click.option("--set", "settings", multiple=True, metavar="KEY=VALUE", help="A family-specific option (repeatable).")
+@click.option("--tiling", "which", metavar="WHICH", help="Which of the tile's tilings (e.g. an IH type or a 1-based index; same as --set tiling=WHICH).")
 @click.option("--region", metavar="x0,y0,x1,y1", help="The region to cover (default: the tiling's own).")
 @click.option("--colours", "--colors", "colours", metavar="c1,c2,...", help="Fill colours, CSS names or #rrggbb.")
 @click.option("--labels", is_flag=True, help="Draw edge labels.")
@@ -419,8 +420,8 @@ def _vectors(tiling: Any, region: tuple[float, float, float, float]) -> tuple[An
 @click.option("--family", help="Family that reads --system (default: substitution).")
 @pass_state
 def render(state: State, name: str | None, out: str, params: tuple[str, ...], edges: tuple[str, ...],
-           depth: int | None, settings: tuple[str, ...], region: str | None, colours: str | None,
-           labels: bool, vectors: bool, system: str | None, family: str | None) -> None:
+           depth: int | None, settings: tuple[str, ...], which: str | None, region: str | None,
+           colours: str | None, labels: bool, vectors: bool, system: str | None, family: str | None) -> None:
     """Render a catalogue tiling (or a --system file) to SVG or PNG."""
     from tilekit.geometry import as_region
     from tilekit.plugins import get_family
@@ -448,6 +449,8 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
     if depth is not None:
         options["depth"] = depth
     options.update(parse_settings(settings))
+    if which is not None:
+        options["tiling"] = which
     if options:
         tiling = tiling.configure(**options)
 
