@@ -32,6 +32,13 @@ def open_catalogue(url: str | None = None, **kwargs):
     return _open(url, **kwargs)
 
 
+def polyomino(spec):
+    """A polyomino from a usual name (``pentomino-F``), a code (``.xx/xx./.x.``) or (column, row) cells."""
+    from tilekit.plugins.polyomino.model import polyomino as _polyomino
+
+    return _polyomino(spec)
+
+
 __all__ = [
     "Affine",
     "CatalogueError",
@@ -51,4 +58,5 @@ __all__ = [
     "ValidationReport",
     "hookimpl",
     "open_catalogue",
+    "polyomino",
 ]

@@ -495,6 +495,7 @@ def _vectors(tiling: Any, region: tuple[float, float, float, float]) -> tuple[An
 @click.option("--edge", "edges", multiple=True, metavar="SPEC", help="Edge shape 'name=x,y:x,y:...' (repeatable).")
 @click.option("--depth", type=BoundedInt(0, limits.MAX_DEPTH), help="Substitution depth.")
 @click.option("--set", "settings", multiple=True, metavar="KEY=VALUE", help="A family-specific option (repeatable).")
+@click.option("--tiling", "which", metavar="WHICH", help="Which of the tile's tilings (e.g. an IH type or a 1-based index; same as --set tiling=WHICH).")
 @click.option("--region", metavar="x0,y0,x1,y1", help="The region to cover (default: the tiling's own).")
 @click.option("--colours", "--colors", "colours", metavar="c1,c2,...", help="Fill colours, CSS names or #rrggbb.")
 @click.option("--labels", is_flag=True, help="Draw edge labels.")
@@ -511,7 +512,7 @@ def _vectors(tiling: Any, region: tuple[float, float, float, float]) -> tuple[An
 @click.option("--stroke-width", type=FiniteFloat(1e3, min=0.0), help="Outline width in pixels (default 1.2).")
 @pass_state
 def render(state: State, name: str | None, out: str, params: tuple[str, ...], edges: tuple[str, ...],
-           depth: int | None, settings: tuple[str, ...], region: str | None, colours: str | None,
+           depth: int | None, settings: tuple[str, ...], which: str | None, region: str | None, colours: str | None,
            labels: bool, vectors: bool, system: str | None, family: str | None, max_tiles: int,
            width: int | None, height: int | None, dpi: float, stroke: str, stroke_width: float | None) -> None:
     """Render a catalogue tiling (or a --system file) to SVG or PNG.
@@ -521,6 +522,7 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
       tilekit render 3.4.6.4 -o rhombitrihexagonal.svg --vectors
       tilekit render penrose-p3 --depth 6 -o p3.png
       tilekit render IH41 --param 0.1,0.2 --region -5,-5,5,5 -o ih41.svg
+      tilekit render pentomino-F --tiling 0 -o f.svg
     """
     from tilekit.geometry import as_region
     from tilekit.plugins import family_for_file, get_family
@@ -550,6 +552,8 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
     if depth is not None:
         options["depth"] = depth
     options.update(parse_settings(settings))
+    if which is not None:
+        options["tiling"] = which
     if options:
         tiling = tiling.configure(**options)
 

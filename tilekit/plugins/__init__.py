@@ -27,6 +27,7 @@ DEFAULT_PLUGINS: tuple[str, ...] = (
     "tilekit.plugins.isohedral",
     "tilekit.plugins.substitution",
     "tilekit.plugins.wang",
+    "tilekit.plugins.polyomino",
 )
 
 

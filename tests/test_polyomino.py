@@ -1,0 +1,298 @@
+"""The polyomino family: the isohedral test, its tilings, the search's chunks and rows, the plugin.
+
+The isohedral test follows S. Langerman and A. Winslow, "A quasilinear-time algorithm for
+tiling the plane isohedrally with a polyomino", SoCG 2016 (arXiv:1507.02762). Published
+counts (Myers' data, in the OEIS, offset 1): A075205 (isohedral tilers), A075201 (tilers by
+180-degree rotation but not by translation; the MathWorld misindexing is noted in FACTS.md).
+"""
+
+from __future__ import annotations
+
+import json
+from collections import Counter
+from math import gcd
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+import tilekit
+from tilekit.errors import GeometryError, NotFoundError, ParameterError, ParseError
+from tilekit.lattice import SQUARE, boundary_word, encode, enumerate_free
+from tilekit.plugins.polyomino import search as psearch
+from tilekit.plugins.polyomino.isohedral import analyse, build, factorisations, ih_groups
+
+# A075205, from n = 1 (FACTS.md: 104, 342, 1041, 3026 for n = 7..10; every n-omino, n <= 6, tiles)
+A075205 = [1, 1, 2, 5, 12, 35, 104, 342, 1041, 3026]
+# A075201, from n = 1: tile by 180-degree rotation but not by translation
+A075201 = [0, 0, 0, 0, 3, 11, 60, 199, 748]
+
+
+@pytest.fixture(scope="module")
+def upto10():
+    polys, flags, _ = enumerate_free(SQUARE, 10, with_holes=True)
+    out = []
+    for p, h in zip(polys, flags):
+        out.append((p, bool(h), None if h else analyse(SQUARE, p, construct=False)))
+    return out
+
+
+def _tally(items):
+    c = Counter()
+    for p, h, a in items:
+        n = len(p)
+        if h:
+            continue
+        c["iso", n] += a["isohedral"]
+        c["tr", n] += a["translation"]
+        c["ht", n] += a["halfturn"]
+        c["ht_not_tr", n] += a["halfturn"] and not a["translation"]
+        c["other", n] += a["isohedral"] and not a["translation"] and not a["halfturn"]
+    return c
+
+
+def test_isohedral_counts_against_myers_data(upto10):
+    c = _tally(upto10)
+    assert [c["iso", n] for n in range(1, 11)] == A075205
+    assert [c["ht_not_tr", n] for n in range(1, 10)] == A075201
+    # the counts this implementation finds for the other Myers sequences (A075198 translation,
+    # A075202 half-turn, A075204 isohedral by neither), pinned as regression values
+    assert [c["tr", n] for n in range(1, 11)] == [1, 1, 2, 5, 9, 24, 41, 121, 213, 522]
+    assert [c["ht", n] for n in range(1, 11)] == [1, 1, 2, 5, 12, 35, 101, 320, 960, 2701]
+    assert [c["other", n] for n in range(1, 11)] == [0, 0, 0, 0, 0, 0, 3, 22, 80, 323]
+
+
+# --------------------------------------------------------------------------- independent oracle
+
+def _hnf_lattices(area: int):
+    for a in range(1, area + 1):
+        if area % a == 0:
+            d = area // a
+            for b in range(d):
+                yield a, b, d
+
+
+def _reduce(pts: np.ndarray, a: int, b: int, d: int) -> np.ndarray:
+    q = np.floor_divide(pts[:, 0], a)
+    return (pts[:, 0] - q * a) * d + np.mod(pts[:, 1] - q * b, d)
+
+
+_ORIENT = [np.array(m) for m in ([[1, 0], [0, 1]], [[0, -1], [1, 0]], [[-1, 0], [0, -1]], [[0, 1], [-1, 0]],
+                                  [[1, 0], [0, -1]], [[0, 1], [1, 0]], [[-1, 0], [0, 1]], [[0, -1], [-1, 0]])]
+
+
+def torus_tiles(pairs: np.ndarray, k: int) -> bool:
+    """Exhaustive exact cover on tori: is there a periodic tiling with k in {1, 2} copies per unit?
+
+    Every lattice of index k*n (Hermite normal form), every orientation and offset of the
+    second copy; a tiling exists iff the copies' cells are distinct modulo the lattice.
+    Written independently of the boundary words (cells only).
+    """
+    n = len(pairs)
+    for a, b, d in _hnf_lattices(k * n):
+        p = _reduce(pairs, a, b, d)
+        if len(set(p.tolist())) != n:
+            continue
+        if k == 1:
+            return True
+        pm = 0
+        for v in p.tolist():
+            pm |= 1 << v
+        for g in _ORIENT:
+            q0 = pairs @ g.T
+            for tx in range(a):
+                for ty in range(d):
+                    q = _reduce(q0 + np.array([tx, ty]), a, b, d)
+                    qm = 0
+                    for v in q.tolist():
+                        qm |= 1 << v
+                    if len(set(q.tolist())) == n and not (pm & qm):
+                        return True
+    return False
+
+
+@pytest.mark.slow
+def test_verdicts_agree_with_torus_search_up_to_8(upto10):
+    """n <= 8, against exhaustive exact cover on tori with one or two tiles per unit:
+    'tiles by translation' iff a one-tile torus tiling exists; 'tiles by half-turn' implies
+    a two-tile one; and no polyomino the test calls non-isohedral has a one- or two-tile
+    periodic tiling, except anisohedral ones (Myers, A075206: none up to 7 cells, one
+    octomino), whose tilings are not isohedral."""
+    not_iso_but_tiles = []
+    for p, h, a in upto10:
+        if h or len(p) > 8:
+            continue
+        pairs = (p - 1) // 2
+        t1, t2 = torus_tiles(pairs, 1), torus_tiles(pairs, 2)
+        assert a["translation"] == t1, encode(SQUARE, p)
+        if a["halfturn"]:
+            assert t2, encode(SQUARE, p)
+        if not a["isohedral"] and t2:
+            not_iso_but_tiles.append(encode(SQUARE, p))
+    assert len(not_iso_but_tiles) <= 1
+    assert all(code.count("x") == 8 for code in not_iso_but_tiles)
+
+
+def test_every_match_up_to_8_builds_an_exact_tiling(upto10):
+    """Langerman-Winslow: each factorisation of each template yields a tiling (checked exactly)."""
+    for p, h, _ in upto10:
+        if h or len(p) > 8:
+            continue
+        verts, letters = boundary_word(SQUARE, p)
+        for f in factorisations(SQUARE, letters):
+            assert build(SQUARE, p, verts, f) is not None, (encode(SQUARE, p), f)
+
+
+def test_tilings_validate_and_wallpaper_groups_match_ih_types():
+    from tilekit.symmetry import wallpaper_group
+
+    groups = ih_groups()
+    checked = 0
+    for name in ("pentomino-F", "pentomino-N", "pentomino-P", "pentomino-Y", "L-tetromino", "pentomino-W"):
+        poly = tilekit.polyomino(name)
+        assert poly.is_isohedral()
+        for til in poly.tilings():
+            region = (-8, -8, 8, 8)
+            report = til.patch(region).validate(region)
+            assert report.ok, (name, til.heesch_type, report.summary())
+            wg = wallpaper_group(til)
+            assert til.ih is not None
+            if poly.symmetry == "C1":
+                assert wg.iuc == groups[til.ih], (name, til.heesch_type, wg.iuc, groups[til.ih])
+            checked += 1
+    assert checked >= 20
+
+
+def test_usual_names_and_api():
+    x = tilekit.polyomino("pentomino-X")
+    assert x.code == ".x./xxx/.x." and x.symmetry == "D4" and x.n == 5
+    assert x.is_isohedral() and "TTTT" in {f["heesch"] for f in x.factorisations()}
+    assert tilekit.polyomino(".xx/xx./.x.").name == "pentomino-F"
+    assert tilekit.polyomino([[0, 0], [1, 0], [2, 0], [1, 1]]).name == "T-tetromino"
+    assert tilekit.polyomino("xxx/x.x/xx.").has_holes
+    assert not tilekit.polyomino("xxx/x.x/xx.").is_isohedral()
+    # the heptominoes that do not tile isohedrally: 108 - 1 holey - 104 = 3
+    polys, flags, _ = enumerate_free(SQUARE, 7, maxsize=7, with_holes=True)
+    sevens = [tilekit.polyomino(encode(SQUARE, p)) for p, h in zip(polys, flags) if len(p) == 7 and not h]
+    assert sum(not q.is_isohedral() for q in sevens) == 3
+
+
+def test_bad_input_one_line_errors():
+    with pytest.raises(GeometryError, match="empty"):
+        tilekit.polyomino([])
+    with pytest.raises(GeometryError, match="disconnected"):
+        tilekit.polyomino([[0, 0], [2, 0]])
+    with pytest.raises(ParseError, match="equal length"):
+        tilekit.polyomino("xx/x")
+    with pytest.raises(NotFoundError, match="did you mean .pentomino-"):
+        tilekit.polyomino("pentomino-Q")
+    with pytest.raises(ParameterError, match="limit of 14 cells.*--count-only"):
+        psearch.check_params({"max_cells": 16})
+    psearch.check_params({"max_cells": 16, "count_only": True})
+
+
+# --------------------------------------------------------------------------- search chunks and rows
+
+def test_chunk_rows_cover_every_free_polyomino_once():
+    params = {"max_cells": 8}
+    chunks = psearch.chunks(params)
+    json.dumps(chunks)
+    codes = []
+    counts = Counter()
+    for ch in chunks:
+        rows, cnt = psearch.chunk_rows(params, ch)
+        codes += [r["code"] for r in rows["polyominoes"]]
+        counts.update(cnt)
+    assert len(codes) == len(set(codes)) == 1 + 1 + 2 + 5 + 12 + 35 + 108 + 369
+    assert [counts[f"isohedral_{n}"] for n in range(1, 9)] == A075205[:8]
+    assert counts["holey_8"] == 6 and counts["fixed_8"] == 2725
+
+
+def test_counting_mode_stores_no_rows():
+    params = {"max_cells": 15, "count_only": True, "free_counts": False}
+    total = Counter()
+    chunks = psearch.chunks(params)
+    for ch in chunks:
+        rows, cnt = psearch.chunk_rows(params, ch)
+        assert rows["polyominoes"] == []
+        total.update(cnt)
+    assert total["fixed_15"] == 27394666  # A001168
+    res = psearch.run_chunk(params, chunks[1])
+    assert res.rows == {"polyominoes": []} and res.counts["fixed_15"] > 0
+
+
+def test_row_columns_match_the_table():
+    from tilekit.plugins.polyomino.tables import TABLE
+
+    row = tilekit.polyomino("pentomino-F").row()
+    assert set(row) == {c.name for c in TABLE.columns} - {"run_id"}
+    assert row["name"] == "pentomino-F" and row["isohedral"] and row["tiles"] == "true"
+    assert row["boundary"] and set(row["boundary"]) <= set("0123")
+
+
+# --------------------------------------------------------------------------- plugin, catalogue, CLI
+
+def test_migration_branch_upgrades_and_downgrades_with_data(tmp_path):
+    import sqlalchemy as sa
+
+    from tilekit.catalogue import open_catalogue
+    from tilekit.plugins.polyomino.tables import TABLE
+
+    cat = open_catalogue(f"sqlite:///{tmp_path / 'c.sqlite'}")
+    with cat.engine.begin() as conn:
+        conn.execute(TABLE.insert(), [tilekit.polyomino("pentomino-F").row()])
+    with cat.engine.connect() as conn:
+        assert conn.execute(sa.select(sa.func.count()).select_from(TABLE)).scalar() == 1
+    cat.downgrade("polyomino@base")
+    assert "polyominoes" not in sa.inspect(cat.engine).get_table_names()
+    cat.upgrade()
+    assert "polyominoes" in sa.inspect(cat.engine).get_table_names()
+
+
+def test_catalogue_search_list_show_render(tmp_path):
+    """The stored run through the run layer: rows in the polyominoes table, typed --where filters."""
+    from tilekit.cli import cli
+
+    db = f"sqlite:///{tmp_path / 'r.sqlite'}"
+
+    def run(*args):
+        return CliRunner().invoke(cli, ["--catalogue", db, *args], catch_exceptions=False)
+
+    res = run("search", "polyominoes", "--max-cells", "8", "--executor", "process", "--workers", "2")
+    assert res.exit_code == 0, res.output
+
+    def count(*where):
+        args = ["list", "--family", "polyomino", "--count"]
+        for w in where:
+            args += ["--where", w]
+        r = run(*args)
+        assert r.exit_code == 0, r.output
+        return int(r.output.split()[-1])
+
+    assert count("cells=8") == 369  # A000105
+    assert count("cells=8", "isohedral=false") == 369 - 342  # 6 with holes + 21 (A075205)
+    assert count("holes=true") == 1 + 6  # A001419
+    assert count("cells=8", "translation=true") == 121
+    assert count("cells=8", "halfturn=true") == 320
+    code = tilekit.polyomino("pentomino-F").code
+    res = run("show", code)
+    assert res.exit_code == 0 and code in res.output
+    res = run("show", "pentomino-X")
+    assert res.exit_code == 0 and "pentomino-X" in res.output
+    out = tmp_path / "x.svg"
+    res = run("render", "pentomino-X", "-o", str(out))
+    assert res.exit_code == 0 and out.read_text().startswith("<")
+    res = run("render", code, "--set", "tiling=IH28", "-o", str(out))
+    assert res.exit_code == 0, res.output
+    res = run("render", "pentomino-F", "--tiling", "IH4", "-o", str(out))
+    assert res.exit_code == 0, res.output
+    res = run("render", "pentomino-F", "--tiling", "IH41", "-o", str(out))
+    assert res.exit_code == 2 and "no tiling of type IH41" in res.stderr
+    res = run("search", "polyominoes", "--max-cells", "20")
+    assert res.exit_code == 2 and res.stderr.count("\n") == 1 and "--count-only" in res.stderr
+    res = run("search", "polyominoes", "--max-cells", "30", "--count-only")
+    assert res.exit_code == 2 and res.stderr.count("\n") == 1
+
+
+def test_gcd_helper_sanity():
+    assert gcd(12, 18) == 6

@@ -1,0 +1,827 @@
+"""Cell lattices (square, hexagonal, triangular) as a few integer tables, and polyforms on them.
+
+A grid is data, in the manner of Kaplan's heesch-sat: every algorithm below (Redelmeier
+enumeration, canonical forms, symmetry groups, boundary words, holes, outlines) reads only
+these tables, so a new grid is one more table.
+
+Coordinates are *fine* integer coordinates in which cell centres and cell vertices are both
+lattice points and the grid's point group acts by integer 2x2 matrices about the origin:
+
+- square: centres (2x+1, 2y+1), vertices (2x, 2y); Cartesian = fine / 2.
+- hexagonal and triangular: coordinates in the basis u = (1, 0), v = (1/2, sqrt(3)/2) scaled
+  by 3, so hexagon centres are (3a, 3b) and triangle centroids (3a+1, 3b+1) (pointing up) or
+  (3a+2, 3b+2) (pointing down).
+
+The translations of a grid are ``period * Z^2``; a cell's *type* is its centre modulo the
+period (one type for squares and hexagons, two for triangles), and neighbour offsets and
+vertex offsets are tabled per type. Boundary words are written over the grid's edge
+directions (``edge_dirs``; counter-clockwise boundary, interior on the left).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from tilekit.errors import GeometryError, ParameterError, ParseError
+
+try:  # numba is a hard dependency; the guard keeps import errors readable
+    from numba import njit
+except ImportError:  # pragma: no cover
+    def njit(*args, **kwargs):  # type: ignore[no-redef]
+        if args and callable(args[0]):
+            return args[0]
+        return lambda f: f
+
+
+@dataclass(frozen=True, eq=False)
+class Grid:
+    """One cell lattice as integer tables (see the module docstring for the coordinates)."""
+
+    name: str
+    period: int
+    roots: np.ndarray  # (R, 2) one centre per cell type, in [0, period)^2
+    neighbours: np.ndarray  # (R, D, 2) offsets from a centre of each type to its edge neighbours
+    vertices: np.ndarray  # (R, V, 2) counter-clockwise vertex offsets from a centre of each type
+    edge_dirs: np.ndarray  # (E, 2) edge vectors of the grid, indexed by boundary-word letter
+    group: np.ndarray  # (G, 2, 2) the point group about the origin; group[0] is the identity
+    group_names: tuple[str, ...]  # e.g. "r1" (rotation by one step), "s0" (reflection)
+    to_xy: np.ndarray  # (2, 2) fine coordinates -> Cartesian
+    cell_name: str = "cell"
+
+    # -- derived tables -------------------------------------------------------
+    @cached_property
+    def letter_perm(self) -> np.ndarray:
+        """(G, E): group element g maps edge letter e to letter_perm[g, e]."""
+        out = np.zeros((len(self.group), len(self.edge_dirs)), dtype=np.int64)
+        for g, m in enumerate(self.group):
+            for e, d in enumerate(self.edge_dirs):
+                img = m @ d
+                hit = np.nonzero((self.edge_dirs == img).all(axis=1))[0]
+                out[g, e] = hit[0]
+        return out
+
+    @cached_property
+    def det(self) -> np.ndarray:
+        return np.round(np.linalg.det(self.group.astype(float))).astype(np.int64)
+
+    @cached_property
+    def neg(self) -> np.ndarray:
+        """letter of the reversed edge direction."""
+        out = np.zeros(len(self.edge_dirs), dtype=np.int64)
+        for e, d in enumerate(self.edge_dirs):
+            out[e] = np.nonzero((self.edge_dirs == -d).all(axis=1))[0][0]
+        return out
+
+    @cached_property
+    def rotation_order(self) -> int:
+        return len(self.group) // 2
+
+    def cell_type(self, c: np.ndarray) -> np.ndarray:
+        """Type index of each centre (k, 2) (ValueError-free: -1 for a non-centre)."""
+        c = np.asarray(c, dtype=np.int64).reshape(-1, 2)
+        m = np.mod(c, self.period)
+        out = np.full(len(c), -1, dtype=np.int64)
+        for r, root in enumerate(self.roots):
+            out[(m == root).all(axis=1)] = r
+        return out
+
+    def is_cell(self, c: np.ndarray) -> np.ndarray:
+        return self.cell_type(c) >= 0
+
+    def neighbours_of(self, c: tuple[int, int]) -> np.ndarray:
+        t = int(self.cell_type(np.array([c]))[0])
+        if t < 0:
+            raise ParameterError(f"{c} is not a cell centre of the {self.name} grid")
+        return np.asarray(c, dtype=np.int64)[None] + self.neighbours[t]
+
+    def xy(self, pts: np.ndarray) -> np.ndarray:
+        return np.asarray(pts, dtype=float) @ self.to_xy.T
+
+    def vertices_of(self, c: np.ndarray) -> np.ndarray:
+        c = np.asarray(c, dtype=np.int64).reshape(-1, 2)
+        t = self.cell_type(c)
+        return c[:, None, :] + self.vertices[t]
+
+
+def _rot_group(r: np.ndarray, s: np.ndarray, order: int) -> tuple[np.ndarray, tuple[str, ...]]:
+    mats, names = [], []
+    m = np.eye(2, dtype=np.int64)
+    for k in range(order):
+        mats.append(m.copy())
+        names.append(f"r{k}")
+        m = r @ m
+    m = s.copy()
+    for k in range(order):
+        mats.append(m.copy())
+        names.append(f"s{k}")
+        m = r @ m
+    return np.array(mats, dtype=np.int64), tuple(names)
+
+
+_SQ_G, _SQ_N = _rot_group(np.array([[0, -1], [1, 0]]), np.array([[1, 0], [0, -1]]), 4)
+_TR_R = np.array([[0, -1], [1, 1]])  # 60 degrees in the (u, v) basis: u -> v, v -> v - u
+_TR_S = np.array([[0, 1], [1, 0]])  # the mirror through the 30-degree line: u <-> v
+_HX_G, _HX_N = _rot_group(_TR_R, _TR_S, 6)
+_UV = np.array([[1.0, 0.5], [0.0, math.sqrt(3) / 2]]) / 3.0
+
+SQUARE = Grid(
+    "square", 2,
+    roots=np.array([[1, 1]]),
+    neighbours=np.array([[[2, 0], [0, 2], [-2, 0], [0, -2]]]),
+    vertices=np.array([[[-1, -1], [1, -1], [1, 1], [-1, 1]]]),
+    edge_dirs=np.array([[2, 0], [0, 2], [-2, 0], [0, -2]]),
+    group=_SQ_G, group_names=_SQ_N, to_xy=np.eye(2) / 2.0, cell_name="omino",
+)
+
+HEXAGONAL = Grid(
+    "hexagonal", 3,
+    roots=np.array([[0, 0]]),
+    neighbours=np.array([[[3, 0], [0, 3], [-3, 3], [-3, 0], [0, -3], [3, -3]]]),
+    vertices=np.array([[[1, 1], [-1, 2], [-2, 1], [-1, -1], [1, -2], [2, -1]]]),
+    edge_dirs=np.array([[-2, 1], [-1, -1], [1, -2], [2, -1], [1, 1], [-1, 2]]),
+    group=_HX_G, group_names=_HX_N, to_xy=_UV / math.sqrt(1 / 3) * 1.0 / 1.0, cell_name="hex",
+)
+
+TRIANGULAR = Grid(
+    "triangular", 3,
+    roots=np.array([[1, 1], [2, 2]]),
+    neighbours=np.array([[[1, 1], [-2, 1], [1, -2]], [[-1, -1], [2, -1], [-1, 2]]]),
+    vertices=np.array([[[-1, -1], [2, -1], [-1, 2]], [[1, -2], [1, 1], [-2, 1]]]),
+    edge_dirs=np.array([[3, 0], [0, 3], [-3, 3], [-3, 0], [0, -3], [3, -3]]),
+    group=_HX_G, group_names=_HX_N, to_xy=_UV * 1.0, cell_name="iamond",
+)
+
+GRIDS = {g.name: g for g in (SQUARE, HEXAGONAL, TRIANGULAR)}
+
+
+def get_grid(name: str | Grid) -> Grid:
+    if isinstance(name, Grid):
+        return name
+    try:
+        return GRIDS[name]
+    except KeyError:
+        from tilekit.errors import NotFoundError
+
+        raise NotFoundError("grid", name, GRIDS) from None
+
+
+# --------------------------------------------------------------------------- canonical forms
+
+def _order_key(cells: np.ndarray) -> np.ndarray:
+    return np.lexsort((cells[:, 0], cells[:, 1]))
+
+
+def fixed_form(grid: Grid, cells: np.ndarray) -> np.ndarray:
+    """The translation-canonical form: sorted by (y, x), the least cell moved into [0, p)^2."""
+    c = np.asarray(cells, dtype=np.int64).reshape(-1, 2)
+    c = c[_order_key(c)]
+    c0 = c[0]
+    t = c0 - np.mod(c0, grid.period)
+    return c - t
+
+
+def _key(cells: np.ndarray) -> tuple:
+    """Order of forms: the (y, x) pairs in (y, x) order, compared lexicographically (the compiled
+    canonical test uses the same order, so both pick the same representative)."""
+    return tuple((y, x) for x, y in cells.tolist())
+
+
+def images(grid: Grid, cells: np.ndarray, which: str = "free") -> list[np.ndarray]:
+    idx = range(len(grid.group)) if which == "free" else range(grid.rotation_order) if which == "one-sided" else [0]
+    return [fixed_form(grid, np.asarray(cells) @ grid.group[g].T) for g in idx]
+
+
+def canonical(grid: Grid, cells: np.ndarray, which: str = "free") -> np.ndarray:
+    """The canonical cells of a polyform under ``which`` in {'free', 'one-sided', 'fixed'}.
+
+    The minimum, by the sorted tuple of centres, over the images under the rotations and
+    reflections (free), rotations (one-sided) or identity (fixed), each in fixed form.
+    """
+    if which not in ("free", "one-sided", "fixed"):
+        raise ParameterError(f"equivalence must be free, one-sided or fixed, not {which!r}")
+    return min(images(grid, cells, which), key=_key)
+
+
+def symmetry_elements(grid: Grid, cells: np.ndarray) -> list[int]:
+    """Indices of the point-group elements mapping the polyform onto a translate of itself."""
+    base = _key(fixed_form(grid, cells))
+    return [g for g, im in enumerate(images(grid, cells, "free")) if _key(im) == base]
+
+
+def symmetry_name(grid: Grid, elements: list[int]) -> str:
+    """Schoenflies-style name of a polyform's own point group: C1, C2, C4, D1, D2, D4, C3, C6, D3, D6."""
+    k = len(elements)
+    refl = any(grid.det[g] < 0 for g in elements)
+    return f"D{k // 2}" if refl else f"C{k}"
+
+
+# --------------------------------------------------------------------------- validation, holes
+
+def as_cells(grid: Grid, cells) -> np.ndarray:
+    """Validate a cell list: non-empty, cell centres of the grid, distinct, edge-connected."""
+    try:
+        c = np.asarray(cells, dtype=np.int64).reshape(-1, 2)
+    except (TypeError, ValueError):
+        raise ParseError(f"cells must be (x, y) integer pairs, got {cells!r}") from None
+    if len(c) == 0:
+        raise GeometryError("a polyform needs at least one cell; the cell set is empty")
+    if not grid.is_cell(c).all():
+        bad = c[~grid.is_cell(c)][0].tolist()
+        raise GeometryError(f"{tuple(bad)} is not a cell centre of the {grid.name} grid")
+    keys = {tuple(p) for p in c.tolist()}
+    if len(keys) != len(c):
+        raise GeometryError("a polyform's cells must be distinct (a cell is repeated)")
+    seen = {tuple(c[0].tolist())}
+    stack = [c[0]]
+    while stack:
+        p = stack.pop()
+        for q in grid.neighbours_of(tuple(p.tolist())):
+            k = tuple(q.tolist())
+            if k in keys and k not in seen:
+                seen.add(k)
+                stack.append(q)
+    if len(seen) != len(keys):
+        raise GeometryError(
+            f"the cells are disconnected: {len(seen)} of {len(keys)} are edge-connected to the first"
+        )
+    return c
+
+
+def holes(grid: Grid, cells: np.ndarray) -> list[np.ndarray]:
+    """The holes: edge-connected components of empty cells not connected to the outside."""
+    c = np.asarray(cells, dtype=np.int64).reshape(-1, 2)
+    keys = {tuple(p) for p in c.tolist()}
+    lo = c.min(axis=0) - 2 * grid.period
+    hi = c.max(axis=0) + 2 * grid.period
+    xs, ys = np.meshgrid(np.arange(lo[0], hi[0] + 1), np.arange(lo[1], hi[1] + 1), indexing="ij")
+    box = np.column_stack([xs.ravel(), ys.ravel()])
+    box = box[grid.is_cell(box)]
+    empty = {tuple(p) for p in box.tolist()} - keys
+    comps: list[np.ndarray] = []
+    left = set(empty)
+    while left:
+        start = left.pop()
+        comp = [start]
+        stack = [start]
+        outside = False
+        while stack:
+            p = stack.pop()
+            for q in grid.neighbours_of(p):
+                k = tuple(q.tolist())
+                if k in left:
+                    left.discard(k)
+                    comp.append(k)
+                    stack.append(k)
+                elif k not in keys and k not in empty:
+                    outside = True
+        arr = np.array(comp, dtype=np.int64)
+        if not outside and not ((arr <= lo + grid.period).any() or (arr >= hi - grid.period).any()):
+            comps.append(arr)
+    return comps
+
+
+# --------------------------------------------------------------------------- boundary
+
+def boundary_cycles(grid: Grid, cells: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Every boundary cycle as (vertices (k, 2), letters (k,)), counter-clockwise for the outer one.
+
+    Interior on the left; at a vertex where two cycles touch (a hole meeting the outside
+    at a corner), the traversal turns right first, so the two cycles come out separate.
+    """
+    c = np.asarray(cells, dtype=np.int64).reshape(-1, 2)
+    keys = {tuple(p) for p in c.tolist()}
+    t = grid.cell_type(c)
+    out_edges: dict[tuple, list[tuple]] = {}
+    for ci, ti in zip(c, t):
+        vs = ci + grid.vertices[ti]
+        nbs = ci + grid.neighbours[ti]
+        for k in range(len(vs)):
+            a, b = vs[k], vs[(k + 1) % len(vs)]
+            mid2 = a + b  # the neighbour across edge (a, b) is the one nearest its midpoint
+            j = int(np.argmin(((2 * nbs - mid2) ** 2).sum(axis=1)))
+            if tuple(nbs[j].tolist()) in keys:
+                continue
+            out_edges.setdefault(tuple(a.tolist()), []).append(tuple(b.tolist()))
+    dirs = grid.edge_dirs
+    angle = np.arctan2(*(grid.xy(dirs)[:, ::-1].T))
+    cycles = []
+    used: set[tuple] = set()
+    for start in sorted(out_edges, key=lambda p: (p[1], p[0])):
+        for nxt in out_edges[start]:
+            if (start, nxt) in used:
+                continue
+            verts, letters = [], []
+            a, b = start, nxt
+            while (a, b) not in used:
+                used.add((a, b))
+                verts.append(a)
+                d = np.subtract(b, a)
+                e = int(np.nonzero((dirs == d).all(axis=1))[0][0])
+                letters.append(e)
+                choices = [q for q in out_edges[b] if (b, q) not in used]
+                if not choices:
+                    break
+                if len(choices) > 1:
+                    def turn(q, e=e, b=b):
+                        e2 = int(np.nonzero((dirs == np.subtract(q, b)).all(axis=1))[0][0])
+                        return (angle[e2] - angle[e] + math.pi) % (2 * math.pi)
+                    choices.sort(key=turn)
+                a, b = b, choices[0]
+            cycles.append((np.array(verts, dtype=np.int64), np.array(letters, dtype=np.int64)))
+    cycles.sort(key=lambda cyc: -_signed_area(grid.xy(cyc[0])))
+    return cycles
+
+
+def _signed_area(p: np.ndarray) -> float:
+    x, y = p[:, 0], p[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+
+
+def boundary_word(grid: Grid, cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The outer boundary: (vertices, letters), counter-clockwise from the least vertex.
+
+    Hole-free polyforms (one simple boundary cycle) are traced in compiled code; others
+    through :func:`boundary_cycles`.
+    """
+    c = np.asarray(cells, dtype=np.int64).reshape(-1, 2)
+    ea, eb, en, el = _edge_tables(grid)
+    out_v = np.zeros((8 * len(c) + 8, 2), np.int64)
+    out_l = np.zeros(8 * len(c) + 8, np.int64)
+    m = _trace(c, grid.cell_type(c), ea, eb, en, el, np.int64(grid.period), out_v, out_l)
+    if m > 0:
+        return out_v[:m].copy(), out_l[:m].copy()
+    return boundary_cycles(grid, cells)[0]
+
+
+_EDGE_CACHE: dict[str, tuple] = {}
+
+
+def _edge_tables(grid: Grid):
+    """Per cell type and edge: start and end vertex offsets, neighbour offset, letter."""
+    if grid.name not in _EDGE_CACHE:
+        R, V = grid.vertices.shape[:2]
+        ea = np.zeros((R, V, 2), np.int64)
+        eb = np.zeros((R, V, 2), np.int64)
+        en = np.zeros((R, V, 2), np.int64)
+        el = np.zeros((R, V), np.int64)
+        for r in range(R):
+            for k in range(V):
+                a, b = grid.vertices[r, k], grid.vertices[r, (k + 1) % V]
+                nbs = grid.neighbours[r]
+                j = int(np.argmin(((2 * nbs - (a + b)) ** 2).sum(axis=1)))
+                ea[r, k], eb[r, k], en[r, k] = a, b, nbs[j]
+                el[r, k] = int(np.nonzero((grid.edge_dirs == b - a).all(axis=1))[0][0])
+        _EDGE_CACHE[grid.name] = (ea, eb, en, el)
+    return _EDGE_CACHE[grid.name]
+
+
+@njit(cache=True)
+def _trace(c, types, ea, eb, en, el, period, out_v, out_l):
+    """Trace the single boundary cycle; returns its length, or -1 if there is more than one."""
+    n = c.shape[0]
+    x0 = c[0, 0]
+    y0 = c[0, 1]
+    x1 = x0
+    y1 = y0
+    for i in range(n):
+        x0 = min(x0, c[i, 0])
+        y0 = min(y0, c[i, 1])
+        x1 = max(x1, c[i, 0])
+        y1 = max(y1, c[i, 1])
+    m = 2 * period
+    x0 -= m
+    y0 -= m
+    w = x1 - x0 + m + 1
+    h = y1 - y0 + m + 1
+    occ = np.zeros(w * h, np.uint8)
+    for i in range(n):
+        occ[(c[i, 1] - y0) * w + c[i, 0] - x0] = 1
+    nxt = np.full(w * h, -1, np.int64)
+    let = np.zeros(w * h, np.int64)
+    edges = 0
+    for i in range(n):
+        t = types[i]
+        for k in range(ea.shape[1]):
+            qx = c[i, 0] + en[t, k, 0]
+            qy = c[i, 1] + en[t, k, 1]
+            if occ[(qy - y0) * w + qx - x0] == 1:
+                continue
+            a = (c[i, 1] + ea[t, k, 1] - y0) * w + c[i, 0] + ea[t, k, 0] - x0
+            b = (c[i, 1] + eb[t, k, 1] - y0) * w + c[i, 0] + eb[t, k, 0] - x0
+            if nxt[a] != -1:
+                return -1  # a pinch vertex: not a simple boundary
+            nxt[a] = b
+            let[a] = el[t, k]
+            edges += 1
+    start = -1
+    for v in range(w * h):
+        if nxt[v] != -1:
+            start = v
+            break
+    v = start
+    cnt = 0
+    while True:
+        out_v[cnt, 0] = v % w + x0
+        out_v[cnt, 1] = v // w + y0
+        out_l[cnt] = let[v]
+        cnt += 1
+        v = nxt[v]
+        if v == start or cnt > edges:
+            break
+    if cnt != edges:
+        return -1
+    return cnt
+
+
+def word_text(letters) -> str:
+    return "".join("0123456789"[int(e)] for e in letters)
+
+
+def outline(grid: Grid, cells: np.ndarray, name: str = ""):
+    """The polyform's outer outline as a Prototile (corners only, Cartesian coordinates)."""
+    from tilekit.tiling import Prototile
+
+    verts, letters = boundary_word(grid, cells)
+    keep = letters != np.roll(letters, 1)
+    return Prototile(grid.xy(verts[keep]), name=name)
+
+
+# --------------------------------------------------------------------------- Redelmeier
+
+def redelmeier_board(grid: Grid, n: int, root: int) -> tuple[np.ndarray, np.ndarray]:
+    """Cells reachable in < n steps from the root among cells after it in (y, x) order.
+
+    Returns (centres (B, 2), neighbour table (B, D) of board indices, -1 for none). Board
+    cell 0 is the root; the index order (breadth-first, neighbours in table order) is
+    deterministic, so a path of choices names the same search-tree node in every process.
+    """
+    r = grid.roots[root]
+    index = {tuple(r.tolist()): 0}
+    cells = [r]
+    dist = [0]
+    head = 0
+    while head < len(cells):
+        p = cells[head]
+        if dist[head] < n - 1:
+            for q in p + grid.neighbours[int(grid.cell_type(p[None])[0])]:
+                if q[1] < r[1] or (q[1] == r[1] and q[0] < r[0]):
+                    continue
+                k = tuple(q.tolist())
+                if k not in index:
+                    index[k] = len(cells)
+                    cells.append(q)
+                    dist.append(dist[head] + 1)
+        head += 1
+    cells_a = np.array(cells, dtype=np.int64)
+    types = grid.cell_type(cells_a)
+    nb = np.full((len(cells), grid.neighbours.shape[1]), -1, dtype=np.int64)
+    for i, (p, ti) in enumerate(zip(cells_a, types)):
+        for j, q in enumerate(p + grid.neighbours[ti]):
+            nb[i, j] = index.get(tuple(q.tolist()), -1)
+    return cells_a, nb
+
+
+@njit(cache=True)
+def _canon_check(poly, size, bx, by, mats, period, keys, tmp):
+    """True if the fixed polyform (board indices poly[:size]) is the least image of its class.
+
+    Also returns the bitmask of the group elements whose image equals it (its own symmetry).
+    """
+    ng = mats.shape[0]
+    span = 8 * period * (size + 2)
+    sym = 0
+    for g in range(ng):
+        a, b, c, d = mats[g, 0, 0], mats[g, 0, 1], mats[g, 1, 0], mats[g, 1, 1]
+        # least cell in (y, x) order of the image
+        mx = 0
+        my = 0
+        for k in range(size):
+            x = bx[poly[k]]
+            y = by[poly[k]]
+            X = a * x + b * y
+            Y = c * x + d * y
+            if k == 0 or Y < my or (Y == my and X < mx):
+                mx = X
+                my = Y
+        tx = mx - (mx % period)
+        ty = my - (my % period)
+        for k in range(size):
+            x = bx[poly[k]]
+            y = by[poly[k]]
+            X = a * x + b * y - tx
+            Y = c * x + d * y - ty
+            v = Y * span + X
+            # insertion sort into tmp
+            j = k
+            while j > 0 and tmp[j - 1] > v:
+                tmp[j] = tmp[j - 1]
+                j -= 1
+            tmp[j] = v
+        if g == 0:
+            for k in range(size):
+                keys[k] = tmp[k]
+            sym = 1
+        else:
+            cmp = 0
+            for k in range(size):
+                if tmp[k] != keys[k]:
+                    cmp = -1 if tmp[k] < keys[k] else 1
+                    break
+            if cmp < 0:
+                return False, 0
+            if cmp == 0:
+                sym |= 1 << g
+    return True, sym
+
+
+@njit(cache=True)
+def _has_hole(poly, size, bx, by, roots, nbr, period, grid_buf, stack):
+    """Flood fill of the empty cells of a bounding box (plus a margin) from its corner."""
+    x0 = bx[poly[0]]
+    x1 = x0
+    y0 = by[poly[0]]
+    y1 = y0
+    for k in range(size):
+        x = bx[poly[k]]
+        y = by[poly[k]]
+        x0 = min(x0, x)
+        x1 = max(x1, x)
+        y0 = min(y0, y)
+        y1 = max(y1, y)
+    m = 2 * period
+    x0 = x0 - (x0 % period) - m
+    y0 = y0 - (y0 % period) - m
+    x1 = x1 - (x1 % period) + m + period - 1
+    y1 = y1 - (y1 % period) + m + period - 1
+    w = x1 - x0 + 1
+    h = y1 - y0 + 1
+    if w * h > grid_buf.shape[0]:
+        return False
+    # 0 unknown/empty, 1 filled, 2 reached-from-outside
+    for i in range(w * h):
+        grid_buf[i] = 0
+    for k in range(size):
+        grid_buf[(by[poly[k]] - y0) * w + (bx[poly[k]] - x0)] = 1
+    # start: a cell centre of root type 0 in the margin row
+    sx = x0 + roots[0, 0]
+    sy = y0 + roots[0, 1]
+    grid_buf[(sy - y0) * w + (sx - x0)] = 2
+    stack[0] = (sy - y0) * w + (sx - x0)
+    top = 1
+    reached = 1
+    nr = roots.shape[0]
+    while top > 0:
+        top -= 1
+        p = stack[top]
+        px = p % w + x0
+        py = p // w + y0
+        t = 0
+        for r in range(nr):
+            if (px - roots[r, 0]) % period == 0 and (py - roots[r, 1]) % period == 0:
+                t = r
+        for j in range(nbr.shape[1]):
+            qx = px + nbr[t, j, 0]
+            qy = py + nbr[t, j, 1]
+            if qx < x0 or qx > x1 or qy < y0 or qy > y1:
+                continue
+            q = (qy - y0) * w + (qx - x0)
+            if grid_buf[q] == 0:
+                grid_buf[q] = 2
+                stack[top] = q
+                top += 1
+                reached += 1
+    # count all cell centres in the box
+    total = 0
+    for yy in range(y0, y1 + 1):
+        for xx in range(x0, x1 + 1):
+            for r in range(nr):
+                if (xx - roots[r, 0]) % period == 0 and (yy - roots[r, 1]) % period == 0:
+                    total += 1
+    return reached + size < total
+
+
+@njit(cache=True)
+def _redelmeier(nb, bx, by, n, prefix, plen, maxsize, mats, period, roots, nbr, hole_min, mode, out, outcap):
+    """Redelmeier's algorithm over one subtree of the search tree.
+
+    The node reached by taking choice ``prefix[d]`` (an offset into the untried list) at each
+    level d < plen is the subtree root; plen = 0 is the whole tree. Nodes of size up to
+    ``maxsize`` are visited. mode 0: count fixed only; mode 1: also free and holey (canonical
+    check at every node); mode 2: as 1 and write each free representative's board indices
+    to ``out`` (row-major, n per row) while rows < outcap; mode 3: record the paths of the
+    nodes of size == maxsize (chunk generation) in ``out``.
+    Returns (fixed[n+1], free[n+1], holey[n+1], rows written).
+    """
+    B = nb.shape[0]
+    D = nb.shape[1]
+    fixed = np.zeros(n + 1, np.int64)
+    free = np.zeros(n + 1, np.int64)
+    holey = np.zeros(n + 1, np.int64)
+    seen = np.zeros(B, np.uint8)
+    cap = n * (n * D + 2) + 8
+    buf = np.empty(cap, np.int64)
+    start = np.zeros(n + 2, np.int64)
+    end = np.zeros(n + 2, np.int64)
+    pos = np.zeros(n + 2, np.int64)
+    newfrom = np.zeros(n + 2, np.int64)
+    poly = np.zeros(n + 1, np.int64)
+    keys = np.zeros(n + 1, np.int64)
+    tmp = np.zeros(n + 1, np.int64)
+    gbuf = np.zeros((8 * period * (n + 4)) ** 2, np.int64)
+    path = np.zeros(n + 1, np.int64)
+    entered = np.zeros(n + 2, np.uint8)
+    stack = np.empty(gbuf.shape[0], np.int64)
+    rows = 0
+    seen[0] = 1
+    buf[0] = 0
+    start[0] = 0
+    end[0] = 1
+    pos[0] = 0
+    newfrom[0] = 0
+    d = 0
+    while d >= 0:
+        if d < plen:
+            if entered[d] == 0:
+                entered[d] = 1
+                pos[d] = start[d] + prefix[d]
+                if pos[d] >= end[d]:
+                    break
+            elif pos[d] > start[d] + prefix[d]:
+                break  # back from the prefix node's subtree: the chunk is done
+        if pos[d] < end[d]:
+            c = buf[pos[d]]
+            path[d] = pos[d] - start[d]
+            pos[d] += 1
+            poly[d] = c
+            size = d + 1
+            if size >= plen:
+                fixed[size] += 1
+                if mode == 3 and size == maxsize:
+                    if rows < outcap:
+                        for k in range(size):
+                            out[rows * n + k] = path[k]
+                    rows += 1
+                if mode == 1 or mode == 2:
+                    ok, sym = _canon_check(poly, size, bx, by, mats, period, keys, tmp)
+                    if ok:
+                        free[size] += 1
+                        hh = size >= hole_min and _has_hole(poly, size, bx, by, roots, nbr, period, gbuf, stack)
+                        if hh:
+                            holey[size] += 1
+                        if mode == 2:
+                            if rows < outcap:
+                                w = n + 2
+                                for k in range(size):
+                                    out[rows * w + k] = poly[k]
+                                for k in range(size, n):
+                                    out[rows * w + k] = -1
+                                out[rows * w + n] = 1 if hh else 0
+                                out[rows * w + n + 1] = sym
+                            rows += 1
+            if size < maxsize:
+                s = end[d]
+                e = s
+                for k in range(pos[d], end[d]):
+                    buf[e] = buf[k]
+                    e += 1
+                nf = e
+                for j in range(D):
+                    q = nb[c, j]
+                    if q >= 0 and seen[q] == 0:
+                        seen[q] = 1
+                        buf[e] = q
+                        e += 1
+                d += 1
+                start[d] = s
+                end[d] = e
+                pos[d] = s
+                newfrom[d] = nf
+        else:
+            for k in range(newfrom[d], end[d]):
+                seen[buf[k]] = 0
+            d -= 1
+    return fixed, free, holey, rows
+
+
+def _tables(grid: Grid):
+    return (grid.group.astype(np.int64), np.int64(grid.period), grid.roots.astype(np.int64),
+            grid.neighbours.astype(np.int64), np.int64(7 if grid.period == 2 else 3))
+
+
+def count_fixed(grid: Grid, n: int, *, free: bool = False, prefix=(), root: int | None = None,
+                maxsize: int | None = None) -> dict[str, np.ndarray]:
+    """Counts of fixed (and with ``free``, free and holey) polyforms of sizes 1..n.
+
+    Redelmeier's algorithm (D. H. Redelmeier, "Counting polyominoes: yet another attack",
+    Discrete Math. 36, 1981) from each cell type's root; ``prefix`` restricts to one subtree.
+    """
+    mats, period, roots, nbr, hmin = _tables(grid)
+    fixed = np.zeros(n + 1, np.int64)
+    fr = np.zeros(n + 1, np.int64)
+    ho = np.zeros(n + 1, np.int64)
+    for r in range(len(grid.roots)) if root is None else [root]:
+        cells, nb = redelmeier_board(grid, n, r)
+        pre = np.asarray(list(prefix) or [0], dtype=np.int64)
+        f, a, h, _ = _redelmeier(nb, cells[:, 0].copy(), cells[:, 1].copy(), n, pre, len(prefix),
+                                 n if maxsize is None else maxsize, mats, period, roots, nbr, hmin,
+                                 1 if free else 0, np.zeros(1, np.int64), 0)
+        fixed += f
+        fr += a
+        ho += h
+    return {"fixed": fixed, "free": fr, "holey": ho}
+
+
+def prefixes(grid: Grid, n: int, depth: int, root: int) -> list[list[int]]:
+    """The paths of choices naming every node of size ``depth`` in the root's search tree."""
+    mats, period, roots, nbr, hmin = _tables(grid)
+    cells, nb = redelmeier_board(grid, n, root)
+    bx, by = cells[:, 0].copy(), cells[:, 1].copy()
+    pre = np.zeros(1, np.int64)
+    _, _, _, rows = _redelmeier(nb, bx, by, n, pre, 0, depth, mats, period, roots, nbr, hmin, 3,
+                                np.zeros(1, np.int64), 0)
+    out = np.zeros(max(rows, 1) * n, np.int64)
+    _redelmeier(nb, bx, by, n, pre, 0, depth, mats, period, roots, nbr, hmin, 3, out, rows)
+    return [out[i * n:i * n + depth].tolist() for i in range(rows)]
+
+
+def enumerate_free(grid: Grid, n: int, prefix=(), root: int = 0, maxsize: int | None = None,
+                   with_holes: bool = False, with_symmetry: bool = False):
+    """The free polyforms (canonical representatives, as centres) in one subtree, with counts.
+
+    Returns (polyforms, counts), or with ``with_holes`` (polyforms, has-hole flags, counts),
+    or with ``with_symmetry`` (polyforms, has-hole flags, symmetry bitmasks, counts). The
+    polyforms are already canonical (each is the least image of its class).
+    """
+    mats, period, roots, nbr, hmin = _tables(grid)
+    cells, nb = redelmeier_board(grid, n, root)
+    bx, by = cells[:, 0].copy(), cells[:, 1].copy()
+    pre = np.asarray(list(prefix) or [0], dtype=np.int64)
+    ms = n if maxsize is None else maxsize
+    args = (nb, bx, by, n, pre, len(prefix), ms, mats, period, roots, nbr, hmin, 2)
+    f, a, h, rows = _redelmeier(*args, np.zeros(1, np.int64), 0)
+    out = np.zeros(max(rows, 1) * (n + 2), np.int64)
+    _redelmeier(*args, out, rows)
+    out = out.reshape(-1, n + 2)[:rows]
+    polys = [cells[r[:n][r[:n] >= 0]] for r in out]
+    counts = {"fixed": f, "free": a, "holey": h}
+    if with_symmetry:
+        return polys, out[:, n].astype(bool), out[:, n + 1].copy(), counts
+    if with_holes:
+        return polys, out[:, n].astype(bool), counts
+    return polys, counts
+
+
+def symmetry_from_mask(grid: Grid, mask: int) -> str:
+    """symmetry_name of the group elements in a bitmask (as enumerate_free reports them)."""
+    return symmetry_name(grid, [g for g in range(len(grid.group)) if mask >> g & 1])
+
+
+# --------------------------------------------------------------------------- codes
+
+def encode(grid: Grid, cells: np.ndarray, *, is_canonical: bool = False) -> str:
+    """Text code of the canonical free form: rows top to bottom, 'x' a cell, '.' none (square);
+    'x,y;x,y...' of fine centres for the other grids (``is_canonical`` skips the minimisation)."""
+    c = np.asarray(cells, dtype=np.int64) if is_canonical else canonical(grid, cells, "free")
+    if grid is SQUARE:
+        q = (c - 1) // 2
+        q = q - q.min(axis=0)
+        w, h = q.max(axis=0) + 1
+        rows = [["."] * int(w) for _ in range(int(h))]
+        for x, y in q.tolist():
+            rows[int(h) - 1 - y][x] = "x"
+        return "/".join("".join(r) for r in rows)
+    return ";".join(f"{x},{y}" for x, y in c.tolist())
+
+
+def decode(grid: Grid, code: str) -> np.ndarray:
+    """Cells (fine centres) of a code in either form; ParseError names what is wrong."""
+    text = str(code).strip()
+    if not text:
+        raise ParseError("empty polyform code")
+    if grid is SQUARE and set(text) <= set("x./"):
+        rows = text.split("/")
+        if len({len(r) for r in rows}) != 1:
+            raise ParseError(f"polyomino code {code!r}: rows must have equal length (rows of 'x' and '.', joined by '/')")
+        h = len(rows)
+        pts = [(2 * x + 1, 2 * (h - 1 - y) + 1) for y, r in enumerate(rows) for x, ch in enumerate(r) if ch == "x"]
+        if not pts:
+            raise GeometryError(f"polyomino code {code!r} has no cells (the cell set is empty)")
+        return np.array(pts, dtype=np.int64)
+    try:
+        pts = [tuple(int(v) for v in part.split(",")) for part in text.split(";") if part.strip()]
+        if any(len(p) != 2 for p in pts):
+            raise ValueError
+    except ValueError:
+        hint = "rows of 'x' and '.' joined by '/', e.g. 'xx/x.'" if grid is SQUARE else "'x,y;x,y;...' of cell centres"
+        raise ParseError(f"malformed {grid.name} polyform code {code!r}: expected {hint}") from None
+    return np.array(pts, dtype=np.int64).reshape(-1, 2)
+
+
+def square_cells(pairs) -> np.ndarray:
+    """Fine centres of square cells given as integer (column, row) pairs."""
+    p = np.asarray(pairs, dtype=np.int64).reshape(-1, 2)
+    return 2 * p + 1

@@ -1,0 +1,668 @@
+"""The isohedral test of a polyform from its boundary word, after Langerman and Winslow.
+
+S. Langerman and A. Winslow, "A quasilinear-time algorithm for tiling the plane isohedrally
+with a polyomino", SoCG 2016 (LIPIcs 51, 50:1-50:15; arXiv:1507.02762). A polyomino tiles
+the plane isohedrally exactly when its boundary word has one of seven factorisations:
+translation (Beauquier-Nivat), half-turn (Conway's criterion), quarter-turn, and type-1 /
+type-2 reflection and half-turn-reflection forms. Each is a *template* here (data): a cyclic
+sequence of factors, each paired with a partner factor (or itself) by a kind of isometry
+(T translation, C half-turn, Q quarter-turn, G glide reflection). One generic matcher
+(numba, depth-first over factor lengths with pruning, O(1) factor comparisons from
+precomputed extension tables) finds every factorisation of every template.
+
+A factorisation found is then *built*: each factor's isometry maps the tile onto its
+neighbour across that factor; the group they generate gives placements, its translations a
+lattice (Hermite normal form), and the placements modulo the lattice the translational unit.
+The tiling is accepted only if the unit's cells are distinct modulo the lattice and fill it
+exactly (|unit cells| = lattice index), an exact integer proof that it tiles. The isohedral
+type is read from the Heesch type of the nonempty factors, matched against the isohedral
+family's table (``catalogue/isohedral/properties.tsv``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+from tilekit.lattice import SQUARE, Grid, boundary_word, outline
+
+try:
+    from numba import njit
+except ImportError:  # pragma: no cover
+    def njit(*a, **k):  # type: ignore[no-redef]
+        return a[0] if a and callable(a[0]) else (lambda f: f)
+
+# kinds of factor pairing
+T, C, Q, G = 0, 1, 2, 3
+KIND_LETTER = {T: "T", C: "C", Q: "C4", G: "G"}
+
+#: (name, factorisation family, partner of each factor, kind of each factor, glide rule):
+#: glide rule 1 = all glide pairs share one reflection (parallel axes, pg), 2 = the second
+#: pair's reflection is the first's turned by a half-turn (perpendicular axes, pgg).
+TEMPLATES: tuple[tuple[str, str, tuple[int, ...], tuple[int, ...], int], ...] = (
+    ("translation", "translation", (3, 4, 5, 0, 1, 2), (T, T, T, T, T, T), 0),
+    ("halfturn", "halfturn", (3, 1, 2, 0, 4, 5), (T, C, C, T, C, C), 0),
+    ("quarterturn", "quarterturn", (0, 2, 1, 4, 3), (C, Q, Q, Q, Q), 0),
+    ("reflection-1", "reflection", (3, 2, 1, 0, 5, 4), (T, G, G, T, G, G), 1),
+    ("reflection-2", "reflection", (3, 5, 4, 0, 2, 1), (T, G, G, T, G, G), 1),
+    ("halfturn-reflection-1", "reflection", (3, 1, 2, 0, 5, 4), (T, C, C, T, G, G), 0),
+    ("halfturn-reflection-2", "reflection", (0, 4, 2, 5, 1, 3), (C, G, C, G, G, G), 2),
+)
+
+
+@njit(cache=True)
+def _tables(W, perm, neg):
+    Gn = perm.shape[0]
+    L = W.shape[0]
+    ext = np.zeros((Gn, L, L), np.int64)  # consecutive k: perm[g][W[a+k]] == neg[W[b-k]]
+    fwd = np.zeros((Gn, L, L), np.int64)  # consecutive k: perm[g][W[a+k]] == W[b+k]
+    for g in range(Gn):
+        for a in range(L):
+            for b in range(L):
+                k = 0
+                while k < L and perm[g, W[(a + k) % L]] == neg[W[(b - k) % L]]:
+                    k += 1
+                ext[g, a, b] = k
+                k = 0
+                while k < L and perm[g, W[(a + k) % L]] == W[(b + k) % L]:
+                    k += 1
+                fwd[g, a, b] = k
+    return ext, fwd
+
+
+@njit(cache=True)
+def _splits(ext, half, L):
+    """sp[a, l]: a split point of W[a:a+l] (cyclic) into two palindromes, -1 if none.
+
+    A split with an empty part is preferred (the simpler Heesch type), else the first.
+    """
+    sp = np.full((L, L + 1), -1, np.int64)
+    for a in range(L):
+        for ln in range(L + 1):
+            best = -1
+            for m in range(ln + 1):
+                p1 = m == 0 or ext[half, a, (a + m - 1) % L] >= m
+                if not p1:
+                    continue
+                r = ln - m
+                b = (a + m) % L
+                p2 = r == 0 or ext[half, b, (b + r - 1) % L] >= r
+                if p2:
+                    if m == 0 or m == ln:
+                        best = m
+                        break
+                    if best < 0:
+                        best = m
+            sp[a, ln] = best
+    return sp
+
+
+@njit(cache=True)
+def _match(W, ext, fwd, sp, det, partner, kind, cands, ncand, glide, mul, half, out, maxout, smax):
+    """Every factorisation of the cyclic word W into the template (partner, kind).
+
+    Depth-first over the factors' lengths with every comparison O(1) from the extension
+    tables; two consecutive palindromes are one step through the split table ``sp``.
+    out rows: [start, len_0..len_{k-1}, g_0..g_{k-1}]; returns the number found.
+    """
+    L = W.shape[0]
+    k = partner.shape[0]
+    lens = np.zeros(k, np.int64)
+    gs = np.zeros(k, np.int64)
+    pos = np.zeros(k + 1, np.int64)
+    trial = np.zeros(k + 1, np.int64)
+    # combined[f]: factor f and f+1 are both palindromes, taken together
+    combined = np.zeros(k, np.int64)
+    prevf = np.zeros(k + 1, np.int64)
+    f = 0
+    while f < k:
+        if f + 1 < k and kind[f] == 1 and partner[f] == f and kind[f + 1] == 1 and partner[f + 1] == f + 1:
+            combined[f] = 1
+            prevf[f + 2] = f
+            f += 2
+        else:
+            prevf[f + 1] = f
+            f += 1
+    # freeafter[f]: free (not forced) steps after factor f; when 0, f's length is forced by the total
+    freeafter = np.zeros(k + 1, np.int64)
+    for f in range(k):
+        cnt = 0
+        j = f + 2 if combined[f] == 1 else f + 1
+        while j < k:
+            if partner[j] >= j:
+                cnt += 1
+            j += 2 if combined[j] == 1 else 1
+        freeafter[f] = cnt
+    found = 0
+    hg = cands[1, 0]
+    for s in range(min(L, smax)):
+        f = 0
+        pos[0] = 0
+        trial[0] = 0
+        while f >= 0:
+            if f == k:
+                if pos[k] == L:
+                    if found < maxout:
+                        out[found, 0] = s
+                        for i in range(k):
+                            out[found, 1 + i] = lens[i]
+                            out[found, 1 + k + i] = gs[i]
+                    found += 1
+                f = prevf[f] if f > 0 else -1
+                continue
+            p = partner[f]
+            ok = False
+            nf = f + 1
+            target = -1
+            if freeafter[f] == 0:
+                known = 0
+                mult = 1
+                for j in range(f + 1, k):
+                    if partner[j] < f:
+                        known += lens[partner[j]]
+                    elif partner[j] == f and j != f:
+                        mult = 2
+                rest = L - pos[f] - known
+                if rest < 0 or rest % mult != 0:
+                    target = -2
+                else:
+                    target = rest // mult
+            if combined[f] == 1:
+                nf = f + 2
+                while target != -2:
+                    ln = trial[f]
+                    if target >= 0:
+                        if ln > 0:
+                            break
+                        ln = target
+                    if pos[f] + ln > L:
+                        break
+                    trial[f] += 1
+                    a = (s + pos[f]) % L
+                    m = sp[a, ln]
+                    if m < 0:
+                        continue
+                    lens[f] = m
+                    lens[f + 1] = ln - m
+                    gs[f] = hg
+                    gs[f + 1] = hg
+                    pos[f + 1] = pos[f] + m
+                    ok = True
+                    break
+            elif p < f:
+                # forced length: check the relation once
+                if trial[f] == 0:
+                    trial[f] = 1
+                    ln = lens[p]
+                    if pos[f] + ln <= L:
+                        a = (s + pos[p]) % L
+                        bstart = (s + pos[f]) % L
+                        g0 = -1
+                        if kind[f] == 3 and glide > 0:
+                            for i in range(f):
+                                if kind[i] == 3 and partner[i] < i and lens[i] > 0:
+                                    g0 = gs[i] if glide == 1 else mul[half, gs[i]]
+                                    break
+                        for ci in range(ncand[kind[f]]):
+                            g = cands[kind[f], ci]
+                            if g0 >= 0 and ln > 0 and g != g0:
+                                continue
+                            if ln == 0:
+                                good = True
+                            elif det[g] > 0:
+                                good = ext[g, a, (bstart + ln - 1) % L] >= ln
+                            else:
+                                good = fwd[g, a, bstart] >= ln
+                            if good:
+                                lens[f] = ln
+                                gs[f] = g
+                                ok = True
+                                break
+            elif p == f and f == k - 1:
+                if trial[f] == 0:
+                    trial[f] = 1
+                    ln = L - pos[f]
+                    a = (s + pos[f]) % L
+                    g = cands[kind[f], 0]
+                    if ln == 0 or ext[g, a, (a + ln - 1) % L] >= ln:
+                        lens[f] = ln
+                        gs[f] = g
+                        ok = True
+            else:
+                while target != -2:
+                    ln = trial[f]
+                    if target >= 0:
+                        if ln > 0:
+                            break
+                        ln = target
+                    need = ln if p == f else 2 * ln
+                    if pos[f] + need > L:
+                        break
+                    trial[f] = ln + 1 if target < 0 else 1
+                    if p == f:
+                        a = (s + pos[f]) % L
+                        g = cands[kind[f], 0]
+                        if ln > 0 and ext[g, a, (a + ln - 1) % L] < ln:
+                            continue
+                        gs[f] = g
+                    else:
+                        gs[f] = -1
+                    lens[f] = ln
+                    ok = True
+                    break
+            if ok:
+                pos[nf] = pos[f] + lens[f] + (lens[f + 1] if nf == f + 2 else 0)
+                if pos[nf] > L:
+                    continue
+                f = nf
+                if f < k:
+                    trial[f] = 0
+            else:
+                f = prevf[f] if f > 0 else -1
+    return found
+
+
+@njit(cache=True)
+def _match_all(W, perm, neg, det, cands, ncand, mul, half, partners, kinds, ks, glides, smaxdiv, out, maxout, found):
+    """Every template at once: tables and splits computed once, one compiled call per word."""
+    ext, fwd = _tables(W, perm, neg)
+    sp = _splits(ext, half, W.shape[0])
+    for t in range(partners.shape[0]):
+        k = ks[t]
+        smax = W.shape[0] // smaxdiv[t]
+        found[t] = _match(W, ext, fwd, sp, det, partners[t, :k], kinds[t, :k], cands, ncand, glides[t],
+                          mul, half, out[t], maxout, smax)
+
+
+@dataclass
+class Factorisation:
+    template: str
+    family: str
+    start: int
+    lengths: tuple[int, ...]
+    maps: tuple[int, ...]  # group element of each factor (for the second of a pair / self)
+    partner: tuple[int, ...]
+    kind: tuple[int, ...]
+
+    def signature(self) -> list[str]:
+        labels: dict[int, str] = {}
+        out = []
+        gn = 0
+        for i, (ln, kd) in enumerate(zip(self.lengths, self.kind)):
+            if ln == 0:
+                continue
+            if kd == G:
+                root = min(i, self.partner[i])
+                if root not in labels:
+                    gn += 1
+                    labels[root] = str(gn)
+                out.append("G" + labels[root])
+            else:
+                out.append(KIND_LETTER[kd])
+        return out
+
+    def to_json(self) -> dict:
+        return {"template": self.template, "start": self.start, "lengths": list(self.lengths),
+                "heesch": "".join(self.signature())}
+
+
+def _cands(grid: Grid) -> tuple[np.ndarray, np.ndarray]:
+    r = grid.rotation_order
+    kinds = {T: [0], C: [r // 2], Q: [r // 4, 3 * r // 4] if r % 4 == 0 else [], G: list(range(r, 2 * r))}
+    cands = np.zeros((4, 2 * r), np.int64)
+    ncand = np.zeros(4, np.int64)
+    for kd, lst in kinds.items():
+        cands[kd, :len(lst)] = lst
+        ncand[kd] = len(lst)
+    return cands, ncand
+
+
+def factorisations(grid: Grid, letters: np.ndarray, maxout: int = 256, dedupe: bool = False) -> list[Factorisation]:
+    """Every match of every template (``dedupe``: one per pattern of nonempty factors)."""
+    W = np.asarray(letters, dtype=np.int64)
+    tabs = _template_arrays(grid)
+    if tabs is None:
+        return []
+    partners, kinds, ks, glides, smaxdiv, usable = tabs
+    cands, ncand = _cands(grid)
+    mul = np.array(_group_mul(grid), dtype=np.int64)
+    half = grid.rotation_order // 2
+    out = np.zeros((len(ks), maxout, 13), np.int64)
+    found = np.zeros(len(ks), np.int64)
+    _match_all(W, grid.letter_perm, grid.neg, grid.det, cands, ncand, mul, half, partners, kinds, ks,
+               glides, smaxdiv, out, maxout, found)
+    res: list[Factorisation] = []
+    for t, (name, fam, partner, kind, _glide) in enumerate(usable):
+        k = len(partner)
+        rows = out[t, :min(int(found[t]), maxout), :1 + 2 * k]
+        if not len(rows):
+            continue
+        nonempty = rows[:, 1:1 + k] > 0
+        keep = nonempty.sum(axis=1) >= 3
+        rows, nonempty = rows[keep], nonempty[keep]
+        if dedupe and len(rows):
+            # one factorisation per pattern of nonempty factors (the Heesch type depends on nothing else)
+            masks = (nonempty * (1 << np.arange(k))).sum(axis=1).tolist()
+            first: dict[int, int] = {}
+            for i, mk in enumerate(masks):
+                first.setdefault(mk, i)
+            rows = rows[sorted(first.values())]
+        for row in rows.tolist():
+            res.append(Factorisation(name, fam, row[0], tuple(row[1:1 + k]), tuple(row[1 + k:]), partner, kind))
+    return res
+
+
+@lru_cache(maxsize=8)
+def _template_arrays(grid: Grid):
+    """The templates usable on a grid, packed into arrays for the compiled matcher."""
+    _, ncand = _cands(grid)
+    usable = [t for t in TEMPLATES if all(ncand[kd] > 0 for kd in t[3])]
+    if not usable:
+        return None
+    n = len(usable)
+    partners = np.zeros((n, 6), np.int64)
+    kinds = np.zeros((n, 6), np.int64)
+    ks = np.zeros(n, np.int64)
+    glides = np.zeros(n, np.int64)
+    smaxdiv = np.ones(n, np.int64)
+    for i, (name, _fam, partner, kind, glide) in enumerate(usable):
+        k = len(partner)
+        partners[i, :k] = partner
+        kinds[i, :k] = kind
+        ks[i] = k
+        glides[i] = glide
+        # A B C Â B̂ Ĉ read from Â is the same factorisation: starts in the first half suffice
+        smaxdiv[i] = 2 if name == "translation" else 1
+    return partners, kinds, ks, glides, smaxdiv, tuple(usable)
+
+
+# --------------------------------------------------------------------------- IH types
+
+@lru_cache(maxsize=1)
+def heesch_table() -> dict[tuple[str, ...], int]:
+    """Canonical Heesch-type letter sequences -> IH number (from the isohedral family's data)."""
+    from tilekit.resources import catalogue_dir
+
+    out: dict[tuple[str, ...], int] = {}
+    path = catalogue_dir() / "isohedral" / "properties.tsv"
+    for line in path.read_text().splitlines():
+        if not line.strip() or line.startswith("#"):
+            continue
+        parts = line.split("\t")
+        ih, heesch = int(parts[0]), parts[4].strip()
+        if heesch in ("-", ""):
+            continue
+        out.setdefault(_canon_sig(_split(heesch)), ih)
+    return out
+
+
+def ih_groups() -> dict[int, str]:
+    from tilekit.resources import catalogue_dir
+
+    out = {}
+    for line in (catalogue_dir() / "isohedral" / "properties.tsv").read_text().splitlines():
+        if line.strip() and not line.startswith("#"):
+            parts = line.split("\t")
+            out[int(parts[0])] = parts[2]
+    return out
+
+
+def _split(heesch: str) -> list[str]:
+    out, i = [], 0
+    while i < len(heesch):
+        j = i + 1
+        while j < len(heesch) and heesch[j].isdigit():
+            j += 1
+        out.append(heesch[i:j])
+        i = j
+    return out
+
+
+def _relabel(seq: list[str]) -> tuple[str, ...]:
+    names: dict[str, str] = {}
+    out = []
+    for s in seq:
+        if s.startswith("G"):
+            if s not in names:
+                names[s] = "G" + str(len(names) + 1)
+            out.append(names[s])
+        else:
+            out.append(s)
+    # a single glide pair is written plain G
+    if len(names) == 1:
+        out = ["G" if s.startswith("G") else s for s in out]
+    return tuple(out)
+
+
+@lru_cache(maxsize=4096)
+def _canon_sig_cached(seq: tuple[str, ...]) -> tuple[str, ...]:
+    return _canon_sig(list(seq))
+
+
+def _canon_sig(seq: list[str]) -> tuple[str, ...]:
+    n = len(seq)
+    cands = []
+    for s in (seq, seq[::-1]):
+        for i in range(n):
+            cands.append(_relabel(s[i:] + s[:i]))
+    return min(cands)
+
+
+def ih_type(f: Factorisation) -> int | None:
+    return heesch_table().get(_canon_sig_cached(tuple(f.signature())))
+
+
+# --------------------------------------------------------------------------- construction
+
+def _hnf_add(basis: tuple[int, int, int] | None, v: tuple[int, int]) -> tuple[int, int, int]:
+    """Insert integer vector v into a 2D lattice basis in Hermite normal form (a, b, d):
+    rows (a, b) and (0, d), a >= 0, d >= 0, 0 <= b < d when d > 0."""
+    a, b, d = basis or (0, 0, 0)
+    vx, vy = int(v[0]), int(v[1])
+    if vx != 0 or a != 0:
+        g, s, t = _egcd(a, vx)
+        na, nb = s * a + t * vx, s * b + t * vy
+        wy = (vx // g) * b - (a // g) * vy  # the combination with x component 0
+        a, b = na, nb
+        d = _gcd(d, wy)
+    else:
+        d = _gcd(d, vy)
+    if a < 0:
+        a, b = -a, -b
+    if d:
+        b %= d
+    return a, b, d
+
+
+def _gcd(x: int, y: int) -> int:
+    x, y = abs(x), abs(y)
+    while y:
+        x, y = y, x % y
+    return x
+
+
+def _egcd(a: int, b: int) -> tuple[int, int, int]:
+    x0, y0, x1, y1 = 1, 0, 0, 1
+    while b:
+        q = a // b
+        a, b = b, a - q * b
+        x0, x1 = x1, x0 - q * x1
+        y0, y1 = y1, y0 - q * y1
+    if a < 0:
+        a, x0, y0 = -a, -x0, -y0
+    return a, x0, y0
+
+
+@dataclass
+class BuiltTiling:
+    factorisation: Factorisation
+    ih: int | None
+    unit: list[tuple[np.ndarray, np.ndarray]]  # (M 2x2, t) fine-coordinate placements
+    lattice: np.ndarray  # (2, 2) rows: fine-coordinate translation vectors
+
+
+def _generators(grid: Grid, verts: np.ndarray, f: Factorisation) -> list[tuple[int, tuple[int, int]]]:
+    """(group index, translation) of the isometry taking the tile to its neighbour across each factor."""
+    L = len(verts)
+    starts = []
+    p = f.start
+    for ln in f.lengths:
+        starts.append(p)
+        p += ln
+    inv = _group_inverse(grid)
+    gens = []
+    for i, ln in enumerate(f.lengths):
+        j = f.partner[i]
+        if ln == 0 or j > i:
+            continue
+        g = f.maps[i]
+        M = grid.group[g]
+        sj = verts[starts[j] % L]
+        target = verts[(starts[i] + ln) % L] if grid.det[g] > 0 else verts[starts[i] % L]
+        t = target - M @ sj
+        gens.append((g, (int(t[0]), int(t[1]))))
+        if j != i:
+            gi = inv[g]
+            ti = -(grid.group[gi] @ t)
+            gens.append((gi, (int(ti[0]), int(ti[1]))))
+    return gens
+
+
+@lru_cache(maxsize=8)
+def _group_inverse(grid: Grid) -> tuple[int, ...]:
+    out = []
+    for m in grid.group:
+        mi = np.round(np.linalg.inv(m)).astype(np.int64)
+        out.append(int(np.nonzero((grid.group == mi).all(axis=(1, 2)))[0][0]))
+    return tuple(out)
+
+
+@lru_cache(maxsize=8)
+def _group_mul(grid: Grid) -> tuple[tuple[int, ...], ...]:
+    G = grid.group
+    return tuple(tuple(int(np.nonzero((G == G[a] @ G[b]).all(axis=(1, 2)))[0][0]) for b in range(len(G)))
+                 for a in range(len(G)))
+
+
+def build(grid: Grid, cells: np.ndarray, verts: np.ndarray, f: Factorisation) -> BuiltTiling | None:
+    """The tiling of a factorisation, proved exact in integers, or None if it does not tile.
+
+    Coset enumeration of the generated group modulo its translations: one representative
+    per linear part; every product that lands on a known linear part gives a translation
+    (Schreier generators), so the Hermite normal form of those is the translation lattice.
+    """
+    gens = _generators(grid, verts, f)
+    mul = _group_mul(grid)
+    G = grid.group
+    reps: dict[int, tuple[int, int]] = {0: (0, 0)}
+    order = [0]
+    basis = None
+    k = 0
+    while k < len(order):
+        m = order[k]
+        tx, ty = reps[m]
+        M = G[m]
+        for a, (bx, by) in gens:
+            m2 = mul[m][a]
+            t2 = (int(M[0, 0] * bx + M[0, 1] * by + tx), int(M[1, 0] * bx + M[1, 1] * by + ty))
+            if m2 in reps:
+                r = reps[m2]
+                if r != t2:
+                    basis = _hnf_add(basis, (t2[0] - r[0], t2[1] - r[1]))
+            else:
+                reps[m2] = t2
+                order.append(m2)
+        k += 1
+    if basis is None or basis[0] == 0 or basis[2] == 0:
+        return None
+    a, b, d = basis
+    area = a * d
+    cell_area = grid.period * grid.period // len(grid.roots)
+    lat = np.array([[a, b], [0, d]], dtype=np.int64)
+    seen: set[tuple[int, int]] = set()
+    tiles: set[tuple] = set()
+    unit = []
+    for m in order:
+        t = np.array(reps[m], dtype=np.int64)
+        img = cells @ G[m].T + t
+        # reduce modulo the lattice rows (a, b), (0, d): first x into [0, a), then y into [0, d)
+        q = np.floor_divide(img[:, 0], a)
+        x = img[:, 0] - q * a
+        y = np.mod(img[:, 1] - q * b, d)
+        red = tuple(sorted(zip(x.tolist(), y.tolist())))
+        if red in tiles:
+            continue  # the same tile again: an element of the tile's own stabiliser
+        tiles.add(red)
+        for c in red:
+            if c in seen:
+                return None
+            seen.add(c)
+        unit.append((G[m].copy(), t))
+    if len(unit) * len(cells) * cell_area != area:
+        return None
+    return BuiltTiling(f, ih_type(f), unit, lat)
+
+
+#: Templates whose every match tiles: Langerman-Winslow's theorem for their forms, and the
+#: tests build every match of every polyomino up to 8 cells and prove each tiling exact.
+SOUND = frozenset(t[0] for t in TEMPLATES)
+
+
+def analyse(grid: Grid, cells: np.ndarray, *, construct: bool = True, build_all: bool = False) -> dict:
+    """Factorisations, verdict, IH types and (with ``construct``) built tilings of a hole-free polyform.
+
+    Without ``construct`` (the bulk enumeration), matches of the sound templates are taken
+    as proved by the theorem and only the others are built; with it, one tiling per Heesch
+    type is built and proved exact (``build_all``: every match).
+    """
+    verts, letters = boundary_word(grid, cells)
+    facts = factorisations(grid, letters, dedupe=not build_all)
+    fams = {fam: False for fam in ("translation", "halfturn", "quarterturn", "reflection")}
+    tilings: list[BuiltTiling] = []
+    found: list[dict] = []
+    sigs_done: set[tuple] = set()
+    for f in facts:
+        sig = _canon_sig_cached(tuple(f.signature()))
+        if sig in sigs_done and not build_all:
+            continue
+        if construct or f.template not in SOUND:
+            bt = build(grid, cells, verts, f)
+            if bt is None:
+                continue
+            tilings.append(bt)
+        sigs_done.add(sig)
+        fams[f.family] = True
+        found.append(f.to_json() | {"ih": ih_type(f)})
+    ihs = sorted({d["ih"] for d in found if d["ih"] is not None})
+    return {
+        **fams,
+        "isohedral": bool(found),
+        "ih_types": ihs,
+        "factorisations": found,
+        "tilings": tilings,
+        "boundary": letters,
+    }
+
+
+def periodic_tiling(grid: Grid, cells: np.ndarray, bt: BuiltTiling, name: str = "", family: str = "polyomino"):
+    """A built tiling as a PeriodicTiling in Cartesian coordinates."""
+    from tilekit.tiling import PeriodicTiling
+
+    S = grid.to_xy
+    Si = np.linalg.inv(S)
+    proto = outline(grid, cells, name=name)
+    transforms = []
+    for M, t in bt.unit:
+        A = np.eye(3)
+        A[:2, :2] = S @ M @ Si
+        A[:2, 2] = S @ t
+        transforms.append(A)
+    v1 = S @ bt.lattice[0]
+    v2 = S @ bt.lattice[1]
+    return PeriodicTiling([proto], [0] * len(transforms), np.array(transforms), v1, v2,
+                          family=family, name=name)
+
+
+__all__ = ["SQUARE", "TEMPLATES", "analyse", "build", "factorisations", "ih_type", "periodic_tiling"]
