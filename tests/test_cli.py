@@ -186,8 +186,11 @@ def test_render_bad_input(pm, db, tmp_path, args, fragment):
 def test_render_system_with_unknown_family(pm, db, tmp_path):
     spec_file = tmp_path / "s.json"
     spec_file.write_text("{}")
+    # the core names no family: with no plugin claiming .json files, the user must name one
     assert_one_line_error(run(db, "render", "--system", str(spec_file), "-o", str(tmp_path / "o.svg")),
-                          "unknown family 'substitution'")
+                          "no installed family claims the file 's.json'; name one with --family")
+    assert_one_line_error(run(db, "render", "--system", str(spec_file), "--family", "substitution",
+                              "-o", str(tmp_path / "o.svg")), "unknown family 'substitution'")
 
 
 # --------------------------------------------------------------------------- search / runs

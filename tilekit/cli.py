@@ -501,7 +501,7 @@ def _vectors(tiling: Any, region: tuple[float, float, float, float]) -> tuple[An
 @click.option("--labels", is_flag=True, help="Draw edge labels.")
 @click.option("--vectors", is_flag=True, help="Draw the translation vectors (periodic tilings).")
 @click.option("--system", type=click.Path(exists=True, dir_okay=False), help="Build the tiling from this data file instead of the catalogue.")
-@click.option("--family", help="Family that reads --system (default: the family that claims the file's suffix).")
+@click.option("--family", help="Family that reads --system (default: the family that claims the file by its suffix).")
 @click.option("--max-tiles", type=POSITIVE, default=limits.MAX_TILES, show_default=True,
               help="Refuse (before drawing) a patch estimated at more than N tiles.")
 @click.option("--width", type=BoundedInt(16, 20_000), help="Image width in pixels (default: longer side 800).")
@@ -531,9 +531,17 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
     if system is not None:
         if name is not None:
             raise ParameterError(f"give either a tiling NAME ({name!r}) or --system FILE, not both")
-        # a plugin claims the file by its suffix (tilekit_claim_file); the last fallback keeps
-        # the old default until tests/test_cli.py stops asserting it
-        fam = get_family(family or family_for_file(system, state.pm) or "substitution", state.pm)
+        # a plugin claims the file by its suffix (tilekit_claim_file): the core names no family
+        claimed = family or family_for_file(system, state.pm)
+        if claimed is None:
+            from tilekit.plugins import families as all_families
+
+            readers = sorted(n for n, f in all_families(state.pm).items() if f.from_file is not None)
+            raise ParameterError(
+                f"no installed family claims the file {os.path.basename(system)!r}; name one with --family "
+                f"(families that read files: {', '.join(readers) or 'none'})"
+            )
+        fam = get_family(claimed, state.pm)
         if fam.from_file is None:
             raise ParameterError(f"family {fam.name!r} cannot read data files; --system needs a family that can")
         tiling = fam.from_file(system)
