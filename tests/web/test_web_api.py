@@ -203,3 +203,29 @@ def test_hostile_query_string_is_escaped(client):
     assert r.status_code == 400 and "<script>alert" not in r.text
     r = client.get("/tiling/" + evil)
     assert r.status_code == 404 and "<script>alert" not in r.text
+
+
+def test_parquet_deformation_is_a_tiling(client, app):
+    """Exercise 5.13: the strip's tiles evolve from squares to the keyframe, edge-to-edge."""
+    import shapely
+
+    from tilekit.web.service import parquet_tiles
+
+    state = app.app.state.tilekit
+    tiles, width, height = parquet_tiles(state.renderer, "IH61", ["a=0,0:0.3,0.3:0.7,-0.2:1,0"], 8, 3)
+    polys = [shapely.Polygon(p) for _, p in tiles]
+    assert all(p.is_valid for p in polys)
+    strip = shapely.box(0, 0, width, height)
+    inside = [p.intersection(strip) for p in polys]
+    assert abs(sum(p.area for p in inside) - strip.area) < 1e-6 * strip.area  # no overlaps ...
+    assert abs(shapely.union_all(inside).area - strip.area) < 1e-6 * strip.area  # ... and no gaps
+    left = min(polys, key=lambda p: p.centroid.x)
+    right = max(polys, key=lambda p: p.centroid.x)
+    assert len(left.exterior.coords) < len(right.exterior.coords) or left.length < right.length
+
+    r = client.get("/api/parquet/IH61", params={"edge": "a=0,0:0.3,0.3:0.7,-0.2:1,0", "download": "1"})
+    assert r.status_code == 200 and r.text.startswith("<svg") and "attachment" in r.headers["content-disposition"]
+    r = client.get("/api/parquet/IH16")
+    assert r.status_code == 400 and "fixed square tiling vertices" in r.json()["error"]
+    r = client.get("/api/parquet/IH61", params={"columns": "100"})
+    assert r.status_code == 400

@@ -153,3 +153,19 @@ def test_run_page_live_progress(page, web_catalogue):
         assert page.inner_text("#chunks") == "2/2"
     finally:
         cat.delete_run(run_id)
+
+
+def test_editor_parquet_export(page, tmp_path):
+    page.goto("/editor/IH61")
+    page.wait_for_selector("#editor[data-state=ok]", timeout=20000)
+    n = renders(page)
+    page.click(".edge .add-point")
+    wait_render(page, n)
+    assert page.is_visible("#export-parquet")
+    with page.expect_download() as dl:
+        page.click("#export-parquet")
+    path = tmp_path / "parquet.svg"
+    dl.value.save_as(path)
+    root = ET.parse(path).getroot()
+    assert root.tag == "{http://www.w3.org/2000/svg}svg"
+    assert len(root.findall(".//{http://www.w3.org/2000/svg}path")) == 2  # one per colour

@@ -265,6 +265,21 @@ def routes(state: Any) -> list[Route]:
         return JSONResponse(editor_info(tiling))
 
     @endpoint
+    def parquet(request: Request) -> Response:
+        from tilekit.render import parse_palette
+        from tilekit.web.service import MAX_EDGES, parquet_svg
+
+        q = request.query_params
+        edges = q.getlist("edge")
+        if len(edges) > MAX_EDGES:
+            raise ParameterError(f"at most {MAX_EDGES} edges")
+        name = request.path_params["name"]
+        svg = parquet_svg(state.renderer, name, edges, _int(request, "columns", 12, 2, 40),
+                          _int(request, "rows", 4, 1, 20), parse_palette(q.get("colours")) if q.get("colours") else None)
+        headers = {"Content-Disposition": f'attachment; filename="{name}-parquet.svg"'} if q.get("download") else {}
+        return Response(svg, media_type="image/svg+xml", headers=headers)
+
+    @endpoint
     def runs(request: Request) -> Response:
         from tilekit.catalogue import run_json
 
@@ -331,6 +346,7 @@ def routes(state: Any) -> list[Route]:
         Route("/api/render/{name:str}", render_get, methods=["GET"]),
         Route("/api/render", render_get, methods=["GET"]),
         Route("/api/render", render_post, methods=["POST"]),
+        Route("/api/parquet/{name:str}", parquet),
         Route("/api/runs", runs),
         Route("/api/runs/{run_id:str}", run),
         Route("/api/runs/{run_id:str}/results", run_results),

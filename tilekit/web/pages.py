@@ -271,6 +271,7 @@ def api_page() -> str:
         ("GET", "/api/tiling/NAME/editor", "parameters and edge shape classes of an isohedral tiling"),
         ("GET", "/api/render/NAME?params=&edges=&depth=&region=&colours=&size=&format=svg|png|json", "a bounded render"),
         ("POST", "/api/render", "the same as a JSON body {name, params, edges, ...}"),
+        ("GET", "/api/parquet/IHn?edge=&columns=12&rows=4", "a parquet deformation SVG (4^4 types with fixed square vertices)"),
         ("GET", "/api/runs", "every run"),
         ("GET", "/api/runs/ID", "one run with its counts"),
         ("GET", "/api/runs/ID/results?limit=&offset=", "a page of its results (its result table's rows)"),

@@ -203,3 +203,95 @@ def editor_info(tiling: Any) -> dict[str, Any]:
         "region": list(tiling.default_region().bounds),
         "parquet": t.topology == "4^4" and tv.parameters == 0,
     }
+
+
+def parquet_svg(renderer: Renderer, name: str, edges: list[str], columns: int = 12, rows: int = 4,
+                palette: Any = None, size: int = 1200) -> str:
+    """SVG of :func:`parquet_tiles` clipped to the strip."""
+    import html as _html
+
+    from tilekit.render import PALETTE
+
+    tiles, width, height = parquet_tiles(renderer, name, edges, columns, rows)
+    palette = tuple(palette) if palette else PALETTE
+    by_colour: dict[int, list[str]] = {}
+    for colour, poly in tiles:
+        d = "M" + " L".join(f"{x:.5g} {y:.5g}" for x, y in poly.tolist()) + "Z"
+        by_colour.setdefault(colour, []).append(d)
+    pad = 0.02 * width
+    scale = size / (width + 2 * pad)
+    out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{size}" height="{round((height + 2 * pad) * scale)}" '
+           f'viewBox="{-pad:.6g} {-(height + pad):.6g} {width + 2 * pad:.6g} {height + 2 * pad:.6g}">',
+           f'<rect x="{-pad:.6g}" y="{-(height + pad):.6g}" width="{width + 2 * pad:.6g}" '
+           f'height="{height + 2 * pad:.6g}" fill="#ffffff"/>',
+           f'<clipPath id="strip"><rect x="0" y="0" width="{width:.6g}" height="{height:.6g}"/></clipPath>',
+           f'<g transform="scale(1,-1)" clip-path="url(#strip)" stroke="#222" stroke-width="{1.2 / scale:.4g}" '
+           'stroke-linejoin="round">']
+    for c in sorted(by_colour):
+        out.append(f'<path fill="{_html.escape(palette[c % len(palette)])}" d="{" ".join(by_colour[c])}"/>')
+    out.append("</g></svg>")
+    return "\n".join(out)
+
+
+def parquet_tiles(renderer: Renderer, name: str, edges: list[str], columns: int = 12,
+                  rows: int = 4) -> tuple[list[tuple[int, Any]], float, float]:
+    """A parquet deformation (exercise 5.13) of a 4^4 type with fixed square tiling vertices.
+
+    The keyframes are the square (left) and the tile with ``edges`` (right). Every edge of
+    every tile takes the shape ``t * shape`` (the keyframe's control points with their offsets
+    from the straight edge scaled by t), where t is the x of the edge's midpoint across the
+    strip. An edge shared by two tiles has one midpoint and so one shape: the strip is a true
+    tiling whose tiles change from column to column. The transforms of the tiles do not
+    depend on the edge shapes (the tiling vertices are fixed), so they come from one patch.
+    """
+    import numpy as np
+
+    from tilekit.geometry import Affine
+    from tilekit.plugins.isohedral.engine import IsohedralTiling
+    from tilekit.plugins.isohedral.shapes import EdgeShape, parse_edge_option
+    if not (2 <= columns <= 40 and 1 <= rows <= 20):
+        raise ParameterError(f"a parquet deformation takes 2..40 columns and 1..20 rows, not {columns} x {rows}")
+    base = renderer.base_tiling(name)
+    if not isinstance(base, IsohedralTiling) or base.template.topology != "4^4" or base.params:
+        raise ParameterError(f"{name}: parquet deformations take the 4^4 types with fixed square tiling "
+                             "vertices (TV35: IH55, IH61, IH62, IH71, IH73, IH76)")
+    shapes = dict(parse_edge_option(e) for e in edges)
+    keyframe = base.configure(edges=list(shapes.items()))  # validates the right-hand keyframe
+
+    def at(t: float) -> IsohedralTiling:
+        scaled = {k: EdgeShape(np.column_stack([v.points[:, 0], t * v.points[:, 1]]), v.smooth)
+                  for k, v in keyframe.edge_shapes.items()}
+        return IsohedralTiling(base.template.ih, [], scaled, base.colouring, check=False)
+
+    verts = base.tiling_vertices()
+    side = float(np.linalg.norm(verts[1] - verts[0]))
+    width, height = columns * side, rows * side
+    patch = base.patch((-side, -side, width + side, height + side))  # tiles poking into the strip too
+    corners = list(base.prototile.corners)
+    cache: dict[int, list[np.ndarray]] = {}
+
+    def edge_paths(t: float) -> list[np.ndarray]:
+        q = int(round(max(0.0, min(1.0, t)) * 1000))
+        if q not in cache:
+            proto = at(q / 1000).prototile
+            outline, cs = proto.outline, list(proto.corners)
+            paths = []
+            for e, c in enumerate(cs):
+                stop = cs[e + 1] if e + 1 < len(cs) else len(outline)
+                idx = list(range(c, stop + 1))
+                paths.append(outline[[i % len(outline) for i in idx]])
+            cache[q] = paths
+        return cache[q]
+
+    straight = base.prototile.outline[corners]  # the tiling vertices in the prototile's frame
+    tiles = []
+    for k in range(len(patch)):
+        m = patch.transform[k]
+        ends = Affine.apply(m, straight)
+        pts = []
+        for e in range(len(corners)):
+            mid = (ends[e] + ends[(e + 1) % len(corners)]) / 2
+            path = Affine.apply(m, edge_paths(mid[0] / width)[e])
+            pts.append(path[:-1])
+        tiles.append((int(patch.colour[k]), np.vstack(pts)))
+    return tiles, width, height

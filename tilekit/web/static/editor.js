@@ -257,8 +257,9 @@
     if (info.parquet) {
       parquet.hidden = false;
       parquet.addEventListener("click", function () {
-        const q = new URLSearchParams();
+        const q = new URLSearchParams({ columns: 12, rows: 4, download: 1 });
         Object.keys(state.edges).forEach(function (label) { q.append("edge", edgeText(label)); });
+        if (state.palette) q.set("colours", state.palette);
         parquet.href = "/api/parquet/" + encodeURIComponent(info.name) + "?" + q;
       });
     }
