@@ -229,3 +229,20 @@ def test_parquet_deformation_is_a_tiling(client, app):
     assert r.status_code == 400 and "fixed square tiling vertices" in r.json()["error"]
     r = client.get("/api/parquet/IH61", params={"columns": "100"})
     assert r.status_code == 400
+
+
+def test_run_results_paged_from_the_result_table(client, web_catalogue):
+    """A real vertex-species run writes the archimedean plugin's vertex_species table."""
+    from tilekit.search import run_search
+
+    run_id = run_search(web_catalogue, "vertex-species")
+    total = web_catalogue.count_result_rows("vertex_species", [f"run_id={run_id}"])
+    first = client.get(f"/api/runs/{run_id}/results", params={"limit": 50}).json()
+    assert first["table"] == "vertex_species" and first["total"] == total > 50
+    assert len(first["rows"]) == 50 and all(r["run_id"] == run_id for r in first["rows"])
+    last = client.get(f"/api/runs/{run_id}/results", params={"limit": 50, "offset": total - 10}).json()
+    assert len(last["rows"]) == 10
+    assert not {r["vertex_type"] for r in first["rows"]} & {r["vertex_type"] for r in last["rows"]}
+    page = client.get(f"/runs/{run_id}", params={"offset": 50, "limit": 25})
+    assert page.status_code == 200 and "vertex_species" in page.text
+    assert f"{total:,} matches; 51–75 shown" in page.text
