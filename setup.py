@@ -17,6 +17,7 @@ setup(
         "tilekit._catalogue": ["**/*"],
         "tilekit._migrations": ["*.py", "*.mako", "*.ini", "versions/*.py"],
         "tilekit": ["py.typed"],
+        "tilekit.web": ["static/*"],
     },
     include_package_data=False,
 )

@@ -954,5 +954,32 @@ def catalogue_seed(state: State, replace: bool) -> None:
     click.echo(f"added {added}, replaced {replaced} tilings ({cat.count()} in the catalogue)")
 
 
+# --------------------------------------------------------------------------- serve (issue 16)
+# A self-contained block: the web catalogue and editor of tilekit.web (docs/web.md).
+
+
+@cli.command()
+@click.option("--host", default="127.0.0.1", show_default=True, help="Interface to bind (loopback unless told otherwise).")
+@click.option("--port", default=8000, show_default=True, type=click.IntRange(min=0, max=65535), help="TCP port.")
+@click.option("--writable", is_flag=True, help="Allow the write endpoints (cancel a run); read-only otherwise.")
+@click.option("--max-tiles", default=20_000, show_default=True, type=click.IntRange(min=1), help="Tiles one render request may draw.")
+@pass_state
+def serve(state: State, host: str, port: int, writable: bool, max_tiles: int) -> None:
+    """Serve the web catalogue, tiling pages and the isohedral editor (needs the web extra).
+
+    Example: tilekit serve --port 8000, then open http://127.0.0.1:8000/
+    """
+    try:
+        import uvicorn
+
+        from tilekit.web import create_app
+    except ImportError as exc:
+        raise TilekitError(f"tilekit serve needs the web extra ({exc.name} is missing): pip install 'tilekit[web]'") from None
+    state.catalogue()  # open (and migrate) before binding: a bad catalogue is one line, exit 2
+    app = create_app(state.url, writable=writable, max_tiles=max_tiles, catalogue=state.catalogue())
+    click.echo(f"serving {state.catalogue().url} on http://{host}:{port}/ ({'writable' if writable else 'read-only'})", err=True)
+    uvicorn.run(app, host=host, port=port, log_level="warning")
+
+
 if __name__ == "__main__":  # pragma: no cover
     main()

@@ -1,0 +1,62 @@
+"""Screenshots of the web pages for docs/web.md: python docs/images/make_web_screenshots.py URL.
+
+Drives Debian's chromium through Playwright against a running ``tilekit serve``.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from playwright.sync_api import sync_playwright
+
+FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+         "--disable-background-networking", "--disable-component-update", "--disable-sync"]
+HERE = Path(__file__).parent
+
+PAGES = [
+    ("web-search.png", "/?family=archimedean", None),
+    ("web-tiling.png", "/tiling/IH16", None),
+    ("web-family.png", "/family/isohedral", None),
+    ("web-editor.png", "/editor/IH21", "#editor[data-state=ok]"),
+    ("web-penrose.png", "/penrose", "#penrose[data-state=ok]"),
+    ("web-run.png", "/runs/2?limit=12", None),
+]
+
+
+def shape_edges(page) -> None:
+    """Give every edge of the editor a point and drag it, as a user would."""
+    for i in range(page.locator(".edge .add-point").count()):
+        page.locator(".edge .add-point").nth(i).click()
+        handle = page.locator(".edge").nth(i).locator(".handle").first
+        box = handle.bounding_box()
+        x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+        page.mouse.move(x, y)
+        page.mouse.down()
+        page.mouse.move(x + 12 * (-1) ** i, y - 10, steps=4)
+        page.mouse.up()
+    page.wait_for_timeout(800)
+    page.wait_for_selector("#editor[data-state=ok]", timeout=20000)
+
+
+def main(base: str, only: list[str]) -> None:
+    with sync_playwright() as p:
+        browser = p.chromium.launch(executable_path="/usr/bin/chromium", args=FLAGS, headless=True)
+        page = browser.new_page(viewport={"width": 1280, "height": 860})
+        for name, path, ready in PAGES:
+            if only and name not in only:
+                continue
+            page.goto(base + path, wait_until="networkidle")
+            if ready:
+                page.wait_for_selector(ready, timeout=20000)
+            if name == "web-editor.png":
+                shape_edges(page)
+            page.evaluate("window.scrollTo(0, 0)")
+            page.wait_for_timeout(300)
+            page.screenshot(path=str(HERE / name))
+            print("wrote", HERE / name)
+        browser.close()
+
+
+if __name__ == "__main__":
+    main(sys.argv[1] if len(sys.argv) > 1 else "http://127.0.0.1:8000", sys.argv[2:])

@@ -1,0 +1,113 @@
+"""Fixtures of the web tests: one seeded SQLite catalogue with a run, the app, a live server."""
+
+from __future__ import annotations
+
+import os
+import socket
+import threading
+import time
+
+import pytest
+
+pytest.importorskip("starlette")
+
+
+def _seed_run(cat) -> int:
+    """A finished run with 30 JSON results, and a running one (for the live progress page)."""
+    from tilekit.plugins import ChunkResult
+
+    run_id = cat.create_run("demo", {"n": 3}, [{"i": i} for i in range(3)])
+    owner = cat.start_worker(run_id, "web-tests")
+    while True:
+        got = cat.claim(run_id, owner, 3)
+        if not got:
+            break
+        for index, _spec in got:
+            rows = [{"chunk": index, "k": k, "label": f"<b>r{index}-{k}</b>"} for k in range(10)]
+            cat.record_chunk(run_id, index, ChunkResult(results=rows, counts={"found": 10}), 0.01, owner=owner)
+    cat.finish_worker(owner)
+    cat.finish_run(run_id, "done", summary={"found": 30})
+    return run_id
+
+
+@pytest.fixture(scope="session")
+def web_catalogue(tmp_path_factory):
+    from tilekit import open_catalogue
+
+    path = tmp_path_factory.mktemp("web") / "catalogue.sqlite"
+    cat = open_catalogue(str(path))
+    run_id = _seed_run(cat)
+    cat.web_test_run = run_id  # type: ignore[attr-defined]
+    yield cat
+    cat.close()
+
+
+@pytest.fixture(scope="session")
+def app(web_catalogue):
+    from tilekit.web import create_app
+
+    return create_app(catalogue=web_catalogue)
+
+
+@pytest.fixture(scope="session")
+def client(app):
+    from starlette.testclient import TestClient
+
+    with TestClient(app) as c:
+        yield c
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@pytest.fixture(scope="session")
+def live_server(app):
+    """uvicorn on 127.0.0.1 with a free port, in a thread; yields the base URL."""
+    import uvicorn
+
+    port = free_port()
+    server = uvicorn.Server(uvicorn.Config(app, host="127.0.0.1", port=port, log_level="warning"))
+    thread = threading.Thread(target=server.run, daemon=True)
+    thread.start()
+    deadline = time.monotonic() + 20
+    while not server.started:
+        if time.monotonic() > deadline or not thread.is_alive():
+            pytest.fail("uvicorn did not start within 20 s")
+        time.sleep(0.05)
+    yield f"http://127.0.0.1:{port}"
+    server.should_exit = True
+    thread.join(10)
+
+
+CHROMIUM = "/usr/bin/chromium"
+FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+         "--disable-background-networking", "--disable-component-update", "--disable-sync"]
+
+
+@pytest.fixture(scope="session")
+def browser():
+    """Debian's chromium through Playwright (its own browser download is not used)."""
+    if not os.path.exists(CHROMIUM):
+        if os.environ.get("CI") == "true":
+            pytest.fail(f"CI runs the browser tests: {CHROMIUM} is missing (.ci/run installs chromium)")
+        pytest.skip(f"no {CHROMIUM}: install Debian's chromium to run the browser tests")
+    sync_api = pytest.importorskip("playwright.sync_api")
+    with sync_api.sync_playwright() as p:
+        b = p.chromium.launch(executable_path=CHROMIUM, args=FLAGS, headless=True)
+        yield b
+        b.close()
+
+
+@pytest.fixture
+def page(browser, live_server):
+    context = browser.new_context(base_url=live_server, viewport={"width": 1280, "height": 900},
+                                  accept_downloads=True)
+    pg = context.new_page()
+    errors: list[str] = []
+    pg.on("pageerror", lambda exc: errors.append(str(exc)))
+    pg.js_errors = errors  # type: ignore[attr-defined]
+    yield pg
+    context.close()

@@ -1,0 +1,306 @@
+"""The Starlette application: pages over the JSON API, request limits, security headers.
+
+``create_app(catalogue_url=None, *, writable=False, max_tiles=20_000)``; ``tilekit serve``
+runs it with uvicorn. One catalogue is opened per app and shared by the worker threads
+(SQLAlchemy's pool); renders are cached by spec hash (:class:`tilekit.web.service.Renderer`).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import html
+import json
+import threading
+from pathlib import Path
+from typing import Any
+
+from starlette.applications import Starlette
+from starlette.concurrency import run_in_threadpool
+from starlette.requests import Request
+from starlette.responses import HTMLResponse, JSONResponse, Response
+from starlette.routing import Mount, Route
+from starlette.staticfiles import StaticFiles
+
+from tilekit.errors import TilekitError
+from tilekit.web import api, pages
+from tilekit.web.limits import DEFAULT_MAX_TILES
+from tilekit.web.service import Renderer
+
+STATIC = Path(__file__).with_name("static")
+MAX_QUERY = 8 * 1024
+MAX_PATH = 2 * 1024
+CSP = ("default-src 'self'; script-src 'self'; style-src 'self'; img-src 'self' data: blob:; "
+       "connect-src 'self'; object-src 'none'; base-uri 'none'; form-action 'self'; frame-ancestors 'none'")
+
+
+class State:
+    """What the routes share: the catalogue (opened on first use), the renderer, the mode."""
+
+    def __init__(self, url: str | None, writable: bool, max_tiles: int, catalogue: Any = None) -> None:
+        self.url = url
+        self.writable = writable
+        self.max_tiles = max_tiles
+        self._catalogue = catalogue
+        self._renderer: Renderer | None = None
+        self._lock = threading.Lock()
+        self.sse_interval = 0.5
+        self.sse_seconds = 600.0
+
+    @property
+    def catalogue(self) -> Any:
+        with self._lock:
+            if self._catalogue is None:
+                from tilekit.catalogue import open_catalogue
+
+                self._catalogue = open_catalogue(self.url)
+            return self._catalogue
+
+    @property
+    def renderer(self) -> Renderer:
+        cat = self.catalogue
+        with self._lock:
+            if self._renderer is None:
+                self._renderer = Renderer(cat, self.max_tiles)
+            return self._renderer
+
+    def close(self) -> None:
+        if self._catalogue is not None:
+            self._catalogue.close()
+
+
+class Limits:
+    """ASGI middleware: request line and body size limits, security headers on every answer."""
+
+    def __init__(self, app: Any, max_body: int = api.MAX_BODY) -> None:
+        self.app = app
+        self.max_body = max_body
+
+    async def __call__(self, scope: dict, receive: Any, send: Any) -> None:
+        if scope["type"] != "http":
+            await self.app(scope, receive, send)
+            return
+        problem = None
+        if len(scope.get("query_string", b"")) > MAX_QUERY:
+            problem = (414, f"query string over {MAX_QUERY} bytes")
+        elif len(scope.get("path", "")) > MAX_PATH:
+            problem = (414, f"path over {MAX_PATH} bytes")
+        else:
+            for key, value in scope.get("headers", []):
+                if key == b"content-length":
+                    if not value.isdigit() or int(value) > self.max_body:
+                        problem = (413, f"request body over {self.max_body} bytes")
+        if problem is not None:
+            response = JSONResponse({"error": problem[1], "status": problem[0]}, status_code=problem[0])
+            await response(scope, receive, _headers(send))
+            return
+        await self.app(scope, receive, _headers(send))
+
+
+def _headers(send: Any) -> Any:
+    async def wrapped(message: dict) -> None:
+        if message["type"] == "http.response.start":
+            headers = list(message.get("headers", []))
+            names = {k.lower() for k, _ in headers}
+            for k, v in ((b"content-security-policy", CSP.encode()), (b"x-content-type-options", b"nosniff"),
+                         (b"referrer-policy", b"no-referrer"), (b"x-frame-options", b"DENY")):
+                if k not in names:
+                    headers.append((k, v))
+            message = {**message, "headers": headers}
+        await send(message)
+
+    return wrapped
+
+
+def _html(text: str, status: int = 200) -> HTMLResponse:
+    return HTMLResponse(text, status_code=status)
+
+
+def page(fn: Any) -> Any:
+    async def handler(request: Request) -> Response:
+        try:
+            return await run_in_threadpool(fn, request)
+        except TilekitError as exc:
+            code = api.status_of(exc)
+            return _html(pages.error_page(api.one_line(exc), code), code)
+
+    handler.__name__ = fn.__name__
+    return handler
+
+
+def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_tiles: int = DEFAULT_MAX_TILES,
+               catalogue: Any = None) -> Any:
+    """The ASGI app for one catalogue (``catalogue`` may be an open Catalogue, for tests)."""
+    state = State(catalogue_url, writable, max_tiles, catalogue)
+
+    def isohedral_types() -> list[tuple[str, str]]:
+        from tilekit.plugins.isohedral.templates import get_template
+
+        out = []
+        for i in range(1, 94):
+            t = get_template(i)
+            if not t.marked:
+                out.append((t.name, f"{t.name} ({getattr(t, 'topology', '')})"))
+        return out
+
+    @page
+    def search(request: Request) -> Response:
+        q = request.query_params
+        form: dict[str, Any] = {k: q.get(k) for k in ("family", "text", "periodic", "edge_to_edge", "range_key",
+                                                      "range_min", "range_max", "order")}
+        form["where"] = [w for w in q.getlist("where") if w.strip()]
+        fams = sorted(state.catalogue_families())
+        try:
+            result = api.run_query(state, request)
+            entries = state.catalogue.query(limit=result["limit"], offset=result["offset"], **result["query"])
+            return _html(pages.search_page(form, fams, result, None, entries))
+        except TilekitError as exc:
+            code = api.status_of(exc)
+            return _html(pages.search_page(form, fams, None, api.one_line(exc), []), code)
+
+    def catalogue_families() -> list[str]:
+        from tilekit.plugins import families
+
+        return list(families(state.catalogue.pm))
+
+    state.catalogue_families = catalogue_families  # type: ignore[attr-defined]
+
+    @page
+    def tiling(request: Request) -> Response:
+        entry = state.catalogue.get(request.path_params["name"])
+        svg = describe = problem = None
+        editable = None
+        try:
+            t = state.renderer.base_tiling(entry.name)
+            describe = t.describe()
+            _, svg, _ = state.renderer.render(entry.name, {"size": 640})
+            from tilekit.plugins.isohedral.engine import IsohedralTiling
+
+            if isinstance(t, IsohedralTiling):
+                editable = "isohedral"
+            elif entry.name == "penrose-p3":
+                editable = "penrose"
+        except TilekitError as exc:
+            problem = api.one_line(exc)
+        return _html(pages.tiling_page(entry, svg, describe, problem, editable))
+
+    @page
+    def thumb(request: Request) -> Response:
+        name = request.path_params["name"]
+        try:
+            t, svg, _ = state.renderer.render(name, {"size": 160}, thumbnail=True)
+            etag = '"' + state.renderer.spec_hash(t) + '"'
+        except TilekitError as exc:
+            state.catalogue.get(name)  # an unknown name is a 404, a tiling without geometry a placeholder
+            svg = _placeholder(api.one_line(exc))
+            etag = None
+        headers = {"Cache-Control": "public, max-age=3600"}
+        if etag:
+            headers["ETag"] = etag
+            if request.headers.get("if-none-match") == etag:
+                return Response(status_code=304, headers=headers)
+        return Response(svg, media_type="image/svg+xml", headers=headers)
+
+    @page
+    def families_view(request: Request) -> Response:
+        from tilekit.plugins import families
+
+        rows = [(n, f.summary, state.catalogue.count(n)) for n, f in sorted(families(state.catalogue.pm).items())]
+        return _html(pages.families_page(rows))
+
+    @page
+    def family(request: Request) -> Response:
+        from tilekit.errors import NotFoundError
+        from tilekit.plugins import families
+
+        name = request.path_params["name"]
+        fams = families(state.catalogue.pm)
+        if name not in fams:
+            raise NotFoundError("family", name, fams)
+        limit = api._int(request, "limit", 48, 1, api.MAX_PAGE)
+        offset = api._int(request, "offset", 0, 0, 2**62)
+        total = state.catalogue.count_matching(name)
+        entries = state.catalogue.query(family=name, limit=limit, offset=offset)
+        fam = fams[name]
+        return _html(pages.family_page(name, fam.summary, fam.description or "", total, offset, limit, entries))
+
+    @page
+    def runs(request: Request) -> Response:
+        from tilekit.catalogue import run_json
+
+        return _html(pages.runs_page([run_json(i) for i in state.catalogue.runs()]))
+
+    @page
+    def run(request: Request) -> Response:
+        from tilekit.catalogue import run_json
+
+        run_id = api._run_id(request)
+        info = run_json(state.catalogue.run(run_id))
+        page_data = api.results_page(state, run_id, request)
+        return _html(pages.run_page(info, page_data, state.writable))
+
+    @page
+    def editor_pick(request: Request) -> Response:
+        return _html(pages.editor_pick_page(isohedral_types()))
+
+    @page
+    def editor(request: Request) -> Response:
+        from tilekit.plugins.isohedral.engine import IsohedralTiling
+        from tilekit.web.service import editor_info
+
+        name = request.path_params["name"]
+        t = state.catalogue.tiling(name)
+        if not isinstance(t, IsohedralTiling):
+            from tilekit.errors import ParameterError
+
+            raise ParameterError(f"{name} is not an unmarked isohedral type; the editor takes IH1..IH93")
+        return _html(pages.editor_page(editor_info(t), [n for n, _ in isohedral_types()]))
+
+    @page
+    def penrose(request: Request) -> Response:
+        return _html(pages.penrose_page())
+
+    async def api_doc(request: Request) -> Response:
+        return _html(pages.api_page())
+
+    async def not_found(request: Request, exc: Exception) -> Response:
+        code = getattr(exc, "status_code", 404)
+        detail = getattr(exc, "detail", "not found")
+        if request.url.path.startswith("/api/"):
+            return JSONResponse({"error": f"{detail}: {request.url.path}", "status": code}, status_code=code)
+        return _html(pages.error_page(f"{detail}: {request.url.path}", code), code)
+
+    routes = [
+        Route("/", search),
+        Route("/tiling/{name:str}", tiling),
+        Route("/thumb/{name:str}.svg", thumb),
+        Route("/families", families_view),
+        Route("/family/{name:str}", family),
+        Route("/runs", runs),
+        Route("/runs/{run_id:str}", run),
+        Route("/editor", editor_pick),
+        Route("/editor/{name:str}", editor),
+        Route("/penrose", penrose),
+        Route("/api", api_doc),
+        *api.routes(state),
+        Route("/favicon.ico", lambda r: Response(status_code=204)),
+        Mount("/static", app=StaticFiles(directory=str(STATIC)), name="static"),
+    ]
+    @contextlib.asynccontextmanager
+    async def lifespan(app: Any) -> Any:
+        yield
+        state.close()
+
+    app = Starlette(routes=routes, exception_handlers={404: not_found, 405: not_found}, lifespan=lifespan)
+    app.state.tilekit = state
+    return Limits(app)
+
+
+def _placeholder(message: str) -> str:
+    text = html.escape(message[:60])
+    return ('<svg xmlns="http://www.w3.org/2000/svg" width="160" height="160" viewBox="0 0 160 160">'
+            '<rect width="160" height="160" fill="#f3f3f3"/><text x="80" y="80" font-size="10" '
+            f'text-anchor="middle" fill="#888">no geometry</text><title>{text}</title></svg>')
+
+
+def dumps(value: Any) -> str:
+    return json.dumps(value, default=str)
