@@ -67,6 +67,7 @@ def open_catalogue(url: str | None = None, **kwargs):
 
 def polyomino(spec):
     """A polyomino from a usual name (``pentomino-F``), a code (``.xx/xx./.x.``) or (column, row) cells."""
+    # start-up cost: the polyomino family loads numba and NumPy
     from tilekit.plugins.polyomino.model import polyomino as _polyomino
 
     return _polyomino(spec)

@@ -26,7 +26,8 @@ from functools import cached_property
 
 import numpy as np
 
-from tilekit.errors import GeometryError, ParameterError, ParseError
+from tilekit.errors import GeometryError, NotFoundError, ParameterError, ParseError
+from tilekit.tiling import Prototile
 
 try:  # numba is a hard dependency; the guard keeps import errors readable
     from numba import njit
@@ -164,7 +165,6 @@ def get_grid(name: str | Grid) -> Grid:
     try:
         return GRIDS[name]
     except KeyError:
-        from tilekit.errors import NotFoundError
 
         raise NotFoundError("grid", name, GRIDS) from None
 
@@ -443,7 +443,6 @@ def word_text(letters) -> str:
 
 def outline(grid: Grid, cells: np.ndarray, name: str = ""):
     """The polyform's outer outline as a Prototile (corners only, Cartesian coordinates)."""
-    from tilekit.tiling import Prototile
 
     verts, letters = boundary_word(grid, cells)
     keep = letters != np.roll(letters, 1)

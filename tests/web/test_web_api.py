@@ -91,7 +91,7 @@ def test_render_svg_png_json_and_spec(client):
 
 
 @pytest.mark.parametrize(("params", "status", "needle"), [
-    ({"region": "-500,-500,500,500"}, 413, "about 4,618,803 tiles; the limit is 20,000"),
+    ({"region": "-500,-500,500,500"}, 413, "tiles; the limit is 20,000 per request"),
     ({"params": "0.2,0.3"}, 400, "IH16 takes 1 parameter(s)"),
     ({"edge": "z=0,0:1,0"}, 400, "no edge label 'z'"),
     ({"edge": "b=0,0:0.5,2:0.5,-2:1,0"}, 400, "IH16"),

@@ -11,6 +11,7 @@ __all__ = ["DEFAULT_MAX_TILES", "RenderTooLarge", "check_render_size", "create_a
 
 
 def create_app(*args, **kwargs):  # noqa: ANN002, ANN003 - forwards to tilekit.web.app.create_app
+    # start-up cost: the app imports starlette and the catalogue; tilekit.web.limits needs neither
     from tilekit.web.app import create_app as _create
 
     return _create(*args, **kwargs)

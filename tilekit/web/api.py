@@ -19,6 +19,7 @@ from starlette.requests import Request
 from starlette.responses import JSONResponse, Response, StreamingResponse
 from starlette.routing import Route
 
+from tilekit.catalogue import run_json
 from tilekit.errors import (
     CatalogueError,
     GeometryError,
@@ -27,7 +28,10 @@ from tilekit.errors import (
     ParseError,
     TilekitError,
 )
+from tilekit.plugins import families as fams
+from tilekit.render import parse_palette
 from tilekit.web.limits import RenderTooLarge
+from tilekit.web.service import MAX_EDGES, editor_info, normalise_options, parquet_svg
 
 MAX_PAGE = 200
 MAX_BODY = 64 * 1024
@@ -186,7 +190,6 @@ def routes(state: Any) -> list[Route]:
 
     @endpoint
     def families(request: Request) -> Response:
-        from tilekit.plugins import families as fams
 
         data = []
         for name, fam in sorted(fams(cat().pm).items()):
@@ -250,7 +253,6 @@ def routes(state: Any) -> list[Route]:
     def spec(request: Request) -> Response:
         raw = render_options(request, None)
         name = request.path_params["name"]
-        from tilekit.web.service import normalise_options
 
         tiling = state.renderer.build(name, normalise_options(raw))
         data = {"family": tiling.family, "name": tiling.name, "spec": tiling.spec()}
@@ -258,7 +260,6 @@ def routes(state: Any) -> list[Route]:
 
     @endpoint
     def editor(request: Request) -> Response:
-        from tilekit.web.service import editor_info, normalise_options
 
         name = request.path_params["name"]
         tiling = state.renderer.build(name, normalise_options(render_options(request, None)))
@@ -266,8 +267,6 @@ def routes(state: Any) -> list[Route]:
 
     @endpoint
     def parquet(request: Request) -> Response:
-        from tilekit.render import parse_palette
-        from tilekit.web.service import MAX_EDGES, parquet_svg
 
         q = request.query_params
         edges = q.getlist("edge")
@@ -281,13 +280,11 @@ def routes(state: Any) -> list[Route]:
 
     @endpoint
     def runs(request: Request) -> Response:
-        from tilekit.catalogue import run_json
 
         return JSONResponse({"runs": [run_json(i) for i in cat().runs()]})
 
     @endpoint
     def run(request: Request) -> Response:
-        from tilekit.catalogue import run_json
 
         run_id = _run_id(request)
         info = cat().run(run_id)
@@ -307,7 +304,6 @@ def routes(state: Any) -> list[Route]:
             return error_response(exc)
 
         async def stream() -> Any:
-            from tilekit.catalogue import run_json
 
             deadline = time.monotonic() + state.sse_seconds
             last = None
@@ -333,7 +329,6 @@ def routes(state: Any) -> list[Route]:
         if not state.writable:
             raise Forbidden("this catalogue is served read-only; start tilekit serve with --writable to change runs")
         info = cat().cancel_run(_run_id(request))
-        from tilekit.catalogue import run_json
 
         return JSONResponse(run_json(info))
 

@@ -21,10 +21,14 @@ from starlette.responses import HTMLResponse, JSONResponse, Response
 from starlette.routing import Mount, Route
 from starlette.staticfiles import StaticFiles
 
-from tilekit.errors import TilekitError
+from tilekit.catalogue import open_catalogue, run_json
+from tilekit.errors import NotFoundError, ParameterError, TilekitError
+from tilekit.plugins import families
+from tilekit.plugins.isohedral.engine import IsohedralTiling
+from tilekit.plugins.isohedral.templates import get_template
 from tilekit.web import api, pages
 from tilekit.web.limits import DEFAULT_MAX_TILES
-from tilekit.web.service import Renderer
+from tilekit.web.service import Renderer, editor_info
 
 STATIC = Path(__file__).with_name("static")
 MAX_QUERY = 8 * 1024
@@ -50,7 +54,6 @@ class State:
     def catalogue(self) -> Any:
         with self._lock:
             if self._catalogue is None:
-                from tilekit.catalogue import open_catalogue
 
                 self._catalogue = open_catalogue(self.url)
             return self._catalogue
@@ -133,7 +136,6 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
     state = State(catalogue_url, writable, max_tiles, catalogue)
 
     def isohedral_types() -> list[tuple[str, str]]:
-        from tilekit.plugins.isohedral.templates import get_template
 
         out = []
         for i in range(1, 94):
@@ -158,7 +160,6 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
             return _html(pages.search_page(form, fams, None, api.one_line(exc), []), code)
 
     def catalogue_families() -> list[str]:
-        from tilekit.plugins import families
 
         return list(families(state.catalogue.pm))
 
@@ -173,7 +174,6 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
             t = state.renderer.base_tiling(entry.name)
             describe = t.describe()
             _, svg, _ = state.renderer.render(entry.name, {"size": 640})
-            from tilekit.plugins.isohedral.engine import IsohedralTiling
 
             if isinstance(t, IsohedralTiling):
                 editable = "isohedral"
@@ -202,15 +202,12 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
 
     @page
     def families_view(request: Request) -> Response:
-        from tilekit.plugins import families
 
         rows = [(n, f.summary, state.catalogue.count(n)) for n, f in sorted(families(state.catalogue.pm).items())]
         return _html(pages.families_page(rows))
 
     @page
     def family(request: Request) -> Response:
-        from tilekit.errors import NotFoundError
-        from tilekit.plugins import families
 
         name = request.path_params["name"]
         fams = families(state.catalogue.pm)
@@ -225,13 +222,11 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
 
     @page
     def runs(request: Request) -> Response:
-        from tilekit.catalogue import run_json
 
         return _html(pages.runs_page([run_json(i) for i in state.catalogue.runs()]))
 
     @page
     def run(request: Request) -> Response:
-        from tilekit.catalogue import run_json
 
         run_id = api._run_id(request)
         info = run_json(state.catalogue.run(run_id))
@@ -244,13 +239,10 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
 
     @page
     def editor(request: Request) -> Response:
-        from tilekit.plugins.isohedral.engine import IsohedralTiling
-        from tilekit.web.service import editor_info
 
         name = request.path_params["name"]
         t = state.catalogue.tiling(name)
         if not isinstance(t, IsohedralTiling):
-            from tilekit.errors import ParameterError
 
             raise ParameterError(f"{name} is not an unmarked isohedral type; the editor takes IH1..IH93")
         return _html(pages.editor_page(editor_info(t), [n for n, _ in isohedral_types()]))

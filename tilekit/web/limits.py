@@ -1,8 +1,8 @@
 """Render limits for the web server: how many tiles a render request may draw.
 
-``check_render_size(tiling, region, depth)`` uses ``tiling.estimate_tiles(region, depth)``
-when the tiling has it (the hardening work adds it to ``Tiling``), and otherwise a
-conservative estimate of its own: for a fixed substitution depth, the exact tile count of
+``check_render_size(tiling, region, depth)`` uses ``Tiling.estimate_tiles(region)`` (the
+same estimate ``tilekit render`` checks against ``--max-tiles``; a depth is already part of
+a configured tiling), and for objects without it a conservative estimate of its own: for a fixed substitution depth, the exact tile count of
 that many substitutions of the seed tile (``M^depth e`` from the system's matrix); for
 anything else the region's area over the smallest prototile's area, times four (tiles that
 only touch the region are drawn too).
@@ -15,7 +15,8 @@ from typing import Any
 
 from tilekit.errors import ParameterError, TilekitError
 
-#: Tiles one render request may draw (the CLI's figure; ``tilekit serve --max-tiles``).
+#: Tiles one render request may draw (``tilekit serve --max-tiles``): smaller than the
+#: command line's ``tilekit.limits.MAX_TILES``, since a browser draws every tile it is sent.
 DEFAULT_MAX_TILES = 20_000
 
 
@@ -45,7 +46,13 @@ def estimate_tiles(tiling: Any, region: Any, depth: int | None = None) -> int:
     """An upper estimate of the tiles ``tiling.patch(region)`` draws at ``depth``."""
     own = getattr(tiling, "estimate_tiles", None)
     if callable(own):
-        return int(own(region, depth))
+        if depth is not None and callable(getattr(tiling, "configure", None)):
+            try:
+                own = tiling.configure(depth=depth).estimate_tiles
+            except TypeError:  # a family without depths: the estimate is the region's
+                pass
+        value = float(own(region))
+        return int(value) if math.isfinite(value) and value < 2**62 else 2**62
     if depth is None:
         depth = getattr(tiling, "depth", None)
     system = getattr(tiling, "system", None)

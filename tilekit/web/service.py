@@ -16,7 +16,11 @@ from collections.abc import Mapping
 from typing import Any
 
 from tilekit.errors import ParameterError, ParseError
-from tilekit.web.limits import DEFAULT_MAX_TILES, check_render_size
+from tilekit.geometry import Affine, as_region
+from tilekit.plugins.isohedral.engine import IsohedralTiling, shape_classes
+from tilekit.plugins.isohedral.shapes import EdgeShape, parse_edge_option
+from tilekit.render import PALETTE, parse_palette, patch_to_svg
+from tilekit.web.limits import DEFAULT_MAX_TILES, RenderTooLarge, check_render_size
 
 #: Options a render request may carry besides the tiling's name.
 RENDER_KEYS = ("params", "edges", "depth", "region", "colours", "colouring", "size", "r1", "theta1", "r2",
@@ -127,8 +131,6 @@ class Renderer:
     # rendering --------------------------------------------------------------
     def render(self, name: str, raw: Mapping[str, Any], *, thumbnail: bool = False) -> tuple[Any, str, int]:
         """(tiling, SVG text, tile estimate) for a tiling and raw options; bounded."""
-        from tilekit.geometry import as_region
-        from tilekit.render import parse_palette, patch_to_svg
 
         options = normalise_options(raw)
         size = int(_number(raw.get("size", 240 if thumbnail else 800), "size"))
@@ -148,7 +150,6 @@ class Renderer:
         estimate = check_render_size(tiling, area, options.get("depth"), self.max_tiles)
         patch = tiling.patch(area)
         if len(patch) > self.max_tiles:  # the estimate was low: refuse all the same
-            from tilekit.web.limits import RenderTooLarge
 
             raise RenderTooLarge(len(patch), self.max_tiles, tiling.name or name)
         svg = patch_to_svg(patch, palette=palette, labels=labels, region=area, size=size)
@@ -172,7 +173,6 @@ class Renderer:
 
 def editor_info(tiling: Any) -> dict[str, Any]:
     """What the isohedral editor needs: parameters, edge shape classes with their kinds."""
-    from tilekit.plugins.isohedral.engine import IsohedralTiling, shape_classes
 
     if not isinstance(tiling, IsohedralTiling):
         raise ParameterError(f"{tiling.name} is not an isohedral tiling; the editor takes IH1..IH93")
@@ -210,7 +210,6 @@ def parquet_svg(renderer: Renderer, name: str, edges: list[str], columns: int = 
     """SVG of :func:`parquet_tiles` clipped to the strip."""
     import html as _html
 
-    from tilekit.render import PALETTE
 
     tiles, width, height = parquet_tiles(renderer, name, edges, columns, rows)
     palette = tuple(palette) if palette else PALETTE
@@ -246,9 +245,6 @@ def parquet_tiles(renderer: Renderer, name: str, edges: list[str], columns: int 
     """
     import numpy as np
 
-    from tilekit.geometry import Affine
-    from tilekit.plugins.isohedral.engine import IsohedralTiling
-    from tilekit.plugins.isohedral.shapes import EdgeShape, parse_edge_option
     if not (2 <= columns <= 40 and 1 <= rows <= 20):
         raise ParameterError(f"a parquet deformation takes 2..40 columns and 1..20 rows, not {columns} x {rows}")
     base = renderer.base_tiling(name)

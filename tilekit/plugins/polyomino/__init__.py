@@ -12,14 +12,16 @@ from __future__ import annotations
 from pathlib import Path
 
 from tilekit.hookspecs import hookimpl
+from tilekit.plugins import CatalogueRecord, Family
+from tilekit.plugins.polyomino.model import USUAL, Polyomino, from_spec, tiling_of
+from tilekit.plugins.polyomino.search import SEARCH
+from tilekit.plugins.polyomino.tables import result_table
 
 FAMILY = "polyomino"
 
 
 @hookimpl
 def tilekit_families():
-    from tilekit.plugins import Family
-    from tilekit.plugins.polyomino.model import from_spec
 
     return [Family(FAMILY, "Polyominoes: free n-ominoes, holes, symmetry, boundary words, isohedral tilings",
                    from_spec,
@@ -28,8 +30,6 @@ def tilekit_families():
 
 @hookimpl
 def tilekit_catalogue_records():
-    from tilekit.plugins import CatalogueRecord
-    from tilekit.plugins.polyomino.model import USUAL, Polyomino, tiling_of
 
     out = []
     for name in USUAL:
@@ -60,7 +60,6 @@ def tilekit_catalogue_records():
 
 @hookimpl
 def tilekit_searches():
-    from tilekit.plugins.polyomino.search import SEARCH
 
     return [SEARCH]
 
@@ -73,7 +72,6 @@ def tilekit_migration_locations():
 @hookimpl
 def tilekit_result_tables():
     """The polyominoes result table (needs tilekit.plugins.ResultTable; empty until the run layer has it)."""
-    from tilekit.plugins.polyomino.tables import result_table
 
     rt = result_table()
     return [rt] if rt is not None else []

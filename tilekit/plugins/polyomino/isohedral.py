@@ -27,6 +27,8 @@ from functools import lru_cache
 import numpy as np
 
 from tilekit.lattice import SQUARE, Grid, boundary_word, outline
+from tilekit.resources import catalogue_dir
+from tilekit.tiling import PeriodicTiling
 
 try:
     from numba import njit
@@ -383,7 +385,6 @@ def _template_arrays(grid: Grid):
 @lru_cache(maxsize=1)
 def heesch_table() -> dict[tuple[str, ...], int]:
     """Canonical Heesch-type letter sequences -> IH number (from the isohedral family's data)."""
-    from tilekit.resources import catalogue_dir
 
     out: dict[tuple[str, ...], int] = {}
     path = catalogue_dir() / "isohedral" / "properties.tsv"
@@ -399,7 +400,6 @@ def heesch_table() -> dict[tuple[str, ...], int]:
 
 
 def ih_groups() -> dict[int, str]:
-    from tilekit.resources import catalogue_dir
 
     out = {}
     for line in (catalogue_dir() / "isohedral" / "properties.tsv").read_text().splitlines():
@@ -648,7 +648,6 @@ def analyse(grid: Grid, cells: np.ndarray, *, construct: bool = True, build_all:
 
 def periodic_tiling(grid: Grid, cells: np.ndarray, bt: BuiltTiling, name: str = "", family: str = "polyomino"):
     """A built tiling as a PeriodicTiling in Cartesian coordinates."""
-    from tilekit.tiling import PeriodicTiling
 
     S = grid.to_xy
     Si = np.linalg.inv(S)

@@ -18,6 +18,7 @@ from tilekit.errors import GeometryError, NotFoundError, ParameterError
 from tilekit.lattice import (
     SQUARE,
     as_cells,
+    boundary_word,
     canonical,
     decode,
     encode,
@@ -27,6 +28,7 @@ from tilekit.lattice import (
     symmetry_name,
     word_text,
 )
+from tilekit.plugins.polyomino.isohedral import analyse, periodic_tiling
 from tilekit.tiling import Patch, PeriodicTiling, Tiling
 
 FAMILY = "polyomino"
@@ -120,7 +122,6 @@ class Polyomino:
 
     @cached_property
     def boundary(self) -> str:
-        from tilekit.lattice import boundary_word
 
         return word_text(boundary_word(SQUARE, self.cells)[1])
 
@@ -134,7 +135,6 @@ class Polyomino:
 
     @cached_property
     def analysis(self) -> dict:
-        from tilekit.plugins.polyomino.isohedral import analyse
 
         if self.has_holes:
             return {"translation": False, "halfturn": False, "quarterturn": False, "reflection": False,
@@ -162,7 +162,6 @@ class Polyomino:
 def make_row(cells: np.ndarray, has_holes: bool, hole_count: int, analysis: dict | None,
              name: str | None = None, code: str | None = None, symmetry: str | None = None) -> dict[str, Any]:
     """One row of the polyominoes table from canonical cells and an analysis (None for a holey one)."""
-    from tilekit.lattice import boundary_word
 
     code = code or encode(SQUARE, cells)
     q = (cells - 1) // 2
@@ -201,7 +200,6 @@ class PolyominoTiling(PeriodicTiling):
     """An isohedral tiling by one polyomino (built from a boundary factorisation)."""
 
     def __init__(self, poly: Polyomino, index: int = 0) -> None:
-        from tilekit.plugins.polyomino.isohedral import periodic_tiling
 
         built = poly.analysis["tilings"]
         if not built:

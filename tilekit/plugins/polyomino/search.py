@@ -24,6 +24,8 @@ from tilekit.lattice import (
     symmetry_from_mask,
 )
 from tilekit.plugins import ChunkResult, Search, SearchParam
+from tilekit.plugins.polyomino.isohedral import analyse
+from tilekit.plugins.polyomino.model import make_row
 
 #: The stored enumeration holds polyominoes up to this size; beyond it, --count-only.
 MAX_STORED = 14
@@ -68,8 +70,6 @@ def chunks(params: Mapping[str, Any]) -> list[dict[str, Any]]:
 
 def chunk_rows(params: Mapping[str, Any], chunk: Mapping[str, Any]) -> tuple[dict[str, list[dict]], dict[str, int]]:
     """(rows by table name, counts) of one chunk: the contract's pure function."""
-    from tilekit.plugins.polyomino.isohedral import analyse
-    from tilekit.plugins.polyomino.model import make_row
 
     n = int(params["max_cells"])
     prefix = list(chunk.get("prefix") or [])
