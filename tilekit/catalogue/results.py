@@ -67,26 +67,37 @@ class ResultsMixin:
             if rt is None:
                 raise NotFoundError("result table", name, self.result_tables)
             columns = rt.table.c
-            has_run = "run_id" in columns
+            names = frozenset(c.name for c in columns)
+            json_cols = frozenset(c.name for c in columns if isinstance(c.type, sa.JSON))
+            has_run = "run_id" in names
+            checked: set[frozenset[str]] = set()  # key sets already found to be columns
             prepared = []
             for item in items:
                 if not isinstance(item, Mapping):
                     raise CatalogueError(f"run {run_id} chunk {index}: a row of {name!r} is a "
                                          f"{type(item).__name__}, not a mapping")
-                row: dict[str, Any] = {}
-                for key, value in item.items():
-                    if key not in columns:
+                keys = frozenset(item)
+                if keys not in checked:
+                    unknown = sorted(keys - names)
+                    if unknown:
                         raise CatalogueError(
-                            f"run {run_id} chunk {index}: table {name!r} has no column {key!r} "
+                            f"run {run_id} chunk {index}: table {name!r} has no column {unknown[0]!r} "
                             f"(columns: {', '.join(c.name for c in columns)})"
                         )
+                    checked.add(keys)
+                row = dict(item)
+                for key, value in row.items():
+                    kind = type(value)
+                    if kind is str or kind is int or kind is bool or value is None:
+                        continue
+                    if kind is float and math.isfinite(value):
+                        continue
                     try:
-                        value = _plain(value)
+                        row[key] = _plain(value)
                     except ValueError as exc:
                         raise CatalogueError(f"run {run_id} chunk {index}: {name}.{key}: {exc}") from None
-                    if isinstance(columns[key].type, sa.JSON):
-                        json_ok(f"run {run_id} chunk {index}", f"{name}.{key}", value)
-                    row[key] = value
+                for key in json_cols & keys:
+                    json_ok(f"run {run_id} chunk {index}", f"{name}.{key}", row[key])
                 missing = [k for k in rt.key if row.get(k) is None]
                 if missing:
                     raise CatalogueError(f"run {run_id} chunk {index}: a row of {name!r} has no key {missing}")
