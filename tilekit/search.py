@@ -572,8 +572,15 @@ def _finish(catalogue: Catalogue, run_id: int, search: Search, params: Mapping[s
     return run_id
 
 
+def _natural(key: str) -> tuple[Any, ...]:
+    """``fixed_9`` before ``fixed_10``: counts sort by their words, then their numbers."""
+    import re
+
+    return tuple(int(part) if part.isdigit() else part for part in re.split(r"(\d+)", key))
+
+
 def _summarize(catalogue: Catalogue, search: Search, params: Mapping[str, Any], run_id: int) -> dict[str, Any]:
-    counts = catalogue.run_counts(run_id)
+    counts = dict(sorted(catalogue.run_counts(run_id).items(), key=lambda kv: _natural(kv[0])))
     if search.summarize is None:
         info = catalogue.run(run_id)
         n_results = sum(1 for _ in catalogue.iter_results(run_id))
