@@ -8,6 +8,8 @@ the top of the repository and are importable at run time as ``tilekit._catalogue
 from setuptools import find_packages, setup
 
 packages = find_packages(include=["tilekit", "tilekit.*"])
+#: each built-in plugin's own Alembic branch (migrations/ beside its modules, not a package)
+plugin_migrations = {p: ["migrations/*.py"] for p in packages if p.count(".") == 2 and p.startswith("tilekit.plugins.")}
 packages += ["tilekit._catalogue", "tilekit._migrations"]
 
 setup(
@@ -18,6 +20,7 @@ setup(
         "tilekit._migrations": ["*.py", "*.mako", "*.ini", "versions/*.py"],
         "tilekit": ["py.typed"],
         "tilekit.web": ["static/*"],
+        **plugin_migrations,
     },
     include_package_data=False,
 )

@@ -32,3 +32,7 @@ def test_wheel_ships_catalogue_data_and_migrations(tmp_path) -> None:
     assert "tilekit/_migrations/env.py" in names
     versions = {p.name for p in (ROOT / "migrations" / "versions").glob("*.py")}
     assert versions and all(f"tilekit/_migrations/versions/{v}" in names for v in versions)
+    # the built-in plugins' own Alembic branches (their result tables) ship too
+    plugin_versions = {p.relative_to(ROOT).as_posix() for p in (ROOT / "tilekit" / "plugins").glob("*/migrations/*.py")}
+    assert {"tilekit/plugins/archimedean/migrations/a0001_vertex_species.py",
+            "tilekit/plugins/polyomino/migrations/p0001_polyominoes.py"} <= plugin_versions <= names
