@@ -190,7 +190,6 @@ def routes(state: Any) -> list[Route]:
 
     @endpoint
     def families(request: Request) -> Response:
-
         data = []
         for name, fam in sorted(fams(cat().pm).items()):
             data.append({"name": name, "summary": fam.summary, "tilings": cat().count(name)})
@@ -260,14 +259,12 @@ def routes(state: Any) -> list[Route]:
 
     @endpoint
     def editor(request: Request) -> Response:
-
         name = request.path_params["name"]
         tiling = state.renderer.build(name, normalise_options(render_options(request, None)))
         return JSONResponse(editor_info(tiling))
 
     @endpoint
     def parquet(request: Request) -> Response:
-
         q = request.query_params
         edges = q.getlist("edge")
         if len(edges) > MAX_EDGES:
@@ -280,12 +277,10 @@ def routes(state: Any) -> list[Route]:
 
     @endpoint
     def runs(request: Request) -> Response:
-
         return JSONResponse({"runs": [run_json(i) for i in cat().runs()]})
 
     @endpoint
     def run(request: Request) -> Response:
-
         run_id = _run_id(request)
         info = cat().run(run_id)
         out = run_json(info)
@@ -304,7 +299,6 @@ def routes(state: Any) -> list[Route]:
             return error_response(exc)
 
         async def stream() -> Any:
-
             deadline = time.monotonic() + state.sse_seconds
             last = None
             while time.monotonic() < deadline:

@@ -136,7 +136,6 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
     state = State(catalogue_url, writable, max_tiles, catalogue)
 
     def isohedral_types() -> list[tuple[str, str]]:
-
         out = []
         for i in range(1, 94):
             t = get_template(i)
@@ -160,7 +159,6 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
             return _html(pages.search_page(form, fams, None, api.one_line(exc), []), code)
 
     def catalogue_families() -> list[str]:
-
         return list(families(state.catalogue.pm))
 
     state.catalogue_families = catalogue_families  # type: ignore[attr-defined]
@@ -202,13 +200,11 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
 
     @page
     def families_view(request: Request) -> Response:
-
         rows = [(n, f.summary, state.catalogue.count(n)) for n, f in sorted(families(state.catalogue.pm).items())]
         return _html(pages.families_page(rows))
 
     @page
     def family(request: Request) -> Response:
-
         name = request.path_params["name"]
         fams = families(state.catalogue.pm)
         if name not in fams:
@@ -222,12 +218,10 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
 
     @page
     def runs(request: Request) -> Response:
-
         return _html(pages.runs_page([run_json(i) for i in state.catalogue.runs()]))
 
     @page
     def run(request: Request) -> Response:
-
         run_id = api._run_id(request)
         info = run_json(state.catalogue.run(run_id))
         page_data = api.results_page(state, run_id, request)
@@ -239,7 +233,6 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
 
     @page
     def editor(request: Request) -> Response:
-
         name = request.path_params["name"]
         t = state.catalogue.tiling(name)
         if not isinstance(t, IsohedralTiling):

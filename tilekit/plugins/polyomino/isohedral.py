@@ -400,7 +400,6 @@ def heesch_table() -> dict[tuple[str, ...], int]:
 
 
 def ih_groups() -> dict[int, str]:
-
     out = {}
     for line in (catalogue_dir() / "isohedral" / "properties.tsv").read_text().splitlines():
         if line.strip() and not line.startswith("#"):

@@ -122,7 +122,6 @@ class Polyomino:
 
     @cached_property
     def boundary(self) -> str:
-
         return word_text(boundary_word(SQUARE, self.cells)[1])
 
     def cell_pairs(self) -> list[list[int]]:
@@ -135,7 +134,6 @@ class Polyomino:
 
     @cached_property
     def analysis(self) -> dict:
-
         if self.has_holes:
             return {"translation": False, "halfturn": False, "quarterturn": False, "reflection": False,
                     "isohedral": False, "ih_types": [], "factorisations": [], "tilings": []}
@@ -200,7 +198,6 @@ class PolyominoTiling(PeriodicTiling):
     """An isohedral tiling by one polyomino (built from a boundary factorisation)."""
 
     def __init__(self, poly: Polyomino, index: int = 0) -> None:
-
         built = poly.analysis["tilings"]
         if not built:
             raise GeometryError(f"polyomino {poly.name or poly.code} has no isohedral tiling")
