@@ -176,7 +176,16 @@ def test_ctrl_c_while_the_catalogue_is_opening(tmp_path, sig, code, word):
     holder.execute("BEGIN IMMEDIATE")
     try:
         proc = start(f"sqlite:///{path}", "list", "--limit", "1")
-        time.sleep(2.0)
+
+        def opened() -> bool:  # the child has the catalogue file open: it is waiting for the lock
+            try:
+                return any(os.path.realpath(f"/proc/{proc.pid}/fd/{fd}") == str(path.resolve())
+                           for fd in os.listdir(f"/proc/{proc.pid}/fd"))
+            except OSError:
+                return False
+
+        wait_for(opened, timeout=60)
+        time.sleep(0.5)
         assert proc.poll() is None  # still waiting for the lock
         sent = time.monotonic()
         proc.send_signal(sig)
