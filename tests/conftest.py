@@ -2,9 +2,9 @@
 
 ``TILEKIT_TEST_POSTGRES`` (or ``--postgres URL``) names a PostgreSQL server URL whose user may
 create databases, e.g. ``postgresql+psycopg://tilekit:tilekit@127.0.0.1:5432/postgres``
-(.ci/run starts one). Tests that take ``db_url`` run once per backend; each PostgreSQL test
-gets a database of its own, dropped afterwards. Without a server the PostgreSQL cases skip,
-except under CI, where a missing server is an error.
+(README's test command starts one through .ci/services.sh). Tests that take ``db_url`` run
+once per backend; each PostgreSQL test gets a database of its own, dropped afterwards. Without
+a server the PostgreSQL cases fail: they are part of the suite, not optional.
 """
 
 from __future__ import annotations
@@ -31,9 +31,8 @@ def postgres_url(request):
     """A fresh, empty PostgreSQL database on the test server (skips without a server)."""
     server = postgres_server(request.config)
     if not server:
-        if os.environ.get("CI") == "true":
-            pytest.fail(f"CI runs the PostgreSQL tests: set {ENV} (.ci/run starts a server)")
-        pytest.skip(f"no PostgreSQL server: set {ENV} or --postgres")
+        pytest.fail(f"the PostgreSQL tests need a server: set {ENV} or --postgres "
+                    "(README's test command starts one through .ci/services.sh)")
     import sqlalchemy as sa
 
     admin = sa.create_engine(server, isolation_level="AUTOCOMMIT")

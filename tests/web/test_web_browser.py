@@ -1,7 +1,7 @@
 """Browser tests: Debian's chromium driven by Playwright against uvicorn on 127.0.0.1.
 
-Skipped (with the reason) when /usr/bin/chromium is missing, except under CI=true where that
-is a failure (see conftest.py); .ci/run installs chromium with apt.
+A missing /usr/bin/chromium is a failure (see conftest.py); README's test command installs it
+(.ci/services.sh).
 """
 
 from __future__ import annotations
