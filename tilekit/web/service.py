@@ -15,6 +15,7 @@ from collections import OrderedDict
 from collections.abc import Mapping
 from typing import Any
 
+from tilekit.cli import parse_region as cli_parse_region
 from tilekit.errors import ParameterError, ParseError
 from tilekit.geometry import Affine, as_region
 from tilekit.plugins.isohedral.engine import IsohedralTiling, shape_classes
@@ -51,15 +52,13 @@ def _numbers(value: Any, what: str) -> list[float]:
 
 
 def parse_region(value: Any) -> tuple[float, float, float, float] | None:
+    """A region from ``x0,y0,x1,y1`` text or a list of four numbers: the command line's
+    ``--region`` parser (the same bounds and messages)."""
     if value is None or value == "":
         return None
-    values = _numbers(value, "region")
-    if len(values) != 4:
-        raise ParseError(f"region {value!r} needs four numbers x0,y0,x1,y1")
-    x0, y0, x1, y1 = values
-    if not (x0 < x1 and y0 < y1):
-        raise ParseError(f"region {value!r} needs x0 < x1 and y0 < y1")
-    return x0, y0, x1, y1
+    if not isinstance(value, str):
+        value = ",".join(str(_number(v, "region")) for v in (value if isinstance(value, list | tuple) else [value]))
+    return cli_parse_region(value)
 
 
 def normalise_options(raw: Mapping[str, Any]) -> dict[str, Any]:
