@@ -358,16 +358,6 @@ class RunsMixin:
             ).scalar_one()
             return [] if left else None
 
-    def release(self, owner: str) -> int:
-        """Give back every chunk ``owner`` holds (pending again); return how many."""
-        with self._errors("releasing leases"), self.engine.begin() as conn:
-            self._lock_for_writing(conn, records=False)
-            return conn.execute(
-                sa.update(CHUNKS)
-                .where(CHUNKS.c.lease_owner == owner, CHUNKS.c.status == "leased")
-                .values(status="pending", lease_owner=None, lease_expires=None)
-            ).rowcount
-
     def finish_worker(self, owner: str, *, release: bool = True) -> None:
         """A worker ends: its leases are given back and its lifetime closed."""
         now = time.time()
