@@ -8,16 +8,28 @@ engine (:mod:`.engine`) turns a template, a parameter vector and edge shapes int
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Any
+
 from tilekit.hookspecs import hookimpl
+from tilekit.lazy import lazy_exports
 from tilekit.plugins import Family
-from tilekit.plugins.isohedral.engine import IsohedralTiling
-from tilekit.plugins.isohedral.lookup import lookup
-from tilekit.plugins.isohedral.records import records
-from tilekit.plugins.isohedral.shapes import EdgeShape, parse_edge_option
-from tilekit.plugins.isohedral.spec import tiling_from_spec
-from tilekit.plugins.isohedral.symbols import IncidenceSymbol
+
+if TYPE_CHECKING:  # pragma: no cover
+    from tilekit.plugins.isohedral.engine import IsohedralTiling
 
 __all__ = ["EdgeShape", "IncidenceSymbol", "IsohedralTiling", "isohedral_tiling", "lookup"]
+
+#: Public names, imported on first use (PEP 562): measured start-up cost, the engine loads
+#: NumPy, shapely and the symmetry package (about 0.5 s of `python -X importtime` on the
+#: 2-core dev box), which every `tilekit` command would pay when pluggy loads this plugin.
+_LAZY = {
+    "IsohedralTiling": "tilekit.plugins.isohedral.engine",
+    "lookup": "tilekit.plugins.isohedral.lookup",
+    "EdgeShape": "tilekit.plugins.isohedral.shapes",
+    "IncidenceSymbol": "tilekit.plugins.isohedral.symbols",
+}
+__getattr__, __dir__ = lazy_exports(__name__, _LAZY, pinned=("lookup",))
+
 
 DESCRIPTION = """\
 The 93 isohedral tiling types IH1..IH93 of Grünbaum and Shephard, after Kaplan's chapter 5
@@ -30,9 +42,21 @@ as the Laves tile of their topology with a marking."""
 
 def isohedral_tiling(name: str | int, **options) -> IsohedralTiling:
     """IsohedralTiling('IH16', params=[0.3], edges=['b=0,0:0.3,0.2:1,0'])-style convenience."""
+    # measured start-up cost: the engine (NumPy, shapely, symmetry; ~0.5 s), loaded on use
+    from tilekit.plugins.isohedral.engine import IsohedralTiling
+    from tilekit.plugins.isohedral.shapes import parse_edge_option  # start-up cost: as above
+
     edges = options.pop("edges", None) or []
     shapes = dict(parse_edge_option(e) if isinstance(e, str) else e for e in edges)
     return IsohedralTiling(name, options.pop("params", None), shapes, options.pop("colouring", None), **options)
+
+
+def _from_spec(spec: Any) -> IsohedralTiling:
+    # measured start-up cost: the engine (NumPy, shapely, symmetry; ~0.5 s), loaded when a
+    # tiling is built rather than when pluggy loads the plugin
+    from tilekit.plugins.isohedral.spec import tiling_from_spec
+
+    return tiling_from_spec(spec)
 
 
 @hookimpl
@@ -41,7 +65,7 @@ def tilekit_families():
         Family(
             name="isohedral",
             summary="The 93 isohedral tiling types (templates, incidence symbols, edge shapes)",
-            from_spec=tiling_from_spec,
+            from_spec=_from_spec,
             description=DESCRIPTION,
         )
     ]
@@ -49,4 +73,7 @@ def tilekit_families():
 
 @hookimpl
 def tilekit_catalogue_records():
+    # measured start-up cost: the records build tilings (the engine, ~0.5 s); seeding only
+    from tilekit.plugins.isohedral.records import records
+
     return records()

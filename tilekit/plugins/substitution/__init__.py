@@ -10,19 +10,16 @@ from __future__ import annotations
 from collections.abc import Mapping
 from functools import lru_cache
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import tilekit
+from tilekit.lazy import lazy_exports
 from tilekit.plugins import CatalogueRecord, Family
-from tilekit.plugins.substitution.hat import hat_systems  # the hat's own data format
-from tilekit.plugins.substitution.system import SubstitutionSystem, load_system
-from tilekit.plugins.substitution.tiling import (
-    SubstitutionTiling,
-    make_tiling,
-    system_properties,
-    tiling_from_spec,
-)
 from tilekit.resources import catalogue_dir
+
+if TYPE_CHECKING:  # pragma: no cover
+    from tilekit.plugins.substitution.system import SubstitutionSystem
+    from tilekit.plugins.substitution.tiling import SubstitutionTiling
 
 __all__ = [
     "SubstitutionSystem",
@@ -34,6 +31,16 @@ __all__ = [
     "tiling",
 ]
 
+#: Public names, imported on first use (PEP 562): measured start-up cost, the systems and
+#: the engine load NumPy and shapely (about 0.4 s of `python -X importtime` on the 2-core
+#: dev box), which every `tilekit` command would pay when pluggy loads this plugin.
+_LAZY = {
+    "SubstitutionSystem": "tilekit.plugins.substitution.system",
+    "load_system": "tilekit.plugins.substitution.system",
+    "SubstitutionTiling": "tilekit.plugins.substitution.tiling",
+}
+__getattr__, __dir__ = lazy_exports(__name__, _LAZY, pinned=("tiling",))
+
 
 def system_dir() -> Path:
     """The folder of shipped system files."""
@@ -43,6 +50,10 @@ def system_dir() -> Path:
 @lru_cache(maxsize=1)
 def builtin_systems() -> dict[str, Any]:
     """Every shipped system by name (loaded and validated once per process)."""
+    # measured start-up cost: the systems load NumPy and shapely (~0.4 s), on first use
+    from tilekit.plugins.substitution.hat import hat_systems  # the hat's own data format
+    from tilekit.plugins.substitution.system import load_system  # start-up cost: as above
+
     out: dict[str, SubstitutionSystem] = {}
     for path in sorted(system_dir().glob("*.toml")):
         system = load_system(path)
@@ -58,11 +69,18 @@ def tiling(name: str, **options: Any) -> SubstitutionTiling:
 
 def from_spec(spec: Mapping[str, Any]) -> SubstitutionTiling:
     """Rebuild a substitution tiling from its catalogue spec."""
+    # measured start-up cost: the tiling module loads NumPy and shapely (~0.4 s), on first use
+    from tilekit.plugins.substitution.tiling import tiling_from_spec
+
     return tiling_from_spec(spec, builtin_systems())
 
 
 def from_file(path: str) -> SubstitutionTiling:
     """A tiling from a user's system file; its spec embeds the file's data."""
+    # measured start-up cost: as in from_spec
+    from tilekit.plugins.substitution.system import load_system
+    from tilekit.plugins.substitution.tiling import make_tiling  # start-up cost: as above
+
     system = load_system(path)
     return make_tiling(system, spec_source={"system_data": system.data, "source": Path(path).name})
 
@@ -86,6 +104,9 @@ def tilekit_families() -> list[Family]:
 
 @tilekit.hookimpl
 def tilekit_catalogue_records() -> list[CatalogueRecord]:
+    # measured start-up cost: as in from_spec (records are built only when seeding)
+    from tilekit.plugins.substitution.tiling import system_properties
+
     records = []
     for name, system in builtin_systems().items():
         records.append(

@@ -13,45 +13,58 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import tilekit
 from tilekit.errors import ParameterError
+from tilekit.lazy import lazy_exports
 from tilekit.plugins import CatalogueRecord, ChunkResult, Family, Search, SearchParam
-from tilekit.plugins.wang.check import check_grid, grid_mismatches, patch_mismatches
-from tilekit.plugins.wang.cli import wang_group
-from tilekit.plugins.wang.fill import (
-    grid_to_patch,
-    random_access_fill,
-    random_access_tiles,
-    scanline_fill,
-)
-from tilekit.plugins.wang.render import load_texture, wang_svg, write_wang_image
-from tilekit.plugins.wang.sat import SolveResult, sat_solve
-from tilekit.plugins.wang.solve import (
-    WangProcedureResult,
-    backtrack_solve,
-    builder_solve,
-    solve,
-    wang_procedure,
-)
-from tilekit.plugins.wang.tileset import (
-    WangTileSet,
-    builtin_sets,
-    from_corners,
-    from_tuples,
-    get_tileset,
-    load_tileset,
-    parse_tileset,
-)
-from tilekit.plugins.wang.tiling import (
-    FAMILY,
-    FILL_METHODS,
-    WangTiling,
-    _facts,
-    periodic_unit,
-    set_facts,
-)
+
+if TYPE_CHECKING:  # pragma: no cover
+    from tilekit.plugins.wang.solve import WangProcedureResult
+    from tilekit.plugins.wang.tileset import WangTileSet
+    from tilekit.plugins.wang.tiling import WangTiling
+
+#: The family's name (tilekit.plugins.wang.tiling.FAMILY, which a test keeps equal): spelled
+#: here so that loading the plugin does not import the tiling module.
+FAMILY = "wang"
+
+#: Public names, imported on first use (PEP 562): measured start-up cost, the fills, solvers
+#: and tiling load NumPy, shapely, the builder and python-sat (about 0.5-1 s of
+#: `python -X importtime` on the 2-core dev box), which every `tilekit` command would pay when
+#: pluggy loads this plugin.
+_LAZY = {
+    "check_grid": "tilekit.plugins.wang.check",
+    "grid_mismatches": "tilekit.plugins.wang.check",
+    "patch_mismatches": "tilekit.plugins.wang.check",
+    "grid_to_patch": "tilekit.plugins.wang.fill",
+    "random_access_fill": "tilekit.plugins.wang.fill",
+    "random_access_tiles": "tilekit.plugins.wang.fill",
+    "scanline_fill": "tilekit.plugins.wang.fill",
+    "load_texture": "tilekit.plugins.wang.render",
+    "wang_svg": "tilekit.plugins.wang.render",
+    "write_wang_image": "tilekit.plugins.wang.render",
+    "SolveResult": "tilekit.plugins.wang.sat",
+    "sat_solve": "tilekit.plugins.wang.sat",
+    "WangProcedureResult": "tilekit.plugins.wang.solve",
+    "backtrack_solve": "tilekit.plugins.wang.solve",
+    "builder_solve": "tilekit.plugins.wang.solve",
+    "solve": "tilekit.plugins.wang.solve",
+    "wang_procedure": "tilekit.plugins.wang.solve",
+    "WangTileSet": "tilekit.plugins.wang.tileset",
+    "builtin_sets": "tilekit.plugins.wang.tileset",
+    "from_corners": "tilekit.plugins.wang.tileset",
+    "from_tuples": "tilekit.plugins.wang.tileset",
+    "get_tileset": "tilekit.plugins.wang.tileset",
+    "load_tileset": "tilekit.plugins.wang.tileset",
+    "parse_tileset": "tilekit.plugins.wang.tileset",
+    "FILL_METHODS": "tilekit.plugins.wang.tiling",
+    "WangTiling": "tilekit.plugins.wang.tiling",
+    "periodic_unit": "tilekit.plugins.wang.tiling",
+    "set_facts": "tilekit.plugins.wang.tiling",
+}
+__getattr__, __dir__ = lazy_exports(__name__, _LAZY, pinned=("solve",))
+
 
 __all__ = [
     "FILL_METHODS",
@@ -87,6 +100,9 @@ __all__ = [
 
 def record_for(ts: WangTileSet, procedure: WangProcedureResult | None = None) -> CatalogueRecord:
     """The catalogue record of a set (``procedure``: a run of Wang's procedure to report)."""
+    # measured start-up cost: the tiling module (NumPy, shapely, the solvers; ~0.5-1 s)
+    from tilekit.plugins.wang.tiling import WangTiling, _facts, set_facts
+
     tiling = WangTiling(ts)
     props = _facts(ts, procedure) if procedure is not None else set_facts(ts)
     return CatalogueRecord(
@@ -103,6 +119,9 @@ def record_for(ts: WangTileSet, procedure: WangProcedureResult | None = None) ->
 
 
 def _search_set(params: Mapping[str, Any]) -> WangTileSet:
+    # measured start-up cost: the tile-set module loads NumPy (~0.2 s)
+    from tilekit.plugins.wang.tileset import get_tileset, load_tileset
+
     name = params.get("set")
     if not name:
         raise ParameterError("wang-periodicity needs --set NAME (a shipped set or a .wang file)")
@@ -131,6 +150,9 @@ def periodicity_chunks(params: Mapping[str, Any]) -> list[dict[str, Any]]:
 
 def periodicity_run_chunk(params: Mapping[str, Any], chunk: Mapping[str, Any]) -> ChunkResult:
     """Run Wang's procedure on the chunk's m range; return its report and the updated record."""
+    # measured start-up cost: the solvers load NumPy, the builder and python-sat (~0.5-1 s)
+    from tilekit.plugins.wang.solve import wang_procedure
+
     ts = _search_set(params)
     method = str(params.get("method") or "sat")
     limit = params.get("time_limit")
@@ -168,7 +190,18 @@ PERIODICITY = Search(
 
 
 def _from_file(path: str) -> WangTiling:
+    # measured start-up cost: the tiling module (NumPy, shapely, the solvers; ~0.5-1 s)
+    from tilekit.plugins.wang.tileset import load_tileset
+    from tilekit.plugins.wang.tiling import WangTiling  # start-up cost: as above
+
     return WangTiling(load_tileset(path))
+
+
+def _from_spec(spec: Mapping[str, Any]) -> WangTiling:
+    # measured start-up cost: as in _from_file
+    from tilekit.plugins.wang.tiling import WangTiling
+
+    return WangTiling.from_spec(spec)
 
 
 @tilekit.hookimpl
@@ -177,7 +210,7 @@ def tilekit_families() -> list[Family]:
         Family(
             name=FAMILY,
             summary="Wang tiles: edge- or corner-coloured unit squares placed by translation (§6.2, §7.5)",
-            from_spec=WangTiling.from_spec,
+            from_spec=_from_spec,
             description=(
                 "Tile sets live in catalogue/wang/*.wang. Complete sets fill by Cohen et al.'s "
                 "scanline method, corner sets by hashed random access, others by a SAT solver. "
@@ -190,6 +223,9 @@ def tilekit_families() -> list[Family]:
 
 @tilekit.hookimpl
 def tilekit_catalogue_records() -> list[CatalogueRecord]:
+    # measured start-up cost: the tile sets load NumPy (records are built only when seeding)
+    from tilekit.plugins.wang.tileset import builtin_sets
+
     return [record_for(ts) for ts in builtin_sets().values()]
 
 
@@ -200,6 +236,10 @@ def tilekit_searches() -> list[Search]:
 
 @tilekit.hookimpl
 def tilekit_cli_commands(cli: Any) -> None:
+    # wang/cli.py imports only click and the core's cheap modules at its top (its commands
+    # import the library when they run); measured start-up cost: a few milliseconds
+    from tilekit.plugins.wang.cli import wang_group
+
     cli.add_command(wang_group)
 
 

@@ -8,22 +8,32 @@ rectangle/torus question with a chosen solver. SET is a shipped set name or a .w
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import click
 
 from tilekit import limits
 from tilekit.cli_types import POSITIVE, BoundedInt, FiniteFloat
 from tilekit.errors import ParseError
-from tilekit.plugins.wang.render import write_wang_image
-from tilekit.plugins.wang.solve import METHODS, solve
-from tilekit.plugins.wang.tileset import WangTileSet, get_tileset, load_tileset
-from tilekit.plugins.wang.tiling import WangTiling
+
+if TYPE_CHECKING:  # pragma: no cover
+    from tilekit.plugins.wang.tileset import WangTileSet
+
+#: The choices of ``--method``: the fill methods (tilekit.plugins.wang.tiling.FILL_METHODS) and
+#: the solvers (tilekit.plugins.wang.solve.METHODS), spelled here so that ``tilekit --help``
+#: does not import them (a test keeps the copies equal).
+FILL_CHOICES = ("auto", "random-access", "scanline", "periodic", "solver")
+SOLVE_CHOICES = ("sat", "builder", "backtrack")
 
 #: Largest image side of ``wang render --size`` (pixels): limits.MAX_PNG_PIXELS is its square.
 MAX_SIZE = 10_000
 
 
 def _tileset(name: str) -> WangTileSet:
+    # measured start-up cost: the tile-set module loads NumPy (~0.2 s); the commands' bodies
+    # import the library, so `tilekit --help` (which adds this group) stays cheap
+    from tilekit.plugins.wang.tileset import get_tileset, load_tileset
+
     if name.endswith(".wang") or Path(name).is_file():
         return load_tileset(name)
     return get_tileset(name)
@@ -62,7 +72,7 @@ def wang_group() -> None:
 @click.option("--rows", type=POSITIVE, default=12, show_default=True)
 @click.option("--cols", type=POSITIVE, default=16, show_default=True)
 @click.option("--seed", type=BoundedInt(0), default=0, show_default=True)
-@click.option("--method", type=click.Choice(["auto", "random-access", "scanline", "periodic", "solver"]), default="auto",
+@click.option("--method", type=click.Choice(FILL_CHOICES), default="auto",
               show_default=True, help="How to fill the grid.")
 @click.option("--texture", type=click.Path(exists=True, dir_okay=False), help="TOML file of SVG motifs per edge colour.")
 @click.option("--size", type=BoundedInt(16, MAX_SIZE), default=800, show_default=True,
@@ -78,6 +88,10 @@ def render_command(set_name: str, out: str, rows: int, cols: int, seed: int, met
       tilekit wang render stochastic-2colour --rows 20 --cols 30 -o wang.svg
       tilekit wang render jeandel-rao --rows 8 --cols 8 --method solver -o jr.png
     """
+    # measured start-up cost: the fills and the renderer load NumPy, shapely and the solvers
+    from tilekit.plugins.wang.render import write_wang_image
+    from tilekit.plugins.wang.tiling import WangTiling  # start-up cost: as above
+
     limits.refuse_over("grid cells", rows * cols, max_tiles, "--max-tiles")
     ts = _tileset(set_name)
     grid = WangTiling(ts, seed=seed, method=method).grid(0, 0, rows, cols)
@@ -90,7 +104,7 @@ def render_command(set_name: str, out: str, rows: int, cols: int, seed: int, met
 @click.option("--rows", type=POSITIVE, required=True)
 @click.option("--cols", type=POSITIVE, required=True)
 @click.option("--torus", is_flag=True, help="Ask for a torus (a periodic unit) instead of a rectangle.")
-@click.option("--method", type=click.Choice(METHODS), default="sat", show_default=True)
+@click.option("--method", type=click.Choice(SOLVE_CHOICES), default="sat", show_default=True)
 @click.option("--fix", "fixes", multiple=True, metavar="ROW,COL=TILE", help="Fix a tile (index or name); repeatable.")
 @click.option("--time-limit", type=FiniteFloat(1e7, min=0.0), help="Seconds before giving up.")
 @click.option("-o", "--output", "out", type=click.Path(dir_okay=False), help="Also draw the tiling found (.svg/.png).")
@@ -108,6 +122,10 @@ def solve_command(set_name: str, rows: int, cols: int, torus: bool, method: str,
       tilekit wang solve jeandel-rao --rows 6 --cols 6 --torus --method builder
       tilekit wang solve my.wang --rows 4 --cols 4 --fix 0,0=a -o found.svg
     """
+    # measured start-up cost: the solvers load NumPy, the builder and python-sat (~0.5-1 s)
+    from tilekit.plugins.wang.render import write_wang_image
+    from tilekit.plugins.wang.solve import solve  # start-up cost: as above
+
     limits.refuse_over("grid cells", rows * cols, max_tiles, "--max-tiles")
     ts = _tileset(set_name)
     if method == "sat":
