@@ -207,3 +207,64 @@ def test_covered_area_counts_each_tile_inside_the_region() -> None:
     disc = shapely.Point(1.5, 1.0).buffer(0.8)
     assert p.covered_area(disc) == pytest.approx(disc.area, rel=1e-9)
     assert p.subset(slice(0, 0)).covered_area(disc) == 0.0
+
+
+def _broken(patch: Patch, how: str, k: int) -> Patch:
+    if how == "shift":  # tile k moved by 1e-4 of the tile size
+        tr = patch.transform.copy()
+        tr[k, 0, 2] += 1e-4 * math.sqrt(abs(patch.prototiles[int(patch.prototile[k])].area))
+        return Patch(patch.prototiles, patch.prototile, tr, patch.colour, patch.aspect)
+    if how == "duplicate":
+        return Patch.concat([patch, patch.subset([k])])
+    return patch.subset(np.r_[0:k, k + 1 : len(patch)])  # removed
+
+
+@pytest.mark.parametrize("name", sorted(REGULAR))
+def test_validate_finds_a_shifted_a_duplicated_and_a_removed_tile(name: str) -> None:
+    region = (-6.1, -5.3, 5.7, 6.2)
+    patch = REGULAR[name]().patch(region)
+    assert patch.validate(region).ok
+    centres = patch.centres()
+    k = int(np.argmin(np.hypot(centres[:, 0], centres[:, 1])))  # a tile well inside the region
+    area = abs(patch.prototiles[0].area)
+    shifted = _broken(patch, "shift", k).validate(region)
+    assert not shifted.ok and shifted.overlaps and all(k in (i, j) for i, j, _ in shifted.overlaps)
+    assert all(0 < a < 1e-3 * area for _, _, a in shifted.overlaps)
+    doubled = _broken(patch, "duplicate", k).validate(region)
+    assert [(i, j) for i, j, _ in doubled.overlaps] == [(k, len(patch))]
+    assert doubled.overlaps[0][2] == pytest.approx(area, rel=1e-9)
+    removed = _broken(patch, "removed", k).validate(region)
+    assert not removed.overlaps and removed.uncovered_area == pytest.approx(area, rel=1e-6)
+    x0, y0, x1, y1 = removed.uncovered_bounds
+    cx, cy = centres[k]
+    assert x0 < cx < x1 and y0 < cy < y1
+
+
+@pytest.mark.parametrize("system", ["hat", "spectre", "penrose-p3"])
+def test_validate_on_non_convex_and_aperiodic_tiles(system: str) -> None:
+    """Non-convex prototiles are cut into convex pieces; the three breakages are found."""
+    from tilekit.plugins.substitution import tiling
+
+    t = tiling(system)
+    region = t.default_region()
+    patch = t.patch(region)
+    assert patch.validate(region).ok
+    k = len(patch) // 2
+    for how in ("shift", "duplicate"):
+        report = _broken(patch, how, k).validate(region)
+        assert not report.ok and report.overlaps and all(k in (i, j) for i, j, _ in report.overlaps[:1])
+    disc = shapely.Point(*patch.centres()[k]).buffer(0.5 * math.sqrt(abs(patch.prototiles[0].area)))
+    assert patch.validate(disc).ok
+    removed = _broken(patch, "removed", k).validate(disc)
+    assert not removed.ok and not removed.overlaps and removed.uncovered_area > 0.1 * disc.area
+
+
+def test_validate_reports_overlaps_sorted_once_and_degenerate_tiles_as_invalid() -> None:
+    sq = Prototile(regular_polygon(4))
+    moves = np.array([Affine.translation(0.5, 0), np.eye(3), Affine.translation(0.5, 0.5),
+                      np.diag([1.0, 0.0, 1.0]), Affine.translation(9, 9)])
+    moves[4, 0, 2] = np.nan
+    report = Patch([sq], [0] * 5, moves).validate()
+    assert [(i, j) for i, j, _ in report.overlaps] == [(0, 1), (0, 2), (1, 2)]
+    assert [a for _, _, a in report.overlaps] == pytest.approx([0.5, 0.5, 0.25])
+    assert report.invalid_tiles == [3, 4]

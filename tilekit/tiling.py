@@ -20,13 +20,16 @@ from shapely.geometry.base import BaseGeometry
 
 from tilekit.colouring import Colouring
 from tilekit.errors import GeometryError, ParameterError, ParseError
-from tilekit.geometry import AREA_TOL, EPS, Affine, as_region
-from tilekit.polygon import centroid, signed_area
+from tilekit.geometry import AREA_TOL, EPS, Affine, as_region, snap_noise
+from tilekit.polygon import centroid, ear_clip, interior_angles, signed_area
 from tilekit.render import patch_to_svg
 
 #: Refuse to rasterize more lattice cells than this in one patch (a typo guard, not a limit
 #: of the method: 20 million cells is already hundreds of millions of tiles).
 MAX_LATTICE_CELLS = 20_000_000
+
+#: Tiles per block of ``PeriodicTiling.patch``'s box test and output writes (fits in the cache).
+_PATCH_BLOCK = 1 << 14
 
 
 # --------------------------------------------------------------------------- Prototile
@@ -309,12 +312,20 @@ class Patch:
 
     # validation --------------------------------------------------------------
     def validate(self, region: Any = None, tolerance: float = AREA_TOL) -> ValidationReport:
-        """Check with shapely that no two tiles overlap and that ``region`` is covered.
+        """Check that no two tiles overlap and that ``region`` is covered.
 
         Overlaps are pairs whose interiors meet in more than ``tolerance`` times the median
         tile area (shared edges and float noise do not count). With a region, the part of
         it not covered by the union of the tiles must be below the same tolerance. Returns a
         report naming offending tiles; ``bool(report)`` is True when the patch is valid.
+
+        How: tiles are cut into convex pieces (each prototile once); pieces whose bounding
+        boxes overlap are found with a uniform grid and tested with separating axes in array
+        code, with a slack that bounds what a pair it passes can overlap by a tenth of the
+        tolerance. Only pairs no axis separates (real overlaps) reach shapely, whose overlay
+        then runs on coordinates snapped once (:func:`tilekit.geometry.snap_noise`).
+        Coverage is the sum of the tile areas inside the region (tiles on its boundary
+        clipped) minus the overlaps there.
         """
         n = len(self)
         report = ValidationReport(tiles=n)
@@ -324,24 +335,32 @@ class Patch:
                 report.region_area = report.uncovered_area = float(reg.area)
                 report.uncovered_bounds = tuple(reg.bounds)
             return report
-        geoms = self.geometries()
-        areas = shapely.area(geoms)
+        finite = np.isfinite(self.transform[:, :2, :]).all(axis=(1, 2))
+        proto_area = np.array([abs(p.area) for p in self.prototiles])
+        areas = np.abs(Affine.determinant(self.transform)) * proto_area[self.prototile]
+        areas[~finite] = 0.0
         tol_area = tolerance * float(np.median(areas))
         report.area_tolerance = tol_area
-        # Overlaps are computed with a snap-rounded overlay: GEOS's floating overlay can return
-        # a whole tile as the "intersection" of two tiles that share an edge up to float noise.
-        grid = 1e-9 * math.sqrt(float(np.median(areas)))
-        bad = ~shapely.is_valid(geoms) | (areas <= tol_area)
-        report.invalid_tiles = np.flatnonzero(bad).tolist()
-        tree = shapely.STRtree(geoms)
-        left, right = tree.query(geoms, predicate="intersects")
-        mask = left < right
-        left, right = left[mask], right[mask]
-        if len(left):
-            touching = shapely.touches(geoms[left], geoms[right])
-            left, right = left[~touching], right[~touching]
-        if len(left):
-            inter = shapely.area(shapely.intersection(geoms[left], geoms[right], grid_size=grid))
+        report.invalid_tiles = np.flatnonzero(~finite | (areas <= tol_area)).tolist()
+        outlines = _Outlines(self, finite)
+        scale = math.sqrt(max(float(np.median(areas)), EPS))
+        decimals = max(0, round(9 - math.log10(scale)))  # snap to 1e-9 of the tile size
+        pairs = _unseparated_pairs(self, outlines, tol_area)
+        made: dict[int, Any] = {}
+
+        def geoms_of(tiles: np.ndarray) -> np.ndarray:
+            """shapely polygons of ``tiles`` from the snapped outlines (each made once)."""
+            tiles = np.asarray(tiles, dtype=np.int64)
+            new = np.array(sorted({int(t) for t in tiles} - made.keys()), dtype=np.int64)
+            if len(new):
+                made.update(zip(new.tolist(), outlines.polygons(new, decimals)))
+            out = np.empty(len(tiles), dtype=object)
+            out[:] = [made[t] for t in tiles.tolist()]
+            return out
+
+        if len(pairs):
+            left, right = pairs[:, 0], pairs[:, 1]
+            inter = shapely.area(_overlay(shapely.intersection, geoms_of(left), geoms_of(right), scale=scale))
             hit = inter > tol_area
             report.overlaps = [
                 (int(i), int(j), float(a)) for i, j, a in zip(left[hit], right[hit], inter[hit])
@@ -349,21 +368,20 @@ class Patch:
         if region is not None:
             reg = as_region(region)
             report.region_area = float(reg.area)
-            # Covered area = sum of the tiles' areas inside the region minus their overlaps
-            # there: one vectorised clip instead of a union of every tile. The (slow) union
-            # runs only to locate a gap once one is known to exist.
-            near = tree.query(reg, predicate="intersects")
-            covered = self.covered_area(reg, _tiles=near, _grid=grid)
+            covered, near = _covered(self, reg, outlines, areas, geoms_of, scale)
             if report.overlaps:
-                ov = shapely.intersection(
-                    geoms[[i for i, _, _ in report.overlaps]],
-                    geoms[[j for _, j, _ in report.overlaps]],
-                    grid_size=grid,
+                ov = _overlay(
+                    shapely.intersection,
+                    geoms_of(np.array([i for i, _, _ in report.overlaps])),
+                    geoms_of(np.array([j for _, j, _ in report.overlaps])),
+                    scale=scale,
                 )
-                covered -= float(shapely.area(shapely.intersection(ov, reg, grid_size=grid)).sum())
+                covered -= float(shapely.area(_overlay(shapely.intersection, ov, reg, scale=scale)).sum())
             report.uncovered_area = max(0.0, report.region_area - covered)
             if report.uncovered_area > tol_area:
-                rest = shapely.difference(reg, shapely.union_all(geoms[near], grid_size=grid), grid_size=grid)
+                # locate the gap (only for an invalid patch): the slow union, once
+                union = _overlay(shapely.union_all, geoms_of(near), scale=scale)
+                rest = _overlay(shapely.difference, reg, union, scale=scale)
                 report.uncovered_area = float(rest.area)
                 if not rest.is_empty:
                     report.uncovered_bounds = tuple(float(v) for v in rest.bounds)
@@ -410,6 +428,228 @@ def region_tile_estimate(region: BaseGeometry, prototiles: Sequence[Prototile]) 
 def _is_box(geom: BaseGeometry) -> bool:
     x0, y0, x1, y1 = geom.bounds
     return abs(geom.area - (x1 - x0) * (y1 - y0)) <= 1e-12 * max(1.0, geom.area)
+
+
+# --------------------------------------------------------------------------- validate's pieces
+
+#: Pairs of convex pieces tested at once by the separating-axis check (bounds the temporaries).
+_SAT_CHUNK = 1 << 17
+
+
+def _apply_xy(transforms: np.ndarray, pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(m, 3, 3) maps applied to (k, 2) points, as x and y arrays (m, k): element-wise FMAs."""
+    px, py = pts[None, :, 0], pts[None, :, 1]
+    x = transforms[:, 0, 0, None] * px + transforms[:, 0, 1, None] * py + transforms[:, 0, 2, None]
+    y = transforms[:, 1, 0, None] * px + transforms[:, 1, 1, None] * py + transforms[:, 1, 2, None]
+    return x, y
+
+
+class _Outlines:
+    """The outlines of a patch's chosen tiles as x / y arrays per prototile, and their boxes."""
+
+    def __init__(self, patch: Patch, chosen: np.ndarray) -> None:
+        n = len(patch)
+        self.groups: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []  # tiles, x (m, k), y (m, k)
+        self.box = np.full((n, 4), np.nan)
+        self.where = np.full((n, 2), -1, dtype=np.int64)  # (group, row) of each chosen tile
+        for p, proto in enumerate(patch.prototiles):
+            idx = np.flatnonzero((patch.prototile == p) & chosen)
+            if not len(idx):
+                continue
+            x, y = _apply_xy(patch.transform[idx], proto.outline)
+            self.where[idx, 0] = len(self.groups)
+            self.where[idx, 1] = np.arange(len(idx))
+            self.groups.append((idx, x, y))
+            self.box[idx] = np.column_stack([_rows_min(x), _rows_min(y), _rows_max(x), _rows_max(y)])
+
+    def polygons(self, tiles: np.ndarray, decimals: int) -> np.ndarray:
+        """shapely polygons of ``tiles`` (chosen ones) from outlines snapped by snap_noise."""
+        out = np.empty(len(tiles), dtype=object)
+        for g, (_, x, y) in enumerate(self.groups):
+            sel = np.flatnonzero(self.where[tiles, 0] == g)
+            if len(sel):
+                rows = self.where[tiles[sel], 1]
+                out[sel] = shapely.polygons(snap_noise(np.stack([x[rows], y[rows]], axis=-1), decimals=decimals))
+        return out
+
+
+def _convex_pieces(outline: np.ndarray) -> list[np.ndarray]:
+    """The outline itself when convex, else its ear-clipped triangles."""
+    if np.all(interior_angles(outline) <= math.pi + 1e-9):
+        return [outline]
+    return ear_clip(outline)
+
+
+def _pad(pts: np.ndarray, k: int) -> np.ndarray:
+    return pts if len(pts) == k else np.vstack([pts, np.repeat(pts[-1:], k - len(pts), axis=0)])
+
+
+def _candidate_pairs(box: np.ndarray, slack: float) -> Iterator[tuple[np.ndarray, np.ndarray]]:
+    """Pairs (a, b), a != b, of boxes (x0, y0, x1, y1) that overlap by more than ``slack`` in
+    both directions, in batches: a uniform grid of cells as large as the largest box, each box
+    filed under its lower-left corner, so overlapping boxes lie in the same or adjacent cells.
+    Boxes of very different sizes (a crowded grid) go through an STRtree instead."""
+    n = len(box)
+    size = float(max((box[:, 2] - box[:, 0]).max(), (box[:, 3] - box[:, 1]).max(), EPS))
+    cx = np.floor((box[:, 0] - box[:, 0].min()) / size).astype(np.int64)
+    cy = np.floor((box[:, 1] - box[:, 1].min()) / size).astype(np.int64) + 1
+    rows = int(cy.max()) + 2
+    key = cx * rows + cy
+    order = np.argsort(key, kind="stable")
+    sk = key[order]
+    _, counts = np.unique(sk, return_counts=True)
+
+    x0, y0 = np.ascontiguousarray(box[:, 0]), np.ascontiguousarray(box[:, 1])
+    x1, y1 = box[:, 2] - slack, box[:, 3] - slack
+
+    def overlapping(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        keep = (x0[a] < x1[b]) & (x0[b] < x1[a])
+        a, b = a[keep], b[keep]
+        keep = (y0[a] < y1[b]) & (y0[b] < y1[a])
+        return a[keep], b[keep]
+
+    if float((counts.astype(float) ** 2).sum()) * 5 > 64.0 * n + 1e6:
+        boxes = shapely.box(box[:, 0], box[:, 1], box[:, 2], box[:, 3])
+        a, b = shapely.STRtree(boxes).query(boxes)
+        keep = a < b
+        yield overlapping(a[keep], b[keep])
+        return
+    pos = np.arange(n)
+    for dx, dy in ((0, 0), (0, 1), (1, -1), (1, 0), (1, 1)):
+        if dx == dy == 0:
+            lo, hi = pos + 1, np.searchsorted(sk, sk, side="right")
+        else:
+            target = sk + dx * rows + dy
+            lo, hi = np.searchsorted(sk, target, side="left"), np.searchsorted(sk, target, side="right")
+        cnt = hi - lo
+        total = int(cnt.sum())
+        if not total:
+            continue
+        left = np.repeat(pos, cnt)
+        right = np.repeat(lo - (np.cumsum(cnt) - cnt), cnt) + np.arange(total)
+        yield overlapping(order[left], order[right])
+
+
+def _rows_min(x: np.ndarray) -> np.ndarray:
+    """Row minima of a narrow (m, k) array (NumPy's reduction over a short axis is slow)."""
+    out = x[:, 0].copy()
+    for j in range(1, x.shape[1]):
+        np.minimum(out, x[:, j], out=out)
+    return out
+
+
+def _rows_max(x: np.ndarray) -> np.ndarray:
+    return -_rows_min(-x)
+
+
+def _unseparated_pairs(patch: Patch, outlines: _Outlines, tol_area: float) -> np.ndarray:
+    """Tile pairs (i < j, sorted) whose convex pieces no separating axis keeps apart.
+
+    A pair of convex pieces is separated when on some edge normal of either piece their
+    projections meet by at most ``slack``; then their overlap lies in a strip that thin, of
+    area at most slack x the largest piece diameter. The slack is chosen so that this, summed
+    over the piece pairs of two tiles, stays under a tenth of ``tol_area``: a pair passed here
+    cannot overlap by more than the tolerance, and float noise on shared edges (1e-12 of the
+    tile size) is far inside the slack.
+    """
+    pieces = [_convex_pieces(p.outline) for p in patch.prototiles]
+    k = max(len(pc) for pcs in pieces for pc in pcs)
+    most = max(len(pcs) for pcs in pieces)
+    owners, xs, ys = [], [], []
+    for idx, x, y in outlines.groups:
+        pcs = pieces[int(patch.prototile[idx[0]])]
+        for pc in pcs:
+            if len(pcs) == 1 and len(pc) == k:  # the outline is the piece: reuse its vertices
+                px, py = x, y
+            else:
+                px, py = _apply_xy(patch.transform[idx], _pad(pc, k))
+            owners.append(idx)
+            xs.append(px)
+            ys.append(py)
+    if not owners:
+        return np.zeros((0, 2), dtype=np.int64)
+    owner = np.concatenate(owners)
+    px, py = np.concatenate(xs), np.concatenate(ys)
+    box = np.column_stack([_rows_min(px), _rows_min(py), _rows_max(px), _rows_max(py)])
+    diameter = float(np.hypot(box[:, 2] - box[:, 0], box[:, 3] - box[:, 1]).max())
+    slack = 0.1 * tol_area / (max(diameter, EPS) * most * most)
+    nx = np.roll(py, -1, axis=1) - py  # edge normals (unnormalised; outward for CCW pieces)
+    ny = px - np.roll(px, -1, axis=1)
+    length = np.hypot(nx, ny)
+    lo, hi = np.full_like(px, np.inf), np.full_like(px, -np.inf)  # own projections per axis
+    for j in range(k):
+        v = nx * px[:, j, None] + ny * py[:, j, None]
+        np.minimum(lo, v, out=lo)
+        np.maximum(hi, v, out=hi)
+    # another piece is outside axis e when its projections are >= hi - margin or <= lo + margin;
+    # padding repeats a vertex, whose zero-length "edge" is no axis: never separating
+    real = length > EPS * max(diameter, EPS)
+    hi = np.where(real, hi - slack * length, np.inf)
+    lo = np.where(real, lo + slack * length, -np.inf)
+    packed = np.concatenate([px, py, nx, ny, hi, lo], axis=1)  # one gather per side of a pair
+
+    def outside(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """Rows where some axis of the pieces in ``a`` has every vertex of ``b`` outside."""
+        anx, any_, ahi, alo = a[:, 2 * k : 3 * k], a[:, 3 * k : 4 * k], a[:, 4 * k : 5 * k], a[:, 5 * k :]
+        bmin = np.full_like(anx, np.inf)
+        bmax = np.full_like(anx, -np.inf)
+        for j in range(k):
+            v = anx * b[:, j, None] + any_ * b[:, k + j, None]
+            np.minimum(bmin, v, out=bmin)
+            np.maximum(bmax, v, out=bmax)
+        sep = (bmin >= ahi) | (bmax <= alo)
+        out = sep[:, 0].copy()
+        for e in range(1, k):
+            out |= sep[:, e]
+        return out
+
+    found = []
+    for a, b in _candidate_pairs(box, slack):
+        keep = owner[a] != owner[b]
+        a, b = a[keep], b[keep]
+        for s in range(0, len(a), _SAT_CHUNK):
+            ca, cb = a[s : s + _SAT_CHUNK], b[s : s + _SAT_CHUNK]
+            ra, rb = packed[ca], packed[cb]
+            bad = ~outside(ra, rb)
+            bad[bad] = ~outside(rb[bad], ra[bad])
+            if bad.any():
+                found.append(np.column_stack([owner[ca[bad]], owner[cb[bad]]]))
+    if not found:
+        return np.zeros((0, 2), dtype=np.int64)
+    pairs = np.sort(np.concatenate(found), axis=1)
+    return np.unique(pairs, axis=0)
+
+
+def _overlay(fn: Any, *args: Any, scale: float) -> Any:
+    """A shapely overlay on the snapped coordinates; GEOS's snap-rounding if the floating
+    overlay fails (a TopologyException on nearly coincident edges)."""
+    try:
+        return fn(*args)
+    except shapely.errors.GEOSException:
+        return fn(*args, grid_size=1e-9 * scale)
+
+
+def _covered(patch: Patch, reg: BaseGeometry, outlines: _Outlines, areas: np.ndarray,
+             geoms_of: Any, scale: float) -> tuple[float, np.ndarray]:
+    """(the sum over tiles of area(tile ∩ region), the tiles meeting the region): tiles whose
+    box lies inside the region count their whole area, the others are clipped."""
+    box = outlines.box
+    rx0, ry0, rx1, ry1 = reg.bounds
+    with np.errstate(invalid="ignore"):
+        cand = (box[:, 2] >= rx0) & (box[:, 0] <= rx1) & (box[:, 3] >= ry0) & (box[:, 1] <= ry1)
+    if _is_box(reg):
+        inside = cand & (box[:, 0] >= rx0) & (box[:, 2] <= rx1) & (box[:, 1] >= ry0) & (box[:, 3] <= ry1)
+        edge = np.flatnonzero(cand & ~inside)
+        clipped = shapely.clip_by_rect(geoms_of(edge), rx0, ry0, rx1, ry1) if len(edge) else np.zeros(0)
+        return float(areas[inside].sum() + shapely.area(clipped).sum()), np.flatnonzero(cand)
+    idx = np.flatnonzero(cand)
+    boxes = shapely.box(box[idx, 0], box[idx, 1], box[idx, 2], box[idx, 3])
+    shapely.prepare(reg)
+    inside = shapely.contains(reg, boxes)
+    edge = idx[~inside & shapely.intersects(reg, boxes)]
+    part = shapely.area(_overlay(shapely.intersection, geoms_of(edge), reg, scale=scale)).sum() if len(edge) else 0.0
+    near = np.union1d(idx[inside], edge)
+    return float(areas[idx[inside]].sum() + part), near
 
 
 # --------------------------------------------------------------------------- Tiling
@@ -611,6 +851,10 @@ class PeriodicTiling(Tiling):
         R (-) U (Minkowski difference); its preimage under the lattice basis is a
         parallelogram whose integer points we enumerate. No ring count is guessed (§3.5).
         """
+        return self._lattice(region)[0]
+
+    def _lattice(self, region: Any) -> tuple[np.ndarray, np.ndarray]:
+        """The lattice points (L, 2) of :meth:`lattice_points` and their translations (L, 2)."""
         reg = as_region(region)
         (ex0, ey0, ex1, ey1), cells = self._lattice_box(reg)
         if cells > MAX_LATTICE_CELLS:
@@ -619,32 +863,90 @@ class PeriodicTiling(Tiling):
                 f"the limit is {MAX_LATTICE_CELLS} (use a smaller region)"
             )
         lo, hi = self._lattice_range(reg)
-        a, b = np.meshgrid(np.arange(lo[0], hi[0] + 1), np.arange(lo[1], hi[1] + 1), indexing="ij")
-        ab = np.column_stack([a.ravel(), b.ravel()])
-        t = ab @ self.basis.T
+        # for each a, the b whose translation can lie in the box (solved from the two linear
+        # constraints, one wider each side), then the exact test below on those candidates only
+        a = np.arange(lo[0], hi[0] + 1)
+        b_lo = np.full(len(a), float(lo[1]))
+        b_hi = np.full(len(a), float(hi[1]))
         tol = 1e-9
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            for axis, (e0, e1) in enumerate(((ex0, ex1), (ey0, ey1))):
+                u, w = self.v1[axis], self.v2[axis]
+                if abs(w) > EPS:
+                    r0, r1 = (e0 - tol - a * u) / w, (e1 + tol - a * u) / w
+                    b_lo = np.maximum(b_lo, np.floor(np.minimum(r0, r1)) - 1)
+                    b_hi = np.minimum(b_hi, np.ceil(np.maximum(r0, r1)) + 1)
+        count = np.maximum(0, b_hi - b_lo + 1).astype(np.int64)
+        total = int(count.sum())
+        ab = np.empty((total, 2), dtype=np.int64)
+        ab[:, 0] = np.repeat(a, count)
+        ab[:, 1] = np.repeat(b_lo.astype(np.int64) - (np.cumsum(count) - count), count) + np.arange(total)
+        t = ab @ self.basis.T
         keep = (t[:, 0] >= ex0 - tol) & (t[:, 0] <= ex1 + tol) & (t[:, 1] >= ey0 - tol) & (t[:, 1] <= ey1 + tol)
-        return ab[keep]
+        return ab[keep], t[keep]
 
     def patch(self, region: Any) -> Patch:
-        """Every tile whose bounding box meets the region's, by lattice rasterization (§3.4)."""
+        """Every tile whose bounding box meets the region's, by lattice rasterization (§3.4).
+
+        The per-tile box test runs over blocks of lattice points small enough to stay in the
+        cache, and each block's tiles are written straight into the output columns, so the
+        cost per tile stays flat from 10^4 to 10^7 tiles.
+        """
         reg = as_region(region)
-        ab = self.lattice_points(reg)
-        t = ab @ self.basis.T  # (L, 2)
+        ab, t = self._lattice(reg)  # (L, 2) lattice points and their translations
         rx0, ry0, rx1, ry1 = reg.bounds
         ub = self.unit_tile_bounds()  # (m, 4)
-        # per-tile bounding-box test, vectorised over (L, m)
-        bx0 = ub[None, :, 0] + t[:, None, 0]
-        by0 = ub[None, :, 1] + t[:, None, 1]
-        bx1 = ub[None, :, 2] + t[:, None, 0]
-        by1 = ub[None, :, 3] + t[:, None, 1]
-        hit = (bx1 > rx0 + EPS) & (bx0 < rx1 - EPS) & (by1 > ry0 + EPS) & (by0 < ry1 - EPS)
-        li, ti = np.nonzero(hit)
-        transforms = self.unit_transform[ti].copy()
-        transforms[:, :2, 2] += t[li]
-        aspect = self.unit_aspect[ti]
-        colour = self.colouring.colour(aspect, ab[li, 0], ab[li, 1])
-        patch = Patch(self._prototiles, self.unit_prototile[ti], transforms, colour, aspect)
+        m = len(ub)
+        ux0, uy0, ux1, uy1 = (np.ascontiguousarray(ub[:, j]) for j in range(4))
+        step = max(1, _PATCH_BLOCK // m)
+        blocks = []
+        for s in range(0, len(t), step):
+            tx, ty = t[s : s + step, 0, None], t[s : s + step, 1, None]
+            hit = (ux1 + tx > rx0 + EPS) & (ux0 + tx < rx1 - EPS) & (uy1 + ty > ry0 + EPS) & (uy0 + ty < ry1 - EPS)
+            if hit.all():
+                blocks.append((s, None, None))
+            else:
+                li, ti = np.nonzero(hit)
+                blocks.append((s, li, ti))
+        sizes = [len(t[s : s + step]) * m if li is None else len(li) for s, li, _ in blocks]
+        n = int(sum(sizes))
+        transforms = np.empty((n, 3, 3))
+        prototile = np.empty(n, dtype=np.int64)
+        aspect = np.empty(n, dtype=np.int64)
+        colour = np.empty(n, dtype=np.int64)
+        at = 0
+        template: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+        ident = tuple(range(len(self.colouring.p)))
+        fixed = self.colouring.p == ident and self.colouring.q == ident  # colours by aspect only
+        by_aspect = np.asarray(self.colouring.aspects, dtype=np.int64)
+        for (s, li, ti), size in zip(blocks, sizes):
+            end = at + size
+            if li is None:  # every tile of every unit in the block: copy the tiled unit
+                count = size // m
+                if template is None:
+                    template = (np.tile(self.unit_transform, (step, 1, 1)), np.tile(self.unit_prototile, step),
+                                np.tile(self.unit_aspect, step))
+                transforms[at:end] = template[0][:size]
+                flat = transforms[at:end].reshape(count, m, 9)
+                flat[:, :, 2] += t[s : s + count, 0, None]
+                flat[:, :, 5] += t[s : s + count, 1, None]
+                prototile[at:end] = template[1][:size]
+                aspect[at:end] = template[2][:size]
+                a_of = b_of = None
+                if not fixed:
+                    a_of, b_of = np.repeat(ab[s : s + count, 0], m), np.repeat(ab[s : s + count, 1], m)
+            else:
+                np.take(self.unit_transform, ti, axis=0, out=transforms[at:end])
+                transforms[at:end, :2, 2] += t[s + li]
+                np.take(self.unit_prototile, ti, out=prototile[at:end])
+                np.take(self.unit_aspect, ti, out=aspect[at:end])
+                a_of, b_of = (None, None) if fixed else (ab[s + li, 0], ab[s + li, 1])
+            if fixed:
+                np.take(by_aspect, aspect[at:end], out=colour[at:end])
+            else:
+                colour[at:end] = self.colouring.colour(aspect[at:end], a_of, b_of)
+            at = end
+        patch = Patch(self._prototiles, prototile, transforms, colour, aspect)
         if not _is_box(reg):
             patch = patch.clip(reg)
         return patch
