@@ -379,9 +379,17 @@ class Patch:
                 covered -= float(shapely.area(_overlay(shapely.intersection, ov, reg, scale=scale)).sum())
             report.uncovered_area = max(0.0, report.region_area - covered)
             if report.uncovered_area > tol_area:
-                # locate the gap (only for an invalid patch): the slow union, once
-                union = _overlay(shapely.union_all, geoms_of(near), scale=scale)
-                rest = _overlay(shapely.difference, reg, union, scale=scale)
+                # locate the gap (only for an invalid patch): quarter the region's box where
+                # area sums show a deficit, and take unions only of the tiles in small boxes
+                rest = None
+                if _is_box(reg):
+                    ov_geoms = ov if report.overlaps else np.zeros(0, dtype=object)
+                    rest = _locate_gaps(reg.bounds, near, outlines, areas, geoms_of, ov_geoms, tol_area, scale)
+                    if rest.area < 0.5 * report.uncovered_area:
+                        rest = None  # spread too thin to locate by boxes
+                if rest is None:
+                    union = _overlay(shapely.union_all, geoms_of(near), scale=scale)
+                    rest = _overlay(shapely.difference, reg, union, scale=scale)
                 report.uncovered_area = float(rest.area)
                 if not rest.is_empty:
                     report.uncovered_bounds = tuple(float(v) for v in rest.bounds)
@@ -627,6 +635,37 @@ def _overlay(fn: Any, *args: Any, scale: float) -> Any:
         return fn(*args)
     except shapely.errors.GEOSException:
         return fn(*args, grid_size=1e-9 * scale)
+
+
+def _locate_gaps(bounds: tuple[float, float, float, float], tiles: np.ndarray, outlines: _Outlines,
+                 areas: np.ndarray, geoms_of: Any, overlaps: np.ndarray, tol_area: float, scale: float) -> Any:
+    """The uncovered part of the box ``bounds``: boxes whose covered area (tile areas inside,
+    boundary tiles clipped, known overlaps subtracted) falls short are quartered until they
+    hold few tiles; only there is a union of tiles taken."""
+    found = []
+    stack = [(bounds, tiles)]
+    while stack:
+        (x0, y0, x1, y1), idx = stack.pop()
+        b = outlines.box[idx]
+        idx = idx[(b[:, 2] > x0) & (b[:, 0] < x1) & (b[:, 3] > y0) & (b[:, 1] < y1)]
+        cell = shapely.box(x0, y0, x1, y1)
+        if len(idx) <= 256:
+            union = _overlay(shapely.union_all, geoms_of(idx), scale=scale)
+            rest = _overlay(shapely.difference, cell, union, scale=scale)
+            if rest.area > 0:
+                found.append(rest)
+            continue
+        b = outlines.box[idx]
+        inside = (b[:, 0] >= x0) & (b[:, 2] <= x1) & (b[:, 1] >= y0) & (b[:, 3] <= y1)
+        covered = areas[idx[inside]].sum()
+        covered += shapely.area(shapely.clip_by_rect(geoms_of(idx[~inside]), x0, y0, x1, y1)).sum()
+        if len(overlaps):
+            covered -= shapely.area(shapely.clip_by_rect(overlaps, x0, y0, x1, y1)).sum()
+        if (x1 - x0) * (y1 - y0) - covered <= tol_area / 64:
+            continue
+        xm, ym = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
+        stack += [((x0, y0, xm, ym), idx), ((xm, y0, x1, ym), idx), ((x0, ym, xm, y1), idx), ((xm, ym, x1, y1), idx)]
+    return shapely.union_all(found) if found else shapely.Polygon()
 
 
 def _covered(patch: Patch, reg: BaseGeometry, outlines: _Outlines, areas: np.ndarray,
