@@ -78,9 +78,9 @@ def shapely_validate(patch: Patch, region, tolerance: float = 1e-6) -> tuple[boo
     return bool(overlap), float(gap)
 
 
-def timed(fn):
+def timed(fn, *args):
     c, w = time.process_time(), time.perf_counter()
-    out = fn()
+    out = fn(*args)
     return out, time.process_time() - c, time.perf_counter() - w
 
 
@@ -109,12 +109,12 @@ def bench_patch(sizes: list[float], runs: int) -> None:
         ours, peer = [], []
         n = 0
         for _ in range(runs):
-            p, c, w = timed(lambda: t.patch(region))
+            p, c, w = timed(t.patch, region)
             ours.append((c, w))
             cols = (p.prototile, p.transform, p.colour, p.aspect)
             n = len(p)
             del p
-            q, c, w = timed(lambda: numpy_patch(t, region))
+            q, c, w = timed(numpy_patch, t, region)
             peer.append((c, w))
             assert all(np.array_equal(x, y) for x, y in zip(cols, q)), "tilekit and the peer differ"
             del q, cols
@@ -135,11 +135,11 @@ def bench_validate(sizes: list[float], runs: int, peer_limit: float) -> None:
         for label, p in (("Patch.validate, valid", patch), ("Patch.validate, one tile shifted 1e-4", shifted)):
             ours, peer = [], []
             for _ in range(runs):
-                rep, c, w = timed(lambda: p.validate(region))
+                rep, c, w = timed(p.validate, region)
                 ours.append((c, w))
                 if len(p) > peer_limit:
                     continue
-                (overlap, gap), c, w = timed(lambda: shapely_validate(p, region))
+                (overlap, gap), c, w = timed(shapely_validate, p, region)
                 peer.append((c, w))
                 assert overlap == bool(rep.overlaps), (overlap, rep.summary())
                 assert abs(gap - rep.uncovered_area) <= 10 * rep.area_tolerance, (gap, rep.uncovered_area)
