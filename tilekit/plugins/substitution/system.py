@@ -328,61 +328,83 @@ def affine_from_points(src: np.ndarray, dst: np.ndarray, ctx: str = "", fail: An
 def check_system(system: SubstitutionSystem, names: Sequence[str]) -> None:
     """The loader's geometric checks (similarity scale and coverage by kind)."""
     where = f"substitution system {system.source}"
-    inv = 1.0 / system.scale
     polys = [p.polygon() for p in system.prototiles]
     for j, rule in enumerate(system.rules):
         rctx = f"{where}: rule for {names[j]!r}"
-        for c, m in enumerate(rule.matrices):
-            s = Affine.similarity_scale(m, tol=1e-7)
-            if s is None:
-                raise ParseError(f"{rctx}, child #{c + 1}: matrix is not a similarity (it shears or stretches)")
-            if abs(s - inv) > 1e-7 * max(1.0, inv):
-                raise ParseError(
-                    f"{rctx}, child #{c + 1}: similarity has scale {s:.9g}, expected 1/scale = {inv:.9g}"
-                )
-        parent = polys[j]
+        _check_similarities(rule, 1.0 / system.scale, rctx)
         kids = [
             shapely.Polygon(Affine.apply(m, system.prototiles[k].outline))
             for k, m in zip(rule.children, rule.matrices)
         ]
-        area = parent.area
-        tol = CHECK_TOL * area
-        # snap-rounded overlay: GEOS's floating overlay can lose a whole piece when shared
-        # vertices differ in the last bit (seen with GEOS 3.14)
-        grid = 1e-10 * math.sqrt(area)
-        union = shapely.union_all(kids, grid_size=grid)
-        total = sum(k.area for k in kids)
-        if system.kind == "exact":
-            outside = shapely.difference(union, parent, grid_size=grid).area
-            uncovered = shapely.difference(parent, union, grid_size=grid).area
-            if outside > tol:
-                raise ParseError(f"{rctx}: children extend outside the parent (area {outside:.3g})")
-            if uncovered > tol:
-                raise ParseError(f"{rctx}: children leave a gap in the parent (area {uncovered:.3g})")
-            if total - area > tol:
-                raise ParseError(f"{rctx}: children overlap (total area {total:.6g} > parent {area:.6g})")
-        elif system.kind == "indented":
-            if abs(total - union.area) > tol:
-                raise ParseError(f"{rctx}: children overlap each other (an indented system may not)")
-            if abs(total - area) > tol:
-                raise ParseError(
-                    f"{rctx}: children's area {total:.6g} differs from the parent's {area:.6g} "
-                    "(protrusions must balance indentations)"
-                )
-        else:  # overlapping
-            uncovered = shapely.difference(parent, union, grid_size=grid).area
-            if uncovered > tol:
-                raise ParseError(f"{rctx}: children do not cover the parent (gap area {uncovered:.3g})")
+        _COVER_CHECKS[system.kind](polys[j], kids, rctx)
     if system.output_prototiles is not None and system.assemble_tile is not None:
-        assert system.assemble_tile is not None and system.assemble_matrix is not None
-        for i, (t, m) in enumerate(zip(system.assemble_tile, system.assemble_matrix)):
-            actx = f"{where}: [assemble] {names[i]!r}"
-            if not Affine.is_isometry(m, tol=1e-7):
-                raise ParseError(f"{actx}: the whole tile's placement is not an isometry")
-            whole = shapely.Polygon(Affine.apply(m, system.output_prototiles[t].outline))
-            half = polys[i]
-            if shapely.difference(half, whole, grid_size=1e-10 * math.sqrt(half.area)).area > CHECK_TOL * half.area:
-                raise ParseError(f"{actx}: the half-tile is not inside the whole tile it names")
+        _check_assembly(system, polys, names, where)
+
+
+def _check_similarities(rule: Rule, inv: float, rctx: str) -> None:
+    """Every child's matrix is a similarity of scale 1/s."""
+    for c, m in enumerate(rule.matrices):
+        s = Affine.similarity_scale(m, tol=1e-7)
+        if s is None:
+            raise ParseError(f"{rctx}, child #{c + 1}: matrix is not a similarity (it shears or stretches)")
+        if abs(s - inv) > 1e-7 * max(1.0, inv):
+            raise ParseError(f"{rctx}, child #{c + 1}: similarity has scale {s:.9g}, expected 1/scale = {inv:.9g}")
+
+
+def _overlay(parent: shapely.Polygon, kids: list[shapely.Polygon]) -> tuple[shapely.Geometry, float, float, float]:
+    """(union of the children, their total area, the area tolerance, the snap grid).
+    Snap-rounded: GEOS's floating overlay can lose a whole piece when shared vertices differ
+    in the last bit (seen with GEOS 3.14)."""
+    grid = 1e-10 * math.sqrt(parent.area)
+    return shapely.union_all(kids, grid_size=grid), sum(k.area for k in kids), CHECK_TOL * parent.area, grid
+
+
+def _check_exact(parent: shapely.Polygon, kids: list[shapely.Polygon], rctx: str) -> None:
+    union, total, tol, grid = _overlay(parent, kids)
+    outside = shapely.difference(union, parent, grid_size=grid).area
+    uncovered = shapely.difference(parent, union, grid_size=grid).area
+    if outside > tol:
+        raise ParseError(f"{rctx}: children extend outside the parent (area {outside:.3g})")
+    if uncovered > tol:
+        raise ParseError(f"{rctx}: children leave a gap in the parent (area {uncovered:.3g})")
+    if total - parent.area > tol:
+        raise ParseError(f"{rctx}: children overlap (total area {total:.6g} > parent {parent.area:.6g})")
+
+
+def _check_indented(parent: shapely.Polygon, kids: list[shapely.Polygon], rctx: str) -> None:
+    union, total, tol, _ = _overlay(parent, kids)
+    if abs(total - union.area) > tol:
+        raise ParseError(f"{rctx}: children overlap each other (an indented system may not)")
+    if abs(total - parent.area) > tol:
+        raise ParseError(
+            f"{rctx}: children's area {total:.6g} differs from the parent's {parent.area:.6g} "
+            "(protrusions must balance indentations)"
+        )
+
+
+def _check_overlapping(parent: shapely.Polygon, kids: list[shapely.Polygon], rctx: str) -> None:
+    union, _, tol, grid = _overlay(parent, kids)
+    uncovered = shapely.difference(parent, union, grid_size=grid).area
+    if uncovered > tol:
+        raise ParseError(f"{rctx}: children do not cover the parent (gap area {uncovered:.3g})")
+
+
+#: What the children of a rule must do to the parent, by the system's ``kind``.
+_COVER_CHECKS = {"exact": _check_exact, "indented": _check_indented, "overlapping": _check_overlapping}
+
+
+def _check_assembly(system: SubstitutionSystem, polys: list[shapely.Polygon], names: Sequence[str], where: str) -> None:
+    """Each half-tile lies inside the whole tile it names, placed by an isometry."""
+    assert system.output_prototiles is not None
+    assert system.assemble_tile is not None and system.assemble_matrix is not None
+    for i, (t, m) in enumerate(zip(system.assemble_tile, system.assemble_matrix)):
+        actx = f"{where}: [assemble] {names[i]!r}"
+        if not Affine.is_isometry(m, tol=1e-7):
+            raise ParseError(f"{actx}: the whole tile's placement is not an isometry")
+        whole = shapely.Polygon(Affine.apply(m, system.output_prototiles[t].outline))
+        half = polys[i]
+        if shapely.difference(half, whole, grid_size=1e-10 * math.sqrt(half.area)).area > CHECK_TOL * half.area:
+            raise ParseError(f"{actx}: the half-tile is not inside the whole tile it names")
 
 
 # ---------------------------------------------------------------------- symmetry
