@@ -8,7 +8,7 @@ naming the file, the line and the problem.
 from __future__ import annotations
 
 import re
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from functools import lru_cache
 from pathlib import Path
@@ -136,6 +136,27 @@ def _fail(path: Path | str, lineno: int, problem: str) -> ParseError:
     return ParseError(f"{Path(path).name}, line {lineno}: {problem}")
 
 
+def _read_blocks(text: str, path: Path | str, what: str, header: Callable[[str, int], dict[str, Any]],
+                 entry: Callable[[dict[str, Any], str, int], None],
+                 finish: Callable[[dict[str, Any] | None], None]) -> None:
+    """Read a block file (.ih, .tv): a line that is not indented opens a block (``header``
+    makes its record), indented lines are its entries, ``finish`` checks a block when the
+    next begins or the text ends. ``#`` starts a comment; blank lines are skipped."""
+    cur: dict[str, Any] | None = None
+    for lineno, raw in enumerate(text.splitlines(), 1):
+        line = raw.split("#", 1)[0].rstrip()
+        if not line.strip():
+            continue
+        if not raw.startswith((" ", "\t")):
+            finish(cur)
+            cur = header(line, lineno)
+        elif cur is None:
+            raise _fail(path, lineno, f"indented line before the first '{what}' header")
+        else:
+            entry(cur, line, lineno)
+    finish(cur)
+
+
 # --------------------------------------------------------------------------- parameterizations
 
 
@@ -144,17 +165,8 @@ def parse_parameterizations(text: str, path: Path | str = "parameterizations.tv"
     opens a block, indented 'default' and 'Pj' lines fill it, and each finished block is
     compiled to its coefficient matrix once."""
     out: dict[str, Parameterization] = {}
-    cur: dict | None = None
-    for lineno, raw in enumerate(text.splitlines(), 1):
-        line = raw.split("#", 1)[0].rstrip()
-        if not line.strip():
-            continue
-        if not raw.startswith((" ", "\t")):
-            _finish_parameterization(cur, out, path)
-            cur = _parameterization_header(line, out, path, lineno)
-            continue
-        if cur is None:
-            raise _fail(path, lineno, "indented line before the first 'TVn' header")
+
+    def entry(cur: dict[str, Any], line: str, lineno: int) -> None:
         parts = line.split()
         if parts[0] == "default":
             _tv_default(cur, parts[1:], path, lineno)
@@ -162,7 +174,9 @@ def parse_parameterizations(text: str, path: Path | str = "parameterizations.tv"
             _tv_vertex(cur, parts, path, lineno)
         else:
             raise _fail(path, lineno, f"unknown entry {parts[0]!r} (expected 'default' or 'Pj')")
-    _finish_parameterization(cur, out, path)
+
+    _read_blocks(text, path, "TVn", lambda line, lineno: _parameterization_header(line, out, path, lineno),
+                 entry, lambda cur: _finish_parameterization(cur, out, path))
     return out
 
 
@@ -238,17 +252,8 @@ def parse_templates(text: str, path: Path | str = "templates.ih") -> dict[int, T
     indented lines are entries read by the handlers of ``_ENTRIES``, and each finished
     block is checked and compiled to a :class:`Template`."""
     out: dict[int, Template] = {}
-    cur: dict | None = None
-    for lineno, raw in enumerate(text.splitlines(), 1):
-        line = raw.split("#", 1)[0].rstrip()
-        if not line.strip():
-            continue
-        if not raw.startswith((" ", "\t")):
-            _finish_template(cur, out, path)
-            cur = _template_header(line, out, path, lineno)
-            continue
-        if cur is None:
-            raise _fail(path, lineno, "indented line before the first 'IHn' header")
+
+    def entry(cur: dict[str, Any], line: str, lineno: int) -> None:
         key, _, value = line.strip().partition(" ")
         handler = _ENTRIES.get(key)
         if handler is None:
@@ -258,7 +263,9 @@ def parse_templates(text: str, path: Path | str = "templates.ih") -> dict[int, T
                 "edge-offset, note or source)",
             )
         handler(cur, value.strip(), path, lineno)
-    _finish_template(cur, out, path)
+
+    _read_blocks(text, path, "IHn", lambda line, lineno: _template_header(line, out, path, lineno),
+                 entry, lambda cur: _finish_template(cur, out, path))
     return out
 
 

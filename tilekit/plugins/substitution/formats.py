@@ -20,6 +20,9 @@ POLYLINE = Field("list", items=POINT, length=(2, None))
 INDEX = Field("int", range=(0, None))
 PROPERTIES = Field("table", error="[properties] must be a table")
 NAME = Field("str")
+CONSTANTS = Field("table", default={}, values=EXPR, error="[constants] must be a table")
+#: Fields every dialect has: what the system is called and which engine reads it.
+COMMON = {"name": NAME, "title": NAME, "engine": Field("str"), "properties": PROPERTIES}
 
 
 def _outlines(key: str) -> Field:
@@ -68,13 +71,11 @@ SIMILARITY = Field(
     "table",
     error="top level must be a table",
     fields={
-        "name": NAME,
-        "title": NAME,
-        "engine": Field("str"),
+        **COMMON,
         "kind": Field("str", default="exact", choices=("exact", "indented", "overlapping"),
                       error="kind {value!r} is not one of exact, indented, overlapping"),
         "scale": Field("expr", required=True, missing="missing the expansion constant 'scale'"),
-        "constants": Field("table", default={}, values=EXPR, error="[constants] must be a table"),
+        "constants": CONSTANTS,
         "prototile": replace(_outlines("prototile"), required=True),
         "rule": Field("list", required=True, items=RULE, length=(1, None), error="no [[rule]] tables"),
         "seed": Field("ref", error="seed: tile reference {value!r} is not a name or index"),
@@ -101,10 +102,8 @@ KEYPOINT = Field(
     "table",
     error="top level must be a table",
     fields={
-        "name": NAME,
-        "title": NAME,
-        "engine": Field("str"),
-        "constants": Field("table", default={}, values=EXPR, error="[constants] must be a table"),
+        **COMMON,
+        "constants": CONSTANTS,
         "labels": Field("list", required=True, items=Field("str"), length=(1, None),
                         error="'labels' must be a list of names"),
         "seed": Field("str", error="seed {value!r} is not a label"),
@@ -170,9 +169,9 @@ HAT = Field(
     "table",
     error="top level must be a table",
     fields={
+        **COMMON,
         "name": Field("str", default="hat"),
         "title": Field("str", default="hat"),
-        "engine": Field("str"),
         "labels": Field("list", required=True, choices=(["H", "T", "P", "F"],),
                         error="'labels' must be [\"H\", \"T\", \"P\", \"F\"] (the outline construction is specific to them)"),
         "seed": Field("str", default="H", choices=("H", "T", "P", "F"), error="seed {value!r} is not one of H, T, P, F"),
