@@ -109,6 +109,8 @@ def main() -> None:
                 runs.append(torus_run(cls, side, clock, cpu))
                 clocks.append(clock[0])
                 cpus.append(cpu[0])
+                print(f"  run {len(runs)}: {side} x {side}, {runs[-1][1]:.3g} s wall, {cpu[0]:.3g} s CPU, "
+                      f"load {os.getloadavg()[0]:.2f}", file=sys.stderr, flush=True)
             n, _, placements = runs[0]
             wall = np.array([r[1] for r in runs])
             cpu_s = np.array(cpus)
