@@ -35,6 +35,7 @@ import numpy as np
 from tilekit.errors import GeometryError, ParameterError
 from tilekit.geometry import Affine, snap_noise
 from tilekit.polygon import (
+    StarIndex,
     cyclic_equal,
     ear_clip,
     edge_signature,
@@ -566,12 +567,12 @@ class PatchBuilder:
     # ------------------------------------------------------------------ state
     def _reset(self, radius: float | None = None, fill: Callable[[dict[str, Any]], bool] | None = None) -> None:
         self._tiles: list[_Tile] = []
-        self._vkey: dict[tuple[int, int], int] = {}
-        self._vpos: list[tuple[float, float]] = []
-        self._vsum: list[float] = []
-        self._vcorners: list[list[Corner]] = []
-        self._vfree: list[int] = []
-        self._vlive: list[bool] = []
+        # the vertex stars: positions, the Corner records at each vertex, live flags
+        self._stars = StarIndex(self.tol)
+        self._vpos = self._stars.points
+        self._vcorners: list[list[Corner]] = self._stars.corners
+        self._vlive = self._stars.live
+        self._vsum: list[float] = []  # angle sum per vertex
         self._edges: dict[tuple[int, int], tuple[int, int, int, float]] = {}
         self._open: set[tuple[int, int]] = set()
         self._serial = 0
@@ -593,43 +594,18 @@ class PatchBuilder:
         self._groups: list[int] = []  # periodic: tiles (images) per placement
 
     def _find_vertex(self, x: float, y: float) -> int | None:
-        q = self.tol
-        kx, ky = round(x / q), round(y / q)
-        v = self._vkey.get((kx, ky))
-        if v is not None:
-            return v
-        for dx in (-1, 0, 1):
-            for dy in (-1, 0, 1):
-                v = self._vkey.get((kx + dx, ky + dy))
-                if v is not None:
-                    px, py = self._vpos[v]
-                    if abs(px - x) <= 2 * q and abs(py - y) <= 2 * q:
-                        return v
-        return None
+        return self._stars.find(x, y)
 
     def _new_vertex(self, x: float, y: float) -> int:
-        q = self.tol
-        if self._vfree:
-            v = self._vfree.pop()
-            self._vpos[v] = (x, y)
-            self._vsum[v] = 0.0
-            self._vcorners[v] = []
-            self._vlive[v] = True
-        else:
-            v = len(self._vpos)
-            self._vpos.append((x, y))
+        v = self._stars.add(x, y)
+        if v == len(self._vsum):
             self._vsum.append(0.0)
-            self._vcorners.append([])
-            self._vlive.append(True)
-        self._vkey[(round(x / q), round(y / q))] = v
+        else:
+            self._vsum[v] = 0.0
         return v
 
     def _drop_vertex(self, v: int) -> None:
-        x, y = self._vpos[v]
-        q = self.tol
-        del self._vkey[(round(x / q), round(y / q))]
-        self._vlive[v] = False
-        self._vfree.append(v)
+        self._stars.remove(v)
 
     def _cells(self, bbox: tuple[float, float, float, float]) -> list[tuple[int, int]]:
         c = self._cell

@@ -270,38 +270,103 @@ def congruences(a: np.ndarray, b: np.ndarray, tol: float) -> np.ndarray:
 # --------------------------------------------------------------------------- vertex stars
 
 
+class StarIndex:
+    """Vertices of placed polygons by position, kept up to date as corners come and go: a
+    point is snapped to a grid of ``quantum`` and matched within 2 ``quantum`` in the
+    neighbouring cells too (so points that straddle a grid line still meet); ``corners[v]``
+    holds whatever the caller files at vertex v (the builder: its Corner records). Freed
+    numbers are reused. :class:`VertexStars` is the batch form over a set of outlines.
+
+    >>> index = StarIndex(1e-6)
+    >>> v = index.add(1.0, 2.0)
+    >>> index.find(1.0 + 1e-7, 2.0) == v, index.find(1.1, 2.0)
+    (True, None)
+    """
+
+    def __init__(self, quantum: float) -> None:
+        self.quantum = quantum
+        self._by_key: dict[tuple[int, int], int] = {}
+        self.points: list[tuple[float, float]] = []
+        self.keys: list[tuple[int, int]] = []
+        self.corners: list[list] = []
+        self.live: list[bool] = []
+        self._free: list[int] = []
+
+    def __len__(self) -> int:
+        return len(self.points)
+
+    def key(self, x: float, y: float) -> tuple[int, int]:
+        return round(x / self.quantum), round(y / self.quantum)
+
+    def find(self, x: float, y: float) -> int | None:
+        """The vertex at (x, y) (within 2 quanta), or None."""
+        kx, ky = self.key(x, y)
+        v = self._by_key.get((kx, ky))
+        if v is not None:
+            return v
+        q2 = 2 * self.quantum
+        for dx in (-1, 0, 1):
+            for dy in (-1, 0, 1):
+                v = self._by_key.get((kx + dx, ky + dy))
+                if v is not None:
+                    px, py = self.points[v]
+                    if abs(px - x) <= q2 and abs(py - y) <= q2:
+                        return v
+        return None
+
+    def add(self, x: float, y: float) -> int:
+        """A new vertex at (x, y) with no corners (the caller has checked ``find``)."""
+        key = self.key(x, y)
+        if self._free:
+            v = self._free.pop()
+            self.points[v], self.keys[v], self.corners[v], self.live[v] = (x, y), key, [], True
+        else:
+            v = len(self.points)
+            self.points.append((x, y))
+            self.keys.append(key)
+            self.corners.append([])
+            self.live.append(True)
+        self._by_key[key] = v
+        return v
+
+    def remove(self, v: int) -> None:
+        """Forget vertex v (its number is reused by the next ``add``)."""
+        del self._by_key[self.keys[v]]
+        self.live[v] = False
+        self._free.append(v)
+
+
 class VertexStars:
     """The corners of a set of placed polygons grouped by the point they sit at.
 
     ``vertex[c]`` is the vertex of corner c (corners numbered tile by tile, outline order),
     ``tile[c]`` and ``index[c]`` name the corner; ``points[v]`` is where vertex v is (the
     position of the last corner found there); ``members(v)`` lists its corners in the order
-    they were found. Vertices are numbered in order of first appearance.
+    they were found. Vertices are numbered in order of first appearance; positions are
+    matched as in :class:`StarIndex`.
     """
 
     def __init__(self, polygons: Sequence[np.ndarray], quantum: float = 1e-6) -> None:
-        keys: dict[tuple[int, int], int] = {}
-        points: list[np.ndarray] = []
+        self.index_of = StarIndex(quantum)
         vertex, tile, index = [], [], []
         for t, pts in enumerate(polygons):
-            for i, (x, y) in enumerate(np.asarray(pts, dtype=float)):
-                key = (round(x / quantum), round(y / quantum))
-                v = keys.setdefault(key, len(keys))
-                if v == len(points):
-                    points.append(np.array([x, y]))
+            for i, (x, y) in enumerate(np.asarray(pts, dtype=float).tolist()):
+                v = self.index_of.find(x, y)
+                if v is None:
+                    v = self.index_of.add(x, y)
                 else:
-                    points[v] = np.array([x, y])
+                    self.index_of.points[v] = (x, y)
                 vertex.append(v)
                 tile.append(t)
                 index.append(i)
-        self.keys = list(keys)
-        self.points = np.array(points).reshape(-1, 2)
+        self.keys = self.index_of.keys
+        self.points = np.array(self.index_of.points, dtype=float).reshape(-1, 2)
         self.vertex = np.array(vertex, dtype=np.int64)
         self.tile = np.array(tile, dtype=np.int64)
         self.index = np.array(index, dtype=np.int64)
         order = np.argsort(self.vertex, kind="stable")
         self._order = order
-        self._starts = np.searchsorted(self.vertex[order], np.arange(len(points) + 1))
+        self._starts = np.searchsorted(self.vertex[order], np.arange(len(self.points) + 1))
 
     def __len__(self) -> int:
         return len(self.points)
@@ -313,6 +378,19 @@ class VertexStars:
     def valence(self) -> np.ndarray:
         """Number of corners at each vertex."""
         return np.diff(self._starts)
+
+    def find(self, points: np.ndarray) -> np.ndarray:
+        """The vertex at each of ``points`` ``(m, 2)``, -1 where there is none."""
+        found = (self.index_of.find(x, y) for x, y in np.asarray(points, dtype=float).reshape(-1, 2).tolist())
+        return np.fromiter((-1 if v is None else v for v in found), dtype=np.int64)
+
+    def reach(self, polygons: Sequence[shapely.Geometry] | np.ndarray, tol: float) -> np.ndarray:
+        """Per vertex, how many of ``polygons`` (shapely geometries) come within ``tol`` of
+        it: the tiles with a corner there and those whose edge passes through it (a vertex
+        of a tiling that is not edge to edge). Three or more make a vertex of the tiling."""
+        tree = shapely.STRtree(np.asarray(polygons))
+        hit, _ = tree.query(shapely.points(self.points), predicate="dwithin", distance=tol)
+        return np.bincount(hit, minlength=len(self.points))
 
 
 def vertex_stars(polygons: Sequence[np.ndarray], quantum: float = 1e-6) -> VertexStars:

@@ -810,6 +810,8 @@ class PeriodicTiling(Tiling):
             raise GeometryError(f"translational unit needs {m} aspect numbers >= 0, got {self.unit_aspect.tolist()}")
         self.v1 = np.asarray(v1, dtype=float).reshape(2)
         self.v2 = np.asarray(v2, dtype=float).reshape(2)
+        if not (np.isfinite(self.v1).all() and np.isfinite(self.v2).all()):
+            raise GeometryError(f"translation vectors {self.v1.tolist()}, {self.v2.tolist()} must be finite")
         det = self.v1[0] * self.v2[1] - self.v1[1] * self.v2[0]
         if not np.isfinite(det) or abs(det) < EPS:
             raise GeometryError(

@@ -4,10 +4,10 @@ k-isogonal, §3.5, §5.1)."""
 from __future__ import annotations
 
 import numpy as np
-import shapely
 
 from tilekit.errors import GeometryError
 from tilekit.geometry import Affine
+from tilekit.polygon import vertex_stars
 from tilekit.symmetry.cell import DEFAULT_TOL, _abs_tol, _base_cell, _Cell, _check
 from tilekit.symmetry.group import _group_of_cell
 from tilekit.symmetry.lattice import _frac, _inv2
@@ -99,12 +99,14 @@ def tiling_vertices(tiling: PeriodicTiling, tol: float = DEFAULT_TOL) -> np.ndar
     ub = tiling.unit_tile_bounds()
     pad = float(max(ub[:, 2].max() - ub[:, 0].min(), ub[:, 3].max() - ub[:, 1].min()))
     patch = tiling.patch((lo[0] - pad, lo[1] - pad, hi[0] + pad, hi[1] + pad))
-    geoms = patch.geometries()
-    tree = shapely.STRtree(geoms)
-    points = shapely.points(reduced)
-    qi, _ = tree.query(points, predicate="dwithin", distance=abs_tol * 10)
-    valence = np.bincount(qi, minlength=len(reduced))
-    return reduced[valence >= 3]
+    corners = []
+    for p, proto in enumerate(patch.prototiles):
+        pts = proto.outline if proto.corners is None else proto.outline[list(proto.corners)]
+        corners.extend(Affine.apply(patch.transform[patch.prototile == p], pts))
+    stars = vertex_stars(corners, quantum=abs_tol)
+    reach = stars.reach(patch.geometries(), abs_tol * 10)
+    found = stars.find(reduced)
+    return reduced[(found >= 0) & (reach[np.maximum(found, 0)] >= 3)]
 
 
 def vertex_orbits(tiling: PeriodicTiling, tol: float = DEFAULT_TOL) -> tuple[np.ndarray, np.ndarray]:

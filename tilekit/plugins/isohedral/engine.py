@@ -10,8 +10,10 @@ from the centroid rule. Every type then becomes a :class:`tilekit.PeriodicTiling
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -86,6 +88,58 @@ def laves_polygon(topology: str) -> np.ndarray:
 # --------------------------------------------------------------------------- the engine
 
 
+@dataclass(frozen=True)
+class SymbolTable:
+    """What the hops of an incidence symbol are, independent of the tiling vertices: per edge
+    i, the edge j of the neighbour that meets it (``partner``) and the orientation O of
+    ``H_i = T_i O T_j^-1`` (the half-turn ROT or the mirror ROFL). Compiled once per symbol."""
+
+    partner: np.ndarray  # (n,) int
+    orientation: np.ndarray  # (n, 3, 3)
+
+
+@functools.cache
+def symbol_table(symbol: IncidenceSymbol) -> SymbolTable:
+    """The compiled :class:`SymbolTable` of ``symbol`` (cached: symbols are frozen)."""
+    adj = symbol.adjacent_map()
+    first = {}
+    for j, (lab, _) in enumerate(symbol.edges):
+        first.setdefault(lab, j)  # the first edge with the adjacent label (the rules assume this)
+    partner, orientation = [], []
+    for label, sign in symbol.edges:
+        other, t = adj[label]
+        j = first[other]
+        direct = sign != 0 and t == sign * symbol.edges[j][1]  # undirected edges: a mirror image
+        partner.append(j)
+        orientation.append(ROT if direct else ROFL)
+    return SymbolTable(np.array(partner, dtype=np.int64), np.array(orientation))
+
+
+@dataclass(frozen=True)
+class UnitProgram:
+    """Appendix A's rules of one type compiled to indices: rule r multiplies the transform of
+    ``base[r]`` (an earlier result) by the hops ``hops[r]`` (0-based edges); results are the
+    aspects in the template's order, then v1 and v2. Compiled once per type."""
+
+    base: tuple[int, ...]
+    hops: tuple[np.ndarray, ...]
+    slot: tuple[int, ...]  # where rule r's result goes
+    aspects: int
+
+
+@functools.cache
+def unit_program(template: Template) -> UnitProgram:
+    """The compiled :class:`UnitProgram` of ``template`` (cached per type)."""
+    names = list(template.aspects) + ["v1", "v2"]
+    slot_of = {nm: i for i, nm in enumerate(names)}
+    return UnitProgram(
+        base=tuple(slot_of[rule.base] for rule in template.rules),
+        hops=tuple(np.array(rule.hops, dtype=np.int64) - 1 for rule in template.rules),
+        slot=tuple(slot_of[rule.target] for rule in template.rules),
+        aspects=len(template.aspects),
+    )
+
+
 class HopEngine:
     """Hops and symmetry data of one incidence symbol at one set of tiling vertices.
 
@@ -101,26 +155,12 @@ class HopEngine:
     def __init__(self, symbol: IncidenceSymbol, verts: np.ndarray) -> None:
         self.symbol = symbol
         self.verts = np.asarray(verts, dtype=float)
-        n = len(symbol)
+        table = symbol_table(symbol)
+        self.partner: list[int] = table.partner.tolist()
+        self.orientation: list[np.ndarray] = list(table.orientation)  # O in H_i = T_i O S_j
         self.frames = edge_frames(self.verts)
         self.inverse_frames = Affine.inverse(self.frames)
-        adj = symbol.adjacent_map()
-        self.partner: list[int] = []
-        self.orientation: list[np.ndarray] = []  # O in H_i = T_i O S_j
-        for label, sign in symbol.edges:
-            other, t = adj[label]
-            candidates = [j for j, (lab, _) in enumerate(symbol.edges) if lab == other]
-            j = candidates[0]  # the first edge with the adjacent label (the rules assume this)
-            sj = symbol.edges[j][1]
-            if sign == 0:  # undirected (U or I): the neighbour is the mirror image across the edge
-                o = ROFL
-            else:
-                o = ROT if t == sign * sj else ROFL
-            self.partner.append(j)
-            self.orientation.append(o)
-        self.hops = np.stack(
-            [self.frames[i] @ self.orientation[i] @ self.inverse_frames[self.partner[i]] for i in range(n)]
-        )
+        self.hops = self.frames @ table.orientation @ self.inverse_frames[table.partner]
 
     def unit_orientation(self, i: int) -> np.ndarray:
         """O_i: how edge i's curve sits relative to its label's curve (FLIP for reversed arrows)."""
@@ -188,20 +228,18 @@ def shape_classes(symbol: IncidenceSymbol) -> list[str]:
 def compute_unit(template: Template, verts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, HopEngine]:
     """Aspect transforms (m, 3, 3) and translation vectors v1, v2 from the template's rules."""
     engine = HopEngine(template.symbol, verts)
-    known: dict[str, np.ndarray] = {template.aspects[0]: np.eye(3)}
-    vectors: dict[str, np.ndarray] = {}
+    program = unit_program(template)
+    results = np.zeros((program.aspects + 2, 3, 3))
+    results[0] = np.eye(3)
+    for base, hops, slot in zip(program.base, program.hops, program.slot):
+        m = results[base]
+        for h in hops:
+            m = m @ engine.hops[h]
+        results[slot] = m
+    aspects = results[: program.aspects]
     centre = verts.mean(axis=0)
-    for rule in template.rules:
-        m = known[rule.base].copy()
-        for h in rule.hops:
-            m = m @ engine.hops[h - 1]
-        if rule.target in ("v1", "v2"):
-            moved = Affine.apply(m, verts).mean(axis=0)
-            vectors[rule.target] = moved - centre
-        else:
-            known[rule.target] = m
-    aspects = np.stack([known[a] for a in template.aspects])
-    return snap_noise(aspects, 1e-10), snap_noise(vectors["v1"], 1e-10), snap_noise(vectors["v2"], 1e-10), engine
+    v1, v2 = (Affine.apply(m, verts).mean(axis=0) - centre for m in results[program.aspects:])
+    return snap_noise(aspects, 1e-10), snap_noise(v1, 1e-10), snap_noise(v2, 1e-10), engine
 
 
 def tile_outlines(patch: Patch, prototile: int = 0) -> np.ndarray:

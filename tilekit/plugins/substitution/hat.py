@@ -29,6 +29,7 @@ import shapely
 
 from tilekit.errors import ParameterError, ParseError
 from tilekit.geometry import Affine
+from tilekit.plugins.substitution.formats import read_system_data
 from tilekit.plugins.substitution.keypoint import MonotileSystem
 from tilekit.plugins.substitution.levels import (
     expand_base,
@@ -345,109 +346,100 @@ def hat_data_path() -> Path:
 
 @guarded_loader
 def hat_system_from_data(data: Mapping[str, Any], source: str = "<data>") -> HatSystem:
-    """Build and check the hat system from parsed TOML (errors name the file and part)."""
+    """Build and check the hat system from parsed TOML (errors name the file and part): the
+    shape of every field is checked by the hat schema (:mod:`.formats`), then the metatiles'
+    hats are placed and the cluster's attachments resolved."""
+    raw = data
+    _, data = read_system_data(data, source, "hat-metatiles")
 
     def fail(msg: str) -> ParseError:
         return ParseError(f"substitution system {source}: {msg}")
 
-    labels = data.get("labels")
-    if labels != ["H", "T", "P", "F"]:
-        raise fail("'labels' must be [\"H\", \"T\", \"P\", \"F\"] (the outline construction is specific to them)")
-    tile_data = data.get("tile")
-    if not isinstance(tile_data, Mapping) or "outline" not in tile_data:
-        raise fail("[tile] needs an 'outline' of lattice pairs")
-    raw = _pairs(tile_data["outline"], "[tile] outline", fail)
-    outline = lattice_points(raw)
+    labels = data["labels"]
+    outline = lattice_points(np.array(data["tile"]["outline"], dtype=float))
     # Prototile wants a CCW outline; placements below are computed on the raw vertex order.
     ccw = outline if signed_area(outline) > 0 else outline[::-1]
     try:
-        tile = Prototile(ccw, name=str(tile_data.get("name", "hat")))
+        tile = Prototile(ccw, name=data["tile"]["name"])
     except Exception as exc:  # GeometryError
         raise fail(f"[tile]: {exc}") from None
-    metas = data.get("metatiles")
-    if not isinstance(metas, Mapping):
-        raise fail("[metatiles.X] tables are missing")
     outlines0, base = [], []
     for nm in labels:
-        m = metas.get(nm)
-        if not isinstance(m, Mapping) or "outline" not in m or "hats" not in m:
-            raise fail(f"[metatiles.{nm}] needs 'outline' and 'hats'")
-        pts = lattice_points(_pairs(m["outline"], f"[metatiles.{nm}] outline", fail))
+        meta = data["metatiles"][nm]
+        pts = lattice_points(np.array(meta["outline"], dtype=float))
         outlines0.append(pts)
-        mats = []
-        for k, h in enumerate(m["hats"]):
-            ctx = f"[metatiles.{nm}] hat #{k + 1}"
-            if "match" in h:
-                try:
-                    (i, p), (j, q) = h["match"]
-                    mats.append(rigid_match(outline[i], outline[j], pts[p], pts[q]))
-                except (ValueError, TypeError, IndexError) as exc:
-                    raise fail(f"{ctx}: match must be [[hat vertex, outline vertex], [.., ..]] of equal lengths ({exc})") from None
-            else:
-                ang = math.radians(float(h.get("rotate", 0)))
-                tx, ty = lattice_points([_pairs([h.get("translate", [0, 0])], ctx, fail)[0]])[0]
-                t = Affine.translation(tx, ty) @ Affine.rotation(ang)
-                mats.append(t @ REFLECT_X if h.get("reflect", False) else t)
+        mats = [_hat_placement(h, outline, pts, f"[metatiles.{nm}] hat #{k + 1}", fail)
+                for k, h in enumerate(meta["hats"])]
         try:
             base.append(to_lattice(np.array(mats)))
         except ValueError as exc:
             raise fail(f"[metatiles.{nm}] hats: {exc}") from None
-    cluster = data.get("cluster")
-    if not isinstance(cluster, Mapping) or "attach" not in cluster or "children" not in cluster:
-        raise fail("[cluster] needs 'attach' and 'children'")
-    attach: list[tuple[Any, ...]] = []
-    for k, e in enumerate(cluster["attach"]):
-        ok = isinstance(e, list) and (
-            (len(e) == 1 and k == 0)
-            or (len(e) == 4 and isinstance(e[0], int) and 0 <= e[0] < k)
-            or (len(e) == 6 and all(isinstance(x, int) and 0 <= x < k for x in (e[0], e[2])))
-        )
-        if not ok or e[-2 if len(e) > 1 else 0] not in labels:
-            raise fail(f"[cluster] attach entry #{k}: {e!r} is not [\"X\"] (first), [k, e, \"X\", f] or [k, u, m, v, \"X\", f] with earlier k, m")
-        attach.append(tuple(e))
+    cluster = data["cluster"]
+    attach = [_attachment(e, k, labels, fail) for k, e in enumerate(cluster["attach"])]
     children = []
     for nm in labels:
-        c = cluster["children"].get(nm)
-        if not isinstance(c, list) or not c or not all(isinstance(x, int) and 0 <= x < len(attach) for x in c):
+        c = cluster["children"][nm]
+        if max(c) >= len(attach):
             raise fail(f"[cluster.children] {nm} must list cluster tile indices 0..{len(attach) - 1}")
         children.append(np.array(c, dtype=np.int64))
-    seed = str(data.get("seed", "H"))
-    if seed not in labels:
-        raise fail(f"seed {seed!r} is not one of H, T, P, F")
     system = HatSystem(
-        name=str(data.get("name", "hat")),
-        title=str(data.get("title", "hat")),
+        name=data["name"],
+        title=data["title"],
         labels=list(labels),
         tile=tile,
         outlines0=outlines0,
         base=base,
         attach=attach,
         cluster_children=children,
-        seed=labels.index(seed),
+        seed=labels.index(data["seed"]),
         facts=dict(data.get("properties", {})),
         source=source,
-        data=dict(data),
+        data=dict(raw),
     )
-    system.facts.setdefault("reflected_hats_per_metatile", system.reflected_per_label().tolist())
-    system.facts.setdefault("hats_per_metatile", system.hats_per_label().tolist())
-    system.facts.setdefault("reflected_hat_fraction", round(system.reflected_fraction_limit(), 12))
-    frac = system.reflected_fraction_limit()
-    system.facts.setdefault("unreflected_to_reflected_ratio", round((1 - frac) / frac, 12))
-    system.facts.setdefault(
-        "reflected_hats_per_generation", [int(c @ system.reflected_per_label()) for c in map(np.array, system.counts(6))]
-    )
+    _derived_facts(system)
     check_hat_system(system)
     return system
 
 
-def _pairs(value: Any, ctx: str, fail: Any) -> np.ndarray:
-    try:
-        arr = np.array(value, dtype=float)
-    except (TypeError, ValueError):
-        arr = np.zeros(0)
-    if arr.ndim != 2 or arr.shape[1] != 2 or len(arr) < 1:
-        raise fail(f"{ctx} must be a list of [a, b] lattice pairs")
-    return arr
+def _hat_placement(h: Mapping[str, Any], hat: np.ndarray, outline: np.ndarray, ctx: str, fail: Any) -> np.ndarray:
+    """A metatile's hat: by ``match`` (two hat vertices onto two outline vertices) or by
+    reflect (in the x axis), rotate (degrees) and translate (a lattice pair)."""
+    if "match" in h:
+        try:
+            (i, p), (j, q) = h["match"]
+            return rigid_match(hat[i], hat[j], outline[p], outline[q])
+        except (ValueError, TypeError, IndexError) as exc:
+            raise fail(f"{ctx}: match must be [[hat vertex, outline vertex], [.., ..]] of equal lengths ({exc})") from None
+    tx, ty = lattice_points(np.array([h["translate"]], dtype=float))[0]
+    t = Affine.translation(tx, ty) @ Affine.rotation(math.radians(float(h["rotate"])))
+    return t @ REFLECT_X if h["reflect"] else t
+
+
+def _attachment(e: Any, k: int, labels: list[str], fail: Any) -> tuple[Any, ...]:
+    """Cluster entry k: ["X"] (the first), [k', e, "X", f] or [k', u, m, v, "X", f] with
+    earlier tiles k', m."""
+    ok = isinstance(e, list) and (
+        (len(e) == 1 and k == 0)
+        or (len(e) == 4 and isinstance(e[0], int) and 0 <= e[0] < k)
+        or (len(e) == 6 and all(isinstance(x, int) and 0 <= x < k for x in (e[0], e[2])))
+    )
+    if not ok or e[-2 if len(e) > 1 else 0] not in labels:
+        raise fail(f"[cluster] attach entry #{k}: {e!r} is not [\"X\"] (first), [k, e, \"X\", f] or "
+                   "[k, u, m, v, \"X\", f] with earlier k, m")
+    return tuple(e)
+
+
+def _derived_facts(system: HatSystem) -> None:
+    """The counts the catalogue shows, unless the file states them."""
+    facts = system.facts
+    facts.setdefault("reflected_hats_per_metatile", system.reflected_per_label().tolist())
+    facts.setdefault("hats_per_metatile", system.hats_per_label().tolist())
+    frac = system.reflected_fraction_limit()
+    facts.setdefault("reflected_hat_fraction", round(frac, 12))
+    facts.setdefault("unreflected_to_reflected_ratio", round((1 - frac) / frac, 12))
+    facts.setdefault(
+        "reflected_hats_per_generation", [int(c @ system.reflected_per_label()) for c in map(np.array, system.counts(6))]
+    )
 
 
 def check_hat_system(system: HatSystem, levels: int = 2) -> None:

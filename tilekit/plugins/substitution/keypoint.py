@@ -21,6 +21,7 @@ import shapely
 from tilekit.errors import ParseError
 from tilekit.geometry import Affine
 from tilekit.plugins.substitution.expr import constants_with, evaluate
+from tilekit.plugins.substitution.formats import read_system_data
 from tilekit.plugins.substitution.levels import (
     expand_base,
     expand_by_label,
@@ -197,16 +198,18 @@ class KeypointSystem(MonotileSystem):
 
 
 def keypoint_system_from_data(data: Mapping[str, Any], source: str = "<data>") -> KeypointSystem:
-    """Build and check a keypoint system from parsed TOML (errors name the file and part)."""
+    """Build and check a keypoint system from parsed TOML (errors name the file and part):
+    the shape of every field is checked by the keypoint schema (:mod:`.formats`), then labels
+    are resolved and the supertiles checked for overlaps."""
     where = f"substitution system {source}"
+    raw = data
+    _, data = read_system_data(data, source, "keypoint")
 
     def fail(msg: str) -> ParseError:
         return ParseError(f"{where}: {msg}")
 
-    if not isinstance(data, Mapping):
-        raise fail("top level must be a table")
     try:
-        env = constants_with(data.get("constants", {}))
+        env = constants_with(data["constants"])
     except ParseError as exc:
         raise fail(str(exc)) from None
 
@@ -216,73 +219,29 @@ def keypoint_system_from_data(data: Mapping[str, Any], source: str = "<data>") -
         except ParseError as exc:
             raise fail(f"{ctx}: {exc}") from None
 
-    labels = data.get("labels")
-    if not isinstance(labels, list) or not labels or not all(isinstance(x, str) for x in labels):
-        raise fail("'labels' must be a list of names")
+    labels = data["labels"]
     index = {nm: i for i, nm in enumerate(labels)}
-    tile_data = data.get("tile")
-    if not isinstance(tile_data, Mapping) or "outline" not in tile_data:
-        raise fail("[tile] needs an 'outline'")
-    raw_outline = tile_data["outline"]
-    if not isinstance(raw_outline, list) or len(raw_outline) < 3 or not all(
-        isinstance(p, list) and len(p) == 2 for p in raw_outline
-    ):
-        raise fail("[tile] outline must be a list of at least 3 [x, y] points")
-    outline = np.array([[num(c, "tile outline") for c in p] for p in raw_outline])
+    tile_data = data["tile"]
+    outline = np.array([[num(c, "tile outline") for c in p] for p in tile_data["outline"]])
     try:
-        tile = Prototile(outline, name=str(tile_data.get("name", "tile")))
+        tile = Prototile(outline, name=tile_data["name"])
     except Exception as exc:  # GeometryError
         raise fail(f"[tile]: {exc}") from None
-    quad_idx = tile_data.get("quad")
-    if not isinstance(quad_idx, list) or len(quad_idx) != 4 or not all(
-        _index_in(i, len(outline)) for i in quad_idx
-    ):
+    quad_idx = tile_data["quad"]
+    if max(quad_idx) >= len(outline):
         raise fail(f"[tile] quad must be 4 vertex indices in 0..{len(outline) - 1}")
-    base: list[np.ndarray] = []
-    base_data = _mapping(data.get("base", {}), "[base]", fail)
-    for nm in labels:
-        entries = base_data.get(nm, [{"rotate": 0, "translate": [0, 0]}])
-        if not isinstance(entries, list) or not entries or not all(isinstance(e, Mapping) for e in entries):
-            raise fail(f"[base] {nm} must be a non-empty list of {{rotate = A, translate = [x, y]}} tables")
-        mats = []
-        for e in entries:
-            ang = math.radians(num(e.get("rotate", 0), f"[base] {nm} rotate"))
-            tr = e.get("translate", [0, 0])
-            if not isinstance(tr, list) or len(tr) != 2:
-                raise fail(f"[base] {nm} translate must be [x, y], got {tr!r}")
-            tx, ty = (num(v, f"[base] {nm} translate") for v in tr)
-            mats.append(Affine.translation(tx, ty) @ Affine.rotation(ang))
-        base.append(np.array(mats))
-    placement = _mapping(data.get("placement", {}), "[placement]", fail)
-    steps_raw = placement.get("steps")
-    if not isinstance(steps_raw, list) or not steps_raw:
-        raise fail("[placement] needs 'steps' = [[angle, from, to], ...]")
+    base = [_base_maps(data["base"].get(nm, [{"rotate": 0, "translate": [0, 0]}]), nm, num) for nm in labels]
+    placement = data["placement"]
     steps = []
-    for k, st in enumerate(steps_raw):
-        if not isinstance(st, list) or len(st) != 3 or not all(_index_in(i, 4) for i in st[1:]):
+    for k, st in enumerate(placement["steps"]):
+        if not all(_index_in(i, 4) for i in st[1:]):
             raise fail(f"[placement] step #{k + 1} must be [angle, from keypoint 0..3, to keypoint 0..3]")
         steps.append((num(st[0], f"step #{k + 1}"), int(st[1]), int(st[2])))
     slots = len(steps) + 1
-    next_quad = placement.get("next_quad")
-    if not isinstance(next_quad, list) or len(next_quad) != 4 or not all(
-        isinstance(p, list) and len(p) == 2 and all(_index_in(v, n) for v, n in zip(p, (slots, 4))) for p in next_quad
-    ):
+    next_quad = placement["next_quad"]
+    if not all(a < slots and b < 4 for a, b in next_quad):
         raise fail(f"[placement] next_quad must be four [slot 0..{slots - 1}, keypoint 0..3] pairs")
-    rules_data = _mapping(data.get("rules", {}), "[rules]", fail)
-    rules = []
-    for nm in labels:
-        row = rules_data.get(nm)
-        if not isinstance(row, list) or len(row) != slots:
-            raise fail(f"rule for {nm!r} must list {slots} slots")
-        kids = []
-        for s in row:
-            if s == "":
-                kids.append(-1)
-            elif isinstance(s, str) and s in index:
-                kids.append(index[s])
-            else:
-                raise fail(f"rule for {nm!r}: unknown label {s!r}; known: {', '.join(labels)}")
-        rules.append(np.array(kids, dtype=np.int64))
+    rules = [_slots(data["rules"].get(nm), nm, slots, index, fail) for nm in labels]
     seed = index.get(str(data.get("seed", labels[0])))
     if seed is None:
         raise fail(f"seed {data.get('seed')!r} is not a label")
@@ -294,22 +253,38 @@ def keypoint_system_from_data(data: Mapping[str, Any], source: str = "<data>") -
         quad=outline[quad_idx],
         base=base,
         steps=steps,
-        reflect=bool(placement.get("reflect", False)),
+        reflect=placement["reflect"],
         next_quad=[(int(a), int(b)) for a, b in next_quad],
         rules=rules,
         seed=seed,
-        facts=dict(_mapping(data.get("properties", {}), "[properties]", fail)),
+        facts=dict(data.get("properties", {})),
         source=source,
-        data=dict(data),
+        data=dict(raw),
     )
     check_keypoint_system(system)
     return system
 
 
-def _mapping(value: Any, ctx: str, fail: Any) -> Mapping[str, Any]:
-    if not isinstance(value, Mapping):
-        raise fail(f"{ctx} must be a table, not {type(value).__name__}")
-    return value
+def _base_maps(entries: list[Mapping[str, Any]], nm: str, num: Any) -> np.ndarray:
+    """A label's level-0 tiles: rotation (degrees) about the origin, then translation."""
+    mats = []
+    for e in entries:
+        ang = math.radians(num(e["rotate"], f"[base] {nm} rotate"))
+        tx, ty = (num(v, f"[base] {nm} translate") for v in e["translate"])
+        mats.append(Affine.translation(tx, ty) @ Affine.rotation(ang))
+    return np.array(mats)
+
+
+def _slots(row: Any, nm: str, slots: int, index: Mapping[str, int], fail: Any) -> np.ndarray:
+    """A rule's row of slot labels as label indices (-1: an empty slot)."""
+    if row is None or len(row) != slots:
+        raise fail(f"rule for {nm!r} must list {slots} slots")
+    kids = []
+    for s in row:
+        if s != "" and s not in index:
+            raise fail(f"rule for {nm!r}: unknown label {s!r}; known: {', '.join(index)}")
+        kids.append(index[s] if s else -1)
+    return np.array(kids, dtype=np.int64)
 
 
 def _index_in(value: Any, n: int) -> bool:

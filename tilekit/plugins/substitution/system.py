@@ -35,9 +35,11 @@ import shapely
 from tilekit.errors import GeometryError, ParseError, TilekitError
 from tilekit.geometry import Affine
 from tilekit.plugins.substitution.expr import constants_with, evaluate
+from tilekit.plugins.substitution.formats import read_system_data
 from tilekit.plugins.substitution.keypoint import keypoint_system_from_data
 from tilekit.plugins.substitution.rules import MatrixFacts, Rule
 from tilekit.polygon import inscribed_disc as inscribed_disc  # moved to tilekit.polygon
+from tilekit.polygon import signed_area
 from tilekit.polygon import symmetry_maps as outline_symmetries  # moved to tilekit.polygon
 from tilekit.resources import read_toml
 from tilekit.tiling import Prototile
@@ -130,156 +132,133 @@ def guarded_loader(fn: Callable[..., Any]) -> Callable[..., Any]:
 @guarded_loader
 def load_data(data: Mapping[str, Any], source: str = "<data>") -> Any:
     """A system of either engine from parsed data."""
-    engine = data.get("engine", "similarity") if isinstance(data, Mapping) else None
+    engine = data.get("engine", "similarity") if isinstance(data, Mapping) else "similarity"
     if engine == "keypoint":
         return keypoint_system_from_data(data, source)
-    if engine not in ("similarity", None):
+    if engine != "similarity":
         raise ParseError(f"substitution system {source}: engine {engine!r} is not 'similarity' or 'keypoint'")
     return system_from_data(data, source=source)
 
 
 def system_from_data(data: Mapping[str, Any], source: str = "<data>") -> SubstitutionSystem:
-    """Build and validate a system from parsed TOML/JSON data (``source`` names it in errors)."""
+    """Build and validate a system from parsed TOML/JSON data (``source`` names it in errors):
+    the shape of every field is checked by the dialect's schema (:mod:`.formats`), then names
+    are resolved and the geometry is checked."""
     where = f"substitution system {source}"
-
-    def fail(msg: str) -> ParseError:
-        return ParseError(f"{where}: {msg}")
-
-    if not isinstance(data, Mapping):
-        raise fail("top level must be a table")
-    env = constants_with(_table(data.get("constants", {}), where + ": [constants]"))
-
-    def num(value: Any, ctx: str) -> float:
-        try:
-            return evaluate(value, env)
-        except ParseError as exc:
-            raise fail(f"{ctx}: {exc}") from None
-
-    def point(value: Any, ctx: str) -> np.ndarray:
-        if not isinstance(value, Sequence) or isinstance(value, str) or len(value) != 2:
-            raise fail(f"{ctx}: a point must be [x, y], got {value!r}")
-        return np.array([num(value[0], ctx), num(value[1], ctx)])
-
+    raw = data
+    _, data = read_system_data(data, source, "similarity")
+    ctx = _Context(where, constants_with(data["constants"]))
     name = str(data.get("name") or Path(source).stem)
-    kind = str(data.get("kind", "exact"))
-    if kind not in KINDS:
-        raise fail(f"kind {kind!r} is not one of {', '.join(KINDS)}")
-    if "scale" not in data:
-        raise fail("missing the expansion constant 'scale'")
-    scale = num(data["scale"], "scale")
+    scale = ctx.num(data["scale"], "scale")
     if not scale > 1:
-        raise fail(f"expansion constant scale = {scale:g} must be greater than 1")
-
-    protos, names = _prototiles(data.get("prototile"), "prototile", num, point, fail)
+        raise ctx.fail(f"expansion constant scale = {scale:g} must be greater than 1")
+    protos, names = _prototiles(data["prototile"], "prototile", ctx)
     index = {nm: i for i, nm in enumerate(names)}
-
-    raw_rules = data.get("rule")
-    if not isinstance(raw_rules, list) or not raw_rules:
-        raise fail("no [[rule]] tables")
-    rules: list[Rule | None] = [None] * len(protos)
-    for r, raw in enumerate(raw_rules):
-        if not isinstance(raw, Mapping) or "parent" not in raw:
-            raise fail(f"rule #{r + 1} has no 'parent'")
-        parent = _resolve(raw["parent"], index, f"rule #{r + 1} parent", fail)
-        rctx = f"rule for {names[parent]!r}"
-        if rules[parent] is not None:
-            raise fail(f"{rctx}: given twice")
-        kids = raw.get("child")
-        if not isinstance(kids, list) or not kids:
-            raise fail(f"{rctx}: no [[rule.child]] entries")
-        labels, mats = [], []
-        for c, kid in enumerate(kids):
-            cctx = f"{rctx}, child #{c + 1}"
-            if not isinstance(kid, Mapping) or "tile" not in kid:
-                raise fail(f"{cctx}: needs 'tile'")
-            j = _resolve(kid["tile"], index, cctx, fail)
-            labels.append(j)
-            mats.append(_child_matrix(kid, protos[j], cctx, num, point, fail))
-        rules[parent] = Rule(np.array(labels, dtype=np.int64), np.array(mats))
-    missing = [names[i] for i, rl in enumerate(rules) if rl is None]
-    if missing:
-        raise fail(f"no rule for prototile(s) {', '.join(missing)}")
-
-    seed_name = data.get("seed", names[0])
-    seed = _resolve(seed_name, index, "seed", fail)
-
-    output = assemble_tile = assemble_matrix = None
-    pairing_edge = None
-    pairing: dict[str, tuple[int, np.ndarray]] = {}
-    if "pairing" in data:
-        if "assemble" in data:
-            raise fail("give either [assemble] or [pairing], not both")
-        output, out_names = _prototiles(data.get("tile"), "tile", num, point, fail)
-        out_index = {nm: i for i, nm in enumerate(out_names)}
-        table = _table(data["pairing"], where + ": [pairing]")
-        edge = table.get("edge")
-        if len(protos) != 1:
-            raise fail("[pairing] needs exactly one (half-tile) prototile")
-        k = len(protos[0].outline)
-        if not isinstance(edge, list) or len(edge) != 2 or any(
-            not isinstance(v, int) or isinstance(v, bool) or not 0 <= v < k for v in edge
-        ):
-            raise fail(f"[pairing] edge must be two vertex indices of the half-tile (0..{k - 1})")
-        pairing_edge = (int(edge[0]), int(edge[1]))
-        for relation in ("mirror", "turn"):
-            if relation not in table:
-                continue
-            entry = table[relation]
-            actx = f"[pairing] {relation}"
-            if not isinstance(entry, Mapping) or "tile" not in entry:
-                raise fail(f"{actx}: needs 'tile'")
-            t = _resolve(entry["tile"], out_index, actx, fail)
-            pairing[relation] = (t, _child_matrix(entry, output[t], actx, num, point, fail))
-        if not pairing:
-            raise fail("[pairing] needs a 'mirror' or a 'turn' entry")
-    elif "tile" in data or "assemble" in data:
-        output, out_names = _prototiles(data.get("tile"), "tile", num, point, fail)
-        out_index = {nm: i for i, nm in enumerate(out_names)}
-        table = _table(data.get("assemble"), where + ": [assemble]")
-        assemble_tile = np.zeros(len(protos), dtype=np.int64)
-        assemble_matrix = np.zeros((len(protos), 3, 3))
-        for i, nm in enumerate(names):
-            if nm not in table:
-                raise fail(f"[assemble] has no entry for prototile {nm!r}")
-            entry = table[nm]
-            actx = f"[assemble] {nm!r}"
-            if not isinstance(entry, Mapping) or "tile" not in entry:
-                raise fail(f"{actx}: needs 'tile'")
-            t = _resolve(entry["tile"], out_index, actx, fail)
-            assemble_tile[i] = t
-            assemble_matrix[i] = _child_matrix(entry, output[t], actx, num, point, fail)
-
-    facts = dict(_table(data.get("properties", {}), where + ": [properties]"))
+    rules = _rules(data["rule"], protos, names, index, ctx)
+    seed = _resolve(data.get("seed", names[0]), index, "seed", ctx.fail)
     system = SubstitutionSystem(
         name=name,
         title=str(data.get("title", name)),
         scale=scale,
-        kind=kind,
+        kind=data["kind"],
         prototiles=protos,
-        rules=rules,  # type: ignore[arg-type]
+        rules=rules,
         seed=seed,
-        output_prototiles=output,
-        assemble_tile=assemble_tile,
-        assemble_matrix=assemble_matrix,
-        pairing_edge=pairing_edge,
-        pairing=pairing,
-        facts=facts,
+        facts=dict(data.get("properties", {})),
         source=source,
-        data=dict(data),
+        data=dict(raw),
     )
+    if "pairing" in data:
+        if "assemble" in data:
+            raise ctx.fail("give either [assemble] or [pairing], not both")
+        _pairing(system, data, ctx)
+    elif "tile" in data or "assemble" in data:
+        _assembly(system, data, names, ctx)
     check_system(system, names)
     system.symmetries = rule_symmetries(system)
-    if output is not None:
-        system.output_symmetries = [outline_symmetries(t.outline) for t in output]
+    if system.output_prototiles is not None:
+        system.output_symmetries = [outline_symmetries(t.outline) for t in system.output_prototiles]
     return system
 
 
-def _table(value: Any, ctx: str) -> Mapping[str, Any]:
-    if value is None:
-        return {}
-    if not isinstance(value, Mapping):
-        raise ParseError(f"{ctx} must be a table")
-    return value
+class _Context:
+    """Where errors point, and the numbers of a file: expressions in its named constants."""
+
+    def __init__(self, where: str, env: Mapping[str, float]) -> None:
+        self.where = where
+        self.env = env
+
+    def fail(self, msg: str) -> ParseError:
+        return ParseError(f"{self.where}: {msg}")
+
+    def num(self, value: Any, ctx: str) -> float:
+        try:
+            return evaluate(value, self.env)
+        except ParseError as exc:
+            raise self.fail(f"{ctx}: {exc}") from None
+
+    def points(self, values: Sequence[Any], ctx: str) -> np.ndarray:
+        return np.array([[self.num(x, ctx), self.num(y, ctx)] for x, y in values]).reshape(-1, 2)
+
+
+def _rules(raw_rules: list[Mapping[str, Any]], protos: list[Prototile], names: list[str],
+           index: Mapping[str, int], ctx: _Context) -> list[Rule]:
+    rules: list[Rule | None] = [None] * len(protos)
+    for r, raw in enumerate(raw_rules):
+        parent = _resolve(raw["parent"], index, f"rule #{r + 1} parent", ctx.fail)
+        rctx = f"rule for {names[parent]!r}"
+        if rules[parent] is not None:
+            raise ctx.fail(f"{rctx}: given twice")
+        labels, mats = [], []
+        for c, kid in enumerate(raw["child"]):
+            cctx = f"{rctx}, child #{c + 1}"
+            j = _resolve(kid["tile"], index, cctx, ctx.fail)
+            labels.append(j)
+            mats.append(_child_matrix(kid, protos[j], cctx, ctx))
+        rules[parent] = Rule(np.array(labels, dtype=np.int64), np.array(mats))
+    missing = [names[i] for i, rl in enumerate(rules) if rl is None]
+    if missing:
+        raise ctx.fail(f"no rule for prototile(s) {', '.join(missing)}")
+    return rules  # type: ignore[return-value]
+
+
+def _pairing(system: SubstitutionSystem, data: Mapping[str, Any], ctx: _Context) -> None:
+    """The [pairing] assembly: whole tiles made of two half-tiles sharing an edge."""
+    output, out_names = _prototiles(data.get("tile"), "tile", ctx)
+    out_index = {nm: i for i, nm in enumerate(out_names)}
+    table = data["pairing"]
+    if len(system.prototiles) != 1:
+        raise ctx.fail("[pairing] needs exactly one (half-tile) prototile")
+    k = len(system.prototiles[0].outline)
+    if any(v >= k for v in table["edge"]):
+        raise ctx.fail(f"[pairing] edge must be two vertex indices of the half-tile (0..{k - 1})")
+    system.output_prototiles = output
+    system.pairing_edge = (int(table["edge"][0]), int(table["edge"][1]))
+    for relation in ("mirror", "turn"):
+        if relation in table:
+            actx = f"[pairing] {relation}"
+            t = _resolve(table[relation]["tile"], out_index, actx, ctx.fail)
+            system.pairing[relation] = (t, _child_matrix(table[relation], output[t], actx, ctx))
+    if not system.pairing:
+        raise ctx.fail("[pairing] needs a 'mirror' or a 'turn' entry")
+
+
+def _assembly(system: SubstitutionSystem, data: Mapping[str, Any], names: list[str], ctx: _Context) -> None:
+    """The [assemble] table: where each half-tile's whole tile sits in its frame."""
+    output, out_names = _prototiles(data.get("tile"), "tile", ctx)
+    out_index = {nm: i for i, nm in enumerate(out_names)}
+    table = data.get("assemble", {})
+    n = len(system.prototiles)
+    system.output_prototiles = output
+    system.assemble_tile = np.zeros(n, dtype=np.int64)
+    system.assemble_matrix = np.zeros((n, 3, 3))
+    for i, nm in enumerate(names):
+        if nm not in table:
+            raise ctx.fail(f"[assemble] has no entry for prototile {nm!r}")
+        actx = f"[assemble] {nm!r}"
+        t = _resolve(table[nm]["tile"], out_index, actx, ctx.fail)
+        system.assemble_tile[i] = t
+        system.assemble_matrix[i] = _child_matrix(table[nm], output[t], actx, ctx)
 
 
 def _resolve(ref: Any, index: Mapping[str, int], ctx: str, fail: Any) -> int:
@@ -294,57 +273,39 @@ def _resolve(ref: Any, index: Mapping[str, int], ctx: str, fail: Any) -> int:
     raise fail(f"{ctx}: unknown tile {ref!r}; known: {', '.join(index)}")
 
 
-def _prototiles(raw: Any, key: str, num: Any, point: Any, fail: Any) -> tuple[list[Prototile], list[str]]:
-    if not isinstance(raw, list) or not raw:
-        raise fail(f"no [[{key}]] tables")
+def _prototiles(raw: Any, key: str, ctx: _Context) -> tuple[list[Prototile], list[str]]:
+    if not raw:
+        raise ctx.fail(f"no [[{key}]] tables")
     protos, names = [], []
     for i, entry in enumerate(raw):
-        if not isinstance(entry, Mapping) or "outline" not in entry:
-            raise fail(f"[[{key}]] #{i + 1} needs an 'outline'")
         nm = str(entry.get("name", f"T{i + 1}"))
         if nm in names:
-            raise fail(f"[[{key}]] name {nm!r} used twice")
-        if not isinstance(entry["outline"], list):
-            raise fail(f"{key} {nm!r}: outline must be a list of [x, y] points")
-        pts = np.array([point(p, f"{key} {nm!r} outline") for p in entry["outline"]])
-        if len(pts) < 3:
-            raise fail(f"{key} {nm!r}: outline needs at least 3 points")
+            raise ctx.fail(f"[[{key}]] name {nm!r} used twice")
+        pts = ctx.points(entry["outline"], f"{key} {nm!r} outline")
         if shapely.Polygon(pts).is_valid is False:
-            raise fail(f"{key} {nm!r}: outline is self-intersecting")
-        area = 0.5 * float(np.sum(pts[:, 0] * np.roll(pts[:, 1], -1) - np.roll(pts[:, 0], -1) * pts[:, 1]))
-        if area <= 0:
-            raise fail(f"{key} {nm!r}: outline must be counter-clockwise with positive area")
-        lines = entry.get("marking", [])
-        if not isinstance(lines, list) or not all(isinstance(line, list) and len(line) >= 2 for line in lines):
-            raise fail(f"{key} {nm!r}: marking must be a list of polylines, each a list of [x, y] points")
-        marking = tuple(np.array([point(p, f"{key} {nm!r} marking") for p in line]) for line in lines)
+            raise ctx.fail(f"{key} {nm!r}: outline is self-intersecting")
+        if signed_area(pts) <= 0:
+            raise ctx.fail(f"{key} {nm!r}: outline must be counter-clockwise with positive area")
+        marking = tuple(ctx.points(line, f"{key} {nm!r} marking") for line in entry["marking"])
         try:
             protos.append(Prototile(pts, marking=marking, name=nm))
         except GeometryError as exc:
-            raise fail(f"{key} {nm!r}: {exc}") from None
+            raise ctx.fail(f"{key} {nm!r}: {exc}") from None
         names.append(nm)
     return protos, names
 
 
-def _child_matrix(kid: Mapping[str, Any], child: Prototile, ctx: str, num: Any, point: Any, fail: Any) -> np.ndarray:
+def _child_matrix(kid: Mapping[str, Any], child: Prototile, ctx: str, c: _Context) -> np.ndarray:
     if ("matrix" in kid) == ("vertices" in kid):
-        raise fail(f"{ctx}: give exactly one of 'matrix' (2x3) or 'vertices' (3 points)")
+        raise c.fail(f"{ctx}: give exactly one of 'matrix' (2x3) or 'vertices' (3 points)")
     if "matrix" in kid:
         rows = kid["matrix"]
-        if not isinstance(rows, list) or len(rows) not in (2, 3) or any(
-            not isinstance(r, list) or len(r) != 3 for r in rows
-        ):
-            raise fail(f"{ctx}: matrix must be 2 or 3 rows of 3 entries")
-        m = np.array([[num(v, f"{ctx} matrix") for v in r] for r in rows[:2]] + [[0.0, 0.0, 1.0]])
-        if len(rows) == 3 and [num(v, ctx) for v in rows[2]] != [0.0, 0.0, 1.0]:
-            raise fail(f"{ctx}: matrix third row must be [0, 0, 1]")
+        m = np.array([[c.num(v, f"{ctx} matrix") for v in r] for r in rows[:2]] + [[0.0, 0.0, 1.0]])
+        if len(rows) == 3 and [c.num(v, ctx) for v in rows[2]] != [0.0, 0.0, 1.0]:
+            raise c.fail(f"{ctx}: matrix third row must be [0, 0, 1]")
         return m
-    imgs = kid["vertices"]
-    if not isinstance(imgs, list) or len(imgs) != 3:
-        raise fail(f"{ctx}: 'vertices' must list the images of the child's vertices 0, 1, 2")
-    dst = np.array([point(v, f"{ctx} vertices") for v in imgs])
-    src = child.outline[:3]
-    return affine_from_points(src, dst, ctx, fail)
+    dst = c.points(kid["vertices"], f"{ctx} vertices")
+    return affine_from_points(child.outline[:3], dst, ctx, c.fail)
 
 
 def affine_from_points(src: np.ndarray, dst: np.ndarray, ctx: str = "", fail: Any = None) -> np.ndarray:
@@ -367,61 +328,83 @@ def affine_from_points(src: np.ndarray, dst: np.ndarray, ctx: str = "", fail: An
 def check_system(system: SubstitutionSystem, names: Sequence[str]) -> None:
     """The loader's geometric checks (similarity scale and coverage by kind)."""
     where = f"substitution system {system.source}"
-    inv = 1.0 / system.scale
     polys = [p.polygon() for p in system.prototiles]
     for j, rule in enumerate(system.rules):
         rctx = f"{where}: rule for {names[j]!r}"
-        for c, m in enumerate(rule.matrices):
-            s = Affine.similarity_scale(m, tol=1e-7)
-            if s is None:
-                raise ParseError(f"{rctx}, child #{c + 1}: matrix is not a similarity (it shears or stretches)")
-            if abs(s - inv) > 1e-7 * max(1.0, inv):
-                raise ParseError(
-                    f"{rctx}, child #{c + 1}: similarity has scale {s:.9g}, expected 1/scale = {inv:.9g}"
-                )
-        parent = polys[j]
+        _check_similarities(rule, 1.0 / system.scale, rctx)
         kids = [
             shapely.Polygon(Affine.apply(m, system.prototiles[k].outline))
             for k, m in zip(rule.children, rule.matrices)
         ]
-        area = parent.area
-        tol = CHECK_TOL * area
-        # snap-rounded overlay: GEOS's floating overlay can lose a whole piece when shared
-        # vertices differ in the last bit (seen with GEOS 3.14)
-        grid = 1e-10 * math.sqrt(area)
-        union = shapely.union_all(kids, grid_size=grid)
-        total = sum(k.area for k in kids)
-        if system.kind == "exact":
-            outside = shapely.difference(union, parent, grid_size=grid).area
-            uncovered = shapely.difference(parent, union, grid_size=grid).area
-            if outside > tol:
-                raise ParseError(f"{rctx}: children extend outside the parent (area {outside:.3g})")
-            if uncovered > tol:
-                raise ParseError(f"{rctx}: children leave a gap in the parent (area {uncovered:.3g})")
-            if total - area > tol:
-                raise ParseError(f"{rctx}: children overlap (total area {total:.6g} > parent {area:.6g})")
-        elif system.kind == "indented":
-            if abs(total - union.area) > tol:
-                raise ParseError(f"{rctx}: children overlap each other (an indented system may not)")
-            if abs(total - area) > tol:
-                raise ParseError(
-                    f"{rctx}: children's area {total:.6g} differs from the parent's {area:.6g} "
-                    "(protrusions must balance indentations)"
-                )
-        else:  # overlapping
-            uncovered = shapely.difference(parent, union, grid_size=grid).area
-            if uncovered > tol:
-                raise ParseError(f"{rctx}: children do not cover the parent (gap area {uncovered:.3g})")
+        _COVER_CHECKS[system.kind](polys[j], kids, rctx)
     if system.output_prototiles is not None and system.assemble_tile is not None:
-        assert system.assemble_tile is not None and system.assemble_matrix is not None
-        for i, (t, m) in enumerate(zip(system.assemble_tile, system.assemble_matrix)):
-            actx = f"{where}: [assemble] {names[i]!r}"
-            if not Affine.is_isometry(m, tol=1e-7):
-                raise ParseError(f"{actx}: the whole tile's placement is not an isometry")
-            whole = shapely.Polygon(Affine.apply(m, system.output_prototiles[t].outline))
-            half = polys[i]
-            if shapely.difference(half, whole, grid_size=1e-10 * math.sqrt(half.area)).area > CHECK_TOL * half.area:
-                raise ParseError(f"{actx}: the half-tile is not inside the whole tile it names")
+        _check_assembly(system, polys, names, where)
+
+
+def _check_similarities(rule: Rule, inv: float, rctx: str) -> None:
+    """Every child's matrix is a similarity of scale 1/s."""
+    for c, m in enumerate(rule.matrices):
+        s = Affine.similarity_scale(m, tol=1e-7)
+        if s is None:
+            raise ParseError(f"{rctx}, child #{c + 1}: matrix is not a similarity (it shears or stretches)")
+        if abs(s - inv) > 1e-7 * max(1.0, inv):
+            raise ParseError(f"{rctx}, child #{c + 1}: similarity has scale {s:.9g}, expected 1/scale = {inv:.9g}")
+
+
+def _overlay(parent: shapely.Polygon, kids: list[shapely.Polygon]) -> tuple[shapely.Geometry, float, float, float]:
+    """(union of the children, their total area, the area tolerance, the snap grid).
+    Snap-rounded: GEOS's floating overlay can lose a whole piece when shared vertices differ
+    in the last bit (seen with GEOS 3.14)."""
+    grid = 1e-10 * math.sqrt(parent.area)
+    return shapely.union_all(kids, grid_size=grid), sum(k.area for k in kids), CHECK_TOL * parent.area, grid
+
+
+def _check_exact(parent: shapely.Polygon, kids: list[shapely.Polygon], rctx: str) -> None:
+    union, total, tol, grid = _overlay(parent, kids)
+    outside = shapely.difference(union, parent, grid_size=grid).area
+    uncovered = shapely.difference(parent, union, grid_size=grid).area
+    if outside > tol:
+        raise ParseError(f"{rctx}: children extend outside the parent (area {outside:.3g})")
+    if uncovered > tol:
+        raise ParseError(f"{rctx}: children leave a gap in the parent (area {uncovered:.3g})")
+    if total - parent.area > tol:
+        raise ParseError(f"{rctx}: children overlap (total area {total:.6g} > parent {parent.area:.6g})")
+
+
+def _check_indented(parent: shapely.Polygon, kids: list[shapely.Polygon], rctx: str) -> None:
+    union, total, tol, _ = _overlay(parent, kids)
+    if abs(total - union.area) > tol:
+        raise ParseError(f"{rctx}: children overlap each other (an indented system may not)")
+    if abs(total - parent.area) > tol:
+        raise ParseError(
+            f"{rctx}: children's area {total:.6g} differs from the parent's {parent.area:.6g} "
+            "(protrusions must balance indentations)"
+        )
+
+
+def _check_overlapping(parent: shapely.Polygon, kids: list[shapely.Polygon], rctx: str) -> None:
+    union, _, tol, grid = _overlay(parent, kids)
+    uncovered = shapely.difference(parent, union, grid_size=grid).area
+    if uncovered > tol:
+        raise ParseError(f"{rctx}: children do not cover the parent (gap area {uncovered:.3g})")
+
+
+#: What the children of a rule must do to the parent, by the system's ``kind``.
+_COVER_CHECKS = {"exact": _check_exact, "indented": _check_indented, "overlapping": _check_overlapping}
+
+
+def _check_assembly(system: SubstitutionSystem, polys: list[shapely.Polygon], names: Sequence[str], where: str) -> None:
+    """Each half-tile lies inside the whole tile it names, placed by an isometry."""
+    assert system.output_prototiles is not None
+    assert system.assemble_tile is not None and system.assemble_matrix is not None
+    for i, (t, m) in enumerate(zip(system.assemble_tile, system.assemble_matrix)):
+        actx = f"{where}: [assemble] {names[i]!r}"
+        if not Affine.is_isometry(m, tol=1e-7):
+            raise ParseError(f"{actx}: the whole tile's placement is not an isometry")
+        whole = shapely.Polygon(Affine.apply(m, system.output_prototiles[t].outline))
+        half = polys[i]
+        if shapely.difference(half, whole, grid_size=1e-10 * math.sqrt(half.area)).area > CHECK_TOL * half.area:
+            raise ParseError(f"{actx}: the half-tile is not inside the whole tile it names")
 
 
 # ---------------------------------------------------------------------- symmetry
