@@ -382,9 +382,15 @@ class Patch:
             geoms = geoms[_tiles]
         if not len(geoms):
             return 0.0
+        clipped = None
         if _is_box(reg):
-            clipped = shapely.clip_by_rect(geoms, *reg.bounds)
-        else:
+            try:
+                clipped = shapely.clip_by_rect(geoms, *reg.bounds)
+            except shapely.errors.GEOSException:
+                # GEOS can fail on a tile whose vertex lies within float noise of the box's
+                # edge (a sliver ring of 3 points); the snap-rounded intersection copes
+                clipped = None
+        if clipped is None:
             grid = _grid if _grid is not None else 1e-9 * math.sqrt(float(np.median(shapely.area(geoms))))
             clipped = shapely.intersection(geoms, reg, grid_size=grid)
         return float(shapely.area(clipped).sum())

@@ -300,11 +300,13 @@ class HatSystem(MonotileSystem):
 
 
 def _placed(seed_transform: np.ndarray | None, lattice: np.ndarray) -> np.ndarray:
-    """Cartesian transforms of lattice maps, after ``seed_transform`` (identity if None)."""
-    cart = to_cartesian(lattice)
-    if seed_transform is None:
-        return cart
-    return np.asarray(seed_transform, dtype=float)[None] @ cart
+    """Cartesian transforms of lattice maps, after ``seed_transform`` (identity if None):
+    ``seed @ TO_CARTESIAN @ lattice[i] @ TO_LATTICE``, in one compiled pass."""
+    # start-up cost: numba loads only when tiles are generated
+    from tilekit.plugins.substitution import kernels
+
+    left = TO_CARTESIAN if seed_transform is None else np.asarray(seed_transform, dtype=float) @ TO_CARTESIAN
+    return kernels.sandwich(left, lattice, TO_LATTICE)
 
 
 def _outlines(vertex: Any) -> list[np.ndarray]:
