@@ -22,6 +22,7 @@ import statistics
 import sys
 import time
 import tracemalloc
+from functools import partial
 
 import numpy as np
 
@@ -169,13 +170,11 @@ def draw_as_components(out: list) -> tuple[np.ndarray, np.ndarray]:
 
 
 def timed(f, runs: int) -> tuple[list[float], object]:
-    times, out = [], None
+    times = []
     for _ in range(runs):
         start = time.perf_counter()
-        out = f()
+        f()  # the result is dropped before the next run, so runs do not share memory
         times.append(time.perf_counter() - start)
-        del out
-        out = None
     return times, f()
 
 
@@ -188,8 +187,8 @@ def main_speed(cases: list[tuple[str, int]], runs: int, draw: bool) -> None:
     print(f"min / median of {runs} runs, seconds; ratio = peer median / tilekit median")
     print(f"{'system':16s} {'depth':>5s} {'tiles':>11s} {'tilekit':>15s} {'M/s':>6s} {'components peer':>15s} {'M/s':>6s} {'ratio':>6s}")
     for name, depth in cases:
-        t_tk, tk = timed(lambda: tilekit_call(name, depth), runs)
-        t_peer, peer = timed(lambda: peer_components(name, depth), runs)
+        t_tk, tk = timed(partial(tilekit_call, name, depth), runs)
+        t_peer, peer = timed(partial(peer_components, name, depth), runs)
         check_equal(tk, peer)
         n = len(tk[0])
         del peer
@@ -197,7 +196,7 @@ def main_speed(cases: list[tuple[str, int]], runs: int, draw: bool) -> None:
         print(f"{name:16s} {depth:5d} {n:11,d} {fmt(t_tk):>15s} {n / statistics.median(t_tk) / 1e6:6.1f} "
               f"{fmt(t_peer):>15s} {n / statistics.median(t_peer) / 1e6:6.1f} {ratio:6.2f}")
         if draw and name not in ("hat", "spectre") and n < 2_000_000:
-            t_draw, out = timed(lambda: complex_draw(name, depth), max(1, min(runs, 5)))
+            t_draw, out = timed(partial(complex_draw, name, depth), max(1, min(runs, 5)))
             check_equal(tk, draw_as_components(out))
             ratio = statistics.median(t_draw) / statistics.median(t_tk)
             print(f"{'  complex DRAW':16s} {'':5s} {len(out):11,d} {'':15s} {'':6s} {fmt(t_draw):>15s} "
