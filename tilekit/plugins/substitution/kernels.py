@@ -88,3 +88,79 @@ def sandwich(left: np.ndarray, maps: np.ndarray, right: np.ndarray) -> np.ndarra
     if len(maps):
         _sandwich(np.asarray(left, dtype=float), np.ascontiguousarray(maps), np.asarray(right, dtype=float), out)
     return out
+
+
+@njit(cache=True, nogil=True)
+def _first_of_keys(keys):  # pragma: no cover - compiled
+    """Mask of the first occurrence of every key (open addressing, one pass)."""
+    n = keys.shape[0]
+    bits = 1
+    while (1 << bits) < 2 * n + 2:
+        bits += 1
+    size = 1 << bits
+    table = np.full(size, -1, dtype=np.int64)
+    first = np.zeros(n, dtype=np.bool_)
+    mult = np.uint64(0x9E3779B97F4A7C15)
+    shift = np.uint64(64 - bits)
+    for i in range(n):
+        k = keys[i]
+        h = np.int64((np.uint64(k) * mult) >> shift)
+        while True:
+            j = table[h]
+            if j < 0:
+                table[h] = i
+                first[i] = True
+                break
+            if keys[j] == k:
+                break
+            h = (h + 1) & (size - 1)
+    return first
+
+
+@njit(cache=True, nogil=True)
+def _unique_centres(proto, transform, centres, quantum):  # pragma: no cover - compiled
+    n = proto.shape[0]
+    x = np.empty(n)
+    y = np.empty(n)
+    pmax = 1
+    for i in range(n):
+        p = proto[i]
+        pmax = max(pmax, p)
+        x[i] = transform[i, 0, 0] * centres[p, 0] + transform[i, 0, 1] * centres[p, 1] + transform[i, 0, 2]
+        y[i] = transform[i, 1, 0] * centres[p, 0] + transform[i, 1, 1] * centres[p, 1] + transform[i, 1, 2]
+    x0 = x.min()
+    y0 = y.min()
+    cells = max(x.max() - x0, y.max() - y0) / quantum + 2.0
+    bits = 1
+    while (1 << bits) < cells and bits < 63:
+        bits += 1
+    bits_p = 1
+    while (1 << bits_p) <= pmax:
+        bits_p += 1
+    if 2 * bits + bits_p > 63:
+        return np.full(1, -1, dtype=np.int64)  # the packed key would not fit
+    keep = np.arange(n)
+    for offset in (0.0, 0.5):
+        m = keep.shape[0]
+        keys = np.empty(m, dtype=np.int64)
+        for k in range(m):
+            i = keep[k]
+            qx = np.int64(np.floor((x[i] - x0) / quantum + offset))
+            qy = np.int64(np.floor((y[i] - y0) / quantum + offset))
+            keys[k] = (proto[i] << (2 * bits)) | (qx << bits) | qy
+        keep = keep[_first_of_keys(keys)]
+    return keep
+
+
+def unique_centres(proto: np.ndarray, transform: np.ndarray, centres: np.ndarray, quantum: float) -> np.ndarray | None:
+    """Sorted indices of the first tile per (prototile, placed centroid quantised at
+    ``quantum`` on two grids offset by half a cell); None when the packed key would not
+    fit in 63 bits (the caller groups rows instead)."""
+    n = len(proto)
+    if n < 2:
+        return np.arange(n)
+    keep = _unique_centres(
+        np.ascontiguousarray(proto, dtype=np.int64), np.ascontiguousarray(transform, dtype=float),
+        np.ascontiguousarray(centres, dtype=float), float(quantum),
+    )
+    return None if len(keep) and keep[0] < 0 else keep
