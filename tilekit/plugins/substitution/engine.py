@@ -37,15 +37,11 @@ def meets_box(
     radii: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> np.ndarray:
     """Mask of tiles whose descendants (all depths) can meet the box: their disc test."""
+    # start-up cost: numba, as in expand_by_label
+    from tilekit.plugins.substitution import kernels
+
     centres, radius = radii if radii is not None else inflation_radii(system)
-    c = centres[proto]
-    img = np.einsum("nij,nj->ni", transform[:, :2, :2], c) + transform[:, :2, 2]
-    sigma = np.sqrt(np.abs(transform[:, 0, 0] * transform[:, 1, 1] - transform[:, 0, 1] * transform[:, 1, 0]))
-    reach = sigma * radius[proto]
-    x0, y0, x1, y1 = box
-    dx = np.maximum(np.maximum(x0 - img[:, 0], img[:, 0] - x1), 0.0)
-    dy = np.maximum(np.maximum(y0 - img[:, 1], img[:, 1] - y1), 0.0)
-    return dx * dx + dy * dy <= reach * reach
+    return kernels.meets(proto, transform, centres, radius, box, similar=True)
 
 
 def generate(

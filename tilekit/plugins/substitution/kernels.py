@@ -164,3 +164,29 @@ def unique_centres(proto: np.ndarray, transform: np.ndarray, centres: np.ndarray
         np.ascontiguousarray(centres, dtype=float), float(quantum),
     )
     return None if len(keep) and keep[0] < 0 else keep
+
+
+@njit(cache=True, nogil=True)
+def _meets(label, maps, centres, radii, box, similar, out):  # pragma: no cover - compiled
+    x0, y0, x1, y1 = box[0], box[1], box[2], box[3]
+    for i in range(label.shape[0]):
+        j = label[i]
+        cx = maps[i, 0, 0] * centres[j, 0] + maps[i, 0, 1] * centres[j, 1] + maps[i, 0, 2]
+        cy = maps[i, 1, 0] * centres[j, 0] + maps[i, 1, 1] * centres[j, 1] + maps[i, 1, 2]
+        r = radii[j]
+        if similar:
+            r *= np.sqrt(abs(maps[i, 0, 0] * maps[i, 1, 1] - maps[i, 0, 1] * maps[i, 1, 0]))
+        dx = max(max(x0 - cx, cx - x1), 0.0)
+        dy = max(max(y0 - cy, cy - y1), 0.0)
+        out[i] = dx * dx + dy * dy <= r * r
+
+
+def meets(label: np.ndarray, maps: np.ndarray, centres: np.ndarray, radii: np.ndarray, box, similar: bool) -> np.ndarray:
+    """Mask of placed supertiles whose bounding disc (``centres[label]``, ``radii[label]``,
+    scaled by the map's linear factor when ``similar``) meets the box (x0, y0, x1, y1)."""
+    out = np.empty(len(label), dtype=np.bool_)
+    if len(label):
+        _meets(np.ascontiguousarray(label, dtype=np.int64), np.ascontiguousarray(maps, dtype=float),
+               np.ascontiguousarray(centres, dtype=float), np.ascontiguousarray(radii, dtype=float),
+               np.asarray(box, dtype=float), bool(similar), out)
+    return out

@@ -76,11 +76,10 @@ def expand_by_label(
 
 def meets_discs(label: np.ndarray, transform: np.ndarray, bounds: tuple[np.ndarray, np.ndarray], box: Sequence[float]) -> np.ndarray:
     """Mask of placed supertiles (rigid ``transform``) whose bounding disc (``bounds``:
-    centre and radius per label) meets the box (x0, y0, x1, y1)."""
+    centre and radius per label) meets the box (x0, y0, x1, y1), with a relative and an
+    absolute margin of 1e-9 for float noise."""
+    # start-up cost: numba, as in expand_by_label
+    from tilekit.plugins.substitution import kernels
+
     centres, radii = bounds
-    img = np.einsum("nij,nj->ni", transform[:, :2, :2], centres[label]) + transform[:, :2, 2]
-    x0, y0, x1, y1 = box
-    dx = np.maximum(np.maximum(x0 - img[:, 0], img[:, 0] - x1), 0.0)
-    dy = np.maximum(np.maximum(y0 - img[:, 1], img[:, 1] - y1), 0.0)
-    r = radii[label] * (1 + 1e-9) + 1e-9
-    return dx * dx + dy * dy <= r * r
+    return kernels.meets(label, transform, centres, radii * (1 + 1e-9) + 1e-9, box, similar=False)
