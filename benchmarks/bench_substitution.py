@@ -34,9 +34,10 @@ from tilekit.plugins.substitution.hat import TO_CARTESIAN, TO_LATTICE
 #: From one obtuse Robinson triangle, depth 14 gives F(30) = 832,040 half-rhombs.
 DEPTH = 14
 
-#: (system, depth) near 10^6 tiles, and (with --big) near 10^7 / the largest that fits here.
+#: (system, depth) near 10^6 tiles, and (with --big) 4-19 x 10^6 (the hat refuses more than
+#: 5 x 10^6 tiles without a region, so its largest whole supertile here is depth 7).
 CASES = [("penrose-p3", 14), ("penrose-p2", 14), ("ammann-beenker", 8), ("chair", 10), ("hat", 7), ("spectre", 7)]
-BIG = [("penrose-p3", 17), ("penrose-p2", 17), ("ammann-beenker", 9), ("chair", 12), ("hat", 8), ("spectre", 8)]
+BIG = [("penrose-p3", 16), ("penrose-p2", 16), ("ammann-beenker", 9), ("chair", 11), ("spectre", 8)]
 
 
 # ----------------------------------------------------------------------------- peers

@@ -8,9 +8,10 @@ import pytest
 import shapely
 from click.testing import CliRunner
 
+from tilekit import limits
 from tilekit.cli import cli
 from tilekit.geometry import Affine
-from tilekit.plugins.substitution import builtin_systems, kernels, tiling
+from tilekit.plugins.substitution import builtin_systems, engine, kernels, tiling
 from tilekit.plugins.substitution.engine import assemble, generate, unique_centres, unique_tiles
 from tilekit.polygon import centroid
 from tilekit.tiling import Patch
@@ -116,3 +117,26 @@ def test_centroid_dedupe_agrees_with_the_symmetric_key() -> None:
     b = unique_tiles(whole_p, whole_t, s.output_symmetries)
     assert n == 2 and len(a) == len(b)
     assert tile_keys(s.output_prototiles, whole_p[a], whole_t[a]) == tile_keys(s.output_prototiles, whole_p[b], whole_t[b])
+
+
+@pytest.mark.parametrize(("name", "depth"), [("penrose-p3", 12), ("hat", 5), ("spectre", 5)])
+def test_patches_that_would_not_fit_in_memory_are_refused_first(monkeypatch, name: str, depth: int) -> None:
+    """With 1 MB available, a patch of ~10^5 tiles (~20 MB to generate) is refused before
+    anything is generated; the estimate uses the measured per-tile cost."""
+    monkeypatch.setattr(limits, "available_memory", lambda: 1e6)
+    called = []
+    real = engine.generate
+
+    def generate(system, depth, *args, **kwargs):  # small patches (the seed cluster's) pass
+        if depth >= 8:
+            called.append(depth)
+        return real(system, depth, *args, **kwargs)
+
+    monkeypatch.setattr(engine, "generate", generate)
+    with pytest.raises(limits.LimitError, match="memory available"):
+        tiling(name).configure(depth=depth).patch()
+    with pytest.raises(limits.LimitError, match="memory available"):
+        tiling(name).patch((-300, -300, 300, 300))
+    assert not called
+    monkeypatch.undo()
+    assert len(tiling(name).configure(depth=2).patch())
