@@ -27,9 +27,10 @@ from functools import partial
 import numpy as np
 
 from tilekit.geometry import Affine
-from tilekit.plugins.substitution import builtin_systems
+from tilekit.plugins.substitution import builtin_systems, tiling
 from tilekit.plugins.substitution.engine import assemble, generate
 from tilekit.plugins.substitution.hat import TO_CARTESIAN, TO_LATTICE
+from tilekit.polygon import centroid
 
 #: From one obtuse Robinson triangle, depth 14 gives F(30) = 832,040 half-rhombs.
 DEPTH = 14
@@ -224,6 +225,53 @@ def main_memory(cases: list[tuple[str, int]]) -> None:
         print(f"{name:16s} {depth:5d} {n:11,d} {peak / 1e6:9.1f} {peak / n:11.0f} {peer / n:16.0f}")
 
 
+def peer_unique_centres(system, proto: np.ndarray, transform: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The NumPy peer of whole-tile assembly: each half mapped to its whole tile (one
+    batched matmul), then one ``np.unique`` of a packed (tile, quantised centroid) int64
+    key keeps the first of each (one grid: a pair straddling a cell edge would survive
+    twice, which the check against tilekit would catch)."""
+    whole_p = system.assemble_tile[proto]
+    whole_t = np.matmul(transform, system.assemble_matrix[proto])
+    c = np.array([centroid(t.outline) for t in system.output_prototiles])[whole_p]
+    x = whole_t[:, 0, 0] * c[:, 0] + whole_t[:, 0, 1] * c[:, 1] + whole_t[:, 0, 2]
+    y = whole_t[:, 1, 0] * c[:, 0] + whole_t[:, 1, 1] * c[:, 1] + whole_t[:, 1, 2]
+    q = 1e-4
+    qx = np.floor((x - x.min()) / q).astype(np.int64)
+    qy = np.floor((y - y.min()) / q).astype(np.int64)
+    key = (whole_p << 60) | (qx << 30) | qy
+    _, first = np.unique(key, return_index=True)
+    first.sort()
+    return whole_p[first], whole_t[first]
+
+
+def main_api(runs: int, radius: float) -> None:
+    """Item 2: whole rhombs from halves, and ``tiling("penrose-p3").patch(region)``, at the
+    engine's size, min / median of ``runs``."""
+    s = builtin_systems()["penrose-p3"]
+    t = tiling("penrose-p3")
+    t.patch((0, 0, 3, 3))
+    seed = Affine.scaling(s.scale**DEPTH)
+    halves = generate(s, DEPTH, seed, s.seed)
+    assemble(s, *generate(s, 3, seed, s.seed))
+    t_gen, _ = timed(partial(generate, s, DEPTH, seed, s.seed), runs)
+    t_asm, whole = timed(partial(assemble, s, *halves), runs)
+    t_peer, peer = timed(partial(peer_unique_centres, s, *halves), runs)
+    assert len(whole[0]) == len(peer[0])
+    check_equal(whole, (peer[0], peer[1][:, :2, :].reshape(-1, 6).T))
+    region = (-radius, -radius, radius, radius)
+    t_api, patch = timed(partial(t.patch, region), runs)
+    med = statistics.median
+    n_h, n_w, n_p = len(halves[0]), len(whole[0]), len(patch)
+    print(f"min / median of {runs} runs, seconds (Penrose P3, depth {DEPTH})")
+    print(f"engine: {n_h:,} half-rhombs in {fmt(t_gen)} ({n_h / med(t_gen) / 1e6:.1f} M/s)")
+    print(f"assembly into {n_w:,} rhombs: {fmt(t_asm)} ({med(t_asm) / med(t_gen):.2f}x the generation); "
+          f"NumPy np.unique peer {fmt(t_peer)} (peer / tilekit {med(t_peer) / med(t_asm):.2f})")
+    rate_engine = n_w / (med(t_gen) + med(t_asm))
+    print(f"engine + assembly: {rate_engine / 1e6:.2f} M rhombs/s")
+    print(f"tiling('penrose-p3').patch({region}): {n_p:,} rhombs in {fmt(t_api)} "
+          f"({n_p / med(t_api) / 1e6:.2f} M/s; engine + assembly / API = {rate_engine / (n_p / med(t_api)):.2f}x)")
+
+
 # ----------------------------------------------------------------------------- pytest-benchmark
 
 
@@ -265,12 +313,15 @@ def main() -> None:
     ap.add_argument("--big", action="store_true", help="the 10^6-10^7 sizes too")
     ap.add_argument("--memory", action="store_true", help="bytes per tile (tracemalloc peak) instead of speed")
     ap.add_argument("--no-draw", action="store_true")
+    ap.add_argument("--api", type=float, metavar="R", help="item 2: assembly and patch((-R, -R, R, R)) instead")
     ap.add_argument("--only", help="comma-separated system names")
     args = ap.parse_args()
     cases = CASES + (BIG if args.big else [])
     if args.only:
         cases = [c for c in cases if c[0] in args.only.split(",")]
-    if args.memory:
+    if args.api:
+        main_api(args.runs, args.api)
+    elif args.memory:
         main_memory(cases)
     else:
         main_speed(cases, args.runs, not args.no_draw)
