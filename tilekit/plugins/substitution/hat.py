@@ -22,7 +22,7 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 import shapely
@@ -107,6 +107,9 @@ def _intersect(p1: np.ndarray, q1: np.ndarray, p2: np.ndarray, q2: np.ndarray) -
 @dataclass
 class HatSystem(MonotileSystem):
     """The hat's metatile substitution, with the interface of ``KeypointSystem``."""
+
+    #: ``generate`` without a region refuses more hats than this (ParameterError)
+    max_tiles: ClassVar[int] = MAX_TILES
 
     name: str
     title: str

@@ -478,7 +478,9 @@ class KeypointTiling(SubstitutionTiling):
             box = tuple(reg.bounds) if reg is not None else None
             if box is not None:
                 count = min(count, region_tile_estimate(reg, s.tiles))
-            refuse_over_memory("tiles", count, GENERATION_BYTES_PER_TILE, hint="ask for a smaller depth or region")
+            if box is not None or count <= getattr(s, "max_tiles", math.inf):
+                # (over its own whole-supertile limit, the system's generate refuses by count)
+                refuse_over_memory("tiles", count, GENERATION_BYTES_PER_TILE, hint="ask for a smaller depth or region")
             proto, transform, colour = s.generate(self.depth, seed_label=label, box=box)
             patch = Patch(s.tiles, proto, transform, colour=colour)
             return patch.clip(reg) if reg is not None else patch
