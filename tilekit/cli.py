@@ -573,6 +573,8 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
     # estimate first: nothing is allocated for a patch over the limit
     estimate = tiling.estimate_tiles(as_region(box) if box is not None else None)
     limits.refuse_over("tiles", estimate, max_tiles, "--max-tiles")
+    limits.refuse_over_memory("tiles", estimate, limits.GENERATION_BYTES_PER_TILE + limits.RENDER_BYTES_PER_TILE,
+                              hint="ask for a smaller depth or region")
     area = as_region(box) if box is not None else tiling.default_region()
     if estimate > PROGRESS_TILES and on_terminal():
         click.echo(f"making about {int(estimate):,} tiles ...", err=True)

@@ -7,12 +7,18 @@ CLI prints it as one line and exits 2) naming the estimate, the limit and the op
 raises it.
 
 The defaults are sized so that a refused object would need more than a few GB: a placed tile
-costs about 100 bytes as arrays and several hundred more as SVG text.
+costs 80-90 bytes as a Patch's arrays ((3, 3) float64 map, int64 prototile, colour) and
+several hundred more as SVG text. Generating it peaks higher, because the previous level of
+a substitution is alive while the last one is made: 94-163 bytes per tile measured at 10^6
+tiles (tracemalloc, docs/benchmarks.md), which GENERATION_BYTES_PER_TILE bounds. Whatever
+the tile limits are raised to, :func:`refuse_over_memory` refuses a patch whose arrays
+would not fit in the memory the machine has available.
 """
 
 from __future__ import annotations
 
 import math
+import os
 
 from tilekit.errors import TilekitError
 
@@ -33,6 +39,14 @@ MAX_PNG_PIXELS = 100_000_000
 MAX_COORDINATE = 1e9
 #: Largest substitution depth any system accepts (the tile estimate is the real bound).
 MAX_DEPTH = 60
+#: Peak bytes per tile while a substitution patch is generated (measured 94-163 at 10^6
+#: tiles for every generator; see docs/benchmarks.md), with a margin.
+GENERATION_BYTES_PER_TILE = 200
+#: Peak bytes per tile while a patch is drawn as SVG (measured about 405 for Penrose
+#: rhombs: the polygons, the path text and the document), with a margin.
+RENDER_BYTES_PER_TILE = 500
+#: Fraction of the available memory one patch may take.
+MEMORY_FRACTION = 0.8
 
 
 class LimitError(TilekitError, ValueError):
@@ -72,3 +86,33 @@ def check_coordinates(bounds: tuple[float, float, float, float], what: str = "re
             f"{what} coordinate {big:.3g} is beyond ±{MAX_COORDINATE:.0e}, where tiles cannot be "
             "placed accurately; use a region nearer the origin"
         )
+
+
+def available_memory() -> float:
+    """Bytes of memory available to a new allocation (MemAvailable of /proc/meminfo, else
+    the free physical pages; inf when the system says neither)."""
+    try:
+        with open("/proc/meminfo", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("MemAvailable:"):
+                    return float(line.split()[1]) * 1024
+    except OSError:
+        pass
+    try:
+        return float(os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE"))
+    except (ValueError, OSError, AttributeError):
+        return math.inf
+
+
+def refuse_over_memory(what: str, count: float, bytes_each: float, hint: str = "") -> None:
+    """Raise LimitError when ``count`` objects of ``bytes_each`` bytes would take more than
+    MEMORY_FRACTION of the available memory: checked before allocating, whatever the count
+    limits were raised to."""
+    need = count * bytes_each
+    avail = available_memory()
+    if math.isnan(need) or need > MEMORY_FRACTION * avail:
+        msg = (f"this would make about {_fmt(count)} {what}, about {need / 2**30:.3g} GiB at "
+               f"{bytes_each:g} bytes each, more than the {avail / 2**30:.3g} GiB of memory available")
+        if hint:
+            msg += f"; {hint}"
+        raise LimitError(msg)

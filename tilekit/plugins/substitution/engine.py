@@ -13,10 +13,12 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 import numpy as np
+import shapely
 
 from tilekit.geometry import Affine
 from tilekit.plugins.substitution.levels import expand_by_label, substitute_levels
 from tilekit.plugins.substitution.system import SubstitutionSystem, inflation_radii
+from tilekit.polygon import centroid
 
 #: Quantum of the duplicate keys, relative to the tiles' linear size.
 KEY_QUANTUM = 1e-6
@@ -35,15 +37,11 @@ def meets_box(
     radii: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> np.ndarray:
     """Mask of tiles whose descendants (all depths) can meet the box: their disc test."""
+    # start-up cost: numba, as in expand_by_label
+    from tilekit.plugins.substitution import kernels
+
     centres, radius = radii if radii is not None else inflation_radii(system)
-    c = centres[proto]
-    img = np.einsum("nij,nj->ni", transform[:, :2, :2], c) + transform[:, :2, 2]
-    sigma = np.sqrt(np.abs(transform[:, 0, 0] * transform[:, 1, 1] - transform[:, 0, 1] * transform[:, 1, 0]))
-    reach = sigma * radius[proto]
-    x0, y0, x1, y1 = box
-    dx = np.maximum(np.maximum(x0 - img[:, 0], img[:, 0] - x1), 0.0)
-    dy = np.maximum(np.maximum(y0 - img[:, 1], img[:, 1] - y1), 0.0)
-    return dx * dx + dy * dy <= reach * reach
+    return kernels.meets(proto, transform, centres, radius, box, similar=True)
 
 
 def generate(
@@ -101,10 +99,57 @@ def assemble(system: SubstitutionSystem, proto: np.ndarray, transform: np.ndarra
     if system.pairing_edge is not None:
         return pair_halves(system, proto, transform)
     assert system.assemble_tile is not None and system.assemble_matrix is not None
-    out_proto = system.assemble_tile[proto]
-    out_transform = np.matmul(transform, system.assemble_matrix[proto])
-    keep = unique_tiles(out_proto, out_transform, system.output_symmetries)
+    n = len(system.prototiles)
+    out_proto, out_transform = expand_by_label(
+        proto, transform, [system.assemble_tile[[p]] for p in range(n)], [system.assemble_matrix[[p]] for p in range(n)]
+    )
+    centres = _interior_centroids(system)
+    if centres is None:  # a whole tile whose centroid is outside it: compare whole maps
+        keep = unique_tiles(out_proto, out_transform, system.output_symmetries)
+    else:
+        keep = unique_centres(out_proto, out_transform, centres)
     return out_proto[keep], out_transform[keep]
+
+
+def _interior_centroids(system: SubstitutionSystem) -> np.ndarray | None:
+    """(k, 2) centroids of the whole tiles, or None when one lies outside its tile."""
+    out = []
+    for p in system.output_prototiles or []:
+        c = centroid(p.outline)
+        if not shapely.Polygon(p.outline).contains(shapely.Point(c)):
+            return None
+        out.append(c)
+    return np.array(out)
+
+
+def unique_centres(proto: np.ndarray, transform: np.ndarray, centres: np.ndarray) -> np.ndarray:
+    """Indices (sorted) of the first of the tiles with equal prototile and placed centroid.
+
+    Tiles of a tiling that lie inside one another are the same tile, so when every
+    prototile's centroid is interior, (prototile, placed centroid) identifies a placed tile
+    whatever symmetry of it its map carries: the two halves of a whole rhomb give it by
+    maps differing by its mirror, and the same centroid. Centroids are quantised at 1e-4 of
+    the tiles' size on two grids offset by half a cell (two copies cannot straddle a cell
+    boundary on both); each pass is one hash of a packed int64 key (kernels.py).
+    """
+    # start-up cost: numba, as in expand_by_label
+    from tilekit.plugins.substitution import kernels
+
+    if len(proto) < 2:
+        return np.arange(len(proto))
+    sigma = np.sqrt(np.abs(_det(transform[:: max(1, len(transform) // 1000)])))
+    quantum = 1e-4 * float(np.median(sigma)) * float(np.abs(centres).max() + 1.0)
+    keep = kernels.unique_centres(proto, transform, centres, quantum)
+    if keep is None:  # a key wider than 63 bits: group (prototile, cell) rows instead
+        c = centres[proto]
+        x = transform[:, 0, 0] * c[:, 0] + transform[:, 0, 1] * c[:, 1] + transform[:, 0, 2]
+        y = transform[:, 1, 0] * c[:, 0] + transform[:, 1, 1] * c[:, 1] + transform[:, 1, 2]
+        keep = np.arange(len(proto))
+        for offset in (0.0, 0.5):
+            rows = np.column_stack([proto[keep], np.floor(x[keep] / quantum + offset), np.floor(y[keep] / quantum + offset)])
+            first, _ = _row_groups(rows.astype(np.int64))
+            keep = keep[np.sort(first)]
+    return keep
 
 
 def unique_tiles(proto: np.ndarray, transform: np.ndarray, groups: Sequence[np.ndarray]) -> np.ndarray:

@@ -22,7 +22,7 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 import shapely
@@ -108,6 +108,9 @@ def _intersect(p1: np.ndarray, q1: np.ndarray, p2: np.ndarray, q2: np.ndarray) -
 @dataclass
 class HatSystem(MonotileSystem):
     """The hat's metatile substitution, with the interface of ``KeypointSystem``."""
+
+    #: ``generate`` without a region refuses more hats than this (ParameterError)
+    max_tiles: ClassVar[int] = MAX_TILES
 
     name: str
     title: str
@@ -301,11 +304,13 @@ class HatSystem(MonotileSystem):
 
 
 def _placed(seed_transform: np.ndarray | None, lattice: np.ndarray) -> np.ndarray:
-    """Cartesian transforms of lattice maps, after ``seed_transform`` (identity if None)."""
-    cart = to_cartesian(lattice)
-    if seed_transform is None:
-        return cart
-    return np.asarray(seed_transform, dtype=float)[None] @ cart
+    """Cartesian transforms of lattice maps, after ``seed_transform`` (identity if None):
+    ``seed @ TO_CARTESIAN @ lattice[i] @ TO_LATTICE``, in one compiled pass."""
+    # start-up cost: numba loads only when tiles are generated
+    from tilekit.plugins.substitution import kernels
+
+    left = TO_CARTESIAN if seed_transform is None else np.asarray(seed_transform, dtype=float) @ TO_CARTESIAN
+    return kernels.sandwich(left, lattice, TO_LATTICE)
 
 
 def _outlines(vertex: Any) -> list[np.ndarray]:

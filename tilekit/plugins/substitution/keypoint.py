@@ -191,7 +191,7 @@ class KeypointSystem(MonotileSystem):
         label, transform = substitute_levels(label, transform, depth, expand, cull if box is not None else None)
         colours = [(np.arange(len(p)) > 0).astype(np.int64) for p in self.base]
         transform, colour = expand_base(label, transform, self.base, colours)
-        return np.zeros(len(transform), dtype=np.int64), transform.astype(float), colour
+        return np.zeros(len(transform), dtype=np.int64), transform.astype(float, copy=False), colour
 
 
 # ---------------------------------------------------------------------- loading

@@ -2,7 +2,7 @@
 
 The similarity engine, the keypoint (spectre) systems and the hat all substitute a seed
 supertile level by level: drop the placed supertiles that cannot reach the region, replace
-every survivor by its children (one batched matrix product per label), and at the end place
+every survivor by its children (one compiled pass over the level, kernels.py), and at the end place
 the base tiles. Only the rules per level, the culling test and the base differ; they are
 arguments here.
 """
@@ -50,17 +50,10 @@ def expand_base(
     label: np.ndarray, maps: np.ndarray, base: Sequence[np.ndarray], colours: Sequence[np.ndarray]
 ) -> tuple[np.ndarray, np.ndarray]:
     """The base tiles of level-0 supertiles: label j's tiles are placed by ``maps @ base[j]``
-    and coloured ``colours[j]``. Returns (transforms, colours); the dtype of ``maps`` is kept."""
-    out_t, out_c = [], []
-    for j, placements in enumerate(base):
-        idx = np.flatnonzero(label == j)
-        if not len(idx):
-            continue
-        out_t.append(np.matmul(maps[idx][:, None], placements[None]).reshape(-1, 3, 3))
-        out_c.append(np.tile(colours[j], len(idx)))
-    if not out_t:
-        return np.zeros((0, 3, 3), dtype=maps.dtype), np.zeros(0, dtype=np.int64)
-    return np.concatenate(out_t), np.concatenate(out_c)
+    and coloured ``colours[j]``. Returns (transforms, colours); the dtype of ``maps`` is kept
+    (the tiles of one supertile are contiguous, in supertile order)."""
+    colour, out = expand_by_label(label, maps, colours, base)
+    return out, colour
 
 
 def expand_by_label(
@@ -72,28 +65,21 @@ def expand_by_label(
     """One substitution level as arrays: every placed supertile of label j (``maps[k]``)
     becomes its children ``children[j]`` placed by ``maps[k] @ matrices[j]``.
 
-    One batched matmul per label; the dtype of ``maps`` is kept (integer lattice maps stay
-    exact). Returns the children's labels and maps.
+    The dtype of ``maps`` is kept (integer lattice maps stay exact). Returns the children's labels and maps; the children of one supertile are
+    contiguous, in supertile order. One compiled pass per level (kernels.py).
     """
-    labels, out = [], []
-    for j, (kids, mats) in enumerate(zip(children, matrices, strict=True)):
-        idx = np.flatnonzero(label == j)
-        if not len(idx):
-            continue
-        out.append(np.matmul(maps[idx][:, None], mats[None]).reshape(-1, 3, 3))
-        labels.append(np.tile(kids, len(idx)))
-    if not labels:
-        return np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3), dtype=maps.dtype)
-    return np.concatenate(labels), np.concatenate(out)
+    # start-up cost: numba loads in ~0.25 s; only generation needs it, not listing the family
+    from tilekit.plugins.substitution import kernels
+
+    return kernels.expand(label, maps, list(children), list(matrices))
 
 
 def meets_discs(label: np.ndarray, transform: np.ndarray, bounds: tuple[np.ndarray, np.ndarray], box: Sequence[float]) -> np.ndarray:
     """Mask of placed supertiles (rigid ``transform``) whose bounding disc (``bounds``:
-    centre and radius per label) meets the box (x0, y0, x1, y1)."""
+    centre and radius per label) meets the box (x0, y0, x1, y1), with a relative and an
+    absolute margin of 1e-9 for float noise."""
+    # start-up cost: numba, as in expand_by_label
+    from tilekit.plugins.substitution import kernels
+
     centres, radii = bounds
-    img = np.einsum("nij,nj->ni", transform[:, :2, :2], centres[label]) + transform[:, :2, 2]
-    x0, y0, x1, y1 = box
-    dx = np.maximum(np.maximum(x0 - img[:, 0], img[:, 0] - x1), 0.0)
-    dy = np.maximum(np.maximum(y0 - img[:, 1], img[:, 1] - y1), 0.0)
-    r = radii[label] * (1 + 1e-9) + 1e-9
-    return dx * dx + dy * dy <= r * r
+    return kernels.meets(label, transform, centres, radii * (1 + 1e-9) + 1e-9, box, similar=False)

@@ -23,8 +23,10 @@ from shapely.geometry.polygon import orient
 from tilekit.errors import GeometryError, NotFoundError, ParameterError, ParseError
 from tilekit.geometry import Affine, as_region
 from tilekit.limits import (  # MAX_DEPTH: the depth range; the tile estimate is the real bound
+    GENERATION_BYTES_PER_TILE,
     MAX_DEPTH,
     MAX_TILES,
+    refuse_over_memory,
 )
 from tilekit.plugins.substitution import engine, shapes
 from tilekit.plugins.substitution import quasivertex as qv
@@ -239,12 +241,22 @@ class SubstitutionTiling(Tiling):
                 # a depth with a region covers the region: move the seed onto it
                 seed, t, d = self.seed_placement(shapely.box(*box) if box else reg, depth=d)
                 members = [(seed, t)]
+        self._refuse_unaffordable(members, d, box)
         protos, transforms = [], []
         for seed, t in members:
             proto, transform = engine.generate(self.system, d, t, seed, box=box)
             protos.append(proto)
             transforms.append(transform)
         return engine.assemble(self.system, np.concatenate(protos), np.concatenate(transforms))
+
+    def _refuse_unaffordable(self, members: Sequence[tuple[int, Any]], depth: int, box: Any) -> None:
+        """LimitError before generating when the rule tiles would not fit in memory: the
+        members' counts after ``depth`` substitutions (exact), or, with a box, at most what
+        fits in it, at GENERATION_BYTES_PER_TILE each."""
+        count = float(sum(sum(self.system.counts(depth, int(p))[-1]) for p, _ in members))
+        if box is not None:
+            count = min(count, region_tile_estimate(shapely.box(*box), self.system.prototiles))
+        refuse_over_memory("tiles", count, GENERATION_BYTES_PER_TILE, hint="ask for a smaller depth or region")
 
     def patch(self, region: Any = None) -> Patch:
         """Tiles meeting ``region`` (every tile of the fixed-depth patch when region is None)."""
@@ -461,13 +473,21 @@ class KeypointTiling(SubstitutionTiling):
         reg = as_region(region) if region is not None else None
         s = self.system
         label = self._seed_index()
+        count = float(self._full_count(self.depth if self.depth is not None else 0))
         if self.depth is not None:
             box = tuple(reg.bounds) if reg is not None else None
+            if box is not None:
+                count = min(count, region_tile_estimate(reg, s.tiles))
+            if box is not None or count <= getattr(s, "max_tiles", math.inf):
+                # (over its own whole-supertile limit, the system's generate refuses by count)
+                refuse_over_memory("tiles", count, GENERATION_BYTES_PER_TILE, hint="ask for a smaller depth or region")
             proto, transform, colour = s.generate(self.depth, seed_label=label, box=box)
             patch = Patch(s.tiles, proto, transform, colour=colour)
             return patch.clip(reg) if reg is not None else patch
         if reg is None:
             raise ParameterError("a region or a fixed depth is needed")
+        refuse_over_memory("tiles", region_tile_estimate(reg, s.tiles), GENERATION_BYTES_PER_TILE,
+                           hint="ask for a smaller region")
         x0, y0, x1, y1 = reg.bounds
         centre = np.array([(x0 + x1) / 2, (y0 + y1) / 2])
         need = math.hypot(x1 - x0, y1 - y0) / 2
