@@ -2,8 +2,22 @@
 
 The isohedral test follows S. Langerman and A. Winslow, "A quasilinear-time algorithm for
 tiling the plane isohedrally with a polyomino", SoCG 2016 (arXiv:1507.02762). Published
-counts (Myers' data, in the OEIS, offset 1): A075205 (isohedral tilers), A075201 (tilers by
-180-degree rotation but not by translation; the MathWorld misindexing is noted in FACTS.md).
+counts: Joseph Myers' polyomino tiling data (http://www.polyomino.org.uk/mathematics/polyform-tiling/)
+as in the OEIS (offset 1), terms read from the OEIS's own data files (github.com/oeis/oeisdata,
+seq/A075/A075198.seq ... A075205.seq):
+
+- A075198 tile by translation; A075202 tile by 180-degree rotation (Conway criterion),
+  translations allowed too (its a(5) = 12 counts every pentomino);
+- A075199 by translation but not by half-turn; A075200 by both; A075201 by half-turn but not
+  by translation; A075203 by either (so A075202 = A075200 + A075201 and A075203 = A075198 +
+  A075201, which the tests check as well);
+- A075204 isohedral but neither by translation nor by half-turn; A075205 isohedral.
+
+"Tile by translation" there means any tiling by translates, which for a polyomino exists iff
+it has a lattice tiling (Beauquier-Nivat), i.e. iff the translation factorisation exists;
+"by 180-degree rotation" means Conway's criterion, the half-turn factorisation. So each
+sequence compares like with like with one flag of the analysis. The MathWorld misindexing of
+A075201 is noted in FACTS.md.
 """
 
 from __future__ import annotations
@@ -21,12 +35,25 @@ import tilekit
 from tilekit.errors import GeometryError, NotFoundError, ParameterError, ParseError
 from tilekit.lattice import SQUARE, boundary_word, encode, enumerate_free
 from tilekit.plugins.polyomino import search as psearch
-from tilekit.plugins.polyomino.isohedral import analyse, build, factorisations, ih_groups
+from tilekit.plugins.polyomino.isohedral import (
+    analyse,
+    analyse_many,
+    build,
+    factorisations,
+    ih_groups,
+)
 
-# A075205, from n = 1 (FACTS.md: 104, 342, 1041, 3026 for n = 7..10; every n-omino, n <= 6, tiles)
-A075205 = [1, 1, 2, 5, 12, 35, 104, 342, 1041, 3026]
-# A075201, from n = 1: tile by 180-degree rotation but not by translation
-A075201 = [0, 0, 0, 0, 3, 11, 60, 199, 748]
+# Myers' counts from n = 1 to 12 (the OEIS data files named above)
+A075198 = [1, 1, 2, 5, 9, 24, 41, 121, 213, 522, 783, 2712]          # by translation
+A075199 = [0, 0, 0, 0, 0, 0, 0, 0, 1, 2, 10, 135]                    # translation, not half-turn
+A075200 = [1, 1, 2, 5, 9, 24, 41, 121, 212, 520, 773, 2577]          # translation and half-turn
+A075201 = [0, 0, 0, 0, 3, 11, 60, 199, 748, 2181, 5391, 17193]       # half-turn, not translation
+A075202 = [1, 1, 2, 5, 12, 35, 101, 320, 960, 2701, 6164, 19770]     # by half-turn (Conway)
+A075203 = [1, 1, 2, 5, 12, 35, 101, 320, 961, 2703, 6174, 19905]     # translation or half-turn
+A075204 = [0, 0, 0, 0, 0, 0, 3, 22, 80, 323, 338, 3322]              # isohedral, neither
+A075205 = [1, 1, 2, 5, 12, 35, 104, 342, 1041, 3026, 6512, 23227]    # isohedral
+MYERS = {"tr": A075198, "tr_not_ht": A075199, "both": A075200, "ht_not_tr": A075201, "ht": A075202,
+         "either": A075203, "other": A075204, "iso": A075205}
 
 
 @pytest.fixture(scope="module")
@@ -44,23 +71,51 @@ def _tally(items):
         n = len(p)
         if h:
             continue
+        tr, ht = a["translation"], a["halfturn"]
         c["iso", n] += a["isohedral"]
-        c["tr", n] += a["translation"]
-        c["ht", n] += a["halfturn"]
-        c["ht_not_tr", n] += a["halfturn"] and not a["translation"]
-        c["other", n] += a["isohedral"] and not a["translation"] and not a["halfturn"]
+        c["tr", n] += tr
+        c["ht", n] += ht
+        c["both", n] += tr and ht
+        c["either", n] += tr or ht
+        c["tr_not_ht", n] += tr and not ht
+        c["ht_not_tr", n] += ht and not tr
+        c["other", n] += a["isohedral"] and not tr and not ht
     return c
 
 
+def test_myers_sequences_are_consistent():
+    """The published terms themselves: the both/either/not splits add up."""
+    for n in range(12):
+        assert A075202[n] == A075200[n] + A075201[n]
+        assert A075198[n] == A075200[n] + A075199[n]
+        assert A075203[n] == A075198[n] + A075201[n]
+        assert A075205[n] == A075203[n] + A075204[n]
+
+
 def test_isohedral_counts_against_myers_data(upto10):
+    """n <= 10 against A075198-A075205 (n = 11, 12: the slow test below)."""
     c = _tally(upto10)
-    assert [c["iso", n] for n in range(1, 11)] == A075205
-    assert [c["ht_not_tr", n] for n in range(1, 10)] == A075201
-    # the counts this implementation finds for the other Myers sequences (A075198 translation,
-    # A075202 half-turn, A075204 isohedral by neither), pinned as regression values
-    assert [c["tr", n] for n in range(1, 11)] == [1, 1, 2, 5, 9, 24, 41, 121, 213, 522]
-    assert [c["ht", n] for n in range(1, 11)] == [1, 1, 2, 5, 12, 35, 101, 320, 960, 2701]
-    assert [c["other", n] for n in range(1, 11)] == [0, 0, 0, 0, 0, 0, 3, 22, 80, 323]
+    for key, seq in MYERS.items():
+        assert [c[key, n] for n in range(1, 11)] == seq[:10], key
+
+
+@pytest.mark.slow
+def test_isohedral_counts_against_myers_data_11_and_12():
+    """n = 11 and 12 (63,600 free 12-ominoes) through the bulk path the search uses."""
+    polys, flags, _ = enumerate_free(SQUARE, 12, maxsize=12, with_holes=True)
+    big = [p for p, h in zip(polys, flags) if not h and len(p) >= 11]
+    c = _tally([(p, False, a) for p, a in zip(big, analyse_many(SQUARE, big))])
+    for key, seq in MYERS.items():
+        assert [c[key, 11], c[key, 12]] == seq[10:12], key
+
+
+def test_bulk_analysis_equals_one_by_one(upto10):
+    """analyse_many (one compiled call for a chunk) gives exactly analyse(construct=False)."""
+    items = [(p, a) for p, h, a in upto10 if not h and len(p) <= 9]
+    bulk = analyse_many(SQUARE, [p for p, _ in items])
+    for (_, a), b in zip(items, bulk):
+        assert {k: v for k, v in a.items() if k != "boundary"} == {k: v for k, v in b.items() if k != "boundary"}
+        assert a["boundary"].tolist() == b["boundary"].tolist()
 
 
 # --------------------------------------------------------------------------- independent oracle
