@@ -418,10 +418,100 @@ def boundary_word(grid: Grid, cells: np.ndarray) -> tuple[np.ndarray, np.ndarray
     ea, eb, en, el = _edge_tables(grid)
     out_v = np.zeros((8 * len(c) + 8, 2), np.int64)
     out_l = np.zeros(8 * len(c) + 8, np.int64)
-    m = _trace(c, grid.cell_type(c), ea, eb, en, el, np.int64(grid.period), out_v, out_l)
+    types = grid.cell_type(c)
+    m = _trace(c, types, ea, eb, en, el, np.int64(grid.period), out_v, out_l)
+    if m <= 0 and (types >= 0).all():
+        # holes or a pinch vertex: the outer cycle as boundary_cycles traces it, compiled
+        m = _trace_outer(c, types, ea, eb, en, el, np.int64(grid.period), _turn_table(grid), out_v, out_l)
     if m > 0:
         return out_v[:m].copy(), out_l[:m].copy()
     return boundary_cycles(grid, cells)[0]
+
+
+_TURN_CACHE: dict[str, np.ndarray] = {}
+
+
+def _turn_table(grid: Grid) -> np.ndarray:
+    """turn[e, e2]: boundary_cycles' preference for leaving a vertex by e2 after arriving by e
+    (smaller first: the sharpest right turn)."""
+    if grid.name not in _TURN_CACHE:
+        angle = np.arctan2(*(grid.xy(grid.edge_dirs)[:, ::-1].T))
+        E = len(angle)
+        t = np.zeros((E, E))
+        for e in range(E):
+            for e2 in range(E):
+                t[e, e2] = (angle[e2] - angle[e] + math.pi) % (2 * math.pi)
+        _TURN_CACHE[grid.name] = t
+    return _TURN_CACHE[grid.name]
+
+
+@njit(cache=True)
+def _trace_outer(c, types, ea, eb, en, el, period, turn, out_v, out_l):
+    """The outer boundary cycle, exactly as :func:`boundary_cycles` returns it first: from the
+    least vertex (y, x), interior on the left, the sharpest right turn at a vertex where
+    cycles touch. Returns its length (-1 if more than four edges leave one vertex)."""
+    n = c.shape[0]
+    x0 = c[0, 0]
+    y0 = c[0, 1]
+    x1 = x0
+    y1 = y0
+    for i in range(n):
+        x0 = min(x0, c[i, 0])
+        y0 = min(y0, c[i, 1])
+        x1 = max(x1, c[i, 0])
+        y1 = max(y1, c[i, 1])
+    m = 2 * period
+    x0 -= m
+    y0 -= m
+    w = x1 - x0 + m + 1
+    h = y1 - y0 + m + 1
+    occ = np.zeros(w * h, np.uint8)
+    for i in range(n):
+        occ[(c[i, 1] - y0) * w + c[i, 0] - x0] = 1
+    S = 4
+    nout = np.zeros(w * h, np.int64)
+    nxt = np.full((w * h, S), -1, np.int64)
+    let = np.zeros((w * h, S), np.int64)
+    used = np.zeros((w * h, S), np.uint8)
+    for i in range(n):
+        t = types[i]
+        for k in range(ea.shape[1]):
+            qx = c[i, 0] + en[t, k, 0]
+            qy = c[i, 1] + en[t, k, 1]
+            if occ[(qy - y0) * w + qx - x0] == 1:
+                continue
+            a = (c[i, 1] + ea[t, k, 1] - y0) * w + c[i, 0] + ea[t, k, 0] - x0
+            b = (c[i, 1] + eb[t, k, 1] - y0) * w + c[i, 0] + eb[t, k, 0] - x0
+            if nout[a] == S:
+                return -1
+            nxt[a, nout[a]] = b
+            let[a, nout[a]] = el[t, k]
+            nout[a] += 1
+    start = -1
+    for v in range(w * h):  # row by row: the least (y, x)
+        if nout[v] > 0:
+            start = v
+            break
+    a = start
+    j = 0
+    cnt = 0
+    while used[a, j] == 0:
+        used[a, j] = 1
+        out_v[cnt, 0] = a % w + x0
+        out_v[cnt, 1] = a // w + y0
+        e = let[a, j]
+        out_l[cnt] = e
+        cnt += 1
+        b = nxt[a, j]
+        best = -1
+        for j2 in range(nout[b]):
+            if used[b, j2] == 0 and (best < 0 or turn[e, let[b, j2]] < turn[e, let[b, best]]):
+                best = j2
+        if best < 0:
+            break
+        a = b
+        j = best
+    return cnt
 
 
 _EDGE_CACHE: dict[str, tuple] = {}
