@@ -127,7 +127,7 @@ def main() -> None:
         print(f"count fixed to n={m}: {int(c[m])} in {tmin:.2f}s (median {tmed:.2f}s), one process")
     c, t = timed(lambda: count_fixed(SQUARE, 14, free=True), repeat=1)[:2]
     print(f"count fixed+free+holey to n=14: free {int(c['free'][14])} holey {int(c['holey'][14])} in {t:.2f}s")
-    isohedral_rate(10 if a.quick else 12)
+    isohedral_rate(10 if a.quick else 11)
     rows, t = stored_run(10 if a.quick else 12, a.workers)
     print(f"stored run --max-cells {10 if a.quick else 12} (rows + isohedral test), {a.workers} workers: "
           f"{rows} rows in {t:.1f}s")

@@ -595,7 +595,11 @@ def _trace(c, types, ea, eb, en, el, period, out_v, out_l):
 
 
 def word_text(letters) -> str:
-    return "".join("0123456789"[int(e)] for e in letters)
+    """A boundary word as text, one digit per letter."""
+    a = np.asarray(letters, dtype=np.int64)
+    if a.size and (a.min() < 0 or a.max() > 9):
+        raise ValueError(f"boundary letters must be 0-9, got {a.tolist()}")
+    return (a.astype(np.uint8) + 48).tobytes().decode("ascii")
 
 
 def outline(grid: Grid, cells: np.ndarray, name: str = ""):
@@ -945,11 +949,11 @@ def encode(grid: Grid, cells: np.ndarray, *, is_canonical: bool = False) -> str:
     if grid is SQUARE:
         q = (c - 1) // 2
         q = q - q.min(axis=0)
-        w, h = q.max(axis=0) + 1
-        rows = [["."] * int(w) for _ in range(int(h))]
-        for x, y in q.tolist():
-            rows[int(h) - 1 - y][x] = "x"
-        return "/".join("".join(r) for r in rows)
+        w, h = (q.max(axis=0) + 1).tolist()
+        board = np.full((h, w + 1), ord("/"), np.uint8)  # each row ends in '/', the last one dropped
+        board[:, :w] = ord(".")
+        board[h - 1 - q[:, 1], q[:, 0]] = ord("x")
+        return board.tobytes()[:-1].decode("ascii")
     return ";".join(f"{x},{y}" for x, y in c.tolist())
 
 
