@@ -16,7 +16,8 @@ import statistics
 import time
 from concurrent.futures import ProcessPoolExecutor
 
-from tilekit.lattice import SQUARE, count_fixed, prefixes
+from tilekit.lattice import SQUARE, count_fixed, enumerate_free, prefixes
+from tilekit.plugins.polyomino.isohedral import analyse, analyse_many
 
 
 def plain_redelmeier(n: int) -> list[int]:
@@ -59,9 +60,6 @@ def timed(fn, repeat: int = 3):
 def isohedral_rate(n: int) -> None:
     """The isohedral test of every hole-free n-omino: one compiled call for the whole list
     (``analyse_many``, what a chunk does) against ``analyse`` one polyomino at a time."""
-    from tilekit.lattice import enumerate_free
-    from tilekit.plugins.polyomino.isohedral import analyse, analyse_many
-
     polys, flags, _ = enumerate_free(SQUARE, n, maxsize=n, with_holes=True)
     plain = [p for p, h in zip(polys, flags) if not h and len(p) == n]
     analyse_many(SQUARE, plain[:10])  # load the numba cache
