@@ -1,4 +1,5 @@
-"""Polyomino benchmarks: Redelmeier (numba) against a plain Python Redelmeier counter, the stored
+"""Polyomino benchmarks: Redelmeier (numba) against a plain Python Redelmeier counter, the
+isohedral test per polyomino (one by one and one compiled call per chunk), the stored
 ``--max-cells 12`` run with the isohedral test, and counting to n = 16 and 18.
 
     .venv/bin/python benchmarks/bench_polyomino.py [--quick] [--workers 2] [--n18]
@@ -15,7 +16,8 @@ import statistics
 import time
 from concurrent.futures import ProcessPoolExecutor
 
-from tilekit.lattice import SQUARE, count_fixed, prefixes
+from tilekit.lattice import SQUARE, count_fixed, enumerate_free, prefixes
+from tilekit.plugins.polyomino.isohedral import analyse, analyse_many
 
 
 def plain_redelmeier(n: int) -> list[int]:
@@ -53,6 +55,20 @@ def timed(fn, repeat: int = 3):
         out = fn()
         times.append(time.perf_counter() - t)
     return out, min(times), statistics.median(times)
+
+
+def isohedral_rate(n: int) -> None:
+    """The isohedral test of every hole-free n-omino: one compiled call for the whole list
+    (``analyse_many``, what a chunk does) against ``analyse`` one polyomino at a time."""
+    polys, flags, _ = enumerate_free(SQUARE, n, maxsize=n, with_holes=True)
+    plain = [p for p, h in zip(polys, flags) if not h and len(p) == n]
+    analyse_many(SQUARE, plain[:10])  # load the numba cache
+    _, bmin, bmed = timed(lambda: analyse_many(SQUARE, plain), repeat=3)
+    some = plain[::10]
+    _, omin, _ = timed(lambda: [analyse(SQUARE, p, construct=False) for p in some], repeat=1)
+    print(f"isohedral test, {len(plain)} hole-free {n}-ominoes: analyse_many {bmin:.2f}s min / {bmed:.2f}s median "
+          f"({1e6 * bmin / len(plain):.0f} us each); analyse one by one {1e6 * omin / len(some):.0f} us each "
+          f"({len(some)} of them)")
 
 
 def _stored_chunk(args):
@@ -109,6 +125,7 @@ def main() -> None:
         print(f"count fixed to n={m}: {int(c[m])} in {tmin:.2f}s (median {tmed:.2f}s), one process")
     c, t = timed(lambda: count_fixed(SQUARE, 14, free=True), repeat=1)[:2]
     print(f"count fixed+free+holey to n=14: free {int(c['free'][14])} holey {int(c['holey'][14])} in {t:.2f}s")
+    isohedral_rate(10 if a.quick else 11)
     rows, t = stored_run(10 if a.quick else 12, a.workers)
     print(f"stored run --max-cells {10 if a.quick else 12} (rows + isohedral test), {a.workers} workers: "
           f"{rows} rows in {t:.1f}s")

@@ -25,6 +25,7 @@ from tilekit.lattice import (
     decode,
     encode,
     enumerate_free,
+    hole_count,
     holes,
     images,
     outline,
@@ -167,3 +168,22 @@ def test_bad_cells_and_codes():
         decode(SQUARE, "xx/x")
     with pytest.raises(ParseError, match="malformed"):
         decode(SQUARE, "xq")
+
+
+@pytest.mark.parametrize("grid,n", [(SQUARE, 10), (TRIANGULAR, 10), (HEXAGONAL, 7)])
+def test_compiled_hole_count_and_outer_boundary_agree_with_the_python_ones(grid, n):
+    """hole_count (compiled flood fill) == len(holes); the compiled outer trace of a polyform
+    with holes or a pinch vertex == boundary_cycles' outer cycle, vertex for vertex."""
+    polys, flags, _ = enumerate_free(grid, n, with_holes=True)
+    holey = 0
+    for p, h in zip(polys, flags):
+        assert hole_count(grid, p) == len(holes(grid, p))
+        if h and grid is not HEXAGONAL:  # boundary_cycles raises on holey polyhexes (a known gap)
+            v, w = boundary_word(grid, p)
+            v2, w2 = boundary_cycles(grid, p)[0]
+            assert v.tolist() == v2.tolist() and w.tolist() == w2.tolist()
+            holey += 1
+    if grid is SQUARE:
+        assert holey == 1 + 6 + 37 + 195  # A001419, n <= 10
+    elif grid is TRIANGULAR:
+        assert holey == int(sum(flags)) > 0

@@ -2,12 +2,27 @@
 
 The isohedral test follows S. Langerman and A. Winslow, "A quasilinear-time algorithm for
 tiling the plane isohedrally with a polyomino", SoCG 2016 (arXiv:1507.02762). Published
-counts (Myers' data, in the OEIS, offset 1): A075205 (isohedral tilers), A075201 (tilers by
-180-degree rotation but not by translation; the MathWorld misindexing is noted in FACTS.md).
+counts: Joseph Myers' polyomino tiling data (http://www.polyomino.org.uk/mathematics/polyform-tiling/)
+as in the OEIS (offset 1), terms read from the OEIS's own data files (github.com/oeis/oeisdata,
+seq/A075/A075198.seq ... A075205.seq):
+
+- A075198 tile by translation; A075202 tile by 180-degree rotation (Conway criterion),
+  translations allowed too (its a(5) = 12 counts every pentomino);
+- A075199 by translation but not by half-turn; A075200 by both; A075201 by half-turn but not
+  by translation; A075203 by either (so A075202 = A075200 + A075201 and A075203 = A075198 +
+  A075201, which the tests check as well);
+- A075204 isohedral but neither by translation nor by half-turn; A075205 isohedral.
+
+"Tile by translation" there means any tiling by translates, which for a polyomino exists iff
+it has a lattice tiling (Beauquier-Nivat), i.e. iff the translation factorisation exists;
+"by 180-degree rotation" means Conway's criterion, the half-turn factorisation. So each
+sequence compares like with like with one flag of the analysis. The MathWorld misindexing of
+A075201 is noted in FACTS.md.
 """
 
 from __future__ import annotations
 
+import functools
 import json
 from collections import Counter
 from math import gcd
@@ -20,12 +35,25 @@ import tilekit
 from tilekit.errors import GeometryError, NotFoundError, ParameterError, ParseError
 from tilekit.lattice import SQUARE, boundary_word, encode, enumerate_free
 from tilekit.plugins.polyomino import search as psearch
-from tilekit.plugins.polyomino.isohedral import analyse, build, factorisations, ih_groups
+from tilekit.plugins.polyomino.isohedral import (
+    analyse,
+    analyse_many,
+    build,
+    factorisations,
+    ih_groups,
+)
 
-# A075205, from n = 1 (FACTS.md: 104, 342, 1041, 3026 for n = 7..10; every n-omino, n <= 6, tiles)
-A075205 = [1, 1, 2, 5, 12, 35, 104, 342, 1041, 3026]
-# A075201, from n = 1: tile by 180-degree rotation but not by translation
-A075201 = [0, 0, 0, 0, 3, 11, 60, 199, 748]
+# Myers' counts from n = 1 to 12 (the OEIS data files named above)
+A075198 = [1, 1, 2, 5, 9, 24, 41, 121, 213, 522, 783, 2712]          # by translation
+A075199 = [0, 0, 0, 0, 0, 0, 0, 0, 1, 2, 10, 135]                    # translation, not half-turn
+A075200 = [1, 1, 2, 5, 9, 24, 41, 121, 212, 520, 773, 2577]          # translation and half-turn
+A075201 = [0, 0, 0, 0, 3, 11, 60, 199, 748, 2181, 5391, 17193]       # half-turn, not translation
+A075202 = [1, 1, 2, 5, 12, 35, 101, 320, 960, 2701, 6164, 19770]     # by half-turn (Conway)
+A075203 = [1, 1, 2, 5, 12, 35, 101, 320, 961, 2703, 6174, 19905]     # translation or half-turn
+A075204 = [0, 0, 0, 0, 0, 0, 3, 22, 80, 323, 338, 3322]              # isohedral, neither
+A075205 = [1, 1, 2, 5, 12, 35, 104, 342, 1041, 3026, 6512, 23227]    # isohedral
+MYERS = {"tr": A075198, "tr_not_ht": A075199, "both": A075200, "ht_not_tr": A075201, "ht": A075202,
+         "either": A075203, "other": A075204, "iso": A075205}
 
 
 @pytest.fixture(scope="module")
@@ -43,23 +71,51 @@ def _tally(items):
         n = len(p)
         if h:
             continue
+        tr, ht = a["translation"], a["halfturn"]
         c["iso", n] += a["isohedral"]
-        c["tr", n] += a["translation"]
-        c["ht", n] += a["halfturn"]
-        c["ht_not_tr", n] += a["halfturn"] and not a["translation"]
-        c["other", n] += a["isohedral"] and not a["translation"] and not a["halfturn"]
+        c["tr", n] += tr
+        c["ht", n] += ht
+        c["both", n] += tr and ht
+        c["either", n] += tr or ht
+        c["tr_not_ht", n] += tr and not ht
+        c["ht_not_tr", n] += ht and not tr
+        c["other", n] += a["isohedral"] and not tr and not ht
     return c
 
 
+def test_myers_sequences_are_consistent():
+    """The published terms themselves: the both/either/not splits add up."""
+    for n in range(12):
+        assert A075202[n] == A075200[n] + A075201[n]
+        assert A075198[n] == A075200[n] + A075199[n]
+        assert A075203[n] == A075198[n] + A075201[n]
+        assert A075205[n] == A075203[n] + A075204[n]
+
+
 def test_isohedral_counts_against_myers_data(upto10):
+    """n <= 10 against A075198-A075205 (n = 11, 12: the slow test below)."""
     c = _tally(upto10)
-    assert [c["iso", n] for n in range(1, 11)] == A075205
-    assert [c["ht_not_tr", n] for n in range(1, 10)] == A075201
-    # the counts this implementation finds for the other Myers sequences (A075198 translation,
-    # A075202 half-turn, A075204 isohedral by neither), pinned as regression values
-    assert [c["tr", n] for n in range(1, 11)] == [1, 1, 2, 5, 9, 24, 41, 121, 213, 522]
-    assert [c["ht", n] for n in range(1, 11)] == [1, 1, 2, 5, 12, 35, 101, 320, 960, 2701]
-    assert [c["other", n] for n in range(1, 11)] == [0, 0, 0, 0, 0, 0, 3, 22, 80, 323]
+    for key, seq in MYERS.items():
+        assert [c[key, n] for n in range(1, 11)] == seq[:10], key
+
+
+@pytest.mark.slow
+def test_isohedral_counts_against_myers_data_11_and_12():
+    """n = 11 and 12 (63,600 free 12-ominoes) through the bulk path the search uses."""
+    polys, flags, _ = enumerate_free(SQUARE, 12, maxsize=12, with_holes=True)
+    big = [p for p, h in zip(polys, flags) if not h and len(p) >= 11]
+    c = _tally([(p, False, a) for p, a in zip(big, analyse_many(SQUARE, big))])
+    for key, seq in MYERS.items():
+        assert [c[key, 11], c[key, 12]] == seq[10:12], key
+
+
+def test_bulk_analysis_equals_one_by_one(upto10):
+    """analyse_many (one compiled call for a chunk) gives exactly analyse(construct=False)."""
+    items = [(p, a) for p, h, a in upto10 if not h and len(p) <= 9]
+    bulk = analyse_many(SQUARE, [p for p, _ in items])
+    for (_, a), b in zip(items, bulk):
+        assert {k: v for k, v in a.items() if k != "boundary"} == {k: v for k, v in b.items() if k != "boundary"}
+        assert a["boundary"].tolist() == b["boundary"].tolist()
 
 
 # --------------------------------------------------------------------------- independent oracle
@@ -73,64 +129,130 @@ def _hnf_lattices(area: int):
 
 
 def _reduce(pts: np.ndarray, a: int, b: int, d: int) -> np.ndarray:
-    q = np.floor_divide(pts[:, 0], a)
-    return (pts[:, 0] - q * a) * d + np.mod(pts[:, 1] - q * b, d)
+    """Index in [0, a*d) of integer points modulo the lattice with rows (a, b), (0, d)."""
+    q = np.floor_divide(pts[..., 0], a)
+    return (pts[..., 0] - q * a) * d + np.mod(pts[..., 1] - q * b, d)
 
 
+# the eight symmetries of the square grid, as matrices acting on cell pairs (x, y)
 _ORIENT = [np.array(m) for m in ([[1, 0], [0, 1]], [[0, -1], [1, 0]], [[-1, 0], [0, -1]], [[0, 1], [-1, 0]],
                                   [[1, 0], [0, -1]], [[0, 1], [1, 0]], [[-1, 0], [0, 1]], [[0, -1], [-1, 0]])]
+I_, R90, R180, R270, SX, SD, SY, SA = range(8)
+#: the orientation sets of the translational units the oracle looks for
+UNIT_SETS = {
+    "T": [(I_,)],                                   # one tile per unit: a lattice tiling
+    "C": [(I_, R180)],                              # the tile and its half-turn
+    "G": [(I_, SX), (I_, SY), (I_, SD), (I_, SA)],  # the tile and one mirror image
+    "C4": [(I_, R90, R180, R270)],                  # the four quarter-turns
+    "CG": [(I_, R180, SX, SY), (I_, R180, SD, SA)],  # half-turn and two perpendicular mirrors
+}
 
 
-def torus_tiles(pairs: np.ndarray, k: int) -> bool:
-    """Exhaustive exact cover on tori: is there a periodic tiling with k in {1, 2} copies per unit?
+def _cover(by_cell: list[list[list[int]]], full: int, left: tuple[int, ...], used: int) -> bool:
+    """Exact cover: the least uncovered torus cell is covered by one of the copies still to place."""
+    if used == full:
+        return True
+    c = (~used & (used + 1)).bit_length() - 1
+    return any(not (m & used) and _cover(by_cell, full, left[:i] + left[i + 1:], used | m)
+               for i, o in enumerate(left) for m in by_cell[o][c])
 
-    Every lattice of index k*n (Hermite normal form), every orientation and offset of the
-    second copy; a tiling exists iff the copies' cells are distinct modulo the lattice.
-    Written independently of the boundary words (cells only).
+
+def torus_tiles(pairs: np.ndarray, orients: tuple[int, ...]) -> bool:
+    """Exhaustive exact cover on tori: a periodic tiling whose translational unit is one copy
+    of the tile in each orientation of ``orients`` (as point sets: a symmetric tile's copies
+    may coincide in shape, which is allowed)?
+
+    Every lattice of index len(orients)*n (Hermite normal form rows (a, b), (0, d)); the
+    identity copy at offset 0 (translating the tiling), every offset of the others; a tiling
+    exists iff some choice covers the torus exactly. Written from the cells only,
+    independently of the boundary words and of tilekit's code.
     """
     n = len(pairs)
-    for a, b, d in _hnf_lattices(k * n):
-        p = _reduce(pairs, a, b, d)
-        if len(set(p.tolist())) != n:
+    area = len(orients) * n
+    for a, b, d in _hnf_lattices(area):
+        # the identity copy at offset 0 (translating the tiling)
+        base = _reduce(pairs, a, b, d).tolist()
+        if len(set(base)) != n:
             continue
-        if k == 1:
+        first = sum(1 << c for c in base)
+        offs = np.array([(tx, ty) for tx in range(a) for ty in range(d)], dtype=np.int64)
+        # per further orientation: its placements (bitmasks of torus cells) by the cells they cover
+        by_cell = []
+        for g in orients[1:]:
+            cover: list[list[int]] = [[] for _ in range(area)]
+            for row in _reduce((pairs @ _ORIENT[g].T)[None, :, :] + offs[:, None, :], a, b, d).tolist():
+                m = sum(1 << c for c in row)
+                if m.bit_count() == n:
+                    for c in row:
+                        cover[c].append(m)
+            by_cell.append(cover)
+        if _cover(by_cell, (1 << area) - 1, tuple(range(len(orients) - 1)), first):
             return True
-        pm = 0
-        for v in p.tolist():
-            pm |= 1 << v
-        for g in _ORIENT:
-            q0 = pairs @ g.T
-            for tx in range(a):
-                for ty in range(d):
-                    q = _reduce(q0 + np.array([tx, ty]), a, b, d)
-                    qm = 0
-                    for v in q.tolist():
-                        qm |= 1 << v
-                    if len(set(q.tolist())) == n and not (pm & qm):
-                        return True
     return False
+
+
+def _has_unit(pairs: np.ndarray, cache: dict[str, bool], kind: str) -> bool:
+    if kind not in cache:
+        cache[kind] = any(torus_tiles(pairs, o) for o in UNIT_SETS[kind])
+    return cache[kind]
+
+
+def _unit_kind(f: dict) -> str:
+    """The orientation set of the translational unit of a factorisation's tiling (see below)."""
+    h = f["heesch"]
+    if "C4" in h:
+        return "C4"
+    if "G" in h:
+        perpendicular = f["template"] == "halfturn-reflection-2" and "G2" in h
+        return "CG" if "C" in h.replace("C4", "") or perpendicular else "G"
+    return "C" if "C" in h else "T"
 
 
 @pytest.mark.slow
 def test_verdicts_agree_with_torus_search_up_to_8(upto10):
-    """n <= 8, against exhaustive exact cover on tori with one or two tiles per unit:
-    'tiles by translation' iff a one-tile torus tiling exists; 'tiles by half-turn' implies
-    a two-tile one; and no polyomino the test calls non-isohedral has a one- or two-tile
-    periodic tiling, except anisohedral ones (Myers, A075206: none up to 7 cells, one
-    octomino), whose tilings are not isohedral."""
-    not_iso_but_tiles = []
+    """Every verdict for n <= 8 against exhaustive exact cover on tori (cells only).
+
+    What is provable, and asserted for every hole-free polyomino of at most 8 cells:
+
+    - translation <=> a torus tiling with one tile per unit (a lattice tiling). Beauquier-Nivat:
+      a polyomino tiles by translations iff it has a lattice tiling, iff its word has a
+      translation factorisation.
+    - half-turn <=> a torus tiling whose unit is the tile and its half-turn. (=>) the tiling
+      built from Conway's criterion has the translations and half-turns as its group, point
+      group {I, R180}: two tiles per unit (one, when the tile is itself centrosymmetric; then
+      an index-2 sublattice gives two). (<=) for a unit {T, t - T}, x -> t - x swaps T and
+      t - T and normalises the lattice, so the tiling is isohedral with every neighbour of T
+      an image under a translation or a half-turn, at least one a half-turn (the translates of
+      T alone cannot fill the plane); by Langerman and Winslow's characterisation its boundary
+      then has the half-turn factorisation.
+    - every other factorisation found => a torus tiling whose unit is one tile per element of
+      the point group its letters generate: a glide pair alone (parallel axes) {I, s}; with a
+      half-turn, or two glides with perpendicular axes, {I, R180, s, R180 s}; a quarter-turn,
+      {I, R90, R180, R270}. Same argument: the built tiling's group acts transitively, so its
+      tiles modulo the translations are the point group's images of T (a sublattice makes up
+      for a tile's own symmetry). The converse fails for these (copies in a 2- or 4-tile unit
+      need not be related by a symmetry of the tiling), so it is not asserted.
+    - not isohedral => no unit of any of these kinds, except for anisohedral tilers: Myers'
+      A075206 counts none up to 7 cells and one octomino, so at most one octomino may have one.
+    """
+    exceptions = []
+    checked = 0
     for p, h, a in upto10:
         if h or len(p) > 8:
             continue
         pairs = (p - 1) // 2
-        t1, t2 = torus_tiles(pairs, 1), torus_tiles(pairs, 2)
-        assert a["translation"] == t1, encode(SQUARE, p)
-        if a["halfturn"]:
-            assert t2, encode(SQUARE, p)
-        if not a["isohedral"] and t2:
-            not_iso_but_tiles.append(encode(SQUARE, p))
-    assert len(not_iso_but_tiles) <= 1
-    assert all(code.count("x") == 8 for code in not_iso_but_tiles)
+        code = encode(SQUARE, p)
+        cache: dict[str, bool] = {}
+        has = functools.partial(_has_unit, pairs, cache)
+        assert a["translation"] == has("T"), code
+        assert a["halfturn"] == has("C"), code
+        for f in a["factorisations"]:
+            assert has(_unit_kind(f)), (code, f)
+        if not a["isohedral"] and any(has(k) for k in ("G", "C4", "CG")):
+            exceptions.append(code)
+        checked += 1
+    assert checked == 1 + 1 + 2 + 5 + 12 + 35 + 107 + 363
+    assert len(exceptions) <= 1 and all(code.count("x") == 8 for code in exceptions), exceptions
 
 
 def test_every_match_up_to_8_builds_an_exact_tiling(upto10):

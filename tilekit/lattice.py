@@ -284,6 +284,73 @@ def holes(grid: Grid, cells: np.ndarray) -> list[np.ndarray]:
     return comps
 
 
+def hole_count(grid: Grid, cells: np.ndarray) -> int:
+    """``len(holes(grid, cells))`` by a compiled flood fill (the bulk enumeration's hole column)."""
+    c = np.ascontiguousarray(np.asarray(cells, dtype=np.int64).reshape(-1, 2))
+    return int(_count_holes(c, grid.roots.astype(np.int64), grid.neighbours.astype(np.int64), np.int64(grid.period)))
+
+
+@njit(cache=True)
+def _count_holes(c, roots, nbr, period):
+    """Edge-connected components of empty cells in the bounding box plus a margin of two
+    periods, less the one outside component (the margin is connected, holes never reach it)."""
+    n = c.shape[0]
+    x0 = c[0, 0]
+    x1 = x0
+    y0 = c[0, 1]
+    y1 = y0
+    for k in range(n):
+        x0 = min(x0, c[k, 0])
+        x1 = max(x1, c[k, 0])
+        y0 = min(y0, c[k, 1])
+        y1 = max(y1, c[k, 1])
+    m = 2 * period
+    x0 = x0 - (x0 % period) - m
+    y0 = y0 - (y0 % period) - m
+    x1 = x1 - (x1 % period) + m + period - 1
+    y1 = y1 - (y1 % period) + m + period - 1
+    w = x1 - x0 + 1
+    h = y1 - y0 + 1
+    nr = roots.shape[0]
+    # -1: not a cell centre, 0: empty, 1: filled, 2: visited
+    buf = np.full(w * h, -1, np.int64)
+    typ = np.zeros(w * h, np.int64)
+    for yy in range(y0, y1 + 1):
+        for xx in range(x0, x1 + 1):
+            for r in range(nr):
+                if (xx - roots[r, 0]) % period == 0 and (yy - roots[r, 1]) % period == 0:
+                    buf[(yy - y0) * w + xx - x0] = 0
+                    typ[(yy - y0) * w + xx - x0] = r
+    for k in range(n):
+        buf[(c[k, 1] - y0) * w + c[k, 0] - x0] = 1
+    stack = np.zeros(w * h, np.int64)
+    comps = 0
+    for v in range(w * h):
+        if buf[v] != 0:
+            continue
+        comps += 1
+        buf[v] = 2
+        stack[0] = v
+        top = 1
+        while top > 0:
+            top -= 1
+            p = stack[top]
+            px = p % w + x0
+            py = p // w + y0
+            t = typ[p]
+            for j in range(nbr.shape[1]):
+                qx = px + nbr[t, j, 0]
+                qy = py + nbr[t, j, 1]
+                if qx < x0 or qx > x1 or qy < y0 or qy > y1:
+                    continue
+                q = (qy - y0) * w + (qx - x0)
+                if buf[q] == 0:
+                    buf[q] = 2
+                    stack[top] = q
+                    top += 1
+    return comps - 1
+
+
 # --------------------------------------------------------------------------- boundary
 
 def boundary_cycles(grid: Grid, cells: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
@@ -351,10 +418,100 @@ def boundary_word(grid: Grid, cells: np.ndarray) -> tuple[np.ndarray, np.ndarray
     ea, eb, en, el = _edge_tables(grid)
     out_v = np.zeros((8 * len(c) + 8, 2), np.int64)
     out_l = np.zeros(8 * len(c) + 8, np.int64)
-    m = _trace(c, grid.cell_type(c), ea, eb, en, el, np.int64(grid.period), out_v, out_l)
+    types = grid.cell_type(c)
+    m = _trace(c, types, ea, eb, en, el, np.int64(grid.period), out_v, out_l)
+    if m <= 0 and (types >= 0).all():
+        # holes or a pinch vertex: the outer cycle as boundary_cycles traces it, compiled
+        m = _trace_outer(c, types, ea, eb, en, el, np.int64(grid.period), _turn_table(grid), out_v, out_l)
     if m > 0:
         return out_v[:m].copy(), out_l[:m].copy()
     return boundary_cycles(grid, cells)[0]
+
+
+_TURN_CACHE: dict[str, np.ndarray] = {}
+
+
+def _turn_table(grid: Grid) -> np.ndarray:
+    """turn[e, e2]: boundary_cycles' preference for leaving a vertex by e2 after arriving by e
+    (smaller first: the sharpest right turn)."""
+    if grid.name not in _TURN_CACHE:
+        angle = np.arctan2(*(grid.xy(grid.edge_dirs)[:, ::-1].T))
+        E = len(angle)
+        t = np.zeros((E, E))
+        for e in range(E):
+            for e2 in range(E):
+                t[e, e2] = (angle[e2] - angle[e] + math.pi) % (2 * math.pi)
+        _TURN_CACHE[grid.name] = t
+    return _TURN_CACHE[grid.name]
+
+
+@njit(cache=True)
+def _trace_outer(c, types, ea, eb, en, el, period, turn, out_v, out_l):
+    """The outer boundary cycle, exactly as :func:`boundary_cycles` returns it first: from the
+    least vertex (y, x), interior on the left, the sharpest right turn at a vertex where
+    cycles touch. Returns its length (-1 if more than four edges leave one vertex)."""
+    n = c.shape[0]
+    x0 = c[0, 0]
+    y0 = c[0, 1]
+    x1 = x0
+    y1 = y0
+    for i in range(n):
+        x0 = min(x0, c[i, 0])
+        y0 = min(y0, c[i, 1])
+        x1 = max(x1, c[i, 0])
+        y1 = max(y1, c[i, 1])
+    m = 2 * period
+    x0 -= m
+    y0 -= m
+    w = x1 - x0 + m + 1
+    h = y1 - y0 + m + 1
+    occ = np.zeros(w * h, np.uint8)
+    for i in range(n):
+        occ[(c[i, 1] - y0) * w + c[i, 0] - x0] = 1
+    S = 4
+    nout = np.zeros(w * h, np.int64)
+    nxt = np.full((w * h, S), -1, np.int64)
+    let = np.zeros((w * h, S), np.int64)
+    used = np.zeros((w * h, S), np.uint8)
+    for i in range(n):
+        t = types[i]
+        for k in range(ea.shape[1]):
+            qx = c[i, 0] + en[t, k, 0]
+            qy = c[i, 1] + en[t, k, 1]
+            if occ[(qy - y0) * w + qx - x0] == 1:
+                continue
+            a = (c[i, 1] + ea[t, k, 1] - y0) * w + c[i, 0] + ea[t, k, 0] - x0
+            b = (c[i, 1] + eb[t, k, 1] - y0) * w + c[i, 0] + eb[t, k, 0] - x0
+            if nout[a] == S:
+                return -1
+            nxt[a, nout[a]] = b
+            let[a, nout[a]] = el[t, k]
+            nout[a] += 1
+    start = -1
+    for v in range(w * h):  # row by row: the least (y, x)
+        if nout[v] > 0:
+            start = v
+            break
+    a = start
+    j = 0
+    cnt = 0
+    while used[a, j] == 0:
+        used[a, j] = 1
+        out_v[cnt, 0] = a % w + x0
+        out_v[cnt, 1] = a // w + y0
+        e = let[a, j]
+        out_l[cnt] = e
+        cnt += 1
+        b = nxt[a, j]
+        best = -1
+        for j2 in range(nout[b]):
+            if used[b, j2] == 0 and (best < 0 or turn[e, let[b, j2]] < turn[e, let[b, best]]):
+                best = j2
+        if best < 0:
+            break
+        a = b
+        j = best
+    return cnt
 
 
 _EDGE_CACHE: dict[str, tuple] = {}
@@ -438,7 +595,11 @@ def _trace(c, types, ea, eb, en, el, period, out_v, out_l):
 
 
 def word_text(letters) -> str:
-    return "".join("0123456789"[int(e)] for e in letters)
+    """A boundary word as text, one digit per letter."""
+    a = np.asarray(letters, dtype=np.int64)
+    if a.size and (a.min() < 0 or a.max() > 9):
+        raise ValueError(f"boundary letters must be 0-9, got {a.tolist()}")
+    return (a.astype(np.uint8) + 48).tobytes().decode("ascii")
 
 
 def outline(grid: Grid, cells: np.ndarray, name: str = ""):
@@ -788,11 +949,11 @@ def encode(grid: Grid, cells: np.ndarray, *, is_canonical: bool = False) -> str:
     if grid is SQUARE:
         q = (c - 1) // 2
         q = q - q.min(axis=0)
-        w, h = q.max(axis=0) + 1
-        rows = [["."] * int(w) for _ in range(int(h))]
-        for x, y in q.tolist():
-            rows[int(h) - 1 - y][x] = "x"
-        return "/".join("".join(r) for r in rows)
+        w, h = (q.max(axis=0) + 1).tolist()
+        board = np.full((h, w + 1), ord("/"), np.uint8)  # each row ends in '/', the last one dropped
+        board[:, :w] = ord(".")
+        board[h - 1 - q[:, 1], q[:, 0]] = ord("x")
+        return board.tobytes()[:-1].decode("ascii")
     return ";".join(f"{x},{y}" for x, y in c.tolist())
 
 

@@ -26,7 +26,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from tilekit.lattice import SQUARE, Grid, boundary_word, outline
+from tilekit.lattice import SQUARE, Grid, _edge_tables, _trace, boundary_word, outline
 from tilekit.resources import catalogue_dir
 from tilekit.tiling import PeriodicTiling
 
@@ -55,58 +55,109 @@ TEMPLATES: tuple[tuple[str, str, tuple[int, ...], tuple[int, ...], int], ...] = 
 
 
 @njit(cache=True)
-def _tables(W, perm, neg):
+def _tables(W, perm, neg, det):
+    """Extension tables, one dynamic-programming pass per diagonal (O(G L^2)).
+
+    ext[g, a, b]: consecutive k with perm[g][W[a+k]] == neg[W[b-k]] (g a rotation: the
+    neighbour walks the factor backwards); fwd[g, a, b]: consecutive k with
+    perm[g][W[a+k]] == W[b+k] (g a reflection: walked forwards). The matcher reads ext only
+    for rotations and fwd only for reflections, so only those are filled. Both are capped
+    at L (a whole diagonal that matches). mx[g, a]: the largest ext[g, a, .] (rotations) or
+    fwd[g, a, .] (reflections): no factor at a longer than mx has a partner under g.
+    """
     Gn = perm.shape[0]
     L = W.shape[0]
-    ext = np.zeros((Gn, L, L), np.int64)  # consecutive k: perm[g][W[a+k]] == neg[W[b-k]]
-    fwd = np.zeros((Gn, L, L), np.int64)  # consecutive k: perm[g][W[a+k]] == W[b+k]
+    # one array: the rotations' rows hold ext, the reflections' rows fwd (returned as both)
+    ext = np.empty((Gn, L, L), np.int64)
+    fwd = ext
+    mx = np.zeros((Gn, L), np.int64)
     for g in range(Gn):
+        rot = det[g] > 0
+        for d in range(L):
+            # the diagonal: a = 0..L-1 and b = d - a (ext) or b = a + d (fwd), cyclically
+            a0 = -1
+            for a in range(L):
+                b = (d - a) % L if rot else (a + d) % L
+                if perm[g, W[a]] != (neg[W[b]] if rot else W[b]):
+                    a0 = a
+                    break
+            if a0 < 0:
+                for a in range(L):
+                    b = (d - a) % L if rot else (a + d) % L
+                    if rot:
+                        ext[g, a, b] = L
+                    else:
+                        fwd[g, a, b] = L
+                continue
+            run = 0
+            for i in range(L):
+                a = (a0 - i) % L
+                b = (d - a) % L if rot else (a + d) % L
+                if perm[g, W[a]] == (neg[W[b]] if rot else W[b]):
+                    run += 1
+                else:
+                    run = 0
+                if rot:
+                    ext[g, a, b] = run
+                else:
+                    fwd[g, a, b] = run
         for a in range(L):
+            m = 0
             for b in range(L):
-                k = 0
-                while k < L and perm[g, W[(a + k) % L]] == neg[W[(b - k) % L]]:
-                    k += 1
-                ext[g, a, b] = k
-                k = 0
-                while k < L and perm[g, W[(a + k) % L]] == W[(b + k) % L]:
-                    k += 1
-                fwd[g, a, b] = k
-    return ext, fwd
+                v = ext[g, a, b] if rot else fwd[g, a, b]
+                if v > m:
+                    m = v
+            mx[g, a] = m
+    return ext, fwd, mx
 
 
 @njit(cache=True)
-def _splits(ext, half, L):
+def _palindromes(ext, half, L):
+    """pal[a, l]: W[a:a+l] (cyclic) is fixed by the half-turn; pl[a, :npal[a]]: those l, ascending."""
+    pal = np.zeros((L, L + 1), np.bool_)
+    pl = np.zeros((L, L + 1), np.int64)
+    npal = np.zeros(L, np.int64)
+    for a in range(L):
+        for ln in range(L + 1):
+            if ln == 0 or ext[half, a, (a + ln - 1) % L] >= ln:
+                pal[a, ln] = True
+                pl[a, npal[a]] = ln
+                npal[a] += 1
+    return pal, pl, npal
+
+
+@njit(cache=True)
+def _splits(pal, pl, npal, L):
     """sp[a, l]: a split point of W[a:a+l] (cyclic) into two palindromes, -1 if none.
 
-    A split with an empty part is preferred (the simpler Heesch type), else the first.
+    A split with an empty part is preferred (the simpler Heesch type), else the first; only
+    the palindromic prefixes of W[a:] are tried.
     """
     sp = np.full((L, L + 1), -1, np.int64)
     for a in range(L):
         for ln in range(L + 1):
-            best = -1
-            for m in range(ln + 1):
-                p1 = m == 0 or ext[half, a, (a + m - 1) % L] >= m
-                if not p1:
-                    continue
-                r = ln - m
-                b = (a + m) % L
-                p2 = r == 0 or ext[half, b, (b + r - 1) % L] >= r
-                if p2:
-                    if m == 0 or m == ln:
-                        best = m
-                        break
-                    if best < 0:
-                        best = m
-            sp[a, ln] = best
+            if pal[a, ln]:
+                sp[a, ln] = 0
+                continue
+            for j in range(1, npal[a]):
+                m = pl[a, j]
+                if m >= ln:
+                    break
+                if pal[(a + m) % L, ln - m]:
+                    sp[a, ln] = m
+                    break
     return sp
 
 
 @njit(cache=True)
-def _match(W, ext, fwd, sp, det, partner, kind, cands, ncand, glide, mul, half, out, maxout, smax):
+def _match(W, ext, fwd, sp, bound, pl, npal, det, partner, kind, cands, ncand, glide, mul, half, out, maxout, smax):
     """Every factorisation of the cyclic word W into the template (partner, kind).
 
     Depth-first over the factors' lengths with every comparison O(1) from the extension
     tables; two consecutive palindromes are one step through the split table ``sp``.
+    ``bound[kind, a]``: the longest factor at a that any candidate isometry of the kind maps
+    onto some factor (its partner's existence only gets harder with length), so the first
+    factor of a pair stops growing there.
     out rows: [start, len_0..len_{k-1}, g_0..g_{k-1}]; returns the number found.
     """
     L = W.shape[0]
@@ -234,6 +285,17 @@ def _match(W, ext, fwd, sp, det, partner, kind, cands, ncand, glide, mul, half, 
                         ok = True
             else:
                 while target != -2:
+                    if p == f and target < 0 and kind[f] == 1:
+                        # a free palindrome: only the palindromic lengths at its start
+                        a = (s + pos[f]) % L
+                        j = trial[f]
+                        if j >= npal[a] or pos[f] + pl[a, j] > L:
+                            break
+                        trial[f] = j + 1
+                        lens[f] = pl[a, j]
+                        gs[f] = cands[1, 0]
+                        ok = True
+                        break
                     ln = trial[f]
                     if target >= 0:
                         if ln > 0:
@@ -243,6 +305,8 @@ def _match(W, ext, fwd, sp, det, partner, kind, cands, ncand, glide, mul, half, 
                     if pos[f] + need > L:
                         break
                     trial[f] = ln + 1 if target < 0 else 1
+                    if p > f and ln > bound[kind[f], (s + pos[f]) % L]:
+                        break
                     if p == f:
                         a = (s + pos[f]) % L
                         g = cands[kind[f], 0]
@@ -267,15 +331,88 @@ def _match(W, ext, fwd, sp, det, partner, kind, cands, ncand, glide, mul, half, 
 
 
 @njit(cache=True)
+def _word_tables(W, perm, neg, det, cands, ncand, half):
+    """ext, fwd, the palindrome splits and the per-kind length bounds of one word."""
+    L = W.shape[0]
+    ext, fwd, mx = _tables(W, perm, neg, det)
+    pal, pl, npal = _palindromes(ext, half, L)
+    sp = _splits(pal, pl, npal, L)
+    bound = np.zeros((cands.shape[0], L), np.int64)
+    for kd in range(cands.shape[0]):
+        for a in range(L):
+            m = 0
+            for ci in range(ncand[kd]):
+                v = mx[cands[kd, ci], a]
+                if v > m:
+                    m = v
+            bound[kd, a] = m
+    return ext, fwd, sp, bound, pl, npal
+
+
+@njit(cache=True)
 def _match_all(W, perm, neg, det, cands, ncand, mul, half, partners, kinds, ks, glides, smaxdiv, out, maxout, found):
     """Every template at once: tables and splits computed once, one compiled call per word."""
-    ext, fwd = _tables(W, perm, neg)
-    sp = _splits(ext, half, W.shape[0])
+    ext, fwd, sp, bound, pl, npal = _word_tables(W, perm, neg, det, cands, ncand, half)
     for t in range(partners.shape[0]):
         k = ks[t]
         smax = W.shape[0] // smaxdiv[t]
-        found[t] = _match(W, ext, fwd, sp, det, partners[t, :k], kinds[t, :k], cands, ncand, glides[t],
+        found[t] = _match(W, ext, fwd, sp, bound, pl, npal, det, partners[t, :k], kinds[t, :k], cands, ncand, glides[t],
                           mul, half, out[t], maxout, smax)
+
+
+@njit(cache=True)
+def _match_batch(cells, offs, types, ea, eb, en, el, period, perm, neg, det, cands, ncand, mul, half,
+                 partners, kinds, ks, glides, smaxdiv, maxout, words, wlen, rows):
+    """Boundary words and deduplicated matches of many hole-free polyforms in one compiled call.
+
+    Polyform i is cells[offs[i]:offs[i+1]]; its word goes to words[i, :wlen[i]] (wlen -1: not
+    one simple cycle). For every template, of the first ``maxout`` matches (as
+    :func:`factorisations` sees them) those with at least three nonempty factors are kept,
+    the first of each pattern of nonempty factors: rows [i, template, mask, start, len_0..].
+    Returns the number of rows (which may exceed the buffer: then call again, larger).
+    """
+    npoly = offs.shape[0] - 1
+    cap = rows.shape[0]
+    out = np.zeros((maxout, 13), np.int64)
+    seen = np.zeros(1 << partners.shape[1], np.int64)
+    stamp = 0
+    nr = 0
+    for i in range(npoly):
+        c = cells[offs[i]:offs[i + 1]]
+        n = c.shape[0]
+        out_v = np.zeros((8 * n + 8, 2), np.int64)
+        out_l = np.zeros(8 * n + 8, np.int64)
+        m = _trace(c, types[offs[i]:offs[i + 1]], ea, eb, en, el, period, out_v, out_l)
+        wlen[i] = m
+        if m <= 0:
+            continue
+        W = out_l[:m].copy()
+        words[i, :m] = W
+        ext, fwd, sp, bound, pl, npal = _word_tables(W, perm, neg, det, cands, ncand, half)
+        for t in range(partners.shape[0]):
+            k = ks[t]
+            found = _match(W, ext, fwd, sp, bound, pl, npal, det, partners[t, :k], kinds[t, :k], cands, ncand, glides[t],
+                           mul, half, out, maxout, m // smaxdiv[t])
+            stamp += 1
+            for r in range(min(found, maxout)):
+                mask = 0
+                cnt = 0
+                for j in range(k):
+                    if out[r, 1 + j] > 0:
+                        mask |= 1 << j
+                        cnt += 1
+                if cnt < 3 or seen[mask] == stamp:
+                    continue
+                seen[mask] = stamp
+                if nr < cap:
+                    rows[nr, 0] = i
+                    rows[nr, 1] = t
+                    rows[nr, 2] = mask
+                    rows[nr, 3] = out[r, 0]
+                    for j in range(k):
+                        rows[nr, 4 + j] = out[r, 1 + j]
+                nr += 1
+    return nr
 
 
 @dataclass
@@ -310,6 +447,7 @@ class Factorisation:
                 "heesch": "".join(self.signature())}
 
 
+@lru_cache(maxsize=8)
 def _cands(grid: Grid) -> tuple[np.ndarray, np.ndarray]:
     r = grid.rotation_order
     kinds = {T: [0], C: [r // 2], Q: [r // 4, 3 * r // 4] if r % 4 == 0 else [], G: list(range(r, 2 * r))}
@@ -329,7 +467,7 @@ def factorisations(grid: Grid, letters: np.ndarray, maxout: int = 256, dedupe: b
         return []
     partners, kinds, ks, glides, smaxdiv, usable = tabs
     cands, ncand = _cands(grid)
-    mul = np.array(_group_mul(grid), dtype=np.int64)
+    mul = _mul_array(grid)
     half = grid.rotation_order // 2
     out = np.zeros((len(ks), maxout, 13), np.int64)
     found = np.zeros(len(ks), np.int64)
@@ -354,6 +492,84 @@ def factorisations(grid: Grid, letters: np.ndarray, maxout: int = 256, dedupe: b
         for row in rows.tolist():
             res.append(Factorisation(name, fam, row[0], tuple(row[1:1 + k]), tuple(row[1 + k:]), partner, kind))
     return res
+
+
+@lru_cache(maxsize=8)
+def _mul_array(grid: Grid) -> np.ndarray:
+    return np.array(_group_mul(grid), dtype=np.int64)
+
+
+_BY_NAME = {t[0]: t for t in TEMPLATES}
+
+
+@lru_cache(maxsize=4096)
+def _pattern(name: str, mask: int) -> tuple[tuple[str, ...], str, int | None]:
+    """(canonical Heesch type, its letters, IH number) of a match of a template whose nonempty
+    factors are ``mask``: the Heesch type depends on nothing else."""
+    _, fam, partner, kind, _ = _BY_NAME[name]
+    k = len(partner)
+    f = Factorisation(name, fam, 0, tuple(mask >> i & 1 for i in range(k)), (0,) * k, partner, kind)
+    sig = tuple(f.signature())
+    return _canon_sig_cached(sig), "".join(sig), ih_type(f)
+
+
+def analyse_many(grid: Grid, polys: list[np.ndarray], maxout: int = 256) -> list[dict]:
+    """``analyse(grid, cells, construct=False)`` of many hole-free polyforms, equal result by result.
+
+    The boundary words and the matches of every template are one compiled call for the whole
+    list (:func:`_match_batch`, which keeps only the first match of each pattern of nonempty
+    factors, as ``factorisations(..., dedupe=True)`` does); Python then only turns the few
+    kept matches per polyform into the verdict and its JSON-ready factorisations.
+    """
+    tabs = _template_arrays(grid)
+    if tabs is None or not polys or any(t[0] not in SOUND for t in tabs[5]):
+        return [analyse(grid, p, construct=False) for p in polys]
+    partners, kinds, ks, glides, smaxdiv, usable = tabs
+    cands, ncand = _cands(grid)
+    sizes = np.array([len(p) for p in polys], dtype=np.int64)
+    offs = np.zeros(len(polys) + 1, np.int64)
+    np.cumsum(sizes, out=offs[1:])
+    cells = np.ascontiguousarray(np.concatenate(polys).astype(np.int64))
+    ea, eb, en, el = _edge_tables(grid)
+    words = np.zeros((len(polys), 8 * int(sizes.max()) + 8), np.int64)
+    wlen = np.zeros(len(polys), np.int64)
+    width = 4 + partners.shape[1]
+    rows = np.zeros((8 * len(polys) + 64, width), np.int64)
+    args = (cells, offs, grid.cell_type(cells), ea, eb, en, el, np.int64(grid.period), grid.letter_perm, grid.neg,
+            grid.det, cands, ncand, _mul_array(grid), grid.rotation_order // 2, partners, kinds, ks, glides, smaxdiv,
+            maxout, words, wlen)
+    nr = _match_batch(*args, rows)
+    if nr > len(rows):
+        rows = np.zeros((nr, width), np.int64)
+        nr = _match_batch(*args, rows)
+    rows = rows[:nr]
+    starts = np.searchsorted(rows[:, 0], np.arange(len(polys) + 1)).tolist()
+    rl = rows.tolist()
+    names = [t[0] for t in usable]
+    fams_of = [t[1] for t in usable]
+    klen = ks.tolist()
+    out: list[dict] = []
+    for i, p in enumerate(polys):
+        m = int(wlen[i])
+        if m <= 0:
+            out.append(analyse(grid, p, construct=False))
+            continue
+        fams = {fam: False for fam in ("translation", "halfturn", "quarterturn", "reflection")}
+        found: list[dict] = []
+        done: set[tuple] = set()
+        for r in rl[starts[i]:starts[i + 1]]:
+            t = r[1]
+            sig, letters, ih = _pattern(names[t], r[2])
+            if sig in done:
+                continue
+            done.add(sig)
+            fams[fams_of[t]] = True
+            found.append({"template": names[t], "start": r[3], "lengths": r[4:4 + klen[t]], "heesch": letters,
+                          "ih": ih})
+        out.append({**fams, "isohedral": bool(found),
+                    "ih_types": sorted({d["ih"] for d in found if d["ih"] is not None}),
+                    "factorisations": found, "tilings": [], "boundary": words[i, :m].copy()})
+    return out
 
 
 @lru_cache(maxsize=8)
@@ -663,4 +879,4 @@ def periodic_tiling(grid: Grid, cells: np.ndarray, bt: BuiltTiling, name: str = 
                           family=family, name=name)
 
 
-__all__ = ["SQUARE", "TEMPLATES", "analyse", "build", "factorisations", "ih_type", "periodic_tiling"]
+__all__ = ["SQUARE", "TEMPLATES", "analyse", "analyse_many", "build", "factorisations", "ih_type", "periodic_tiling"]

@@ -19,12 +19,12 @@ from tilekit.lattice import (
     count_fixed,
     encode,
     enumerate_free,
-    holes,
+    hole_count,
     prefixes,
     symmetry_from_mask,
 )
 from tilekit.plugins import ChunkResult, Search, SearchParam
-from tilekit.plugins.polyomino.isohedral import analyse
+from tilekit.plugins.polyomino.isohedral import analyse_many
 from tilekit.plugins.polyomino.model import make_row
 
 #: The stored enumeration holds polyominoes up to this size; beyond it, --count-only.
@@ -83,9 +83,12 @@ def chunk_rows(params: Mapping[str, Any], chunk: Mapping[str, Any]) -> tuple[dic
         polys, hole_flags, masks, c = enumerate_free(SQUARE, n, prefix=prefix, root=int(chunk.get("root", 0)),
                                                      maxsize=maxsize, with_symmetry=True)
         rows = []
-        for cells, holey, mask in zip(polys, hole_flags, masks.tolist()):
-            analysis = None if holey else analyse(SQUARE, cells, construct=False)
-            hc = len(holes(SQUARE, cells)) if holey else 0
+        # the isohedral test of every hole-free polyomino of the chunk: one compiled call
+        flags = hole_flags.tolist()
+        plain = iter(analyse_many(SQUARE, [c for c, h in zip(polys, flags) if not h]))
+        for cells, holey, mask in zip(polys, flags, masks.tolist()):
+            analysis = None if holey else next(plain)
+            hc = hole_count(SQUARE, cells) if holey else 0
             rows.append(make_row(cells, bool(holey), hc, analysis, code=encode(SQUARE, cells, is_canonical=True),
                                  symmetry=symmetry_from_mask(SQUARE, mask)))
         for r in rows:
