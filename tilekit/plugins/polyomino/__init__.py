@@ -70,9 +70,10 @@ def tilekit_catalogue_records():
 @hookimpl
 def tilekit_searches():
     # measured start-up cost: numba, as in _from_spec
+    from tilekit.plugins.polyomino.classify import SEARCH as CLASSIFY
     from tilekit.plugins.polyomino.search import SEARCH
 
-    return [SEARCH]
+    return [SEARCH, CLASSIFY]
 
 
 @hookimpl

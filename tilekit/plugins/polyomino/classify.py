@@ -1,0 +1,312 @@
+"""The classification of one polyomino: isohedral tiler, anisohedral tiler (least k found),
+non-tiler with its Heesch numbers, or undecided within stated bounds.
+
+The order of the tests is the cheap-first order of Myers' and Kaplan's searches:
+
+1. a hole: no tiling (a copy covering a cell of the hole would have to fit inside it);
+2. the boundary-word test (:mod:`isohedral`, Langerman and Winslow): an isohedral tiling;
+3. coronas by SAT (:mod:`heesch`) up to ``probe`` levels: a polyomino that cannot be
+   surrounded ``probe`` times is a non-tiler, and its Hc and Hh are exact;
+4. otherwise tori with 2..``torus_tiles`` tiles per translational unit (:mod:`torus`): a
+   cover is a periodic tiling, and the fewest transitivity classes found is the k recorded;
+5. otherwise coronas up to ``max_level``; still surrounded: ``undecided`` with the bounds.
+
+Nothing is guessed: ``tiles`` is ``true`` only with a tiling in hand, ``false`` only with a
+proof (a hole, or a level at which no corona exists), and ``undecided`` otherwise.
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from tilekit.colouring import Colouring
+from tilekit.errors import ParameterError
+from tilekit.lattice import Grid, outline
+from tilekit.plugins.polyomino.heesch import MAX_LEVEL_LIMIT, Corona, HeeschSolver, heesch
+from tilekit.plugins.polyomino.placements import Forms
+from tilekit.plugins.polyomino.torus import TorusSearch, TorusTiling
+from tilekit.sat import DEFAULT_SAT_SOLVER
+from tilekit.tiling import Patch, PeriodicTiling
+
+#: Most tiles per translational unit the torus search tries.
+MAX_TORUS_TILES = 12
+#: Largest polyomino classified on request (``Polyomino.classification``, ``--set view=``).
+MAX_INTERACTIVE = 16
+#: The classification's default solver: Glucose can be interrupted in this process, so a
+#: per-polyomino time limit costs no fork per call, and on these small formulas it was 1.4x
+#: faster than CaDiCaL for the whole n = 8 classification (docs/benchmarks.md).
+CLASSIFY_SOLVER = "glucose4"
+
+
+@dataclass
+class Classification:
+    tiles: str  # "true" / "false" / "undecided"
+    isohedral: bool
+    anisohedral_k: int | None = None
+    heesch: int | None = None
+    heesch_holes: int | None = None
+    witness: dict | None = None
+    verdict: str = ""
+    evidence: dict = field(default_factory=dict)
+
+    def columns(self) -> dict[str, Any]:
+        """The classification columns of a polyominoes row."""
+        return {"tiles": self.tiles, "anisohedral_k": self.anisohedral_k, "heesch": self.heesch,
+                "heesch_holes": self.heesch_holes,
+                "witness": None if self.witness is None else json.dumps(self.witness, separators=(",", ":")),
+                "verdict": self.verdict}
+
+
+def check_bounds(probe: int, max_level: int, torus_tiles: int) -> None:
+    if not 1 <= probe <= MAX_LEVEL_LIMIT:
+        raise ParameterError(f"the corona probe must be between 1 and {MAX_LEVEL_LIMIT} levels, got {probe}")
+    if not probe <= max_level <= MAX_LEVEL_LIMIT:
+        raise ParameterError(f"--max-level must be between the probe ({probe}) and {MAX_LEVEL_LIMIT}, got {max_level}")
+    if not 2 <= torus_tiles <= MAX_TORUS_TILES:
+        raise ParameterError(f"--torus-tiles must be between 2 and {MAX_TORUS_TILES}, got {torus_tiles}")
+
+
+def _corona_json(c: Corona | None, hc: int | None) -> dict | None:
+    return None if c is None else c.to_json() | {"hole_free": not c.holes}
+
+
+def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes: bool = False,
+             probe: int = 2, max_level: int = 5, torus_tiles: int = 4, time_limit: float | None = 120.0,
+             solver: str = DEFAULT_SAT_SOLVER) -> Classification:
+    """Classify one polyform (``analysis`` from :func:`isohedral.analyse`, None if holey)."""
+    check_bounds(probe, max_level, torus_tiles)
+    if has_holes:
+        return Classification("false", False, verdict="does not tile: it has a hole, and no copy fits in a hole",
+                              evidence={"step": "hole"})
+    a = analysis or {}
+    if a.get("isohedral"):
+        kinds = [fam for fam in ("translation", "halfturn", "quarterturn", "reflection") if a.get(fam)]
+        sigs = sorted({f["heesch"] for f in a.get("factorisations", [])})
+        ih = ", ".join(f"IH{i}" for i in a.get("ih_types", []))
+        return Classification("true", True,
+                              verdict=f"tiles isohedrally: boundary factorisation by {'/'.join(kinds)} "
+                                      f"({', '.join(sigs)}){'; ' + ih if ih else ''}",
+                              evidence={"step": "boundary word", "kinds": kinds})
+    t0 = time.monotonic()
+
+    def left() -> float | None:
+        return None if time_limit is None else max(0.0, time_limit - (time.monotonic() - t0))
+
+    hs = HeeschSolver(grid, cells, solver=solver)
+    r = heesch(grid, cells, max_level=probe, time_limit=left(), hs=hs)
+    if r.decided:
+        return _non_tiler(r, time.monotonic() - t0)
+    if r.surrounded < probe:  # the time limit
+        return _undecided(r.surrounded, None, time.monotonic() - t0, r.reason, r.hc_witness)
+    ts = TorusSearch(hs.forms, solver=solver)
+    # cheap first: small translational units, one more corona, larger units, more coronas
+    stages = [("torus", min(4, torus_tiles)), ("coronas", min(probe + 1, max_level)),
+              ("torus", torus_tiles), ("coronas", max_level)]
+    best: TorusTiling | None = None
+    tried_m, level = 1, probe
+    for what, bound in stages:
+        if what == "torus":
+            if bound <= tried_m:
+                continue
+            for m, tt in ts.search(range(tried_m + 1, bound + 1), time_limit=left()):
+                if tt is None:
+                    reason = f"torus search stopped by the time limit at {m} tiles per unit"
+                    return _undecided(level, m - 1, time.monotonic() - t0, reason, r.hc_witness)
+                if best is None or tt.k < best.k:
+                    best = tt
+            tried_m = bound
+            if best is not None:
+                a_, b_, d_ = best.lattice
+                verdict = (f"tiles anisohedrally: {best.m} tiles per translational unit (torus of period lattice "
+                           f"({a_},{b_}),(0,{d_})), {best.k} transitivity classes; no boundary factorisation")
+                return Classification("true", False, anisohedral_k=best.k, witness=best.to_json(), verdict=verdict,
+                                      evidence={"step": "torus", "m": best.m, "lattice": list(best.lattice),
+                                                "sat_calls": ts.sat_calls + hs.sat_calls,
+                                                "seconds": round(time.monotonic() - t0, 3)})
+        else:
+            if bound <= level:
+                continue
+            r = heesch(grid, cells, max_level=bound, time_limit=left(), hs=hs, start=level + 1, best=r.hc_witness)
+            if r.decided:
+                return _non_tiler(r, time.monotonic() - t0, torus=tried_m)
+            if r.surrounded < bound:  # the time limit
+                return _undecided(r.surrounded, tried_m, time.monotonic() - t0, r.reason, r.hc_witness)
+            level = bound
+    return _undecided(level, tried_m, time.monotonic() - t0, r.reason, r.hc_witness)
+
+
+def _non_tiler(r, seconds: float, torus: int | None = None) -> Classification:
+    if r.hh > r.hc:
+        how = f"no hole-free {r.hc + 1}-corona patch; {r.hh} coronas only with a hole in the outermost"
+    else:
+        how = f"no {r.hc + 1}-corona patch exists"
+    extra = f"; no torus tiling with up to {torus} tiles per unit" if torus and torus > 1 else ""
+    witness = {"kind": "heesch", "hc": _corona_json(r.hc_witness, r.hc), "hh": _corona_json(r.hh_witness, r.hh)}
+    return Classification("false", False, heesch=r.hc, heesch_holes=r.hh, witness=witness,
+                          verdict=f"does not tile: Heesch number {r.hc} ({how}){extra}",
+                          evidence={"step": "coronas", "failed_level": r.hc + 1, "sat_calls": r.sat_calls,
+                                    "seconds": round(seconds, 3)})
+
+
+def _undecided(levels: int, torus: int | None, seconds: float, reason: str, witness: Corona | None) -> Classification:
+    bounds = f"undecided up to {levels} coronas"
+    if torus and torus > 1:
+        bounds += f" and {torus} tiles per translational unit"
+    return Classification("undecided", False, witness={"kind": "heesch", "hc": _corona_json(witness, levels), "hh": None},
+                          verdict=f"{bounds} ({reason})", evidence={"step": "bounds", "seconds": round(seconds, 3)})
+
+
+# --------------------------------------------------------------------------- witnesses as tilings
+
+def corona_patch(grid: Grid, cells: np.ndarray, corona: dict, name: str = "") -> Patch:
+    """A stored corona witness as a Patch, colour and aspect = corona number."""
+    forms = Forms(grid, cells)
+    t = np.asarray(corona["tiles"], dtype=np.int64).reshape(-1, 4)
+    proto = outline(grid, forms.cells, name=name)
+    return Patch([proto], np.zeros(len(t), dtype=np.int64), forms.affine(t[:, :3]), colour=t[:, 3], aspect=t[:, 3])
+
+
+def torus_tiling(grid: Grid, cells: np.ndarray, witness: dict, name: str = "", family: str = "polyomino") -> PeriodicTiling:
+    """A stored torus witness as a PeriodicTiling whose aspects are the transitivity classes."""
+    forms = Forms(grid, cells)
+    t = np.asarray(witness["tiles"], dtype=np.int64).reshape(-1, 4)
+    a, b, d = (int(x) for x in witness["lattice"])
+    p = grid.period
+    v1, v2 = grid.xy(np.array([a * p, b * p])), grid.xy(np.array([0, d * p]))
+    proto = outline(grid, forms.cells, name=name)
+    k = int(t[:, 3].max()) + 1
+    return PeriodicTiling([proto], np.zeros(len(t), dtype=np.int64), forms.affine(t[:, :3]), v1, v2,
+                          Colouring.by_aspect(list(range(k))), unit_aspect=t[:, 3], family=family, name=name)
+
+
+# --------------------------------------------------------------------------- the search
+
+#: The classification stores rows up to this size (the enumeration's own limit).
+MAX_CLASSIFY = 14
+
+
+def _depth(n: int, d: int) -> int:
+    """Prefix size naming a chunk: deep enough that one chunk is seconds of SAT work."""
+    if d <= 0:
+        d = max(2, min(8, n - 4))
+    return min(d, n)
+
+
+def check_params(params: dict[str, Any]) -> None:
+    n = params.get("max_cells")
+    if not isinstance(n, int) or n < 1:
+        raise ParameterError(f"--max-cells must be a positive integer, got {n!r}")
+    if n > MAX_CLASSIFY:
+        raise ParameterError(f"--max-cells {n} is beyond the classification's limit of {MAX_CLASSIFY} cells")
+    lo = int(params.get("min_cells") or 1)
+    if not 1 <= lo <= n:
+        raise ParameterError(f"--min-cells must be between 1 and --max-cells ({n}), got {lo}")
+    check_bounds(int(params.get("probe", 2)), int(params.get("max_level", 5)), int(params.get("torus_tiles", 4)))
+
+
+def chunks(params: dict[str, Any]) -> list[dict[str, Any]]:
+    """The top chunk (polyominoes smaller than the prefix size) and one chunk per node of
+    that size in Redelmeier's tree (as the enumeration splits; each free polyomino is in
+    exactly one chunk, see :mod:`tilekit.plugins.polyomino.search`)."""
+    from tilekit.lattice import SQUARE, prefixes
+
+    check_params(params)
+    n = int(params["max_cells"])
+    d = _depth(n, int(params.get("prefix_depth") or 0))
+    out: list[dict[str, Any]] = []
+    if d > 1:
+        out.append({"root": 0, "prefix": [], "below": d})
+    for p in prefixes(SQUARE, n, d, 0):
+        out.append({"root": 0, "prefix": p})
+    return out
+
+
+def run_chunk(params: dict[str, Any], chunk: dict[str, Any]):
+    """Classify every free polyomino of the chunk; rows for the polyominoes table, counts."""
+    from tilekit.lattice import SQUARE, encode, enumerate_free, holes, symmetry_from_mask
+    from tilekit.plugins import ChunkResult
+    from tilekit.plugins.polyomino.isohedral import analyse
+    from tilekit.plugins.polyomino.model import make_row
+
+    n = int(params["max_cells"])
+    lo = int(params.get("min_cells") or 1)
+    maxsize = int(chunk["below"]) - 1 if "below" in chunk else n
+    polys, hole_flags, masks, _ = enumerate_free(SQUARE, n, prefix=list(chunk.get("prefix") or []),
+                                                 root=int(chunk.get("root", 0)), maxsize=maxsize,
+                                                 with_symmetry=True)
+    rows: list[dict] = []
+    counts: dict[str, int | float] = {}
+
+    def bump(key: str, by: int | float = 1) -> None:
+        counts[key] = counts.get(key, 0) + by
+
+    for cells, holey, mask in zip(polys, hole_flags, masks.tolist()):
+        size = len(cells)
+        if size < lo:
+            continue
+        t0 = time.monotonic()
+        analysis = None if holey else analyse(SQUARE, cells, construct=False)
+        c = classify(SQUARE, cells, analysis, has_holes=bool(holey), probe=int(params.get("probe", 2)),
+                     max_level=int(params.get("max_level", 5)), torus_tiles=int(params.get("torus_tiles", 4)),
+                     time_limit=float(params.get("time_limit") or 0) or None,
+                     solver=str(params.get("solver") or CLASSIFY_SOLVER))
+        hc = len(holes(SQUARE, cells)) if holey else 0
+        row = make_row(cells, bool(holey), hc, analysis, code=encode(SQUARE, cells, is_canonical=True),
+                       symmetry=symmetry_from_mask(SQUARE, mask))
+        rows.append(row | c.columns())
+        bump(f"free_{size}")
+        bump(f"tiles_{size}" if c.tiles == "true" else f"nontilers_{size}" if c.tiles == "false" else f"undecided_{size}")
+        if c.tiles == "true" and not c.isohedral:
+            bump(f"anisohedral_{size}")
+            bump(f"anisohedral_{size}_k{c.anisohedral_k}")
+        if c.tiles == "true" and c.isohedral:
+            bump(f"isohedral_{size}")
+        if c.tiles == "false" and not holey:
+            bump(f"holefree_nontilers_{size}")
+            bump(f"hc_{size}_{c.heesch}")
+            bump(f"hh_{size}_{c.heesch_holes}")
+        bump(f"seconds_{size}", round(time.monotonic() - t0, 4))
+    return ChunkResult(rows={"polyominoes": rows}, counts=counts)
+
+
+def summarize(params: dict[str, Any], results: list[dict[str, Any]]) -> dict[str, Any]:
+    """The bounds of the run (the per-size tallies are the summed counts)."""
+    return {"max_cells": int(params["max_cells"]), "max_level": int(params.get("max_level", 5)),
+            "torus_tiles": int(params.get("torus_tiles", 4))}
+
+
+def _search():
+    from tilekit.plugins import Search, SearchParam
+    from tilekit.sat import SAT_SOLVERS
+
+    return Search(
+        "polyomino-classify",
+        "classify every free polyomino: isohedral, anisohedral (least k found on tori), or a "
+        "non-tiler with its Heesch numbers (Kaplan 2022, by SAT)",
+        "polyomino",
+        [
+            SearchParam("max_cells", int, 10, f"largest size (at most {MAX_CLASSIFY})", min=1, max=MAX_CLASSIFY),
+            SearchParam("min_cells", int, 1, "smallest size classified (smaller ones are skipped)", min=1,
+                        max=MAX_CLASSIFY),
+            SearchParam("probe", int, 2, "coronas tried before the torus search", min=1, max=MAX_LEVEL_LIMIT),
+            SearchParam("max_level", int, 5, "most coronas tried before 'undecided'", min=1, max=MAX_LEVEL_LIMIT),
+            SearchParam("torus_tiles", int, 4, "most tiles per translational unit tried on tori", min=2,
+                        max=MAX_TORUS_TILES),
+            SearchParam("time_limit", float, 300.0, "seconds of SAT work per polyomino before 'undecided' (0: none)",
+                        min=0, max=86400),
+            SearchParam("solver", str, CLASSIFY_SOLVER, "SAT solver", choices=list(SAT_SOLVERS)),
+            SearchParam("prefix_depth", int, 0, "size of the tree prefix naming a chunk (0: automatic)", min=0,
+                        max=10),
+        ],
+        chunks,
+        run_chunk,
+        summarize,
+    )
+
+
+SEARCH = _search()
