@@ -14,10 +14,10 @@ tile that tiles must not get a finite Heesch number).
 
 **Encoding, for k levels.** A Boolean ``y[p, i]`` says placement ``p`` (orientation j moved
 by t, see :mod:`placements`) is used in corona i; only placements reachable from the kernel by
-i touching steps get a variable at level i. A cell variable ``c`` is true when a used copy
+i touching steps get a variable at level i. A cell variable ``c``, when true, says a used copy
 covers the cell. Clauses:
 
-1. ``y -> c`` for the cells of every copy; ``c -> OR y`` over the copies covering the cell;
+1. ``c -> OR y`` over the copies covering the cell;
 2. at most one used copy covers a cell (a ladder encoding per cell): copies do not overlap;
 3. halo: ``y[p, i] -> c`` for every halo cell of p when i < k, and every halo cell of the
    kernel is covered;
@@ -161,8 +161,8 @@ class HeeschSolver:
 
         clauses: list[list[int]] = []
         pc = cell_var(pcells)  # never 0: placements avoid the kernel
-        # 1. y -> c, c -> OR y
-        clauses += np.column_stack([-np.repeat(yvar, pcells.shape[1]), pc.ravel()]).tolist()
+        # 1. c -> OR y. (y -> c is not needed: c occurs positively only in the halo clauses,
+        # so a model with c false under a copy stays a model with c true.)
         flat_c = pc.ravel()
         flat_y = np.repeat(yvar, pcells.shape[1])
         order = np.argsort(flat_c, kind="stable")
