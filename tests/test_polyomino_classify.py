@@ -44,8 +44,9 @@ KAPLAN_HH = {7: {1: 3}, 8: {1: 19, 2: 1}, 9: {0: 36, 1: 157, 2: 5}, 10: {0: 355,
 
 def check_coronas(patch, levels: np.ndarray, hole_free: bool) -> None:
     """Kaplan's definition, on polygons: corona i touches corona i-1 and nothing below it, the
-    patch of coronas < i lies in the interior of the patch of coronas <= i, and inner patches
-    (and, hole-free, the whole patch) have no holes."""
+    patch of coronas < i lies in the interior of the patch of coronas <= i, and (hole-free)
+    the whole patch has no hole; with holes allowed, any hole is bounded by the outermost
+    corona alone."""
     assert patch.validate().ok, patch.validate().summary()
     geoms = np.asarray(patch.geometries())
     k = int(levels.max())
@@ -59,11 +60,12 @@ def check_coronas(patch, levels: np.ndarray, hole_free: bool) -> None:
             assert g.intersects(unions[i - 1]), f"a tile of corona {i} does not touch corona {i - 1}"
             if i >= 2:
                 assert g.distance(unions[i - 2]) > 0.5, f"a tile of corona {i} touches corona {i - 2}"
-    for i in range(k):
-        assert isinstance(unions[i], shapely.Polygon) and not unions[i].interiors, f"patch {i} has a hole"
     outer = unions[k]
-    has_hole = not isinstance(outer, shapely.Polygon) or bool(outer.interiors)
-    assert has_hole is (not hole_free)
+    assert isinstance(outer, shapely.Polygon)
+    assert bool(outer.interiors) is (not hole_free)
+    inner = shapely.union_all(geoms[levels < k])
+    for ring in outer.interiors:
+        assert shapely.Polygon(ring).distance(inner) > 0.5, "a hole touches an inner corona"
 
 
 def check_anisohedral(tiling, k: int) -> None:
@@ -240,3 +242,41 @@ def test_classification_search_bad_input(tmp_path):
         res = CliRunner().invoke(cli, ["--catalogue", db, "search", "polyomino-classify", *args])
         assert res.exit_code == 2, res.output
         assert needle in res.stderr and res.stderr.strip().count("\n") == 0, res.stderr
+
+
+@pytest.mark.slow
+def test_classification_to_ten_cells_against_myers_and_kaplan(tmp_path):
+    """n = 9, 10 through the run layer with two worker processes: every polyomino decided, the
+    OEIS counts and Kaplan's Tables 1-2, and every stored witness checked independently."""
+    from tilekit.catalogue import open_catalogue
+    from tilekit.plugins.polyomino.tables import TABLE
+    from tilekit.search import run_search
+
+    cat = open_catalogue(f"sqlite:///{tmp_path / 'c10.sqlite'}")
+    run = run_search(cat, "polyomino-classify", {"max_cells": 10, "min_cells": 9}, executor="process", workers=2)
+    s = cat.run(run)["summary"]
+    for n in (9, 10):
+        assert s.get(f"undecided_{n}", 0) == 0
+        assert s[f"tiles_{n}"] == A054359[n - 1]
+        assert s[f"nontilers_{n}"] == A054360[n - 1]
+        assert s[f"holefree_nontilers_{n}"] == A054361[n - 1]
+        assert s[f"anisohedral_{n}"] == A075206[n - 1]
+        assert {h: s[f"hc_{n}_{h}"] for h in range(4) if s.get(f"hc_{n}_{h}")} == KAPLAN_HC[n]
+        assert {h: s[f"hh_{n}_{h}"] for h in range(4) if s.get(f"hh_{n}_{h}")} == KAPLAN_HH[n]
+    with cat.engine.connect() as conn:
+        rows = conn.execute(TABLE.select().where(TABLE.c.witness.is_not(None))).mappings().all()
+    cat.close()
+    seen = Counter()
+    for row in rows:
+        poly = tilekit.polyomino(row["code"])
+        w = json.loads(row["witness"])
+        if w["kind"] == "torus":
+            check_anisohedral(torus_tiling(SQUARE, poly.cells, w), row["anisohedral_k"])
+            seen["torus"] += 1
+        else:
+            for part, free in ((w["hc"], True), (w["hh"], not w["hh"]["holes"])):
+                patch = corona_patch(SQUARE, poly.cells, part)
+                check_coronas(patch, patch.aspect, free)
+            seen["coronas"] += 1
+    assert seen["torus"] == A075206[8] + A075206[9]
+    assert seen["coronas"] == A054361[8] + A054361[9]
