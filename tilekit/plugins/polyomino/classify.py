@@ -142,7 +142,8 @@ def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes:
 
 def _non_tiler(r, seconds: float, torus: int | None = None) -> Classification:
     if r.hh > r.hc:
-        how = f"no hole-free {r.hc + 1}-corona patch; {r.hh} coronas only with a hole in the outermost"
+        how = (f"no hole-free {r.hc + 1}-corona patch; {r.hh} corona{'s' if r.hh != 1 else ''} only with a hole "
+               f"in the outermost")
     else:
         how = f"no {r.hc + 1}-corona patch exists"
     extra = f"; no torus tiling with up to {torus} tiles per unit" if torus and torus > 1 else ""

@@ -335,7 +335,7 @@ def heesch(grid: Grid, cells: np.ndarray, *, max_level: int = 6, solver: str = D
             continue
         if holey is not None:
             return HeeschResult(k - 1, k, best, holey, k - 1, True,
-                                f"{k} coronas only with a hole in the outermost corona", hs.sat_calls,
+                                f"{k} corona{'s' if k != 1 else ''} only with a hole in the outermost corona", hs.sat_calls,
                                 time.monotonic() - t0)
         return HeeschResult(k - 1, k - 1, best, best, k - 1, True, f"no {k}-corona patch exists",
                             hs.sat_calls, time.monotonic() - t0)
