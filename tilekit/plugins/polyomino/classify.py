@@ -31,6 +31,7 @@ from tilekit.plugins.polyomino.heesch import MAX_LEVEL_LIMIT, Corona, HeeschSolv
 from tilekit.plugins.polyomino.placements import Forms
 from tilekit.plugins.polyomino.torus import TorusSearch, TorusTiling
 from tilekit.sat import DEFAULT_SAT_SOLVER
+from tilekit.symmetry import wallpaper_group
 from tilekit.tiling import Patch, PeriodicTiling
 
 #: Most tiles per translational unit the torus search tries.
@@ -122,9 +123,13 @@ def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes:
             tried_m = bound
             if best is not None:
                 a_, b_, d_ = best.lattice
+                witness = best.to_json()
+                # the group's name, from the geometry (tilekit.symmetry), for the verdict
+                witness["group"] = wallpaper_group(torus_tiling(grid, cells, witness)).iuc
                 verdict = (f"tiles anisohedrally: {best.m} tiles per translational unit (torus of period lattice "
-                           f"({a_},{b_}),(0,{d_})), {best.k} transitivity classes; no boundary factorisation")
-                return Classification("true", False, anisohedral_k=best.k, witness=best.to_json(), verdict=verdict,
+                           f"({a_},{b_}),(0,{d_})), symmetry group {witness['group']}, {best.k} transitivity "
+                           f"classes; no boundary factorisation")
+                return Classification("true", False, anisohedral_k=best.k, witness=witness, verdict=verdict,
                                       evidence={"step": "torus", "m": best.m, "lattice": list(best.lattice),
                                                 "sat_calls": ts.sat_calls + hs.sat_calls,
                                                 "seconds": round(time.monotonic() - t0, 3)})
