@@ -70,7 +70,7 @@ def tilekit_catalogue_records():
 @hookimpl
 def tilekit_searches():
     # measured start-up cost: numba, as in _from_spec
-    from tilekit.plugins.polyomino.classify import SEARCH as CLASSIFY
+    from tilekit.plugins.polyomino.classify_search import SEARCH as CLASSIFY
     from tilekit.plugins.polyomino.search import SEARCH
 
     return [SEARCH, CLASSIFY]

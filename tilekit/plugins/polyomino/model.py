@@ -28,6 +28,7 @@ from tilekit.lattice import (
     symmetry_name,
     word_text,
 )
+from tilekit.plugins.polyomino.classify import MAX_INTERACTIVE, classify, corona_patch, torus_tiling
 from tilekit.plugins.polyomino.isohedral import analyse, periodic_tiling
 from tilekit.tiling import Patch, PeriodicTiling, Tiling
 
@@ -154,11 +155,6 @@ class Polyomino:
 
         Sizes beyond :data:`classify.MAX_INTERACTIVE` cells are refused: their SAT searches
         can take minutes each, which belongs in ``tilekit search polyomino-classify``."""
-        from tilekit.plugins.polyomino.classify import (  # measured start-up cost: SAT
-            MAX_INTERACTIVE,
-            classify,
-        )
-
         if self.n > MAX_INTERACTIVE:
             raise ParameterError(f"classifying a {self.n}-omino here is refused (limit {MAX_INTERACTIVE} cells); "
                                  f"run `tilekit search polyomino-classify` for larger sizes")
@@ -305,10 +301,6 @@ class CoronaPatch(Tiling):
     (Kaplan 2022). Its patch is the stored witness itself; the region is ignored."""
 
     def __init__(self, poly: Polyomino, corona: dict, *, which: str = "hc") -> None:
-        from tilekit.plugins.polyomino.classify import (
-            corona_patch,  # measured start-up cost: the SAT modules
-        )
-
         self.poly = poly
         self.corona = dict(corona)
         self.which = which
@@ -351,10 +343,6 @@ class AnisohedralTiling(PeriodicTiling):
     transitivity classes under the tiling's symmetry group."""
 
     def __init__(self, poly: Polyomino, witness: dict) -> None:
-        from tilekit.plugins.polyomino.classify import (
-            torus_tiling,  # measured start-up cost: the SAT modules
-        )
-
         self.poly = poly
         self.witness = dict(witness)
         base = torus_tiling(SQUARE, poly.cells, self.witness, name=poly.name or poly.code)
