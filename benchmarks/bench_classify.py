@@ -49,7 +49,7 @@ def classification(n: int, executor: str, workers: int | None, min_cells: int = 
         run = run_search(cat, "polyomino-classify", {"max_cells": n, "min_cells": min_cells},
                          executor=executor, workers=workers)
         wall = time.perf_counter() - t0
-        summary = cat.run(run)["summary"]
+        summary = cat.run(run).summary
         cat.close()
     return summary, wall
 

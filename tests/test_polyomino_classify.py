@@ -254,7 +254,7 @@ def test_classification_to_ten_cells_against_myers_and_kaplan(tmp_path):
 
     cat = open_catalogue(f"sqlite:///{tmp_path / 'c10.sqlite'}")
     run = run_search(cat, "polyomino-classify", {"max_cells": 10, "min_cells": 9}, executor="process", workers=2)
-    s = cat.run(run)["summary"]
+    s = cat.run(run).summary
     for n in (9, 10):
         assert s.get(f"undecided_{n}", 0) == 0
         assert s[f"tiles_{n}"] == A054359[n - 1]
