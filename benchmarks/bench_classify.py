@@ -78,7 +78,7 @@ def peer_heesch(cells: np.ndarray, max_level: int = 2, solver: str = "glucose4")
     """(Hc, Hh) with the obvious encoding: one variable per placement and corona, every pair
     of overlapping copies forbidden, halo and touching clauses written over the placements.
     Only the placement sets are shared with tilekit (HeeschSolver.levels)."""
-    from tilekit.plugins.polyomino.placements import holes_of, pack, unpack
+    from tilekit.lattice import holes_of, pack, unpack
     from tilekit.sat import IncrementalSolver
 
     hs = HeeschSolver(SQUARE, cells)

@@ -41,8 +41,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from tilekit.errors import ParameterError
-from tilekit.lattice import Grid
-from tilekit.plugins.polyomino.placements import Forms, holes_of, pack, unpack
+from tilekit.lattice import Grid, holes_of, pack, unpack
+from tilekit.plugins.polyomino.placements import Forms
 from tilekit.sat import DEFAULT_SAT_SOLVER, IncrementalSolver
 
 #: The most coronas a search will build (Kaplan's sat tool stops at 7 by default).
