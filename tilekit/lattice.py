@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cache, cached_property
 
 import numpy as np
 
@@ -254,34 +254,7 @@ def as_cells(grid: Grid, cells) -> np.ndarray:
 def holes(grid: Grid, cells: np.ndarray) -> list[np.ndarray]:
     """The holes: edge-connected components of empty cells not connected to the outside."""
     c = np.asarray(cells, dtype=np.int64).reshape(-1, 2)
-    keys = {tuple(p) for p in c.tolist()}
-    lo = c.min(axis=0) - 2 * grid.period
-    hi = c.max(axis=0) + 2 * grid.period
-    xs, ys = np.meshgrid(np.arange(lo[0], hi[0] + 1), np.arange(lo[1], hi[1] + 1), indexing="ij")
-    box = np.column_stack([xs.ravel(), ys.ravel()])
-    box = box[grid.is_cell(box)]
-    empty = {tuple(p) for p in box.tolist()} - keys
-    comps: list[np.ndarray] = []
-    left = set(empty)
-    while left:
-        start = left.pop()
-        comp = [start]
-        stack = [start]
-        outside = False
-        while stack:
-            p = stack.pop()
-            for q in grid.neighbours_of(p):
-                k = tuple(q.tolist())
-                if k in left:
-                    left.discard(k)
-                    comp.append(k)
-                    stack.append(k)
-                elif k not in keys and k not in empty:
-                    outside = True
-        arr = np.array(comp, dtype=np.int64)
-        if not outside and not ((arr <= lo + grid.period).any() or (arr >= hi - grid.period).any()):
-            comps.append(arr)
-    return comps
+    return [unpack(h) for h in holes_of(grid, pack(c))]
 
 
 def hole_count(grid: Grid, cells: np.ndarray) -> int:
@@ -985,3 +958,91 @@ def square_cells(pairs) -> np.ndarray:
     """Fine centres of square cells given as integer (column, row) pairs."""
     p = np.asarray(pairs, dtype=np.int64).reshape(-1, 2)
     return 2 * p + 1
+
+
+# --------------------------------------------------------------------------- packed cells, halos, holes
+
+_OFF = 1 << 20
+_M = 1 << 21
+
+
+def pack(c: np.ndarray) -> np.ndarray:
+    """Fine cell coordinates ``(..., 2)`` -> int64 keys (coordinates within +-2^20)."""
+    c = np.asarray(c, dtype=np.int64)
+    return (c[..., 0] + _OFF) * _M + (c[..., 1] + _OFF)
+
+
+def unpack(k: np.ndarray) -> np.ndarray:
+    k = np.asarray(k, dtype=np.int64)
+    return np.stack([k // _M - _OFF, k % _M - _OFF], axis=-1)
+
+
+@cache
+def _vertex_neighbours(grid: Grid) -> tuple[np.ndarray, ...]:
+    """Per cell type, the offsets to the cells sharing at least one vertex with it."""
+    out = []
+    span = 3 * grid.period
+    rng = np.arange(-span, span + 1)
+    xs, ys = np.meshgrid(rng, rng, indexing="ij")
+    for r, root in enumerate(grid.roots):
+        cand = np.column_stack([xs.ravel(), ys.ravel()]) + root
+        cand = cand[grid.is_cell(cand)]
+        cand = cand[(cand != root).any(axis=1)]
+        mine = pack(root[None] + grid.vertices[r])
+        theirs = pack(grid.vertices_of(cand))
+        hit = np.isin(theirs, mine).any(axis=1)
+        out.append(cand[hit] - root)
+    return tuple(out)
+
+
+def halo_of(grid: Grid, cells: np.ndarray) -> np.ndarray:
+    """The cells sharing a vertex with ``cells`` and not in it (sorted by key)."""
+    cells = np.asarray(cells, dtype=np.int64).reshape(-1, 2)
+    nb = _vertex_neighbours(grid)
+    types = grid.cell_type(cells)
+    parts = [cells[types == r][:, None, :] + nb[r][None] for r in range(len(grid.roots))]
+    cand = np.unique(pack(np.concatenate([p.reshape(-1, 2) for p in parts])))
+    cand = cand[~np.isin(cand, pack(cells))]
+    return unpack(cand)
+
+
+def holes_of(grid: Grid, keys: np.ndarray) -> list[np.ndarray]:
+    """Holes of the union of the cells ``keys`` (packed): the edge-connected components of
+    empty cells that cannot reach the outside; each returned as an array of packed keys."""
+    keys = np.unique(np.asarray(keys, dtype=np.int64))
+    cells = unpack(keys)
+    lo = cells.min(axis=0) - 2 * grid.period
+    hi = cells.max(axis=0) + 2 * grid.period
+    xs, ys = np.meshgrid(np.arange(lo[0], hi[0] + 1), np.arange(lo[1], hi[1] + 1), indexing="ij")
+    box = np.column_stack([xs.ravel(), ys.ravel()])
+    box = box[grid.is_cell(box)]
+    empty_cells = box[~np.isin(pack(box), keys)]
+    if not len(empty_cells):
+        return []
+    empty = pack(empty_cells)
+    order = np.argsort(empty)
+    empty = empty[order]
+    empty_cells = empty_cells[order]
+    types = grid.cell_type(empty_cells)
+    nbrs = pack(empty_cells[:, None, :] + grid.neighbours[types])  # (E, D)
+    pos = np.searchsorted(empty, nbrs)
+    pos = np.minimum(pos, len(empty) - 1)
+    ok = empty[pos] == nbrs
+    nb_index = np.where(ok, pos, -1)
+    outside = ((empty_cells <= lo + grid.period).any(axis=1) | (empty_cells >= hi - grid.period).any(axis=1))
+    comp = np.full(len(empty), -1, dtype=np.int64)
+    ncomp = 0
+    for start in range(len(empty)):
+        if comp[start] >= 0:
+            continue
+        comp[start] = ncomp
+        stack = [start]
+        while stack:
+            i = stack.pop()
+            for q in nb_index[i]:
+                if q >= 0 and comp[q] < 0:
+                    comp[q] = ncomp
+                    stack.append(int(q))
+        ncomp += 1
+    leak = set(np.unique(comp[outside]).tolist())
+    return [empty[comp == c] for c in range(ncomp) if c not in leak]

@@ -153,7 +153,11 @@ class SatAnswer:
 
 
 def _clauses_of(cnf: CNF | Iterable[Sequence[int]]) -> list[list[int]]:
-    return cnf.clauses if isinstance(cnf, CNF) else [list(c) for c in cnf]
+    if isinstance(cnf, CNF):
+        return cnf.clauses
+    if isinstance(cnf, list) and (not cnf or isinstance(cnf[0], list)):
+        return cnf  # already rows of literals: no copy (encodings hand over 10^5+ clauses)
+    return [list(c) for c in cnf]
 
 
 def _stats(s: Any) -> dict[str, int]:

@@ -15,7 +15,6 @@ from typing import Any
 
 from tilekit.hookspecs import hookimpl
 from tilekit.plugins import CatalogueRecord, Family
-from tilekit.plugins.polyomino.tables import result_table
 
 FAMILY = "polyomino"
 
@@ -70,9 +69,10 @@ def tilekit_catalogue_records():
 @hookimpl
 def tilekit_searches():
     # measured start-up cost: numba, as in _from_spec
+    from tilekit.plugins.polyomino.classify_search import SEARCH as CLASSIFY
     from tilekit.plugins.polyomino.search import SEARCH
 
-    return [SEARCH]
+    return [SEARCH, CLASSIFY]
 
 
 @hookimpl
@@ -83,5 +83,9 @@ def tilekit_migration_locations():
 @hookimpl
 def tilekit_result_tables():
     """The polyominoes result table."""
+    # measured start-up cost: the table module imports SQLAlchemy (~0.15 s), which `tilekit
+    # --help` and the commands that open no catalogue should not pay
+    from tilekit.plugins.polyomino.tables import result_table
+
     rt = result_table()
     return [rt] if rt is not None else []

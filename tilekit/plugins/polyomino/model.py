@@ -28,6 +28,7 @@ from tilekit.lattice import (
     symmetry_name,
     word_text,
 )
+from tilekit.plugins.polyomino.classify import MAX_INTERACTIVE, classify, corona_patch, torus_tiling
 from tilekit.plugins.polyomino.isohedral import analyse, periodic_tiling
 from tilekit.tiling import Patch, PeriodicTiling, Tiling
 
@@ -149,6 +150,21 @@ class Polyomino:
         """One periodic tiling per Heesch type found (empty if the polyomino is not isohedral)."""
         return [PolyominoTiling(self, i) for i in range(len(self.analysis["tilings"]))]
 
+    def classification(self, **bounds: Any):
+        """Tiles or not, Heesch numbers, anisohedral k (see :mod:`classify`); cached per bounds.
+
+        Sizes beyond :data:`classify.MAX_INTERACTIVE` cells are refused: their SAT searches
+        can take minutes each, which belongs in ``tilekit search polyomino-classify``."""
+        if self.n > MAX_INTERACTIVE:
+            raise ParameterError(f"classifying a {self.n}-omino here is refused (limit {MAX_INTERACTIVE} cells); "
+                                 f"run `tilekit search polyomino-classify` for larger sizes")
+        key = tuple(sorted(bounds.items()))
+        cache = self.__dict__.setdefault("_classifications", {})
+        if key not in cache:
+            analysis = None if self.has_holes else self.analysis
+            cache[key] = classify(SQUARE, self.cells, analysis, has_holes=self.has_holes, **bounds)
+        return cache[key]
+
     def row(self) -> dict[str, Any]:
         """The polyominoes table row of this polyomino."""
         return make_row(self.cells, self.has_holes, len(self.hole_list), self.analysis, name=self.name)
@@ -166,7 +182,7 @@ def make_row(cells: np.ndarray, has_holes: bool, hole_count: int, analysis: dict
     q = q - q.min(axis=0)
     a = analysis or {}
     iso = bool(a.get("isohedral", False))
-    return {
+    row = {
         "code": code,
         "name": name if name is not None else usual_name(code),
         "grid": "square",
@@ -183,13 +199,15 @@ def make_row(cells: np.ndarray, has_holes: bool, hole_count: int, analysis: dict
         "isohedral": iso,
         "ih_types": ",".join(f"IH{i}" for i in a.get("ih_types", [])),
         "factorisations": json.dumps(a.get("factorisations", [])),
-        "tiles": "true" if iso else ("false" if has_holes else "undecided"),
-        "anisohedral_k": 1 if iso else None,
-        "heesch": None,
-        "heesch_holes": None,
-        "witness": None,
-        "verdict": "isohedral" if iso else ("has holes" if has_holes else None),
     }
+    # The verdicts the enumeration alone can give; the others (anisohedral tilers, Heesch
+    # numbers) are the classification search's, and an enumeration re-run must not erase them.
+    if iso:
+        row |= {"tiles": "true", "verdict": "tiles isohedrally (boundary factorisation)"}
+    elif has_holes:
+        row |= {"tiles": "false", "heesch": None, "heesch_holes": None,
+                "verdict": "does not tile: it has a hole, and no copy fits in a hole"}
+    return row
 
 
 # --------------------------------------------------------------------------- tilings
@@ -278,15 +296,123 @@ class PolyominoShape(Tiling):
         return _configure(self.poly, options)
 
 
+class CoronaPatch(Tiling):
+    """A Heesch witness: the polyomino surrounded by its coronas, coloured by corona number
+    (Kaplan 2022). Its patch is the stored witness itself; the region is ignored."""
+
+    def __init__(self, poly: Polyomino, corona: dict, *, which: str = "hc") -> None:
+        self.poly = poly
+        self.corona = dict(corona)
+        self.which = which
+        self.family = FAMILY
+        self.name = poly.name or poly.code
+        self._patch = corona_patch(SQUARE, poly.cells, self.corona, name=self.name)
+
+    @property
+    def prototiles(self):
+        return self._patch.prototiles
+
+    def patch(self, region: Any) -> Patch:
+        return self._patch
+
+    def default_region(self):
+        x0, y0, x1, y1 = self._patch.bounds()
+        return shapely.box(x0 - 0.5, y0 - 0.5, x1 + 0.5, y1 + 0.5)
+
+    def estimate_tiles(self, region: Any = None) -> float:
+        return float(len(self._patch))
+
+    def spec(self) -> dict[str, Any]:
+        return {"code": self.poly.code, "name": self.name, "view": self.which, "witness": self.corona}
+
+    def properties(self) -> dict[str, Any]:
+        return {"periodic": False, "k_hedral": 1, "cells": self.poly.n, "coronas": int(self.corona.get("k", 0)),
+                "hole_free": not self.corona.get("holes", False)}
+
+    def describe(self) -> str:
+        k = int(self.corona.get("k", 0))
+        holes = "with a hole in the outermost corona" if self.corona.get("holes") else "hole-free"
+        return f"{self.poly.n}-omino surrounded by {k} corona(s), {holes}: {len(self._patch)} tiles, coloured by corona"
+
+    def configure(self, **options: Any) -> Tiling:
+        return _configure(self.poly, options)
+
+
+class AnisohedralTiling(PeriodicTiling):
+    """A periodic tiling found on a torus; aspects (and default colours) are the tiles'
+    transitivity classes under the tiling's symmetry group."""
+
+    def __init__(self, poly: Polyomino, witness: dict) -> None:
+        self.poly = poly
+        self.witness = dict(witness)
+        base = torus_tiling(SQUARE, poly.cells, self.witness, name=poly.name or poly.code)
+        super().__init__(base.prototiles, base.unit_prototile, base.unit_transform, base.v1, base.v2,
+                         base.colouring, unit_aspect=base.unit_aspect, family=FAMILY, name=poly.name or poly.code)
+
+    def spec(self) -> dict[str, Any]:
+        return {"code": self.poly.code, "name": self.name, "view": "tiling", "witness": self.witness}
+
+    def properties(self) -> dict[str, Any]:
+        return super().properties() | {"cells": self.poly.n, "isohedral": False,
+                                       "k_isohedral": int(self.unit_aspect.max()) + 1}
+
+    def describe(self) -> str:
+        a, b, d = self.witness["lattice"]
+        return (f"anisohedral tiling: {len(self.unit_prototile)} tiles per translational unit "
+                f"(period lattice ({a},{b}),(0,{d})), {int(self.unit_aspect.max()) + 1} transitivity classes")
+
+    def configure(self, **options: Any) -> Tiling:
+        return _configure(self.poly, options)
+
+
+#: What ``--set view=...`` shows of a polyomino that has no isohedral tiling.
+VIEWS = ("shape", "coronas", "holes", "tiling")
+
+
+def witness_tiling(poly: Polyomino, witness: dict | None, view: str | None) -> Tiling:
+    """The tiling showing a stored classification ``witness`` (or ``view`` of it)."""
+    if view is not None and view not in VIEWS:
+        raise ParameterError(f"view must be one of {', '.join(VIEWS)}, not {view!r}")
+    if view == "shape" or witness is None:
+        return PolyominoShape(poly)
+    kind = witness.get("kind")
+    if kind == "torus":
+        if view not in (None, "tiling"):
+            raise ParameterError(f"{poly.name or poly.code} tiles the plane: its witness is a tiling (view=tiling), not {view}")
+        return AnisohedralTiling(poly, witness)
+    if kind == "coronas":  # one corona patch, stored as such
+        return CoronaPatch(poly, witness, which=view or "coronas")
+    if kind == "heesch":
+        if view == "tiling":
+            raise ParameterError(f"{poly.name or poly.code} does not tile: it has coronas to show (view=coronas or holes)")
+        part = witness.get("hh") if view == "holes" else witness.get("hc")
+        if part is None:
+            part = witness.get("hc")
+        if part is None:
+            return PolyominoShape(poly)
+        return CoronaPatch(poly, part, which=view or "coronas")
+    raise ParameterError(f"unknown polyomino witness kind {kind!r}: expected heesch, coronas or torus")
+
+
 def _configure(poly: Polyomino, options: dict[str, Any]) -> Tiling:
-    """``--set tiling=N`` (1-based) or ``--set tiling=IH41`` picks one of the tilings; ``--set shape=1`` the tile."""
+    """``--set tiling=N`` (1-based) or ``--set tiling=IH41`` picks one of the tilings; ``--set shape=1`` the tile;
+    ``--set view=coronas|holes|tiling`` classifies the polyomino (Heesch numbers, torus search) and shows its witness."""
     opts = dict(options)
     choice = opts.pop("tiling", None)
     shape = opts.pop("shape", None)
+    view = opts.pop("view", None)
     if opts:
-        raise ParameterError(f"polyomino takes the settings tiling=N|IHn and shape=1, not {', '.join(sorted(opts))}")
+        raise ParameterError(f"polyomino takes the settings tiling=N|IHn, shape=1 and view={'|'.join(VIEWS)}, "
+                             f"not {', '.join(sorted(opts))}")
     if shape:
         return PolyominoShape(poly)
+    if view is not None:
+        view = str(view).strip()
+        if view not in VIEWS:
+            raise ParameterError(f"view must be one of {', '.join(VIEWS)}, not {view!r}")
+        if poly.is_isohedral() and view in ("tiling",):
+            return tiling_of(poly)
+        return witness_tiling(poly, poly.classification().witness, view)
     if choice is None:
         return tiling_of(poly)
     built = poly.analysis["tilings"]
@@ -313,7 +439,10 @@ def from_spec(spec) -> Tiling:
     if spec.get("name") and not poly.name:
         poly.name = spec["name"]
     if not poly.is_isohedral():
-        return PolyominoShape(poly)
+        witness = spec.get("witness")
+        if isinstance(witness, str):
+            witness = json.loads(witness)
+        return witness_tiling(poly, witness, spec.get("view"))
     return PolyominoTiling(poly, int(spec.get("tiling", 0) or 0))
 
 

@@ -6,6 +6,7 @@ One row per free polyomino: the canonical code is the natural key; ``result_tabl
 
 from __future__ import annotations
 
+import json
 from collections.abc import Mapping
 from typing import Any
 
@@ -47,12 +48,19 @@ NAME_COLUMN = "code"
 
 
 def row_spec(row: Mapping[str, Any]) -> dict:
-    """A result row -> the spec the polyomino family's ``from_spec`` reads (show / render)."""
-    return {"code": row["code"], "name": row.get("name") or row["code"]}
+    """A result row -> the spec the polyomino family's ``from_spec`` reads (show / render):
+    a stored classification witness (coronas, or an anisohedral tiling) comes along."""
+    spec = {"code": row["code"], "name": row.get("name") or row["code"]}
+    if row.get("witness") and not row.get("isohedral"):
+        spec["witness"] = json.loads(row["witness"])
+    return spec
 
 
 def row_title(row: Mapping[str, Any]) -> str:
-    kind = "isohedral" if row.get("isohedral") else ("with holes" if row.get("holes") else "not isohedral")
+    if row.get("verdict") and row.get("tiles") is not None:
+        kind = row["verdict"]
+    else:
+        kind = "isohedral" if row.get("isohedral") else ("with holes" if row.get("holes") else "not isohedral")
     return f"{row.get('name') or row['code']}: {row['cells']}-omino, {row.get('symmetry', '')}, {kind}"
 
 

@@ -1,0 +1,193 @@
+"""The classification of one polyomino: isohedral tiler, anisohedral tiler (least k found),
+non-tiler with its Heesch numbers, or undecided within stated bounds.
+
+The order of the tests is the cheap-first order of Myers' and Kaplan's searches:
+
+1. a hole: no tiling (a copy covering a cell of the hole would have to fit inside it);
+2. the boundary-word test (:mod:`isohedral`, Langerman and Winslow): an isohedral tiling;
+3. coronas by SAT (:mod:`heesch`) up to ``probe`` levels: a polyomino that cannot be
+   surrounded ``probe`` times is a non-tiler, and its Hc and Hh are exact;
+4. otherwise tori with 2..``torus_tiles`` tiles per translational unit (:mod:`torus`): a
+   cover is a periodic tiling, and the fewest transitivity classes found is the k recorded;
+5. otherwise coronas up to ``max_level``; still surrounded: ``undecided`` with the bounds.
+
+The ``polyomino-classify`` search that runs this over every free polyomino is
+:mod:`classify_search`.
+
+Nothing is guessed: ``tiles`` is ``true`` only with a tiling in hand, ``false`` only with a
+proof (a hole, or a level at which no corona exists), and ``undecided`` otherwise.
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from tilekit.colouring import Colouring
+from tilekit.errors import ParameterError
+from tilekit.lattice import Grid, outline
+from tilekit.plugins.polyomino.heesch import MAX_LEVEL_LIMIT, Corona, HeeschSolver, heesch
+from tilekit.plugins.polyomino.placements import Forms
+from tilekit.plugins.polyomino.torus import TorusSearch, TorusTiling
+from tilekit.sat import DEFAULT_SAT_SOLVER
+from tilekit.symmetry import wallpaper_group
+from tilekit.tiling import Patch, PeriodicTiling
+
+#: Most tiles per translational unit the torus search tries.
+MAX_TORUS_TILES = 12
+#: Largest polyomino classified on request (``Polyomino.classification``, ``--set view=``).
+MAX_INTERACTIVE = 16
+#: The classification's default solver: Glucose can be interrupted in this process, so a
+#: per-polyomino time limit costs no fork per call, and on these small formulas it was 1.4x
+#: faster than CaDiCaL for the whole n = 8 classification (docs/benchmarks.md).
+CLASSIFY_SOLVER = "glucose4"
+
+
+@dataclass
+class Classification:
+    tiles: str  # "true" / "false" / "undecided"
+    isohedral: bool
+    anisohedral_k: int | None = None
+    heesch: int | None = None
+    heesch_holes: int | None = None
+    witness: dict | None = None
+    verdict: str = ""
+    evidence: dict = field(default_factory=dict)
+
+    def columns(self) -> dict[str, Any]:
+        """The classification columns of a polyominoes row."""
+        return {"tiles": self.tiles, "anisohedral_k": self.anisohedral_k, "heesch": self.heesch,
+                "heesch_holes": self.heesch_holes,
+                "witness": None if self.witness is None else json.dumps(self.witness, separators=(",", ":")),
+                "verdict": self.verdict}
+
+
+def check_bounds(probe: int, max_level: int, torus_tiles: int) -> None:
+    if not 1 <= probe <= MAX_LEVEL_LIMIT:
+        raise ParameterError(f"the corona probe must be between 1 and {MAX_LEVEL_LIMIT} levels, got {probe}")
+    if not probe <= max_level <= MAX_LEVEL_LIMIT:
+        raise ParameterError(f"--max-level must be between the probe ({probe}) and {MAX_LEVEL_LIMIT}, got {max_level}")
+    if not 2 <= torus_tiles <= MAX_TORUS_TILES:
+        raise ParameterError(f"--torus-tiles must be between 2 and {MAX_TORUS_TILES}, got {torus_tiles}")
+
+
+def _corona_json(c: Corona | None, hc: int | None) -> dict | None:
+    return None if c is None else c.to_json() | {"hole_free": not c.holes}
+
+
+def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes: bool = False,
+             probe: int = 2, max_level: int = 5, torus_tiles: int = 4, time_limit: float | None = 120.0,
+             solver: str = DEFAULT_SAT_SOLVER) -> Classification:
+    """Classify one polyform (``analysis`` from :func:`isohedral.analyse`, None if holey)."""
+    check_bounds(probe, max_level, torus_tiles)
+    if has_holes:
+        return Classification("false", False, verdict="does not tile: it has a hole, and no copy fits in a hole",
+                              evidence={"step": "hole"})
+    a = analysis or {}
+    if a.get("isohedral"):
+        kinds = [fam for fam in ("translation", "halfturn", "quarterturn", "reflection") if a.get(fam)]
+        sigs = sorted({f["heesch"] for f in a.get("factorisations", [])})
+        ih = ", ".join(f"IH{i}" for i in a.get("ih_types", []))
+        return Classification("true", True,
+                              verdict=f"tiles isohedrally: boundary factorisation by {'/'.join(kinds)} "
+                                      f"({', '.join(sigs)}){'; ' + ih if ih else ''}",
+                              evidence={"step": "boundary word", "kinds": kinds})
+    t0 = time.monotonic()
+
+    def left() -> float | None:
+        return None if time_limit is None else max(0.0, time_limit - (time.monotonic() - t0))
+
+    hs = HeeschSolver(grid, cells, solver=solver)
+    r = heesch(grid, cells, max_level=probe, time_limit=left(), hs=hs)
+    if r.decided:
+        return _non_tiler(r, time.monotonic() - t0)
+    if r.surrounded < probe:  # the time limit
+        return _undecided(r.surrounded, None, time.monotonic() - t0, r.reason, r.hc_witness)
+    ts = TorusSearch(hs.forms, solver=solver)
+    # cheap first: small translational units, one more corona, larger units, more coronas
+    stages = [("torus", min(4, torus_tiles)), ("coronas", min(probe + 1, max_level)),
+              ("torus", torus_tiles), ("coronas", max_level)]
+    best: TorusTiling | None = None
+    tried_m, level = 1, probe
+    for what, bound in stages:
+        if what == "torus":
+            if bound <= tried_m:
+                continue
+            for m, tt in ts.search(range(tried_m + 1, bound + 1), time_limit=left()):
+                if tt is None:
+                    reason = f"torus search stopped by the time limit at {m} tiles per unit"
+                    return _undecided(level, m - 1, time.monotonic() - t0, reason, r.hc_witness)
+                if best is None or tt.k < best.k:
+                    best = tt
+            tried_m = bound
+            if best is not None:
+                a_, b_, d_ = best.lattice
+                witness = best.to_json()
+                # the group's name, from the geometry (tilekit.symmetry), for the verdict
+                witness["group"] = wallpaper_group(torus_tiling(grid, cells, witness)).iuc
+                verdict = (f"tiles anisohedrally: {best.m} tiles per translational unit (torus of period lattice "
+                           f"({a_},{b_}),(0,{d_})), symmetry group {witness['group']}, {best.k} transitivity "
+                           f"classes; no boundary factorisation")
+                return Classification("true", False, anisohedral_k=best.k, witness=witness, verdict=verdict,
+                                      evidence={"step": "torus", "m": best.m, "lattice": list(best.lattice),
+                                                "sat_calls": ts.sat_calls + hs.sat_calls,
+                                                "seconds": round(time.monotonic() - t0, 3)})
+        else:
+            if bound <= level:
+                continue
+            r = heesch(grid, cells, max_level=bound, time_limit=left(), hs=hs, start=level + 1, best=r.hc_witness)
+            if r.decided:
+                return _non_tiler(r, time.monotonic() - t0, torus=tried_m)
+            if r.surrounded < bound:  # the time limit
+                return _undecided(r.surrounded, tried_m, time.monotonic() - t0, r.reason, r.hc_witness)
+            level = bound
+    return _undecided(level, tried_m, time.monotonic() - t0, r.reason, r.hc_witness)
+
+
+def _non_tiler(r, seconds: float, torus: int | None = None) -> Classification:
+    if r.hh > r.hc:
+        how = (f"no hole-free {r.hc + 1}-corona patch; {r.hh} corona{'s' if r.hh != 1 else ''} only with a hole "
+               f"in the outermost")
+    else:
+        how = f"no {r.hc + 1}-corona patch exists"
+    extra = f"; no torus tiling with up to {torus} tiles per unit" if torus and torus > 1 else ""
+    witness = {"kind": "heesch", "hc": _corona_json(r.hc_witness, r.hc), "hh": _corona_json(r.hh_witness, r.hh)}
+    return Classification("false", False, heesch=r.hc, heesch_holes=r.hh, witness=witness,
+                          verdict=f"does not tile: Heesch number {r.hc} ({how}){extra}",
+                          evidence={"step": "coronas", "failed_level": r.hc + 1, "sat_calls": r.sat_calls,
+                                    "seconds": round(seconds, 3)})
+
+
+def _undecided(levels: int, torus: int | None, seconds: float, reason: str, witness: Corona | None) -> Classification:
+    bounds = f"undecided up to {levels} coronas"
+    if torus and torus > 1:
+        bounds += f" and {torus} tiles per translational unit"
+    return Classification("undecided", False, witness={"kind": "heesch", "hc": _corona_json(witness, levels), "hh": None},
+                          verdict=f"{bounds} ({reason})", evidence={"step": "bounds", "seconds": round(seconds, 3)})
+
+
+# --------------------------------------------------------------------------- witnesses as tilings
+
+def corona_patch(grid: Grid, cells: np.ndarray, corona: dict, name: str = "") -> Patch:
+    """A stored corona witness as a Patch, colour and aspect = corona number."""
+    forms = Forms(grid, cells)
+    t = np.asarray(corona["tiles"], dtype=np.int64).reshape(-1, 4)
+    proto = outline(grid, forms.cells, name=name)
+    return Patch([proto], np.zeros(len(t), dtype=np.int64), forms.affine(t[:, :3]), colour=t[:, 3], aspect=t[:, 3])
+
+
+def torus_tiling(grid: Grid, cells: np.ndarray, witness: dict, name: str = "", family: str = "polyomino") -> PeriodicTiling:
+    """A stored torus witness as a PeriodicTiling whose aspects are the transitivity classes."""
+    forms = Forms(grid, cells)
+    t = np.asarray(witness["tiles"], dtype=np.int64).reshape(-1, 4)
+    a, b, d = (int(x) for x in witness["lattice"])
+    p = grid.period
+    v1, v2 = grid.xy(np.array([a * p, b * p])), grid.xy(np.array([0, d * p]))
+    proto = outline(grid, forms.cells, name=name)
+    k = int(t[:, 3].max()) + 1
+    return PeriodicTiling([proto], np.zeros(len(t), dtype=np.int64), forms.affine(t[:, :3]), v1, v2,
+                          Colouring.by_aspect(list(range(k))), unit_aspect=t[:, 3], family=family, name=name)

@@ -1,0 +1,136 @@
+"""The ``polyomino-classify`` search: :func:`classify.classify` over every free polyomino,
+chunked like the enumeration (Redelmeier prefixes), rows into the polyominoes table."""
+
+from __future__ import annotations
+
+import time
+from typing import Any
+
+from tilekit.errors import ParameterError
+from tilekit.lattice import SQUARE, encode, enumerate_free, holes, prefixes, symmetry_from_mask
+from tilekit.plugins import ChunkResult, Search, SearchParam
+from tilekit.plugins.polyomino.classify import (
+    CLASSIFY_SOLVER,
+    MAX_TORUS_TILES,
+    check_bounds,
+    classify,
+)
+from tilekit.plugins.polyomino.heesch import MAX_LEVEL_LIMIT
+from tilekit.plugins.polyomino.isohedral import analyse
+from tilekit.plugins.polyomino.model import make_row
+from tilekit.sat import SAT_SOLVERS
+
+#: The classification stores rows up to this size (the enumeration's own limit).
+MAX_CLASSIFY = 14
+
+
+def _depth(n: int, d: int) -> int:
+    """Prefix size naming a chunk: deep enough that one chunk is seconds of SAT work."""
+    if d <= 0:
+        d = max(2, min(8, n - 4))
+    return min(d, n)
+
+
+def check_params(params: dict[str, Any]) -> None:
+    n = params.get("max_cells")
+    if not isinstance(n, int) or n < 1:
+        raise ParameterError(f"--max-cells must be a positive integer, got {n!r}")
+    if n > MAX_CLASSIFY:
+        raise ParameterError(f"--max-cells {n} is beyond the classification's limit of {MAX_CLASSIFY} cells")
+    lo = int(params.get("min_cells") or 1)
+    if not 1 <= lo <= n:
+        raise ParameterError(f"--min-cells must be between 1 and --max-cells ({n}), got {lo}")
+    check_bounds(int(params.get("probe", 2)), int(params.get("max_level", 5)), int(params.get("torus_tiles", 4)))
+
+
+def chunks(params: dict[str, Any]) -> list[dict[str, Any]]:
+    """The top chunk (polyominoes smaller than the prefix size) and one chunk per node of
+    that size in Redelmeier's tree (as the enumeration splits; each free polyomino is in
+    exactly one chunk, see :mod:`tilekit.plugins.polyomino.search`)."""
+    check_params(params)
+    n = int(params["max_cells"])
+    d = _depth(n, int(params.get("prefix_depth") or 0))
+    out: list[dict[str, Any]] = []
+    if d > 1:
+        out.append({"root": 0, "prefix": [], "below": d})
+    for p in prefixes(SQUARE, n, d, 0):
+        out.append({"root": 0, "prefix": p})
+    return out
+
+
+def run_chunk(params: dict[str, Any], chunk: dict[str, Any]):
+    """Classify every free polyomino of the chunk; rows for the polyominoes table, counts."""
+    n = int(params["max_cells"])
+    lo = int(params.get("min_cells") or 1)
+    maxsize = int(chunk["below"]) - 1 if "below" in chunk else n
+    polys, hole_flags, masks, _ = enumerate_free(SQUARE, n, prefix=list(chunk.get("prefix") or []),
+                                                 root=int(chunk.get("root", 0)), maxsize=maxsize,
+                                                 with_symmetry=True)
+    rows: list[dict] = []
+    counts: dict[str, int | float] = {}
+
+    def bump(key: str, by: int | float = 1) -> None:
+        counts[key] = counts.get(key, 0) + by
+
+    for cells, holey, mask in zip(polys, hole_flags, masks.tolist()):
+        size = len(cells)
+        if size < lo:
+            continue
+        t0 = time.monotonic()
+        analysis = None if holey else analyse(SQUARE, cells, construct=False)
+        c = classify(SQUARE, cells, analysis, has_holes=bool(holey), probe=int(params.get("probe", 2)),
+                     max_level=int(params.get("max_level", 5)), torus_tiles=int(params.get("torus_tiles", 4)),
+                     time_limit=float(params.get("time_limit") or 0) or None,
+                     solver=str(params.get("solver") or CLASSIFY_SOLVER))
+        hc = len(holes(SQUARE, cells)) if holey else 0
+        row = make_row(cells, bool(holey), hc, analysis, code=encode(SQUARE, cells, is_canonical=True),
+                       symmetry=symmetry_from_mask(SQUARE, mask))
+        rows.append(row | c.columns())
+        bump(f"free_{size}")
+        bump(f"tiles_{size}" if c.tiles == "true" else f"nontilers_{size}" if c.tiles == "false" else f"undecided_{size}")
+        if c.tiles == "true" and not c.isohedral:
+            bump(f"anisohedral_{size}")
+            bump(f"anisohedral_{size}_k{c.anisohedral_k}")
+        if c.tiles == "true" and c.isohedral:
+            bump(f"isohedral_{size}")
+        if c.tiles == "false" and not holey:
+            bump(f"holefree_nontilers_{size}")
+            bump(f"hc_{size}_{c.heesch}")
+            bump(f"hh_{size}_{c.heesch_holes}")
+        bump(f"seconds_{size}", round(time.monotonic() - t0, 4))
+    return ChunkResult(rows={"polyominoes": rows}, counts=counts)
+
+
+def summarize(params: dict[str, Any], results: list[dict[str, Any]]) -> dict[str, Any]:
+    """The bounds of the run (the per-size tallies are the summed counts)."""
+    return {"max_cells": int(params["max_cells"]), "max_level": int(params.get("max_level", 5)),
+            "torus_tiles": int(params.get("torus_tiles", 4))}
+
+
+def _search() -> Search:
+    return Search(
+        "polyomino-classify",
+        "classify every free polyomino: isohedral, anisohedral (least k found on tori), or a "
+        "non-tiler with its Heesch numbers (Kaplan 2022, by SAT)",
+        "polyomino",
+        [
+            SearchParam("max_cells", int, 10, f"largest size (at most {MAX_CLASSIFY})", min=1, max=MAX_CLASSIFY),
+            SearchParam("min_cells", int, 1, "smallest size classified (smaller ones are skipped)", min=1,
+                        max=MAX_CLASSIFY),
+            SearchParam("probe", int, 2, "coronas tried before the torus search", min=1, max=MAX_LEVEL_LIMIT),
+            SearchParam("max_level", int, 5, "most coronas tried before 'undecided'", min=1, max=MAX_LEVEL_LIMIT),
+            SearchParam("torus_tiles", int, 4, "most tiles per translational unit tried on tori", min=2,
+                        max=MAX_TORUS_TILES),
+            SearchParam("time_limit", float, 300.0, "seconds of SAT work per polyomino before 'undecided' (0: none)",
+                        min=0, max=86400),
+            SearchParam("solver", str, CLASSIFY_SOLVER, "SAT solver", choices=list(SAT_SOLVERS)),
+            SearchParam("prefix_depth", int, 0, "size of the tree prefix naming a chunk (0: automatic)", min=0,
+                        max=10),
+        ],
+        chunks,
+        run_chunk,
+        summarize,
+    )
+
+
+SEARCH = _search()

@@ -1,0 +1,349 @@
+"""Heesch numbers of polyforms by SAT, after Kaplan, "Heesch numbers of unmarked polyforms"
+(Contributions to Discrete Mathematics 17(2), 2022; arXiv:2105.09438).
+
+A *k-corona patch* is the polyform (the kernel, corona 0) with coronas 1..k around it: corona
+i is a set of copies, each touching a copy of corona i-1 (sharing at least a point) and none
+touching coronas below i-1, such that every cell sharing a vertex with a copy of coronas 0..i-1
+(its *halo*) is covered by coronas 0..i. A hole of the whole patch can then be bounded by
+copies of the outermost corona only (a cell touching an inner copy is covered). The hole-free
+Heesch number ``Hc`` is the largest k with a k-corona patch whose union has no hole; ``Hh``
+allows holes (in the outermost corona), so ``Hc <= Hh <= Hc + 1``. As in Kaplan's
+implementation, holes are looked for in the union of all k coronas: a hole of an inner patch
+that the next corona fills is allowed (the coronas of a tiling can have such holes, and a
+tile that tiles must not get a finite Heesch number).
+
+**Encoding, for k levels.** A Boolean ``y[p, i]`` says placement ``p`` (orientation j moved
+by t, see :mod:`placements`) is used in corona i; only placements reachable from the kernel by
+i touching steps get a variable at level i. A cell variable ``c``, when true, says a used copy
+covers the cell. Clauses:
+
+1. ``c -> OR y`` over the copies covering the cell;
+2. at most one used copy covers a cell (a ladder encoding per cell): copies do not overlap;
+3. halo: ``y[p, i] -> c`` for every halo cell of p when i < k, and every halo cell of the
+   kernel is covered;
+4. touching: ``y[p, i] -> OR lev[h, i-1]`` over p's halo cells h, where ``lev[h, i-1]``
+   (``-> OR y[q, i-1]`` over copies covering h) says a copy of corona i-1 covers h.
+
+With 2 and 3, a copy that touches a copy of corona m < k has level at most m + 1, so the
+levels of a model are exactly the corona numbers of its tiles, and a model is a k-corona
+patch up to holes. Holes are found in each model by flood fill and forbidden by a clause
+"not all of these tiles at these levels, or some copy of level <= i covering a cell of the
+hole" (sound: any model with the same boundary tiles and none in the hole has the hole), and
+the solver is asked again, as in Kaplan's implementation.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from tilekit.errors import ParameterError
+from tilekit.lattice import Grid, holes_of, pack, unpack
+from tilekit.plugins.polyomino.placements import Forms
+from tilekit.sat import DEFAULT_SAT_SOLVER, IncrementalSolver
+
+#: The most coronas a search will build (Kaplan's sat tool stops at 7 by default).
+MAX_LEVEL_LIMIT = 12
+
+
+@dataclass
+class Corona:
+    """A k-corona patch: rows ``(j, tx, ty)`` of placements with their corona numbers."""
+
+    rows: np.ndarray  # (m, 3) including the kernel (level 0) first
+    levels: np.ndarray  # (m,)
+    holes: bool  # the union has a hole (only the outermost corona can cause one)
+
+    @property
+    def k(self) -> int:
+        return int(self.levels.max()) if len(self.levels) else 0
+
+    def to_json(self) -> dict:
+        return {"kind": "coronas", "k": self.k, "holes": bool(self.holes),
+                "tiles": [[int(j), int(x), int(y), int(lv)] for (j, x, y), lv in zip(self.rows.tolist(), self.levels.tolist())]}
+
+
+@dataclass
+class HeeschResult:
+    """``hc`` and ``hh`` (None when undecided); witnesses; what the search did."""
+
+    hc: int | None
+    hh: int | None
+    hc_witness: Corona | None
+    hh_witness: Corona | None
+    surrounded: int  # the most coronas found (hole-free), = hc when decided
+    decided: bool
+    reason: str
+    sat_calls: int = 0
+    seconds: float = 0.0
+    stats: dict = field(default_factory=dict)
+
+
+class _Blocks:
+    """Hole-forbidding clauses, kept symbolically (placement keys and levels) so that each
+    level's fresh encoding can re-number them."""
+
+    def __init__(self) -> None:
+        self.items: list[tuple[np.ndarray, np.ndarray, np.ndarray, int, bool]] = []
+
+    def add(self, rows: np.ndarray, levels: np.ndarray, hole: np.ndarray, upto: int, outer: bool) -> None:
+        self.items.append((rows, levels, hole, upto, outer))
+
+
+class HeeschSolver:
+    """Coronas of one polyform, level by level (see the module docstring)."""
+
+    def __init__(self, grid: Grid, cells: np.ndarray, *, solver: str = DEFAULT_SAT_SOLVER) -> None:
+        self.grid = grid
+        self.forms = Forms(grid, cells)
+        self.solver = solver
+        self.kernel_keys = np.sort(self.forms.keys[0])
+        self.kernel_halo = np.unique(self.forms.placement_halos(np.array([[0, 0, 0]]))[0])
+        self.levels: list[np.ndarray] = [np.array([[0, 0, 0]], dtype=np.int64)]  # level 0: kernel
+        self._blocks = _Blocks()
+        self.sat_calls = 0
+
+    # -- placements per level -------------------------------------------------------------
+    def _row_keys(self, rows: np.ndarray) -> np.ndarray:
+        """One int64 per placement row (orientation, translation)."""
+        return pack(rows[:, 1:3]) * 64 + rows[:, 0]
+
+    def _grow(self) -> None:
+        """Add the placements of the next level: copies touching a copy of the last level."""
+        last = self.levels[-1]
+        adj = self.forms.adjacent
+        parts = []
+        for j in range(self.forms.J):
+            sel = last[last[:, 0] == j]
+            if not len(sel) or not len(adj[j]):
+                continue
+            a = adj[j]
+            rows = np.empty((len(sel), len(a), 3), dtype=np.int64)
+            rows[..., 0] = a[None, :, 0]
+            rows[..., 1:] = sel[:, None, 1:] + a[None, :, 1:]
+            parts.append(rows.reshape(-1, 3))
+        if not parts:
+            self.levels.append(np.zeros((0, 3), dtype=np.int64))
+            return
+        rows = np.concatenate(parts)
+        _, first = np.unique(self._row_keys(rows), return_index=True)
+        rows = rows[np.sort(first)]
+        clash = np.isin(self.forms.placement_cells(rows), self.kernel_keys).any(axis=1)
+        if len(self.levels) >= 2:  # coronas 2, 3, ... do not touch the kernel
+            clash |= np.isin(self.forms.placement_cells(rows), self.kernel_halo).any(axis=1)
+        self.levels.append(rows[~clash])
+
+    # -- encoding ---------------------------------------------------------------------------
+    def _encode(self, k: int):
+        """Clauses for k coronas; returns (clauses, var tables) — see the module docstring."""
+        while len(self.levels) <= k:
+            self._grow()
+        rows = np.concatenate(self.levels[1:k + 1])
+        lvl = np.concatenate([np.full(len(self.levels[i]), i) for i in range(1, k + 1)])
+        nv = len(rows)
+        yvar = np.arange(1, nv + 1, dtype=np.int64)
+        pcells = self.forms.placement_cells(rows)  # (nv, n)
+        phalo = self.forms.placement_halos(rows)  # (nv, H)
+        inner = lvl < k
+        universe = np.unique(np.concatenate([pcells.ravel(), phalo[inner].ravel(), self.kernel_halo]))
+        universe = universe[~np.isin(universe, self.kernel_keys)]
+        cvar = nv + 1 + np.arange(len(universe), dtype=np.int64)
+        top = nv + len(universe)
+
+        def cell_var(keys: np.ndarray) -> np.ndarray:
+            pos = np.searchsorted(universe, keys)
+            pos = np.minimum(pos, len(universe) - 1)
+            hit = universe[pos] == keys
+            return np.where(hit, cvar[pos], 0)  # 0: a kernel cell (always covered)
+
+        clauses: list[list[int]] = []
+        pc = cell_var(pcells)  # never 0: placements avoid the kernel
+        # 1. c -> OR y. (y -> c is not needed: c occurs positively only in the halo clauses,
+        # so a model with c false under a copy stays a model with c true.)
+        flat_c = pc.ravel()
+        flat_y = np.repeat(yvar, pcells.shape[1])
+        order = np.argsort(flat_c, kind="stable")
+        sc, sy = flat_c[order], flat_y[order]
+        starts = np.flatnonzero(np.r_[True, sc[1:] != sc[:-1]])
+        covered = sc[starts]
+        groups = np.split(sy, starts[1:])
+        uncovered = np.setdiff1d(cvar, covered)
+        clauses += [[-int(c)] for c in uncovered]
+        clauses += [[-int(c), *g.tolist()] for c, g in zip(covered.tolist(), groups)]
+        # 2. at most one copy per cell: ladder s_i over each group (lits l_1..l_m)
+        gid = np.repeat(np.arange(len(starts)), np.diff(np.r_[starts, len(sc)]))
+        same_next = np.r_[gid[1:] == gid[:-1], False]
+        idx = np.flatnonzero(same_next)  # positions i with l_{i+1} in the same group
+        s = top + 1 + np.arange(len(idx), dtype=np.int64)
+        top += len(idx)
+        l_i, l_next = sy[idx], sy[idx + 1]
+        clauses += np.column_stack([-l_i, s]).tolist()
+        clauses += np.column_stack([-s, -l_next]).tolist()
+        chain = np.flatnonzero(np.r_[idx[1:] == idx[:-1] + 1, False])
+        clauses += np.column_stack([-s[chain], s[chain + 1]]).tolist()
+        # 3. halos of inner copies and of the kernel
+        hv = cell_var(phalo[inner])
+        yi = np.repeat(yvar[inner], phalo.shape[1])
+        hv = hv.ravel()
+        keep = hv != 0
+        clauses += np.column_stack([-yi[keep], hv[keep]]).tolist()
+        kh = cell_var(self.kernel_halo)
+        clauses += [[int(c)] for c in kh[kh != 0]]
+        # 4. a copy of corona i >= 2 touches a copy of corona i-1: lev[h, i-1]
+        false_var = top + 1
+        top += 1
+        clauses.append([-false_var])
+        levs = {}
+        for i in range(1, k):
+            at = lvl == i
+            cb = pcells[at].ravel()
+            yb = np.repeat(yvar[at], pcells.shape[1])
+            o = np.argsort(cb, kind="stable")
+            cb, yb = cb[o], yb[o]
+            st = np.flatnonzero(np.r_[True, cb[1:] != cb[:-1]])
+            lev_keys = cb[st]
+            lev = top + 1 + np.arange(len(lev_keys), dtype=np.int64)
+            top += len(lev_keys)
+            # lev[h, i] <-> some copy of corona i covers h
+            clauses += [[-int(v), *g.tolist()] for v, g in zip(lev.tolist(), np.split(yb, st[1:]))]
+            clauses += np.column_stack([-yb, np.repeat(lev, np.diff(np.r_[st, len(cb)]))]).tolist()
+            levs[i] = (lev_keys, lev)
+
+        def lev_lits(i: int, keys: np.ndarray) -> np.ndarray:
+            lev_keys, lev = levs[i]
+            pos = np.minimum(np.searchsorted(lev_keys, keys), len(lev_keys) - 1)
+            return np.where(lev_keys[pos] == keys, lev[pos], false_var)
+
+        for i in range(2, k + 1):
+            here = lvl == i
+            hk = phalo[here]
+            # touches a copy of corona i-1 ...
+            clauses += np.column_stack([-yvar[here], lev_lits(i - 1, hk)]).tolist()
+            # ... and none of coronas 1..i-2 (the kernel is excluded when the levels are grown)
+            for j in range(1, i - 1):
+                lits = lev_lits(j, hk).ravel()
+                yy = np.repeat(yvar[here], hk.shape[1])
+                keep = lits != false_var
+                clauses += np.column_stack([-yy[keep], -lits[keep]]).tolist()
+        table = {"rows": rows, "lvl": lvl, "yvar": yvar, "top": top,
+                 "index": {(int(a), int(b)): int(v) for a, b, v in zip(self._row_keys(rows).tolist(), lvl.tolist(), yvar.tolist())},
+                 "cells": pcells}
+        return clauses, table
+
+    def _block_clause(self, table: dict, item, k: int) -> list[int] | None:
+        rows, levels, hole, upto, _outer = item
+        index = table["index"]
+        lits = []
+        for key, lv in zip(self._row_keys(rows).tolist(), levels.tolist()):
+            v = index.get((key, lv))
+            if v is None:  # that tile cannot occur at this depth: the clause holds trivially
+                return None
+            lits.append(-v)
+        cover = np.isin(table["cells"], hole).any(axis=1) & (table["lvl"] <= upto)
+        lits += table["yvar"][cover].tolist()
+        return lits
+
+    # -- solving ----------------------------------------------------------------------------
+    def _model_patch(self, table: dict, model: set[int]) -> tuple[np.ndarray, np.ndarray]:
+        used = np.array([v in model for v in table["yvar"].tolist()], dtype=bool)
+        rows = np.concatenate([self.levels[0], table["rows"][used]])
+        lv = np.concatenate([[0], table["lvl"][used]])
+        return rows, lv
+
+    def _holes(self, rows: np.ndarray, lv: np.ndarray, upto: int) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+        """Holes of the patch of coronas 0..upto: (hole cells, boundary rows, their levels)."""
+        sel = lv <= upto
+        cells = self.forms.placement_cells(rows[sel])
+        out = []
+        for hole in holes_of(self.grid, cells.ravel()):
+            hc = np.asarray(hole)
+            hx = unpack(hc)
+            nb = pack(hx[:, None, :] + self.grid.neighbours[self.grid.cell_type(hx)]).ravel()
+            touching = np.isin(cells, nb).any(axis=1)
+            brows, blv = rows[sel][touching], lv[sel][touching]
+            keep = blv > 0  # the kernel is always there
+            out.append((np.sort(hc), brows[keep], blv[keep]))
+        return out
+
+    def corona(self, k: int, *, time_limit: float | None = None) -> tuple[Corona | None, Corona | None, bool | None]:
+        """(hole-free k-corona patch or None, k-corona patch with holes allowed in its outer
+        corona or None, decided) for exactly ``k`` coronas."""
+        if k == 0:
+            kern = Corona(self.levels[0].copy(), np.zeros(1, dtype=np.int64), False)
+            return kern, kern, True
+        clauses, table = self._encode(k)
+        hf = table["top"] + 1  # selector: the outermost corona is hole-free too
+        deadline = None if time_limit is None else time.monotonic() + time_limit
+        with IncrementalSolver(clauses, solver=self.solver) as s:
+            for item in self._blocks.items:
+                # holes found at this depth before (a repeated question); those of shallower
+                # patches do not carry over: the next corona must fill them anyway
+                cl = self._block_clause(table, item, k) if item[3] == k else None
+                if cl is not None:
+                    s.add([-hf, *cl])
+            with_holes: Corona | None = None
+            assume: list[int] = []
+            while True:
+                left = None if deadline is None else max(0.01, deadline - time.monotonic())
+                ans = s.solve(assumptions=assume, time_limit=left)
+                self.sat_calls += 1
+                if ans.satisfiable is None:
+                    return None, with_holes, None
+                if not ans.satisfiable:
+                    return None, with_holes, True
+                model = set(ans.true_vars())
+                rows, lv = self._model_patch(table, model)
+                found = self._holes(rows, lv, k)
+                if not found:
+                    return Corona(rows, lv, False), with_holes or Corona(rows, lv, False), True
+                for hole, brows, blv in found:
+                    item = (brows, blv, hole, k, True)
+                    self._blocks.add(*item)
+                    s.add([-hf, *self._block_clause(table, item, k)])
+                if with_holes is None:  # holes, all in the outermost corona: a witness for Hh >= k
+                    with_holes = Corona(rows, lv, True)
+                assume = [hf]
+
+
+def heesch(grid: Grid, cells: np.ndarray, *, max_level: int = 6, solver: str = DEFAULT_SAT_SOLVER,
+           time_limit: float | None = None, start: int = 1, hs: HeeschSolver | None = None,
+           best: Corona | None = None) -> HeeschResult:
+    """Hc and Hh of a hole-free polyform, trying 1..max_level coronas.
+
+    Undecided (``hc = hh = None``) when ``max_level`` coronas exist (the polyform may tile) or
+    the time limit expires first.
+    """
+    if not 0 <= max_level <= MAX_LEVEL_LIMIT:
+        raise ParameterError(f"max_level must be between 0 and {MAX_LEVEL_LIMIT}, got {max_level}")
+    t0 = time.monotonic()
+    hs = hs or HeeschSolver(grid, cells, solver=solver)
+    best = best or Corona(hs.levels[0].copy(), np.zeros(1, dtype=np.int64), False)  # the kernel
+    for k in range(start, max_level + 1):
+        left = None if time_limit is None else time_limit - (time.monotonic() - t0)
+        if left is not None and left <= 0:
+            return HeeschResult(None, None, best, None, k - 1, False, f"time limit after {k - 1} coronas",
+                                hs.sat_calls, time.monotonic() - t0)
+        free, holey, decided = hs.corona(k, time_limit=left)
+        if decided is None:
+            return HeeschResult(None, None, best, holey, k - 1, False,
+                                f"time limit while looking for {k} coronas", hs.sat_calls, time.monotonic() - t0)
+        if free is not None:
+            best = free
+            continue
+        if holey is not None:
+            return HeeschResult(k - 1, k, best, holey, k - 1, True,
+                                f"{k} corona{'s' if k != 1 else ''} only with a hole in the outermost corona", hs.sat_calls,
+                                time.monotonic() - t0)
+        return HeeschResult(k - 1, k - 1, best, best, k - 1, True, f"no {k}-corona patch exists",
+                            hs.sat_calls, time.monotonic() - t0)
+    return HeeschResult(None, None, best, None, max_level, False, f"surrounded by {max_level} coronas",
+                        hs.sat_calls, time.monotonic() - t0)
+
+
+def corona_rows_to_patch(forms: Forms, rows: Sequence, levels: Sequence, prototile) -> tuple[np.ndarray, np.ndarray]:
+    """Cartesian transforms and levels of a corona witness (for a Patch of one prototile)."""
+    rows = np.asarray(rows, dtype=np.int64).reshape(-1, 3)
+    return forms.affine(rows), np.asarray(levels, dtype=np.int64)

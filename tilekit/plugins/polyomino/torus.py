@@ -1,0 +1,307 @@
+"""Periodic tilings by one polyform, found as exact covers of tori by SAT.
+
+A tiling whose translations include a lattice ``L`` (of the grid's translations) is the same
+thing as an exact cover of the torus ``cells / L`` by copies of the polyform. So a polyform has
+a periodic tiling with ``m`` tiles per translational unit of some period lattice iff some
+sublattice of index ``N`` (``N`` times the grid's cell types = ``m * n`` cells) admits one.
+Every sublattice of index N has exactly one basis ``(a, b), (0, d)`` with ``a * d = N`` and
+``0 <= b < d`` (Hermite normal form), so the search is complete for each m.
+
+Each found tiling's symmetry group is computed exactly, on the torus: the maps ``x -> g x + t``
+(g in the grid's point group) taking every tile onto a tile and the period lattice of the
+tiling onto itself; the orbits of the tiles under that group are the tiling's transitivity
+classes (its k as a k-isohedral tiling). The least k over the tilings found is what the
+polyomino classification records for an anisohedral tile.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from tilekit.lattice import Grid
+from tilekit.plugins.polyomino.isohedral import _hnf_add
+from tilekit.plugins.polyomino.placements import Forms
+from tilekit.sat import DEFAULT_SAT_SOLVER, IncrementalSolver, solve
+
+
+def sublattices(N: int):
+    """HNF triples ``(a, b, d)`` of every sublattice of Z^2 of index N (basis (a, b), (0, d))."""
+    for a in range(1, N + 1):
+        if N % a == 0:
+            d = N // a
+            for b in range(d):
+                yield a, b, d
+
+
+def _reduce(uv: np.ndarray, a: int, b: int, d: int) -> np.ndarray:
+    """Residue index in [0, a*d) of unit vectors ``(..., 2)`` modulo the lattice (a, b), (0, d)."""
+    u, v = uv[..., 0], uv[..., 1]
+    i = np.floor_divide(u, a)
+    return (u - i * a) * d + np.mod(v - i * b, d)
+
+
+def _in_lattice(w: np.ndarray, basis: tuple[int, int, int]) -> bool:
+    a, b, d = basis
+    x, y = int(w[0]), int(w[1])
+    if a == 0:
+        return x == 0 and (y % d == 0 if d else y == 0)
+    if x % a:
+        return False
+    y -= (x // a) * b
+    return y % d == 0 if d else y == 0
+
+
+@dataclass
+class TorusTiling:
+    """A periodic tiling: placements ``rows`` (j, tx, ty) of one translational unit of the
+    lattice ``(a, b), (0, d)`` (in units of the grid's translations), the transitivity class of
+    each tile, and the tiling's own translation lattice (HNF triple, possibly finer)."""
+
+    lattice: tuple[int, int, int]
+    rows: np.ndarray
+    classes: np.ndarray
+    translations: tuple[int, int, int]
+    symmetries: int  # order of the symmetry group modulo the period lattice
+
+    @property
+    def m(self) -> int:
+        return len(self.rows)
+
+    @property
+    def k(self) -> int:
+        return int(self.classes.max()) + 1
+
+    def vectors(self, grid: Grid) -> tuple[np.ndarray, np.ndarray]:
+        """The two period vectors in Cartesian coordinates."""
+        a, b, d = self.lattice
+        p = grid.period
+        return grid.xy(np.array([a * p, b * p])), grid.xy(np.array([0, d * p]))
+
+    def to_json(self) -> dict:
+        return {"kind": "torus", "lattice": list(self.lattice), "k": self.k,
+                "tiles": [[int(j), int(x), int(y), int(c)] for (j, x, y), c in zip(self.rows.tolist(), self.classes.tolist())]}
+
+
+class TorusSearch:
+    """Exact covers of tori by the copies of one polyform."""
+
+    def __init__(self, forms: Forms, *, solver: str = DEFAULT_SAT_SOLVER) -> None:
+        self.forms = forms
+        self.solver = solver
+        g = forms.grid
+        self.types = np.stack([g.cell_type(f) for f in forms.forms])  # (J, n)
+        self.units = (forms.forms - g.roots[self.types]) // g.period  # (J, n, 2)
+        self.R = len(g.roots)
+        self.sat_calls = 0
+
+    def cover(self, lattice: tuple[int, int, int], time_limit: float | None = None) -> np.ndarray | None | bool:
+        """Placements (j, u0, v0) of one exact cover of the torus, False if none exists,
+        None if the time limit expired."""
+        a, b, d = lattice
+        N = a * d
+        J, n = self.types.shape
+        uu, vv = np.meshgrid(np.arange(a), np.arange(d), indexing="ij")
+        t = np.column_stack([uu.ravel(), vv.ravel()])  # (N, 2) translations
+        ids = self.types[:, None, :] * N + _reduce(self.units[:, None, :, :] + t[None, :, None, :], a, b, d)
+        ids = ids.reshape(J * N, n)
+        meta = np.column_stack([np.repeat(np.arange(J), N), np.tile(t, (J, 1))])
+        srt = np.sort(ids, axis=1)
+        ok = (srt[:, 1:] != srt[:, :-1]).all(axis=1) if n > 1 else np.ones(len(srt), bool)
+        srt, meta, ids = srt[ok], meta[ok], ids[ok]
+        _, first = np.unique(srt, axis=0, return_index=True)
+        first = np.sort(first)
+        srt, meta, ids = srt[first], meta[first], ids[first]
+        P = len(srt)
+        if P == 0:
+            return False
+        cells = self.R * N
+        var = np.arange(1, P + 1)
+        flat_c = srt.ravel()
+        flat_v = np.repeat(var, n)
+        order = np.argsort(flat_c, kind="stable")
+        sc, sv = flat_c[order], flat_v[order]
+        if len(np.unique(sc)) < cells:
+            return False  # some cell no copy can cover
+        starts = np.flatnonzero(np.r_[True, sc[1:] != sc[:-1]])
+        clauses = [g.tolist() for g in np.split(sv, starts[1:])]
+        gid = np.repeat(np.arange(len(starts)), np.diff(np.r_[starts, len(sc)]))
+        idx = np.flatnonzero(np.r_[gid[1:] == gid[:-1], False])
+        s = P + 1 + np.arange(len(idx))
+        clauses += np.column_stack([-sv[idx], s]).tolist()
+        clauses += np.column_stack([-s, -sv[idx + 1]]).tolist()
+        chain = np.flatnonzero(np.r_[idx[1:] == idx[:-1] + 1, False])
+        clauses += np.column_stack([-s[chain], s[chain + 1]]).tolist()
+        # symmetry breaking: translate so that some tile's first cell is at unit (0, 0)
+        anchor = (_reduce(meta[:, 1:3] + self.units[meta[:, 0], 0], a, b, d) == 0)
+        clauses.append(var[anchor].tolist())
+        self._last = (clauses, var, meta)
+        ans = solve(clauses, solver=self.solver, time_limit=time_limit)
+        self.sat_calls += 1
+        if ans.satisfiable is None:
+            return None
+        if not ans.satisfiable:
+            return False
+        used = np.array([ans.value(int(v)) for v in var], dtype=bool)
+        return meta[used]
+
+    def others(self, first: np.ndarray, limit: int, time_limit: float | None = None):
+        """More covers of the torus of the last :meth:`cover` call (each differing from all
+        before it), at most ``limit``; yields placement arrays like :meth:`cover`."""
+        clauses, var, meta = self._last
+        index = {tuple(r): int(v) for r, v in zip(meta.tolist(), var.tolist())}
+        t0 = time.monotonic()
+        with IncrementalSolver(clauses, solver=self.solver) as s:
+            chosen = first
+            for _ in range(limit):
+                s.add([-index[tuple(r)] for r in chosen.tolist()])
+                left = None if time_limit is None else time_limit - (time.monotonic() - t0)
+                if left is not None and left <= 0:
+                    return
+                ans = s.solve(time_limit=left)
+                self.sat_calls += 1
+                if not ans.satisfiable:
+                    return
+                used = np.array([ans.value(int(v)) for v in var], dtype=bool)
+                chosen = meta[used]
+                yield chosen
+
+    def classes(self, lattice: tuple[int, int, int], chosen: np.ndarray) -> TorusTiling:
+        """The tiling's placements in the plane, its translation lattice and tile classes."""
+        grid = self.forms.grid
+        a, b, d = lattice
+        N = a * d
+        p = grid.period
+        rows = np.column_stack([chosen[:, 0], chosen[:, 1:3] * p])
+        plane = self.forms.forms[rows[:, 0]] + rows[:, None, 1:3]  # (m, n, 2) fine coordinates
+        m, n = plane.shape[:2]
+
+        def locate(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            ty = grid.cell_type(x.reshape(-1, 2)).reshape(x.shape[:-1])
+            uv = (x - grid.roots[ty]) // p
+            return ty * N + _reduce(uv, a, b, d), uv
+
+        tid, uv = locate(plane)
+        label = np.full(self.R * N, -1)
+        rep = np.zeros((self.R * N, 2), dtype=np.int64)
+        label[tid.ravel()] = np.repeat(np.arange(m), n)
+        rep[tid.ravel()] = uv.reshape(-1, 2)
+
+        def image_tiles(mapped: np.ndarray) -> np.ndarray | None:
+            """Tile index of each mapped tile, or None if some image is not a tile."""
+            ty = grid.cell_type(mapped.reshape(-1, 2)).reshape(mapped.shape[:-1])
+            if (ty < 0).any():
+                return None
+            i, uvm = locate(mapped)
+            lab = label[i]
+            off = uvm - rep[i]
+            if (lab != lab[:, :1]).any() or (off != off[:, :1]).any():
+                return None
+            return lab[:, 0]
+
+        base = (0, 0, 0)
+        base = _hnf_add(base, (a, b))
+        base = _hnf_add(base, (0, d))
+        # pure translations by the residues of the torus (those mapping tiles onto tiles)
+        maps: list[np.ndarray] = []
+        ident = np.arange(m)
+        uu, vv = np.meshgrid(np.arange(a), np.arange(d), indexing="ij")
+        trans = np.column_stack([uu.ravel(), vv.ravel()])
+        lat = base
+        for w in trans[1:]:
+            perm = image_tiles(plane + w * p)
+            if perm is not None:
+                maps.append(perm)
+                lat = _hnf_add(lat, (int(w[0]), int(w[1])))
+        # point-group elements with a translation: tile 0's first cell goes to some cell
+        c0 = plane[0, 0]
+        cand_cells = np.concatenate([grid.roots[r] + p * trans for r in range(self.R)])
+        count = 1 + len(maps)
+        for gi in range(1, len(grid.group)):
+            gm = grid.group[gi]
+            # the map must send the translation lattice onto itself
+            la, lb, ld = lat
+            if not (_in_lattice(gm @ np.array([la, lb]), lat) and _in_lattice(gm @ np.array([0, ld]), lat)):
+                continue
+            moved = plane @ gm.T
+            for c in cand_cells:
+                tau = c - gm @ c0
+                perm = image_tiles(moved + tau)
+                if perm is not None:
+                    maps.append(perm)
+                    count += 1
+        parent = ident.copy()
+
+        def root(i: int) -> int:
+            while parent[i] != i:
+                parent[i] = parent[parent[i]]
+                i = parent[i]
+            return i
+
+        for perm in maps:
+            for i, j in enumerate(perm.tolist()):
+                ri, rj = root(i), root(j)
+                if ri != rj:
+                    parent[max(ri, rj)] = min(ri, rj)
+        roots = [root(i) for i in range(m)]
+        order = {r: c for c, r in enumerate(dict.fromkeys(roots))}
+        classes = np.array([order[r] for r in roots], dtype=np.int64)
+        return TorusTiling(lattice, rows, classes, lat, count)
+
+    def lattices(self, N: int) -> list[tuple[int, int, int]]:
+        """The sublattices of index N up to the grid's point group: the polyform's copies come
+        in every orientation, so the torus of g L has a cover iff the torus of L has one.
+        One lattice per orbit (the least HNF triple), in increasing order."""
+        group = self.forms.grid.group
+        seen: set[tuple[int, int, int]] = set()
+        out = []
+        for lat in sublattices(N):
+            if lat in seen:
+                continue
+            a, b, d = lat
+            orbit = set()
+            for g in group:
+                h = (0, 0, 0)
+                for v in (g @ np.array([a, b]), g @ np.array([0, d])):
+                    h = _hnf_add(h, (int(v[0]), int(v[1])))
+                orbit.add(h)
+            seen |= orbit
+            out.append(lat)
+        return out
+
+    def search(self, m_range, *, want_k: int = 2, time_limit: float | None = None, alternatives: int = 64):
+        """Tilings with m tiles per unit for m in ``m_range``: yields (m, TorusTiling) for each
+        lattice that has a cover (the least k among up to ``alternatives`` further covers of
+        that torus); stops after a tiling with ``k <= want_k``. Yields (m, None) when the
+        time limit expires."""
+        t0 = time.monotonic()
+        n = self.forms.n
+        for m in m_range:
+            if (m * n) % self.R:
+                continue
+            N = m * n // self.R
+            for lat in self.lattices(N):
+                left = None if time_limit is None else time_limit - (time.monotonic() - t0)
+                if left is not None and left <= 0:
+                    yield m, None
+                    return
+                got = self.cover(lat, left)
+                if got is None:
+                    yield m, None
+                    return
+                if got is False:
+                    continue
+                tt = self.classes(lat, got)
+                if tt.k > want_k and alternatives:
+                    # another cover of the same torus may have fewer transitivity classes
+                    for other in self.others(got, alternatives, left):
+                        t2 = self.classes(lat, other)
+                        if t2.k < tt.k:
+                            tt = t2
+                        if tt.k <= want_k:
+                            break
+                yield m, tt
+                if tt.k <= want_k:
+                    return
