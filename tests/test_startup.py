@@ -54,8 +54,6 @@ def test_help_imports_nothing_heavy_with_the_four_families(tmp_path):
     assert got == {"code": 0, "heavy": []}
 
 
-@pytest.mark.xfail(strict=True, reason="tilekit/plugins/polyomino/__init__.py imports its result "
-                   "table (SQLAlchemy) at module level; make that import lazy, then drop this mark")
 def test_help_imports_no_sqlalchemy_with_every_plugin(tmp_path):
     got = run_probe(["--help"], tmp_path)
     assert got["heavy"] == []
