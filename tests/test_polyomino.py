@@ -346,9 +346,18 @@ def test_counting_mode_stores_no_rows():
 def test_row_columns_match_the_table():
     from tilekit.plugins.polyomino.tables import TABLE
 
+    # the enumeration writes every column it can decide, and leaves the classification's
+    # (anisohedral_k, Heesch numbers, witness; tiles/verdict of a hole-free non-isohedral
+    # polyomino) alone, so that a re-run never erases what polyomino-classify stored
+    classification = {"anisohedral_k", "heesch", "heesch_holes", "witness"}
+    enumeration = {c.name for c in TABLE.columns} - {"run_id"} - classification
     row = tilekit.polyomino("pentomino-F").row()
-    assert set(row) == {c.name for c in TABLE.columns} - {"run_id"}
+    assert set(row) == enumeration
     assert row["name"] == "pentomino-F" and row["isohedral"] and row["tiles"] == "true"
+    holey = tilekit.polyomino("xxx/x.x/xxx").row()
+    assert set(holey) == enumeration | {"heesch", "heesch_holes"} and holey["tiles"] == "false"
+    plain = tilekit.polyomino("x...x/xxxxx").row()  # a non-tiling heptomino
+    assert set(plain) == enumeration - {"tiles", "verdict"} and not plain["isohedral"]
     assert row["boundary"] and set(row["boundary"]) <= set("0123")
 
 

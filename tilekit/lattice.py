@@ -419,10 +419,9 @@ def _turn_table(grid: Grid) -> np.ndarray:
 
 
 @njit(cache=True)
-def _trace_outer(c, types, ea, eb, en, el, period, turn, out_v, out_l):
-    """The outer boundary cycle, exactly as :func:`boundary_cycles` returns it first: from the
-    least vertex (y, x), interior on the left, the sharpest right turn at a vertex where
-    cycles touch. Returns its length (-1 if more than four edges leave one vertex)."""
+def _occupancy(c, period):
+    """The cells ``c`` as a 0/1 raster with a margin of two periods: (raster, x0, y0, w, h),
+    cell (x, y) at index (y - y0) * w + x - x0."""
     n = c.shape[0]
     x0 = c[0, 0]
     y0 = c[0, 1]
@@ -441,6 +440,16 @@ def _trace_outer(c, types, ea, eb, en, el, period, turn, out_v, out_l):
     occ = np.zeros(w * h, np.uint8)
     for i in range(n):
         occ[(c[i, 1] - y0) * w + c[i, 0] - x0] = 1
+    return occ, x0, y0, w, h
+
+
+@njit(cache=True)
+def _trace_outer(c, types, ea, eb, en, el, period, turn, out_v, out_l):
+    """The outer boundary cycle, exactly as :func:`boundary_cycles` returns it first: from the
+    least vertex (y, x), interior on the left, the sharpest right turn at a vertex where
+    cycles touch. Returns its length (-1 if more than four edges leave one vertex)."""
+    n = c.shape[0]
+    occ, x0, y0, w, h = _occupancy(c, period)
     S = 4
     nout = np.zeros(w * h, np.int64)
     nxt = np.full((w * h, S), -1, np.int64)
@@ -513,23 +522,7 @@ def _edge_tables(grid: Grid):
 def _trace(c, types, ea, eb, en, el, period, out_v, out_l):
     """Trace the single boundary cycle; returns its length, or -1 if there is more than one."""
     n = c.shape[0]
-    x0 = c[0, 0]
-    y0 = c[0, 1]
-    x1 = x0
-    y1 = y0
-    for i in range(n):
-        x0 = min(x0, c[i, 0])
-        y0 = min(y0, c[i, 1])
-        x1 = max(x1, c[i, 0])
-        y1 = max(y1, c[i, 1])
-    m = 2 * period
-    x0 -= m
-    y0 -= m
-    w = x1 - x0 + m + 1
-    h = y1 - y0 + m + 1
-    occ = np.zeros(w * h, np.uint8)
-    for i in range(n):
-        occ[(c[i, 1] - y0) * w + c[i, 0] - x0] = 1
+    occ, x0, y0, w, h = _occupancy(c, period)
     nxt = np.full(w * h, -1, np.int64)
     let = np.zeros(w * h, np.int64)
     edges = 0

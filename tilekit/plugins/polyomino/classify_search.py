@@ -7,7 +7,7 @@ import time
 from typing import Any
 
 from tilekit.errors import ParameterError
-from tilekit.lattice import SQUARE, encode, enumerate_free, holes, prefixes, symmetry_from_mask
+from tilekit.lattice import SQUARE, encode, enumerate_free, holes, symmetry_from_mask
 from tilekit.plugins import ChunkResult, Search, SearchParam
 from tilekit.plugins.polyomino.classify import (
     CLASSIFY_SOLVER,
@@ -18,6 +18,7 @@ from tilekit.plugins.polyomino.classify import (
 from tilekit.plugins.polyomino.heesch import MAX_LEVEL_LIMIT
 from tilekit.plugins.polyomino.isohedral import analyse_many
 from tilekit.plugins.polyomino.model import make_row
+from tilekit.plugins.polyomino.search import prefix_chunks
 from tilekit.sat import SAT_SOLVERS
 
 #: The classification stores rows up to this size (the enumeration's own limit).
@@ -44,18 +45,11 @@ def check_params(params: dict[str, Any]) -> None:
 
 
 def chunks(params: dict[str, Any]) -> list[dict[str, Any]]:
-    """The top chunk (polyominoes smaller than the prefix size) and one chunk per node of
-    that size in Redelmeier's tree (as the enumeration splits; each free polyomino is in
-    exactly one chunk, see :mod:`tilekit.plugins.polyomino.search`)."""
+    """The enumeration's chunks (:func:`search.prefix_chunks`): each free polyomino is in
+    exactly one."""
     check_params(params)
     n = int(params["max_cells"])
-    d = _depth(n, int(params.get("prefix_depth") or 0))
-    out: list[dict[str, Any]] = []
-    if d > 1:
-        out.append({"root": 0, "prefix": [], "below": d})
-    for p in prefixes(SQUARE, n, d, 0):
-        out.append({"root": 0, "prefix": p})
-    return out
+    return prefix_chunks(n, _depth(n, int(params.get("prefix_depth") or 0)))
 
 
 def run_chunk(params: dict[str, Any], chunk: dict[str, Any]):

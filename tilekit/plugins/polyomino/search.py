@@ -55,17 +55,21 @@ def check_params(params: Mapping[str, Any]) -> None:
         )
 
 
+def prefix_chunks(n: int, depth: int) -> list[dict[str, Any]]:
+    """The top chunk (every node of size < depth) and one chunk per node of size ``depth``
+    of Redelmeier's tree for sizes up to n (see the module docstring: a partition)."""
+    out: list[dict[str, Any]] = []
+    if depth > 1:
+        out.append({"root": 0, "prefix": [], "below": depth})
+    for p in prefixes(SQUARE, n, depth, 0):
+        out.append({"root": 0, "prefix": p})
+    return out
+
+
 def chunks(params: Mapping[str, Any]) -> list[dict[str, Any]]:
     """The top chunk and one chunk per node of size ``depth`` of Redelmeier's tree."""
     check_params(params)
-    n = int(params["max_cells"])
-    d = _depth(params)
-    out: list[dict[str, Any]] = []
-    if d > 1:
-        out.append({"root": 0, "prefix": [], "below": d})
-    for p in prefixes(SQUARE, n, d, 0):
-        out.append({"root": 0, "prefix": p})
-    return out
+    return prefix_chunks(int(params["max_cells"]), _depth(params))
 
 
 def chunk_rows(params: Mapping[str, Any], chunk: Mapping[str, Any]) -> tuple[dict[str, list[dict]], dict[str, int]]:
