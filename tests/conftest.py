@@ -54,3 +54,29 @@ def db_url(request, tmp_path):
     if request.param == "sqlite":
         return f"sqlite:///{tmp_path / 'catalogue.sqlite'}"
     return request.getfixturevalue("postgres_url")
+
+
+def _sigint_ignored() -> bool:
+    """Whether this process ignores SIGINT at the OS level (then every child inherits it)."""
+    try:
+        with open("/proc/self/status") as fh:
+            for line in fh:
+                if line.startswith("SigIgn:"):
+                    return bool(int(line.split()[1], 16) >> (2 - 1) & 1)
+    except OSError:
+        return False
+    return False
+
+
+@pytest.fixture(autouse=True)
+def _sigint_not_left_ignored(request):
+    """A test (or a library it drives) that leaves SIGINT ignored would make every later
+    subprocess deaf to Ctrl-C, so the Ctrl-C tests of the run layer would fail for a reason
+    that is not theirs: restore the default handler and name the test in a warning."""
+    import signal
+    import warnings
+
+    yield
+    if _sigint_ignored():
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+        warnings.warn(f"{request.node.nodeid} left SIGINT ignored; restored", stacklevel=1)

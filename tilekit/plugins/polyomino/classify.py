@@ -5,8 +5,9 @@ The order of the tests is the cheap-first order of Myers' and Kaplan's searches:
 
 1. a hole: no tiling (a copy covering a cell of the hole would have to fit inside it);
 2. the boundary-word test (:mod:`isohedral`, Langerman and Winslow): an isohedral tiling;
-3. coronas by SAT (:mod:`heesch`) up to ``probe`` levels: a polyomino that cannot be
-   surrounded ``probe`` times is a non-tiler, and its Hc and Hh are exact;
+3. coronas by SAT (:mod:`heesch`) up to ``probe`` levels (one more when Kaplan's numbers are
+   known but need the proof): a level with no patch even with holes proves a non-tiler, and
+   its Hc and Hh are Kaplan's;
 4. otherwise tori with 2..``torus_tiles`` tiles per translational unit (:mod:`torus`): a
    cover is a periodic tiling, and the fewest transitivity classes found is the k recorded;
 5. otherwise coronas up to ``max_level``; still surrounded: ``undecided`` with the bounds.
@@ -80,7 +81,7 @@ def _corona_json(c: Corona | None, hc: int | None) -> dict | None:
 
 
 def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes: bool = False,
-             probe: int = 2, max_level: int = 5, torus_tiles: int = 4, time_limit: float | None = 120.0,
+             probe: int = 2, max_level: int = 5, torus_tiles: int = 8, time_limit: float | None = 120.0,
              solver: str = DEFAULT_SAT_SOLVER) -> Classification:
     """Classify one polyform (``analysis`` from :func:`isohedral.analyse`, None if holey)."""
     check_bounds(probe, max_level, torus_tiles)
@@ -103,16 +104,21 @@ def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes:
 
     hs = HeeschSolver(grid, cells, solver=solver)
     r = heesch(grid, cells, max_level=probe, time_limit=left(), hs=hs)
+    level = probe
+    if not r.decided and hs.kaplan and r.surrounded >= probe and probe < max_level:
+        # Kaplan's numbers are known but not yet a proof: one more level with holes allowed
+        level = probe + 1
+        r = heesch(grid, cells, max_level=level, time_limit=left(), hs=hs, start=level, best=r.hc_witness)
     if r.decided:
         return _non_tiler(r, time.monotonic() - t0)
-    if r.surrounded < probe:  # the time limit
+    if r.surrounded < level:  # the time limit
         return _undecided(r.surrounded, None, time.monotonic() - t0, r.reason, r.hc_witness)
     ts = TorusSearch(hs.forms, solver=solver)
     # cheap first: small translational units, one more corona, larger units, more coronas
     stages = [("torus", min(4, torus_tiles)), ("coronas", min(probe + 1, max_level)),
               ("torus", torus_tiles), ("coronas", max_level)]
     best: TorusTiling | None = None
-    tried_m, level = 1, probe
+    tried_m = 1
     for what, bound in stages:
         if what == "torus":
             if bound <= tried_m:

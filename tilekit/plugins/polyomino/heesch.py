@@ -105,6 +105,8 @@ class HeeschSolver:
         self.levels: list[np.ndarray] = [np.array([[0, 0, 0]], dtype=np.int64)]  # level 0: kernel
         self._blocks = _Blocks()
         self.sat_calls = 0
+        #: (Hc, Hh, hole-free witness, holey witness) once Kaplan's loop has stopped
+        self.kaplan: tuple[int, int, Corona, Corona] | None = None
 
     # -- placements per level -------------------------------------------------------------
     def _row_keys(self, rows: np.ndarray) -> np.ndarray:
@@ -268,6 +270,15 @@ class HeeschSolver:
             out.append((np.sort(hc), brows[keep], blv[keep]))
         return out
 
+    def surrounds(self, k: int, *, time_limit: float | None = None) -> bool | None:
+        """Whether k coronas exist with holes allowed (no hole checks: the coronas of any
+        tiling satisfy this formula); None when the time limit expires."""
+        clauses, _ = self._encode(k)
+        with IncrementalSolver(clauses, solver=self.solver) as s:
+            ans = s.solve(time_limit=time_limit)
+        self.sat_calls += 1
+        return ans.satisfiable
+
     def corona(self, k: int, *, time_limit: float | None = None) -> tuple[Corona | None, Corona | None, bool | None]:
         """(hole-free k-corona patch or None, k-corona patch with holes allowed in its outer
         corona or None, decided) for exactly ``k`` coronas."""
@@ -311,36 +322,57 @@ class HeeschSolver:
 def heesch(grid: Grid, cells: np.ndarray, *, max_level: int = 6, solver: str = DEFAULT_SAT_SOLVER,
            time_limit: float | None = None, start: int = 1, hs: HeeschSolver | None = None,
            best: Corona | None = None) -> HeeschResult:
-    """Hc and Hh of a hole-free polyform, trying 1..max_level coronas.
+    """Hc and Hh of a hole-free polyform, trying 1..max_level coronas; ``decided`` only with a
+    proof that it does not tile.
 
-    Undecided (``hc = hh = None``) when ``max_level`` coronas exist (the polyform may tile) or
-    the time limit expires first.
+    Kaplan's numbers stop at the first level k with no hole-free patch (Hc = k - 1, and Hh = k
+    when k coronas exist only with holes). That alone does not prove the tile cannot tile: the
+    coronas of a tiling can enclose holes that the next corona fills. The proof is a level at
+    which no patch exists even with holes (the formula without hole clauses, which the coronas
+    of any tiling satisfy), so after a holey level the search goes on, without hole checks,
+    until such a level or ``max_level``. Undecided (``decided=False``) when ``max_level``
+    coronas exist or the time limit expires first; ``hc``/``hh`` then hold Kaplan's values if
+    they were found (the polyform may still tile).
     """
     if not 0 <= max_level <= MAX_LEVEL_LIMIT:
         raise ParameterError(f"max_level must be between 0 and {MAX_LEVEL_LIMIT}, got {max_level}")
     t0 = time.monotonic()
     hs = hs or HeeschSolver(grid, cells, solver=solver)
     best = best or Corona(hs.levels[0].copy(), np.zeros(1, dtype=np.int64), False)  # the kernel
+
+    def result(decided: bool, reason: str, surrounded: int) -> HeeschResult:
+        hc, hh, hcw, hhw = hs.kaplan if hs.kaplan else (None, None, best, None)
+        return HeeschResult(hc, hh, hcw, hhw, surrounded, decided, reason, hs.sat_calls, time.monotonic() - t0)
+
     for k in range(start, max_level + 1):
         left = None if time_limit is None else time_limit - (time.monotonic() - t0)
         if left is not None and left <= 0:
-            return HeeschResult(None, None, best, None, k - 1, False, f"time limit after {k - 1} coronas",
-                                hs.sat_calls, time.monotonic() - t0)
+            return result(False, f"time limit after {k - 1} coronas", k - 1)
+        if hs.kaplan:  # Kaplan's numbers are known; look for the proof
+            ok = hs.surrounds(k, time_limit=left)
+            if ok is None:
+                return result(False, f"time limit while looking for {k} coronas with holes", k - 1)
+            if not ok:
+                hc, hh = hs.kaplan[:2]
+                return result(True, f"{hh} corona{'s' if hh != 1 else ''} only with a hole in the outermost corona; "
+                                    f"no {k}-corona patch even with holes", k - 1)
+            continue
         free, holey, decided = hs.corona(k, time_limit=left)
         if decided is None:
-            return HeeschResult(None, None, best, holey, k - 1, False,
-                                f"time limit while looking for {k} coronas", hs.sat_calls, time.monotonic() - t0)
+            return result(False, f"time limit while looking for {k} coronas", k - 1)
         if free is not None:
             best = free
             continue
         if holey is not None:
-            return HeeschResult(k - 1, k, best, holey, k - 1, True,
-                                f"{k} corona{'s' if k != 1 else ''} only with a hole in the outermost corona", hs.sat_calls,
-                                time.monotonic() - t0)
-        return HeeschResult(k - 1, k - 1, best, best, k - 1, True, f"no {k}-corona patch exists",
-                            hs.sat_calls, time.monotonic() - t0)
-    return HeeschResult(None, None, best, None, max_level, False, f"surrounded by {max_level} coronas",
-                        hs.sat_calls, time.monotonic() - t0)
+            hs.kaplan = (k - 1, k, best, holey)
+            continue
+        hs.kaplan = (k - 1, k - 1, best, best)
+        return result(True, f"no {k}-corona patch exists", k - 1)
+    if hs.kaplan:
+        hc, hh = hs.kaplan[:2]
+        return result(False, f"Hc = {hc}, Hh = {hh} by Kaplan's reading, but {max_level} coronas exist with holes "
+                             f"(not a proof that it cannot tile)", max_level)
+    return result(False, f"surrounded by {max_level} coronas", max_level)
 
 
 def corona_rows_to_patch(forms: Forms, rows: Sequence, levels: Sequence, prototile) -> tuple[np.ndarray, np.ndarray]:
