@@ -80,3 +80,31 @@ def _sigint_not_left_ignored(request):
     if _sigint_ignored():
         signal.signal(signal.SIGINT, signal.default_int_handler)
         warnings.warn(f"{request.node.nodeid} left SIGINT ignored; restored", stacklevel=1)
+
+
+class CatalogueCLI:
+    """The command line on one fresh SQLite catalogue: ``run(*args)`` invokes it in-process,
+    ``count(family, *where)`` is ``tilekit list --family F --count --where ...`` as an int."""
+
+    def __init__(self, url: str) -> None:
+        self.url = url
+
+    def run(self, *args: str):
+        from click.testing import CliRunner
+
+        from tilekit.cli import cli
+
+        return CliRunner().invoke(cli, ["--catalogue", self.url, *args], catch_exceptions=False)
+
+    def count(self, family: str, *where: str) -> int:
+        args = ["list", "--family", family, "--count"]
+        for w in where:
+            args += ["--where", w]
+        r = self.run(*args)
+        assert r.exit_code == 0, r.output
+        return int(r.output.split()[-1])
+
+
+@pytest.fixture
+def catalogue_cli(tmp_path) -> CatalogueCLI:
+    return CatalogueCLI(f"sqlite:///{tmp_path / 'cli.sqlite'}")

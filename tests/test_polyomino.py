@@ -29,7 +29,6 @@ from math import gcd
 
 import numpy as np
 import pytest
-from click.testing import CliRunner
 
 import tilekit
 from tilekit.errors import GeometryError, NotFoundError, ParameterError, ParseError
@@ -380,25 +379,15 @@ def test_migration_branch_upgrades_and_downgrades_with_data(tmp_path):
     assert "polyominoes" in sa.inspect(cat.engine).get_table_names()
 
 
-def test_catalogue_search_list_show_render(tmp_path):
+def test_catalogue_search_list_show_render(catalogue_cli, tmp_path):
     """The stored run through the run layer: rows in the polyominoes table, typed --where filters."""
-    from tilekit.cli import cli
-
-    db = f"sqlite:///{tmp_path / 'r.sqlite'}"
-
-    def run(*args):
-        return CliRunner().invoke(cli, ["--catalogue", db, *args], catch_exceptions=False)
+    run = catalogue_cli.run
 
     res = run("search", "polyominoes", "--max-cells", "8", "--executor", "process", "--workers", "2")
     assert res.exit_code == 0, res.output
 
     def count(*where):
-        args = ["list", "--family", "polyomino", "--count"]
-        for w in where:
-            args += ["--where", w]
-        r = run(*args)
-        assert r.exit_code == 0, r.output
-        return int(r.output.split()[-1])
+        return catalogue_cli.count("polyomino", *where)
 
     assert count("cells=8") == 369  # A000105
     assert count("cells=8", "isohedral=false") == 369 - 342  # 6 with holes + 21 (A075205)

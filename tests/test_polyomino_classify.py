@@ -180,26 +180,28 @@ def test_undecided_is_reported_with_its_bounds():
     assert c.verdict.startswith("undecided up to 3 coronas and 2 tiles per translational unit")
 
 
+def test_a_corona_formula_over_the_limits_is_refused_before_it_is_built(monkeypatch):
+    """The SAT encoding is estimated before it is allocated; over the limit, the polyomino is
+    undecided with the limit named (never an allocation the machine cannot hold)."""
+    from tilekit import limits
+
+    monkeypatch.setattr(limits, "MAX_SAT_VARIABLES", 5000)
+    c = classify(SQUARE, _cells("1 0 1 1 0 2 1 2 1 3 2 3 3 3"), None)  # Hc = 1: level 2 is refused
+    assert c.tiles == "undecided"
+    assert c.verdict.startswith("undecided up to 1 coronas") and "SAT variables for 2 coronas" in c.verdict
+    assert "over the limit of 5,000" in c.verdict or "over the limit of 5000" in c.verdict
+
+
 # --------------------------------------------------------------------------- the search
 
-def test_classification_search_list_show_render(tmp_path):
-    from tilekit.cli import cli
-
-    db = f"sqlite:///{tmp_path / 'c.sqlite'}"
-
-    def run(*args):
-        return CliRunner().invoke(cli, ["--catalogue", db, *args], catch_exceptions=False)
+def test_classification_search_list_show_render(catalogue_cli, tmp_path):
+    run = catalogue_cli.run
 
     res = run("search", "polyomino-classify", "--max-cells", "8", "--executor", "process", "--workers", "2")
     assert res.exit_code == 0, res.output
 
     def count(*where):
-        args = ["list", "--family", "polyomino", "--count"]
-        for w in where:
-            args += ["--where", w]
-        r = run(*args)
-        assert r.exit_code == 0, r.output
-        return int(r.output.split()[-1])
+        return catalogue_cli.count("polyomino", *where)
 
     assert count("tiles=false") == sum(A054360[:8])
     assert count("tiles=false", "holes=false") == sum(A054361[:8])

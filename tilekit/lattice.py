@@ -257,16 +257,22 @@ def holes(grid: Grid, cells: np.ndarray) -> list[np.ndarray]:
     return [unpack(h) for h in holes_of(grid, pack(c))]
 
 
-def hole_count(grid: Grid, cells: np.ndarray) -> int:
-    """``len(holes(grid, cells))`` by a compiled flood fill (the bulk enumeration's hole column)."""
+def _components(grid: Grid, cells: np.ndarray):
     c = np.ascontiguousarray(np.asarray(cells, dtype=np.int64).reshape(-1, 2))
-    return int(_count_holes(c, grid.roots.astype(np.int64), grid.neighbours.astype(np.int64), np.int64(grid.period)))
+    return _empty_components(c, grid.roots.astype(np.int64), grid.neighbours.astype(np.int64), np.int64(grid.period))
+
+
+def hole_count(grid: Grid, cells: np.ndarray) -> int:
+    """``len(holes(grid, cells))`` by the compiled flood fill (the bulk enumeration's hole column)."""
+    return int(_components(grid, cells)[4]) - 1
 
 
 @njit(cache=True)
-def _count_holes(c, roots, nbr, period):
-    """Edge-connected components of empty cells in the bounding box plus a margin of two
-    periods, less the one outside component (the margin is connected, holes never reach it)."""
+def _empty_components(c, roots, nbr, period):
+    """Edge-connected components of the empty cells in the bounding box of ``c`` plus a margin
+    of two periods: (label per box position, -1 where no empty cell; x0, y0, w, count). The
+    scan meets the margin first, so component 0 is the outside (the margin is connected and
+    holes never reach it); components 1.. are the holes."""
     n = c.shape[0]
     x0 = c[0, 0]
     x1 = x0
@@ -297,12 +303,13 @@ def _count_holes(c, roots, nbr, period):
     for k in range(n):
         buf[(c[k, 1] - y0) * w + c[k, 0] - x0] = 1
     stack = np.zeros(w * h, np.int64)
+    lab = np.full(w * h, -1, np.int64)
     comps = 0
     for v in range(w * h):
         if buf[v] != 0:
             continue
-        comps += 1
         buf[v] = 2
+        lab[v] = comps
         stack[0] = v
         top = 1
         while top > 0:
@@ -319,9 +326,11 @@ def _count_holes(c, roots, nbr, period):
                 q = (qy - y0) * w + (qx - x0)
                 if buf[q] == 0:
                     buf[q] = 2
+                    lab[q] = comps
                     stack[top] = q
                     top += 1
-    return comps - 1
+        comps += 1
+    return lab, x0, y0, w, comps
 
 
 # --------------------------------------------------------------------------- boundary
@@ -1001,41 +1010,15 @@ def halo_of(grid: Grid, cells: np.ndarray) -> np.ndarray:
 
 def holes_of(grid: Grid, keys: np.ndarray) -> list[np.ndarray]:
     """Holes of the union of the cells ``keys`` (packed): the edge-connected components of
-    empty cells that cannot reach the outside; each returned as an array of packed keys."""
-    keys = np.unique(np.asarray(keys, dtype=np.int64))
-    cells = unpack(keys)
-    lo = cells.min(axis=0) - 2 * grid.period
-    hi = cells.max(axis=0) + 2 * grid.period
-    xs, ys = np.meshgrid(np.arange(lo[0], hi[0] + 1), np.arange(lo[1], hi[1] + 1), indexing="ij")
-    box = np.column_stack([xs.ravel(), ys.ravel()])
-    box = box[grid.is_cell(box)]
-    empty_cells = box[~np.isin(pack(box), keys)]
-    if not len(empty_cells):
+    empty cells that cannot reach the outside; each an array of packed keys, sorted, the holes
+    in the order of their least key."""
+    cells = unpack(np.unique(np.asarray(keys, dtype=np.int64)))
+    lab, x0, y0, w, comps = _components(grid, cells)
+    at = np.flatnonzero(lab > 0)
+    if not len(at):
         return []
-    empty = pack(empty_cells)
-    order = np.argsort(empty)
-    empty = empty[order]
-    empty_cells = empty_cells[order]
-    types = grid.cell_type(empty_cells)
-    nbrs = pack(empty_cells[:, None, :] + grid.neighbours[types])  # (E, D)
-    pos = np.searchsorted(empty, nbrs)
-    pos = np.minimum(pos, len(empty) - 1)
-    ok = empty[pos] == nbrs
-    nb_index = np.where(ok, pos, -1)
-    outside = ((empty_cells <= lo + grid.period).any(axis=1) | (empty_cells >= hi - grid.period).any(axis=1))
-    comp = np.full(len(empty), -1, dtype=np.int64)
-    ncomp = 0
-    for start in range(len(empty)):
-        if comp[start] >= 0:
-            continue
-        comp[start] = ncomp
-        stack = [start]
-        while stack:
-            i = stack.pop()
-            for q in nb_index[i]:
-                if q >= 0 and comp[q] < 0:
-                    comp[q] = ncomp
-                    stack.append(int(q))
-        ncomp += 1
-    leak = set(np.unique(comp[outside]).tolist())
-    return [empty[comp == c] for c in range(ncomp) if c not in leak]
+    found = pack(np.column_stack([at % w + x0, at // w + y0]))
+    order = np.lexsort((found, lab[at]))
+    found, labels = found[order], lab[at][order]
+    parts = np.split(found, np.flatnonzero(np.diff(labels)) + 1)
+    return sorted(parts, key=lambda h: int(h[0]))

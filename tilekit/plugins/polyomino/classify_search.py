@@ -18,18 +18,11 @@ from tilekit.plugins.polyomino.classify import (
 from tilekit.plugins.polyomino.heesch import MAX_LEVEL_LIMIT
 from tilekit.plugins.polyomino.isohedral import analyse_many
 from tilekit.plugins.polyomino.model import make_row
-from tilekit.plugins.polyomino.search import prefix_chunks
+from tilekit.plugins.polyomino.search import prefix_chunks, prefix_depth
 from tilekit.sat import SAT_SOLVERS
 
 #: The classification stores rows up to this size (the enumeration's own limit).
 MAX_CLASSIFY = 14
-
-
-def _depth(n: int, d: int) -> int:
-    """Prefix size naming a chunk: deep enough that one chunk is seconds of SAT work."""
-    if d <= 0:
-        d = max(2, min(8, n - 4))
-    return min(d, n)
 
 
 def check_params(params: dict[str, Any]) -> None:
@@ -49,7 +42,8 @@ def chunks(params: dict[str, Any]) -> list[dict[str, Any]]:
     exactly one."""
     check_params(params)
     n = int(params["max_cells"])
-    return prefix_chunks(n, _depth(n, int(params.get("prefix_depth") or 0)))
+    # deeper than the enumeration's: a classification chunk should be seconds of SAT work
+    return prefix_chunks(n, prefix_depth(n, int(params.get("prefix_depth") or 0), spare=4, most=8))
 
 
 def run_chunk(params: dict[str, Any], chunk: dict[str, Any]):

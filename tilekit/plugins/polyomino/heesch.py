@@ -35,11 +35,11 @@ the solver is asked again, as in Kaplan's implementation.
 from __future__ import annotations
 
 import time
-from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
+from tilekit import limits
 from tilekit.errors import ParameterError
 from tilekit.lattice import Grid, holes_of, pack, unpack
 from tilekit.plugins.polyomino.placements import Forms
@@ -79,18 +79,6 @@ class HeeschResult:
     reason: str
     sat_calls: int = 0
     seconds: float = 0.0
-    stats: dict = field(default_factory=dict)
-
-
-class _Blocks:
-    """Hole-forbidding clauses, kept symbolically (placement keys and levels) so that each
-    level's fresh encoding can re-number them."""
-
-    def __init__(self) -> None:
-        self.items: list[tuple[np.ndarray, np.ndarray, np.ndarray, int, bool]] = []
-
-    def add(self, rows: np.ndarray, levels: np.ndarray, hole: np.ndarray, upto: int, outer: bool) -> None:
-        self.items.append((rows, levels, hole, upto, outer))
 
 
 class HeeschSolver:
@@ -103,8 +91,8 @@ class HeeschSolver:
         self.kernel_keys = np.sort(self.forms.keys[0])
         self.kernel_halo = np.unique(self.forms.placement_halos(np.array([[0, 0, 0]]))[0])
         self.levels: list[np.ndarray] = [np.array([[0, 0, 0]], dtype=np.int64)]  # level 0: kernel
-        self._blocks = _Blocks()
         self.sat_calls = 0
+        self.solve_seconds = 0.0  # inside the solver (the rest is building the formulas)
         #: (Hc, Hh, hole-free witness, holey witness) once Kaplan's loop has stopped
         self.kaplan: tuple[int, int, Corona, Corona] | None = None
 
@@ -117,6 +105,11 @@ class HeeschSolver:
         """Add the placements of the next level: copies touching a copy of the last level."""
         last = self.levels[-1]
         adj = self.forms.adjacent
+        # estimate first: every copy of the last level times the copies touching it, as
+        # (orientation, tx, ty) rows plus their keys, before any is allocated
+        candidates = sum(int((last[:, 0] == j).sum()) * len(adj[j]) for j in range(self.forms.J))
+        limits.refuse_over_memory(f"candidate placements for corona {len(self.levels)}", candidates, 72,
+                                  hint="ask for fewer coronas (--max-level)")
         parts = []
         for j in range(self.forms.J):
             sel = last[last[:, 0] == j]
@@ -143,9 +136,15 @@ class HeeschSolver:
         """Clauses for k coronas; returns (clauses, var tables) — see the module docstring."""
         while len(self.levels) <= k:
             self._grow()
+        nv = sum(len(self.levels[i]) for i in range(1, k + 1))
+        n, h = self.forms.n, self.forms.halos.shape[1]
+        # estimate first (measured on 9-ominoes at 1-3 coronas: ~n + 2 variables and ~40 clauses
+        # per placement variable, ~130 bytes per clause as Python lists)
+        hint = "ask for fewer coronas (--max-level)"
+        limits.refuse_over(f"SAT variables for {k} coronas", nv * (n + 2), limits.MAX_SAT_VARIABLES, hint=hint)
+        limits.refuse_over_memory(f"clauses for {k} coronas", nv * (4 * n + h), 130, hint=hint)
         rows = np.concatenate(self.levels[1:k + 1])
         lvl = np.concatenate([np.full(len(self.levels[i]), i) for i in range(1, k + 1)])
-        nv = len(rows)
         yvar = np.arange(1, nv + 1, dtype=np.int64)
         pcells = self.forms.placement_cells(rows)  # (nv, n)
         phalo = self.forms.placement_halos(rows)  # (nv, H)
@@ -230,44 +229,22 @@ class HeeschSolver:
                 yy = np.repeat(yvar[here], hk.shape[1])
                 keep = lits != false_var
                 clauses += np.column_stack([-yy[keep], -lits[keep]]).tolist()
-        table = {"rows": rows, "lvl": lvl, "yvar": yvar, "top": top,
-                 "index": {(int(a), int(b)): int(v) for a, b, v in zip(self._row_keys(rows).tolist(), lvl.tolist(), yvar.tolist())},
-                 "cells": pcells}
-        return clauses, table
-
-    def _block_clause(self, table: dict, item, k: int) -> list[int] | None:
-        rows, levels, hole, upto, _outer = item
-        index = table["index"]
-        lits = []
-        for key, lv in zip(self._row_keys(rows).tolist(), levels.tolist()):
-            v = index.get((key, lv))
-            if v is None:  # that tile cannot occur at this depth: the clause holds trivially
-                return None
-            lits.append(-v)
-        cover = np.isin(table["cells"], hole).any(axis=1) & (table["lvl"] <= upto)
-        lits += table["yvar"][cover].tolist()
-        return lits
+        return clauses, {"rows": rows, "lvl": lvl, "yvar": yvar, "top": top, "cells": pcells}
 
     # -- solving ----------------------------------------------------------------------------
-    def _model_patch(self, table: dict, model: set[int]) -> tuple[np.ndarray, np.ndarray]:
-        used = np.array([v in model for v in table["yvar"].tolist()], dtype=bool)
-        rows = np.concatenate([self.levels[0], table["rows"][used]])
-        lv = np.concatenate([[0], table["lvl"][used]])
-        return rows, lv
-
-    def _holes(self, rows: np.ndarray, lv: np.ndarray, upto: int) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
-        """Holes of the patch of coronas 0..upto: (hole cells, boundary rows, their levels)."""
-        sel = lv <= upto
-        cells = self.forms.placement_cells(rows[sel])
+    def _holes(self, table: dict, used: np.ndarray) -> list[list[int]]:
+        """The clauses forbidding each hole of the model's patch (``used``: which y are true):
+        not all of the copies around the hole (at their levels), or some copy covering one of
+        its cells. Empty when the patch has no hole."""
+        cells = table["cells"][used]
+        keys = np.concatenate([self.kernel_keys, cells.ravel()])
         out = []
-        for hole in holes_of(self.grid, cells.ravel()):
-            hc = np.asarray(hole)
-            hx = unpack(hc)
-            nb = pack(hx[:, None, :] + self.grid.neighbours[self.grid.cell_type(hx)]).ravel()
-            touching = np.isin(cells, nb).any(axis=1)
-            brows, blv = rows[sel][touching], lv[sel][touching]
-            keep = blv > 0  # the kernel is always there
-            out.append((np.sort(hc), brows[keep], blv[keep]))
+        for hole in holes_of(self.grid, keys):
+            hx = unpack(hole)
+            ring = pack(hx[:, None, :] + self.grid.neighbours[self.grid.cell_type(hx)]).ravel()
+            around = table["yvar"][used][np.isin(cells, ring).any(axis=1)]  # the kernel is always there
+            inside = table["yvar"][np.isin(table["cells"], hole).any(axis=1)]
+            out.append([*(-around).tolist(), *inside.tolist()])
         return out
 
     def surrounds(self, k: int, *, time_limit: float | None = None) -> bool | None:
@@ -277,6 +254,7 @@ class HeeschSolver:
         with IncrementalSolver(clauses, solver=self.solver) as s:
             ans = s.solve(time_limit=time_limit)
         self.sat_calls += 1
+        self.solve_seconds += ans.seconds
         return ans.satisfiable
 
     def corona(self, k: int, *, time_limit: float | None = None) -> tuple[Corona | None, Corona | None, bool | None]:
@@ -289,31 +267,25 @@ class HeeschSolver:
         hf = table["top"] + 1  # selector: the outermost corona is hole-free too
         deadline = None if time_limit is None else time.monotonic() + time_limit
         with IncrementalSolver(clauses, solver=self.solver) as s:
-            for item in self._blocks.items:
-                # holes found at this depth before (a repeated question); those of shallower
-                # patches do not carry over: the next corona must fill them anyway
-                cl = self._block_clause(table, item, k) if item[3] == k else None
-                if cl is not None:
-                    s.add([-hf, *cl])
             with_holes: Corona | None = None
             assume: list[int] = []
             while True:
                 left = None if deadline is None else max(0.01, deadline - time.monotonic())
                 ans = s.solve(assumptions=assume, time_limit=left)
                 self.sat_calls += 1
+                self.solve_seconds += ans.seconds
                 if ans.satisfiable is None:
                     return None, with_holes, None
                 if not ans.satisfiable:
                     return None, with_holes, True
-                model = set(ans.true_vars())
-                rows, lv = self._model_patch(table, model)
-                found = self._holes(rows, lv, k)
+                used = ans.values(table["yvar"])
+                rows = np.concatenate([self.levels[0], table["rows"][used]])
+                lv = np.concatenate([[0], table["lvl"][used]])
+                found = self._holes(table, used)
                 if not found:
                     return Corona(rows, lv, False), with_holes or Corona(rows, lv, False), True
-                for hole, brows, blv in found:
-                    item = (brows, blv, hole, k, True)
-                    self._blocks.add(*item)
-                    s.add([-hf, *self._block_clause(table, item, k)])
+                for clause in found:
+                    s.add([-hf, *clause])
                 if with_holes is None:  # holes, all in the outermost corona: a witness for Hh >= k
                     with_holes = Corona(rows, lv, True)
                 assume = [hf]
@@ -348,8 +320,15 @@ def heesch(grid: Grid, cells: np.ndarray, *, max_level: int = 6, solver: str = D
         left = None if time_limit is None else time_limit - (time.monotonic() - t0)
         if left is not None and left <= 0:
             return result(False, f"time limit after {k - 1} coronas", k - 1)
-        if hs.kaplan:  # Kaplan's numbers are known; look for the proof
-            ok = hs.surrounds(k, time_limit=left)
+        answer = ok = None
+        try:  # the proof question (holes allowed) once Kaplan's numbers are known, else coronas
+            if hs.kaplan:
+                ok = hs.surrounds(k, time_limit=left)
+            else:
+                answer = hs.corona(k, time_limit=left)
+        except limits.LimitError as exc:  # a bound like the time limit: undecided, with the reason
+            return result(False, f"{k} coronas: {exc}", k - 1)
+        if answer is None:
             if ok is None:
                 return result(False, f"time limit while looking for {k} coronas with holes", k - 1)
             if not ok:
@@ -357,7 +336,7 @@ def heesch(grid: Grid, cells: np.ndarray, *, max_level: int = 6, solver: str = D
                 return result(True, f"{hh} corona{'s' if hh != 1 else ''} only with a hole in the outermost corona; "
                                     f"no {k}-corona patch even with holes", k - 1)
             continue
-        free, holey, decided = hs.corona(k, time_limit=left)
+        free, holey, decided = answer
         if decided is None:
             return result(False, f"time limit while looking for {k} coronas", k - 1)
         if free is not None:
@@ -374,8 +353,3 @@ def heesch(grid: Grid, cells: np.ndarray, *, max_level: int = 6, solver: str = D
                              f"(not a proof that it cannot tile)", max_level)
     return result(False, f"surrounded by {max_level} coronas", max_level)
 
-
-def corona_rows_to_patch(forms: Forms, rows: Sequence, levels: Sequence, prototile) -> tuple[np.ndarray, np.ndarray]:
-    """Cartesian transforms and levels of a corona witness (for a Patch of one prototile)."""
-    rows = np.asarray(rows, dtype=np.int64).reshape(-1, 3)
-    return forms.affine(rows), np.asarray(levels, dtype=np.int64)

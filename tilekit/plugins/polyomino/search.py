@@ -33,12 +33,15 @@ MAX_STORED = 14
 MAX_COUNT = 22
 
 
-def _depth(params: Mapping[str, Any]) -> int:
-    n = int(params["max_cells"])
-    d = int(params.get("prefix_depth") or 0)
-    if d <= 0:
-        d = max(2, min(7, n - 6))
+def prefix_depth(n: int, requested: int = 0, *, spare: int = 6, most: int = 7) -> int:
+    """The prefix size naming a chunk of a run to n cells: ``requested``, or (0) ``n - spare``
+    kept within 2..``most`` (a deeper prefix makes more, smaller chunks)."""
+    d = requested if requested > 0 else max(2, min(most, n - spare))
     return min(d, n)
+
+
+def _depth(params: Mapping[str, Any]) -> int:
+    return prefix_depth(int(params["max_cells"]), int(params.get("prefix_depth") or 0))
 
 
 def check_params(params: Mapping[str, Any]) -> None:

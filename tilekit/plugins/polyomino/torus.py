@@ -144,7 +144,7 @@ class TorusSearch:
             return None
         if not ans.satisfiable:
             return False
-        used = np.array([ans.value(int(v)) for v in var], dtype=bool)
+        used = ans.values(var)
         return meta[used]
 
     def others(self, first: np.ndarray, limit: int, time_limit: float | None = None):
@@ -164,7 +164,7 @@ class TorusSearch:
                 self.sat_calls += 1
                 if not ans.satisfiable:
                     return
-                used = np.array([ans.value(int(v)) for v in var], dtype=bool)
+                used = ans.values(var)
                 chosen = meta[used]
                 yield chosen
 
