@@ -4,7 +4,7 @@ The public face: the core vocabulary (Affine, Prototile, Patch, Tiling, Periodic
 Colouring), the plugin marker ``hookimpl``, and the catalogue entry point ``open_catalogue``.
 """
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from tilekit.errors import (
     CatalogueError,
@@ -17,6 +17,7 @@ from tilekit.errors import (
     TilekitError,
 )
 from tilekit.hookspecs import hookimpl
+from tilekit.lazy import lazy_exports
 
 if TYPE_CHECKING:  # pragma: no cover
     from tilekit.colouring import Colouring
@@ -40,19 +41,7 @@ _LAZY = {
 }
 
 
-def __getattr__(name: str) -> Any:
-    module = _LAZY.get(name)
-    if module is None:
-        raise AttributeError(f"module 'tilekit' has no attribute {name!r}")
-    import importlib
-
-    value = getattr(importlib.import_module(module), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY))
+__getattr__, __dir__ = lazy_exports(__name__, _LAZY)
 
 
 def open_catalogue(url: str | None = None, **kwargs):
