@@ -147,46 +147,48 @@ UNIT_SETS = {
 }
 
 
-def _cover(by_cell: list[list[list[int]]], full: int, left: tuple[int, ...], used: int) -> bool:
-    """Exact cover: the least uncovered torus cell is covered by one of the copies still to place."""
-    if used == full:
-        return True
-    c = (~used & (used + 1)).bit_length() - 1
-    return any(not (m & used) and _cover(by_cell, full, left[:i] + left[i + 1:], used | m)
-               for i, o in enumerate(left) for m in by_cell[o][c])
-
-
 def torus_tiles(pairs: np.ndarray, orients: tuple[int, ...]) -> bool:
-    """Exhaustive exact cover on tori: a periodic tiling whose translational unit is one copy
-    of the tile in each orientation of ``orients`` (as point sets: a symmetric tile's copies
-    may coincide in shape, which is allowed)?
+    """Exact cover on tori, by SAT through the shared layer (``tilekit.sat``): a periodic
+    tiling whose translational unit is one copy of the tile in each orientation of
+    ``orients`` (as point sets: a symmetric tile's copies may coincide in shape, which is
+    allowed)?
 
     Every lattice of index len(orients)*n (Hermite normal form rows (a, b), (0, d)); the
-    identity copy at offset 0 (translating the tiling), every offset of the others; a tiling
-    exists iff some choice covers the torus exactly. Written from the cells only,
-    independently of the boundary words and of tilekit's code.
+    identity copy at offset 0 (translating the tiling); one variable per offset of each
+    further orientation's copy; exactly one copy per orientation, exactly one copy on every
+    torus cell the identity copy leaves free (none can lie on its cells). A tiling exists iff
+    some lattice's formula is satisfiable. Written from the cells only, independently of the
+    boundary words and of tilekit's torus search (``polyomino.torus``).
     """
+    from tilekit.sat import CNF, solve
+
     n = len(pairs)
     area = len(orients) * n
     for a, b, d in _hnf_lattices(area):
-        # the identity copy at offset 0 (translating the tiling)
-        base = _reduce(pairs, a, b, d).tolist()
-        if len(set(base)) != n:
+        base = set(_reduce(pairs, a, b, d).tolist())
+        if len(base) != n:
             continue
-        first = sum(1 << c for c in base)
         offs = np.array([(tx, ty) for tx in range(a) for ty in range(d)], dtype=np.int64)
-        # per further orientation: its placements (bitmasks of torus cells) by the cells they cover
-        by_cell = []
+        cnf = CNF()
+        on_cell: list[list[int]] = [[] for _ in range(area)]
         for g in orients[1:]:
-            cover: list[list[int]] = [[] for _ in range(area)]
+            copies = []
             for row in _reduce((pairs @ _ORIENT[g].T)[None, :, :] + offs[:, None, :], a, b, d).tolist():
-                m = sum(1 << c for c in row)
-                if m.bit_count() == n:
+                if len(set(row)) == n and base.isdisjoint(row):
+                    v = cnf.new_var()
+                    copies.append(v)
                     for c in row:
-                        cover[c].append(m)
-            by_cell.append(cover)
-        if _cover(by_cell, (1 << area) - 1, tuple(range(len(orients) - 1)), first):
-            return True
+                        on_cell[c].append(v)
+            if not copies:
+                break
+            cnf.exactly(copies, 1)
+        else:
+            free = [lits for c, lits in enumerate(on_cell) if c not in base]
+            if all(free):
+                for lits in free:
+                    cnf.exactly(lits, 1)
+                if solve(cnf).satisfiable:
+                    return True
     return False
 
 
@@ -209,7 +211,7 @@ def _unit_kind(f: dict) -> str:
 
 @pytest.mark.slow
 def test_verdicts_agree_with_torus_search_up_to_8(upto10):
-    """Every verdict for n <= 8 against exhaustive exact cover on tori (cells only).
+    """Every verdict for n <= 8 against exhaustive exact cover on tori (cells only, by SAT).
 
     What is provable, and asserted for every hole-free polyomino of at most 8 cells:
 
