@@ -418,3 +418,31 @@ def test_catalogue_search_list_show_render(catalogue_cli, tmp_path):
 
 def test_gcd_helper_sanity():
     assert gcd(12, 18) == 6
+
+
+def test_no_match_is_dropped_by_the_buffer_size(upto10):
+    """The matchers' first buffer (maxout) is a size, not a cap: with room for one match per
+    template they find exactly the matches, and the verdicts, of the default buffer."""
+    items = [(p, a) for p, h, a in upto10 if not h and len(p) <= 7]
+    polys = [p for p, _ in items]
+    small = analyse_many(SQUARE, polys, maxout=1)
+    assert [b["factorisations"] for b in small] == [b["factorisations"] for b in analyse_many(SQUARE, polys)]
+    many = 0
+    for p, _ in items:
+        _, letters = boundary_word(SQUARE, p)
+        full = factorisations(SQUARE, letters)
+        assert factorisations(SQUARE, letters, maxout=1) == full
+        many += len(full) > 1
+    assert many > 100  # the check is not vacuous: most words have several matches
+
+
+def test_family_flags_follow_the_heesch_letters(upto10):
+    """``reflection`` iff some Heesch type found uses a glide reflection (G), ``quarterturn``
+    iff one uses a quarter-turn (C4): a reflection template whose glide factors are empty is a
+    half-turn tiling."""
+    for p, h, a in upto10:
+        if h or len(p) > 9:
+            continue
+        letters = [f["heesch"] for f in a["factorisations"]]
+        assert a["reflection"] == any("G" in w for w in letters), encode(SQUARE, p)
+        assert a["quarterturn"] == any("C4" in w for w in letters), encode(SQUARE, p)

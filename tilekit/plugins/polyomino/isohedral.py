@@ -366,8 +366,9 @@ def _match_batch(cells, offs, types, ea, eb, en, el, period, perm, neg, det, can
     """Boundary words and deduplicated matches of many hole-free polyforms in one compiled call.
 
     Polyform i is cells[offs[i]:offs[i+1]]; its word goes to words[i, :wlen[i]] (wlen -1: not
-    one simple cycle). For every template, of the first ``maxout`` matches (as
-    :func:`factorisations` sees them) those with at least three nonempty factors are kept,
+    one simple cycle). For every template, of all its matches (``maxout`` is the first
+    buffer's size; a template with more is matched again into a larger one) those with at
+    least three nonempty factors are kept,
     the first of each pattern of nonempty factors: rows [i, template, mask, start, len_0..].
     Returns the number of rows (which may exceed the buffer: then call again, larger).
     """
@@ -392,9 +393,14 @@ def _match_batch(cells, offs, types, ea, eb, en, el, period, perm, neg, det, can
         for t in range(partners.shape[0]):
             k = ks[t]
             found = _match(W, ext, fwd, sp, bound, pl, npal, det, partners[t, :k], kinds[t, :k], cands, ncand, glides[t],
-                           mul, half, out, maxout, m // smaxdiv[t])
+                           mul, half, out, out.shape[0], m // smaxdiv[t])
+            if found > out.shape[0]:
+                # more matches than the buffer holds: again with room for all (none is dropped)
+                out = np.zeros((found, 13), np.int64)
+                found = _match(W, ext, fwd, sp, bound, pl, npal, det, partners[t, :k], kinds[t, :k], cands, ncand,
+                               glides[t], mul, half, out, found, m // smaxdiv[t])
             stamp += 1
-            for r in range(min(found, maxout)):
+            for r in range(found):
                 mask = 0
                 cnt = 0
                 for j in range(k):
@@ -473,6 +479,13 @@ def factorisations(grid: Grid, letters: np.ndarray, maxout: int = 256, dedupe: b
     found = np.zeros(len(ks), np.int64)
     _match_all(W, grid.letter_perm, grid.neg, grid.det, cands, ncand, mul, half, partners, kinds, ks,
                glides, smaxdiv, out, maxout, found)
+    if found.max() > maxout:
+        # more matches than the buffer holds: again with room for all (none is dropped)
+        maxout = int(found.max())
+        out = np.zeros((len(ks), maxout, 13), np.int64)
+        found[:] = 0
+        _match_all(W, grid.letter_perm, grid.neg, grid.det, cands, ncand, mul, half, partners, kinds, ks,
+                   glides, smaxdiv, out, maxout, found)
     res: list[Factorisation] = []
     for t, (name, fam, partner, kind, _glide) in enumerate(usable):
         k = len(partner)
@@ -563,7 +576,7 @@ def analyse_many(grid: Grid, polys: list[np.ndarray], maxout: int = 256) -> list
             if sig in done:
                 continue
             done.add(sig)
-            fams[fams_of[t]] = True
+            fams[_family(fams_of[t], letters)] = True
             found.append({"template": names[t], "start": r[3], "lengths": r[4:4 + klen[t]], "heesch": letters,
                           "ih": ih})
         out.append({**fams, "isohedral": bool(found),
@@ -820,6 +833,13 @@ def build(grid: Grid, cells: np.ndarray, verts: np.ndarray, f: Factorisation) ->
     return BuiltTiling(f, ih_type(f), unit, lat)
 
 
+def _family(template_family: str, letters: str) -> str:
+    """The family flag a match sets. A halfturn-reflection-1 match whose glide factors are
+    both empty has Heesch letters without G: it is a half-turn tiling (the same Heesch type as
+    a match of the half-turn template), not one with reflections, so it sets ``halfturn``."""
+    return "halfturn" if template_family == "reflection" and "G" not in letters else template_family
+
+
 #: Templates whose every match tiles: Langerman-Winslow's theorem for their forms, and the
 #: tests build every match of every polyomino up to 8 cells and prove each tiling exact.
 SOUND = frozenset(t[0] for t in TEMPLATES)
@@ -848,7 +868,7 @@ def analyse(grid: Grid, cells: np.ndarray, *, construct: bool = True, build_all:
                 continue
             tilings.append(bt)
         sigs_done.add(sig)
-        fams[f.family] = True
+        fams[_family(f.family, "".join(f.signature()))] = True
         found.append(f.to_json() | {"ih": ih_type(f)})
     ihs = sorted({d["ih"] for d in found if d["ih"] is not None})
     return {
