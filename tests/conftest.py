@@ -68,6 +68,17 @@ def _sigint_ignored() -> bool:
     return False
 
 
+def pytest_configure(config):
+    """A shell starts a background job (``cmd &``, as CI runners and ``nohup`` do) with SIGINT
+    ignored, Python then keeps it ignored, and every subprocess a test starts inherits that:
+    the run layer's Ctrl-C tests would fail for a reason that is not theirs. Tests run with
+    the default handler, as in a terminal."""
+    import signal
+
+    if _sigint_ignored():
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+
+
 @pytest.fixture(autouse=True)
 def _sigint_not_left_ignored(request):
     """A test (or a library it drives) that leaves SIGINT ignored would make every later
