@@ -44,7 +44,11 @@ def main() -> None:
     variants = {"": {}}
     if args.base:
         variants["base "] = {"PYTHONPATH": str(Path(args.base).resolve())}
-    commands: dict[str, tuple[list[str], dict[str, str]]] = {"python -c pass": ([py, "-c", "pass"], dict(os.environ))}
+    commands: dict[str, tuple[list[str], dict[str, str]]] = {
+        "python -c pass": ([py, "-c", "pass"], dict(os.environ)),
+        # the floor of any command that reads the catalogue through SQLAlchemy
+        "python -c 'import sqlalchemy'": ([py, "-c", "import sqlalchemy"], dict(os.environ)),
+    }
     for label, extra in variants.items():
         env = dict(os.environ, **extra)
         env["TILEKIT_CATALOGUE"] = f"sqlite:///{tmp / (label.strip() or 'this')}.sqlite"
@@ -52,6 +56,8 @@ def main() -> None:
         subprocess.run([py, "-c", cli, "list", "--count"], env=env, check=True, stdout=subprocess.DEVNULL)  # seed
         commands[f"{label}tilekit --help"] = ([py, "-c", cli, "--help"], env)
         commands[f"{label}tilekit list --where polygons=6"] = ([py, "-c", cli, "list", "--where", "polygons=6"], env)
+        commands[f"{label}tilekit list --family polyomino --where cells=8 --count"] = (
+            [py, "-c", cli, "list", "--family", "polyomino", "--where", "cells=8", "--count"], env)
     try:
         times: dict[str, list[tuple[float, float]]] = {k: [] for k in commands}
         for cmd, env in commands.values():  # warm-up

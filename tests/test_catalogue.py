@@ -31,7 +31,7 @@ from tilekit.catalogue import (  # noqa: E402
     resolve_url,
 )
 from tilekit.errors import CatalogueError, NotFoundError, ParameterError, ParseError  # noqa: E402
-from tilekit.models import Base  # noqa: E402
+from tilekit.models import METADATA  # noqa: E402
 from tilekit.plugins import CatalogueRecord, ChunkResult  # noqa: E402
 
 ALL = set(testkit.ARCHIMEDEAN)
@@ -109,7 +109,7 @@ def test_downgrade_base_then_upgrade_head(cat):
     assert cat.seed() == (11, 0)
     # the migrated schema is exactly the models' schema (tables, columns, indexes, constraints)
     with cat.engine.connect() as conn:
-        diff = compare_metadata(MigrationContext.configure(conn, opts={"compare_type": True}), Base.metadata)
+        diff = compare_metadata(MigrationContext.configure(conn, opts={"compare_type": True}), METADATA)
     assert diff == []
 
 
@@ -316,9 +316,9 @@ def test_entry_properties_keep_their_types(cat):
 
 
 def test_every_property_is_stored_as_typed_rows(cat):
-    from tilekit.models import PropertyRow, TilingRow
+    from tilekit.models import PROPS as p
+    from tilekit.models import TILINGS as t
 
-    p, t = PropertyRow.__table__, TilingRow.__table__
     with cat.engine.connect() as conn:
         rows = conn.execute(sa.select(p.c.key, p.c.position, p.c.kind, p.c.value_num)
                             .join(t, t.c.id == p.c.tiling_id).where(t.c.name == "4.6.12")).all()

@@ -13,7 +13,7 @@ import sys
 
 import pytest
 
-HEAVY = ("numpy", "shapely", "numba", "sqlalchemy", "alembic")
+HEAVY = ("numpy", "shapely", "numba", "sqlalchemy", "sqlalchemy.orm", "alembic")
 
 #: Runs the command line in-process and prints which of HEAVY it imported, as JSON.
 PROBE = """
@@ -75,6 +75,17 @@ def test_warm_list_imports_no_numpy_or_shapely(tmp_path):
     assert got["code"] == 0
     # SQLAlchemy is the catalogue's engine; the families' array code stays unloaded
     assert got["heavy"] == ["sqlalchemy"]
+
+
+def test_warm_list_of_one_family_imports_no_family_code_or_orm(tmp_path):
+    """``--family`` checks the name against every installed family: naming them loads no
+    construction code (the archimedean records pull in NumPy and the builder), and the
+    catalogue's tables are SQLAlchemy Core, so the ORM stays unloaded too."""
+    first = run_probe(["list", "--count"], tmp_path)  # migrates and seeds, every plugin
+    assert first["code"] == 0
+    for family, where in (("archimedean", "polygons=6"), ("polyomino", "cells=8"), ("laves", "periodic=true")):
+        got = run_probe(["list", "--family", family, "--where", where, "--count"], tmp_path)
+        assert got == {"code": 0, "heavy": ["sqlalchemy"]}, family
 
 
 def test_the_cheap_copies_of_wang_names_equal_their_sources():

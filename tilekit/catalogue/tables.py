@@ -2,25 +2,9 @@
 
 from __future__ import annotations
 
-from tilekit.models import (
-    AliasRow,
-    MetaRow,
-    PropertyRow,
-    RunChunkRow,
-    RunResultRow,
-    RunRow,
-    RunWorkerRow,
-    TilingRow,
-)
+from tilekit.models import ALIASES, CHUNKS, META, PROPS, RESULTS, RUNS, TILINGS, WORKERS
 
-TILINGS = TilingRow.__table__
-ALIASES = AliasRow.__table__
-PROPS = PropertyRow.__table__
-META = MetaRow.__table__
-RUNS = RunRow.__table__
-CHUNKS = RunChunkRow.__table__
-RESULTS = RunResultRow.__table__
-WORKERS = RunWorkerRow.__table__
+__all__ = ["ALIASES", "BATCH", "CHUNKS", "META", "PROPS", "RESULTS", "RUNS", "TILINGS", "WORKERS"]
 
 #: Batch size for ``IN (...)`` lists and bulk inserts.
 BATCH = 500

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from tilekit.hookspecs import hookimpl
 from tilekit.lazy import lazy_exports
+from tilekit.plugins import Family
 
 __all__ = ["VertexType", "archimedean_tiling", "laves_prototile", "laves_tiling", "parse_vertex_type"]
 
@@ -26,12 +27,43 @@ _LAZY = {
 __getattr__, __dir__ = lazy_exports(__name__, _LAZY)
 
 
+def _archimedean_from_spec(spec):
+    # measured start-up cost: the records load the construction (NumPy, shapely, the builder,
+    # ~0.5 s); naming the families (``tilekit list --family ...``) must not pay it
+    from tilekit.plugins.archimedean.records import archimedean_from_spec
+
+    return archimedean_from_spec(spec)
+
+
+def _laves_from_spec(spec):
+    # measured start-up cost: as in _archimedean_from_spec
+    from tilekit.plugins.archimedean.records import laves_from_spec
+
+    return laves_from_spec(spec)
+
+
+FAMILIES = [
+    Family(
+        name="archimedean",
+        summary="The 11 Archimedean (uniform) tilings by regular polygons, named by vertex type (§4.1)",
+        from_spec=_archimedean_from_spec,
+        description=(
+            "Edge-to-edge tilings by regular polygons with every vertex of one type p1.p2...pk. "
+            "Names accept 4^4, (4^4) or 4.4.4.4; the chiral 3^4.6 comes as 3^4.6l and 3^4.6r. "
+            "The vertex-species search adds every vertex type with its classification."
+        ),
+    ),
+    Family(
+        name="laves",
+        summary="The 11 Laves tilings: duals of the Archimedean tilings, monohedral and isohedral (§4.2)",
+        from_spec=_laves_from_spec,
+        description="Named [vertex type] after the Archimedean tiling they are dual to, e.g. [3^2.4.3.4] (Cairo).",
+    ),
+]
+
+
 @hookimpl
 def tilekit_families():
-    # measured start-up cost: the records load the construction (NumPy, shapely, the builder,
-    # ~0.4 s); only commands that use families pay it
-    from tilekit.plugins.archimedean.records import FAMILIES
-
     return FAMILIES
 
 

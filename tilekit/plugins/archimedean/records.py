@@ -11,7 +11,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from tilekit.errors import ParameterError, ParseError
-from tilekit.plugins import CatalogueRecord, Family
+from tilekit.plugins import CatalogueRecord
 from tilekit.plugins.archimedean import construct
 from tilekit.plugins.archimedean.notation import VertexType, format_sequence, parse_sequence
 from tilekit.symmetry import ORBIFOLD
@@ -192,23 +192,3 @@ def laves_from_spec(spec: Mapping[str, Any]) -> Tiling:
         return construct.laves_tiling(str(spec["vertex_type"]), str(spec.get("hand", "")))
     except KeyError:
         raise ParseError(f"laves spec {dict(spec)!r} has no vertex_type") from None
-
-
-FAMILIES = [
-    Family(
-        name="archimedean",
-        summary="The 11 Archimedean (uniform) tilings by regular polygons, named by vertex type (§4.1)",
-        from_spec=archimedean_from_spec,
-        description=(
-            "Edge-to-edge tilings by regular polygons with every vertex of one type p1.p2...pk. "
-            "Names accept 4^4, (4^4) or 4.4.4.4; the chiral 3^4.6 comes as 3^4.6l and 3^4.6r. "
-            "The vertex-species search adds every vertex type with its classification."
-        ),
-    ),
-    Family(
-        name="laves",
-        summary="The 11 Laves tilings: duals of the Archimedean tilings, monohedral and isohedral (§4.2)",
-        from_spec=laves_from_spec,
-        description="Named [vertex type] after the Archimedean tiling they are dual to, e.g. [3^2.4.3.4] (Cairo).",
-    ),
-]
