@@ -34,7 +34,6 @@ from tilekit.lattice import Grid, outline
 from tilekit.plugins.polyomino.heesch import MAX_LEVEL_LIMIT, Corona, HeeschSolver, heesch
 from tilekit.plugins.polyomino.placements import Forms
 from tilekit.plugins.polyomino.torus import TorusSearch, TorusTiling
-from tilekit.sat import DEFAULT_SAT_SOLVER
 from tilekit.symmetry import wallpaper_group
 from tilekit.tiling import Patch, PeriodicTiling
 
@@ -82,7 +81,7 @@ def _corona_json(c: Corona | None, hc: int | None) -> dict | None:
 
 def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes: bool = False,
              probe: int = 2, max_level: int = 5, torus_tiles: int = 8, time_limit: float | None = 120.0,
-             solver: str = DEFAULT_SAT_SOLVER) -> Classification:
+             solver: str = CLASSIFY_SOLVER) -> Classification:
     """Classify one polyform (``analysis`` from :func:`isohedral.analyse`, None if holey)."""
     check_bounds(probe, max_level, torus_tiles)
     if has_holes:

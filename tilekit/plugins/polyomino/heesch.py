@@ -43,7 +43,7 @@ from tilekit import limits
 from tilekit.errors import ParameterError
 from tilekit.lattice import Grid, holes_of, pack, unpack
 from tilekit.plugins.polyomino.placements import Forms
-from tilekit.sat import DEFAULT_SAT_SOLVER, IncrementalSolver
+from tilekit.sat import DEFAULT_SAT_SOLVER, IncrementalSolver, gc_paused
 
 #: The most coronas a search will build (Kaplan's sat tool stops at 7 by default).
 MAX_LEVEL_LIMIT = 12
@@ -250,7 +250,8 @@ class HeeschSolver:
     def surrounds(self, k: int, *, time_limit: float | None = None) -> bool | None:
         """Whether k coronas exist with holes allowed (no hole checks: the coronas of any
         tiling satisfy this formula); None when the time limit expires."""
-        clauses, _ = self._encode(k)
+        with gc_paused():
+            clauses, _ = self._encode(k)
         with IncrementalSolver(clauses, solver=self.solver) as s:
             ans = s.solve(time_limit=time_limit)
         self.sat_calls += 1
@@ -263,7 +264,8 @@ class HeeschSolver:
         if k == 0:
             kern = Corona(self.levels[0].copy(), np.zeros(1, dtype=np.int64), False)
             return kern, kern, True
-        clauses, table = self._encode(k)
+        with gc_paused():
+            clauses, table = self._encode(k)
         hf = table["top"] + 1  # selector: the outermost corona is hole-free too
         deadline = None if time_limit is None else time.monotonic() + time_limit
         with IncrementalSolver(clauses, solver=self.solver) as s:

@@ -24,7 +24,7 @@ import numpy as np
 from tilekit.lattice import Grid
 from tilekit.plugins.polyomino.isohedral import _hnf_add
 from tilekit.plugins.polyomino.placements import Forms
-from tilekit.sat import DEFAULT_SAT_SOLVER, IncrementalSolver, solve
+from tilekit.sat import DEFAULT_SAT_SOLVER, IncrementalSolver, gc_paused, solve
 
 
 def sublattices(N: int):
@@ -97,9 +97,9 @@ class TorusSearch:
         self.R = len(g.roots)
         self.sat_calls = 0
 
-    def cover(self, lattice: tuple[int, int, int], time_limit: float | None = None) -> np.ndarray | None | bool:
-        """Placements (j, u0, v0) of one exact cover of the torus, False if none exists,
-        None if the time limit expired."""
+    def _formula(self, lattice: tuple[int, int, int]):
+        """(clauses, placement variables, placement rows (j, u0, v0)) of the exact cover of
+        the torus, or False when some cell no copy can cover."""
         a, b, d = lattice
         N = a * d
         J, n = self.types.shape
@@ -137,7 +137,16 @@ class TorusSearch:
         # symmetry breaking: translate so that some tile's first cell is at unit (0, 0)
         anchor = (_reduce(meta[:, 1:3] + self.units[meta[:, 0], 0], a, b, d) == 0)
         clauses.append(var[anchor].tolist())
-        self._last = (clauses, var, meta)
+        return clauses, var, meta
+
+    def cover(self, lattice: tuple[int, int, int], time_limit: float | None = None) -> np.ndarray | None | bool:
+        """Placements (j, u0, v0) of one exact cover of the torus, False if none exists,
+        None if the time limit expired."""
+        with gc_paused():
+            formula = self._formula(lattice)
+        if formula is False:
+            return False
+        clauses, var, meta = self._last = formula
         ans = solve(clauses, solver=self.solver, time_limit=time_limit)
         self.sat_calls += 1
         if ans.satisfiable is None:
