@@ -87,3 +87,30 @@ def test_bad_inputs_name_what_is_valid():
         CNF().at_most([1, 2], 1, encoding="nope")
     with pytest.raises(ParameterError, match="non-zero"):
         CNF().add([1, 0])
+
+
+def test_gc_paused_restores_the_collector_and_nests():
+    import gc
+
+    from tilekit.sat import gc_paused
+
+    assert gc.isenabled()
+    with gc_paused():
+        assert not gc.isenabled()
+        with gc_paused():
+            assert not gc.isenabled()
+        assert not gc.isenabled()  # the inner exit keeps the outer pause
+    assert gc.isenabled()
+    try:
+        with gc_paused():
+            raise KeyError("x")
+    except KeyError:
+        pass
+    assert gc.isenabled()  # restored on an exception too
+    gc.disable()
+    try:
+        with gc_paused():
+            pass
+        assert not gc.isenabled()  # a collector that was off stays off
+    finally:
+        gc.enable()
