@@ -134,6 +134,20 @@ def test_every_octomino_decided_and_counts_match_the_published_figures():
         assert {h: tally["hh", n, h] for h in range(4) if tally["hh", n, h]} == KAPLAN_HH[n]
 
 
+@pytest.mark.slow
+def test_the_11_omino_whose_tilings_need_12_tiles_per_unit():
+    """One of Myers' 108 anisohedral 11-ominoes (A075206(11) = 108) has no torus tiling with 8
+    or fewer tiles per translational unit; the default bound (12) finds it, and its tiling is
+    checked from the geometry: exact, and 3-isohedral by its own symmetry group."""
+    poly = tilekit.polyomino("..x../..xxx/xxxx./xx.x.")
+    assert not poly.is_isohedral()
+    a = analyse(SQUARE, poly.cells, construct=False)
+    assert classify(SQUARE, poly.cells, a, torus_tiles=8).tiles == "undecided"
+    c = classify(SQUARE, poly.cells, a, time_limit=600)
+    assert c.tiles == "true" and c.anisohedral_k == 3 and "12 tiles per translational unit" in c.verdict
+    check_anisohedral(torus_tiling(SQUARE, poly.cells, c.witness), 3)
+
+
 def test_the_anisohedral_octomino():
     """Exercise 5.4: the smallest anisohedral polyomino has 8 cells, and there is one (A075206).
     Its tiling found on a torus is exact and 2-isohedral by its own symmetry group."""

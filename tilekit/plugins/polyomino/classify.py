@@ -39,6 +39,9 @@ from tilekit.tiling import Patch, PeriodicTiling
 
 #: Most tiles per translational unit the torus search tries.
 MAX_TORUS_TILES = 12
+#: Tiles per translational unit tried by default: 8 decides every polyomino to n = 10, but one
+#: 11-omino (``..x../..xxx/xxxx./xx.x.``, pgg, k = 3) needs 12 (docs/benchmarks.md).
+DEFAULT_TORUS_TILES = 12
 #: Largest polyomino classified on request (``Polyomino.classification``, ``--set view=``).
 MAX_INTERACTIVE = 16
 #: The classification's default solver: Glucose can be interrupted in this process, so a
@@ -80,7 +83,7 @@ def _corona_json(c: Corona | None, hc: int | None) -> dict | None:
 
 
 def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes: bool = False,
-             probe: int = 2, max_level: int = 5, torus_tiles: int = 8, time_limit: float | None = 120.0,
+             probe: int = 2, max_level: int = 5, torus_tiles: int = DEFAULT_TORUS_TILES, time_limit: float | None = 120.0,
              solver: str = CLASSIFY_SOLVER) -> Classification:
     """Classify one polyform (``analysis`` from :func:`isohedral.analyse`, None if holey)."""
     check_bounds(probe, max_level, torus_tiles)

@@ -11,6 +11,7 @@ from tilekit.lattice import SQUARE, encode, enumerate_free, holes, symmetry_from
 from tilekit.plugins import ChunkResult, Search, SearchParam
 from tilekit.plugins.polyomino.classify import (
     CLASSIFY_SOLVER,
+    DEFAULT_TORUS_TILES,
     MAX_TORUS_TILES,
     check_bounds,
     classify,
@@ -34,7 +35,7 @@ def check_params(params: dict[str, Any]) -> None:
     lo = int(params.get("min_cells") or 1)
     if not 1 <= lo <= n:
         raise ParameterError(f"--min-cells must be between 1 and --max-cells ({n}), got {lo}")
-    check_bounds(int(params.get("probe", 2)), int(params.get("max_level", 5)), int(params.get("torus_tiles", 8)))
+    check_bounds(int(params.get("probe", 2)), int(params.get("max_level", 5)), int(params.get("torus_tiles", DEFAULT_TORUS_TILES)))
 
 
 def chunks(params: dict[str, Any]) -> list[dict[str, Any]]:
@@ -72,7 +73,7 @@ def run_chunk(params: dict[str, Any], chunk: dict[str, Any]):
         t0 = time.monotonic() - bulk
         analysis = None if holey else next(analysed)
         c = classify(SQUARE, cells, analysis, has_holes=bool(holey), probe=int(params.get("probe", 2)),
-                     max_level=int(params.get("max_level", 5)), torus_tiles=int(params.get("torus_tiles", 8)),
+                     max_level=int(params.get("max_level", 5)), torus_tiles=int(params.get("torus_tiles", DEFAULT_TORUS_TILES)),
                      time_limit=float(params.get("time_limit") or 0) or None,
                      solver=str(params.get("solver") or CLASSIFY_SOLVER))
         hc = len(holes(SQUARE, cells)) if holey else 0
@@ -97,7 +98,7 @@ def run_chunk(params: dict[str, Any], chunk: dict[str, Any]):
 def summarize(params: dict[str, Any], results: list[dict[str, Any]]) -> dict[str, Any]:
     """The bounds of the run (the per-size tallies are the summed counts)."""
     return {"max_cells": int(params["max_cells"]), "max_level": int(params.get("max_level", 5)),
-            "torus_tiles": int(params.get("torus_tiles", 8))}
+            "torus_tiles": int(params.get("torus_tiles", DEFAULT_TORUS_TILES))}
 
 
 def _search() -> Search:
@@ -112,7 +113,7 @@ def _search() -> Search:
                         max=MAX_CLASSIFY),
             SearchParam("probe", int, 2, "coronas tried before the torus search", min=1, max=MAX_LEVEL_LIMIT),
             SearchParam("max_level", int, 5, "most coronas tried before 'undecided'", min=1, max=MAX_LEVEL_LIMIT),
-            SearchParam("torus_tiles", int, 8, "most tiles per translational unit tried on tori", min=2,
+            SearchParam("torus_tiles", int, DEFAULT_TORUS_TILES, "most tiles per translational unit tried on tori", min=2,
                         max=MAX_TORUS_TILES),
             SearchParam("time_limit", float, 300.0, "seconds of SAT work per polyomino before 'undecided' (0: none)",
                         min=0, max=86400),
