@@ -35,7 +35,7 @@ def check_params(params: dict[str, Any]) -> None:
     lo = int(params.get("min_cells") or 1)
     if not 1 <= lo <= n:
         raise ParameterError(f"--min-cells must be between 1 and --max-cells ({n}), got {lo}")
-    check_bounds(int(params.get("probe", 2)), int(params.get("max_level", 5)), int(params.get("torus_tiles", DEFAULT_TORUS_TILES)))
+    check_bounds(**_bounds(params))
 
 
 def chunks(params: dict[str, Any]) -> list[dict[str, Any]]:
@@ -67,13 +67,13 @@ def run_chunk(params: dict[str, Any], chunk: dict[str, Any]):
     plain = [polys[i] for i in keep if not hole_flags[i]]
     analysed = iter(analyse_many(SQUARE, plain))
     bulk = (time.monotonic() - t0) / max(1, len(keep))
+    bounds = _bounds(params)
     for i in keep:
         cells, holey, mask = polys[i], hole_flags[i], int(masks[i])
         size = len(cells)
         t0 = time.monotonic() - bulk
         analysis = None if holey else next(analysed)
-        c = classify(SQUARE, cells, analysis, has_holes=bool(holey), probe=int(params.get("probe", 2)),
-                     max_level=int(params.get("max_level", 5)), torus_tiles=int(params.get("torus_tiles", DEFAULT_TORUS_TILES)),
+        c = classify(SQUARE, cells, analysis, has_holes=bool(holey), **bounds,
                      time_limit=float(params.get("time_limit") or 0) or None,
                      solver=str(params.get("solver") or CLASSIFY_SOLVER))
         hc = len(holes(SQUARE, cells)) if holey else 0
@@ -97,7 +97,14 @@ def run_chunk(params: dict[str, Any], chunk: dict[str, Any]):
 
 def summarize(params: dict[str, Any], results: list[dict[str, Any]]) -> dict[str, Any]:
     """The bounds of the run (the per-size tallies are the summed counts)."""
-    return {"max_cells": int(params["max_cells"]), "max_level": int(params.get("max_level", 5)),
+    b = _bounds(params)
+    return {"max_cells": int(params["max_cells"]), "max_level": b["max_level"], "torus_tiles": b["torus_tiles"]}
+
+
+def _bounds(params: dict[str, Any]) -> dict[str, int]:
+    """The run's search bounds, the defaults filled in (one copy for checking, classifying
+    and summarising)."""
+    return {"probe": int(params.get("probe", 2)), "max_level": int(params.get("max_level", 5)),
             "torus_tiles": int(params.get("torus_tiles", DEFAULT_TORUS_TILES))}
 
 
