@@ -28,6 +28,7 @@ DEFAULT_PLUGINS: tuple[str, ...] = (
     "tilekit.plugins.substitution",
     "tilekit.plugins.wang",
     "tilekit.plugins.polyomino",
+    "tilekit.plugins.kuniform",
 )
 
 

@@ -1,0 +1,48 @@
+"""The k-uniform family plugin: edge-to-edge tilings by regular polygons with k vertex orbits.
+
+Modules: ``dsymbol`` (vertex stars, the D-symbol search, minimality, canonical form),
+``realize`` (laying a D-symbol out as regular polygons, its lattice and translational
+unit), ``search`` (the ``k-uniform`` search, the tiling class and the catalogue records).
+The tilings are stored as search results (``tilekit search k-uniform --k K``), not shipped.
+"""
+
+from __future__ import annotations
+
+from tilekit.hookspecs import hookimpl
+from tilekit.plugins import Family
+
+FAMILY = "k-uniform"
+
+
+def _from_spec(spec):
+    # measured start-up cost: the layout loads NumPy and the archimedean construction
+    # (~0.4 s); naming the families must not pay it
+    from tilekit.plugins.kuniform.search import from_spec
+
+    return from_spec(spec)
+
+
+FAMILIES = [
+    Family(
+        name=FAMILY,
+        summary="k-uniform tilings by regular polygons: k vertex orbits under the symmetry group (§4.1)",
+        from_spec=_from_spec,
+        description=(
+            "Found by `tilekit search k-uniform --k K` from their Delaney-Dress symbols (20 for k = 2, "
+            "61 for k = 3); named by their orbit types, e.g. [3^6; 3^4.6] p6, with #i when several share a name."
+        ),
+    )
+]
+
+
+@hookimpl
+def tilekit_families():
+    return FAMILIES
+
+
+@hookimpl
+def tilekit_searches():
+    # measured start-up cost: as in _from_spec
+    from tilekit.plugins.kuniform.search import SEARCH
+
+    return [SEARCH]

@@ -1,0 +1,204 @@
+"""The ``k-uniform`` search and the k-uniform tilings as catalogue records (§4.1).
+
+A run splits into one chunk per multiset of k vertex types (of the 21 whose angles sum to
+2π); a chunk tries every choice of stabilizer class for each orbit (equal types take their
+classes as a multiset, so no choice is tried twice), collects the minimal D-symbols with
+exactly those vertex orbits (:mod:`.dsymbol`), merges isomorphic ones, lays each out
+(:mod:`.realize`) and names it. A tiling's multiset of orbit types is an invariant, so every
+tiling belongs to exactly one chunk and no two chunks write the same record.
+"""
+
+from __future__ import annotations
+
+import itertools
+import time
+from collections.abc import Iterator, Mapping, Sequence
+from typing import Any
+
+from tilekit.plugins import CatalogueRecord, ChunkResult, Search, SearchParam
+from tilekit.plugins.archimedean.notation import VertexType, format_sequence
+from tilekit.plugins.kuniform.dsymbol import DSymbol, Star, stabilizer_classes, symbols, vertex_types
+from tilekit.plugins.kuniform.realize import periodic_tiling
+from tilekit.tiling import PeriodicTiling
+
+FAMILY = "k-uniform"
+#: The largest k a run accepts: k = 4 takes hours on two cores (docs/benchmarks.md).
+MAX_K = 6
+
+
+def _order(seq: tuple[int, ...]) -> tuple:
+    """Orbit types are listed by decreasing degree, then by sequence (``[3^6; 3^4.6]``,
+    ``[3.4.3.12; 3.12^2]``), as in the published lists."""
+    return (-len(seq), seq)
+
+
+def types_text(types: Sequence[tuple[int, ...]]) -> str:
+    """``[3^6; (3^4.6)^2]``: the orbit types in order, repeats as exponents."""
+    parts = []
+    for seq, run in itertools.groupby(sorted(types, key=_order)):
+        n = len(list(run))
+        text = format_sequence(seq)
+        parts.append(f"({text})^{n}" if n > 1 else text)
+    return "[" + "; ".join(parts) + "]"
+
+
+class KUniformTiling(PeriodicTiling):
+    """A k-uniform tiling, rebuilt from its D-symbol."""
+
+    def __init__(self, *args: Any, symbol: DSymbol, name: str = "", family: str = FAMILY, **kw: Any) -> None:
+        super().__init__(*args, family=family, name=name, **kw)
+        self.symbol = symbol
+
+    @property
+    def orbit_types(self) -> list[tuple[int, ...]]:
+        return sorted((self.symbol.vertex_type(o[0]) for o in self.symbol.vertex_orbits()), key=_order)
+
+    def spec(self) -> dict[str, Any]:
+        return {"kind": FAMILY, "dsymbol": self.symbol.encode()}
+
+    def describe(self) -> str:
+        sizes = sorted(set(self.symbol.face))
+        counts = [int(sum(1 for p in self.unit_prototile if sizes[p] == n)) for n in sizes]
+        per_unit = ", ".join(f"{c} {n}-gon{'s' if c > 1 else ''}" for n, c in zip(sizes, counts))
+        return (
+            f"{len(self.orbit_types)}-uniform: vertex orbits {types_text(self.orbit_types)}.\n"
+            f"Translational unit: {per_unit}.\n"
+            f"D-symbol ({self.symbol.size} chambers): {self.symbol.encode()}"
+        )
+
+    def properties(self) -> dict[str, Any]:
+        props = super().properties()
+        types = self.orbit_types
+        props.update({
+            "k": len(types),
+            "k_isogonal": len(types),
+            "vertex_types": len(set(types)),
+            "vertex_type": sorted({format_sequence(t) for t in types}),
+            "orbit_types": types_text(types),
+            "polygons": sorted(set(self.symbol.face)),
+            "k_hedral": len(set(self.symbol.face)),
+            "edge_to_edge": True,
+            "chambers": self.symbol.size,
+            "unit_tiles": len(self.unit_prototile),
+        })
+        return props
+
+
+def tiling_of(symbol: DSymbol, name: str = "") -> KUniformTiling:
+    return periodic_tiling(symbol, name=name, cls=KUniformTiling, symbol=symbol)
+
+
+def from_spec(spec: Mapping[str, Any]) -> KUniformTiling:
+    from tilekit.errors import ParseError
+
+    text = spec.get("dsymbol")
+    if not isinstance(text, str):
+        raise ParseError("a k-uniform spec needs 'dsymbol': the text m01/m12/σ0/σ1/σ2")
+    try:
+        symbol = DSymbol.decode(text)
+    except ValueError as exc:
+        raise ParseError(f"k-uniform spec: {exc}") from None
+    return tiling_of(symbol, name=str(spec.get("name", "")))
+
+
+# --------------------------------------------------------------------------- the search
+
+
+def type_multisets(k: int) -> Iterator[tuple[VertexType, ...]]:
+    return itertools.combinations_with_replacement(vertex_types(), k)
+
+
+def chunks(params: Mapping[str, Any]) -> Iterator[dict[str, Any]]:
+    """One chunk per multiset of k vertex types (C(21 + k - 1, k) of them), less the 21
+    multisets of a single type when k >= 2: the tilings with every vertex of one type are
+    the eleven Archimedean ones (Kaplan §4.1; Grünbaum & Shephard, *Tilings and Patterns*,
+    2.1.3), each 1-uniform. The search itself confirms this for k <= 3 (tests)."""
+    k = int(params["k"])
+    for combo in type_multisets(k):
+        if k >= 2 and len(set(combo)) == 1:
+            continue
+        yield {"types": [str(t) for t in combo]}
+
+
+def star_choices(types: Sequence[tuple[int, ...]]) -> Iterator[tuple[Star, ...]]:
+    """Every multiset of (type, stabilizer class) with the given multiset of types."""
+    groups = [(seq, len(list(run))) for seq, run in itertools.groupby(sorted(types))]
+    per_group = [
+        list(itertools.combinations_with_replacement(range(len(stabilizer_classes(seq))), n)) for seq, n in groups
+    ]
+    for pick in itertools.product(*per_group):
+        yield tuple(Star(seq, i) for (seq, _n), classes in zip(groups, pick) for i in classes)
+
+
+def tilings_with_types(types: Sequence[tuple[int, ...]]) -> list[DSymbol]:
+    """The k-uniform tilings whose vertex orbits have exactly these types (one minimal
+    D-symbol each, in the order of their encodings)."""
+    found: dict[tuple, DSymbol] = {}
+    for combo in star_choices(types):
+        for key, sym in symbols(combo).items():
+            found.setdefault(key, sym)
+    return sorted(found.values(), key=lambda s: s.encode())
+
+
+def record_of(symbol: DSymbol, name: str, tiling: KUniformTiling | None = None) -> CatalogueRecord:
+    from tilekit.symmetry import ORBIFOLD, wallpaper_group
+
+    tiling = tiling or tiling_of(symbol, name)
+    group = wallpaper_group(tiling)
+    props = tiling.properties()
+    props.update({"wallpaper_group": group.iuc, "orbifold": ORBIFOLD[group.iuc], "symmetry_group": ORBIFOLD[group.iuc]})
+    spec = tiling.spec()
+    spec["name"] = name
+    return CatalogueRecord(FAMILY, name, spec, title=f"{props['k']}-uniform tiling {props['orbit_types']}, {group.iuc}",
+                           properties=props)
+
+
+def records_for(types: Sequence[tuple[int, ...]]) -> list[CatalogueRecord]:
+    """Named records for the tilings of one type multiset: ``[types] group``, with ``#i``
+    when several share both (numbered in the order of their D-symbol encodings)."""
+    from tilekit.symmetry import wallpaper_group
+
+    named: dict[str, list[tuple[DSymbol, KUniformTiling]]] = {}
+    for sym in tilings_with_types(types):
+        tiling = tiling_of(sym)
+        base = f"{types_text(types)} {wallpaper_group(tiling).iuc}"
+        named.setdefault(base, []).append((sym, tiling))
+    out = []
+    for base, items in named.items():
+        for i, (sym, tiling) in enumerate(items, 1):
+            name = base if len(items) == 1 else f"{base} #{i}"
+            tiling.name = name
+            out.append(record_of(sym, name, tiling))
+    return out
+
+
+def run_chunk(params: Mapping[str, Any], chunk: Mapping[str, Any]) -> ChunkResult:
+    started = time.perf_counter()
+    types = [VertexType.parse(t).polygons for t in chunk["types"]]
+    records = records_for(types)
+    results = [{"name": r.name, "vertex_types": r.properties["vertex_types"],
+                "wallpaper_group": r.properties["wallpaper_group"]} for r in records]
+    distinct = len(set(types))
+    counts: dict[str, int | float] = {"tilings": len(records), "type_multisets": 1,
+                                      "seconds": round(time.perf_counter() - started, 3)}
+    counts[f"with_{distinct}_types"] = len(records)
+    return ChunkResult(results=results, records=records, counts=counts)
+
+
+def summarize(params: Mapping[str, Any], results: list[dict[str, Any]]) -> dict[str, Any]:
+    by_group: dict[str, int] = {}
+    for r in results:
+        by_group[r["wallpaper_group"]] = by_group.get(r["wallpaper_group"], 0) + 1
+    return {"k": int(params["k"]), "found": len(results), "by_wallpaper_group": dict(sorted(by_group.items()))}
+
+
+SEARCH = Search(
+    name="k-uniform",
+    summary="Enumerate the k-uniform tilings by regular polygons (k vertex orbits) from their D-symbols",
+    family=FAMILY,
+    params=(SearchParam("k", int, None, "number of vertex orbits (transitivity classes)", required=True,
+                        min=1, max=MAX_K),),
+    chunks=chunks,
+    run_chunk=run_chunk,
+    summarize=summarize,
+)
