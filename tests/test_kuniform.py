@@ -14,6 +14,7 @@ import itertools
 import math
 import random
 from collections import Counter
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -24,9 +25,11 @@ from tilekit.plugins.kuniform.dsymbol import DSymbol, Star, stars, symbols, vert
 from tilekit.plugins.kuniform.search import (
     chunks,
     from_spec,
+    linked,
     records_for,
-    tilings_with_types,
+    star_choices,
     tiling_of,
+    tilings_with_types,
     types_text,
 )
 from tilekit.symmetry import vertex_orbits, wallpaper_group
@@ -182,16 +185,30 @@ def test_three_uniform_are_sixty_one():
     distinct_up_to_congruence(syms, 3)
 
 
-def test_single_type_multisets_hold_no_k_uniform_tiling():
-    """The search skips multisets of one vertex type for k >= 2 (the eleven Archimedean tilings
-    are the only tilings with one vertex type, §4.1); the search itself agrees for k = 2, 3."""
-    for t in vertex_types():
-        assert tilings_with_types([t.polygons] * 2) == []
+def raw_search(types) -> list:
+    """The D-symbol search on a type multiset with none of the run's shortcuts."""
+    out = []
+    for combo in star_choices(types):
+        out += symbols(combo).values()
+    return out
+
+
+def test_skipped_multisets_hold_no_k_uniform_tiling():
+    """Runs skip multisets of one vertex type for k >= 2 (the eleven Archimedean tilings are the
+    only tilings with one vertex type, §4.1) and multisets that are not linked by shared edge
+    pairs (a D-symbol is connected); the plain search agrees on every such multiset for k = 2,
+    and on the one-type multisets of the four types with most stabilizer classes for k = 3."""
+    kinds = [t.polygons for t in vertex_types()]
+    skipped = [c for c in itertools.combinations_with_replacement(kinds, 2) if len(set(c)) == 1 or not linked(c)]
+    assert len(skipped) == math.comb(22, 2) - 40
+    for types in skipped:
+        assert raw_search(types) == [], types
     for seq in [(4, 4, 4, 4), (3, 3, 3, 3, 3, 3), (3, 3, 3, 4, 4), (3, 6, 3, 6)]:
-        assert tilings_with_types([seq] * 3) == []
+        assert raw_search([seq] * 3) == []
     listed = list(chunks({"k": 2}))
-    assert len(listed) == math.comb(21 + 1, 2) - 21
+    assert len(listed) == 40
     assert all(len(set(c["types"])) == 2 for c in listed)
+    assert not linked([(3, 7, 42), (3, 3, 3, 3, 3, 3)]) and linked([(3, 3, 4, 12), (3, 12, 12)])
 
 
 def test_canonical_form_ignores_labels():
@@ -255,6 +272,10 @@ def test_search_through_the_catalogue(catalogue_cli):
     assert catalogue_cli.count("k-uniform", "vertex_type=3^6") == 7
     r = catalogue_cli.run("show", "[3^6; 3^4.6] p6")
     assert r.exit_code == 0 and "2-uniform" in r.output and "632" in r.output, r.output
+    assert "20 3-gons, 1 6-gon" in r.output  # the unit: angles 20π + 4π = 12 vertices x 2π
+    out = Path(catalogue_cli.url.removeprefix("sqlite:///")).with_name("p6.svg")
+    r = catalogue_cli.run("render", "[3^6; 3^4.6] p6", "-o", str(out))
+    assert r.exit_code == 0 and out.read_text().count("<path") >= 2, r.output
 
 
 @pytest.mark.parametrize("value", ["0", "7", "two"])

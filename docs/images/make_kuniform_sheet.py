@@ -17,8 +17,8 @@ from pathlib import Path
 import cairosvg
 import numpy as np
 
-from tilekit.plugins.kuniform.search import records_for, tiling_of, type_multisets
 from tilekit.plugins.kuniform.dsymbol import DSymbol
+from tilekit.plugins.kuniform.search import records_for, tiling_of, type_multisets
 from tilekit.render import patch_to_svg
 from tilekit.symmetry import vertex_orbits
 

@@ -34,7 +34,12 @@ from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from functools import cache
 
-from tilekit.plugins.archimedean.notation import VertexType, euclidean_species, format_sequence, types_of_species
+from tilekit.plugins.archimedean.notation import (
+    VertexType,
+    euclidean_species,
+    format_sequence,
+    types_of_species,
+)
 
 Perm = tuple[int, ...]
 
@@ -110,20 +115,25 @@ class Star:
         return format_sequence(self.polygons)
 
     def chambers(self) -> tuple[list[int], list[int], list[int], list[int]]:
-        """(flag -> chamber, σ1, σ2, face size) of the star modulo its stabilizer."""
-        d = len(self.polygons)
-        n = 2 * d
-        of = [-1] * n
-        reps: list[int] = []
-        for f in range(n):
-            if of[f] < 0:
-                for g in self.group:
-                    of[g[f]] = len(reps)
-                reps.append(f)
-        s1 = [of[f ^ 1] for f in reps]
-        s2 = [of[(2 * ((f // 2 + 1) % d)) if f % 2 else (2 * ((f // 2 - 1) % d) + 1)] for f in reps]
-        face = [self.polygons[f // 2] for f in reps]
-        return of, s1, s2, face
+        """(flag -> chamber, σ1, σ2, face size) of the star modulo its stabilizer (cached:
+        a run builds the same 53 stars into thousands of combinations)."""
+        return _chambers(self)
+
+
+@cache
+def _chambers(star: Star) -> tuple[list[int], list[int], list[int], list[int]]:
+    d = len(star.polygons)
+    of = [-1] * (2 * d)
+    reps: list[int] = []
+    for f in range(2 * d):
+        if of[f] < 0:
+            for g in star.group:
+                of[g[f]] = len(reps)
+            reps.append(f)
+    s1 = [of[f ^ 1] for f in reps]
+    s2 = [of[(2 * ((f // 2 + 1) % d)) if f % 2 else (2 * ((f // 2 - 1) % d) + 1)] for f in reps]
+    face = [star.polygons[f // 2] for f in reps]
+    return of, s1, s2, face
 
 
 @cache
@@ -269,6 +279,7 @@ def _from_stars(combo: Sequence[Star]) -> tuple[list[int], list[int], list[int],
     return s1, s2, face, degree
 
 
+@cache
 def star_orbit_leaders(star: Star) -> list[bool]:
     """For each chamber of the star: is it the least of its orbit under the automorphisms
     of the star's chambers (permutations keeping σ1, σ2 and the face sizes)? The chambers
@@ -302,9 +313,10 @@ def chamber_count(combo: Sequence[Star]) -> int:
     return sum(2 * len(s.polygons) // len(s.group) for s in combo)
 
 
-def gluings(combo: Sequence[Star]) -> Iterator[DSymbol]:
+def gluings(combo: Sequence[Star], *, symmetry_breaking: bool = True) -> Iterator[DSymbol]:
     """Every σ0 completing the stars of ``combo`` to a connected D-symbol whose faces
-    close (see the module text); minimal or not, isomorphic ones repeated."""
+    close (see the module text); minimal or not, isomorphic ones repeated. Without
+    ``symmetry_breaking`` (the benchmarks' plain search) every labelling is tried."""
     s1, s2, face, degree = _from_stars(combo)
     n = len(s1)
     s0 = [-1] * n
@@ -390,7 +402,7 @@ def gluings(combo: Sequence[Star]) -> Iterator[DSymbol]:
             if face[s2[e]] != face[s2[d]]:
                 continue
             t = owner[e]
-            if t != home and fresh(t) and (allowed_fresh.get(kind[t]) != t or not first_of_orbit[e]):
+            if symmetry_breaking and t != home and fresh(t) and (allowed_fresh.get(kind[t]) != t or not first_of_orbit[e]):
                 continue
             yield e
 
@@ -447,10 +459,10 @@ def gluings(combo: Sequence[Star]) -> Iterator[DSymbol]:
         stack.append((nxt, candidates(nxt), []))
 
 
-def symbols(combo: Sequence[Star]) -> dict[tuple, DSymbol]:
+def symbols(combo: Sequence[Star], *, symmetry_breaking: bool = True) -> dict[tuple, DSymbol]:
     """The distinct minimal D-symbols with exactly the vertex orbits of ``combo``."""
     out: dict[tuple, DSymbol] = {}
-    for sym in gluings(combo):
+    for sym in gluings(combo, symmetry_breaking=symmetry_breaking):
         if sym.is_minimal():
             key = sym.canonical_form()
             out.setdefault(key, sym)

@@ -17,7 +17,13 @@ from typing import Any
 
 from tilekit.plugins import CatalogueRecord, ChunkResult, Search, SearchParam
 from tilekit.plugins.archimedean.notation import VertexType, format_sequence
-from tilekit.plugins.kuniform.dsymbol import DSymbol, Star, stabilizer_classes, symbols, vertex_types
+from tilekit.plugins.kuniform.dsymbol import (
+    DSymbol,
+    Star,
+    stabilizer_classes,
+    symbols,
+    vertex_types,
+)
 from tilekit.plugins.kuniform.realize import periodic_tiling
 from tilekit.tiling import PeriodicTiling
 
@@ -62,7 +68,8 @@ class KUniformTiling(PeriodicTiling):
         per_unit = ", ".join(f"{c} {n}-gon{'s' if c > 1 else ''}" for n, c in zip(sizes, counts))
         return (
             f"{len(self.orbit_types)}-uniform: vertex orbits {types_text(self.orbit_types)}.\n"
-            f"Translational unit: {per_unit}.\n"
+            f"Translational unit: {per_unit}; v1 = ({self.v1[0]:.6g}, {self.v1[1]:.6g}), "
+            f"v2 = ({self.v2[0]:.6g}, {self.v2[1]:.6g}).\n"
             f"D-symbol ({self.symbol.size} chambers): {self.symbol.encode()}"
         )
 
@@ -108,14 +115,39 @@ def type_multisets(k: int) -> Iterator[tuple[VertexType, ...]]:
     return itertools.combinations_with_replacement(vertex_types(), k)
 
 
+def edge_pairs(seq: tuple[int, ...]) -> set[frozenset[int]]:
+    """The pairs of face sizes on the edges at a vertex of type ``seq``."""
+    return {frozenset((seq[j - 1], seq[j])) for j in range(len(seq))}
+
+
+def linked(types: Sequence[tuple[int, ...]]) -> bool:
+    """Whether the types are connected by shared edge pairs: an edge glues two vertices
+    with the same pair of faces on it, and a tiling's D-symbol is connected, so a multiset
+    whose graph (types joined when they share an edge pair) falls apart holds no tiling.
+    This drops every mixture with 3.7.42, 3.8.24, 3.9.18, 3.10.15, 4.5.20, 5.5.10 or 4.8^2."""
+    distinct = sorted(set(types))
+    pairs = [edge_pairs(t) for t in distinct]
+    seen, stack = {0}, [0]
+    while stack:
+        i = stack.pop()
+        for j in range(len(distinct)):
+            if j not in seen and pairs[i] & pairs[j]:
+                seen.add(j)
+                stack.append(j)
+    return len(seen) == len(distinct)
+
+
 def chunks(params: Mapping[str, Any]) -> Iterator[dict[str, Any]]:
     """One chunk per multiset of k vertex types (C(21 + k - 1, k) of them), less the 21
     multisets of a single type when k >= 2: the tilings with every vertex of one type are
     the eleven Archimedean ones (Kaplan §4.1; Grünbaum & Shephard, *Tilings and Patterns*,
-    2.1.3), each 1-uniform. The search itself confirms this for k <= 3 (tests)."""
+    2.1.3), each 1-uniform. The search itself confirms this for k <= 3 (tests). Multisets
+    that are not :func:`linked` are left out too."""
     k = int(params["k"])
     for combo in type_multisets(k):
         if k >= 2 and len(set(combo)) == 1:
+            continue
+        if not linked([t.polygons for t in combo]):
             continue
         yield {"types": [str(t) for t in combo]}
 
@@ -134,6 +166,8 @@ def tilings_with_types(types: Sequence[tuple[int, ...]]) -> list[DSymbol]:
     """The k-uniform tilings whose vertex orbits have exactly these types (one minimal
     D-symbol each, in the order of their encodings)."""
     found: dict[tuple, DSymbol] = {}
+    if not linked(types):
+        return []
     for combo in star_choices(types):
         for key, sym in symbols(combo).items():
             found.setdefault(key, sym)

@@ -1,0 +1,67 @@
+"""The k-uniform search: the D-symbol enumeration per k, with and without its symmetry breaking.
+
+No Python package enumerates k-uniform tilings (the Antwerp library draws them from a
+notation; the "k-uniform-solver" script glues tile edges and reports a week of CPU with
+duplicates left for a separate pruner). The peer here is the plain D-symbol search:
+the same stars, face-first order and checks, but every labelling of every star is tried
+(what one writes first; it was tilekit's own first version). Both run in this process on the
+same type multisets and must give the same tilings.
+
+Run: python benchmarks/bench_kuniform.py [--k 1 2 3] [--plain-max-k 3] [--layout]
+The whole stored run (chunks, records, wallpaper groups) is timed from the shell:
+/usr/bin/time tilekit --catalogue sqlite:////tmp/k.sqlite search k-uniform --k 4 --executor process --workers 2
+"""
+
+from __future__ import annotations
+
+import argparse
+import itertools
+import os
+import time
+
+from tilekit.plugins.kuniform.dsymbol import Star, stabilizer_classes, symbols, vertex_types
+from tilekit.plugins.kuniform.search import star_choices, tiling_of
+
+
+def enumerate_k(k: int, symmetry_breaking: bool) -> tuple[dict, float]:
+    found: dict = {}
+    started = time.process_time()
+    for combo in itertools.combinations_with_replacement([t.polygons for t in vertex_types()], k):
+        if k >= 2 and len(set(combo)) == 1:
+            continue
+        for stars in star_choices(combo):
+            found.update(symbols(stars, symmetry_breaking=symmetry_breaking))
+    return found, time.process_time() - started
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--k", type=int, nargs="+", default=[1, 2, 3])
+    ap.add_argument("--plain-max-k", type=int, default=3, help="largest k for the plain search")
+    ap.add_argument("--layout", action="store_true", help="also time laying every tiling out")
+    args = ap.parse_args()
+    print(f"load average {os.getloadavg()[0]:.2f}; stars: {sum(len(stabilizer_classes(t.polygons)) for t in vertex_types())}"
+          f" ({Star.__name__} = vertex type x stabilizer class)")
+    print("| k | tilings | search CPU s | plain search CPU s | plain / search |" + (" layout CPU s |" if args.layout else ""))
+    print("|---|---|---|---|---|" + ("---|" if args.layout else ""))
+    for k in args.k:
+        found, t = enumerate_k(k, True)
+        if k <= args.plain_max_k:
+            plain, tp = enumerate_k(k, False)
+            assert set(plain) == set(found), "the two searches disagree"
+            ratio = f"**{tp / t:.1f}x**"
+            tp_text = f"{tp:.2f}"
+        else:
+            tp_text, ratio = "—", "—"
+        row = f"| {k} | {len(found)} | {t:.2f} | {tp_text} | {ratio} |"
+        if args.layout:
+            started = time.process_time()
+            for sym in found.values():
+                tiling_of(sym)
+            row += f" {time.process_time() - started:.2f} |"
+        print(row, flush=True)
+    print(f"load average {os.getloadavg()[0]:.2f}")
+
+
+if __name__ == "__main__":
+    main()
