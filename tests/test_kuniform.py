@@ -256,6 +256,9 @@ def test_records_name_the_orbit_types_and_group():
     ({"dsymbol": "3/6/0"}, "5 '/'-separated lists"),
     ({"dsymbol": "3,3/6,6/0,0/1,0/1,0"}, "σ0 is not an involution"),
     ({"dsymbol": "3/6/0/0/x"}, "k-uniform spec"),
+    ({"dsymbol": "3,3/6,6/0,1/0,1/0,1"}, "connected"),
+    ({"dsymbol": "3/3/0/0/0"}, "curvature 1/6"),  # the tetrahedron: spherical
+    ({"dsymbol": "/".join([",".join(["3"] * 80)] * 5)}, "at most 72 chambers"),
 ])
 def test_bad_specs_are_refused(spec, needle):
     with pytest.raises(ParseError, match=needle):

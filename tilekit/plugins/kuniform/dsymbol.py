@@ -32,6 +32,7 @@ from __future__ import annotations
 import itertools
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
+from fractions import Fraction
 from functools import cache
 
 from tilekit.plugins.archimedean.notation import (
@@ -42,6 +43,8 @@ from tilekit.plugins.archimedean.notation import (
 )
 
 Perm = tuple[int, ...]
+#: The largest D-symbol text accepted: 12 chambers per vertex orbit, k <= 6.
+MAX_CHAMBERS = 72
 
 
 # --------------------------------------------------------------------------- vertex stars
@@ -153,7 +156,7 @@ def stars() -> list[Star]:
 @dataclass(frozen=True)
 class DSymbol:
     """A D-symbol: σ0, σ1, σ2 (chamber -> chamber), the face size m01 and degree m12 of
-    each chamber. ``orbit[c]`` is the vertex orbit of chamber c (used for naming)."""
+    each chamber."""
 
     s0: tuple[int, ...]
     s1: tuple[int, ...]
@@ -252,16 +255,37 @@ class DSymbol:
         parts = text.strip().split("/")
         if len(parts) != 5:
             raise ValueError(f"a D-symbol text has 5 '/'-separated lists (m01/m12/σ0/σ1/σ2), got {len(parts)}")
+        if any(p.count(",") >= MAX_CHAMBERS for p in parts):
+            raise ValueError(f"a D-symbol text may have at most {MAX_CHAMBERS} chambers (12 per vertex orbit, k <= 6)")
         face, degree, s0, s1, s2 = (tuple(int(v) for v in p.split(",")) for p in parts)
         n = len(face)
         if not n or any(len(x) != n for x in (degree, s0, s1, s2)):
             raise ValueError("the five lists of a D-symbol text must have the same, non-zero length")
+        if any(m < 3 for m in face + degree):
+            raise ValueError("face sizes (m01) and vertex degrees (m12) must be at least 3")
         for name, s in (("σ0", s0), ("σ1", s1), ("σ2", s2)):
             if any(not 0 <= v < n or s[v] != i for i, v in enumerate(s)):
                 raise ValueError(f"{name} is not an involution on 0..{n - 1}")
         if any(s0[s2[i]] != s2[s0[i]] for i in range(n)):
             raise ValueError("σ0 and σ2 must commute")
-        return cls(s0, s1, s2, face, degree)
+        sym = cls(s0, s1, s2, face, degree)
+        if len(_component(sym)) != n:
+            raise ValueError("a D-symbol must be connected")
+        curvature = sum(Fraction(1, m) + Fraction(1, d) - Fraction(1, 2) for m, d in zip(face, degree))
+        if curvature != 0:
+            raise ValueError(f"the D-symbol has curvature {curvature}, not 0: it does not tile the Euclidean plane")
+        return sym
+
+
+def _component(sym: DSymbol) -> set[int]:
+    seen, stack = {0}, [0]
+    while stack:
+        x = stack.pop()
+        for s in (sym.s0, sym.s1, sym.s2):
+            if s[x] not in seen:
+                seen.add(s[x])
+                stack.append(s[x])
+    return seen
 
 
 def _from_stars(combo: Sequence[Star]) -> tuple[list[int], list[int], list[int], list[int]]:
