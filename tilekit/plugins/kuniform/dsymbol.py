@@ -359,9 +359,21 @@ def gluings(combo: Sequence[Star], *, symmetry_breaking: bool = True) -> Iterato
         first_of_orbit += star_orbit_leaders(star)
     offsets.append(n)
     kind = [(star.polygons, star.stabilizer) for star in combo]
+    glued = [0] * len(combo)  # chambers of each star with σ0 set
+    # σ0 keeps the face, commutes with σ2 (so keeps the face across the edge and whether the
+    # edge end is fixed by σ2): candidates for d share this signature with it
+    by_signature: dict[tuple[int, bool, int], list[int]] = {}
+    for e in range(n):
+        by_signature.setdefault((face[e], s2[e] == e, face[s2[e]]), []).append(e)
+    signature = [(face[e], s2[e] == e, face[s2[e]]) for e in range(n)]
 
     def fresh(t: int) -> bool:
-        return all(s0[x] < 0 for x in range(offsets[t], offsets[t + 1]))
+        return glued[t] == 0
+
+    def clear(xs: list[int]) -> None:
+        for x in xs:
+            s0[x] = -1
+            glued[owner[x]] -= 1
 
     def face_walk(c: int) -> tuple[bool, int]:
         """Whether the <σ0, σ1>-orbit of c can still close (closed: r | p; open: length
@@ -402,28 +414,25 @@ def gluings(combo: Sequence[Star], *, symmetry_breaking: bool = True) -> Iterato
     # explicit stack of (chamber, candidate iterator, assigned chambers)
     def assign(d: int, e: int) -> list[int] | None:
         pairs = [(d, e), (e, d), (s2[d], s2[e]), (s2[e], s2[d])]
-        done = []
+        done: list[int] = []
         for a, b in pairs:
             if s0[a] == -1:
                 s0[a] = b
+                glued[owner[a]] += 1
                 done.append(a)
             elif s0[a] != b:
-                for x in done:
-                    s0[x] = -1
+                clear(done)
                 return None
         return done
 
     def candidates(d: int) -> Iterator[int]:
-        fixed = s2[d] == d
         home = owner[d]
         allowed_fresh: dict[tuple, int] = {}
         for t in range(len(combo)):
             if t != home and kind[t] not in allowed_fresh and fresh(t):
                 allowed_fresh[kind[t]] = t
-        for e in range(n):
-            if s0[e] != -1 or face[e] != face[d] or (s2[e] == e) != fixed:
-                continue
-            if face[s2[e]] != face[s2[d]]:
+        for e in by_signature[signature[d]]:
+            if s0[e] != -1:
                 continue
             t = owner[e]
             if symmetry_breaking and t != home and fresh(t) and (allowed_fresh.get(kind[t]) != t or not first_of_orbit[e]):
@@ -447,8 +456,7 @@ def gluings(combo: Sequence[Star], *, symmetry_breaking: bool = True) -> Iterato
     stack.append((d, candidates(d), []))
     while stack:
         d, cands, done = stack[-1]
-        for x in done:
-            s0[x] = -1
+        clear(done)
         stack[-1] = (d, cands, [])
         nxt = -1
         for e in cands:
@@ -467,8 +475,7 @@ def gluings(combo: Sequence[Star], *, symmetry_breaking: bool = True) -> Iterato
             if ok:
                 stack[-1] = (d, cands, got)
                 break
-            for x in got:
-                s0[x] = -1
+            clear(got)
         else:
             stack.pop()
             continue
