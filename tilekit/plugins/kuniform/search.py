@@ -28,7 +28,8 @@ from tilekit.plugins.kuniform.realize import periodic_tiling
 from tilekit.tiling import PeriodicTiling
 
 FAMILY = "k-uniform"
-#: The largest k a run accepts: k = 4 takes hours on two cores (docs/benchmarks.md).
+#: The largest k a run accepts (Galebach's published enumeration ends at 6); k = 5 takes
+#: 8 minutes on two cores, k = 6 far longer (docs/benchmarks.md).
 MAX_K = 6
 
 
@@ -174,16 +175,15 @@ def tilings_with_types(types: Sequence[tuple[int, ...]]) -> list[DSymbol]:
     return sorted(found.values(), key=lambda s: s.encode())
 
 
-def record_of(symbol: DSymbol, name: str, tiling: KUniformTiling | None = None) -> CatalogueRecord:
-    from tilekit.symmetry import ORBIFOLD, wallpaper_group
+def record_of(tiling: KUniformTiling, name: str, iuc: str) -> CatalogueRecord:
+    """The catalogue record of a laid-out tiling whose wallpaper group is ``iuc``."""
+    from tilekit.symmetry import ORBIFOLD
 
-    tiling = tiling or tiling_of(symbol, name)
-    group = wallpaper_group(tiling)
     props = tiling.properties()
-    props.update({"wallpaper_group": group.iuc, "orbifold": ORBIFOLD[group.iuc], "symmetry_group": ORBIFOLD[group.iuc]})
+    props.update({"wallpaper_group": iuc, "orbifold": ORBIFOLD[iuc], "symmetry_group": ORBIFOLD[iuc]})
     spec = tiling.spec()
     spec["name"] = name
-    return CatalogueRecord(FAMILY, name, spec, title=f"{props['k']}-uniform tiling {props['orbit_types']}, {group.iuc}",
+    return CatalogueRecord(FAMILY, name, spec, title=f"{props['k']}-uniform tiling {props['orbit_types']}, {iuc}",
                            properties=props)
 
 
@@ -192,17 +192,17 @@ def records_for(types: Sequence[tuple[int, ...]]) -> list[CatalogueRecord]:
     when several share both (numbered in the order of their D-symbol encodings)."""
     from tilekit.symmetry import wallpaper_group
 
-    named: dict[str, list[tuple[DSymbol, KUniformTiling]]] = {}
+    named: dict[str, list[tuple[KUniformTiling, str]]] = {}
     for sym in tilings_with_types(types):
         tiling = tiling_of(sym)
-        base = f"{types_text(types)} {wallpaper_group(tiling).iuc}"
-        named.setdefault(base, []).append((sym, tiling))
+        iuc = wallpaper_group(tiling).iuc
+        named.setdefault(f"{types_text(types)} {iuc}", []).append((tiling, iuc))
     out = []
     for base, items in named.items():
-        for i, (sym, tiling) in enumerate(items, 1):
+        for i, (tiling, iuc) in enumerate(items, 1):
             name = base if len(items) == 1 else f"{base} #{i}"
             tiling.name = name
-            out.append(record_of(sym, name, tiling))
+            out.append(record_of(tiling, name, iuc))
     return out
 
 
