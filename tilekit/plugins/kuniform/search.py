@@ -15,6 +15,7 @@ import time
 from collections.abc import Iterator, Mapping, Sequence
 from typing import Any
 
+from tilekit.errors import ParseError
 from tilekit.plugins import CatalogueRecord, ChunkResult, Search, SearchParam
 from tilekit.plugins.archimedean.notation import VertexType, format_sequence
 from tilekit.plugins.kuniform.dsymbol import (
@@ -25,6 +26,7 @@ from tilekit.plugins.kuniform.dsymbol import (
     vertex_types,
 )
 from tilekit.plugins.kuniform.realize import periodic_tiling
+from tilekit.symmetry import ORBIFOLD, wallpaper_group
 from tilekit.tiling import PeriodicTiling
 
 FAMILY = "k-uniform"
@@ -97,8 +99,6 @@ def tiling_of(symbol: DSymbol, name: str = "") -> KUniformTiling:
 
 
 def from_spec(spec: Mapping[str, Any]) -> KUniformTiling:
-    from tilekit.errors import ParseError
-
     text = spec.get("dsymbol")
     if not isinstance(text, str):
         raise ParseError("a k-uniform spec needs 'dsymbol': the text m01/m12/σ0/σ1/σ2")
@@ -177,8 +177,6 @@ def tilings_with_types(types: Sequence[tuple[int, ...]]) -> list[DSymbol]:
 
 def record_of(tiling: KUniformTiling, name: str, iuc: str) -> CatalogueRecord:
     """The catalogue record of a laid-out tiling whose wallpaper group is ``iuc``."""
-    from tilekit.symmetry import ORBIFOLD
-
     props = tiling.properties()
     props.update({"wallpaper_group": iuc, "orbifold": ORBIFOLD[iuc], "symmetry_group": ORBIFOLD[iuc]})
     spec = tiling.spec()
@@ -190,8 +188,6 @@ def record_of(tiling: KUniformTiling, name: str, iuc: str) -> CatalogueRecord:
 def records_for(types: Sequence[tuple[int, ...]]) -> list[CatalogueRecord]:
     """Named records for the tilings of one type multiset: ``[types] group``, with ``#i``
     when several share both (numbered in the order of their D-symbol encodings)."""
-    from tilekit.symmetry import wallpaper_group
-
     named: dict[str, list[tuple[KUniformTiling, str]]] = {}
     for sym in tilings_with_types(types):
         tiling = tiling_of(sym)
