@@ -313,3 +313,25 @@ def test_the_congruence_check_sees_moved_copies_and_tells_near_twins_apart():
         assert congruent(a, b)
     assert not congruent(tiling_of(p6), tiling_of(p6m))
     assert not congruent(tiling_of(p6m), tiling_of(p6))
+
+
+@pytest.mark.slow
+def test_four_uniform_through_the_run_layer(tmp_path):
+    """k = 4 with two worker processes: 151 tilings (A068599), 33 with four vertex types
+    (A068600), each stored as a record whose orbit types are among the 21 and whose k is 4."""
+    from tilekit.catalogue import open_catalogue
+    from tilekit.search import run_search
+
+    cat = open_catalogue(f"sqlite:///{tmp_path / 'k4.sqlite'}")
+    run = run_search(cat, "k-uniform", {"k": 4}, executor="process", workers=2)
+    summary = cat.run(run).summary
+    assert summary["found"] == summary["tilings"] == A068599[3]
+    assert summary["with_4_types"] == A068600[3]
+    assert sum(summary[f"with_{m}_types"] for m in (2, 3, 4)) == A068599[3]
+    names = {str(t) for t in vertex_types()}
+    records = list(cat.query(family="k-uniform"))
+    cat.close()
+    assert len(records) == A068599[3] and len({r.name for r in records}) == A068599[3]
+    for r in records:
+        listed = r.properties["vertex_type"]
+        assert r.properties["k"] == 4 and set(listed if isinstance(listed, list) else [listed]) <= names
