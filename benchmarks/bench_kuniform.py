@@ -15,21 +15,19 @@ The whole stored run (chunks, records, wallpaper groups) is timed from the shell
 from __future__ import annotations
 
 import argparse
-import itertools
 import os
 import time
 
+from tilekit.plugins.archimedean.notation import VertexType
 from tilekit.plugins.kuniform.dsymbol import Star, stabilizer_classes, symbols, vertex_types
-from tilekit.plugins.kuniform.search import star_choices, tiling_of
+from tilekit.plugins.kuniform.search import chunks, star_choices, tiling_of
 
 
 def enumerate_k(k: int, symmetry_breaking: bool) -> tuple[dict, float]:
     found: dict = {}
     started = time.process_time()
-    for combo in itertools.combinations_with_replacement([t.polygons for t in vertex_types()], k):
-        if k >= 2 and len(set(combo)) == 1:
-            continue
-        for stars in star_choices(combo):
+    for chunk in chunks({"k": k}):  # the run's own multisets
+        for stars in star_choices([VertexType.parse(t).polygons for t in chunk["types"]]):
             found.update(symbols(stars, symmetry_breaking=symmetry_breaking))
     return found, time.process_time() - started
 

@@ -59,7 +59,7 @@ def all_symbols(k: int) -> list[DSymbol]:
 def vertex_types_by_geometry(tiling) -> list[tuple[int, ...]]:
     """The vertex type at each vertex of one translational unit, read from a patch: the
     polygons that have the point as a corner, in angular order round it."""
-    verts = tiling.v1 * 0 + np.asarray(tiling_vertices(tiling))
+    verts = np.asarray(tiling_vertices(tiling))
     span = np.abs(tiling.v1) + np.abs(tiling.v2)
     lo = verts.min(axis=0) - span - 4
     hi = verts.max(axis=0) + span + 4

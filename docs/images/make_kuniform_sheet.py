@@ -17,8 +17,9 @@ from pathlib import Path
 import cairosvg
 import numpy as np
 
+from tilekit.plugins.archimedean.notation import VertexType
 from tilekit.plugins.kuniform.dsymbol import DSymbol
-from tilekit.plugins.kuniform.search import records_for, tiling_of, type_multisets
+from tilekit.plugins.kuniform.search import chunks, records_for, tiling_of
 from tilekit.render import patch_to_svg
 from tilekit.symmetry import vertex_orbits
 
@@ -60,10 +61,8 @@ def panel(name: str, symbol: DSymbol, x: int, y: int) -> str:
 
 def sheet(k: int) -> str:
     records = []
-    for combo in type_multisets(k):
-        if k >= 2 and len(set(combo)) == 1:
-            continue
-        records += records_for([t.polygons for t in combo])
+    for chunk in chunks({"k": k}):
+        records += records_for([VertexType.parse(t).polygons for t in chunk["types"]])
     records.sort(key=lambda r: r.name)
     rows = -(-len(records) // COLUMNS)
     width, height = COLUMNS * (PANEL + 10) + 10, rows * (PANEL + TITLE + 10) + 10

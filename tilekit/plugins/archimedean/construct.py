@@ -50,6 +50,14 @@ def polygon_angle(p: int) -> float:
     return math.pi * (p - 2) / p
 
 
+def unit_text(tiling: PeriodicTiling, sizes: tuple[int, ...]) -> str:
+    """``Translational unit: 2 3-gons, 1 6-gon; v1 = (...), v2 = (...).`` for a tiling of
+    regular polygons whose prototile i has ``sizes[i]`` sides."""
+    counts = np.bincount(tiling.unit_prototile, minlength=len(sizes))
+    per_unit = ", ".join(f"{c} {n}-gon{'s' if c > 1 else ''}" for n, c in zip(sizes, counts.tolist()))
+    return f"Translational unit: {per_unit}; v1 = {_fmt_vec(tiling.v1)}, v2 = {_fmt_vec(tiling.v2)}."
+
+
 def size_colour(p: int) -> int:
     return SIZE_COLOURS.index(p) if p in SIZE_COLOURS else len(SIZE_COLOURS) + p
 
@@ -379,12 +387,9 @@ class ArchimedeanTiling(PeriodicTiling):
         return {"kind": "archimedean", "vertex_type": str(self.vertex_type), "hand": self.hand}
 
     def describe(self) -> str:
-        sizes = self.vertex_type.sizes
-        counts = [int(sum(1 for p in self.unit_prototile if sizes[p] == n)) for n in sizes]
-        per_unit = ", ".join(f"{c} {n}-gon{'s' if c > 1 else ''}" for n, c in zip(sizes, counts))
         return (
             f"Every vertex: {self.vertex_type.dotted} (polygons met in order round it).\n"
-            f"Translational unit: {per_unit}; v1 = {_fmt_vec(self.v1)}, v2 = {_fmt_vec(self.v2)}.\n"
+            f"{unit_text(self, self.vertex_type.sizes)}\n"
             f"Dual: the Laves tiling [{self.vertex_type}]{self.hand}."
         )
 

@@ -94,9 +94,9 @@ def stabilizer_classes(polygons: tuple[int, ...]) -> tuple[frozenset[Perm], ...]
     aut = _star_symmetries(polygons)
     subgroups = {_closure(pair, n) for pair in itertools.combinations_with_replacement(aut, 2)}
     subgroups.add(frozenset({tuple(range(n))}))
+    inverse = {g: tuple(sorted(range(n), key=lambda x, g=g: g[x])) for g in aut}
     reps: dict[tuple, frozenset[Perm]] = {}
     for sub in subgroups:
-        inverse = {g: tuple(sorted(range(n), key=lambda x, g=g: g[x])) for g in aut}
         key = min(tuple(sorted(_compose(_compose(g, h), inverse[g]) for h in sub)) for g in aut)
         reps.setdefault(key, sub)
     return tuple(reps[k] for k in sorted(reps, key=lambda k: (-len(k), k)))

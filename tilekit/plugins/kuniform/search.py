@@ -17,6 +17,7 @@ from typing import Any
 
 from tilekit.errors import ParseError
 from tilekit.plugins import CatalogueRecord, ChunkResult, Search, SearchParam
+from tilekit.plugins.archimedean.construct import unit_text
 from tilekit.plugins.archimedean.notation import VertexType, format_sequence
 from tilekit.plugins.kuniform.dsymbol import (
     DSymbol,
@@ -66,13 +67,9 @@ class KUniformTiling(PeriodicTiling):
         return {"kind": FAMILY, "dsymbol": self.symbol.encode()}
 
     def describe(self) -> str:
-        sizes = sorted(set(self.symbol.face))
-        counts = [int(sum(1 for p in self.unit_prototile if sizes[p] == n)) for n in sizes]
-        per_unit = ", ".join(f"{c} {n}-gon{'s' if c > 1 else ''}" for n, c in zip(sizes, counts))
         return (
             f"{len(self.orbit_types)}-uniform: vertex orbits {types_text(self.orbit_types)}.\n"
-            f"Translational unit: {per_unit}; v1 = ({self.v1[0]:.6g}, {self.v1[1]:.6g}), "
-            f"v2 = ({self.v2[0]:.6g}, {self.v2[1]:.6g}).\n"
+            f"{unit_text(self, tuple(sorted(set(self.symbol.face))))}\n"
             f"D-symbol ({self.symbol.size} chambers): {self.symbol.encode()}"
         )
 
@@ -112,10 +109,6 @@ def from_spec(spec: Mapping[str, Any]) -> KUniformTiling:
 # --------------------------------------------------------------------------- the search
 
 
-def type_multisets(k: int) -> Iterator[tuple[VertexType, ...]]:
-    return itertools.combinations_with_replacement(vertex_types(), k)
-
-
 def edge_pairs(seq: tuple[int, ...]) -> set[frozenset[int]]:
     """The pairs of face sizes on the edges at a vertex of type ``seq``."""
     return {frozenset((seq[j - 1], seq[j])) for j in range(len(seq))}
@@ -145,7 +138,7 @@ def chunks(params: Mapping[str, Any]) -> Iterator[dict[str, Any]]:
     2.1.3), each 1-uniform. The search itself confirms this for k <= 3 (tests). Multisets
     that are not :func:`linked` are left out too."""
     k = int(params["k"])
-    for combo in type_multisets(k):
+    for combo in itertools.combinations_with_replacement(vertex_types(), k):
         if k >= 2 and len(set(combo)) == 1:
             continue
         if not linked([t.polygons for t in combo]):
