@@ -48,6 +48,16 @@ def tilekit_searches():
 
 
 @hookspec
+def tilekit_samplers():
+    """Return a list of :class:`tilekit.plugins.Sampler` (tile-based importance sampling, §7.4).
+
+    Called by :func:`tilekit.plugins.samplers` whenever samplers are looked up (``tilekit
+    sample``, :func:`tilekit.sampling.sample`); must be cheap (import the sampling code in the
+    sampler's ``candidates`` function, not here).
+    """
+
+
+@hookspec
 def tilekit_result_tables():
     """Return a list of :class:`tilekit.plugins.ResultTable` this plugin's searches write.
 

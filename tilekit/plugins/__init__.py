@@ -155,6 +155,25 @@ class Search:
     summarize: Callable[[Mapping[str, Any], list[dict[str, Any]]], dict[str, Any]] | None = None
 
 
+@dataclass(frozen=True)
+class Sampler:
+    """A tile-based importance sampler (§7.4) a family contributes: ``tilekit sample --method NAME``.
+
+    ``candidates(density, tau_lo, tau_hi, seed)`` returns ``(points, lo, hi)``: every sample
+    point its tiles can give inside the unit square whose *threshold interval* [lo, hi) meets
+    [tau_lo, tau_hi]. A point is in the set made with threshold tau (the density integral one
+    sample stands for) exactly when lo <= tau < hi, so :func:`tilekit.sampling.sample` picks
+    tau for the requested count from one call, without regenerating. ``reference`` names the
+    paper the method follows.
+    """
+
+    name: str
+    summary: str
+    family: str
+    candidates: Callable[..., tuple[Any, Any, Any]]
+    reference: str = ""
+
+
 def _wanted() -> set[str] | None:
     raw = os.environ.get("TILEKIT_PLUGINS")
     if raw is None or not raw.strip():
@@ -283,6 +302,19 @@ def plugin_info(pm: pluggy.PluginManager | None = None) -> list[PluginInfo]:
         source = getattr(plugin, "__file__", None) or f"{type(plugin).__module__}.{type(plugin).__qualname__}"
         hooks = tuple(sorted(caller.name for caller in (pm.get_hookcallers(plugin) or [])))
         out.append(PluginInfo(str(name), str(source), hooks, dists.get(id(plugin))))
+    return out
+
+
+def samplers(pm: pluggy.PluginManager | None = None) -> dict[str, Sampler]:
+    """Every sampler the plugins contribute, by name (a clash is a PluginError)."""
+    pm = pm or get_plugin_manager()
+    out: dict[str, Sampler] = {}
+    for sampler in _flatten(pm.hook.tilekit_samplers()):
+        if not isinstance(sampler, Sampler):
+            raise PluginError(f"tilekit_samplers returned {type(sampler).__name__}, not a Sampler")
+        if sampler.name in out:
+            raise PluginError(f"two plugins define the sampler {sampler.name!r}")
+        out[sampler.name] = sampler
     return out
 
 

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 import tilekit
 from tilekit.lazy import lazy_exports
-from tilekit.plugins import CatalogueRecord, Family
+from tilekit.plugins import CatalogueRecord, Family, Sampler
 from tilekit.resources import catalogue_dir
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -126,3 +126,31 @@ def tilekit_catalogue_records() -> list[CatalogueRecord]:
 def tilekit_claim_file(path: str) -> str | None:
     """Substitution systems are TOML (or JSON) files."""
     return "substitution" if Path(path).suffix.lower() in (".toml", ".json") else None
+
+
+def _penrose_candidates(density: Any, tau_lo: float, tau_hi: float, seed: int = 0) -> Any:
+    # measured start-up cost: the sampling code loads NumPy, shapely and numba, when it runs
+    from tilekit.plugins.substitution.sampling import penrose_candidates
+
+    return penrose_candidates(density, tau_lo, tau_hi, seed)
+
+
+def _polyomino_candidates(density: Any, tau_lo: float, tau_hi: float, seed: int = 0) -> Any:
+    # measured start-up cost: as in _penrose_candidates
+    from tilekit.plugins.substitution.sampling import polyomino_candidates
+
+    return polyomino_candidates(density, tau_lo, tau_hi, seed)
+
+
+@tilekit.hookimpl
+def tilekit_samplers() -> list[Sampler]:
+    """Selective substitution (§7.4) of penrose-p3 (Robinson triangles) and of the chair."""
+    return [
+        Sampler("penrose", "selective substitution of Penrose rhombs (Robinson triangles), one sample per tile",
+                "substitution", _penrose_candidates,
+                "V. Ostromoukhov, C. Donohue, P.-M. Jodoin, Fast hierarchical importance sampling with blue "
+                "noise properties, SIGGRAPH 2004"),
+        Sampler("polyomino", "selective substitution of the chair (L-tromino 4-rep-tile), one sample per tile",
+                "substitution", _polyomino_candidates,
+                "V. Ostromoukhov, Sampling with polyominoes, SIGGRAPH 2007 (here with the chair rep-tile)"),
+    ]

@@ -83,3 +83,46 @@ def meets_discs(label: np.ndarray, transform: np.ndarray, bounds: tuple[np.ndarr
 
     centres, radii = bounds
     return kernels.meets(label, transform, centres, radii * (1 + 1e-9) + 1e-9, box, similar=False)
+
+
+#: step(label, maps, carry, level) -> mask of the tiles to substitute further (see refine_levels)
+Step = Callable[[np.ndarray, np.ndarray, dict[str, np.ndarray], int], np.ndarray]
+
+
+def refine_levels(
+    label: np.ndarray,
+    maps: np.ndarray,
+    children: Sequence[np.ndarray],
+    matrices: Sequence[np.ndarray],
+    step: Step,
+    max_depth: int,
+    carry: dict[str, np.ndarray] | None = None,
+) -> int:
+    """Selective substitution (§7.4): substitute only the tiles that ``step`` asks for.
+
+    Level 0 is the given tiles. At each level ``step(label, maps, carry, level)`` sees every
+    tile of the level (it may record them) and returns the mask of those to replace by their
+    children; the others stop there. ``carry`` holds per-tile arrays that the children
+    inherit from their parent, plus ``carry["child"]`` (the child's index in its parent's
+    rule) and ``carry["parent_label"]``; ``step`` may update them in place. Stops when no tile
+    is substituted or after ``max_depth`` levels; returns the number of levels seen. Each level
+    is one compiled expansion of the chosen tiles (kernels.py), no Python per tile.
+    """
+    carry = dict(carry or {})
+    sizes = np.array([len(c) for c in children], dtype=np.int64)
+    level = 0
+    while True:
+        split = np.asarray(step(label, maps, carry, level), dtype=bool)
+        if level >= max_depth or not split.any():
+            return level + 1
+        label, maps = label[split], maps[split]
+        parent_carry = {k: v[split] for k, v in carry.items()}
+        kids = sizes[label]
+        new_label, new_maps = expand_by_label(label, maps, children, matrices)
+        parent = np.repeat(np.arange(len(label)), kids)
+        starts = np.cumsum(kids) - kids
+        carry = {k: v[parent] for k, v in parent_carry.items()}
+        carry["child"] = np.arange(len(parent)) - starts[parent]
+        carry["parent_label"] = label[parent]
+        label, maps = new_label, new_maps
+        level += 1

@@ -1,0 +1,150 @@
+"""Importance sampling by selective substitution (§7.4): one sample per tile, tiles substituted
+only where the density asks for more samples.
+
+``penrose`` follows Ostromoukhov, Donohue and Jodoin (SIGGRAPH 2004) on the Penrose rhombs'
+Robinson triangles (``penrose-p3``); ``polyomino`` follows Ostromoukhov (SIGGRAPH 2007) with
+the chair, the L-tromino 4-rep-tile (``chair``). Both run the shared level loop
+(:func:`levels.refine_levels`) over the shipped systems; nothing here knows Penrose geometry.
+
+A tile t carries its density integral I(t) (the exact integral over the square of t's area
+centred on its centroid), the least integral A(t) of its ancestors, and a rank value v(t) in
+(0, 1): the mixed-radix radical inverse of its path of child indices, the last step most
+significant (v(child) = (r + v(parent)) / k for the r-th of k children in a farthest-first
+order of the rule), so siblings are ranked far apart and tiles of one level have ranks spread
+evenly over (0, 1) — a hierarchical ordered dither. With threshold tau (the integral one sample
+stands for) a tile is substituted while I > tau, and a tile that stops keeps its sample (its
+centroid) when I / tau > v: a tile wanting a fraction of a sample gets it with that frequency,
+so counts change smoothly with tau instead of in steps of s^2. Hence the point of t is in the
+set exactly for tau in [I(t), min(A(t), I(t) / v(t))), the interval the sampler reports.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+
+from tilekit.geometry import Affine
+from tilekit.limits import GENERATION_BYTES_PER_TILE, MAX_DEPTH, refuse_over_memory
+from tilekit.plugins.substitution.levels import refine_levels
+from tilekit.polygon import centroid, signed_area
+
+#: The shipped system each method substitutes.
+SYSTEMS = {"penrose": "penrose-p3", "polyomino": "chair"}
+#: Levels below the covering supertile a refinement may go (a peaked density needs more
+#: levels than a uniform one; the tiles per level are bounded by the integral, not the depth).
+MAX_REFINE_LEVELS = MAX_DEPTH + 40
+
+
+@lru_cache(maxsize=4)
+def _prepared(system_name: str) -> tuple:
+    """The system, each prototile's area and centroid, and each rule's farthest-first child order."""
+    # start-up cost: the package's systems load NumPy and shapely; a sampler calls this when it runs
+    from tilekit.plugins.substitution import builtin_systems
+
+    system = builtin_systems()[system_name]
+    areas = np.array([signed_area(p.outline) for p in system.prototiles])
+    cents = np.array([centroid(p.outline) for p in system.prototiles])
+    ranks = []
+    for rule in system.rules:
+        pts = np.array([Affine.apply(m, cents[c][None])[0] for c, m in zip(rule.children, rule.matrices)])
+        order = [0]
+        while len(order) < len(pts):
+            d = np.min(np.linalg.norm(pts[:, None] - pts[order][None], axis=2), axis=1)
+            d[order] = -1.0
+            order.append(int(np.argmax(d)))
+        rank = np.empty(len(pts), dtype=np.int64)
+        rank[order] = np.arange(len(pts))
+        ranks.append(rank)
+    width = max(len(r) for r in ranks)
+    rank_table = np.full((len(ranks), width), -1, dtype=np.int64)
+    for i, r in enumerate(ranks):
+        rank_table[i, : len(r)] = r
+    sizes = np.array([len(r) for r in ranks], dtype=np.int64)
+    most = max(len(p.outline) for p in system.prototiles)
+    corners = np.array([np.vstack([p.outline, np.repeat(p.outline[-1:], most - len(p.outline), axis=0)])
+                        for p in system.prototiles])
+    return system, areas, cents, rank_table, sizes, corners
+
+
+def root_tile(method: str, seed: int) -> tuple[np.ndarray, np.ndarray]:
+    """A supertile covering the unit square: the system's covering seed for a box twice the
+    square's size, turned about the square's centre by a random angle and shifted by up to half
+    the square (``seed`` fixes both)."""
+    # start-up cost: as in _prepared
+    from tilekit.geometry import as_region
+    from tilekit.plugins.substitution import from_spec
+
+    tiling = from_spec({"system": SYSTEMS[method]})
+    label, t, _ = tiling.seed_placement(as_region((-0.5, -0.5, 1.5, 1.5)))
+    rng = np.random.default_rng(seed)
+    angle = float(rng.uniform(0, 2 * np.pi))
+    shift = rng.uniform(-0.5, 0.5, size=2)
+    motion = Affine.translation(0.5 + shift[0], 0.5 + shift[1]) @ Affine.rotation(angle) @ Affine.translation(-0.5, -0.5)
+    return np.array([label], dtype=np.int64), (motion @ t)[None]
+
+
+def candidates(method: str, density, tau_lo: float, tau_hi: float, seed: int = 0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The sample points whose threshold interval meets [tau_lo, tau_hi] (see the module
+    docstring): ``(points (m, 2), lo (m,), hi (m,))``."""
+    system, areas, cents, rank_table, sizes, corners = _prepared(SYSTEMS[method])
+    # every level holds at most total / tau_lo substituted tiles (they are disjoint, each with
+    # integral > tau_lo), so a level has at most max(k) times as many tiles
+    refuse_over_memory("tiles in one level of the refinement", int(sizes.max()) * density.total / tau_lo,
+                       2 * GENERATION_BYTES_PER_TILE, hint="ask for fewer samples")
+    label, maps = root_tile(method, seed)
+    out_p: list[np.ndarray] = []
+    out_lo: list[np.ndarray] = []
+    out_hi: list[np.ndarray] = []
+
+    def step(label: np.ndarray, maps: np.ndarray, carry: dict[str, np.ndarray], level: int) -> np.ndarray:
+        if level == 0:
+            v = np.full(len(label), 0.5)
+        else:
+            k = sizes[carry["parent_label"]]
+            v = (rank_table[carry["parent_label"], carry["child"]] + carry["v"]) / k
+        det = np.abs(maps[:, 0, 0] * maps[:, 1, 1] - maps[:, 0, 1] * maps[:, 1, 0])
+        c = cents[label]
+        x = maps[:, 0, 0] * c[:, 0] + maps[:, 0, 1] * c[:, 1] + maps[:, 0, 2]
+        y = maps[:, 1, 0] * c[:, 0] + maps[:, 1, 1] * c[:, 1] + maps[:, 1, 2]
+        integral = _tile_integral(density, maps, corners[label], det * areas[label])
+        ancestors = carry["A"]
+        with np.errstate(divide="ignore"):
+            hi = np.minimum(ancestors, np.where(v > 0, integral / v, np.inf))
+        keep = ((x >= 0) & (x <= 1) & (y >= 0) & (y <= 1) & (integral < hi)
+                & (integral < tau_hi) & (hi > tau_lo))
+        if keep.any():
+            out_p.append(np.column_stack([x[keep], y[keep]]))
+            out_lo.append(integral[keep])
+            out_hi.append(hi[keep])
+        carry["v"] = v
+        carry["A"] = np.minimum(ancestors, integral)
+        return integral > tau_lo
+
+    refine_levels(label, maps, [r.children for r in system.rules], [r.matrices for r in system.rules], step,
+                  MAX_REFINE_LEVELS, carry={"A": np.full(1, np.inf), "v": np.full(1, 0.5)})
+    if not out_p:
+        return np.zeros((0, 2)), np.zeros(0), np.zeros(0)
+    return np.concatenate(out_p), np.concatenate(out_lo), np.concatenate(out_hi)
+
+
+def _tile_integral(density, maps: np.ndarray, outline: np.ndarray, area: np.ndarray) -> np.ndarray:
+    """The tile's area times the mean density over its bounding box (exact integrals of the
+    box): close to the tile's integral for tiles small against the density's variation, and
+    positive for every tile that meets the square where the density is, since the box holds
+    the tile and, for an exact system, all its descendants."""
+    px = maps[:, 0, 0, None] * outline[:, :, 0] + maps[:, 0, 1, None] * outline[:, :, 1] + maps[:, 0, 2, None]
+    py = maps[:, 1, 0, None] * outline[:, :, 0] + maps[:, 1, 1, None] * outline[:, :, 1] + maps[:, 1, 2, None]
+    x0, x1, y0, y1 = px.min(axis=1), px.max(axis=1), py.min(axis=1), py.max(axis=1)
+    box = (x1 - x0) * (y1 - y0)
+    return density.box_integral(x0, y0, x1, y1) * (area / box)
+
+
+def penrose_candidates(density, tau_lo: float, tau_hi: float, seed: int = 0):
+    """:func:`candidates` on the Penrose rhombs' Robinson triangles (Ostromoukhov et al. 2004)."""
+    return candidates("penrose", density, tau_lo, tau_hi, seed)
+
+
+def polyomino_candidates(density, tau_lo: float, tau_hi: float, seed: int = 0):
+    """:func:`candidates` on the chair, the L-tromino rep-tile (after Ostromoukhov 2007)."""
+    return candidates("polyomino", density, tau_lo, tau_hi, seed)
