@@ -19,7 +19,7 @@ import numpy as np
 
 from tilekit.density import Density
 from tilekit.errors import NotFoundError, ParameterError
-from tilekit.limits import refuse_over
+from tilekit.limits import MAX_PNG_PIXELS, refuse_over
 from tilekit.plugins import samplers
 
 #: Most points one call makes (``tilekit sample -n``; about 100 bytes each while made).
@@ -88,10 +88,10 @@ def sample(density: Density, n: int, method: str = "penrose", seed: int = 0, rel
         tau, count = choose_threshold(lo, hi, n, tau_lo, tau_hi) if len(lo) else (tau0, 0)
         if best is None or abs(count - n) < abs(best[1] - n):
             best = (tau, count, 0, pts, lo, hi)
-        if abs(count - n) <= COUNT_TOLERANCE * n or (count > n and tau < tau_hi * 0.999 and tau > tau_lo * 1.001):
-            break
-        # the count crosses n between tau_lo and tau_hi only when the bracket holds it; widen
-        width *= 2.0
+        at_edge = tau <= tau_lo * (1 + 1e-9) or tau >= tau_hi / (1 + 1e-3)
+        if abs(count - n) <= COUNT_TOLERANCE * n or not at_edge:
+            break  # hit, or n falls in a jump of the count inside the bracket
+        width *= 2.0  # the count reaches n only outside the bracket
     assert best is not None
     tau, _, _, pts, lo, hi = best
     points = pts[(lo <= tau) & (tau < hi)]
@@ -103,14 +103,22 @@ def sample(density: Density, n: int, method: str = "penrose", seed: int = 0, rel
     return SampleSet(points=points, method=method, requested=n, tau=tau, seed=seed, relax=relax)
 
 
+def _kdtree() -> Any:
+    try:
+        from scipy.spatial import cKDTree  # optional: the 'sampling' extra
+    except ImportError:
+        raise ParameterError("Lloyd relaxation and the spacing measures need SciPy: pip install 'tilekit[sampling]' "
+                             "(or --relax 0)") from None
+    return cKDTree
+
+
 def lloyd(points: np.ndarray, density: Density, iterations: int, rng: np.random.Generator,
           per_point: int = 12) -> np.ndarray:
     """Density-weighted Lloyd relaxation by random sampling (Ju, Du and Gunzburger's
     probabilistic Lloyd): each iteration draws ``per_point`` x N points from the density,
     gives each to its nearest sample (one k-d tree query) and moves every sample to the mean
     of its points; a sample given none stays. Vectorised: no Python per point."""
-    from scipy.spatial import cKDTree  # optional: the 'sampling' extra
-
+    cKDTree = _kdtree()
     pts = points.copy()
     for _ in range(iterations):
         probe = density.random_points(per_point * len(pts), rng)
@@ -129,10 +137,9 @@ def lloyd(points: np.ndarray, density: Density, iterations: int, rng: np.random.
 
 def nearest_neighbour_distances(points: np.ndarray, torus: bool = False) -> np.ndarray:
     """Each point's distance to its nearest other point (k-d tree; optionally on the unit torus)."""
-    from scipy.spatial import cKDTree  # optional: the 'sampling' extra
-
-    tree = cKDTree(points, boxsize=1.0 if torus else None) if not torus else cKDTree(np.mod(points, 1.0), boxsize=1.0)
-    d, _ = tree.query(points if not torus else np.mod(points, 1.0), k=2, workers=1)
+    cKDTree = _kdtree()
+    pts = np.mod(points, 1.0) if torus else points
+    d, _ = cKDTree(pts, boxsize=1.0 if torus else None).query(pts, k=2, workers=1)
     return d[:, 1]
 
 
@@ -226,8 +233,6 @@ def stipple_svg(points: np.ndarray, size: int = 800, radius: float | None = None
 
 def write_picture(points: np.ndarray, path: str | Path, size: int = 800, dark: bool = True) -> Path:
     """Write the stipple picture as .svg, or .png (through cairosvg, the 'png' extra)."""
-    from tilekit.limits import MAX_PNG_PIXELS
-
     p = Path(path)
     refuse_over("pixels", size * size, MAX_PNG_PIXELS, "--size")
     svg = stipple_svg(points, size, dark=dark)

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, Any
 import tilekit
 from tilekit.errors import ParameterError
 from tilekit.lazy import lazy_exports
-from tilekit.plugins import CatalogueRecord, ChunkResult, Family, Search, SearchParam
+from tilekit.plugins import CatalogueRecord, ChunkResult, Family, Sampler, Search, SearchParam
 
 if TYPE_CHECKING:  # pragma: no cover
     from tilekit.plugins.wang.solve import WangProcedureResult
@@ -247,3 +247,21 @@ def tilekit_cli_commands(cli: Any) -> None:
 def tilekit_claim_file(path: str) -> str | None:
     """Wang tile sets are ``.wang`` files."""
     return FAMILY if Path(path).suffix.lower() == ".wang" else None
+
+
+def _sample_candidates(density: Any, tau_lo: float, tau_hi: float, seed: int = 0) -> Any:
+    # measured start-up cost: the sampler loads NumPy and the fills, when it runs
+    from tilekit.plugins.wang.sampling import candidates
+
+    return candidates(density, tau_lo, tau_hi, seed)
+
+
+@tilekit.hookimpl
+def tilekit_samplers() -> list[Sampler]:
+    """Recursive corner Wang tiles with progressive point sets (§7.4, §7.5)."""
+    return [
+        Sampler("wang", "recursive corner Wang tiles with progressive point sets, points kept by rank",
+                FAMILY, _sample_candidates,
+                "J. Kopf, D. Cohen-Or, O. Deussen, D. Lischinski, Recursive Wang tiles for real-time blue "
+                "noise, SIGGRAPH 2006 (here on Lagae and Dutre's corner tiles)"),
+    ]

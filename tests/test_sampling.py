@@ -1,0 +1,225 @@
+"""Tile-based importance sampling (§7.4): counts, domain, density fidelity, blue-noise spacing,
+determinism, outputs and one-line errors of `tilekit sample`."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+from tilekit.cli import cli
+from tilekit.density import Density, compile_expression, density_from
+from tilekit.plugins import samplers
+from tilekit.sampling import (
+    choose_threshold,
+    nearest_neighbour_distances,
+    radial_power_spectrum,
+    sample,
+    stipple_svg,
+    write_points,
+)
+
+METHODS = ("penrose", "polyomino", "wang")
+
+
+def test_the_three_samplers_come_from_their_families():
+    found = samplers()
+    assert {m: found[m].family for m in METHODS} == {"penrose": "substitution", "polyomino": "substitution",
+                                                     "wang": "wang"}
+
+
+# ---------------------------------------------------------------------- densities
+
+
+def test_box_integrals_are_exact_for_the_piecewise_constant_grid():
+    rng = np.random.default_rng(3)
+    d = Density(rng.random((7, 5)))
+    assert d.total == pytest.approx(d.values.mean())
+    # a box made of whole cells is the sum of those cells times the cell area
+    got = d.box_integral(np.array(1 / 5), np.array(2 / 7), np.array(4 / 5), np.array(5 / 7))
+    assert float(got) == pytest.approx(d.values[2:5, 1:4].sum() / 35)
+    # any box: against a fine midpoint sum (exact too: every fine cell lies in one grid cell)
+    x0, y0, x1, y1 = 0.13, 0.21, 0.77, 0.64
+    fine = 700
+    c = (np.arange(fine) + 0.5) / fine
+    xx, yy = np.meshgrid(c, c)
+    inside = (xx >= x0) & (xx < x1) & (yy >= y0) & (yy < y1)
+    approx = d.at(xx, yy)[inside].sum() / fine**2
+    assert float(d.box_integral(np.array(x0), np.array(y0), np.array(x1), np.array(y1))) == pytest.approx(approx, rel=2e-3)
+    # the part of a box outside the unit square counts nothing
+    assert float(d.box_integral(np.array(-1.0), np.array(-1.0), np.array(2.0), np.array(2.0))) == pytest.approx(d.total)
+
+
+def test_expressions_are_vectorised_and_named_densities_are_expressions():
+    f = compile_expression("max(x, y) + (x < 0.5) + sqrt(4)")
+    x = np.array([0.25, 0.75])
+    assert f(x, np.array([0.5, 0.25])).tolist() == [0.5 + 1 + 2, 0.75 + 0 + 2]
+    ramp = density_from("ramp")
+    assert ramp.total == pytest.approx(0.5, abs=1e-6)
+
+
+# ---------------------------------------------------------------------- the threshold
+
+
+def test_choose_threshold_counts_points_whose_interval_holds_tau():
+    lo = np.array([0.0, 1.0, 2.0, 2.5])
+    hi = np.array([3.0, 4.0, 2.6, 9.0])
+    # counts: [0,1): 1, [1,2): 2, [2,2.5): 3, [2.5,2.6): 4, [2.6,3): 3, [3,4): 2, [4,9): 1
+    assert choose_threshold(lo, hi, 4, 0.0, 9.0) == (2.5, 4)
+    assert choose_threshold(lo, hi, 3, 0.0, 9.0) == (2.6, 3)  # the largest tau with the best count
+    assert choose_threshold(lo, hi, 1, 3.5, 9.0) == (4.0, 1)
+
+
+# ---------------------------------------------------------------------- counts and domain
+
+
+@pytest.mark.parametrize("method", METHODS)
+@pytest.mark.parametrize("spec", ["uniform", "ramp", "radial"])
+def test_the_count_is_within_one_percent_and_points_lie_in_the_square(method, spec):
+    s = sample(density_from(spec, size=256), 3000, method, seed=5, relax=0)
+    assert abs(s.count - 3000) <= 30
+    assert s.points.shape == (s.count, 2)
+    assert np.all((s.points >= 0) & (s.points <= 1))
+
+
+def test_a_count_of_a_million_is_refused_beyond_the_limit_and_zero_is_an_error():
+    d = density_from("uniform", size=16)
+    with pytest.raises(Exception, match="over the limit"):
+        sample(d, 10**9, "wang")
+    with pytest.raises(Exception, match="positive integer"):
+        sample(d, 0, "wang")
+
+
+# ---------------------------------------------------------------------- density followed
+
+
+def _half_image(tmp_path):
+    from PIL import Image
+
+    img = np.zeros((64, 64), dtype=np.uint8)
+    img[:, 32:] = 255  # right half white
+    path = tmp_path / "half.png"
+    Image.fromarray(img).save(path)
+    return path
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_a_half_black_image_puts_the_points_in_the_white_half(tmp_path, method):
+    d = density_from(str(_half_image(tmp_path)))
+    s = sample(d, 2000, method, seed=1, relax=0)
+    # a Wang point is kept only where the density at it is positive; a substitution tile
+    # straddling the edge may have its centroid just across it (measured: 1.2% of the penrose
+    # points, 0% polyomino and wang; never farther than two sample spacings)
+    assert np.mean(s.points[:, 0] >= 0.5) >= 0.98
+    assert s.points[:, 0].min() >= 0.5 - 2 / math.sqrt(2000)
+    inverted = sample(density_from(str(_half_image(tmp_path)), invert=True), 2000, method, seed=1, relax=0)
+    assert np.mean(inverted.points[:, 0] < 0.5) >= 0.98
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_a_linear_ramp_gives_strip_counts_proportional_to_its_integral(method):
+    n = 8000
+    s = sample(density_from("ramp", size=256), n, method, seed=2, relax=0)
+    counts = np.histogram(s.points[:, 0], bins=4, range=(0, 1))[0]
+    expected = n * np.array([1, 3, 5, 7]) / 16  # the integral of x over the quarters, over 1/2
+    assert np.all(np.abs(counts - expected) / expected < 0.08), counts
+
+
+# ---------------------------------------------------------------------- blue noise
+
+
+@pytest.mark.parametrize("method, factor", [("penrose", 15), ("polyomino", 25), ("wang", 8)])
+def test_min_nearest_neighbour_distance_is_far_above_uniform_random(method, factor):
+    """Measured at N = 4000 (seed 0): the min NN distance over sqrt(1/N) is 0.53 (penrose, no
+    relaxation), 0.82 (polyomino), 0.28 (wang), and 0.0137 for uniform random points (it
+    shrinks like 1/sqrt(N)): ratios 39, 60 and 21. The bounds asserted are under half of those."""
+    n = 4000
+    s = sample(density_from("uniform", size=64), n, method, seed=0, relax=0)
+    rnd = np.random.default_rng(0).random((n, 2))
+    ours = nearest_neighbour_distances(s.points).min()
+    theirs = nearest_neighbour_distances(rnd).min()
+    assert ours > factor * theirs
+
+
+def test_random_points_have_a_flat_spectrum_and_tile_points_little_low_frequency_power():
+    """The periodogram of a uniform random set has expectation 1 at every non-zero frequency;
+    a blue-noise set has much less at low frequencies (below its spacing's frequency)."""
+    n = 3000
+    f, p = radial_power_spectrum(np.random.default_rng(1).random((n, 2)), size=64)
+    assert 0.85 < np.nanmean(p[2:]) < 1.15
+    s = sample(density_from("uniform", size=64), n, "polyomino", seed=0, relax=0)
+    f, q = radial_power_spectrum(s.points, size=64)
+    low = (f > 1) & (f < 0.5 * math.sqrt(n))
+    assert np.nanmean(q[low]) < 0.3
+
+
+def test_lloyd_relaxation_widens_the_mean_spacing_of_the_penrose_points():
+    d = density_from("uniform", size=64)
+    raw = sample(d, 2000, "penrose", seed=0, relax=0)
+    relaxed = sample(d, 2000, "penrose", seed=0, relax=4)
+    assert relaxed.count == raw.count
+    assert nearest_neighbour_distances(relaxed.points).mean() > 1.3 * nearest_neighbour_distances(raw.points).mean()
+
+
+# ---------------------------------------------------------------------- determinism and output
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_the_same_seed_gives_the_same_points_and_another_seed_others(method):
+    d = density_from("radial", size=128)
+    a = sample(d, 1500, method, seed=7)
+    b = sample(d, 1500, method, seed=7)
+    c = sample(d, 1500, method, seed=8)
+    assert np.array_equal(a.points, b.points)
+    assert not np.array_equal(np.sort(a.points, axis=0), np.sort(c.points, axis=0))
+
+
+def test_points_round_trip_through_csv_and_npy_and_the_svg_has_one_disc_each(tmp_path):
+    pts = np.random.default_rng(0).random((50, 2))
+    write_points(pts, tmp_path / "p.csv")
+    write_points(pts, tmp_path / "p.npy")
+    back = np.loadtxt(tmp_path / "p.csv", delimiter=",", skiprows=1)
+    assert np.allclose(back, pts, atol=1e-9)
+    assert np.array_equal(np.load(tmp_path / "p.npy"), pts)
+    assert stipple_svg(pts).count("M") == 50
+
+
+def test_the_command_writes_the_points_and_a_picture(tmp_path):
+    out = tmp_path / "p.csv"
+    res = CliRunner().invoke(cli, ["sample", "--density", "x*y", "--method", "polyomino", "-n", "500",
+                                   "-o", str(out), "--svg", str(tmp_path / "p.svg"), "--stats"])
+    assert res.exit_code == 0, res.output
+    rows = out.read_text().splitlines()
+    assert rows[0] == "x,y" and abs(len(rows) - 1 - 500) <= 5
+    assert (tmp_path / "p.svg").read_text().startswith("<svg")
+    assert "chi2" in res.output
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--density", "missing.png"], "does not exist"),
+    (["--density", "NOTPNG"], "not a PNG"),
+    (["--density", "x - 2"], "negative"),
+    (["--density", "0*x"], "zero everywhere"),
+    (["--density", "log(x - 2)"], "not finite"),
+    (["--density", "__import__('os')"], "contains"),
+    (["--density", "ramp", "--method", "hexagons"], "unknown sampling method"),
+    (["--density", "ramp", "-n", "0"], "out of range"),
+    (["--density", "ramp", "-n", "-5"], "out of range"),
+    (["--density", "ramp", "-n", "30000000"], "out of range"),
+    (["--density", "ramp", "-o", "points.txt"], "give .csv or .npy"),
+])
+def test_bad_input_is_one_line_and_exit_2(tmp_path, args, message):
+    bad = tmp_path / "fake.png"
+    bad.write_text("not an image")
+    args = [str(bad) if a == "NOTPNG" else a for a in args]
+    if "-n" not in args:
+        args += ["-n", "100"]
+    if "-o" not in args:
+        args += ["-o", str(tmp_path / "p.csv")]
+    res = CliRunner().invoke(cli, ["sample", *args])
+    assert res.exit_code == 2, res.output
+    lines = [line for line in res.output.splitlines() if line.strip()]
+    assert len(lines) == 1 and lines[0].startswith("error: ") and message in lines[0], res.output
+    assert "Traceback" not in res.output
