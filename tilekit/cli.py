@@ -959,10 +959,6 @@ def catalogue_seed(state: State, replace: bool) -> None:
 # --------------------------------------------------------------------------- sample (issue 17)
 # A self-contained block: tile-based importance sampling of tilekit.sampling (docs/sampling.md).
 
-#: Default Lloyd iterations per method: the Penrose method's correction step (docs/sampling.md).
-_DEFAULT_RELAX = {"penrose": 4}
-
-
 @cli.command()
 @click.option("--density", "density_spec", required=True, metavar="IMAGE.png|NAME|EXPR",
               help="A PNG (brighter = more samples), a named density (uniform, ramp, radial, step, rings) "
@@ -974,12 +970,13 @@ _DEFAULT_RELAX = {"penrose": 4}
 @click.option("--svg", "svg_out", type=click.Path(dir_okay=False), help="Also draw the stipple picture as SVG.")
 @click.option("--png", "png_out", type=click.Path(dir_okay=False), help="Also draw the stipple picture as PNG.")
 @click.option("--seed", type=BoundedInt(0, 2**32 - 1), default=0, show_default=True, help="Placement of the tiling.")
-@click.option("--relax", type=BoundedInt(0, 50), default=None, help="Lloyd iterations after sampling (default: 4 for penrose, else 0).")
+@click.option("--relax", type=BoundedInt(0, 50), default=0, show_default=True, help="Lloyd iterations after sampling.")
+@click.option("--no-correction", is_flag=True, help="Leave out the sampler's correction step (penrose's table).")
 @click.option("--invert", is_flag=True, help="Darker = more samples (classic stippling of a photograph).")
 @click.option("--size", type=BoundedInt(16, 10_000), default=800, show_default=True, help="Picture size in pixels.")
 @click.option("--stats", is_flag=True, help="Also print nearest-neighbour spacing and the chi-square of the counts.")
 def sample(density_spec: str, method: str, count: int, out: str, svg_out: str | None, png_out: str | None,
-           seed: int, relax: int | None, invert: bool, size: int, stats: bool) -> None:
+           seed: int, relax: int, no_correction: bool, invert: bool, size: int, stats: bool) -> None:
     """Sample N points following a density by selective tile subdivision (book §7.4).
 
     \b
@@ -996,8 +993,8 @@ def sample(density_spec: str, method: str, count: int, out: str, svg_out: str | 
         if Path(p).suffix.lower() not in (".csv", ".npy", ".svg", ".png"):
             raise ParameterError(f"output {Path(p).name!r}: give .csv or .npy for points, .svg or .png for a picture")
     density = density_from(density_spec, invert=invert)
-    relax = _DEFAULT_RELAX.get(method, 0) if relax is None else relax
-    result = sampling.sample(density, count, method=method, seed=seed, relax=relax, pm=plugin_manager())
+    result = sampling.sample(density, count, method=method, seed=seed, relax=relax, pm=plugin_manager(),
+                             correct=not no_correction)
     for p in outputs:
         if Path(p).suffix.lower() in (".csv", ".npy"):
             sampling.write_points(result.points, p)

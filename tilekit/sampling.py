@@ -67,9 +67,25 @@ def choose_threshold(lo: np.ndarray, hi: np.ndarray, n: int, tau_lo: float, tau_
 
 
 def sample(density: Density, n: int, method: str = "penrose", seed: int = 0, relax: int = 0,
-           pm: Any = None) -> SampleSet:
+           pm: Any = None, correct: bool = True) -> SampleSet:
     """About ``n`` points distributed by ``density`` over the unit square with ``method``'s tiles
-    (count within :data:`COUNT_TOLERANCE` for smooth densities), then ``relax`` Lloyd steps."""
+    (count within :data:`COUNT_TOLERANCE` for smooth densities), moved by the sampler's
+    correction step (``correct``, when it has one), then ``relax`` Lloyd steps."""
+    points, tau, _ = _select(density, n, method, seed, relax, pm)
+    sampler = samplers(pm)[method]
+    rng = np.random.default_rng(seed)
+    order = rng.permutation(len(points[0]))  # the candidates' order says how they were made; drop it
+    pts, extra = points[0][order], {k: v[order] for k, v in points[1].items()}
+    if correct and sampler.finish is not None and extra:
+        pts = sampler.finish(pts, extra, tau)
+    if relax:
+        pts = lloyd(pts, density, relax, rng)
+    return SampleSet(points=pts, method=method, requested=n, tau=tau, seed=seed, relax=relax)
+
+
+def _select(density: Density, n: int, method: str, seed: int, relax: int, pm: Any
+            ) -> tuple[tuple[np.ndarray, dict[str, np.ndarray]], float, int]:
+    """The chosen candidates (points and their extra arrays), tau and the count."""
     found = samplers(pm)
     if method not in found:
         raise NotFoundError("sampling method", method, sorted(found))
@@ -84,23 +100,66 @@ def sample(density: Density, n: int, method: str = "penrose", seed: int = 0, rel
     best: tuple[float, float, int, np.ndarray, np.ndarray, np.ndarray] | None = None
     for _ in range(6):
         tau_lo, tau_hi = tau0 / width, tau0 * width
-        pts, lo, hi = sampler.candidates(density, tau_lo, tau_hi, seed)
+        got = sampler.candidates(density, tau_lo, tau_hi, seed)
+        pts, lo, hi = got[:3]
+        extra = got[3] if len(got) > 3 else {}
         tau, count = choose_threshold(lo, hi, n, tau_lo, tau_hi) if len(lo) else (tau0, 0)
         if best is None or abs(count - n) < abs(best[1] - n):
-            best = (tau, count, 0, pts, lo, hi)
+            best = (tau, count, extra, pts, lo, hi)
         at_edge = tau <= tau_lo * (1 + 1e-9) or tau >= tau_hi / (1 + 1e-3)
         if abs(count - n) <= COUNT_TOLERANCE * n or not at_edge:
             break  # hit, or n falls in a jump of the count inside the bracket
         width *= 2.0  # the count reaches n only outside the bracket
     assert best is not None
-    tau, _, _, pts, lo, hi = best
-    points = pts[(lo <= tau) & (tau < hi)]
-    rng = np.random.default_rng(seed)
-    order = rng.permutation(len(points))  # the candidates' order says how they were made; drop it
-    points = points[order]
-    if relax:
-        points = lloyd(points, density, relax, rng)
-    return SampleSet(points=points, method=method, requested=n, tau=tau, seed=seed, relax=relax)
+    tau, count, extra, pts, lo, hi = best
+    chosen = (lo <= tau) & (tau < hi)
+    return (pts[chosen], {k: v[chosen] for k, v in extra.items()}), tau, count
+
+
+def train_corrections(method: str, bins: int, sizes: Any = (2000, 3000, 5000, 8000, 13000), seeds: int = 4,
+                      iterations: int = 10, per_point: int = 40, pm: Any = None) -> np.ndarray:
+    """Fit a sampler's correction vectors (Ostromoukhov et al.'s correction step) by Lloyd
+    relaxation: uniform-density sets of several sizes and seeds are made without correction,
+    relaxed (``iterations`` probabilistic Lloyd steps, ``per_point`` probes a point), and each
+    point's displacement, taken back to its tile's frame, is averaged per (structural context
+    ``extra["key"]``, bin of E = integral / tau in ``bins`` equal bins of (0, 1]).
+    Returns rows (key, bin, dx, dy, count), one per pair seen."""
+    uniform = Density(np.ones((64, 64)), name="uniform")
+    sums: dict[tuple[int, int], np.ndarray] = {}
+    for n in sizes:
+        for seed in range(seeds):
+            (pts, extra), tau, _ = _select(uniform, int(n), method, seed, 0, pm)
+            if "key" not in extra:
+                raise ParameterError(f"sampler {method!r} reports no structural context to train on")
+            relaxed = lloyd(pts, uniform, iterations, np.random.default_rng(seed), per_point=per_point)
+            moved = relaxed - pts
+            # keep points away from the square's edges: there Lloyd moves them for the edge's sake
+            spacing = 1.0 / math.sqrt(len(pts))
+            inner = np.all((pts > 3 * spacing) & (pts < 1 - 3 * spacing), axis=1)
+            local = np.linalg.solve(extra["frame"][inner], moved[inner][:, :, None])[:, :, 0]
+            e = np.clip(extra["integral"][inner] / tau, 0.0, 1.0)
+            b = np.minimum((e * bins).astype(np.int64), bins - 1)
+            keys = extra["key"][inner] * bins + b
+            uniq, inv = np.unique(keys, return_inverse=True)
+            for j, kb in enumerate(uniq.tolist()):
+                acc = sums.setdefault(kb, np.zeros(3))
+                sel = inv == j
+                acc += (local[sel, 0].sum(), local[sel, 1].sum(), sel.sum())
+    rows = [(kb // bins, kb % bins, a[0] / a[2], a[1] / a[2], int(a[2])) for kb, a in sorted(sums.items())]
+    return np.array(rows, dtype=np.float64).reshape(-1, 5)
+
+
+def write_corrections(rows: np.ndarray, path: str | Path, min_count: int = 5) -> Path:
+    """Write a correction table as CSV (key, bin, dx, dy, count); pairs seen fewer than
+    ``min_count`` times are left out (their correction is 0)."""
+    p = Path(path)
+    p.parent.mkdir(parents=True, exist_ok=True)
+    keep = rows[rows[:, 4] >= min_count]
+    with open(p, "w", encoding="ascii") as fh:
+        fh.write("key,bin,dx,dy,count\n")
+        for k, b, dx, dy, c in keep.tolist():
+            fh.write(f"{int(k)},{int(b)},{dx:.6f},{dy:.6f},{int(c)}\n")
+    return p
 
 
 def _kdtree() -> Any:

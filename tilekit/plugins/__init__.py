@@ -164,14 +164,18 @@ class Sampler:
     [tau_lo, tau_hi]. A point is in the set made with threshold tau (the density integral one
     sample stands for) exactly when lo <= tau < hi, so :func:`tilekit.sampling.sample` picks
     tau for the requested count from one call, without regenerating. ``reference`` names the
-    paper the method follows.
+    paper the method follows. A sampler may return a fourth item, a dict of per-candidate
+    arrays, and a ``finish(points, extra, tau)`` that moves the chosen points (a correction
+    step); ``extra["key"]`` (a structural context), ``extra["frame"]`` ((m, 2, 2) tile maps)
+    and ``extra["integral"]`` let :func:`tilekit.sampling.train_corrections` fit its table.
     """
 
     name: str
     summary: str
     family: str
-    candidates: Callable[..., tuple[Any, Any, Any]]
+    candidates: Callable[..., tuple[Any, ...]]
     reference: str = ""
+    finish: Callable[..., Any] | None = None
 
 
 def _wanted() -> set[str] | None:

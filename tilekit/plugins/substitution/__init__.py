@@ -142,6 +142,13 @@ def _polyomino_candidates(density: Any, tau_lo: float, tau_hi: float, seed: int 
     return polyomino_candidates(density, tau_lo, tau_hi, seed)
 
 
+def _penrose_finish(points: Any, extra: Any, tau: float) -> Any:
+    # measured start-up cost: as in _penrose_candidates
+    from tilekit.plugins.substitution.sampling import apply_corrections
+
+    return apply_corrections("penrose", points, extra, tau)
+
+
 @tilekit.hookimpl
 def tilekit_samplers() -> list[Sampler]:
     """Selective substitution (§7.4) of penrose-p3 (Robinson triangles) and of the chair."""
@@ -149,7 +156,7 @@ def tilekit_samplers() -> list[Sampler]:
         Sampler("penrose", "selective substitution of Penrose rhombs (Robinson triangles), one sample per tile",
                 "substitution", _penrose_candidates,
                 "V. Ostromoukhov, C. Donohue, P.-M. Jodoin, Fast hierarchical importance sampling with blue "
-                "noise properties, SIGGRAPH 2004"),
+                "noise properties, SIGGRAPH 2004", finish=_penrose_finish),
         Sampler("polyomino", "selective substitution of the chair (L-tromino 4-rep-tile), one sample per tile",
                 "substitution", _polyomino_candidates,
                 "V. Ostromoukhov, Sampling with polyominoes, SIGGRAPH 2007 (here with the chair rep-tile)"),

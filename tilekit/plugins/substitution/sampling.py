@@ -21,6 +21,7 @@ set exactly for tau in [I(t), min(A(t), I(t) / v(t))), the interval the sampler 
 from __future__ import annotations
 
 from functools import lru_cache
+from pathlib import Path
 
 import numpy as np
 
@@ -28,9 +29,16 @@ from tilekit.geometry import Affine
 from tilekit.limits import GENERATION_BYTES_PER_TILE, MAX_DEPTH, refuse_over_memory
 from tilekit.plugins.substitution.levels import refine_levels
 from tilekit.polygon import centroid, signed_area
+from tilekit.resources import catalogue_dir
 
 #: The shipped system each method substitutes.
 SYSTEMS = {"penrose": "penrose-p3", "polyomino": "chair"}
+#: Child indices of the last CONTEXT_LEVELS substitutions name a tile's structural context
+#: (with its prototile), the key of the correction table.
+CONTEXT_LEVELS = 4
+#: Bins of E = I / tau (the fraction of a sample a leaf wants, in (0, 1]) in the correction table.
+CORRECTION_BINS = 8
+
 #: Levels below the covering supertile a refinement may go (a peaked density needs more
 #: levels than a uniform one; the tiles per level are bounded by the integral, not the depth).
 MAX_REFINE_LEVELS = MAX_DEPTH + 40
@@ -96,13 +104,18 @@ def candidates(method: str, density, tau_lo: float, tau_hi: float, seed: int = 0
     out_p: list[np.ndarray] = []
     out_lo: list[np.ndarray] = []
     out_hi: list[np.ndarray] = []
+    out_key: list[np.ndarray] = []
+    out_frame: list[np.ndarray] = []
+    width = rank_table.shape[1]
 
     def step(label: np.ndarray, maps: np.ndarray, carry: dict[str, np.ndarray], level: int) -> np.ndarray:
         if level == 0:
             v = np.full(len(label), 0.5)
+            path = np.zeros(len(label), dtype=np.int64)
         else:
             k = sizes[carry["parent_label"]]
             v = (rank_table[carry["parent_label"], carry["child"]] + carry["v"]) / k
+            path = (carry["path"] * width + carry["child"]) % width**CONTEXT_LEVELS
         det = np.abs(maps[:, 0, 0] * maps[:, 1, 1] - maps[:, 0, 1] * maps[:, 1, 0])
         c = cents[label]
         x = maps[:, 0, 0] * c[:, 0] + maps[:, 0, 1] * c[:, 1] + maps[:, 0, 2]
@@ -117,15 +130,22 @@ def candidates(method: str, density, tau_lo: float, tau_hi: float, seed: int = 0
             out_p.append(np.column_stack([x[keep], y[keep]]))
             out_lo.append(integral[keep])
             out_hi.append(hi[keep])
+            out_key.append(label[keep] * width**CONTEXT_LEVELS + path[keep])
+            out_frame.append(maps[keep, :2, :2])
         carry["v"] = v
+        carry["path"] = path
         carry["A"] = np.minimum(ancestors, integral)
         return integral > tau_lo
 
     refine_levels(label, maps, [r.children for r in system.rules], [r.matrices for r in system.rules], step,
-                  MAX_REFINE_LEVELS, carry={"A": np.full(1, np.inf), "v": np.full(1, 0.5)})
+                  MAX_REFINE_LEVELS, carry={"A": np.full(1, np.inf), "v": np.full(1, 0.5),
+                                            "path": np.zeros(1, dtype=np.int64)})
     if not out_p:
-        return np.zeros((0, 2)), np.zeros(0), np.zeros(0)
-    return np.concatenate(out_p), np.concatenate(out_lo), np.concatenate(out_hi)
+        empty = {"key": np.zeros(0, dtype=np.int64), "frame": np.zeros((0, 2, 2)), "integral": np.zeros(0)}
+        return np.zeros((0, 2)), np.zeros(0), np.zeros(0), empty
+    lo = np.concatenate(out_lo)
+    extra = {"key": np.concatenate(out_key), "frame": np.concatenate(out_frame), "integral": lo}
+    return np.concatenate(out_p), lo, np.concatenate(out_hi), extra
 
 
 def _tile_integral(density, maps: np.ndarray, outline: np.ndarray, area: np.ndarray) -> np.ndarray:
@@ -138,6 +158,46 @@ def _tile_integral(density, maps: np.ndarray, outline: np.ndarray, area: np.ndar
     x0, x1, y0, y1 = px.min(axis=1), px.max(axis=1), py.min(axis=1), py.max(axis=1)
     box = (x1 - x0) * (y1 - y0)
     return density.box_integral(x0, y0, x1, y1) * (area / box)
+
+
+def correction_path(method: str) -> Path:
+    """Where the shipped correction table of ``method`` is (catalogue/substitution/sampling/)."""
+    return catalogue_dir() / "substitution" / "sampling" / f"{method}-corrections.csv"
+
+
+@lru_cache(maxsize=4)
+def correction_table(method: str) -> np.ndarray | None:
+    """The shipped correction vectors of ``method``, (keys, CORRECTION_BINS, 2) in the prototile
+    frame, or None when there is no table."""
+    path = correction_path(method)
+    if not path.is_file():
+        return None
+    _, _, _, rank_table, _, _ = _prepared(SYSTEMS[method])
+    keys = rank_table.shape[0] * rank_table.shape[1] ** CONTEXT_LEVELS
+    table = np.zeros((keys, CORRECTION_BINS, 2))
+    rows = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+    if len(rows):
+        k, b = rows[:, 0].astype(np.int64), rows[:, 1].astype(np.int64)
+        table[k, b] = rows[:, 2:4]
+    return table
+
+
+def energy_bin(integral: np.ndarray, tau: float) -> np.ndarray:
+    """The bin of E = integral / tau in (0, 1] (leaves want at most one sample)."""
+    e = np.clip(integral / tau, 0.0, 1.0)
+    return np.minimum((e * CORRECTION_BINS).astype(np.int64), CORRECTION_BINS - 1)
+
+
+def apply_corrections(method: str, points: np.ndarray, extra: dict, tau: float) -> np.ndarray:
+    """Ostromoukhov et al.'s correction step: move each sample by the vector stored for its
+    structural context (prototile and last child indices) and its bin of E, mapped from the
+    prototile frame by the tile's linear map. Points are kept inside the unit square."""
+    table = correction_table(method)
+    if table is None or not len(points):
+        return points
+    delta = table[extra["key"], energy_bin(extra["integral"], tau)]
+    moved = points + np.einsum("nij,nj->ni", extra["frame"], delta)
+    return np.clip(moved, 0.0, 1.0)
 
 
 def penrose_candidates(density, tau_lo: float, tau_hi: float, seed: int = 0):
