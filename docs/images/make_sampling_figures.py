@@ -26,29 +26,49 @@ HERE = Path(__file__).parent
 sys.path.insert(0, str(HERE.parent.parent / "benchmarks"))
 from bench_sampling import numpy_dart_throwing  # noqa: E402
 
-SETS = [("penrose", 0), ("penrose", 4), ("polyomino", 0), ("wang", 0)]
+#: (method, apply the correction table, Lloyd iterations)
+SETS = [("penrose", False, 0), ("penrose", True, 0), ("polyomino", False, 0), ("polyomino", True, 0), ("wang", True, 0)]
 
 
-def label(method: str, relax: int) -> str:
-    return f"{method}" + (f" + {relax} Lloyd" if relax else "")
+def label(method: str, correct: bool, relax: int = 0) -> str:
+    text = method + (" + corrections" if correct and method != "wang" else "")
+    return text + (f" + {relax} Lloyd" if relax else "")
+
+
+def source_image() -> Path:
+    """A test image for the stipples (drawn here, read back as a PNG like any user's image):
+    a dark disc with a bright halo, bright letters, a horizontal gradient underneath."""
+    import cairosvg
+
+    svg = ('<svg xmlns="http://www.w3.org/2000/svg" width="256" height="256">'
+           '<defs><linearGradient id="g"><stop offset="0" stop-color="#000"/><stop offset="1" stop-color="#fff"/>'
+           '</linearGradient><radialGradient id="r"><stop offset="0.55" stop-color="#111"/>'
+           '<stop offset="0.75" stop-color="#eee"/><stop offset="1" stop-color="#333"/></radialGradient></defs>'
+           '<rect width="256" height="256" fill="url(#g)"/><circle cx="128" cy="110" r="95" fill="url(#r)"/>'
+           '<text x="128" y="135" font-size="70" font-family="sans-serif" font-weight="bold" fill="#fff" '
+           'text-anchor="middle">7.4</text></svg>')
+    path = HERE / "sampling-source.png"
+    cairosvg.svg2png(bytestring=svg.encode(), write_to=str(path))
+    return path
 
 
 def stipples() -> None:
-    image = str(HERE / "readme.png")
+    image = str(source_image())
     columns = [("ramp", density_from("ramp"), 6000), ("radial", density_from("radial"), 6000),
-               ("readme.png (inverted)", density_from(image, invert=True), 20000)]
+               ("sampling-source.png", density_from(image), 20000)]
     fig, axes = plt.subplots(len(SETS), len(columns), figsize=(4 * len(columns), 4 * len(SETS)))
-    for r, (method, relax) in enumerate(SETS):
+    for r, (method, correct, relax) in enumerate(SETS):
         for c, (name, d, n) in enumerate(columns):
-            s = sample(d, n, method, seed=1, relax=relax)
+            s = sample(d, n, method, seed=1, relax=relax, correct=correct)
             ax = axes[r, c]
-            ax.scatter(s.points[:, 0], s.points[:, 1], s=0.6 if n > 10000 else 1.2, c="k", linewidths=0)
             ax.set_xlim(0, 1)
             ax.set_ylim(0, 1)
             ax.set_aspect("equal")
             ax.set_xticks([])
             ax.set_yticks([])
-            ax.set_title(f"{label(method, relax)}: {name}, N = {s.count}", fontsize=9)
+            ax.set_facecolor("black")
+            ax.scatter(s.points[:, 0], s.points[:, 1], s=0.6 if n > 10000 else 1.2, c="w", linewidths=0)
+            ax.set_title(f"{label(method, correct, relax)}: {name}, N = {s.count}", fontsize=9)
     fig.tight_layout()
     fig.savefig(HERE / "sampling-stipple.png", dpi=110)
     plt.close(fig)
@@ -59,7 +79,8 @@ def peers(n: int, seed: int) -> dict[str, np.ndarray]:
     return {
         "uniform random": np.random.default_rng(seed).random((n, 2)),
         "dart throwing (NumPy)": numpy_dart_throwing(n, radius, seed=seed),
-        "qmc.PoissonDisk": qmc.PoissonDisk(2, radius=radius, seed=seed).random(n),
+        # fill_space: asking random(n) stops Bridson's growing front before the square is full
+        "qmc.PoissonDisk (fill)": qmc.PoissonDisk(2, radius=0.775 / math.sqrt(n), seed=seed).fill_space(),
     }
 
 
@@ -69,7 +90,8 @@ def spectra(n: int = 4096, seeds: int = 5, size: int = 128) -> list[tuple[str, f
     spacing: dict[str, list[tuple[float, float]]] = {}
     freq = None
     for seed in range(seeds):
-        sets = {label(m, r): sample(uniform, n, m, seed=seed, relax=r).points for m, r in SETS}
+        sets = {label(m, c, r): sample(uniform, n, m, seed=seed, relax=r, correct=c).points for m, c, r in SETS}
+        sets["penrose + corrections + 4 Lloyd"] = sample(uniform, n, "penrose", seed=seed, relax=4).points
         sets.update(peers(n, seed))
         for name, pts in sets.items():
             freq, p = radial_power_spectrum(pts, size=size)
@@ -77,7 +99,7 @@ def spectra(n: int = 4096, seeds: int = 5, size: int = 128) -> list[tuple[str, f
             spacing.setdefault(name, []).append(normalised_spacing(pts))
     fig, ax = plt.subplots(figsize=(8, 5))
     for name, ps in curves.items():
-        style = "--" if name in ("uniform random", "dart throwing (NumPy)", "qmc.PoissonDisk") else "-"
+        style = "--" if name in ("uniform random", "dart throwing (NumPy)", "qmc.PoissonDisk (fill)") else "-"
         ax.plot(freq / math.sqrt(n), np.mean(ps, axis=0), style, label=name, linewidth=1.2)
     ax.set_xlabel("radial frequency / sqrt(N)  (1 = the mean spacing's frequency)")
     ax.set_ylabel("radially averaged power (1 = white noise)")
@@ -99,10 +121,10 @@ def fidelity(n: int = 20000) -> list[tuple[str, str, int, float, int, float]]:
     rows = []
     for spec in ("uniform", "ramp", "radial", "rings"):
         d = density_from(spec)
-        for m, r in SETS:
-            s = sample(d, n, m, seed=3, relax=r)
+        for m, c, r in SETS:
+            s = sample(d, n, m, seed=3, relax=r, correct=c)
             f = density_fidelity(s.points, d, grid=8)
-            rows.append((label(m, r), spec, s.count, 100 * (s.count - n) / n, f["dof"], f["chi2"]))
+            rows.append((label(m, c, r), spec, s.count, 100 * (s.count - n) / n, f["dof"], f["chi2"]))
     return rows
 
 
@@ -112,6 +134,7 @@ def main() -> None:
     print("|---|---|---|---|")
     for name, lo, mean, low in spectra():
         print(f"| {name} | {lo:.3f} | {mean:.3f} | {low:.3f} |")
+    print("(PoissonDisk fill: N is its own count, about 4096)")
     print()
     print("| method | density | N (asked 20000) | miss | chi2 (dof) on 8 x 8 cells |")
     print("|---|---|---|---|---|")

@@ -149,6 +149,13 @@ def _penrose_finish(points: Any, extra: Any, tau: float) -> Any:
     return apply_corrections("penrose", points, extra, tau)
 
 
+def _polyomino_finish(points: Any, extra: Any, tau: float) -> Any:
+    # measured start-up cost: as in _penrose_candidates
+    from tilekit.plugins.substitution.sampling import apply_corrections
+
+    return apply_corrections("polyomino", points, extra, tau)
+
+
 @tilekit.hookimpl
 def tilekit_samplers() -> list[Sampler]:
     """Selective substitution (§7.4) of penrose-p3 (Robinson triangles) and of the chair."""
@@ -159,5 +166,6 @@ def tilekit_samplers() -> list[Sampler]:
                 "noise properties, SIGGRAPH 2004", finish=_penrose_finish),
         Sampler("polyomino", "selective substitution of the chair (L-tromino 4-rep-tile), one sample per tile",
                 "substitution", _polyomino_candidates,
-                "V. Ostromoukhov, Sampling with polyominoes, SIGGRAPH 2007 (here with the chair rep-tile)"),
+                "V. Ostromoukhov, Sampling with polyominoes, SIGGRAPH 2007 (here with the chair rep-tile)",
+                finish=_polyomino_finish),
     ]

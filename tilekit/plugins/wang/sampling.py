@@ -1,6 +1,6 @@
 """Importance sampling with recursive Wang tiles carrying progressive point sets, after Kopf,
 Cohen-Or, Deussen and Lischinski, "Recursive Wang tiles for real-time blue noise" (SIGGRAPH
-2006), on Lagae and Dutré's corner tiles (``corner-2colour``, §7.5).
+2006), on Lagae and Dutré's corner tiles (§7.5): the complete set over :data:`CORNER_COLOURS` colours.
 
 The tiles' point sets. Every corner colour c has a *corner patch*: a progressive point set of
 :data:`PATCH_POINTS` points on the unit square centred on a lattice point, made by Mitchell's
@@ -9,7 +9,7 @@ points so far), so every prefix of it (its points of rank < r) is itself well sp
 tile is the four quadrants next to its corners, each cut from that corner's patch: across a
 tile edge the points on both sides come from the same patch, so any grid of tiles from the
 hashed random-access fill is seamless at tile edges. The seams between patches run along the
-tiles' mid-lines, inside one tile, so each of the 16 tiles is repaired on its own: in rank
+tiles' mid-lines, inside one tile, so each tile is repaired on its own: in rank
 order, a point nearer than :data:`SEAM_DISTANCE` / sqrt(PATCH_POINTS) to a kept point of
 another quadrant is dropped.
 
@@ -30,10 +30,12 @@ from functools import lru_cache
 import numpy as np
 
 from tilekit.plugins.wang.fill import lattice_hash, random_access_tiles
-from tilekit.plugins.wang.tileset import get_tileset
+from tilekit.plugins.wang.tileset import WangTileSet, from_corners
 
-#: The corner tile set the sampler fills with (16 tiles, two corner colours).
-TILESET = "corner-2colour"
+#: Corner colours of the tile set the sampler fills with: the complete corner set over this many
+#: colours (CORNER_COLOURS^4 tiles; with 2 it is the shipped ``corner-2colour``). Each colour is
+#: one corner patch, so more colours mean fewer repeats of one patch in a fill.
+CORNER_COLOURS = 4
 #: Points of one corner patch (a tile holds about as many: a quarter of each of four patches).
 PATCH_POINTS = 64
 #: Best-candidate dart throwing tries this many candidates per point already placed.
@@ -48,13 +50,24 @@ MAX_LEVEL = 40
 CONSTRUCTION_SEED = 2006
 
 
+@lru_cache(maxsize=1)
+def corner_set(colours: int = CORNER_COLOURS) -> WangTileSet:
+    """The complete corner tile set over ``colours`` colours (every (NE, SE, SW, NW) colouring)."""
+    grid = np.stack(np.meshgrid(*[np.arange(colours)] * 4, indexing="ij"), axis=-1).reshape(-1, 4)
+    return from_corners(f"corner-{colours}colour", grid.tolist())
+
+
 def best_candidate(n: int, rng: np.random.Generator, k: int = CANDIDATES_PER_POINT) -> np.ndarray:
-    """``n`` points in [-1/2, 1/2]^2 by Mitchell's best-candidate algorithm, in insertion order."""
+    """``n`` points in [-1/2, 1/2]^2 by Mitchell's best-candidate algorithm, in insertion order.
+    Distances wrap around the square (a torus): with plain distances the first points crowd
+    the square's sides, which are the tiles' mid-lines, and the seams would show as lines."""
     pts = np.empty((n, 2))
     pts[0] = rng.uniform(-0.5, 0.5, 2)
     for i in range(1, n):
         cand = rng.uniform(-0.5, 0.5, (k * i + 1, 2))
-        d = np.min(np.sum((cand[:, None, :] - pts[None, :i, :]) ** 2, axis=2), axis=1)
+        delta = np.abs(cand[:, None, :] - pts[None, :i, :])
+        delta = np.minimum(delta, 1.0 - delta)
+        d = np.min(np.sum(delta**2, axis=2), axis=1)
         pts[i] = cand[int(np.argmax(d))]
     return pts
 
@@ -63,7 +76,7 @@ def best_candidate(n: int, rng: np.random.Generator, k: int = CANDIDATES_PER_POI
 def tile_point_sets(patch_points: int = PATCH_POINTS) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The tiles' point sets, flat: ``(points (M, 2) in the unit tile, ranks / PATCH_POINTS (M,),
     start (T,), count (T,))``; tile t's points are rows start[t] .. start[t] + count[t]."""
-    ts = get_tileset(TILESET)
+    ts = corner_set()
     assert ts.corners is not None
     rng = np.random.default_rng(CONSTRUCTION_SEED)
     patches = [best_candidate(patch_points, rng) for _ in ts.corner_colours]
@@ -85,9 +98,9 @@ def tile_point_sets(patch_points: int = PATCH_POINTS) -> tuple[np.ndarray, np.nd
         order = np.argsort(r, kind="stable")
         p, r, qd = p[order], r[order], qd[order]
         keep = np.ones(len(p), dtype=bool)
-        for i in range(len(p)):  # construction, once per tile set: 16 tiles x 64 points
-            earlier = np.flatnonzero(keep[:i] & (qd[:i] != qd[i]))
-            if len(earlier) and np.min(np.hypot(*(p[earlier] - p[i]).T)) < seam:
+        close = (np.hypot(*(p[:, None, :] - p[None, :, :]).transpose(2, 0, 1)) < seam) & (qd[:, None] != qd[None, :])
+        for i in np.flatnonzero(close.any(axis=1)):  # construction, once: 256 tiles x ~64 points
+            if (close[i, :i] & keep[:i]).any():
                 keep[i] = False
         out_p.append(p[keep])
         out_r.append(r[keep])
@@ -100,7 +113,7 @@ def tile_point_sets(patch_points: int = PATCH_POINTS) -> tuple[np.ndarray, np.nd
 def candidates(density, tau_lo: float, tau_hi: float, seed: int = 0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The sample points whose threshold interval meets [tau_lo, tau_hi] (module docstring):
     ``(points (m, 2), lo (m,), hi (m,))``. Array code per level, no Python per tile."""
-    ts = get_tileset(TILESET)
+    ts = corner_set()
     tp, tr, start, count = tile_point_sets()
     k = float(PATCH_POINTS)
     i = np.zeros(1, dtype=np.int64)
