@@ -29,6 +29,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from tilekit.limits import refuse_over_memory
 from tilekit.plugins.wang.fill import lattice_hash, random_access_tiles
 from tilekit.plugins.wang.tileset import WangTileSet, from_corners
 
@@ -116,6 +117,10 @@ def candidates(density, tau_lo: float, tau_hi: float, seed: int = 0) -> tuple[np
     ts = corner_set()
     tp, tr, start, count = tile_point_sets()
     k = float(PATCH_POINTS)
+    # a level holds at most total / (SPLIT_FRACTION k tau_lo) split tiles (disjoint, each over
+    # the split bound), 4 children each, and a stopping tile up to k candidate points
+    refuse_over_memory("candidate points in one level of the Wang recursion",
+                       4 * k * density.total / (SPLIT_FRACTION * k * tau_lo), 200, hint="ask for fewer samples")
     i = np.zeros(1, dtype=np.int64)
     j = np.zeros(1, dtype=np.int64)
     ancestors = np.full(1, np.inf)
