@@ -241,3 +241,72 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path, args, message):
     lines = [line for line in res.output.splitlines() if line.strip()]
     assert len(lines) == 1 and lines[0].startswith("error: ") and message in lines[0], res.output
     assert "Traceback" not in res.output
+
+
+# ---------------------------------------------------------------------- the pieces
+
+
+@pytest.mark.parametrize("name", ["penrose-p3", "chair"])
+def test_refine_levels_substituting_everything_gives_the_matrix_counts(name):
+    """Selective substitution with a predicate that selects every tile is plain substitution:
+    after d levels the label counts are M^d e (the substitution matrix's counts)."""
+    from tilekit.plugins.substitution import builtin_systems
+    from tilekit.plugins.substitution.levels import refine_levels
+
+    system = builtin_systems()[name]
+    seen = {}
+
+    def step(label, maps, carry, level):
+        seen[level] = np.bincount(label, minlength=system.n).tolist()
+        # every child knows its index in its parent's rule
+        if level:
+            assert np.all(carry["child"] < np.array([len(r.children) for r in system.rules])[carry["parent_label"]])
+        return np.ones(len(label), dtype=bool)
+
+    refine_levels(np.array([system.seed]), np.eye(3)[None], [r.children for r in system.rules],
+                  [r.matrices for r in system.rules], step, max_depth=5)
+    assert [seen[d] for d in range(6)] == system.counts(5)
+
+
+def test_the_wang_tiles_points_are_seamless_across_a_whole_fill():
+    """Every tile edge lies inside one corner patch and every seam inside one repaired tile, so
+    the union of the full point sets of a 24 x 24 random-access fill keeps its points apart:
+    measured min NN 0.583 of the patch spacing 1/8 (one patch alone: 0.778; seam repair 0.55)."""
+    from tilekit.plugins.wang.fill import random_access_fill
+    from tilekit.plugins.wang.sampling import PATCH_POINTS, corner_set, tile_point_sets
+
+    tp, _, start, count = tile_point_sets()
+    grid = random_access_fill(corner_set(), 24, 24, seed=5)
+    pts = np.concatenate([tp[start[t]: start[t] + count[t]] + [j, 23 - i]
+                          for (i, j), t in np.ndenumerate(grid)])
+    spacing = 1 / math.sqrt(PATCH_POINTS)
+    assert nearest_neighbour_distances(pts).min() >= 0.5 * spacing
+    assert abs(len(pts) / grid.size - PATCH_POINTS) < 0.1 * PATCH_POINTS
+
+
+def test_the_shipped_correction_tables_name_real_contexts():
+    from tilekit.plugins.substitution import builtin_systems
+    from tilekit.plugins.substitution.sampling import CORRECTION_BINS, SYSTEMS, correction_table
+
+    for method, keys in (("penrose", 2 * 3**4), ("polyomino", 4**4)):
+        table = correction_table(method)
+        assert table is not None and table.shape == (keys, CORRECTION_BINS, 2)
+        # a correction moves a sample by less than its tile's width (in the prototile's frame;
+        # a leaf's neighbours are tiles of about its own size)
+        width = min(np.ptp(p.outline, axis=0).max() for p in builtin_systems()[SYSTEMS[method]].prototiles)
+        assert 0 < np.linalg.norm(table, axis=2).max() < width
+
+
+@pytest.mark.slow
+def test_the_shipped_penrose_table_is_what_the_training_script_makes():
+    """benchmarks/train_corrections.py is deterministic (seeded sets and Lloyd probes): refitting
+    gives the shipped table to its printed precision (about 75 s)."""
+    from tilekit.plugins.substitution.sampling import CORRECTION_BINS, correction_path
+    from tilekit.sampling import train_corrections
+
+    sizes = np.round(3000 * ((1 + 5**0.5) / 2) ** (2 * np.arange(20) / 20)).astype(int)
+    rows = train_corrections("penrose", CORRECTION_BINS, sizes=sizes, seeds=2, iterations=8, per_point=30)
+    shipped = np.loadtxt(correction_path("penrose"), delimiter=",", skiprows=1)
+    fitted = rows[rows[:, 4] >= 5]
+    assert fitted.shape == shipped.shape
+    assert np.allclose(fitted, shipped, atol=2e-6)
