@@ -84,6 +84,16 @@ def test_the_count_is_within_one_percent_and_points_lie_in_the_square(method, sp
     assert np.all((s.points >= 0) & (s.points <= 1))
 
 
+@pytest.mark.parametrize("method", ["penrose", "polyomino"])
+@pytest.mark.parametrize("spec", ["uniform", "ramp"])
+def test_small_counts_are_hit_exactly_by_the_substitution_methods(method, spec):
+    """Every leaf has its own upper end I / v (ranks differ), so the count steps by one as tau
+    grows and every small n is reachable; a bracket too narrow to hold it is widened."""
+    d = density_from(spec, size=64)
+    for n in (1, 2, 3, 10):
+        assert sample(d, n, method, seed=4).count == n
+
+
 def test_a_count_of_a_million_is_refused_beyond_the_limit_and_zero_is_an_error():
     d = density_from("uniform", size=16)
     with pytest.raises(Exception, match="over the limit"):

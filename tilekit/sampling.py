@@ -26,6 +26,9 @@ from tilekit.plugins import samplers
 MAX_SAMPLES = 20_000_000
 #: Relative miss of the count beyond which the bracket is widened and the candidates redone.
 COUNT_TOLERANCE = 0.005
+#: A request of n samples may widen the bracket while n x its width stays below this, even when
+#: n falls in a jump of the count (small n: a few tiles more or less matter).
+WIDEN_BUDGET = 100_000
 #: Lloyd iterations at most (``--relax``).
 MAX_RELAX = 50
 
@@ -106,10 +109,12 @@ def _select(density: Density, n: int, method: str, seed: int, relax: int, pm: An
         tau, count = choose_threshold(lo, hi, n, tau_lo, tau_hi) if len(lo) else (tau0, 0)
         if best is None or abs(count - n) < abs(best[1] - n):
             best = (tau, count, extra, pts, lo, hi)
-        at_edge = tau <= tau_lo * (1 + 1e-9) or tau >= tau_hi / (1 + 1e-3)
-        if abs(count - n) <= COUNT_TOLERANCE * n or not at_edge:
+        at_edge = not len(lo) or tau <= tau_lo * (1 + 1e-9) or tau >= tau_hi / (1 + 1e-3)
+        if abs(count - n) <= COUNT_TOLERANCE * n or not (at_edge or n * width <= WIDEN_BUDGET):
             break  # hit, or n falls in a jump of the count inside the bracket
-        width *= 2.0  # the count reaches n only outside the bracket
+        # the count reaches n only outside the bracket, or a small n may be hit by a tau farther
+        # out (a wider bracket holds the narrower one, so the best count can only improve)
+        width *= 2.0
     assert best is not None
     tau, count, extra, pts, lo, hi = best
     chosen = (lo <= tau) & (tau < hi)
