@@ -5,7 +5,8 @@ A sampler (``tilekit_samplers`` hook, :class:`tilekit.plugins.Sampler`) reports 
 with threshold intervals [lo, hi): the point belongs to the set made with threshold tau
 (the density integral one sample stands for) iff lo <= tau < hi. :func:`sample` asks for the
 candidates of a bracket around tau0 = total / N and picks, by one sort of the interval ends,
-the tau whose set has the count nearest N; the set is never regenerated.
+the tau whose set has the count nearest N; the candidates are made again only when the
+bracket must be widened (docs/sampling.md).
 """
 
 from __future__ import annotations
@@ -100,7 +101,7 @@ def _select(density: Density, n: int, method: str, seed: int, relax: int, pm: An
     sampler = found[method]
     tau0 = density.total / n
     width = 1.25
-    best: tuple[float, float, int, np.ndarray, np.ndarray, np.ndarray] | None = None
+    best: tuple[float, int, dict[str, np.ndarray], np.ndarray, np.ndarray, np.ndarray] | None = None
     for _ in range(6):
         tau_lo, tau_hi = tau0 / width, tau0 * width
         got = sampler.candidates(density, tau_lo, tau_hi, seed)
