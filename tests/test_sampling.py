@@ -321,3 +321,28 @@ def test_the_shipped_penrose_table_is_what_the_training_script_makes():
     fitted = rows[rows[:, 4] >= 5]
     assert fitted.shape == shipped.shape
     assert np.allclose(fitted, shipped, atol=2e-6)
+
+
+def test_a_third_party_sampler_plugs_in_through_the_hook():
+    """The core knows samplers only through ``tilekit_samplers``: a plugin whose candidates are
+    a fixed progressive list (the point of rank r is in the set while tau < total / (r + 1/2))
+    gives exactly the n first points."""
+    import tilekit
+    from tilekit.plugins import Sampler, make_plugin_manager
+
+    pts = np.random.default_rng(0).random((500, 2))
+
+    def candidates(density, tau_lo, tau_hi, seed=0):
+        hi = density.total / (np.arange(len(pts)) + 0.5)
+        return pts, np.zeros(len(pts)), hi
+
+    class Plugin:
+        @tilekit.hookimpl
+        def tilekit_samplers(self):
+            return [Sampler("ranked", "a fixed progressive list", "test", candidates)]
+
+    pm = make_plugin_manager([Plugin()])
+    assert "ranked" in samplers(pm)
+    s = sample(density_from("uniform", size=8), 37, "ranked", pm=pm)
+    assert s.count == 37
+    assert {tuple(p) for p in s.points} == {tuple(p) for p in pts[:37]}
