@@ -141,12 +141,12 @@ def test_a_linear_ramp_gives_strip_counts_proportional_to_its_integral(method):
 # ---------------------------------------------------------------------- blue noise
 
 
-@pytest.mark.parametrize("method, factor", [("penrose", 15), ("polyomino", 25), ("wang", 8)])
+@pytest.mark.parametrize("method, factor", [("penrose", 10), ("polyomino", 15), ("wang", 12)])
 def test_min_nearest_neighbour_distance_is_far_above_uniform_random(method, factor):
-    """Measured at N = 4000 (seed 0): the min NN distance over sqrt(1/N) is 0.42 (penrose with
-    its correction table, no Lloyd), 0.82 (polyomino), 0.28 (wang), and 0.0137 for uniform
-    random points (it shrinks like 1/sqrt(N)): ratios 31, 60 and 21. The bounds asserted are
-    under half of those."""
+    """Measured at N = 4000 (seed 0): the min NN distance over sqrt(1/N) is 0.29 (penrose with
+    its correction table, no Lloyd), 0.43 (polyomino with its table), 0.37 (wang), and 0.0137
+    for uniform random points (it shrinks like 1/sqrt(N)): ratios 22, 31 and 27. The bounds
+    asserted are under half of those."""
     n = 4000
     s = sample(density_from("uniform", size=64), n, method, seed=0, relax=0)
     rnd = np.random.default_rng(0).random((n, 2))
@@ -178,18 +178,19 @@ def test_lloyd_relaxation_widens_the_mean_spacing_of_the_penrose_points():
 def test_the_shipped_correction_table_widens_spacing_and_lowers_low_frequency_power():
     """The penrose correction vectors (fitted by Lloyd relaxation, benchmarks/train_corrections.py)
     on sets of sizes it was not fitted at: measured at N = 5000 and 7000 (seed 11) the mean NN
-    distance over sqrt(1/N) goes 0.51 -> 0.79 and 0.55 -> 0.78, the mean power at
-    1 < f < sqrt(N)/2 from 0.51 -> 0.11 and 0.31 -> 0.13."""
+    distance over sqrt(1/N) goes 0.624 -> 0.693 and 0.637 -> 0.722, the mean power at
+    1 < f < sqrt(N)/2 from 0.312 -> 0.228 and 0.213 -> 0.173 (a modest gain: the scrambled
+    rank digits make which relatives are kept less predictable from a short context)."""
     d = density_from("uniform", size=64)
     for n in (5000, 7000):
         raw = sample(d, n, "penrose", seed=11, correct=False)
         fixed = sample(d, n, "penrose", seed=11)
         assert fixed.count == raw.count
-        assert nearest_neighbour_distances(fixed.points).mean() > 1.3 * nearest_neighbour_distances(raw.points).mean()
+        assert nearest_neighbour_distances(fixed.points).mean() > 1.05 * nearest_neighbour_distances(raw.points).mean()
         f, p_raw = radial_power_spectrum(raw.points, size=64)
         _, p_fixed = radial_power_spectrum(fixed.points, size=64)
         low = (f > 1) & (f < 0.5 * math.sqrt(n))
-        assert p_fixed[low].mean() < 0.5 * p_raw[low].mean()
+        assert p_fixed[low].mean() < 0.9 * p_raw[low].mean()
 
 
 # ---------------------------------------------------------------------- determinism and output
@@ -299,7 +300,7 @@ def test_the_shipped_correction_tables_name_real_contexts():
     from tilekit.plugins.substitution import builtin_systems
     from tilekit.plugins.substitution.sampling import CORRECTION_BINS, SYSTEMS, correction_table
 
-    for method, keys in (("penrose", 2 * 3**4), ("polyomino", 4**4)):
+    for method, keys in (("penrose", 2 * 9**3), ("polyomino", 4**4)):
         table = correction_table(method)
         assert table is not None and table.shape == (keys, CORRECTION_BINS, 2)
         # a correction moves a sample by less than its tile's width (in the prototile's frame;

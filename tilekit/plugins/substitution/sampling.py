@@ -34,8 +34,21 @@ from tilekit.resources import catalogue_dir
 #: The shipped system each method substitutes.
 SYSTEMS = {"penrose": "penrose-p3", "polyomino": "chair"}
 #: Child indices of the last CONTEXT_LEVELS substitutions name a tile's structural context
-#: (with its prototile), the key of the correction table.
+#: (with its prototile), the key of the correction table. With scrambled digits (systems of
+#: several prototiles) the pair (child index, rank digit) of the last SCRAMBLED_CONTEXT_LEVELS
+#: substitutions does: which relatives are kept then depends on the digits too.
 CONTEXT_LEVELS = 4
+SCRAMBLED_CONTEXT_LEVELS = 3
+
+
+def context_shape(labels: int, width: int) -> tuple[int, int, int]:
+    """(base per level, levels, number of keys) of the context keys of a system with ``labels``
+    prototiles and at most ``width`` children a rule."""
+    if labels > 1:
+        base, levels = width * width, SCRAMBLED_CONTEXT_LEVELS
+    else:
+        base, levels = width, CONTEXT_LEVELS
+    return base, levels, labels * base**levels
 #: Bins of E = I / tau (the fraction of a sample a leaf wants, in (0, 1]) in the correction table.
 CORRECTION_BINS = 8
 
@@ -107,6 +120,11 @@ def candidates(method: str, density, tau_lo: float, tau_hi: float, seed: int = 0
     out_key: list[np.ndarray] = []
     out_frame: list[np.ndarray] = []
     width = rank_table.shape[1]
+    # with several prototiles the rule order ties digits to labels (the acute triangle's first
+    # child is always the acute one), so tiles of one label share rank ranges and the kept
+    # fraction drifts with E; a hashed cyclic shift of each parent's digits removes that
+    scramble = system.n > 1
+    base, levels, _ = context_shape(system.n, width)
 
     def step(label: np.ndarray, maps: np.ndarray, carry: dict[str, np.ndarray], level: int) -> np.ndarray:
         if level == 0:
@@ -114,8 +132,13 @@ def candidates(method: str, density, tau_lo: float, tau_hi: float, seed: int = 0
             path = np.zeros(len(label), dtype=np.int64)
         else:
             k = sizes[carry["parent_label"]]
-            v = (rank_table[carry["parent_label"], carry["child"]] + carry["v"]) / k
-            path = (carry["path"] * width + carry["child"]) % width**CONTEXT_LEVELS
+            digit = rank_table[carry["parent_label"], carry["child"]]
+            if scramble:  # a hashed cyclic shift of the parent's digits: siblings stay apart
+                digit = (digit + (carry["h"] % k.astype(np.uint64)).astype(np.int64)) % k
+            v = (digit + carry["v"]) / k
+            carry["h"] = _mix(carry["h"] ^ (carry["child"].astype(np.uint64) + np.uint64(1)) * _GOLDEN)
+            step_key = carry["child"] * width + digit if scramble else carry["child"]
+            path = (carry["path"] * base + step_key) % base**levels
         det = np.abs(maps[:, 0, 0] * maps[:, 1, 1] - maps[:, 0, 1] * maps[:, 1, 0])
         c = cents[label]
         x = maps[:, 0, 0] * c[:, 0] + maps[:, 0, 1] * c[:, 1] + maps[:, 0, 2]
@@ -130,7 +153,7 @@ def candidates(method: str, density, tau_lo: float, tau_hi: float, seed: int = 0
             out_p.append(np.column_stack([x[keep], y[keep]]))
             out_lo.append(integral[keep])
             out_hi.append(hi[keep])
-            out_key.append(label[keep] * width**CONTEXT_LEVELS + path[keep])
+            out_key.append(label[keep] * base**levels + path[keep])
             out_frame.append(maps[keep, :2, :2])
         carry["v"] = v
         carry["path"] = path
@@ -139,13 +162,25 @@ def candidates(method: str, density, tau_lo: float, tau_hi: float, seed: int = 0
 
     refine_levels(label, maps, [r.children for r in system.rules], [r.matrices for r in system.rules], step,
                   MAX_REFINE_LEVELS, carry={"A": np.full(1, np.inf), "v": np.full(1, 0.5),
-                                            "path": np.zeros(1, dtype=np.int64)})
+                                            "path": np.zeros(1, dtype=np.int64),
+                                            "h": _mix(np.full(1, seed, dtype=np.uint64) + _GOLDEN)})
     if not out_p:
         empty = {"key": np.zeros(0, dtype=np.int64), "frame": np.zeros((0, 2, 2)), "integral": np.zeros(0)}
         return np.zeros((0, 2)), np.zeros(0), np.zeros(0), empty
     lo = np.concatenate(out_lo)
     extra = {"key": np.concatenate(out_key), "frame": np.concatenate(out_frame), "integral": lo}
     return np.concatenate(out_p), lo, np.concatenate(out_hi), extra
+
+
+_GOLDEN = np.uint64(0x9E3779B97F4A7C15)
+
+
+def _mix(z: np.ndarray) -> np.ndarray:
+    """The splitmix64 finaliser, vectorised (a bijection of 64-bit integers)."""
+    with np.errstate(over="ignore"):
+        z = (z ^ (z >> np.uint64(30))) * np.uint64(0xBF58476D1CE4E5B9)
+        z = (z ^ (z >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)
+        return z ^ (z >> np.uint64(31))
 
 
 def _tile_integral(density, maps: np.ndarray, outline: np.ndarray, area: np.ndarray) -> np.ndarray:
@@ -173,7 +208,7 @@ def correction_table(method: str) -> np.ndarray | None:
     if not path.is_file():
         return None
     _, _, _, rank_table, _, _ = _prepared(SYSTEMS[method])
-    keys = rank_table.shape[0] * rank_table.shape[1] ** CONTEXT_LEVELS
+    _, _, keys = context_shape(rank_table.shape[0], rank_table.shape[1])
     table = np.zeros((keys, CORRECTION_BINS, 2))
     rows = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
     if len(rows):
