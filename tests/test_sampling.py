@@ -95,6 +95,13 @@ def test_small_counts_are_hit_within_one_by_the_substitution_methods(method, spe
         assert abs(sample(d, n, method, seed=4).count - n) <= 1
 
 
+def test_the_command_line_limit_is_the_library_limit():
+    from tilekit import cli as cli_module
+    from tilekit.sampling import MAX_SAMPLES
+
+    assert cli_module._MAX_SAMPLES == MAX_SAMPLES
+
+
 def test_a_count_of_a_million_is_refused_beyond_the_limit_and_zero_is_an_error():
     d = density_from("uniform", size=16)
     with pytest.raises(Exception, match="over the limit"):

@@ -959,12 +959,16 @@ def catalogue_seed(state: State, replace: bool) -> None:
 # --------------------------------------------------------------------------- sample (issue 17)
 # A self-contained block: tile-based importance sampling of tilekit.sampling (docs/sampling.md).
 
+#: tilekit.sampling.MAX_SAMPLES, spelled here so that `tilekit --help` does not import NumPy
+#: (a test keeps the copies equal).
+_MAX_SAMPLES = 20_000_000
+
 @cli.command()
 @click.option("--density", "density_spec", required=True, metavar="IMAGE.png|NAME|EXPR",
               help="A PNG (brighter = more samples), a named density (uniform, ramp, radial, step, rings) "
               "or an expression in x, y over the unit square, e.g. 'x*y' or 'exp(-9*((x-.5)**2+(y-.5)**2))'.")
 @click.option("--method", default="penrose", show_default=True, help="Sampler: penrose, polyomino or wang (plugins may add more).")
-@click.option("-n", "count", type=BoundedInt(1, 20_000_000), required=True, help="Number of samples (1..20,000,000).")
+@click.option("-n", "count", type=BoundedInt(1, _MAX_SAMPLES), required=True, help=f"Number of samples (1..{_MAX_SAMPLES:,}).")
 @click.option("-o", "--output", "out", type=click.Path(dir_okay=False), required=True,
               help="Points as .csv (x,y) or .npy, or a stipple picture as .svg / .png.")
 @click.option("--svg", "svg_out", type=click.Path(dir_okay=False), help="Also draw the stipple picture as SVG.")
