@@ -354,3 +354,14 @@ def test_a_third_party_sampler_plugs_in_through_the_hook():
     s = sample(density_from("uniform", size=8), 37, "ranked", pm=pm)
     assert s.count == 37
     assert {tuple(p) for p in s.points} == {tuple(p) for p in pts[:37]}
+
+
+@pytest.mark.parametrize("method", ["penrose", "polyomino"])
+def test_the_turned_and_shifted_supertile_covers_the_whole_square_for_any_seed(method):
+    """The root is the covering seed of a box twice the square's size, turned and shifted by at
+    most half the square: every 1/10 x 1/10 cell gets points whatever the seed (expected 20)."""
+    d = density_from("uniform", size=16)
+    for seed in range(6):
+        s = sample(d, 2000, method, seed=seed)
+        cells = np.histogram2d(s.points[:, 0], s.points[:, 1], bins=10, range=[[0, 1], [0, 1]])[0]
+        assert cells.min() >= 10, (seed, cells.min())
