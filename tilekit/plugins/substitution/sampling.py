@@ -6,16 +6,22 @@ Robinson triangles (``penrose-p3``); ``polyomino`` follows Ostromoukhov (SIGGRAP
 the chair, the L-tromino 4-rep-tile (``chair``). Both run the shared level loop
 (:func:`levels.refine_levels`) over the shipped systems; nothing here knows Penrose geometry.
 
-A tile t carries its density integral I(t) (the exact integral over the square of t's area
-centred on its centroid), the least integral A(t) of its ancestors, and a rank value v(t) in
-(0, 1): the mixed-radix radical inverse of its path of child indices, the last step most
+A tile t carries its density integral I(t) (its area times the mean density over its bounding
+box, from exact box integrals), the least integral A(t) of its ancestors, and a rank value v(t)
+in (0, 1): the mixed-radix radical inverse of its path of child digits, the last step most
 significant (v(child) = (r + v(parent)) / k for the r-th of k children in a farthest-first
-order of the rule), so siblings are ranked far apart and tiles of one level have ranks spread
-evenly over (0, 1) — a hierarchical ordered dither. With threshold tau (the integral one sample
+order of the rule, cyclically shifted by a hash of the parent when the system has several
+prototiles, so that digits do not follow labels), so siblings are ranked far apart and tiles
+of one level have ranks spread evenly over (0, 1) — a hierarchical ordered dither. With threshold tau (the integral one sample
 stands for) a tile is substituted while I > tau, and a tile that stops keeps its sample (its
 centroid) when I / tau > v: a tile wanting a fraction of a sample gets it with that frequency,
 so counts change smoothly with tau instead of in steps of s^2. Hence the point of t is in the
 set exactly for tau in [I(t), min(A(t), I(t) / v(t))), the interval the sampler reports.
+
+The correction step (both papers) moves each chosen sample by a vector looked up by its
+structural context and its E = I / tau, from tables fitted once by Lloyd relaxation
+(:func:`tilekit.sampling.train_corrections`, benchmarks/train_corrections.py) and shipped in
+catalogue/substitution/sampling/.
 """
 
 from __future__ import annotations
