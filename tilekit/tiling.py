@@ -28,6 +28,10 @@ from tilekit.render import patch_to_svg
 #: of the method: 20 million cells is already hundreds of millions of tiles).
 MAX_LATTICE_CELLS = 20_000_000
 
+#: Patches with at least this many tiles get their bounding boxes from one compiled pass
+#: (tilekit.kernels): 5x less time than the NumPy expressions at 4.5 * 10^5 tiles.
+_COMPILED_BOUNDS = 50_000
+
 #: Tiles per block of ``PeriodicTiling.patch``'s box test and output writes (fits in the cache).
 _PATCH_BLOCK = 1 << 14
 
@@ -266,6 +270,11 @@ class Patch:
 
     def tile_bounds(self) -> np.ndarray:
         """(n, 4) array of each tile's x0, y0, x1, y1."""
+        if len(self) >= _COMPILED_BOUNDS:
+            # measured start-up cost: numba's import (~0.3 s) pays only on large patches
+            from tilekit.kernels import tile_bounds
+
+            return tile_bounds(self.prototile, self.transform, [p.outline for p in self.prototiles])
         out = np.zeros((len(self), 4))
         for p, shape in enumerate(self.prototiles):
             idx = np.flatnonzero(self.prototile == p)
