@@ -45,6 +45,15 @@ GENERATION_BYTES_PER_TILE = 200
 #: Peak bytes per tile while a patch is drawn as SVG (measured about 405 for Penrose
 #: rhombs: the polygons, the path text and the document), with a margin.
 RENDER_BYTES_PER_TILE = 500
+#: Tiles a notebook draws inline (``_repr_svg_`` of a Patch, Tiling or catalogue entry);
+#: over it a short line of text is shown instead of a giant SVG.
+MAX_REPR_TILES = 5_000
+#: Tiles of one DXF file: ezdxf builds the whole drawing in memory, about 1.2 kB per tile
+#: (measured, docs/benchmarks.md); GeoJSON and JSON are streamed and need no limit of their own.
+MAX_DXF_TILES = 500_000
+#: Peak bytes per tile while the adjacency of a patch is computed (measured about 1 kB for
+#: hexagons and Penrose rhombs, docs/benchmarks.md), with a margin.
+ADJACENCY_BYTES_PER_TILE = 2_000
 #: Fraction of the available memory one patch may take.
 MEMORY_FRACTION = 0.8
 
