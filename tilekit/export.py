@@ -25,9 +25,11 @@ from tilekit.errors import ParameterError, TilekitError
 from tilekit.geometry import POINT_TOL, Affine, snap_noise
 from tilekit.limits import (
     ADJACENCY_BYTES_PER_TILE,
+    GENERATION_BYTES_PER_TILE,
     MAX_DXF_TILES,
     MAX_REPR_TILES,
     MAX_TILES,
+    RENDER_BYTES_PER_TILE,
     refuse_over,
     refuse_over_memory,
 )
@@ -626,3 +628,39 @@ def tiling_mimebundle(tiling: Tiling, region: Any = None) -> dict[str, str]:
     if len(patch) > MAX_REPR_TILES:
         return {"text/plain": _too_many(text, len(patch))}
     return {"text/plain": text, "image/svg+xml": tiling.render_svg(patch, size=400)}
+
+
+# --------------------------------------------------------------------------- one entry point
+
+
+def check_export_size(estimate: float, fmt: str, max_tiles: float = MAX_TILES) -> None:
+    """Refuse an export of about ``estimate`` tiles before anything is made: over
+    ``max_tiles`` (``--max-tiles``), over MAX_DXF_TILES for DXF, or when the patch and the
+    export's arrays would not fit in memory."""
+    refuse_over("tiles", estimate, max_tiles, "--max-tiles")
+    if fmt == ".dxf":
+        refuse_over("tiles", estimate, MAX_DXF_TILES,
+                    hint=f"a DXF drawing is built in memory, at most MAX_DXF_TILES = {MAX_DXF_TILES:,} tiles")
+    per_tile = {".svg": RENDER_BYTES_PER_TILE, ".png": RENDER_BYTES_PER_TILE,
+                ".geojson": GENERATION_BYTES_PER_TILE}.get(fmt, ADJACENCY_BYTES_PER_TILE)
+    refuse_over_memory("tiles", estimate, GENERATION_BYTES_PER_TILE + per_tile, hint="ask for a smaller depth or region")
+
+
+def write_patch(patch: Patch, path: str | Path, *, classes: np.ndarray | None = None, layers: str = "one",
+                mm_per_unit: float = 10.0, palette: Sequence[str] | None = None, stroke: str | None = None) -> str:
+    """Write ``patch`` as the format its suffix names (.geojson, .json, .cut.svg, .dxf; the
+    pictures .svg / .png go through tilekit.render); returns the format's suffix."""
+    fmt = output_format(path)
+    if fmt in (".svg", ".png"):
+        raise ParameterError(f"{fmt} is a picture: draw it with Patch.to_svg / tilekit.render.write_image")
+    if fmt in (".geojson", ".json") and (layers != "one"):
+        raise ParameterError(f"layers apply to .cut.svg and .dxf output, not {fmt}")
+    if fmt == ".geojson":
+        write_text(iter_geojson(patch, classes), path)
+    elif fmt == ".json":
+        write_text(iter_json(patch), path)
+    elif fmt == ".cut.svg":
+        write_text(iter_cut_svg(patch, layers, mm_per_unit, stroke or "#ff0000", palette), path)
+    else:
+        write_dxf(patch, path, layers, mm_per_unit)
+    return fmt
