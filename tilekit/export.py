@@ -153,11 +153,6 @@ class Edges:
     split: int
     tiles: int
 
-    @property
-    def order(self) -> np.ndarray:
-        """Segment indices sorted by key (equal segments of different tiles adjacent)."""
-        return np.lexsort((self.tile, self.key))
-
 
 def tile_edges(patch: Patch, tol: float | None = None) -> Edges:
     """The elementary segments of every tile's boundary (see :class:`Edges`)."""
@@ -175,13 +170,55 @@ def tile_edges(patch: Patch, tol: float | None = None) -> Edges:
 
 def _split_at_vertices(P: np.ndarray, u: np.ndarray, v: np.ndarray, tile: np.ndarray,
                        tol: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
-    """Split each segment (u, v) at every point of P strictly inside it (within ``tol`` of
-    the segment, beyond ``tol`` from its ends). Candidates come from a uniform grid of cell
-    size the longest segment (a segment's box meets at most 2 x 2 cells), joined with the
-    points' cells by sorting; the exact test is array code over the candidate pairs."""
+    """Split each segment (u, v) at every point of P strictly inside it. The search runs once
+    per distinct edge (most edges are two tiles' segments); only the segments of edges with a
+    vertex inside are rebuilt, each in its own direction, so the segment starts of a tile are
+    still its boundary's vertices, once each."""
     ns = len(u)
     if ns == 0:
         return u, v, tile, 0
+    key = np.minimum(u, v) * len(P) + np.maximum(u, v)
+    o = np.argsort(key, kind="stable")
+    ks = key[o]
+    new = np.concatenate([[True], ks[1:] != ks[:-1]])
+    rep = o[new]  # one segment per distinct edge
+    inv = np.empty(ns, dtype=np.int64)
+    inv[o] = np.cumsum(new) - 1
+    hs, hp, ht = _vertices_inside(P, u[rep], v[rep], tol)
+    if not len(hs):
+        return u, v, tile, 0
+    hord = np.lexsort((ht, hs))
+    hs, hp, ht = hs[hord], hp[hord], ht[hord]
+    hcount = np.bincount(hs, minlength=len(rep))
+    hfirst = np.cumsum(hcount) - hcount
+    aff = np.flatnonzero(hcount[inv] > 0)  # segments whose edge has vertices inside
+    e = inv[aff]
+    c = hcount[e]
+    seg = np.repeat(np.arange(len(aff)), c)
+    at = np.repeat(hfirst[e] - (np.cumsum(c) - c), c) + np.arange(int(c.sum()))
+    same_way = np.repeat(u[aff] == u[rep[e]], c)
+    t = np.where(same_way, ht[at], 1.0 - ht[at])
+    m = len(aff)
+    stop_seg = np.concatenate([np.arange(m), seg, np.arange(m)])
+    stop_t = np.concatenate([np.zeros(m), t, np.ones(m)])
+    stop_p = np.concatenate([u[aff], hp[at], v[aff]])
+    so = np.lexsort((stop_t, stop_seg))
+    ss, sp = stop_seg[so], stop_p[so]
+    cont = (ss[1:] == ss[:-1]) & (sp[1:] != sp[:-1])
+    keep = np.ones(ns, dtype=bool)
+    keep[aff] = False
+    return (np.concatenate([u[keep], sp[:-1][cont]]), np.concatenate([v[keep], sp[1:][cont]]),
+            np.concatenate([tile[keep], tile[aff][ss[:-1][cont]]]), len(np.unique(hp)))
+
+
+def _vertices_inside(P: np.ndarray, u: np.ndarray, v: np.ndarray,
+                     tol: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(segment, point, t) for every point of P strictly inside a segment (u, v): within
+    ``tol`` of it and beyond ``tol`` from its ends, at fraction t along it. Candidates come
+    from a uniform grid of cell size the longest segment (a segment's box meets at most
+    2 x 2 cells), joined with the points' cells by sorting; the exact test is array code
+    over the candidate pairs, a chunk of segments at a time."""
+    ns = len(u)
     A, B = P[u], P[v]
     length = np.hypot(*(B - A).T)
     h = float(length.max()) * (1 + 1e-9) + 4 * tol
@@ -225,20 +262,9 @@ def _split_at_vertices(P: np.ndarray, u: np.ndarray, v: np.ndarray, tile: np.nda
         hits_s.append(s[inside])
         hits_p.append(p[inside])
         hits_t.append(along[inside] / L[inside])
-    if not hits_s or not sum(len(h) for h in hits_s):
-        return u, v, tile, 0
-    hs, hp, ht = np.concatenate(hits_s), np.concatenate(hits_p), np.concatenate(hits_t)
-    # each segment's stops: its start (t = 0), the vertices inside it, its end (t = 1)
-    stop_seg = np.concatenate([np.arange(ns), hs, np.arange(ns)])
-    stop_t = np.concatenate([np.zeros(ns), ht, np.ones(ns)])
-    stop_p = np.concatenate([u, hp, v])
-    o = np.lexsort((stop_t, stop_seg))
-    ss, sp = stop_seg[o], stop_p[o]
-    same = ss[1:] == ss[:-1]
-    nu, nv = sp[:-1][same], sp[1:][same]
-    ntile = tile[ss[:-1][same]]
-    keep = nu != nv
-    return nu[keep], nv[keep], ntile[keep], len(np.unique(hp))
+    if not hits_s:
+        return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64), np.zeros(0)
+    return np.concatenate(hits_s), np.concatenate(hits_p), np.concatenate(hits_t)
 
 
 # --------------------------------------------------------------------------- adjacency
@@ -280,35 +306,47 @@ class Adjacency:
         return getattr(self, kind)
 
 
-def _pairs(a: np.ndarray, b: np.ndarray, n: int) -> np.ndarray:
-    """Unique sorted pairs (min, max) of the given tile pairs, self-pairs dropped."""
+def _unique(keys: np.ndarray) -> np.ndarray:
+    """Sorted distinct values (a sort and a mask: faster here than np.unique's hashing)."""
+    s = np.sort(keys)
+    return s[np.concatenate([[True], s[1:] != s[:-1]])] if len(s) else s
+
+
+def _pair_keys(a: np.ndarray, b: np.ndarray, n: int) -> np.ndarray:
+    """Packed keys min * n + max of tile pairs, self-pairs dropped (not deduplicated)."""
     lo, hi = np.minimum(a, b), np.maximum(a, b)
-    key = np.unique(lo[lo != hi] * n + hi[lo != hi])
-    return np.column_stack([key // n, key % n]).astype(np.int64)
+    ok = lo != hi
+    return lo[ok] * n + hi[ok]
+
+
+def _unpack(keys: np.ndarray, n: int) -> np.ndarray:
+    return np.column_stack([keys // n, keys % n]).astype(np.int64).reshape(-1, 2)
 
 
 def adjacency_of(edges: Edges) -> Adjacency:
     """Edge and vertex adjacency from a patch's elementary segments (:func:`tile_edges`)."""
     n = max(edges.tiles, 1)
-    o = edges.order
+    o = np.argsort(edges.key, kind="stable")
     k, t = edges.key[o], edges.tile[o]
     same = k[1:] == k[:-1]
-    edge = _pairs(t[:-1][same], t[1:][same], n)
+    ekey = _unique(_pair_keys(t[:-1][same], t[1:][same], n))
     # tiles at each vertex: (vertex, tile) incidences from the segments' starts, which after
-    # splitting include every vertex lying on a tile's boundary
-    inc = np.unique(edges.u * n + edges.tile)
-    vid, vt = inc // n, inc % n
-    firsts = np.flatnonzero(np.concatenate([[True], vid[1:] != vid[:-1]]))
-    size = np.diff(np.append(firsts, len(vid)))
-    found = []
-    for d in range(1, int(size.max()) if len(size) else 1):
+    # splitting include every vertex lying on a tile's boundary (once per tile: the outlines
+    # are simple polygons)
+    ov = np.argsort(edges.u, kind="stable")
+    vid, vt = edges.u[ov], edges.tile[ov]
+    found = [ekey]
+    d = 1
+    while d < len(vid):
         ok = vid[d:] == vid[:-d]
-        found.append(_pairs(vt[:-d][ok], vt[d:][ok], n))
-    touching = (np.unique(np.concatenate(found + [edge]), axis=0) if found
-                else edge.copy()).reshape(-1, 2).astype(np.int64)
-    tkey, ekey = touching[:, 0] * n + touching[:, 1], edge[:, 0] * n + edge[:, 1]
-    vertex = touching[~np.isin(tkey, ekey)]
-    return Adjacency(edges.tiles, edge, vertex, touching, edges.split)
+        if not ok.any():
+            break
+        found.append(_pair_keys(vt[:-d][ok], vt[d:][ok], n))
+        d += 1
+    tkey = _unique(np.concatenate(found))
+    pos = np.minimum(np.searchsorted(ekey, tkey), max(len(ekey) - 1, 0))
+    is_edge = ekey[pos] == tkey if len(ekey) else np.zeros(len(tkey), dtype=bool)
+    return Adjacency(edges.tiles, _unpack(ekey, n), _unpack(tkey[~is_edge], n), _unpack(tkey, n), edges.split)
 
 
 def adjacency(patch: Patch, tol: float | None = None) -> Adjacency:
