@@ -48,12 +48,14 @@ RENDER_BYTES_PER_TILE = 500
 #: Tiles a notebook draws inline (``_repr_svg_`` of a Patch, Tiling or catalogue entry);
 #: over it a short line of text is shown instead of a giant SVG.
 MAX_REPR_TILES = 5_000
-#: Tiles of one DXF file: ezdxf builds the whole drawing in memory, about 1.2 kB per tile
-#: (measured, docs/benchmarks.md); GeoJSON and JSON are streamed and need no limit of their own.
-MAX_DXF_TILES = 500_000
-#: Peak bytes per tile while the adjacency of a patch is computed (measured about 1 kB for
-#: hexagons and Penrose rhombs, docs/benchmarks.md), with a margin.
-ADJACENCY_BYTES_PER_TILE = 2_000
+#: Tiles of one DXF file: ezdxf builds the whole drawing in memory as Python objects, 2.0-3.5 kB
+#: and about 0.5 ms per tile (measured, docs/benchmarks.md), so 200,000 tiles is ~700 MB and
+#: minutes; GeoJSON, JSON and the cut SVG are streamed and need no limit of their own.
+MAX_DXF_TILES = 200_000
+#: Peak bytes per tile while the adjacency of a patch is computed (measured 0.9-1.0 kB for
+#: 3.4.6.4 and Penrose rhombs, 1.9 kB for the chair, whose edges are split; docs/benchmarks.md),
+#: with a margin.
+ADJACENCY_BYTES_PER_TILE = 3_000
 #: Fraction of the available memory one patch may take.
 MEMORY_FRACTION = 0.8
 
