@@ -16,7 +16,7 @@ import shapely
 import shapely.affinity
 from click.testing import CliRunner
 
-from tilekit import Patch
+from tilekit import Patch, Prototile
 from tilekit.cli import cli
 from tilekit.errors import ParameterError
 from tilekit.export import (
@@ -128,6 +128,15 @@ def test_interior_tiles_of_archimedean_tilings_have_an_edge_neighbour_per_side(c
     assert inner.sum() > 10
     assert (degree[inner] == sides[inner]).all()
     assert (degree <= sides).all()
+
+
+def test_an_empty_patch_exports_empty():
+    patch = Patch.empty([Prototile(np.array([[0, 0], [1, 0], [0, 1.0]]))])
+    adj = patch.adjacency()
+    assert adj.edge.shape == adj.vertex.shape == adj.touching.shape == (0, 2)
+    assert json.loads(patch.to_geojson())["features"] == []
+    assert json.loads("".join(iter_json(patch)))["tiles"] == []
+    assert segments_in_svg(patch.to_cut_svg()) == {"cut": 0}
 
 
 def test_weld_joins_points_a_hair_apart_across_any_grid_line():
@@ -312,6 +321,7 @@ def test_notebook_pictures_and_their_size_cap(cat, monkeypatch):
     entry = cat[0].get("penrose-p3")
     html = entry._repr_mimebundle_()["text/html"]
     assert "<b>penrose-p3</b>" in html and "<svg" in html
+    assert entry._repr_svg_().startswith("<svg") and tiling._repr_svg_().startswith("<svg")
     # a tiling checks its estimate before making any patch
     monkeypatch.setattr(type(tiling), "estimate_tiles", lambda self, region=None: MAX_REPR_TILES + 1)
     monkeypatch.setattr(type(tiling), "patch", lambda self, region: pytest.fail("made a patch over the cap"))

@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import IO, TYPE_CHECKING, Any
 
 import numpy as np
+import shapely
 
 from tilekit.errors import ParameterError, TilekitError
 from tilekit.geometry import POINT_TOL, Affine, snap_noise
@@ -549,8 +550,6 @@ def write_text(chunks: Iterator[str], path: str | Path | IO[str]) -> None:
 def to_shapely(patch: Patch) -> np.ndarray:
     """Every tile as a shapely Polygon (an object array in tile order), coordinates cleaned
     by snap_noise so that shared edges coincide bit for bit for shapely's overlays."""
-    import shapely  # a core dependency, imported here to keep this module's import light
-
     out = np.empty(len(patch), dtype=object)
     for _, idx, pts in patch.groups():
         out[idx] = shapely.polygons(snap_noise(pts, decimals=12))
@@ -601,7 +600,7 @@ def plot_patch(patch: Patch, ax: Any = None, colours: str | Sequence[str] | None
     palette = parse_palette(colours) or PALETTE
     if edges is not None and not is_colour(edges):
         raise ParameterError(f"edge colour {str(edges)[:40]!r} is not a CSS colour name or #rgb / #rrggbb")
-    mpl = optional("matplotlib", "plot", "Patch.plot")  # optional dependency: imported when used
+    optional("matplotlib", "plot", "Patch.plot")  # optional dependency: imported when used
     collections = importlib.import_module("matplotlib.collections")
     colors = importlib.import_module("matplotlib.colors")
     if ax is None:
@@ -628,7 +627,6 @@ def plot_patch(patch: Patch, ax: Any = None, colours: str | Sequence[str] | None
         ax.set_xlim(x0, x1)
         ax.set_ylim(y0, y1)
     ax.set_aspect("equal")
-    del mpl
     return ax
 
 

@@ -866,6 +866,10 @@ class Tiling(ABC):
         limits.MAX_REPR_TILES a line of text instead)."""
         return export.tiling_mimebundle(self)
 
+    def _repr_svg_(self) -> str | None:
+        """The picture of :meth:`_repr_mimebundle_`, or None over limits.MAX_REPR_TILES."""
+        return export.tiling_mimebundle(self).get("image/svg+xml")
+
 
 class PeriodicTiling(Tiling):
     """A tiling given by a translational unit (placed tiles) and two translation vectors.

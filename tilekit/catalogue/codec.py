@@ -64,6 +64,10 @@ class Entry:
         body = svg if svg is not None else f"<div>{escape(drawn['text/plain'])}</div>"
         return {"text/plain": text, "text/html": head + body}
 
+    def _repr_svg_(self) -> str | None:
+        """The tiling's picture alone (None over limits.MAX_REPR_TILES)."""
+        return get_family(self.family).from_spec(self.spec)._repr_svg_()
+
 
 def scalar_row(key: str, value: Any, owner: str) -> dict[str, Any]:
     kind = type(value)  # fast path for the plain types; ABC checks below for numpy and co.
