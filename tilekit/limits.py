@@ -49,8 +49,8 @@ RENDER_BYTES_PER_TILE = 500
 #: over it a short line of text is shown instead of a giant SVG.
 MAX_REPR_TILES = 5_000
 #: Tiles of one DXF file: ezdxf builds the whole drawing in memory as Python objects, 2.0-3.5 kB
-#: and 0.12-0.27 ms per tile (measured, docs/benchmarks.md), so 200,000 tiles is ~700 MB and
-#: minutes; GeoJSON, JSON and the cut SVG are streamed and need no limit of their own.
+#: and 0.12-0.27 ms per tile (measured, docs/benchmarks.md), so 200,000 tiles is ~700 MB and up to
+#: a minute; GeoJSON, JSON and the cut SVG are streamed and need no limit of their own.
 MAX_DXF_TILES = 200_000
 #: Peak bytes per tile while the adjacency of a patch is computed (measured 0.9-1.0 kB for
 #: 3.4.6.4 and Penrose rhombs, 1.9 kB for the chair, whose edges are split; docs/benchmarks.md),
