@@ -49,6 +49,11 @@ FORMATS: dict[str, str] = {
     ".dxf": "DXF of edges, each shared edge once (dxf extra)",
 }
 
+#: Strokes of a cut SVG's colour layers (``--layers colour``): saturated and far apart, as
+#: laser software maps stroke colours to operations; ``--colours`` replaces them.
+CUT_PALETTE: tuple[str, ...] = ("#ff0000", "#0000ff", "#00a000", "#ff00ff", "#00a0a0", "#c08000",
+                                "#000000", "#8000ff", "#ff8000", "#0080ff", "#808000", "#ff0080")
+
 #: Ways of layering the edges of a cut file.
 LAYERINGS = ("one", "colour")
 
@@ -399,13 +404,13 @@ def iter_cut_svg(patch: Patch, layers: str = "one", mm_per_unit: float = 10.0,
                  stroke: str = "#ff0000", palette: Sequence[str] | None = None) -> Iterator[str]:
     """A layered SVG of the patch's edges, each shared edge once (:func:`cut_segments`), as
     text chunks. Sizes are in millimetres (``mm_per_unit`` per tiling unit); each layer is a
-    ``<g>`` that Inkscape reads as a layer; with ``layers='colour'`` a layer is stroked in its
-    colour's palette entry, otherwise in ``stroke``."""
+    ``<g>`` that Inkscape reads as a layer; with ``layers='colour'`` layer c is stroked in
+    ``palette[c % len]`` (default CUT_PALETTE), otherwise in ``stroke``."""
     if not (mm_per_unit > 0 and np.isfinite(mm_per_unit)):
         raise ParameterError(f"mm per unit must be a positive number, not {mm_per_unit}")
     if not is_colour(stroke):
         raise ParameterError(f"stroke colour {stroke[:40]!r} is not a CSS colour name or #rgb / #rrggbb")
-    pal = tuple(palette) if palette else PALETTE
+    pal = tuple(palette) if palette else CUT_PALETTE
     groups = cut_segments(patch, layers)
     x0, y0, x1, y1 = patch.bounds() if len(patch) else (0.0, 0.0, 1.0, 1.0)
     w, h = x1 - x0, y1 - y0
