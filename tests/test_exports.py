@@ -16,7 +16,7 @@ import shapely
 import shapely.affinity
 from click.testing import CliRunner
 
-from tilekit import Patch, Prototile
+from tilekit import Affine, Patch, Prototile
 from tilekit.cli import cli
 from tilekit.errors import ParameterError
 from tilekit.export import (
@@ -59,6 +59,7 @@ CASES = [
     ("laves", "[3.4.6.4]"),
     ("isohedral", "IH16"),
     ("isohedral", "IH41"),
+    ("isohedral", "IH21 shaped"),
     ("k-uniform", None),
     ("substitution", "penrose-p3"),
     ("wang", "checkerboard-2"),
@@ -70,7 +71,12 @@ CASES = [
 
 
 def patch_of(cat, name):
-    tiling = kuniform() if name is None else cat[0].tiling(name)
+    if name is None:
+        tiling = kuniform()
+    elif name == "IH21 shaped":  # S and J edges drawn as polylines: outlines of 10 points
+        tiling = cat[0].tiling("IH21").configure(edges=["a=0,0:0.3,0.15:0.7,-0.15:1,0", "b=0,0:0.4,0.2:1,0"])
+    else:
+        tiling = cat[0].tiling(name)
     region = shapely.affinity.scale(tiling.default_region(), 1.0, 1.0)
     patch = tiling.patch(region)
     while len(patch) < 150:  # a few hundred tiles
@@ -128,6 +134,17 @@ def test_interior_tiles_of_archimedean_tilings_have_an_edge_neighbour_per_side(c
     assert inner.sum() > 10
     assert (degree[inner] == sides[inner]).all()
     assert (degree <= sides).all()
+
+
+@pytest.mark.parametrize("name", ["3.4.6.4", "chair", "IH21 shaped"])
+def test_adjacency_does_not_change_under_a_rigid_motion(cat, name):
+    # a rotation by an irrational angle and a far translation put float noise everywhere
+    _, patch = patch_of(cat, name)
+    adj = patch.adjacency()
+    moved = patch.transformed(Affine.translation(1234.5678, -987.654) @ Affine.rotation(1.0))
+    again = moved.adjacency()
+    assert np.array_equal(adj.edge, again.edge) and np.array_equal(adj.vertex, again.vertex)
+    assert adj.split == again.split
 
 
 def test_an_empty_patch_exports_empty():
