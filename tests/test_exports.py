@@ -198,6 +198,8 @@ def test_json_lists_each_tiles_neighbours(cat, tmp_path):
     adj = patch.adjacency()
     pairs = {(t, n) for t, tile in enumerate(data["tiles"]) for n in tile["neighbours"]}
     assert pairs == as_set(adj.edge) | {(j, i) for i, j in as_set(adj.edge)}
+    corners = {(t, n) for t, tile in enumerate(data["tiles"]) for n in tile["vertex_neighbours"]}
+    assert corners == as_set(adj.vertex) | {(j, i) for i, j in as_set(adj.vertex)} and corners
     tile = data["tiles"][3]
     assert len(tile["outline"]) == len(patch.prototiles[tile["prototile"]].outline)
     assert np.allclose(sorted(map(tuple, tile["outline"])), sorted(map(tuple, patch.polygons()[3])))
@@ -220,6 +222,11 @@ def test_cut_files_draw_each_shared_edge_once_edge_to_edge(cat, tmp_path):
     assert len(lines) == total - len(adj.edge)
     # a layer per colour: that colour's tile edges, minus edges shared by two tiles of it
     got = segments_in_svg(patch.to_cut_svg(layers="colour"))
+    patch.to_dxf(path, layers="colour")
+    per_layer = {}
+    for e in ezdxf.readfile(path).modelspace():
+        per_layer[e.dxf.layer] = per_layer.get(e.dxf.layer, 0) + 1
+    assert per_layer == got
     same = patch.colour[adj.edge[:, 0]] == patch.colour[adj.edge[:, 1]]
     for c in np.unique(patch.colour).tolist():
         mine = patch.colour == c
@@ -247,10 +254,11 @@ def test_cut_lines_of_non_edge_to_edge_patches_cover_every_boundary_once(cat, na
     assert segments_in_svg(patch.to_cut_svg()) == {"cut": len(segs)}
 
 
-def test_plot_is_one_poly_collection(cat):
+@pytest.mark.parametrize("name", ["hat", "3.4.6.4"])  # one outline length; three
+def test_plot_is_one_poly_collection(cat, name):
     matplotlib = pytest.importorskip("matplotlib")
     matplotlib.use("Agg")
-    _, patch = patch_of(cat, "hat")
+    _, patch = patch_of(cat, name)
     ax = patch.plot(colours="red,blue,green,black")
     assert len(ax.collections) == 1 and len(ax.patches) == 0
     coll = ax.collections[0]

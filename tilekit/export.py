@@ -14,6 +14,7 @@ from __future__ import annotations
 import html
 import importlib
 import json
+import operator
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -611,16 +612,20 @@ def plot_patch(patch: Patch, ax: Any = None, colours: str | Sequence[str] | None
     if ax is None:
         plt = importlib.import_module("matplotlib.pyplot")
         _, ax = plt.subplots()
-    verts: list[np.ndarray] = [np.zeros((0, 2))] * len(patch)
     ks = {len(p.outline) for p in patch.prototiles}
-    if len(ks) == 1:  # one outline length: one (n, k, 2) array, no per-tile list
-        verts = np.zeros((len(patch), ks.pop(), 2))  # type: ignore[assignment]
+    verts: Any
+    if len(ks) == 1:  # one outline length: one (n, k, 2) array
+        verts = np.zeros((len(patch), ks.pop(), 2))
         for _, idx, pts in patch.groups():
             verts[idx] = pts
-    else:
+    else:  # (k, 2) views of each prototile's batch, put in tile order by one C-level gather
+        tiles, views = [], []
         for _, idx, pts in patch.groups():
-            for i, t in zip(range(len(idx)), idx.tolist()):
-                verts[t] = pts[i]
+            tiles.append(idx)
+            views.extend(pts)
+        where = np.empty(len(patch), dtype=np.int64)
+        where[np.concatenate(tiles)] = np.arange(len(patch))
+        verts = list(operator.itemgetter(*where.tolist())(views)) if len(patch) > 1 else views
     rgba = np.array([colors.to_rgba(c) for c in palette])
     face = rgba[patch.colour % len(palette)]
     coll = collections.PolyCollection(verts, facecolors=face,
