@@ -565,6 +565,7 @@ def to_shapely(patch: Patch) -> np.ndarray:
 def to_geopandas(patch: Patch, classes: np.ndarray | None = None) -> Any:
     """A GeoDataFrame (geopandas, the ``geo`` extra): one row per tile with columns
     prototile, name, colour, aspect (and transitivity_class when given) and geometry."""
+    refuse_over("tiles", len(patch), MAX_TILES, hint="a GeoDataFrame holds a shapely object per tile; use a smaller patch")
     gpd = optional("geopandas", "geo", "to_geopandas")  # optional dependency: imported when used
     cols: dict[str, Any] = {
         "prototile": patch.prototile.copy(),
@@ -580,6 +581,7 @@ def to_geopandas(patch: Patch, classes: np.ndarray | None = None) -> Any:
 def to_networkx(patch: Patch, kind: str = "edge", adj: Adjacency | None = None) -> Any:
     """A networkx Graph (the ``graph`` extra): a node per tile (attributes prototile, colour,
     aspect, centre) and an edge per adjacent pair of ``kind`` (edge, vertex or touching)."""
+    refuse_over("tiles", len(patch), MAX_TILES, hint="a networkx Graph holds Python dicts per tile; use a smaller patch")
     nx = optional("networkx", "graph", "to_networkx")  # optional dependency: imported when used
     adj = adjacency(patch) if adj is None else adj
     pairs = adj._kind(kind)
