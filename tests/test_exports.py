@@ -251,7 +251,12 @@ def test_cut_lines_of_non_edge_to_edge_patches_cover_every_boundary_once(cat, na
     common = shapely.length(shapely.intersection(shapely.boundary(g[i]), shapely.buffer(shapely.boundary(g[j]), NEAR)))
     length = np.hypot(*(segs[:, 1] - segs[:, 0]).T).sum()
     assert abs(length - (shapely.length(g).sum() - common.sum())) < 1e-5 * length
-    assert segments_in_svg(patch.to_cut_svg()) == {"cut": len(segs)}
+    svg = patch.to_cut_svg()
+    assert segments_in_svg(svg) == {"cut": len(segs)}
+    d = re.search(r'<path d="([^"]*)"', svg).group(1)
+    drawn = np.array(re.findall(r"-?\d+(?:\.\d*)?(?:e[-+]?\d+)?", d), dtype=float).reshape(-1, 4)
+    assert np.allclose(drawn, np.column_stack([segs[:, 0, 0], -segs[:, 0, 1], segs[:, 1, 0], -segs[:, 1, 1]]),
+                       rtol=0, atol=1e-8)  # the SVG's y axis points down
 
 
 @pytest.mark.parametrize("name", ["hat", "3.4.6.4"])  # one outline length; three

@@ -397,7 +397,7 @@ def _segment_text(segs: np.ndarray) -> Iterator[str]:
     for s in range(0, len(segs), _CHUNK * 4):
         flat = segs[s : s + _CHUNK * 4].reshape(-1, 4)
         flat = np.column_stack([flat[:, 0], -flat[:, 1], flat[:, 2], -flat[:, 3]])
-        yield " ".join(["M%.6g %.6g L%.6g %.6g"] * len(flat)) % tuple(flat.reshape(-1).tolist())
+        yield " ".join(["M%.10g %.10g L%.10g %.10g"] * len(flat)) % tuple(flat.reshape(-1).tolist())
         yield "\n"
 
 
@@ -418,7 +418,7 @@ def iter_cut_svg(patch: Patch, layers: str = "one", mm_per_unit: float = 10.0,
     yield ('<?xml version="1.0" encoding="UTF-8"?>\n<svg xmlns="http://www.w3.org/2000/svg" '
            'xmlns:inkscape="http://www.inkscape.org/namespaces/inkscape" '
            f'width="{w * mm_per_unit:.6g}mm" height="{h * mm_per_unit:.6g}mm" '
-           f'viewBox="{x0:.6g} {-y1:.6g} {w:.6g} {h:.6g}">\n')
+           f'viewBox="{x0:.10g} {-y1:.10g} {w:.10g} {h:.10g}">\n')
     sw = 0.1 / mm_per_unit  # a 0.1 mm hairline
     for name, colour, segs in groups:
         ink = pal[colour % len(pal)] if colour is not None else stroke
