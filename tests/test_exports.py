@@ -192,6 +192,19 @@ def test_geojson_from_the_command_line_carries_transitivity_classes(cat, tmp_pat
     assert len(set().union(*by_proto.values())) == 3
 
 
+def test_json_from_the_command_line_has_neighbours_and_classes(cat, tmp_path):
+    out = tmp_path / "p.json"
+    r = CliRunner().invoke(cli, ["--catalogue", f"sqlite:///{cat[1]}", "render", "4.8.8", "-o", str(out)])
+    assert r.exit_code == 0, r.output
+    tiles = json.loads(out.read_text())["tiles"]
+    # 4.8.8 is 2-isohedral (squares, octagons); a square's edge neighbours are octagons
+    kinds = {len(t["outline"]): {t["transitivity_class"]} for t in tiles}
+    for t in tiles:
+        kinds[len(t["outline"])].add(t["transitivity_class"])
+    assert sorted(kinds) == [4, 8] and all(len(v) == 1 for v in kinds.values()) and len(set().union(*kinds.values())) == 2
+    assert all(len(tiles[n]["outline"]) == 8 for t in tiles if len(t["outline"]) == 4 for n in t["neighbours"])
+
+
 def test_json_lists_each_tiles_neighbours(cat, tmp_path):
     _, patch = patch_of(cat, "chair")
     data = json.loads("".join(iter_json(patch)))

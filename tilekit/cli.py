@@ -598,7 +598,8 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
         click.echo(f"making about {int(estimate):,} tiles ...", err=True)
     patch = tiling.patch(area)
     if not picture:
-        classes = _tile_classes(tiling, patch) if fmt == ".geojson" else None
+        classes = _tile_classes(tiling, patch) if fmt in (".geojson", ".json") else None
+        # --stroke's default is the picture's outline colour; cut lines are red unless it is given
         write_patch(patch, out, classes=classes, layers=layers or "one", mm_per_unit=mm_per_unit or 10.0,
                     palette=palette, stroke=stroke if stroke != "#222" else None)
         click.echo(f"wrote {out} ({len(patch)} tiles)")

@@ -476,16 +476,22 @@ def _chunks(n: int) -> Iterator[np.ndarray]:
         yield np.arange(s, min(n, s + _CHUNK))
 
 
+def _classes(classes: np.ndarray | None, n: int) -> np.ndarray | None:
+    if classes is None:
+        return None
+    out = np.asarray(classes, dtype=np.int64).reshape(-1)
+    if len(out) != n:
+        raise ParameterError(f"{len(out)} transitivity classes for {n} tiles")
+    return out
+
+
 def iter_geojson(patch: Patch, classes: np.ndarray | None = None) -> Iterator[str]:
     """The patch as a GeoJSON FeatureCollection, streamed in chunks of text: one Polygon
     feature per tile (id = tile index) with properties ``prototile`` (index), ``name``
     (the prototile's), ``colour``, ``aspect`` and, when ``classes`` is given (one int per
     tile, e.g. from :func:`tilekit.symmetry.orbits.patch_tile_classes`), ``transitivity_class``."""
     n = len(patch)
-    if classes is not None:
-        classes = np.asarray(classes, dtype=np.int64).reshape(-1)
-        if len(classes) != n:
-            raise ParameterError(f"{len(classes)} transitivity classes for {n} tiles")
+    classes = _classes(classes, n)
     names = [json.dumps(p.name) for p in patch.prototiles]
     yield '{"type": "FeatureCollection", "features": [\n'
     sep = ""
@@ -510,10 +516,12 @@ def iter_geojson(patch: Patch, classes: np.ndarray | None = None) -> Iterator[st
     yield "\n]}\n"
 
 
-def iter_json(patch: Patch, adj: Adjacency | None = None) -> Iterator[str]:
+def iter_json(patch: Patch, adj: Adjacency | None = None, classes: np.ndarray | None = None) -> Iterator[str]:
     """The patch as JSON, streamed: ``{"prototiles": [{name, outline}], "tiles": [{"outline",
     "prototile", "colour", "aspect", "neighbours", "vertex_neighbours"}]}`` where a tile's
-    ``neighbours`` share an edge with it and its ``vertex_neighbours`` only a point."""
+    ``neighbours`` share an edge with it and its ``vertex_neighbours`` only a point; with
+    ``classes`` (one int per tile) each tile also has its ``transitivity_class``."""
+    classes = _classes(classes, len(patch))
     adj = adjacency(patch) if adj is None else adj
     eo, ei = adj.neighbours("edge")
     vo, vi = adj.neighbours("vertex")
@@ -524,10 +532,11 @@ def iter_json(patch: Patch, adj: Adjacency | None = None) -> Iterator[str]:
         text: list[str] = [""] * len(idx)
         for at, ring in _rings(patch, idx):
             k = ring.shape[1] - 1
-            fmt = '{"outline": [' + ", ".join(["[%.12g, %.12g]"] * k) + '], "prototile": %d, "colour": %d, "aspect": %d, '
+            fmt = ('{"outline": [' + ", ".join(["[%.12g, %.12g]"] * k) + '], "prototile": %d, "colour": %d, "aspect": %d, '
+                   + ('"transitivity_class": %d, ' if classes is not None else ""))
+            ints = [patch.prototile[at], patch.colour[at], patch.aspect[at]] + ([classes[at]] if classes is not None else [])
             rows = np.concatenate([ring[:, :-1].reshape(len(at), 2 * k).astype(object),
-                                   np.column_stack([patch.prototile[at], patch.colour[at], patch.aspect[at]]).astype(object)],
-                                  axis=1).tolist()
+                                   np.column_stack(ints).astype(object)], axis=1).tolist()
             for t, row in zip(at.tolist(), rows):
                 text[t - int(idx[0])] = (fmt % tuple(row) + '"neighbours": ' + str(ei[eo[t]:eo[t + 1]].tolist())
                                          + ', "vertex_neighbours": ' + str(vi[vo[t]:vo[t + 1]].tolist()) + "}")
@@ -706,7 +715,7 @@ def write_patch(patch: Patch, path: str | Path, *, classes: np.ndarray | None = 
     if fmt == ".geojson":
         write_text(iter_geojson(patch, classes), path)
     elif fmt == ".json":
-        write_text(iter_json(patch), path)
+        write_text(iter_json(patch, classes=classes), path)
     elif fmt == ".cut.svg":
         write_text(iter_cut_svg(patch, layers, mm_per_unit, stroke or "#ff0000", palette), path)
     else:
