@@ -148,7 +148,7 @@ class Edges:
 
     ``points`` (V, 2) are the welded vertices; segment s runs from ``points[u[s]]`` to
     ``points[v[s]]`` on the boundary of tile ``tile[s]``; ``key[s]`` packs its unordered
-    ends into one int64; ``split`` counts the vertices that lay inside tile edges (0 for an
+    ends into one int64 (``order`` sorts them); ``split`` counts the vertices that lay inside tile edges (0 for an
     edge-to-edge patch).
     """
 
@@ -159,6 +159,7 @@ class Edges:
     key: np.ndarray
     split: int
     tiles: int
+    order: np.ndarray  # segment indices sorted by key (a stable argsort)
 
 
 def tile_edges(patch: Patch, tol: float | None = None) -> Edges:
@@ -169,23 +170,25 @@ def tile_edges(patch: Patch, tol: float | None = None) -> Edges:
     u, v = ids, ids[nxt]
     keep = u != v  # repeated outline points make no segment
     u, v, tile = u[keep], v[keep], tile[keep]
-    u, v, tile, split = _split_at_vertices(P, u, v, tile, tol)
-    nv = max(len(P), 1)
-    key = np.minimum(u, v) * nv + np.maximum(u, v)
-    return Edges(P, u, v, tile, key, split, len(patch))
+    key = np.minimum(u, v) * max(len(P), 1) + np.maximum(u, v)
+    order = np.argsort(key, kind="stable")
+    u, v, tile, split = _split_at_vertices(P, u, v, tile, tol, key, order)
+    if split:  # new segments: new keys and their order
+        key = np.minimum(u, v) * max(len(P), 1) + np.maximum(u, v)
+        order = np.argsort(key, kind="stable")
+    return Edges(P, u, v, tile, key, split, len(patch), order)
 
 
-def _split_at_vertices(P: np.ndarray, u: np.ndarray, v: np.ndarray, tile: np.ndarray,
-                       tol: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
+def _split_at_vertices(P: np.ndarray, u: np.ndarray, v: np.ndarray, tile: np.ndarray, tol: float,
+                       key: np.ndarray, o: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
     """Split each segment (u, v) at every point of P strictly inside it. The search runs once
     per distinct edge (most edges are two tiles' segments); only the segments of edges with a
     vertex inside are rebuilt, each in its own direction, so the segment starts of a tile are
-    still its boundary's vertices, once each."""
+    still its boundary's vertices, once each. ``key`` packs each segment's ends and ``o``
+    sorts it."""
     ns = len(u)
     if ns == 0:
         return u, v, tile, 0
-    key = np.minimum(u, v) * len(P) + np.maximum(u, v)
-    o = np.argsort(key, kind="stable")
     ks = key[o]
     new = np.concatenate([[True], ks[1:] != ks[:-1]])
     rep = o[new]  # one segment per distinct edge
@@ -333,7 +336,7 @@ def _unpack(keys: np.ndarray, n: int) -> np.ndarray:
 def adjacency_of(edges: Edges) -> Adjacency:
     """Edge and vertex adjacency from a patch's elementary segments (:func:`tile_edges`)."""
     n = max(edges.tiles, 1)
-    o = np.argsort(edges.key, kind="stable")
+    o = edges.order
     k, t = edges.key[o], edges.tile[o]
     same = k[1:] == k[:-1]
     ekey = _unique(_pair_keys(t[:-1][same], t[1:][same], n))
@@ -380,7 +383,8 @@ def cut_segments(patch: Patch, layers: str = "one",
         raise ParameterError(f"layers {layers!r} is not one of {', '.join(LAYERINGS)}")
     e = tile_edges(patch) if edges is None else edges
     if layers == "one":
-        _, first = np.unique(e.key, return_index=True)
+        ks = e.key[e.order]
+        first = e.order[np.concatenate([[True], ks[1:] != ks[:-1]])] if len(ks) else e.order
         return [("cut", None, np.stack([e.points[e.u[first]], e.points[e.v[first]]], axis=1))]
     col = patch.colour[e.tile]
     o = np.lexsort((e.key, col))
