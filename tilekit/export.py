@@ -225,13 +225,15 @@ def _vertices_inside(P: np.ndarray, u: np.ndarray, v: np.ndarray,
                      tol: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(segment, point, t) for every point of P strictly inside a segment (u, v): within
     ``tol`` of it and beyond ``tol`` from its ends, at fraction t along it. Candidates come
-    from a uniform grid of cell size the longest segment (a segment's box meets at most
-    2 x 2 cells), joined with the points' cells by sorting; the exact test is array code
-    over the candidate pairs, a chunk of segments at a time."""
+    from a uniform grid (cells of the median segment's length): each segment is paired with
+    the cells its box meets, and those with the points in them, by sorting; the exact test
+    is array code over the candidate pairs, a chunk of segments at a time."""
     ns = len(u)
     A, B = P[u], P[v]
     length = np.hypot(*(B - A).T)
-    h = float(length.max()) * (1 + 1e-9) + 4 * tol
+    # cells of the median edge's length (at least an eighth of the longest, so that no
+    # segment's box spans more than 9 x 9 cells): few points per cell, few cells per segment
+    h = max(float(np.median(length)), float(length.max()) / 8) * (1 + 1e-9) + 4 * tol
     origin = P.min(axis=0) - 2 * tol
     cell = np.floor((P - origin) / h).astype(np.int64)
     rows = int(cell[:, 1].max()) + 3
@@ -239,19 +241,16 @@ def _vertices_inside(P: np.ndarray, u: np.ndarray, v: np.ndarray,
     porder = np.argsort(pkey, kind="stable")
     pk = pkey[porder]
     lo_c = np.floor((np.minimum(A, B) - tol - origin) / h).astype(np.int64)
-    hi_c = np.floor((np.maximum(A, B) + tol - origin) / h).astype(np.int64)
+    span = np.floor((np.maximum(A, B) + tol - origin) / h).astype(np.int64) - lo_c + 1  # cells per axis
+    cells = span[:, 0] * span[:, 1]
     hits_s, hits_p, hits_t = [], [], []
     for s0 in range(0, ns, _SPLIT_CHUNK):
         sl = slice(s0, min(ns, s0 + _SPLIT_CHUNK))
-        seg = np.arange(sl.start, sl.stop)
-        cs, ck = [], []
-        for dx in (0, 1):
-            for dy in (0, 1):
-                cx, cy = lo_c[sl, 0] + dx, lo_c[sl, 1] + dy
-                ok = (cx <= hi_c[sl, 0]) & (cy <= hi_c[sl, 1])
-                cs.append(seg[ok])
-                ck.append(cx[ok] * rows + cy[ok])
-        cs_, ck_ = np.concatenate(cs), np.concatenate(ck)
+        c = cells[sl]
+        cs_ = np.repeat(np.arange(sl.start, sl.stop), c)  # one row per (segment, cell of its box)
+        local = np.arange(len(cs_)) - np.repeat(np.cumsum(c) - c, c)
+        ny = span[cs_, 1]
+        ck_ = (lo_c[cs_, 0] + local // ny) * rows + lo_c[cs_, 1] + local % ny
         left = np.searchsorted(pk, ck_, "left")
         count = np.searchsorted(pk, ck_, "right") - left
         total = int(count.sum())
