@@ -53,8 +53,8 @@ MAX_REPR_TILES = 5_000
 #: a minute; GeoJSON, JSON and the cut SVG are streamed and need no limit of their own.
 MAX_DXF_TILES = 200_000
 #: Peak bytes per tile while the adjacency of a patch is computed (measured 0.9-1.0 kB for
-#: 3.4.6.4 and Penrose rhombs, 1.9 kB for the chair, whose edges are split; docs/benchmarks.md),
-#: with a margin.
+#: 3.4.6.4 and Penrose rhombs, 1.4 kB for the chair and 2.3 kB for pentomino-F, whose edges
+#: are split at T-junctions; docs/benchmarks.md), with a margin.
 ADJACENCY_BYTES_PER_TILE = 3_000
 #: Fraction of the available memory one patch may take.
 MEMORY_FRACTION = 0.8
