@@ -129,10 +129,13 @@ def check_goal(points: Any, what: str = "goal") -> np.ndarray:
         raise ParseError(f"{what}: a polygon needs at least 3 distinct points, got {len(pts)}")
     span = float(np.ptp(pts, axis=0).max())
     area = signed_area(pts)
-    if span == 0 or abs(area) <= 1e-9 * span * span:
-        raise ParseError(f"{what}: the polygon has zero area; give a simple polygon enclosing a region")
+    zero = f"{what}: the polygon has zero area; give a simple polygon enclosing a region"
+    if span == 0 or np.linalg.svd(pts - pts.mean(axis=0), compute_uv=False)[1] <= 1e-9 * span:
+        raise ParseError(zero)  # all points on one line
     if not shapely.LinearRing(pts).is_simple:
         raise ParseError(f"{what}: the polygon crosses itself; give a simple polygon (no self-intersections)")
+    if abs(area) <= 1e-9 * span * span:
+        raise ParseError(zero)
     return pts if area > 0 else pts[::-1].copy()
 
 
