@@ -66,6 +66,8 @@ RIDGE = 1e-4
 #: control points towards straight edges.
 POLISH_EVALUATIONS = 40
 POLISH_RIDGE = 1e-8
+#: Added to the distance of a fit whose outline touches or crosses itself.
+CROSSING_PENALTY = 0.05
 #: How far the edge shapes are shrunk towards straight when a fitted tile does not tile.
 BACKOFF = (1.0, 0.9, 0.8, 0.65, 0.5, 0.35, 0.2, 0.1, 0.0)
 
@@ -500,6 +502,15 @@ def type_model(ih: int, edge_points: int = DEFAULT_EDGE_POINTS) -> TypeModel:
 # ------------------------------------------------------------------------ fitting one type
 
 
+def crossings(z: np.ndarray) -> int:
+    """1 if the closed outline z (complex) touches or crosses itself, else 0 (GEOS's simplicity
+    test of the ring: the engine's check of edges that cross, without the neighbours)."""
+    import shapely  # start-up cost: shapely (~0.1 s), loaded by the engine anyway
+
+    ring = shapely.linearrings(np.column_stack([z.real, z.imag]))
+    return 0 if shapely.is_simple(ring) else 1
+
+
 def _samples_matrix(z: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Arc-length resampling of the closed outline z as a 2-sparse linear map: sample j is
     ``(1 - f[j]) z[q[j]] + f[j] z[q1[j]]``."""
@@ -630,7 +641,10 @@ def _escherize_type(goal: np.ndarray, ih: int, settings: Settings) -> EscherResu
         bad = model.polygon_ok(p)
         if bad:
             return 1.0 + bad
-        return _project(model, p, bank, INNER_STEPS)[0]
+        d, c = _project(model, p, bank, INNER_STEPS)
+        # a fit whose outline crosses itself is no tile: steer the parameters away from it
+        # (the engine's full check, with the neighbours, runs once at the end)
+        return d + CROSSING_PENALTY * crossings(model.outline(p, c))
 
     rng = np.random.default_rng([settings.seed, ih])
     best_p, best_f = model.default.copy(), f(model.default)
@@ -645,19 +659,22 @@ def _escherize_type(goal: np.ndarray, ih: int, settings: Settings) -> EscherResu
                            options={"maxfev": 40 * (model.n_params + 1), "xatol": 1e-4, "fatol": 1e-7})
             if res.fun < best_f:
                 best_p, best_f = np.asarray(res.x, dtype=float), float(res.fun)
+    # candidates, in order: the polish of the long projection, the long projection, and the
+    # projection the search scored (its outline was checked for crossings)
+    _, c_short = _project(model, best_p, bank, INNER_STEPS)
     _, c = _project(model, best_p, bank, FINAL_STEPS)
-    candidates = [(best_p, c)]
+    candidates = [(best_p, c), (best_p, c_short)]
     polished = _polish(model, best_p, c, goal, bank)
     if polished is not None:
         candidates.insert(0, polished)
         evaluations += polished[2]
     result = None
     for p, cc, *_ in candidates:
+        if result is not None and bank.align(resample(model.outline(p, cc), bank.samples))[0] >= result.distance:
+            continue  # cannot beat the valid tile already found (shrinking only moves away)
         try:
             r = _valid_result(model, p, cc, goal, settings, bank)
         except GeometryError:
-            if result is None and (p, cc) is candidates[-1][:2]:
-                raise
             continue
         if result is None or r.distance < result.distance:
             result = r
