@@ -306,3 +306,20 @@ def test_library_checks_its_sizes():
         escher.escherize(star(), [1], workers=0)
     with pytest.raises(ParameterError, match="marked"):
         escher.escherize(star(), [19])
+
+
+@pytest.mark.parametrize(
+    ("text", "fragment"),
+    [
+        ("{", "not a readable JSON spec"),
+        ("[1, 2]", "an isohedral spec is a JSON object"),
+        ('{"family": "wang", "spec": {}}', "a 'wang' spec"),
+        ('{"spec": {"ih": 999}}', "999"),
+    ],
+)
+def test_bad_isohedral_spec_files_are_one_line_errors(tmp_path, text, fragment):
+    f = tmp_path / "bad.isohedral.json"
+    f.write_text(text)
+    result = CliRunner().invoke(cli, ["--catalogue", f"sqlite:///{tmp_path / 'c.db'}", "render", "--system", str(f),
+                                      "-o", str(tmp_path / "x.svg")])
+    assert_one_line_error(result, fragment)
