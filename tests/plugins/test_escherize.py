@@ -156,6 +156,9 @@ def test_ih16_tile_over_all_81_types():
     near = {r.ih for r in results if r.distance < 1e-6}
     assert near == {7, 16}
     assert results[0].ih in near and results[2].distance > 0.01
+    for r in results[:2]:  # both are real tilings: no overlap, no gap
+        tiling = r.tiling()
+        assert tiling.patch((-4, -4, 4, 4)).validate((-4, -4, 4, 4)), r.name
 
 
 def test_workers_give_the_same_ranking():
