@@ -133,6 +133,13 @@ def test_a_generic_ih1_tile_is_recovered_and_ranked_first():
     # the result's spec rebuilds a tile similar to the goal (the reported distance is real)
     rebuilt = tiling_from_spec(json.loads(json.dumps(best.spec())))
     assert escher.shape_distance(np.asarray(rebuilt.prototile.outline), goal) < 1e-6
+    # the picture's aligned goal lies on the tile's boundary
+    import shapely
+
+    ring = shapely.LinearRing(np.asarray(rebuilt.prototile.outline))
+    moved = escher.aligned_goal(best, goal)
+    size = float(np.ptp(moved, axis=0).max())
+    assert max(ring.distance(shapely.Point(q)) for q in moved) < 1e-5 * size
 
 
 def test_recovery_does_not_depend_on_the_goals_position_size_or_turn():
