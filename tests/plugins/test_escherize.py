@@ -181,7 +181,8 @@ def test_workers_give_the_same_ranking():
 
 
 def test_svg_goals(tmp_path):
-    expect = np.array([[0, 0], [4, 0], [4, 3], [0, 3]], float)
+    # SVG's y axis points down: the goal is read as displayed (y negated), counter-clockwise
+    expect = np.array([[0, -3], [4, -3], [4, 0], [0, 0]], float)
     svgs = {
         "polygon": '<polygon points="0,0 4,0 4,3 0,3"/>',
         "polyline": '<polyline points="0 0, 4 0, 4 3, 0 3, 0 0"/>',

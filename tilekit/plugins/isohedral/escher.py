@@ -204,7 +204,9 @@ def svg_path_points(d: str, what: str = "SVG path") -> np.ndarray:
 
 
 def read_svg_goal(text: str, name: str) -> np.ndarray:
-    """The one polygon, polyline or path element of an SVG document."""
+    """The one polygon, polyline or path element of an SVG document, as displayed: SVG's y
+    axis points down and tilekit's up (the renderer flips it), so y is negated; otherwise
+    the goal would be matched as its mirror image, which matters with ``reflection=False``."""
     try:
         root = ET.fromstring(text)
     except ET.ParseError as exc:
@@ -220,11 +222,13 @@ def read_svg_goal(text: str, name: str) -> np.ndarray:
             raise ParseError(f"{name}: transform attributes are not supported; apply them to the coordinates first")
     tag = el.tag.rpartition("}")[2]
     if tag == "path":
-        return svg_path_points(el.get("d") or "", f"{name}: <path d>")
-    nums = _svg_numbers(el.get("points") or "", f"{name}: <{tag} points>")
-    if len(nums) % 2:
-        raise ParseError(f"{name}: <{tag} points> has an odd count of numbers ({len(nums)})")
-    return np.array(nums, dtype=float).reshape(-1, 2)
+        pts = svg_path_points(el.get("d") or "", f"{name}: <path d>")
+    else:
+        nums = _svg_numbers(el.get("points") or "", f"{name}: <{tag} points>")
+        if len(nums) % 2:
+            raise ParseError(f"{name}: <{tag} points> has an odd count of numbers ({len(nums)})")
+        pts = np.array(nums, dtype=float).reshape(-1, 2)
+    return pts * [1.0, -1.0]
 
 
 def read_goal(path: str | os.PathLike) -> np.ndarray:
