@@ -77,44 +77,86 @@ def report(summary: dict, wall: float, n: int, min_cells: int) -> None:
 PEER_SOLVE = [0.0]  # seconds inside the solver, summed over peer_heesch calls
 
 
+def _join(a_keys: np.ndarray, a_ids: np.ndarray, b_keys: np.ndarray, b_ids: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """All pairs (a_id, b_id) whose keys are equal (a sort-merge join in NumPy)."""
+    o = np.argsort(b_keys, kind="stable")
+    bk, bi = b_keys[o], b_ids[o]
+    lo = np.searchsorted(bk, a_keys, "left")
+    hi = np.searchsorted(bk, a_keys, "right")
+    cnt = hi - lo
+    left = np.repeat(a_ids, cnt)
+    offs = np.arange(cnt.sum()) - np.repeat(np.cumsum(cnt) - cnt, cnt)
+    return left, bi[np.repeat(lo, cnt) + offs]
+
+
 def peer_heesch(cells: np.ndarray, max_level: int = 2, solver: str = "glucose4") -> tuple[int, int]:
-    """(Hc, Hh) with the obvious encoding: one variable per placement and corona, every pair
-    of overlapping copies forbidden, halo and touching clauses written over the placements.
-    Only the placement sets are shared with tilekit (HeeschSolver.levels)."""
-    from tilekit.lattice import holes_of, pack, unpack
-    from tilekit.sat import IncrementalSolver
+    """(Hc, Hh) with the obvious encoding, written as vectorised NumPy: one variable per
+    placement and corona, no cell variables; every pair of overlapping copies forbidden by a
+    binary clause (as in Kaplan's heesch-sat), found by a sort-merge join of (cell, copy)
+    incidences; each halo cell of an inner copy (and of the kernel) covered by one of the
+    copies covering it; a copy of corona i >= 2 touches some copy of corona i-1 and none
+    below. Only the placement sets are shared with tilekit (HeeschSolver.levels)."""
+    from tilekit.lattice import holes_of, pack, unique_keys, unpack
+    from tilekit.sat import IncrementalSolver, gc_paused
 
     hs = HeeschSolver(SQUARE, cells)
     f = hs.forms
-    kernel = set(hs.kernel_keys.tolist())
     hc = hh = 0
     for k in range(1, max_level + 1):
         while len(hs.levels) <= k:
             hs._grow()
         rows = np.concatenate(hs.levels[1:k + 1])
-        lvl = np.concatenate([np.full(len(hs.levels[i]), i) for i in range(1, k + 1)]).tolist()
-        ys = list(range(1, len(rows) + 1))
-        cells_k = f.placement_cells(rows).tolist()
-        halo_k = f.placement_halos(rows).tolist()
-        by_cell: dict[int, list[int]] = {}
-        for v, cs in zip(ys, cells_k):
-            for c in cs:
-                by_cell.setdefault(c, []).append(v)
-        pairs = {(a, b) for lits in by_cell.values() for i, a in enumerate(lits) for b in lits[i + 1:]}
-        clauses = [[-a, -b] for a, b in pairs]
-        kernel_halo = [h for h in hs.kernel_halo.tolist() if h not in kernel]
-        if any(h not in by_cell for h in kernel_halo):  # a halo cell no copy can cover
-            break
-        clauses += [list(by_cell[h]) for h in kernel_halo]
-        for v, hl, lv in zip(ys, halo_k, lvl):
-            if lv < k:
-                for h in hl:
-                    if h not in kernel:
-                        clauses.append([-v, *by_cell.get(h, [])])
-            if lv >= 2:
-                near = {u for h in hl for u in by_cell.get(h, [])}
-                clauses.append([-v, *sorted(u for u in near if lvl[u - 1] == lv - 1)])
-                clauses += [[-v, -u] for u in near if lvl[u - 1] < lv - 1]
+        lvl = np.concatenate([np.full(len(hs.levels[i]), i) for i in range(1, k + 1)])
+        m = len(rows)
+        ys = np.arange(1, m + 1)
+        pcells = f.placement_cells(rows)  # (m, n)
+        phalo = f.placement_halos(rows)  # (m, H)
+        inc_c, inc_y = pcells.ravel(), np.repeat(ys, pcells.shape[1])
+        with gc_paused():
+            clauses: list[list[int]] = []
+            # overlaps: pairs of copies sharing a cell, each pair once
+            a, b = _join(inc_c, inc_y, inc_c, inc_y)
+            keep = a < b
+            pair = unique_keys(a[keep] * (m + 1) + b[keep])  # np.unique hashes: 20x slower here
+            clauses += np.column_stack([-(pair // (m + 1)), -(pair % (m + 1))]).tolist()
+            # covering lists per cell
+            o = np.argsort(inc_c, kind="stable")
+            sc, sy = inc_c[o], inc_y[o]
+            starts = np.flatnonzero(np.r_[True, sc[1:] != sc[:-1]])
+            cover_keys, covers = sc[starts], np.split(sy, starts[1:])
+
+            def covering(keys: np.ndarray, cover_keys=cover_keys, covers=covers) -> list[list[int]]:
+                pos = np.searchsorted(cover_keys, keys)
+                pos = np.minimum(pos, len(cover_keys) - 1)
+                return [covers[p].tolist() if cover_keys[p] == key else [] for p, key in zip(pos.tolist(), keys.tolist())]
+
+            kh = hs.kernel_halo
+            kcov = covering(kh)
+            if any(not c for c in kcov):  # a kernel halo cell no copy can cover
+                break
+            clauses += kcov
+            # halos of inner copies: y -> OR of the copies covering each halo cell
+            inner = np.flatnonzero(lvl < k)
+            hcells = phalo[inner]
+            hy = np.repeat(ys[inner], hcells.shape[1])
+            hk = hcells.ravel()
+            notk = ~np.isin(hk, hs.kernel_keys)
+            for y, cov in zip(hy[notk].tolist(), covering(hk[notk])):
+                clauses.append([-y, *cov])
+            # touching: (p, q) with q covering a halo cell of p
+            p_, q_ = _join(phalo.ravel(), np.repeat(ys, phalo.shape[1]), inc_c, inc_y)
+            tp = unique_keys(p_ * (m + 1) + q_)
+            p_, q_ = tp // (m + 1), tp % (m + 1)
+            lp, lq = lvl[p_ - 1], lvl[q_ - 1]
+            low = (lp >= 2) & (lq < lp - 1)
+            clauses += np.column_stack([-p_[low], -q_[low]]).tolist()
+            up = (lp >= 2) & (lq == lp - 1)
+            sel_p, sel_q = p_[up], q_[up]
+            st = np.flatnonzero(np.r_[True, sel_p[1:] != sel_p[:-1]]) if len(sel_p) else np.zeros(0, int)
+            has = set(sel_p[st].tolist())
+            for y, g in zip(sel_p[st].tolist(), np.split(sel_q, st[1:]) if len(st) else []):
+                clauses.append([-y, *g.tolist()])
+            clauses += [[-int(y)] for y in ys[lvl >= 2] if int(y) not in has]
         free = holey = False
         with IncrementalSolver(clauses, solver=solver) as s:
             while True:
@@ -122,19 +164,18 @@ def peer_heesch(cells: np.ndarray, max_level: int = 2, solver: str = "glucose4")
                 PEER_SOLVE[0] += ans.seconds
                 if not ans.satisfiable:
                     break
-                used = np.flatnonzero(ans.values(ys)) + 1
-                found = holes_of(SQUARE, np.concatenate([hs.kernel_keys, np.asarray(cells_k)[used - 1].ravel()]))
+                used = np.flatnonzero(ans.values(ys))
+                found = holes_of(SQUARE, np.concatenate([hs.kernel_keys, pcells[used].ravel()]))
                 if not found:
                     free = True
                     break
                 holey = True
                 for hole in found:
                     hx = unpack(hole)
-                    ring = set(pack(hx[:, None, :] + SQUARE.neighbours[0][None]).ravel().tolist())
-                    hole_set = set(hole.tolist())
-                    bound = [int(v) for v in used if ring & set(cells_k[v - 1])]
-                    inside = [v for v in ys if hole_set & set(cells_k[v - 1])]
-                    s.add([-v for v in bound] + inside)
+                    ring = pack(hx[:, None, :] + SQUARE.neighbours[0][None]).ravel()
+                    bound = ys[used][np.isin(pcells[used], ring).any(axis=1)]
+                    inside = ys[np.isin(pcells, hole).any(axis=1)]
+                    s.add([*(-bound).tolist(), *inside.tolist()])
         if free:
             hc = hh = k
             continue

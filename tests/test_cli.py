@@ -168,7 +168,7 @@ def test_render_from_a_system_file(pm, db, tmp_path):
         (["render", "4^4", "-o", "X.svg", "--param", "0.1,abc"], "'abc' is not a number"),
         (["render", "4^4", "-o", "X.svg", "--param", "0.1,0.2"], "takes no options (params given)"),
         (["render", "4^4", "-o", "X.svg", "--set", "colour"], "is not KEY=VALUE"),
-        (["render", "4^4", "-o", "X.gif"], "must end in .svg or .png"),
+        (["render", "4^4", "-o", "X.gif"], "must end in one of .svg, .png, .geojson, .json, .cut.svg, .dxf"),
         (["render", "4^4", "-o", "X.svg", "--colours", "not a colour!"], "is not a CSS colour name"),
         (["render", "-o", "X.svg"], "needs a tiling NAME"),
         (["render", "4^4", "-o", "X.svg", "--family", "testgrid"], "--family only goes with --system"),

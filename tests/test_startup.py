@@ -14,6 +14,8 @@ import sys
 import pytest
 
 HEAVY = ("numpy", "shapely", "numba", "sqlalchemy", "sqlalchemy.orm", "alembic")
+#: The exports' optional libraries: imported only by the export that needs them.
+OPTIONAL = ("matplotlib", "geopandas", "networkx", "ezdxf")
 
 #: Runs the command line in-process and prints which of HEAVY it imported, as JSON.
 PROBE = """
@@ -26,7 +28,7 @@ except SystemExit as exc:
 else:
     code = 0
 print(json.dumps({"code": code, "heavy": sorted(m for m in HEAVY if m in sys.modules)}))
-""".replace("HEAVY", repr(HEAVY))
+""".replace("HEAVY", repr(HEAVY + OPTIONAL))
 
 
 def run_probe(args: list[str], tmp_path, plugins: str | None = None) -> dict:
@@ -126,3 +128,11 @@ def test_lazy_re_exports_are_the_library_objects(package, name, module):
     assert ns["imported"] is value
     with pytest.raises(AttributeError, match="has no attribute 'nope'"):
         pkg.nope  # noqa: B018
+
+
+def test_help_and_a_geojson_export_import_no_optional_library(tmp_path):
+    assert [m for m in run_probe(["--help"], tmp_path)["heavy"] if m in OPTIONAL] == []
+    got = run_probe(["render", "4.8.8", "-o", "p.geojson"], tmp_path)
+    assert got["code"] == 0 and (tmp_path / "p.geojson").exists()
+    assert [m for m in got["heavy"] if m in OPTIONAL] == []
+

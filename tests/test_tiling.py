@@ -268,3 +268,26 @@ def test_validate_reports_overlaps_sorted_once_and_degenerate_tiles_as_invalid()
     assert [(i, j) for i, j, _ in report.overlaps] == [(0, 1), (0, 2), (1, 2)]
     assert [a for _, _, a in report.overlaps] == pytest.approx([0.5, 0.5, 0.25])
     assert report.invalid_tiles == [3, 4]
+
+
+def test_compiled_tile_bounds_equal_numpy(monkeypatch):
+    """Large patches take their bounding boxes from one compiled pass (tilekit.kernels): the
+    same boxes as the NumPy path (to rounding: the NumPy path maps many-cornered outlines by a
+    batched matrix product) for straight and many-cornered (> 16) outlines mixed, with
+    rotations, reflections and scalings."""
+    import tilekit.tiling as tiling_module
+
+    rng = np.random.default_rng(3)
+    tri = Prototile(np.array([[0.0, 0.0], [1.0, 0.0], [0.3, 0.8]]))
+    star = Prototile(regular_polygon(20))
+    n = tiling_module._COMPILED_BOUNDS + 10
+    ang = rng.uniform(0, 2 * np.pi, n)
+    s = rng.uniform(0.5, 3.0, n) * rng.choice([-1.0, 1.0], n)
+    t = np.zeros((n, 3, 3))
+    t[:, 0, 0], t[:, 0, 1], t[:, 0, 2] = np.cos(ang) * s, -np.sin(ang), rng.uniform(-1e3, 1e3, n)
+    t[:, 1, 0], t[:, 1, 1], t[:, 1, 2] = np.sin(ang) * s, np.cos(ang), rng.uniform(-1e3, 1e3, n)
+    t[:, 2, 2] = 1.0
+    patch = Patch([tri, star], rng.integers(0, 2, n), t)
+    compiled = patch.tile_bounds()
+    monkeypatch.setattr(tiling_module, "_COMPILED_BOUNDS", 10**12)
+    assert np.allclose(compiled, patch.tile_bounds(), rtol=0, atol=1e-9)

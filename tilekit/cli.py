@@ -13,7 +13,6 @@ import math
 import os
 import sys
 from collections.abc import Sequence
-from pathlib import Path
 from typing import Any
 
 import click
@@ -490,7 +489,9 @@ def _vectors(tiling: Any, region: tuple[float, float, float, float]) -> tuple[An
 
 @cli.command()
 @click.argument("name", required=False)
-@click.option("-o", "--output", "out", required=True, type=click.Path(dir_okay=False), help="Output .svg or .png file.")
+@click.option("-o", "--output", "out", required=True, type=click.Path(dir_okay=False),
+              help="Output file: .svg or .png (a picture), .geojson, .json (tiles and neighbours), "
+                   ".cut.svg or .dxf (edges for cutters, shared edges once); see docs/exports.md.")
 @click.option("--param", "params", multiple=True, metavar="X[,X...]", help="Tiling parameters (repeatable, or comma-separated).")
 @click.option("--edge", "edges", multiple=True, metavar="SPEC", help="Edge shape 'name=x,y:x,y:...' (repeatable).")
 @click.option("--depth", type=BoundedInt(0, limits.MAX_DEPTH), help="Substitution depth.")
@@ -510,24 +511,43 @@ def _vectors(tiling: Any, region: tuple[float, float, float, float]) -> tuple[An
               help="PNG resolution: pixels are scaled by DPI/96.")
 @click.option("--stroke", default="#222", show_default=True, metavar="COLOUR", help="Outline colour (CSS name or #rrggbb).")
 @click.option("--stroke-width", type=FiniteFloat(1e3, min=0.0), help="Outline width in pixels (default 1.2).")
+@click.option("--layers", type=click.Choice(["one", "colour"]), default=None,
+              help=".cut.svg / .dxf: one layer of every edge (default), or a layer per colour.")
+@click.option("--mm-per-unit", type=FiniteFloat(1e6, min=1e-6), default=None,
+              help=".cut.svg / .dxf: millimetres per tiling unit (default 10).")
 @pass_state
 def render(state: State, name: str | None, out: str, params: tuple[str, ...], edges: tuple[str, ...],
            depth: int | None, settings: tuple[str, ...], which: str | None, region: str | None, colours: str | None,
            labels: bool, vectors: bool, system: str | None, family: str | None, max_tiles: int,
-           width: int | None, height: int | None, dpi: float, stroke: str, stroke_width: float | None) -> None:
-    """Render a catalogue tiling (or a --system file) to SVG or PNG.
+           width: int | None, height: int | None, dpi: float, stroke: str, stroke_width: float | None,
+           layers: str | None, mm_per_unit: float | None) -> None:
+    """Render a catalogue tiling (or a --system file) to SVG or PNG, or export it (.geojson,
+    .json, .cut.svg, .dxf; the output suffix chooses).
 
     \b
     Examples:
       tilekit render 3.4.6.4 -o rhombitrihexagonal.svg --vectors
+      tilekit render penrose-p3 --depth 5 -o p3.geojson
+      tilekit render 3.4.6.4 -o coasters.cut.svg --layers colour --mm-per-unit 20
       tilekit render penrose-p3 --depth 6 -o p3.png
       tilekit render IH41 --param 0.1,0.2 --region -5,-5,5,5 -o ih41.svg
       tilekit render pentomino-F --tiling 0 -o f.svg
     """
+    from tilekit.export import check_export_size, output_format, write_patch
     from tilekit.geometry import as_region
     from tilekit.plugins import family_for_file, get_family
     from tilekit.render import parse_palette, write_svg
 
+    fmt = output_format(out)  # an unknown suffix fails before any work, naming the valid ones
+    picture = fmt in (".svg", ".png")
+    cut = fmt in (".cut.svg", ".dxf")
+    for given, flag, ok in ((layers, "--layers", cut), (mm_per_unit, "--mm-per-unit", cut),
+                            (width, "--width", picture), (height, "--height", picture),
+                            (stroke_width, "--stroke-width", picture), (labels or None, "--labels", picture),
+                            (vectors or None, "--vectors", picture)):
+        if given is not None and not ok:
+            kinds = ".cut.svg and .dxf" if flag in ("--layers", "--mm-per-unit") else ".svg and .png"
+            raise ParameterError(f"{flag} applies to {kinds} output, not {fmt}")
     if system is not None:
         if name is not None:
             raise ParameterError(f"give either a tiling NAME ({name!r}) or --system FILE, not both")
@@ -572,13 +592,18 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
     box = parse_region(region) if region is not None else None
     # estimate first: nothing is allocated for a patch over the limit
     estimate = tiling.estimate_tiles(as_region(box) if box is not None else None)
-    limits.refuse_over("tiles", estimate, max_tiles, "--max-tiles")
-    limits.refuse_over_memory("tiles", estimate, limits.GENERATION_BYTES_PER_TILE + limits.RENDER_BYTES_PER_TILE,
-                              hint="ask for a smaller depth or region")
+    check_export_size(estimate, fmt, max_tiles)
     area = as_region(box) if box is not None else tiling.default_region()
     if estimate > PROGRESS_TILES and on_terminal():
         click.echo(f"making about {int(estimate):,} tiles ...", err=True)
     patch = tiling.patch(area)
+    if not picture:
+        classes = _tile_classes(tiling, patch) if fmt in (".geojson", ".json") else None
+        # --stroke's default is the picture's outline colour; cut lines are red unless it is given
+        write_patch(patch, out, classes=classes, layers=layers or "one", mm_per_unit=mm_per_unit or 10.0,
+                    palette=palette, stroke=stroke if stroke != "#222" else None)
+        click.echo(f"wrote {out} ({len(patch)} tiles)")
+        return
     if len(patch) > PROGRESS_TILES and on_terminal():
         click.echo(f"drawing {len(patch):,} tiles to {out} ...", err=True)
     drawn: dict[str, Any] = {"palette": palette, "labels": labels, "region": area, "stroke": stroke,
@@ -593,10 +618,21 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
             "to draw (isohedral types and Wang sets do)"
         )
     dpi_ = drawn.pop("dpi")
-    if Path(out).suffix.lower() not in (".svg", ".png"):  # fail before drawing
-        raise ParameterError(f"output file {out!r} must end in .svg or .png")
     path = write_svg(tiling.render_svg(patch, **drawn), out, dpi_)
     click.echo(f"wrote {path} ({len(patch)} tiles)")
+
+
+def _tile_classes(tiling: Any, patch: Any) -> Any:
+    """Each tile's transitivity class for a periodic tiling whose aspects tell it, else None."""
+    from tilekit.symmetry.orbits import patch_tile_classes
+    from tilekit.tiling import PeriodicTiling
+
+    if not isinstance(tiling, PeriodicTiling):
+        return None
+    try:
+        return patch_tile_classes(tiling, patch)
+    except TilekitError:  # a unit the symmetry search cannot analyse: the classes are unknown
+        return None
 
 
 # --------------------------------------------------------------------------- search / runs
@@ -989,6 +1025,8 @@ def sample(density_spec: str, method: str, count: int, out: str, svg_out: str | 
       tilekit sample --density photo.png --invert --method wang -n 50000 -o stipple.png
       tilekit sample --density 'x*y' --method polyomino -n 1000000 -o points.npy
     """
+    from pathlib import Path
+
     from tilekit import sampling
     from tilekit.density import density_from
 

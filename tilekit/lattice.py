@@ -979,6 +979,19 @@ def unpack(k: np.ndarray) -> np.ndarray:
     return np.stack([k // _M - _OFF, k % _M - _OFF], axis=-1)
 
 
+def unique_keys(keys: np.ndarray) -> np.ndarray:
+    """The distinct values of an int array, sorted: ``np.unique(keys)`` by one sort and a mask.
+
+    NumPy >= 2.3 answers a plain ``np.unique`` of integers through a hash table, measured here
+    (NumPy 2.4) at 10 ms for 10^5 packed keys and 2.2 s for 3 * 10^6 spread ones, against
+    0.4 ms and 15 ms for a sort; the Heesch and torus encoders call it on every formula.
+    """
+    k = np.sort(np.asarray(keys, dtype=np.int64), axis=None)
+    if len(k) < 2:
+        return k
+    return k[np.r_[True, k[1:] != k[:-1]]]
+
+
 @cache
 def _vertex_neighbours(grid: Grid) -> tuple[np.ndarray, ...]:
     """Per cell type, the offsets to the cells sharing at least one vertex with it."""
@@ -1003,7 +1016,7 @@ def halo_of(grid: Grid, cells: np.ndarray) -> np.ndarray:
     nb = _vertex_neighbours(grid)
     types = grid.cell_type(cells)
     parts = [cells[types == r][:, None, :] + nb[r][None] for r in range(len(grid.roots))]
-    cand = np.unique(pack(np.concatenate([p.reshape(-1, 2) for p in parts])))
+    cand = unique_keys(pack(np.concatenate([p.reshape(-1, 2) for p in parts])))
     cand = cand[~np.isin(cand, pack(cells))]
     return unpack(cand)
 
@@ -1012,7 +1025,7 @@ def holes_of(grid: Grid, keys: np.ndarray) -> list[np.ndarray]:
     """Holes of the union of the cells ``keys`` (packed): the edge-connected components of
     empty cells that cannot reach the outside; each an array of packed keys, sorted, the holes
     in the order of their least key."""
-    cells = unpack(np.unique(np.asarray(keys, dtype=np.int64)))
+    cells = unpack(unique_keys(keys))
     lab, x0, y0, w, comps = _components(grid, cells)
     at = np.flatnonzero(lab > 0)
     if not len(at):

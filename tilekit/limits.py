@@ -45,6 +45,17 @@ GENERATION_BYTES_PER_TILE = 200
 #: Peak bytes per tile while a patch is drawn as SVG (measured about 405 for Penrose
 #: rhombs: the polygons, the path text and the document), with a margin.
 RENDER_BYTES_PER_TILE = 500
+#: Tiles a notebook draws inline (``_repr_svg_`` of a Patch, Tiling or catalogue entry);
+#: over it a short line of text is shown instead of a giant SVG.
+MAX_REPR_TILES = 5_000
+#: Tiles of one DXF file: ezdxf builds the whole drawing in memory as Python objects, 2.0-3.5 kB
+#: and 0.12-0.27 ms per tile (measured, docs/benchmarks.md), so 200,000 tiles is ~700 MB and up to
+#: a minute; GeoJSON, JSON and the cut SVG are streamed and need no limit of their own.
+MAX_DXF_TILES = 200_000
+#: Peak bytes per tile while the adjacency of a patch is computed (measured 0.9-1.0 kB for
+#: 3.4.6.4 and Penrose rhombs, 1.4 kB for the chair and 2.3 kB for pentomino-F, whose edges
+#: are split at T-junctions; docs/benchmarks.md), with a margin.
+ADJACENCY_BYTES_PER_TILE = 3_000
 #: Fraction of the available memory one patch may take.
 MEMORY_FRACTION = 0.8
 

@@ -17,7 +17,7 @@ from sqlalchemy.engine import Connection
 from tilekit.catalogue.tables import ALIASES, BATCH, PROPS, TILINGS
 from tilekit.errors import CatalogueError
 from tilekit.models import SHARED_COLUMNS, utcnow
-from tilekit.plugins import CatalogueRecord
+from tilekit.plugins import CatalogueRecord, get_family
 
 #: Keys an Entry row uses itself; a property may not take these names.
 RESERVED_KEYS = frozenset({"name", "family", "title", "spec", "aliases", "id"})
@@ -51,6 +51,22 @@ class Entry:
             "properties": dict(self.properties),
             "spec": self.spec,
         }
+
+    def _repr_mimebundle_(self, include: Any = None, exclude: Any = None) -> dict[str, str]:
+        """Jupyter shows the entry's name and title over a drawing of its tiling (the tiling's
+        own picture, under limits.MAX_REPR_TILES; a line of text above it)."""
+        from html import escape
+
+        text = f"{self.name} ({self.family}): {self.title}"
+        head = f"<div><b>{escape(self.name)}</b> <i>{escape(self.family)}</i> — {escape(self.title)}</div>"
+        drawn = get_family(self.family).from_spec(self.spec)._repr_mimebundle_()
+        svg = drawn.get("image/svg+xml")
+        body = svg if svg is not None else f"<div>{escape(drawn['text/plain'])}</div>"
+        return {"text/plain": text, "text/html": head + body}
+
+    def _repr_svg_(self) -> str | None:
+        """The tiling's picture alone (None over limits.MAX_REPR_TILES)."""
+        return get_family(self.family).from_spec(self.spec)._repr_svg_()
 
 
 def scalar_row(key: str, value: Any, owner: str) -> dict[str, Any]:

@@ -3,6 +3,8 @@ k-isogonal, §3.5, §5.1)."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from tilekit.errors import GeometryError
@@ -64,6 +66,23 @@ def _tile_orbits_of(cell: _Cell, group: SymmetryGroup) -> np.ndarray:
     if (found < 0).any():
         raise GeometryError("a symmetry failed to map the unit's tiles onto tiles (tolerance too tight?)")
     return _union_find(len(cell), np.column_stack([src, found]))
+
+
+def patch_tile_classes(tiling: PeriodicTiling, patch: Any, tol: float = DEFAULT_TOL) -> np.ndarray | None:
+    """The transitivity class (:func:`tile_orbits` label) of each tile of a patch that
+    ``tiling.patch`` made, read through the tile's aspect; None when the unit gives two tiles
+    of different classes one aspect, so that the aspect does not tell the class."""
+    tiling = _check(tiling)
+    orbit = tile_orbits(tiling, tol)
+    pairs = np.unique(np.column_stack([tiling.unit_aspect, orbit]), axis=0)
+    if len(np.unique(pairs[:, 0])) != len(pairs):
+        return None
+    by_aspect = np.full(int(pairs[:, 0].max()) + 1, -1, dtype=np.int64)
+    by_aspect[pairs[:, 0]] = pairs[:, 1]
+    aspect = np.asarray(patch.aspect)
+    if len(aspect) and (aspect.min() < 0 or aspect.max() >= len(by_aspect) or (by_aspect[aspect] < 0).any()):
+        return None
+    return by_aspect[aspect]
 
 
 def isohedrality(tiling: PeriodicTiling, tol: float = DEFAULT_TOL) -> int:

@@ -8,8 +8,10 @@ engine (:mod:`.engine`) turns a template, a parameter vector and edge shapes int
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from tilekit.errors import ParseError
 from tilekit.hookspecs import hookimpl
 from tilekit.lazy import lazy_exports
 from tilekit.plugins import Family
@@ -59,6 +61,29 @@ def _from_spec(spec: Any) -> IsohedralTiling:
     return tiling_from_spec(spec)
 
 
+#: Spec files this family claims for ``tilekit render --system FILE`` (what escherize writes).
+SPEC_SUFFIX = ".isohedral.json"
+
+
+def _from_file(path: str) -> Any:
+    """A tiling from a spec file: ``{"family": "isohedral", "spec": {...}}`` (the web editor's
+    export and escherize's output) or a bare spec ``{"ih": 16, ...}``."""
+    import json
+
+    name = Path(path).name
+    try:
+        data = json.loads(Path(path).read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
+        raise ParseError(f"{name}: not a readable JSON spec ({exc.__class__.__name__})") from None
+    if isinstance(data, dict) and "spec" in data:
+        if data.get("family", "isohedral") != "isohedral":
+            raise ParseError(f"{name}: a {data.get('family')!r} spec, not an isohedral one")
+        data = data["spec"]
+    if not isinstance(data, dict):
+        raise ParseError(f'{name}: an isohedral spec is a JSON object like {{"ih": 16, "params": [0.3]}}')
+    return _from_spec(data)
+
+
 @hookimpl
 def tilekit_families():
     return [
@@ -67,8 +92,25 @@ def tilekit_families():
             summary="The 93 isohedral tiling types (templates, incidence symbols, edge shapes)",
             from_spec=_from_spec,
             description=DESCRIPTION,
+            from_file=_from_file,
         )
     ]
+
+
+@hookimpl(tryfirst=True)
+def tilekit_claim_file(path: str) -> str | None:
+    """Spec files named ``*.isohedral.json`` (tryfirst: the substitution family claims every
+    other ``.json``)."""
+    return "isohedral" if str(path).lower().endswith(SPEC_SUFFIX) else None
+
+
+@hookimpl
+def tilekit_cli_commands(cli: Any) -> None:
+    # measured start-up cost: cli.py loads only click, the core's cheap cli_types and the
+    # import-free escher limits (a few ms); its command imports NumPy/scipy when it runs
+    from tilekit.plugins.isohedral.cli import escherize_command
+
+    cli.add_command(escherize_command)
 
 
 @hookimpl

@@ -41,7 +41,7 @@ import numpy as np
 
 from tilekit import limits
 from tilekit.errors import ParameterError
-from tilekit.lattice import Grid, holes_of, pack, unpack
+from tilekit.lattice import Grid, holes_of, pack, unique_keys, unpack
 from tilekit.plugins.polyomino.placements import Forms
 from tilekit.sat import DEFAULT_SAT_SOLVER, IncrementalSolver, gc_paused
 
@@ -89,7 +89,7 @@ class HeeschSolver:
         self.forms = Forms(grid, cells)
         self.solver = solver
         self.kernel_keys = np.sort(self.forms.keys[0])
-        self.kernel_halo = np.unique(self.forms.placement_halos(np.array([[0, 0, 0]]))[0])
+        self.kernel_halo = unique_keys(self.forms.placement_halos(np.array([[0, 0, 0]]))[0])
         self.levels: list[np.ndarray] = [np.array([[0, 0, 0]], dtype=np.int64)]  # level 0: kernel
         self.sat_calls = 0
         self.solve_seconds = 0.0  # inside the solver (the rest is building the formulas)
@@ -149,7 +149,7 @@ class HeeschSolver:
         pcells = self.forms.placement_cells(rows)  # (nv, n)
         phalo = self.forms.placement_halos(rows)  # (nv, H)
         inner = lvl < k
-        universe = np.unique(np.concatenate([pcells.ravel(), phalo[inner].ravel(), self.kernel_halo]))
+        universe = unique_keys(np.concatenate([pcells.ravel(), phalo[inner].ravel(), self.kernel_halo]))
         universe = universe[~np.isin(universe, self.kernel_keys)]
         cvar = nv + 1 + np.arange(len(universe), dtype=np.int64)
         top = nv + len(universe)

@@ -24,7 +24,7 @@ from functools import cached_property
 
 import numpy as np
 
-from tilekit.lattice import Grid, fixed_form, halo_of, pack, unpack
+from tilekit.lattice import Grid, fixed_form, halo_of, pack, unique_keys, unpack
 
 
 @dataclass(eq=False)
@@ -83,7 +83,7 @@ class Forms:
             for k in range(self.J):
                 t = (halo[:, None, :] - self.forms[k][None, :, :]).reshape(-1, 2)
                 t = t[(t % p == 0).all(axis=1)]
-                t = unpack(np.unique(pack(t)))
+                t = unpack(unique_keys(pack(t)))
                 moved = pack(self.forms[k][None, :, :] + t[:, None, :])  # (T, n)
                 clash = np.isin(moved, own).any(axis=1)
                 t = t[~clash]

@@ -123,9 +123,9 @@ class TorusSearch:
         flat_v = np.repeat(var, n)
         order = np.argsort(flat_c, kind="stable")
         sc, sv = flat_c[order], flat_v[order]
-        if len(np.unique(sc)) < cells:
-            return False  # some cell no copy can cover
         starts = np.flatnonzero(np.r_[True, sc[1:] != sc[:-1]])
+        if len(starts) < cells:
+            return False  # some cell no copy can cover
         clauses = [g.tolist() for g in np.split(sv, starts[1:])]
         gid = np.repeat(np.arange(len(starts)), np.diff(np.r_[starts, len(sc)]))
         idx = np.flatnonzero(np.r_[gid[1:] == gid[:-1], False])
