@@ -20,6 +20,7 @@ sys.path.insert(0, str(Path(__file__).parent))
 
 import test_search  # noqa: E402
 import testkit  # noqa: E402
+from cliutil import assert_one_line_error
 
 import tilekit.cli as cli_module  # noqa: E402
 from tilekit.cli import cli  # noqa: E402
@@ -41,14 +42,6 @@ def db(tmp_path, monkeypatch):
 
 def run(db: Path, *args: str):
     return CliRunner().invoke(cli, ["--catalogue", f"sqlite:///{db}", *args], catch_exceptions=False)
-
-
-def assert_one_line_error(result, fragment: str = "") -> None:
-    assert result.exit_code == 2, (result.exit_code, result.output)
-    lines = result.stderr.splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), result.stderr
-    assert "Traceback" not in result.output
-    assert fragment in lines[0], lines[0]
 
 
 # --------------------------------------------------------------------------- families / list / show

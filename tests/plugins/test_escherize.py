@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from click.testing import CliRunner
+from cliutil import assert_one_line_error
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -237,14 +238,6 @@ def test_too_many_goal_points_are_refused_before_work():
     t = np.linspace(0, 2 * np.pi, MAX_GOAL_POINTS + 1, endpoint=False)
     with pytest.raises(ParseError, match=f"limit of {MAX_GOAL_POINTS}"):
         escher.check_goal(np.column_stack([np.cos(t), np.sin(t)]))
-
-
-def assert_one_line_error(result, fragment: str = "") -> None:
-    assert result.exit_code == 2, (result.exit_code, result.output)
-    lines = result.stderr.splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), result.stderr
-    assert "Traceback" not in result.output
-    assert fragment in lines[0], lines[0]
 
 
 # --------------------------------------------------------------------------- the command

@@ -234,17 +234,22 @@ def _flatten(results: Iterable[Iterable[Any] | None]) -> list[Any]:
     return out
 
 
+def _by_name(results: list[Any], cls: type, hook: str, what: str) -> dict[str, Any]:
+    """A hook's flattened results by ``name``: each must be a ``cls``, no name twice."""
+    out: dict[str, Any] = {}
+    for item in _flatten(results):
+        if not isinstance(item, cls):
+            raise PluginError(f"{hook} returned {type(item).__name__}, not {cls.__name__}")
+        if item.name in out:
+            raise PluginError(f"two plugins define the {what} {item.name!r}")
+        out[item.name] = item
+    return out
+
+
 def families(pm: pluggy.PluginManager | None = None) -> dict[str, Family]:
     """All registered families by name."""
     pm = pm or get_plugin_manager()
-    out: dict[str, Family] = {}
-    for fam in _flatten(pm.hook.tilekit_families()):
-        if not isinstance(fam, Family):
-            raise PluginError(f"tilekit_families returned {type(fam).__name__}, not Family")
-        if fam.name in out:
-            raise PluginError(f"two plugins define the family {fam.name!r}")
-        out[fam.name] = fam
-    return out
+    return _by_name(pm.hook.tilekit_families(), Family, "tilekit_families", "family")
 
 
 def get_family(name: str, pm: pluggy.PluginManager | None = None) -> Family:
@@ -312,25 +317,13 @@ def plugin_info(pm: pluggy.PluginManager | None = None) -> list[PluginInfo]:
 def samplers(pm: pluggy.PluginManager | None = None) -> dict[str, Sampler]:
     """Every sampler the plugins contribute, by name (a clash is a PluginError)."""
     pm = pm or get_plugin_manager()
-    out: dict[str, Sampler] = {}
-    for sampler in _flatten(pm.hook.tilekit_samplers()):
-        if not isinstance(sampler, Sampler):
-            raise PluginError(f"tilekit_samplers returned {type(sampler).__name__}, not a Sampler")
-        if sampler.name in out:
-            raise PluginError(f"two plugins define the sampler {sampler.name!r}")
-        out[sampler.name] = sampler
-    return out
+    return _by_name(pm.hook.tilekit_samplers(), Sampler, "tilekit_samplers", "sampler")
 
 
 def searches(pm: pluggy.PluginManager | None = None) -> dict[str, Search]:
     """All registered searches by name."""
     pm = pm or get_plugin_manager()
-    out: dict[str, Search] = {}
-    for s in _flatten(pm.hook.tilekit_searches()):
-        if s.name in out:
-            raise PluginError(f"two plugins define the search {s.name!r}")
-        out[s.name] = s
-    return out
+    return _by_name(pm.hook.tilekit_searches(), Search, "tilekit_searches", "search")
 
 
 def get_search(name: str, pm: pluggy.PluginManager | None = None) -> Search:
