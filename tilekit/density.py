@@ -10,7 +10,6 @@ Brighter pixels and larger values mean *more* samples (``invert`` turns an image
 
 from __future__ import annotations
 
-import ast
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -18,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from tilekit import expr
 from tilekit.errors import ParameterError, ParseError
 from tilekit.limits import refuse_over
 
@@ -25,9 +25,6 @@ from tilekit.limits import refuse_over
 MAX_DENSITY_PIXELS = 16_777_216
 #: Side of the grid an expression is evaluated on (cell centres; the midpoint rule).
 EXPRESSION_GRID = 1024
-#: Longest expression text and deepest nesting the evaluator accepts.
-MAX_EXPRESSION_LENGTH = 1000
-MAX_EXPRESSION_DEPTH = 40
 
 #: Named densities: each an expression in x and y over the unit square.
 NAMED = {
@@ -171,77 +168,23 @@ _FUNCTIONS: dict[str, Callable[..., np.ndarray]] = {
     "abs": np.abs, "floor": np.floor, "min": np.minimum, "max": np.maximum,
 }
 _CONSTANTS = {"pi": math.pi, "e": math.e}
-_BINOPS = {ast.Add: np.add, ast.Sub: np.subtract, ast.Mult: np.multiply, ast.Div: np.divide,
-           ast.Pow: np.power, ast.Mod: np.mod}
-_COMPARE = {ast.Lt: np.less, ast.LtE: np.less_equal, ast.Gt: np.greater, ast.GtE: np.greater_equal}
-
-
-def _show(text: str) -> str:
-    return repr(text) if len(text) <= 60 else repr(text[:57] + "...")
+GRAMMAR = expr.Grammar(names=("x", "y", *_CONSTANTS), functions={k: 2 if k in ("min", "max") else 1 for k in _FUNCTIONS},
+                       modulo=True, compare=True, what="density expression")
 
 
 def compile_expression(text: str) -> Callable[[np.ndarray, np.ndarray], np.ndarray]:
-    """A vectorised function of arrays x, y from ``text`` (never ``eval``): numbers, x, y, pi, e,
-    + - * / % **, comparisons (1 where true, else 0), and sqrt exp log sin cos tan abs floor
-    min max. The syntax is checked here, once; values are checked by :class:`Density`."""
-    if len(text) > MAX_EXPRESSION_LENGTH:
-        raise ParseError(f"density expression {_show(text)} is longer than {MAX_EXPRESSION_LENGTH} characters")
-    try:
-        tree = ast.parse(text.strip(), mode="eval")
-    except (SyntaxError, ValueError, RecursionError, MemoryError):
-        raise ParseError(f"density {_show(text)} is not a PNG file, a named density ({', '.join(NAMED)}) "
-                         "or an expression in x and y") from None
-
-    def check(node: ast.AST, depth: int) -> None:
-        if depth > MAX_EXPRESSION_DEPTH:
-            raise ParseError(f"density expression {_show(text)} nests deeper than {MAX_EXPRESSION_DEPTH} levels")
-        if isinstance(node, ast.Constant) and isinstance(node.value, int | float) and not isinstance(node.value, bool):
-            return
-        if isinstance(node, ast.Name):
-            if node.id not in ("x", "y") and node.id not in _CONSTANTS:
-                raise ParseError(f"density expression {_show(text)} uses unknown name {node.id!r}; known: x, y, pi, e")
-            return
-        if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub | ast.UAdd):
-            return check(node.operand, depth + 1)
-        if isinstance(node, ast.BinOp) and type(node.op) in _BINOPS:
-            check(node.left, depth + 1)
-            return check(node.right, depth + 1)
-        if isinstance(node, ast.Compare) and len(node.ops) == 1 and type(node.ops[0]) in _COMPARE:
-            check(node.left, depth + 1)
-            return check(node.comparators[0], depth + 1)
-        if (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in _FUNCTIONS
-                and not node.keywords and len(node.args) == (2 if node.func.id in ("min", "max") else 1)):
-            for a in node.args:
-                check(a, depth + 1)
-            return
-        raise ParseError(f"density expression {_show(text)} contains {type(node).__name__}; allowed are numbers, "
-                         "x, y, pi, e, + - * / % **, < <= > >=, and sqrt exp log sin cos tan abs floor min max")
-
-    try:
-        check(tree.body, 0)
-    except RecursionError:
-        raise ParseError(f"density expression {_show(text)} nests too deeply") from None
-
-    def run(node: ast.AST, x: np.ndarray, y: np.ndarray) -> np.ndarray:
-        if isinstance(node, ast.Constant):
-            return np.float64(node.value)
-        if isinstance(node, ast.Name):
-            return {"x": x, "y": y}.get(node.id, _CONSTANTS.get(node.id))  # type: ignore[return-value]
-        if isinstance(node, ast.UnaryOp):
-            v = run(node.operand, x, y)
-            return -v if isinstance(node.op, ast.USub) else v
-        if isinstance(node, ast.BinOp):
-            return _BINOPS[type(node.op)](run(node.left, x, y), run(node.right, x, y))
-        if isinstance(node, ast.Compare):
-            cmp = _COMPARE[type(node.ops[0])](run(node.left, x, y), run(node.comparators[0], x, y))
-            return np.asarray(cmp, dtype=np.float64)
-        assert isinstance(node, ast.Call) and isinstance(node.func, ast.Name)
-        return _FUNCTIONS[node.func.id](*(run(a, x, y) for a in node.args))
+    """A vectorised function of arrays x, y from ``text`` (:mod:`tilekit.expr`, never ``eval``):
+    numbers, x, y, pi, e, + - * / % **, one comparison (1 where true, else 0), and sqrt exp log
+    sin cos tan abs floor min max. The syntax is checked here, once; values are checked by
+    :class:`Density`."""
+    tree = expr.parse(text, GRAMMAR, syntax_hint=f"; a density is a PNG file, a named density "
+                                                 f"({', '.join(NAMED)}) or an expression in x and y")
 
     def fn(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        env = {"x": np.asarray(x, dtype=np.float64), "y": np.asarray(y, dtype=np.float64), **_CONSTANTS}
         try:
-            return run(tree.body, np.asarray(x, dtype=np.float64), np.asarray(y, dtype=np.float64))
+            return np.asarray(expr.run(tree, env, _FUNCTIONS), dtype=np.float64)
         except (OverflowError, ZeroDivisionError, ValueError, TypeError) as exc:
-            raise ParseError(f"density expression {_show(text)} cannot be evaluated: {exc}") from None
+            raise ParseError(f"density expression {expr.show(text)} cannot be evaluated: {exc}") from None
 
     return fn

@@ -1,16 +1,16 @@
 """A safe evaluator for the numeric expressions in substitution-system files.
 
-Exact values (phi**-1, sqrt3/2, cos(pi/5) ...) are written as text and evaluated once, by
-walking Python's ``ast`` with a whitelist: numbers, + - * / **, unary minus, parentheses,
-named constants and the functions sqrt, cos, sin. Nothing else is accepted (never ``eval``).
+Exact values (phi**-1, sqrt3/2, cos(pi/5) ...) are written as text and evaluated once by the
+core's safe evaluator (:mod:`tilekit.expr`) with this grammar: numbers, + - * / **, unary
+minus, parentheses, named constants and the functions sqrt, cos, sin (never ``eval``).
 """
 
 from __future__ import annotations
 
-import ast
 import math
 from collections.abc import Mapping
 
+from tilekit import expr
 from tilekit.errors import ParseError
 
 PHI = (1.0 + math.sqrt(5.0)) / 2.0
@@ -27,28 +27,10 @@ CONSTANTS: dict[str, float] = {
 
 FUNCTIONS = {"sqrt": math.sqrt, "cos": math.cos, "sin": math.sin}
 
-_BINOPS = {
-    ast.Add: lambda a, b: a + b,
-    ast.Sub: lambda a, b: a - b,
-    ast.Mult: lambda a, b: a * b,
-    ast.Div: lambda a, b: a / b,
-    ast.Pow: lambda a, b: a**b,
-}
-
-
-#: Longest expression text, and deepest nesting of operations, the evaluator accepts: exact
-#: values in system files are short; the bounds keep the parser and the walk from recursing
-#: or allocating without limit on a long ``1+1+...`` or a run of ``-``.
-MAX_LENGTH = 1000
-MAX_DEPTH = 40
-
-
-def _show(text: str) -> str:
-    return repr(text) if len(text) <= 60 else repr(text[:57] + "...")
-
 
 def evaluate(text: str | int | float, names: Mapping[str, float] | None = None) -> float:
-    """The value of ``text`` (or a plain number) with ``names`` (default: CONSTANTS)."""
+    """The value of ``text`` (or a plain number) with ``names`` (default: CONSTANTS), through
+    the core's safe evaluator (:mod:`tilekit.expr`); every intermediate must be a finite real."""
     if isinstance(text, bool):
         raise ParseError(f"expression {text!r} is a boolean, not a number")
     if isinstance(text, int | float):
@@ -61,64 +43,21 @@ def evaluate(text: str | int | float, names: Mapping[str, float] | None = None) 
         return value
     if not isinstance(text, str):
         raise ParseError(f"expression {str(text)[:60]!r} is not a number or a text expression")
-    if len(text) > MAX_LENGTH:
-        raise ParseError(f"expression {_show(text)} is longer than {MAX_LENGTH} characters")
     env = CONSTANTS if names is None else names
+    tree = expr.parse(text, expr.Grammar(names=tuple(env), functions=dict.fromkeys(FUNCTIONS, 1)))
+
+    def real(value: complex | float) -> float:
+        if isinstance(value, complex) or not math.isfinite(value):
+            raise ParseError(f"expression {expr.show(text)} is not a finite real number"
+                             + (" (a power of a negative number)" if isinstance(value, complex) else ""))
+        return float(value)
+
     try:
-        tree = ast.parse(text.strip(), mode="eval")
-    except (SyntaxError, ValueError, RecursionError, MemoryError):
-        raise ParseError(f"expression {_show(text)} is not valid arithmetic") from None
-    try:
-        value = _walk(tree.body, env, text, 0)
+        return real(expr.run(tree, env, FUNCTIONS, step=real))
     except ParseError:
         raise
     except (ZeroDivisionError, OverflowError, ValueError, TypeError) as exc:
-        raise ParseError(f"expression {_show(text)} cannot be evaluated: {exc}") from None
-    except RecursionError:
-        raise ParseError(f"expression {_show(text)} nests deeper than {MAX_DEPTH} levels") from None
-    return value
-
-
-def _real(value: complex | float, text: str) -> float:
-    """``value`` as a finite float (every intermediate result must be one)."""
-    if isinstance(value, complex) or not math.isfinite(value):
-        raise ParseError(f"expression {_show(text)} is not a finite real number"
-                         + (" (a power of a negative number)" if isinstance(value, complex) else ""))
-    return float(value)
-
-
-def _walk(node: ast.AST, env: Mapping[str, float], text: str, depth: int) -> float:
-    if depth > MAX_DEPTH:
-        raise ParseError(f"expression {_show(text)} nests deeper than {MAX_DEPTH} levels")
-    if isinstance(node, ast.Constant) and isinstance(node.value, int | float) and not isinstance(
-        node.value, bool
-    ):
-        return _real(float(node.value), text)
-    if isinstance(node, ast.Name):
-        if node.id not in env:
-            raise ParseError(
-                f"expression {_show(text)} uses unknown name {node.id!r}; known: {', '.join(sorted(env))}"
-            )
-        return float(env[node.id])
-    if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub | ast.UAdd):
-        v = _walk(node.operand, env, text, depth + 1)
-        return -v if isinstance(node.op, ast.USub) else v
-    if isinstance(node, ast.BinOp) and type(node.op) in _BINOPS:
-        left = _walk(node.left, env, text, depth + 1)
-        right = _walk(node.right, env, text, depth + 1)
-        return _real(_BINOPS[type(node.op)](left, right), text)
-    if (
-        isinstance(node, ast.Call)
-        and isinstance(node.func, ast.Name)
-        and node.func.id in FUNCTIONS
-        and len(node.args) == 1
-        and not node.keywords
-    ):
-        return _real(FUNCTIONS[node.func.id](_walk(node.args[0], env, text, depth + 1)), text)
-    raise ParseError(
-        f"expression {_show(text)} contains {type(node).__name__}; allowed are numbers, names, "
-        "+ - * / **, parentheses and sqrt/cos/sin"
-    )
+        raise ParseError(f"expression {expr.show(text)} cannot be evaluated: {exc}") from None
 
 
 def constants_with(extra: Mapping[str, str | float] | None) -> dict[str, float]:
