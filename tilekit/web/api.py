@@ -31,7 +31,13 @@ from tilekit.errors import (
 from tilekit.plugins import families as fams
 from tilekit.render import parse_palette
 from tilekit.web.limits import RenderTooLarge
-from tilekit.web.service import MAX_EDGES, editor_info, normalise_options, parquet_svg
+from tilekit.web.service import (
+    MAX_EDGES,
+    editor_info,
+    normalise_options,
+    parquet_svg,
+    query_options,
+)
 
 MAX_PAGE = 200
 MAX_BODY = 64 * 1024
@@ -153,16 +159,7 @@ def run_query(state: Any, request: Request) -> dict[str, Any]:
 def render_options(request: Request, body: dict[str, Any] | None) -> dict[str, Any]:
     if body is not None:
         return body
-    q = request.query_params
-    raw: dict[str, Any] = {}
-    for key in q:
-        if key == "edge" or key == "edges":
-            raw["edges"] = q.getlist(key)
-        elif key == "param" or key == "params":
-            raw["params"] = ",".join(q.getlist(key))
-        else:
-            raw[key] = q[key]
-    return raw
+    return query_options(request.query_params.multi_items())
 
 
 async def read_json(request: Request) -> dict[str, Any]:

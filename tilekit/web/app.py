@@ -28,7 +28,7 @@ from tilekit.plugins.isohedral.engine import IsohedralTiling
 from tilekit.plugins.isohedral.templates import get_template
 from tilekit.web import api, pages
 from tilekit.web.limits import DEFAULT_MAX_TILES
-from tilekit.web.service import Renderer, editor_info
+from tilekit.web.service import Renderer, editor_info, normalise_options
 
 STATIC = Path(__file__).with_name("static")
 MAX_QUERY = 8 * 1024
@@ -234,11 +234,19 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
     @page
     def editor(request: Request) -> Response:
         name = request.path_params["name"]
-        t = state.catalogue.tiling(name)
+        t = state.renderer.base_tiling(name)
         if not isinstance(t, IsohedralTiling):
 
             raise ParameterError(f"{name} is not an unmarked isohedral type; the editor takes IH1..IH93")
-        return _html(pages.editor_page(editor_info(t), [n for n, _ in isohedral_types()]))
+        # /editor/IHn?params=..&edge=..&colouring=..: the JSON API's query syntax and parser; a
+        # query the API would refuse is shown as its one line over the type's defaults
+        problem = None
+        if request.query_params:
+            try:
+                t = state.renderer.build(name, normalise_options(api.render_options(request, None)))
+            except (TilekitError, ValueError, TypeError) as exc:
+                problem = api.one_line(exc)
+        return _html(pages.editor_page(editor_info(t), [n for n, _ in isohedral_types()], problem))
 
     @page
     def penrose(request: Request) -> Response:

@@ -214,11 +214,14 @@ def editor_pick_page(types: Sequence[tuple[str, str]]) -> str:
                   f'the 12 marked types are not editable.</p><div class="types" id="types">{links}</div>')
 
 
-def editor_page(info: Mapping[str, Any], types: Sequence[str]) -> str:
+def editor_page(info: Mapping[str, Any], types: Sequence[str], problem: str | None = None) -> str:
+    """The isohedral editor on ``info`` (:func:`tilekit.web.service.editor_info` of the tiling
+    the URL configures); ``problem`` is the one line of a refused URL configuration."""
     data = esc(json.dumps(info))
+    notice = f' data-notice="{esc(problem)}"' if problem else ""
     pick = options([(t, t) for t in types], info["name"])
     body = f"""<h1>Isohedral editor: {esc(info["name"])}</h1>
-<div class="editor" id="editor" data-info="{data}">
+<div class="editor" id="editor" data-info="{data}"{notice}>
 <div class="controls">
 <label>type <select id="type">{pick}</select></label>
 <p class="kinds">edges <code>{esc(info["kinds"])}</code>; tiling vertex parameterization {esc(info["parameterization"])}</p>
@@ -238,8 +241,9 @@ midpoint's perpendicular, S edges turn half a turn about their midpoint, I edges
 <p><button type="button" id="reset">reset</button>
 <a id="export-svg" href="#" download="tiling.svg">export SVG</a>
 <a id="export-spec" href="#" download="tiling.json">export spec</a>
+<a id="permalink" href="/editor/{esc(name_path(info["name"]))}" title="this tiling's editor URL (params, edges, colouring)">link</a>
 <a id="export-parquet" href="#" download="parquet.svg" hidden>parquet deformation SVG</a></p>
-<p class="error" id="error" role="alert"></p>
+<p class="error" id="error" role="alert">{esc(problem)}</p>
 </div>
 <div class="view" id="view"></div>
 </div>"""

@@ -12,7 +12,7 @@ import json
 import math
 import threading
 from collections import OrderedDict
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from typing import Any
 
 from tilekit.cli import parse_region as cli_parse_region
@@ -59,6 +59,28 @@ def parse_region(value: Any) -> tuple[float, float, float, float] | None:
     if not isinstance(value, str):
         value = ",".join(str(_number(v, "region")) for v in (value if isinstance(value, list | tuple) else [value]))
     return cli_parse_region(value)
+
+
+def query_options(items: Iterable[tuple[str, str]]) -> dict[str, Any]:
+    """Raw render options from a query string's (key, value) pairs, in order.
+
+    ``edge``/``edges`` repeat (one ``LABEL=x,y:x,y:...`` each) and become a list;
+    ``param``/``params`` repeat and are joined with commas; any other key keeps its last value.
+    With :func:`normalise_options` this is the parser of ``/api/render/NAME``,
+    ``/api/tiling/NAME/spec`` and the editor page ``/editor/IHn``; its inverse for isohedral
+    tilings is :func:`tilekit.plugins.isohedral.spec.editor_query`.
+    """
+    raw: dict[str, Any] = {}
+    params: list[str] = []
+    for key, value in items:
+        if key in ("edge", "edges"):
+            raw.setdefault("edges", []).append(value)
+        elif key in ("param", "params"):
+            params.append(value)
+            raw["params"] = ",".join(params)
+        else:
+            raw[key] = value
+    return raw
 
 
 def normalise_options(raw: Mapping[str, Any]) -> dict[str, Any]:

@@ -1,14 +1,22 @@
-"""Any isohedral tiling, marked or not, from its catalogue spec ``{"ih": 16, ...}``."""
+"""Any isohedral tiling, marked or not, from its catalogue spec ``{"ih": 16, ...}``; and the
+web editor's URL of an unmarked one (:func:`editor_path`)."""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from typing import Any
+from urllib.parse import quote
 
+from tilekit.errors import ParameterError, ParseError
 from tilekit.plugins.isohedral.engine import _spec_ih, unmarked_from_spec
 from tilekit.plugins.isohedral.marked import marked_tiling
 from tilekit.plugins.isohedral.templates import get_template
 from tilekit.tiling import PeriodicTiling
+
+#: Characters left unescaped in a query value: the edge syntax's ``LABEL=x,y:x,y`` and a
+#: colouring's parentheses stay readable (RFC 3986 allows them in a query).
+_QUERY_SAFE = ",:=()"
 
 
 def tiling_from_spec(spec: Mapping[str, Any]) -> PeriodicTiling:
@@ -17,3 +25,55 @@ def tiling_from_spec(spec: Mapping[str, Any]) -> PeriodicTiling:
     if t.marked:
         return marked_tiling(t.ih)
     return unmarked_from_spec(spec)
+
+
+def _number(value: Any) -> str:
+    """The shortest text that float() reads back as exactly ``value`` (repr, without ``.0``)."""
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise ParseError(f"isohedral spec parameter {value!r} is not a number") from None
+    if not math.isfinite(x):
+        raise ParseError(f"isohedral spec parameter {value!r} is not a finite number")
+    text = repr(x)
+    return text[:-2] if text.endswith(".0") else text
+
+
+def editor_query(spec: Mapping[str, Any]) -> str:
+    """The query string of an isohedral spec in the syntax of the JSON API and the editor.
+
+    ``params=v0,v1,...`` (exact: each number's shortest round-trip text), one ``edge=LABEL=TEXT``
+    per edge shape (the spec's own ``EdgeShape`` text), ``colouring=`` when the spec has one:
+    what ``/api/render/IHn``, ``/api/tiling/IHn/spec`` and ``/editor/IHn`` read back through
+    :func:`tilekit.web.service.query_options` and ``normalise_options`` into the same tiling
+    (tests/web/test_editor_url.py checks spec -> query -> the API's parse -> the same spec).
+    """
+    if not isinstance(spec, Mapping):
+        raise ParseError(f"an isohedral spec is a JSON object like {{'ih': 16}}, not {spec!r}")
+    _spec_ih(spec)
+    items: list[tuple[str, str]] = []
+    params = spec.get("params") or []
+    if not isinstance(params, list | tuple):
+        raise ParseError(f"isohedral spec params {params!r} are not a list of numbers")
+    if params:
+        items.append(("params", ",".join(_number(p) for p in params)))
+    edges = spec.get("edges") or {}
+    if not isinstance(edges, Mapping):
+        raise ParseError(f"isohedral spec edges {edges!r} are not an object of LABEL: 'x,y:x,y:...'")
+    for label, text in edges.items():
+        if not isinstance(label, str) or not isinstance(text, str):
+            raise ParseError(f"isohedral spec edge {label!r}: {text!r} is not LABEL: 'x,y:x,y:...'")
+        items.append(("edge", f"{label}={text.strip()}"))
+    if spec.get("colouring"):
+        items.append(("colouring", str(spec["colouring"])))
+    return "&".join(f"{k}={quote(v, safe=_QUERY_SAFE)}" for k, v in items)
+
+
+def editor_path(spec: Mapping[str, Any]) -> str:
+    """``/editor/IHn?params=...&edge=...``: the web editor (``tilekit serve``) opened on the
+    tiling of an unmarked type's spec (:func:`editor_query`)."""
+    t = get_template(_spec_ih(spec))
+    if t.marked:
+        raise ParameterError(f"{t.name} is a marked type; the editor takes the 81 unmarked types")
+    query = editor_query(spec)
+    return f"/editor/{t.name}" + (f"?{query}" if query else "")

@@ -1,5 +1,8 @@
 // The isohedral editor (exercise 5.12). The server owns the geometry: every change asks
 // /api/render for the tiling's SVG (debounced), so the Python engine is the only copy.
+// The page opens on the tiling its URL configures (/editor/IHn?params=..&edge=..&colouring=..,
+// the API's query syntax, parsed by the server into data-info); data-notice is the one line of
+// a URL configuration the server refused (data-info then holds the type's defaults).
 (function () {
   "use strict";
   const root = document.getElementById("editor");
@@ -9,31 +12,53 @@
   const errorBox = document.getElementById("error");
   const NS = "http://www.w3.org/2000/svg";
   let state;
+  let notice = root.dataset.notice || "";
 
-  function fresh() {
+  // the URL's tiling (defaults = false) or the type's defaults (reset)
+  function fresh(defaults) {
     const edges = {};
     info.edges.forEach(function (e) {
-      edges[e.label] = { kind: e.kind, smooth: e.smooth, points: e.points.map(function (p) { return p.slice(); }) };
+      const points = defaults ? [[0, 0], [1, 0]] : e.points.map(function (p) { return p.slice(); });
+      edges[e.label] = { kind: e.kind, smooth: defaults ? false : e.smooth, points: points };
     });
-    return { params: info.params.slice(), edges: edges, colouring: info.colouring, palette: "",
+    return { params: (defaults ? info.default : info.params).slice(), edges: edges,
+             colouring: defaults ? info.default_colouring : info.colouring, palette: "",
              zoom: 1, rotate: 0, cx: (info.region[0] + info.region[2]) / 2, cy: (info.region[1] + info.region[3]) / 2 };
   }
 
+  // fmt rounds for display and the view region; num is exact (the shortest text that reads
+  // back as the same double in Python), so params and edges survive a link or an export
   function fmt(x) { return (Math.round(x * 1e6) / 1e6).toString(); }
+  function num(x) { return String(x); }
 
   function edgeText(label) {
     const e = state.edges[label];
-    return label + "=" + (e.smooth ? "bezier:" : "") + e.points.map(function (p) { return fmt(p[0]) + "," + fmt(p[1]); }).join(":");
+    return label + "=" + (e.smooth ? "bezier:" : "") + e.points.map(function (p) { return num(p[0]) + "," + num(p[1]); }).join(":");
   }
 
-  function query(extra) {
+  // the tiling's own options: params, the shaped edges, a colouring other than the type's
+  function tilingQuery() {
     const q = new URLSearchParams();
-    if (state.params.length) q.set("params", state.params.map(fmt).join(","));
+    if (state.params.length) q.set("params", state.params.map(num).join(","));
     Object.keys(state.edges).forEach(function (label) {
       const e = state.edges[label];
       if (e.points.length > 2 || e.points.some(function (p) { return p[1] !== 0; })) q.append("edge", edgeText(label));
     });
     if (state.colouring && state.colouring !== info.default_colouring) q.set("colouring", state.colouring);
+    return q;
+  }
+
+  // /editor/IHn?...: the link's form, with the edge syntax's , : = left readable
+  function editorLink() {
+    const parts = [];
+    tilingQuery().forEach(function (value, key) {
+      parts.push(key + "=" + encodeURIComponent(value).replace(/%2C/g, ",").replace(/%3A/g, ":").replace(/%3D/g, "="));
+    });
+    return "/editor/" + encodeURIComponent(info.name) + (parts.length ? "?" + parts.join("&") : "");
+  }
+
+  function query(extra) {
+    const q = tilingQuery();
     if (state.palette) q.set("colours", state.palette);
     const hw = (info.region[2] - info.region[0]) / 2 / state.zoom;
     const hh = (info.region[3] - info.region[1]) / 2 / state.zoom;
@@ -51,6 +76,7 @@
 
   function render() {
     const mine = ++seq;
+    const link = editorLink();
     root.dataset.busy = "1";
     fetch("/api/render/" + encodeURIComponent(info.name) + "?" + query({ format: "json", size: 720 }))
       .then(function (r) { return r.json().then(function (body) { return { ok: r.ok, body: body }; }); })
@@ -58,9 +84,11 @@
         if (mine !== seq) return;
         if (!res.ok) {
           errorBox.textContent = res.body.error || "render failed";
+          notice = "";
           root.dataset.state = "refused";
         } else {
-          errorBox.textContent = "";
+          errorBox.textContent = notice;  // a refused URL's line stays until the next valid render
+          notice = "";
           view.innerHTML = res.body.svg;  // tilekit's own SVG: numbers and escaped colours only
           const svg = view.querySelector("svg");
           if (svg) {
@@ -69,6 +97,9 @@
           }
           root.dataset.state = "ok";
           root.dataset.spec = JSON.stringify(res.body.spec);
+          // the link and the address bar name the tiling on screen (the last valid one)
+          document.getElementById("permalink").href = link;
+          if (window.location.pathname + window.location.search !== link) window.history.replaceState(null, "", link);
         }
         root.dataset.renders = String(Number(root.dataset.renders || 0) + 1);
         delete root.dataset.busy;
@@ -98,7 +129,9 @@
       label.textContent = "v" + i + " ";
       const input = document.createElement("input");
       input.type = "range"; input.id = "param-" + i; input.className = "param";
-      input.min = fmt(d - span); input.max = fmt(d + span); input.step = "0.001"; input.value = String(v);
+      // around the default, widened to take the URL's value; step "any" keeps it exact
+      input.min = num(Math.min(d - span, v)); input.max = num(Math.max(d + span, v)); input.step = "any";
+      input.value = num(v);
       const out = document.createElement("output");
       out.textContent = fmt(v);
       input.addEventListener("input", function () {
@@ -249,7 +282,7 @@
       window.location.href = "/editor/" + encodeURIComponent(evt.target.value);
     });
     document.getElementById("reset").addEventListener("click", function () {
-      state = fresh(); zoom.value = "1"; rotate.value = "0";
+      state = fresh(true); zoom.value = "1"; rotate.value = "0";
       document.getElementById("colouring").value = state.colouring;
       buildParams(); buildEdges(); schedule();
     });
@@ -265,7 +298,7 @@
     }
   }
 
-  state = fresh();
+  state = fresh(false);
   buildParams();
   buildEdges();
   wireView();
