@@ -79,3 +79,6 @@ def escherize_command(goal: str, out: str, types: str | None, all_types: bool, t
     click.echo(f"wrote {len(written)} files to {out}")
     first = f"{out.rstrip('/')}/01-{best[0].name}.isohedral.json"
     click.echo(f"reopen: tilekit render --system {first} -o {best[0].name}.svg")
+    click.echo("in the web editor (tilekit serve, then http://127.0.0.1:8000 and the path; also in ranking.json):")
+    for rank, r in enumerate(best, 1):
+        click.echo(f"{rank:>4}  {r.editor()}")

@@ -50,6 +50,7 @@ from tilekit.plugins.isohedral.escher_limits import (
     MIN_SAMPLES,
 )
 from tilekit.plugins.isohedral.shapes import EdgeShape
+from tilekit.plugins.isohedral.spec import editor_path
 from tilekit.plugins.isohedral.templates import get_template, load_parameterizations
 from tilekit.polygon import signed_area
 
@@ -595,9 +596,13 @@ class EscherResult:
     def tiling(self) -> IsohedralTiling:
         return IsohedralTiling.from_spec(self.spec())
 
+    def editor(self) -> str:
+        """The web editor's path on this tile's tiling: ``/editor/IHn?params=...&edge=...``."""
+        return editor_path(self.spec())
+
     def to_json(self) -> dict[str, Any]:
         return {"ih": self.ih, "name": self.name, "distance": self.distance, "fitted_distance": self.fitted_distance,
-                "shrink": self.shrink, "mirrored": self.mirrored, "spec": self.spec(),
+                "shrink": self.shrink, "mirrored": self.mirrored, "spec": self.spec(), "editor": self.editor(),
                 "evaluations": self.evaluations, "seconds": self.seconds, "note": self.note}
 
 
