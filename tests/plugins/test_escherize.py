@@ -20,7 +20,7 @@ from tilekit.plugins.isohedral import escher
 from tilekit.plugins.isohedral.engine import IsohedralTiling
 from tilekit.plugins.isohedral.escher_limits import MAX_GOAL_POINTS
 from tilekit.plugins.isohedral.shapes import EdgeShape
-from tilekit.plugins.isohedral.spec import tiling_from_spec
+from tilekit.plugins.isohedral.spec import editor_path, tiling_from_spec
 
 pytest.importorskip("scipy")
 
@@ -290,6 +290,10 @@ def test_command_writes_ranked_specs_that_reopen(tmp_path, goal_file):
         assert "<path" in (out / f"{stem}-tiling.svg").read_text()
         spec = json.loads((out / f"{stem}.isohedral.json").read_text())
         assert spec["family"] == "isohedral" and spec["spec"]["ih"] == r["ih"]
+        # the web editor's path on the same spec, in ranking.json and printed with its rank
+        assert r["editor"] == editor_path(r["spec"]) == spec["escherize"]["editor"]
+        assert r["editor"].startswith(f"/editor/{r['name']}?")
+        assert f"{r['rank']:>4}  {r['editor']}\n" in result.output
         # the spec rebuilds the reported tile: its distance from the goal is the one ranked
         tile = tiling_from_spec(spec["spec"]).prototile.outline
         goal = escher.read_goal(goal_file)

@@ -169,3 +169,105 @@ def test_editor_parquet_export(page, tmp_path):
     root = ET.parse(path).getroot()
     assert root.tag == "{http://www.w3.org/2000/svg}svg"
     assert len(root.findall(".//{http://www.w3.org/2000/svg}path")) == 2  # one per colour
+
+
+# --------------------------------------------------------------------------- the editor's URL
+
+#: A non-default IH21 (edges S J J J J; shape classes a (S), b and d (J)) with 17-digit params.
+IH21_SPEC = {"ih": 21, "params": [0.11, 0.6600000000000001],
+             "edges": {"a": "0,0:0.3,0.15:0.6,0.1:1,0", "b": "0,0:0.5,0.1:1,0", "d": "0,0:0.25,-0.05:0.4,-0.08:1,0"}}
+
+
+def svg_paths(svg: str) -> str:
+    root = ET.fromstring(svg)
+    return "|".join(p.get("d") for p in root.iter("{http://www.w3.org/2000/svg}path"))
+
+
+def page_spec(page) -> dict:
+    return json.loads(page.get_attribute("#editor", "data-spec"))
+
+
+def test_editor_opens_the_tiling_its_url_configures(page, tmp_path):
+    from urllib.parse import parse_qs, urlsplit
+
+    from tilekit.plugins.isohedral.engine import unmarked_from_spec
+    from tilekit.plugins.isohedral.spec import editor_path, editor_query
+
+    expected = unmarked_from_spec(IH21_SPEC).spec()
+    renders_asked: list[str] = []
+    page.on("request", lambda r: renders_asked.append(r.url) if "/api/render/" in r.url else None)
+    page.goto(editor_path(IH21_SPEC))
+    page.wait_for_selector("#editor[data-state=ok]", timeout=20000)
+    assert page_spec(page) == expected
+    # the page's spec is the API's for the same query
+    api = page.request.get(f"/api/tiling/IH21/spec?{editor_query(IH21_SPEC)}").json()
+    assert api["spec"] == expected
+    # the sliders show the values (chromium serialises a range input's value to ~15 digits;
+    # the exact ones are the page's spec above), the edge widgets the control points (S: half)
+    assert [float(page.input_value(f"#param-{i}")) for i in range(2)] == pytest.approx(expected["params"], abs=1e-14)
+    assert page.inner_text("#params") == "v0 0.11\nv1 0.66"
+    for label, scale in (("a", 0.5), ("b", 1.0), ("d", 1.0)):
+        interior = [tuple(map(float, p.split(","))) for p in expected["edges"][label].split(":")[1:-1]]
+        handles = page.eval_on_selector_all(f"#edge-{label} .handle",
+                                            "els => els.map(e => [Number(e.getAttribute('cx')), Number(e.getAttribute('cy'))])")
+        assert handles == [[scale * x, scale * y] for x, y in interior]
+    assert page.inner_text("#error") == ""
+    # the tiling drawn is /api/render's for the same query and the page's region and size
+    asked = parse_qs(urlsplit(renders_asked[-1]).query)
+    assert asked["params"] == ["0.11,0.6600000000000001"] and len(asked["edge"]) == 3
+    ref = page.request.get(f"/api/render/IH21?{editor_query(IH21_SPEC)}&region={asked['region'][0]}"
+                           "&size=720&format=json").json()
+    assert ref["spec"] == expected and outline(page) == svg_paths(ref["svg"])
+    # the address bar and the link name the tiling on screen; the link reopens it
+    link = page.get_attribute("#permalink", "href")
+    assert link.startswith("/editor/IH21?params=0.11,0.6600000000000001&edge=a=0,0:0.3,0.15:0.6,0.1:1,0&")
+    assert page.evaluate("location.pathname + location.search") == link
+    # export spec writes the same spec
+    with page.expect_download() as dl:
+        page.click("#export-spec")
+    dl.value.save_as(tmp_path / "spec.json")
+    assert json.loads((tmp_path / "spec.json").read_text())["spec"] == expected
+
+    # an edit moves the link; the link opens the edited tiling
+    n = renders(page)
+    page.locator("#param-0").fill("0.12")
+    wait_render(page, n)
+    edited = page_spec(page)
+    assert edited["params"] == [0.12, 0.6600000000000001] and edited["edges"] == expected["edges"]
+    link = page.get_attribute("#permalink", "href")
+    assert "params=0.12,0.6600000000000001&" in link
+    assert page.evaluate("location.pathname + location.search") == link
+    page.goto(link)
+    page.wait_for_selector("#editor[data-state=ok]", timeout=20000)
+    assert page_spec(page) == edited
+    # reset returns to the type's defaults (not the URL's tiling), and so does the address
+    n = renders(page)
+    page.click("#reset")
+    wait_render(page, n)
+    assert page_spec(page) == {"ih": 21, "params": [0.104512294489, 0.65]}
+    assert page.evaluate("location.pathname + location.search") == "/editor/IH21"
+    assert not page.js_errors
+
+
+@pytest.mark.parametrize("query", ["params=0.1,abc", "edge=b=0,0:0.5,3:1,0"], ids=["unparsable", "refused"])
+def test_editor_url_the_api_refuses_shows_its_line_and_the_defaults(page, query):
+    line = page.request.get(f"/api/tiling/IH21/spec?{query}").json()["error"]
+    assert line.startswith(("params 'abc'", "IH21: edge 2 (label 'b') and edge 4 (label 'd') cross"))
+    page.goto(f"/editor/IH21?{query}")
+    page.wait_for_selector("#editor[data-state=ok]", timeout=20000)
+    assert page.inner_text("#error") == line
+    default = {"ih": 21, "params": [0.104512294489, 0.65]}
+    assert page_spec(page) == default
+    assert [float(page.input_value(f"#param-{i}")) for i in range(2)] == default["params"]
+    assert page.locator("#edges .handle").count() == 0
+    ref = page.request.get("/api/render/IH21?format=json&size=720&region="
+                           + page.evaluate("new URL(document.getElementById('export-svg').href).searchParams"
+                                           ".get('region')")).json()
+    assert outline(page) == svg_paths(ref["svg"])
+    # the address falls back to the defaults too; the next valid edit clears the line
+    assert page.evaluate("location.pathname + location.search") == "/editor/IH21"
+    n = renders(page)
+    page.locator("#param-1").fill("0.66")
+    wait_render(page, n)
+    assert page.inner_text("#error") == "" and page_spec(page)["params"] == [0.104512294489, 0.66]
+    assert not page.js_errors

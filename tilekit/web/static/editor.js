@@ -48,10 +48,13 @@
     return q;
   }
 
-  // /editor/IHn?...: the link's form, with the edge syntax's , : = left readable
+  // /editor/IHn?...: the link's form, with the edge syntax's , : = left readable (and no
+  // params while they are the type's defaults)
   function editorLink() {
     const parts = [];
-    tilingQuery().forEach(function (value, key) {
+    const q = tilingQuery();
+    if (state.params.every(function (v, i) { return v === info.default[i]; })) q.delete("params");
+    q.forEach(function (value, key) {
       parts.push(key + "=" + encodeURIComponent(value).replace(/%2C/g, ",").replace(/%3A/g, ":").replace(/%3D/g, "="));
     });
     return "/editor/" + encodeURIComponent(info.name) + (parts.length ? "?" + parts.join("&") : "");
