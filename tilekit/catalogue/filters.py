@@ -13,7 +13,7 @@ import sqlalchemy as sa
 
 from tilekit.catalogue.tables import PROPS, TILINGS
 from tilekit.errors import ParameterError, ParseError
-from tilekit.models import SHARED_COLUMNS, TEXT_COLUMNS
+from tilekit.models import SHARED_COLUMNS, TEXT_COLUMNS, is_json
 
 #: ``KEY=N`` on a numeric property matches values within this relative tolerance, so a
 #: float written with 10 significant digits finds the stored double.
@@ -156,7 +156,7 @@ def column_condition(column: Any, f: Filter) -> Any:
             near = column.between(v - eps, v + eps)
             return near if f.op == "=" else ~near
         return _compare(column, f.op, f.value)
-    if isinstance(typ, sa.JSON):
+    if is_json(typ):
         if f.op != "~":
             raise _type_error(f, "is JSON and takes only ~TEXT")
         return sa.func.lower(sa.cast(column, sa.Text)).contains(f.raw.lower(), autoescape=True)

@@ -14,6 +14,7 @@ from sqlalchemy.engine import Connection
 from tilekit.catalogue.codec import Entry, json_ok
 from tilekit.catalogue.filters import column_condition, parse_filter
 from tilekit.errors import CatalogueError, NotFoundError, ParameterError
+from tilekit.models import is_json
 from tilekit.plugins import ResultTable, result_tables
 
 #: Bound parameters per statement on SQLite (its limit is 32,766).
@@ -68,7 +69,7 @@ class ResultsMixin:
                 raise NotFoundError("result table", name, self.result_tables)
             columns = rt.table.c
             names = frozenset(c.name for c in columns)
-            json_cols = frozenset(c.name for c in columns if isinstance(c.type, sa.JSON))
+            json_cols = frozenset(c.name for c in columns if is_json(c.type))
             has_run = "run_id" in names
             checked: set[frozenset[str]] = set()  # key sets already found to be columns
             prepared = []
@@ -200,7 +201,7 @@ class ResultsMixin:
 
         stmt = self._result_select(rt, where, text, order_by or "name")
         columns = [c.name for c in rt.table.c]
-        json_cols = {i for i, c in enumerate(rt.table.c) if isinstance(c.type, sa.JSON)}
+        json_cols = {i for i, c in enumerate(rt.table.c) if is_json(c.type)}
         bool_cols = {i for i, c in enumerate(rt.table.c) if isinstance(c.type, sa.Boolean)}
         count = 0
         with self._errors("exporting"), self.engine.connect() as conn:
