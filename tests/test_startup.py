@@ -13,7 +13,8 @@ import sys
 
 import pytest
 
-HEAVY = ("numpy", "shapely", "numba", "sqlalchemy", "sqlalchemy.orm", "alembic")
+#: ``sqlalchemy.dialects.postgresql`` (21 ms): only a PostgreSQL catalogue compiles models.JSONType to JSONB.
+HEAVY = ("numpy", "shapely", "numba", "sqlalchemy", "sqlalchemy.orm", "sqlalchemy.dialects.postgresql", "alembic")
 #: The exports' optional libraries: imported only by the export that needs them.
 OPTIONAL = ("matplotlib", "geopandas", "networkx", "ezdxf")
 
