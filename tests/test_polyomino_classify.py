@@ -173,6 +173,30 @@ def test_the_anisohedral_octomino():
     assert view.witness == shown.witness
 
 
+def test_a_time_limit_after_a_tiling_is_found_keeps_the_tiling(monkeypatch):
+    """The torus search goes on past a tiling with k > 2 classes to look for fewer; when the
+    time limit ends that search, the tiling found stands (an anisohedral 12-omino of the n = 12
+    run had come out 'undecided' so). The nonomino below first tiles with 8 tiles per unit and
+    4 classes (p2); the search is made to time out right after."""
+    from tilekit.plugins.polyomino import torus
+
+    real = torus.TorusSearch.search
+
+    def cut_after_first(self, m_range, **kw):
+        for m, tt in real(self, m_range, **kw):
+            yield m, tt
+            if tt is not None:
+                yield m + 1, None
+                return
+
+    monkeypatch.setattr(torus.TorusSearch, "search", cut_after_first)
+    poly = tilekit.polyomino("....xx/xxx.x./..xxx.")
+    c = classify(SQUARE, poly.cells, analyse(SQUARE, poly.cells, construct=False))
+    assert c.tiles == "true" and c.anisohedral_k == 4
+    assert "stopped by the time limit at 9 tiles per unit" in c.verdict
+    check_anisohedral(torus_tiling(SQUARE, poly.cells, c.witness), 4)
+
+
 def test_holes_and_bounds():
     holey = tilekit.polyomino("xxx/x.x/xxx")
     c = holey.classification()

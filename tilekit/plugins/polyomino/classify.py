@@ -125,8 +125,12 @@ def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes:
         if what == "torus":
             if bound <= tried_m:
                 continue
+            cut = None  # where the time limit stopped the search for a tiling with fewer classes
             for m, tt in ts.search(range(tried_m + 1, bound + 1), time_limit=left()):
                 if tt is None:
+                    if best is not None:  # a tiling was found: the limit only ended the search for a smaller k
+                        cut = m
+                        break
                     reason = f"torus search stopped by the time limit at {m} tiles per unit"
                     return _undecided(level, m - 1, time.monotonic() - t0, reason, r.hc_witness)
                 if best is None or tt.k < best.k:
@@ -139,7 +143,9 @@ def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes:
                 witness["group"] = wallpaper_group(torus_tiling(grid, cells, witness)).iuc
                 verdict = (f"tiles anisohedrally: {best.m} tiles per translational unit (torus of period lattice "
                            f"({a_},{b_}),(0,{d_})), symmetry group {witness['group']}, {best.k} transitivity "
-                           f"classes; no boundary factorisation")
+                           f"classes; no boundary factorisation"
+                           + (f" (the search for fewer classes stopped by the time limit at {cut} tiles per unit)"
+                              if cut is not None else ""))
                 return Classification("true", False, anisohedral_k=best.k, witness=witness, verdict=verdict,
                                       evidence={"step": "torus", "m": best.m, "lattice": list(best.lattice),
                                                 "sat_calls": ts.sat_calls + hs.sat_calls,
