@@ -147,10 +147,11 @@ def train_corrections(method: str, bins: int, sizes: Any = (2000, 3000, 5000, 80
             b = np.minimum((e * bins).astype(np.int64), bins - 1)
             keys = extra["key"][inner] * bins + b
             uniq, inv = np.unique(keys, return_inverse=True)
-            for j, kb in enumerate(uniq.tolist()):
-                acc = sums.setdefault(kb, np.zeros(3))
-                sel = inv == j
-                acc += (local[sel, 0].sum(), local[sel, 1].sum(), sel.sum())
+            sx = np.bincount(inv, weights=local[:, 0], minlength=len(uniq))
+            sy = np.bincount(inv, weights=local[:, 1], minlength=len(uniq))
+            cnt = np.bincount(inv, minlength=len(uniq))
+            for kb, ax, ay, c in zip(uniq.tolist(), sx.tolist(), sy.tolist(), cnt.tolist()):
+                sums.setdefault(kb, np.zeros(3))[:] += (ax, ay, c)
     rows = [(kb // bins, kb % bins, a[0] / a[2], a[1] / a[2], int(a[2])) for kb, a in sorted(sums.items())]
     return np.array(rows, dtype=np.float64).reshape(-1, 5)
 

@@ -24,11 +24,23 @@ field belongs to). Line numbers come from the TOML parser where it gives one
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
 from tilekit.errors import ParseError
+
+
+def finite_number(value: Any, what: str) -> float:
+    """``value`` as a finite float, or a one-line ParseError naming ``what``."""
+    try:
+        x = float(value)
+    except (TypeError, ValueError, OverflowError):
+        raise ParseError(f"{what} {value!r} is not a number") from None
+    if not math.isfinite(x):
+        raise ParseError(f"{what} {value!r} is not a finite number")
+    return x
 
 __all__ = ["MISSING", "Field", "check"]
 

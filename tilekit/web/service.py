@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-import math
 import threading
 from collections import OrderedDict
 from collections.abc import Iterable, Mapping
@@ -21,6 +20,7 @@ from tilekit.geometry import Affine, as_region
 from tilekit.plugins.isohedral.engine import IsohedralTiling, shape_classes
 from tilekit.plugins.isohedral.shapes import EdgeShape, parse_edge_option
 from tilekit.render import PALETTE, parse_palette, patch_to_svg
+from tilekit.schema import finite_number
 from tilekit.web.limits import DEFAULT_MAX_TILES, RenderTooLarge, check_render_size
 
 #: Options a render request may carry besides the tiling's name.
@@ -31,14 +31,6 @@ MAX_EDGES = 32
 MAX_POINTS = 64
 
 
-def _number(value: Any, what: str) -> float:
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise ParseError(f"{what} {value!r} is not a number") from None
-    if not math.isfinite(x):
-        raise ParseError(f"{what} {value!r} is not a finite number")
-    return x
 
 
 def _numbers(value: Any, what: str) -> list[float]:
@@ -48,7 +40,7 @@ def _numbers(value: Any, what: str) -> list[float]:
         raise ParseError(f"{what} {value!r} is not a list of numbers")
     if len(value) > 64:
         raise ParameterError(f"{what}: at most 64 numbers, got {len(value)}")
-    return [_number(v, what) for v in value]
+    return [finite_number(v, what) for v in value]
 
 
 def parse_region(value: Any) -> tuple[float, float, float, float] | None:
@@ -57,7 +49,7 @@ def parse_region(value: Any) -> tuple[float, float, float, float] | None:
     if value is None or value == "":
         return None
     if not isinstance(value, str):
-        value = ",".join(str(_number(v, "region")) for v in (value if isinstance(value, list | tuple) else [value]))
+        value = ",".join(str(finite_number(v, "region")) for v in (value if isinstance(value, list | tuple) else [value]))
     return cli_parse_region(value)
 
 
@@ -109,7 +101,7 @@ def normalise_options(raw: Mapping[str, Any]) -> dict[str, Any]:
         out["depth"] = int(d)
     for key in ("r1", "theta1", "r2", "theta2"):
         if raw.get(key) not in (None, ""):
-            out[key] = _number(raw[key], key)
+            out[key] = finite_number(raw[key], key)
     for key in ("colouring", "seed"):
         if raw.get(key) not in (None, ""):
             out[key] = str(raw[key])[:200]
@@ -154,7 +146,7 @@ class Renderer:
         """(tiling, SVG text, tile estimate) for a tiling and raw options; bounded."""
 
         options = normalise_options(raw)
-        size = int(_number(raw.get("size", 240 if thumbnail else 800), "size"))
+        size = int(finite_number(raw.get("size", 240 if thumbnail else 800), "size"))
         if not 16 <= size <= MAX_SIZE:
             raise ParameterError(f"size {size} must be between 16 and {MAX_SIZE} pixels")
         palette = parse_palette(raw.get("colours")) if raw.get("colours") not in (None, "") else None

@@ -3,7 +3,6 @@ web editor's URL of an unmarked one (:func:`editor_path`)."""
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 from typing import Any
 from urllib.parse import quote
@@ -12,6 +11,7 @@ from tilekit.errors import ParameterError, ParseError
 from tilekit.plugins.isohedral.engine import _spec_ih, unmarked_from_spec
 from tilekit.plugins.isohedral.marked import marked_tiling
 from tilekit.plugins.isohedral.templates import get_template
+from tilekit.schema import finite_number
 from tilekit.tiling import PeriodicTiling
 
 #: Characters left unescaped in a query value: the edge syntax's ``LABEL=x,y:x,y`` and a
@@ -29,13 +29,7 @@ def tiling_from_spec(spec: Mapping[str, Any]) -> PeriodicTiling:
 
 def _number(value: Any) -> str:
     """The shortest text that float() reads back as exactly ``value`` (repr, without ``.0``)."""
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise ParseError(f"isohedral spec parameter {value!r} is not a number") from None
-    if not math.isfinite(x):
-        raise ParseError(f"isohedral spec parameter {value!r} is not a finite number")
-    text = repr(x)
+    text = repr(finite_number(value, "isohedral spec parameter"))
     return text[:-2] if text.endswith(".0") else text
 
 
