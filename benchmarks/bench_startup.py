@@ -2,10 +2,10 @@
 
     python benchmarks/bench_startup.py --runs 7
 
-Runs, in turn, ``python -c pass`` (the floor any Python command pays), ``tilekit --help`` and a
-warm ``tilekit list --where polygons=6`` on a scratch SQLite catalogue (opened and seeded once
-before the rounds), each as a child process after one warm-up; prints min and median of its
-CPU seconds (user + sys from ``os.wait4``) and wall seconds, and the ratio to ``python -c pass``
+Runs, in turn, ``python -c pass`` (the floor any Python command pays), ``tilekit --help`` and
+warm ``tilekit list`` commands on a scratch SQLite catalogue (opened and seeded once before the
+rounds), read through ``sqlite3`` and, with ``TILEKIT_READ_PATH=full``, through SQLAlchemy,
+each as a child process after one warm-up; prints min and median of its CPU seconds (user + sys from ``os.wait4``) and wall seconds, and the ratio to ``python -c pass``
 round by round. ``--base DIR`` also times another checkout of tilekit (``PYTHONPATH=DIR``, its
 own catalogue), e.g. ``git archive main | tar -x -C /tmp/base`` for a before/after table.
 """
@@ -58,6 +58,13 @@ def main() -> None:
         commands[f"{label}tilekit list --where polygons=6"] = ([py, "-c", cli, "list", "--where", "polygons=6"], env)
         commands[f"{label}tilekit list --family polyomino --where cells=8 --count"] = (
             [py, "-c", cli, "list", "--family", "polyomino", "--where", "cells=8", "--count"], env)
+        arch = ["list", "--family", "archimedean", "--where", "polygons=6", "--count"]
+        commands[f"{label}tilekit {' '.join(arch)}"] = ([py, "-c", cli, *arch], env)
+        # the same two lists opened through SQLAlchemy (the read path before tilekit.catalogue.reading)
+        full = dict(env, TILEKIT_READ_PATH="full")
+        commands[f"{label}TILEKIT_READ_PATH=full tilekit list --where polygons=6"] = (
+            [py, "-c", cli, "list", "--where", "polygons=6"], full)
+        commands[f"{label}TILEKIT_READ_PATH=full tilekit {' '.join(arch)}"] = ([py, "-c", cli, *arch], full)
     try:
         times: dict[str, list[tuple[float, float]]] = {k: [] for k in commands}
         for cmd, env in commands.values():  # warm-up

@@ -27,6 +27,7 @@ import tilekit  # noqa: E402
 from tilekit.catalogue import (  # noqa: E402
     Filter,
     open_catalogue,
+    open_reader,
     parse_filter,
     resolve_url,
 )
@@ -57,6 +58,26 @@ def cat(db_url, pm):
     """A seeded catalogue on each backend (SQLite, and PostgreSQL when a server is given)."""
     catalogue = open_catalogue(db_url, pm=pm)
     yield catalogue
+    catalogue.close()
+
+
+@pytest.fixture(params=["sqlite", "sqlite3 read path", "postgresql"])
+def reading(request, tmp_path, pm):
+    """What reads tilings: the seeded catalogue on each backend, and the same SQLite file read
+    through the standard library's sqlite3 (tilekit.catalogue.reading.open_reader), which
+    must answer every query alike."""
+    if request.param == "postgresql":
+        url = request.getfixturevalue("postgres_url")
+    else:
+        url = f"sqlite:///{tmp_path / 'catalogue.sqlite'}"
+    catalogue = open_catalogue(url, pm=pm)
+    if request.param == "sqlite3 read path":
+        reader = open_reader(url, pm)
+        assert reader is not None, "a catalogue just brought up to date is read without SQLAlchemy"
+        yield reader
+        reader.close()
+    else:
+        yield catalogue
     catalogue.close()
 
 
@@ -228,79 +249,79 @@ def test_parse_filter_substring_keeps_text_verbatim(text):
 # --------------------------------------------------------------------------- queries
 
 
-def test_membership_in_list_properties(cat):
+def test_membership_in_list_properties(reading):
     vts = vertex_types()
     for n in (3, 4, 6, 8, 12):
         expected = {name for name, vt in vts.items() if n in vt}
-        assert names(cat.query(where=[f"polygons={n}"])) == expected, n
+        assert names(reading.query(where=[f"polygons={n}"])) == expected, n
     # the Archimedean tilings with hexagons: 6^3, 3^4.6, 3.4.6.4, 3.6.3.6, 4.6.12
-    assert names(cat.query(where=["polygons=6"])) == {"6^3", "3^4.6", "3.4.6.4", "3.6.3.6", "4.6.12"}
+    assert names(reading.query(where=["polygons=6"])) == {"6^3", "3^4.6", "3.4.6.4", "3.6.3.6", "4.6.12"}
 
 
-def test_not_equal_on_lists_means_no_element_equals(cat):
+def test_not_equal_on_lists_means_no_element_equals(reading):
     # no triangles: 4^4, 6^3, 4.8^2, 4.6.12
-    assert names(cat.query(where=["polygons!=3"])) == {"4^4", "6^3", "4.8^2", "4.6.12"}
+    assert names(reading.query(where=["polygons!=3"])) == {"4^4", "6^3", "4.8^2", "4.6.12"}
 
 
-def test_ranges_and_combined_filters(cat):
+def test_ranges_and_combined_filters(reading):
     vts = vertex_types()
-    assert names(cat.query(where=["vertex_degree>=5"])) == {n for n, vt in vts.items() if len(vt) >= 5}
-    assert names(cat.query(where=["vertex_degree>=5"])) == {"3^6", "3^4.6", "3^3.4^2", "3^2.4.3.4"}
-    assert names(cat.query(where=["vertex_degree<4"])) == {"6^3", "3.12^2", "4.6.12", "4.8^2"}
-    assert names(cat.query(where=["k_hedral=3"])) == {"3.4.6.4", "4.6.12"}
-    assert names(cat.query(where=["polygons=3", "vertex_degree<5", "k_hedral>1"])) == {
+    assert names(reading.query(where=["vertex_degree>=5"])) == {n for n, vt in vts.items() if len(vt) >= 5}
+    assert names(reading.query(where=["vertex_degree>=5"])) == {"3^6", "3^4.6", "3^3.4^2", "3^2.4.3.4"}
+    assert names(reading.query(where=["vertex_degree<4"])) == {"6^3", "3.12^2", "4.6.12", "4.8^2"}
+    assert names(reading.query(where=["k_hedral=3"])) == {"3.4.6.4", "4.6.12"}
+    assert names(reading.query(where=["polygons=3", "vertex_degree<5", "k_hedral>1"])) == {
         "3.4.6.4", "3.6.3.6", "3.12^2"}
     # unit-edge polygon areas: triangle sqrt(3)/4, square 1, hexagon 3 sqrt(3)/2
-    assert names(cat.query(where=["polygon_area>1"])) == {"6^3"}
-    assert names(cat.query(where=["polygon_area<0.5"])) == {"3^6"}
-    assert names(cat.query(where=["polygon_area=1"])) == {"4^4"}
+    assert names(reading.query(where=["polygon_area>1"])) == {"6^3"}
+    assert names(reading.query(where=["polygon_area<0.5"])) == {"3^6"}
+    assert names(reading.query(where=["polygon_area=1"])) == {"4^4"}
     # numeric equality has a relative tolerance of 1e-9: ten digits of sqrt(3)/4 find 3^6
-    assert names(cat.query(where=["polygon_area=0.4330127019"])) == {"3^6"}
-    assert names(cat.query(where=["polygon_area=0.43301"])) == set()
+    assert names(reading.query(where=["polygon_area=0.4330127019"])) == {"3^6"}
+    assert names(reading.query(where=["polygon_area=0.43301"])) == set()
 
 
-def test_shared_columns_text_and_booleans(cat):
+def test_shared_columns_text_and_booleans(reading):
     # symmetry groups (Grünbaum & Shephard §2.1): six of the eleven are p6m
-    assert names(cat.query(where=["symmetry_group=p6m"])) == {
+    assert names(reading.query(where=["symmetry_group=p6m"])) == {
         "3^6", "6^3", "3.4.6.4", "3.6.3.6", "3.12^2", "4.6.12"}
-    assert names(cat.query(where=["symmetry_group!=p6m", "symmetry_group!=p4m"])) == {
+    assert names(reading.query(where=["symmetry_group!=p6m", "symmetry_group!=p4m"])) == {
         "3^4.6", "3^3.4^2", "3^2.4.3.4"}
     # the snub hexagonal tiling is the only chiral Archimedean tiling
-    assert names(cat.query(where=["chiral=true"])) == {"3^4.6"}
-    assert names(cat.query(where=["regular=true"])) == {"3^6", "4^4", "6^3"}
-    assert names(cat.query(where=["periodic=false"])) == set()
-    assert names(cat.query(where=["edge_to_edge=true"])) == ALL
+    assert names(reading.query(where=["chiral=true"])) == {"3^4.6"}
+    assert names(reading.query(where=["regular=true"])) == {"3^6", "4^4", "6^3"}
+    assert names(reading.query(where=["periodic=false"])) == set()
+    assert names(reading.query(where=["edge_to_edge=true"])) == ALL
 
 
-def test_substring_and_text_search(cat):
-    assert names(cat.query(where=["vertex_type~12"])) == {"3.12^2", "4.6.12"}
-    assert names(cat.query(where=["title~SNUB"])) == {"3^4.6", "3^2.4.3.4"}
-    assert names(cat.query(text="snub")) == {"3^4.6", "3^2.4.3.4"}
-    assert names(cat.query(text="4.4.4.4")) == {"4^4"}  # an alias
-    assert names(cat.query(text="p4g")) == {"3^2.4.3.4"}  # a text property
+def test_substring_and_text_search(reading):
+    assert names(reading.query(where=["vertex_type~12"])) == {"3.12^2", "4.6.12"}
+    assert names(reading.query(where=["title~SNUB"])) == {"3^4.6", "3^2.4.3.4"}
+    assert names(reading.query(text="snub")) == {"3^4.6", "3^2.4.3.4"}
+    assert names(reading.query(text="4.4.4.4")) == {"4^4"}  # an alias
+    assert names(reading.query(text="p4g")) == {"3^2.4.3.4"}  # a text property
     # LIKE wildcards in the user's text are literal characters
-    assert cat.query(text="%") == [] and cat.query(text="_") == []
-    assert names(cat.query(where=["name~^"])) == {"3^6", "4^4", "6^3", "3^4.6", "3^3.4^2", "3^2.4.3.4",
+    assert reading.query(text="%") == [] and reading.query(text="_") == []
+    assert names(reading.query(where=["name~^"])) == {"3^6", "4^4", "6^3", "3^4.6", "3^3.4^2", "3^2.4.3.4",
                                                   "3.12^2", "4.8^2"}
 
 
-def test_family_filter_ordering_and_paging(cat):
-    assert len(cat.query(family="testgrid")) == 11
-    assert cat.query(family="nosuch") == []
-    by_degree = [e.name for e in cat.query(order_by="-vertex_degree")]
+def test_family_filter_ordering_and_paging(reading):
+    assert len(reading.query(family="testgrid")) == 11
+    assert reading.query(family="nosuch") == []
+    by_degree = [e.name for e in reading.query(order_by="-vertex_degree")]
     assert by_degree[0] == "3^6"
     degrees = [len(vertex_types()[n]) for n in by_degree]
     assert degrees == sorted(degrees, reverse=True)
-    ordered = [e.name for e in cat.query()]
+    ordered = [e.name for e in reading.query()]
     assert ordered == sorted(ALL)
-    pages = [e.name for off in range(0, 11, 4) for e in cat.query(limit=4, offset=off)]
+    pages = [e.name for off in range(0, 11, 4) for e in reading.query(limit=4, offset=off)]
     assert pages == ordered
-    assert [e.name for e in cat.query(order_by="-name", limit=2)] == sorted(ALL, reverse=True)[:2]
-    assert cat.count_matching(where=["polygons=4"]) == len(cat.query(where=["polygons=4"]))
+    assert [e.name for e in reading.query(order_by="-name", limit=2)] == sorted(ALL, reverse=True)[:2]
+    assert reading.count_matching(where=["polygons=4"]) == len(reading.query(where=["polygons=4"]))
     with pytest.raises(NotFoundError, match="vertex_degree"):
-        cat.query(order_by="vertex_degre")
+        reading.query(order_by="vertex_degre")
     with pytest.raises(ParameterError):
-        cat.query(limit=-1)
+        reading.query(limit=-1)
 
 
 def test_entry_properties_keep_their_types(cat):

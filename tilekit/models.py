@@ -32,6 +32,8 @@ from sqlalchemy import (
 )
 from sqlalchemy.types import TypeDecorator
 
+from tilekit.catalogue.entry import SHARED_COLUMNS, TEXT_COLUMNS  # noqa: F401 - re-exported
+
 
 class JSONType(TypeDecorator):
     """JSON everywhere, JSONB on PostgreSQL. A decorator rather than ``with_variant(JSONB())``
@@ -53,18 +55,6 @@ class JSONType(TypeDecorator):
 def is_json(type_: object) -> bool:
     """Whether a column type holds JSON (a plain JSON or a :class:`JSONType`)."""
     return isinstance(type_, JSON) or isinstance(getattr(type_, "impl", None), JSON)
-
-#: The properties mirrored in indexed columns of ``tilings`` and their Python types.
-SHARED_COLUMNS: dict[str, type] = {
-    "periodic": bool,
-    "k_hedral": int,
-    "k_isohedral": int,
-    "edge_to_edge": bool,
-    "symmetry_group": str,
-}
-
-#: Columns of ``tilings`` a filter or ``order_by`` may name directly (besides SHARED_COLUMNS).
-TEXT_COLUMNS: tuple[str, ...] = ("name", "family", "title")
 
 #: A run is queued, then running (while some worker's lease is alive), then done, failed (a
 #: chunk raised), interrupted (stopped, or every worker died) or cancelled (by the user).

@@ -16,18 +16,21 @@ One job per module: :mod:`~tilekit.catalogue.urls` (where a catalogue lives, fil
 (the Catalogue and opening).
 """
 
-from tilekit.catalogue.codec import Entry
-from tilekit.catalogue.core import (
-    BUSY_TIMEOUT_MS,
-    SEED_KEY,
-    Catalogue,
-    open_catalogue,
-    shipped_fingerprint,
-)
-from tilekit.catalogue.filters import FILTER_FORMS, NUMBER_RTOL, Filter, auto_type, parse_filter
-from tilekit.catalogue.output import FORMATS, entries_text, write_entries
-from tilekit.catalogue.runs import RunInfo, lease_seconds, run_json
-from tilekit.catalogue.urls import ENV_VAR, default_path, resolve_url
+from tilekit.lazy import lazy_exports
+
+# Lazy (PEP 562): the read path without SQLAlchemy (tilekit.catalogue.reading) is a module of
+# this package, and importing the package must not import SQLAlchemy for it.
+_EXPORTS = {
+    **dict.fromkeys(["Entry"], "tilekit.catalogue.entry"),
+    **dict.fromkeys(["BUSY_TIMEOUT_MS", "Catalogue", "open_catalogue"], "tilekit.catalogue.core"),
+    **dict.fromkeys(["SEED_KEY", "open_reader", "shipped_fingerprint"], "tilekit.catalogue.reading"),
+    **dict.fromkeys(["FILTER_FORMS", "NUMBER_RTOL", "Filter", "auto_type", "parse_filter"],
+                    "tilekit.catalogue.filters"),
+    **dict.fromkeys(["FORMATS", "entries_text", "write_entries"], "tilekit.catalogue.output"),
+    **dict.fromkeys(["RunInfo", "lease_seconds", "run_json"], "tilekit.catalogue.runs"),
+    **dict.fromkeys(["ENV_VAR", "default_path", "resolve_url"], "tilekit.catalogue.urls"),
+}
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
 
 __all__ = [
     "BUSY_TIMEOUT_MS",
@@ -42,6 +45,7 @@ __all__ = [
     "SEED_KEY",
     "auto_type",
     "default_path",
+    "open_reader",
     "entries_text",
     "lease_seconds",
     "open_catalogue",

@@ -8,65 +8,21 @@ import math
 import numbers
 import re
 from collections.abc import Iterator, Mapping, Sequence
-from dataclasses import dataclass, field
 from typing import Any
 
 import sqlalchemy as sa
 from sqlalchemy.engine import Connection
 
+from tilekit.catalogue.entry import SHARED_COLUMNS
 from tilekit.catalogue.tables import ALIASES, BATCH, PROPS, TILINGS
 from tilekit.errors import CatalogueError
-from tilekit.models import SHARED_COLUMNS, utcnow
-from tilekit.plugins import CatalogueRecord, get_family
+from tilekit.models import utcnow
+from tilekit.plugins import CatalogueRecord
 
 #: Keys an Entry row uses itself; a property may not take these names.
 RESERVED_KEYS = frozenset({"name", "family", "title", "spec", "aliases", "id"})
 _KEY_RE = re.compile(r"^[a-z][a-z0-9_]*$")
 
-
-
-@dataclass
-class Entry:
-    """One catalogue tiling as a query returns it (properties with their lists restored)."""
-
-    name: str
-    family: str
-    title: str
-    spec: dict[str, Any]
-    properties: dict[str, Any] = field(default_factory=dict)
-    aliases: list[str] = field(default_factory=list)
-    id: int | None = None
-
-    def flat(self) -> dict[str, Any]:
-        """``{"name", "family", "title", **properties}`` (the shape ``tilekit list`` prints)."""
-        return {"name": self.name, "family": self.family, "title": self.title, **self.properties}
-
-    def full(self) -> dict[str, Any]:
-        """Everything, spec included (the shape ``export`` writes)."""
-        return {
-            "name": self.name,
-            "family": self.family,
-            "title": self.title,
-            "aliases": list(self.aliases),
-            "properties": dict(self.properties),
-            "spec": self.spec,
-        }
-
-    def _repr_mimebundle_(self, include: Any = None, exclude: Any = None) -> dict[str, str]:
-        """Jupyter shows the entry's name and title over a drawing of its tiling (the tiling's
-        own picture, under limits.MAX_REPR_TILES; a line of text above it)."""
-        from html import escape
-
-        text = f"{self.name} ({self.family}): {self.title}"
-        head = f"<div><b>{escape(self.name)}</b> <i>{escape(self.family)}</i> — {escape(self.title)}</div>"
-        drawn = get_family(self.family).from_spec(self.spec)._repr_mimebundle_()
-        svg = drawn.get("image/svg+xml")
-        body = svg if svg is not None else f"<div>{escape(drawn['text/plain'])}</div>"
-        return {"text/plain": text, "text/html": head + body}
-
-    def _repr_svg_(self) -> str | None:
-        """The tiling's picture alone (None over limits.MAX_REPR_TILES)."""
-        return get_family(self.family).from_spec(self.spec)._repr_svg_()
 
 
 def scalar_row(key: str, value: Any, owner: str) -> dict[str, Any]:
@@ -130,20 +86,6 @@ def property_rows(owner: str, properties: Mapping[str, Any]) -> list[dict[str, A
         else:
             rows.append({"key": key, "position": None, **scalar_row(key, value, owner)})
     return rows
-
-
-def restore_value(kind: str, text: str | None, num: float | None, flag: bool | None) -> Any:
-    if kind == "str":
-        return text
-    if kind == "int":
-        return int(num) if num is not None else None
-    if kind == "float":
-        return num
-    if kind == "bool":
-        return bool(flag) if flag is not None else None
-    if kind == "json":
-        return json.loads(text) if text is not None else None
-    return None
 
 
 def shared_values(owner: str, properties: Mapping[str, Any]) -> dict[str, Any]:

@@ -4,12 +4,9 @@ queries (streamed), export; its run and result-table methods come from
 
 from __future__ import annotations
 
-import hashlib
 import os
-import sys
 import threading
-import types
-from collections.abc import Callable, Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from pathlib import Path
 from typing import IO, Any
@@ -20,11 +17,22 @@ from sqlalchemy import event
 from sqlalchemy.engine import Connection, Engine, make_url
 from sqlalchemy.exc import ArgumentError, SQLAlchemyError
 
-from tilekit import __version__
-from tilekit.catalogue.codec import Entry, batches, restore_value, upsert
-from tilekit.catalogue.filters import Filter, condition, parse_filter
+from tilekit.catalogue.codec import batches, upsert
+from tilekit.catalogue.entry import Entry
+from tilekit.catalogue.filters import Filter
 from tilekit.catalogue.output import FORMATS, write_entries
-from tilekit.catalogue.results import ResultsMixin, _paged
+from tilekit.catalogue.reading import (
+    RESULT_FAMILIES_KEY,
+    SCRIPTS_KEY,
+    SEED_KEY,
+    Run,
+    TilingReader,
+    load_entries,
+    result_families_value,
+    scripts_key,
+    shipped_fingerprint,
+)
+from tilekit.catalogue.results import ResultsMixin
 from tilekit.catalogue.runs import RunsMixin
 from tilekit.catalogue.tables import ALIASES, META, PROPS, TILINGS
 from tilekit.catalogue.urls import (
@@ -36,7 +44,6 @@ from tilekit.catalogue.urls import (
     sqlite_file,
 )
 from tilekit.errors import CatalogueError, NotFoundError, ParameterError, PluginError, TilekitError
-from tilekit.models import SHARED_COLUMNS, TEXT_COLUMNS
 from tilekit.plugins import (
     CatalogueRecord,
     catalogue_records,
@@ -44,7 +51,7 @@ from tilekit.plugins import (
     get_plugin_manager,
     migration_locations,
 )
-from tilekit.resources import catalogue_dir, migrations_dir
+from tilekit.resources import migrations_dir
 
 #: SQLite waits this long (ms) for a lock held by another writer before giving up.
 BUSY_TIMEOUT_MS = 30_000
@@ -55,49 +62,16 @@ _STEP_MS = 50
 #: Alembic keeps its migration context in module globals: one migration at a time per process.
 _MIGRATION_LOCK = threading.RLock()
 
-#: catalogue_meta key holding the fingerprint of the records the plugins shipped at last seeding
-SEED_KEY = "seed_fingerprint"
 
 #: Names offered as suggestions at most (a catalogue of a million results is not read for them).
 _MAX_NAMES = 20_000
 
-#: catalogue_meta key: the hash of the migration scripts and the heads they were at, last upgrade
-_SCRIPTS_KEY = "migration_scripts"
 
 #: PostgreSQL advisory lock key that serialises migrations, seeding and tiling upserts.
 _PG_LOCK = 0x7415_E417
 
 
-def shipped_fingerprint(pm: pluggy.PluginManager) -> str:
-    """A hash of what determines the shipped records: tilekit's version, the registered
-    plugins' names and source files, and the shipped catalogue/ data.
-
-    Computing it reads about a megabyte of files (milliseconds); building the records
-    themselves takes a second, so it is done only when the fingerprint changes.
-    """
-    digest = hashlib.sha256(__version__.encode())
-    paths: set[Path] = set()
-    for name, plugin in sorted(pm.list_name_plugin(), key=lambda item: str(item[0])):
-        digest.update(str(name).encode())
-        module = plugin if isinstance(plugin, types.ModuleType) else sys.modules.get(type(plugin).__module__)
-        source = getattr(module, "__file__", None)
-        if source:
-            src = Path(source)
-            paths |= set(src.parent.rglob("*.py")) if src.name == "__init__.py" else {src}
-    data = catalogue_dir()
-    if data.is_dir():
-        paths |= {f for f in data.rglob("*") if f.is_file() and "__pycache__" not in f.parts}
-    for path in sorted(paths):
-        digest.update(path.name.encode())
-        try:
-            digest.update(path.read_bytes())
-        except OSError:
-            continue
-    return digest.hexdigest()
-
-
-
-class Catalogue(RunsMixin, ResultsMixin):
+class Catalogue(RunsMixin, ResultsMixin, TilingReader):
     """An open catalogue database. Build one with :func:`open_catalogue`."""
 
     def __init__(self, engine: Engine, pm: pluggy.PluginManager | None = None, *,
@@ -150,6 +124,12 @@ class Catalogue(RunsMixin, ResultsMixin):
                 ) from None
             raise CatalogueError(f"catalogue {self.url}: {action} failed: {text}") from None
 
+    @contextmanager
+    def _reading(self, action: str) -> Iterator[Run]:
+        """TilingReader's queries, run through SQLAlchemy on one connection."""
+        with self._errors(action), self.engine.connect() as conn:
+            yield _runner(conn)
+
     def _lock_for_writing(self, conn: Connection, records: bool = True) -> None:
         """Take the write lock a check-then-write sequence needs, so it is atomic.
 
@@ -193,24 +173,14 @@ class Catalogue(RunsMixin, ResultsMixin):
             current = set(MigrationContext.configure(conn).get_current_heads())
         return current, set(script.get_heads())
 
-    def _scripts_key(self) -> str:
-        """A hash of every migration script (core and plugins): equal keys, equal heads."""
-        locations = [migrations_dir() / "versions", *map(Path, migration_locations(self.pm))]
-        digest = hashlib.sha256()
-        for folder in locations:
-            for path in sorted(folder.glob("*.py")):
-                digest.update(path.name.encode())
-                digest.update(path.read_bytes())
-        return digest.hexdigest()
-
     def _known_current(self) -> set[str] | None:
         """The database's revisions, when it is known to be at the heads of exactly these
         scripts (the key stored at the last upgrade matches): opening then needs neither
         Alembic nor the write lock. None when that cannot be told cheaply."""
         try:
-            key = self._scripts_key()
+            key = scripts_key(self.pm)
             with self.engine.connect() as conn:
-                stored = conn.execute(sa.select(META.c.value).where(META.c.key == _SCRIPTS_KEY)).scalar()
+                stored = conn.execute(sa.select(META.c.value).where(META.c.key == SCRIPTS_KEY)).scalar()
                 current = set(conn.execute(sa.text("SELECT version_num FROM alembic_version")).scalars())
         except (SQLAlchemyError, OSError):
             return None
@@ -265,9 +235,9 @@ class Catalogue(RunsMixin, ResultsMixin):
     def _remember_scripts(self, conn: Connection, current: set[str]) -> None:
         if "catalogue_meta" not in sa.inspect(conn).get_table_names():
             return
-        value = f"{self._scripts_key()}:{','.join(sorted(current))}"
-        conn.execute(sa.delete(META).where(META.c.key == _SCRIPTS_KEY))
-        conn.execute(sa.insert(META).values(key=_SCRIPTS_KEY, value=value))
+        value = f"{scripts_key(self.pm)}:{','.join(sorted(current))}"
+        conn.execute(sa.delete(META).where(META.c.key == SCRIPTS_KEY))
+        conn.execute(sa.insert(META).values(key=SCRIPTS_KEY, value=value))
 
     def downgrade(self, revision: str) -> None:
         """Run migrations down to ``revision`` (``"base"`` drops every tilekit table)."""
@@ -285,14 +255,6 @@ class Catalogue(RunsMixin, ResultsMixin):
                 raise CatalogueError(f"catalogue {self.url}: downgrade to {revision!r} failed: {exc}") from None
 
     # ----------------------------------------------------------------- writing tilings
-
-    def count(self, family: str | None = None) -> int:
-        """Number of tilings (of one family)."""
-        stmt = sa.select(sa.func.count()).select_from(TILINGS)
-        if family is not None:
-            stmt = stmt.where(TILINGS.c.family == family)
-        with self._errors("counting"), self.engine.connect() as conn:
-            return int(conn.execute(stmt).scalar_one())
 
     def seed(self, replace: bool = False) -> tuple[int, int]:
         """Load the records every plugin ships; return (added, replaced).
@@ -323,7 +285,12 @@ class Catalogue(RunsMixin, ResultsMixin):
         fingerprint = shipped_fingerprint(self.pm)
         with self._errors("reading the catalogue's metadata"), self.engine.connect() as conn:
             stored = conn.execute(sa.select(META.c.value).where(META.c.key == SEED_KEY)).scalar()
+            readable = conn.execute(sa.select(META.c.value).where(META.c.key == RESULT_FAMILIES_KEY)).scalar()
         if stored == fingerprint:
+            if readable is None or not readable.startswith(fingerprint + ":"):
+                with self._errors("seeding"), self.engine.begin() as conn:
+                    self._lock_for_writing(conn)
+                    self._remember_result_families(conn, fingerprint)
             return None
         records = list(catalogue_records(self.pm))
         with self._errors("seeding"), self.engine.begin() as conn:
@@ -338,7 +305,7 @@ class Catalogue(RunsMixin, ResultsMixin):
                     sa.select(TILINGS.c.id, TILINGS.c.name, TILINGS.c.family, TILINGS.c.title, TILINGS.c.spec)
                     .where(TILINGS.c.name.in_(batch))
                 ).all()
-            existing = {e.name: e for e in self._entries(conn, rows)}
+            existing = {e.name: e for e in load_entries(_runner(conn), rows)}
             merged = []
             for rec in records:
                 old = existing.get(rec.name)
@@ -355,7 +322,17 @@ class Catalogue(RunsMixin, ResultsMixin):
             result = upsert(conn, merged, replace=True)
             conn.execute(sa.delete(META).where(META.c.key == SEED_KEY))
             conn.execute(sa.insert(META).values(key=SEED_KEY, value=fingerprint))
+            self._remember_result_families(conn, fingerprint)
             return result
+
+    def _remember_result_families(self, conn: Connection, fingerprint: str) -> None:
+        """Record which families a result table holds, for the installation with this
+        fingerprint: :func:`tilekit.catalogue.reading.open_reader` reads the others without
+        SQLAlchemy, and needs to know these without building the plugins' tables."""
+        value = result_families_value(fingerprint, (rt.family for rt in self.result_tables.values() if rt.family))
+        conn.execute(sa.delete(META).where(META.c.key == RESULT_FAMILIES_KEY))
+        if value is not None:
+            conn.execute(sa.insert(META).values(key=RESULT_FAMILIES_KEY, value=value))
 
     def upsert(self, records: Iterable[CatalogueRecord], *, replace: bool = True) -> tuple[int, int]:
         """Insert records by name (replacing existing ones if ``replace``); return (added, replaced)."""
@@ -373,24 +350,6 @@ class Catalogue(RunsMixin, ResultsMixin):
             conn.execute(sa.delete(TILINGS).where(TILINGS.c.id == entry.id))
 
     # ----------------------------------------------------------------- reading tilings
-
-    def property_keys(self) -> list[str]:
-        """Every property key present in the catalogue, sorted."""
-        with self._errors("reading property keys"), self.engine.connect() as conn:
-            keys = conn.execute(sa.select(PROPS.c.key).distinct()).scalars().all()
-        return sorted(keys)
-
-    def query(
-        self,
-        family: str | None = None,
-        where: Iterable[str | Filter] = (),
-        text: str | None = None,
-        order_by: str = "name",
-        limit: int | None = None,
-        offset: int = 0,
-    ) -> list[Entry]:
-        """Tilings matching every filter, ordered and paged, as a list (see :meth:`iter_query`)."""
-        return list(self.iter_query(family, where, text, order_by, limit, offset))
 
     def iter_query(
         self,
@@ -413,39 +372,14 @@ class Catalogue(RunsMixin, ResultsMixin):
         ``-key`` for descending.
         """
         where = list(where)
-        if limit is not None and limit < 0:
-            raise ParameterError(f"limit must be >= 0, got {limit}")
-        if offset < 0:
-            raise ParameterError(f"offset must be >= 0, got {offset}")
         rt = self.family_table(family)
         if rt is not None:
+            if limit is not None and limit < 0:
+                raise ParameterError(f"limit must be >= 0, got {limit}")
             for row in self.iter_result_rows(rt, where, text, order_by, limit, offset):
                 yield self._row_entry(rt, row)
             return
-        stmt = self._select(family, where, text).order_by(*self._ordering(order_by))
-        remaining = limit
-        position = offset
-        page = 1000
-        while remaining is None or remaining > 0:
-            size = page if remaining is None else min(page, remaining)
-            paged = _paged(stmt, size, position)
-            with self._errors("querying"), self.engine.connect() as conn:
-                rows = conn.execute(paged).all()
-                entries = self._entries(conn, rows)
-            yield from entries
-            if len(rows) < size:
-                return
-            position += len(rows)
-            if remaining is not None:
-                remaining -= len(rows)
-
-    def check_family(self, family: str | None) -> None:
-        """NotFoundError (with suggestions) for a family that is neither installed nor present."""
-        if family is None:
-            return
-        fams = set(families(self.pm))
-        if family not in fams and self.family_table(family) is None and self.count(family) == 0:
-            raise NotFoundError("family", family, fams)
+        yield from self.iter_tilings(family, where, text, order_by, limit, offset)
 
     def count_matching(
         self, family: str | None = None, where: Iterable[str | Filter] = (), text: str | None = None
@@ -454,109 +388,7 @@ class Catalogue(RunsMixin, ResultsMixin):
         rt = self.family_table(family)
         if rt is not None:
             return self.count_result_rows(rt, where, text)
-        sub = self._select(family, where, text).subquery()
-        with self._errors("counting"), self.engine.connect() as conn:
-            return int(conn.execute(sa.select(sa.func.count()).select_from(sub)).scalar_one())
-
-    def _select(self, family: str | None, where: Iterable[str | Filter], text: str | None) -> sa.Select:
-        t = TILINGS
-        stmt = sa.select(t.c.id, t.c.name, t.c.family, t.c.title, t.c.spec)
-        if family is not None:
-            stmt = stmt.where(t.c.family == family)
-        filters = [parse_filter(w) for w in where]
-        unknown = [
-            f.key for f in filters if f.key not in TEXT_COLUMNS and f.key not in SHARED_COLUMNS
-        ]
-        if unknown:
-            known = set(self.property_keys())
-            for key in unknown:
-                if key not in known:
-                    raise NotFoundError("property", key, [*TEXT_COLUMNS, *SHARED_COLUMNS, *sorted(known)])
-        for f in filters:
-            stmt = stmt.where(condition(f))
-        if text:
-            needle = text.lower()
-            p, a = PROPS, ALIASES
-            stmt = stmt.where(
-                sa.or_(
-                    sa.func.lower(t.c.name).contains(needle, autoescape=True),
-                    sa.func.lower(t.c.title).contains(needle, autoescape=True),
-                    t.c.id.in_(
-                        sa.select(a.c.tiling_id).where(
-                            sa.func.lower(a.c.alias).contains(needle, autoescape=True)
-                        )
-                    ),
-                    t.c.id.in_(
-                        sa.select(p.c.tiling_id).where(
-                            sa.func.lower(p.c.value_text).contains(needle, autoescape=True)
-                        )
-                    ),
-                )
-            )
-        return stmt
-
-    def _ordering(self, order_by: str) -> list[Any]:
-        key = (order_by or "name").strip()
-        descending = key.startswith("-")
-        key = key.lstrip("-+").replace("-", "_").lower()
-        t, p = TILINGS, PROPS
-        columns = {*TEXT_COLUMNS, *SHARED_COLUMNS, "id", "created_at", "updated_at"}
-        if key in columns:
-            exprs = [t.c[key]]
-        else:
-            known = self.property_keys()
-            if key not in known:
-                raise NotFoundError("order key", key, [*sorted(columns), *known])
-            num = (
-                sa.select(sa.func.min(p.c.value_num))
-                .where(p.c.tiling_id == t.c.id, p.c.key == key)
-                .scalar_subquery()
-            )
-            txt = (
-                sa.select(sa.func.min(p.c.value_text))
-                .where(p.c.tiling_id == t.c.id, p.c.key == key)
-                .scalar_subquery()
-            )
-            exprs = [num, txt]
-        ordered = [(e.desc() if descending else e.asc()).nulls_last() for e in exprs]
-        return [*ordered, t.c.name.asc(), t.c.id.asc()]
-
-    def _entries(self, conn: Connection, rows: Sequence[Any]) -> list[Entry]:
-        entries = {
-            r.id: Entry(name=r.name, family=r.family, title=r.title or "", spec=r.spec, id=r.id)
-            for r in rows
-        }
-        ids = list(entries)
-        lists: dict[tuple[int, str], list[Any]] = {}
-        for batch in batches(ids):
-            prop_rows = conn.execute(
-                sa.select(
-                    PROPS.c.tiling_id, PROPS.c.key, PROPS.c.position, PROPS.c.kind,
-                    PROPS.c.value_text, PROPS.c.value_num, PROPS.c.value_bool,
-                )
-                .where(PROPS.c.tiling_id.in_(batch))
-                .order_by(PROPS.c.tiling_id, PROPS.c.id)
-            ).all()
-            for tid, key, position, kind, text, num, flag in prop_rows:
-                props = entries[tid].properties
-                if kind == "empty":
-                    props[key] = []
-                elif position is None:
-                    props[key] = restore_value(kind, text, num, flag)
-                else:
-                    bucket = lists.setdefault((tid, key), [])
-                    bucket.append((position, restore_value(kind, text, num, flag)))
-                    props.setdefault(key, [])
-            alias_rows = conn.execute(
-                sa.select(ALIASES.c.tiling_id, ALIASES.c.alias)
-                .where(ALIASES.c.tiling_id.in_(batch))
-                .order_by(ALIASES.c.id)
-            ).all()
-            for tid, alias in alias_rows:
-                entries[tid].aliases.append(alias)
-        for (tid, key), items in lists.items():
-            entries[tid].properties[key] = [v for _, v in sorted(items, key=lambda pv: pv[0])]
-        return [entries[r.id] for r in rows]
+        return self.count_tilings(family, where, text)
 
     def names(self) -> list[str]:
         """Every tiling name and alias (for suggestions)."""
@@ -582,7 +414,7 @@ class Catalogue(RunsMixin, ResultsMixin):
             for stmt in attempts:
                 rows = conn.execute(stmt.order_by(t.c.id)).all()
                 if len(rows) >= 1:
-                    return self._entries(conn, rows[:1])[0]
+                    return load_entries(_runner(conn), rows[:1])[0]
         found = self._result_lookup(name)
         if found is not None:
             return found
@@ -648,11 +480,17 @@ class Catalogue(RunsMixin, ResultsMixin):
         rt = self.family_table(family)
         if rt is not None:
             return [c.name for c in rt.table.c if c.name not in ("name", "family", "title", "spec")]
-        stmt = sa.select(PROPS.c.key).distinct()
-        if family is not None:
-            stmt = stmt.join(TILINGS, TILINGS.c.id == PROPS.c.tiling_id).where(TILINGS.c.family == family)
-        with self._errors("reading property keys"), self.engine.connect() as conn:
-            return sorted(conn.execute(stmt).scalars().all())
+        return self.property_keys(family)
+
+
+def _runner(conn: Connection) -> Run:
+    """TilingReader's ``run`` on a SQLAlchemy connection (``:name`` parameters, tuples back)."""
+
+    def run(sql: str, params: Mapping[str, Any]) -> Sequence[Any]:
+        return conn.execute(sa.text(sql), dict(params)).all()
+
+    return run
+
 
 def _begin_immediate(conn: Connection) -> None:
     """BEGIN IMMEDIATE, waiting for another writer in short steps (not one long wait inside

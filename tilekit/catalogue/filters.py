@@ -1,6 +1,12 @@
 """Typed filters: ``KEY=VALUE``-style expressions parsed into :class:`Filter`, and turned into
-SQLAlchemy conditions (bound parameters only: a user's text never reaches SQL) over the
-tilings' property rows or over the typed columns of a plugin's result table."""
+SQL conditions over the tilings' property rows or over the typed columns of a plugin's result
+table.
+
+The conditions are SQL text with named parameters (``:p0``, ``:p1``, ...): a user's text only
+ever reaches the database as a bound value. The same text runs through SQLAlchemy
+(``sa.text``, on SQLite and PostgreSQL) and through the standard library's ``sqlite3`` (the
+catalogue's read path without SQLAlchemy, :mod:`tilekit.catalogue.reading`), so this module
+imports neither: one copy of what a filter means, whichever connection runs it."""
 
 from __future__ import annotations
 
@@ -9,11 +15,8 @@ import re
 from dataclasses import dataclass
 from typing import Any
 
-import sqlalchemy as sa
-
-from tilekit.catalogue.tables import PROPS, TILINGS
+from tilekit.catalogue.entry import SHARED_COLUMNS, TEXT_COLUMNS
 from tilekit.errors import ParameterError, ParseError
-from tilekit.models import SHARED_COLUMNS, TEXT_COLUMNS, is_json
 
 #: ``KEY=N`` on a numeric property matches values within this relative tolerance, so a
 #: float written with 10 significant digits finds the stored double.
@@ -84,87 +87,121 @@ def parse_filter(expr: str | Filter) -> Filter:
     return Filter(key, op, value, raw)
 
 
+class Params(dict):
+    """The bound values of one statement, named ``p0``, ``p1``, ... in the order they are bound."""
+
+    def bind(self, value: Any) -> str:
+        """Hold ``value`` and return its placeholder."""
+        name = f"p{len(self)}"
+        self[name] = value
+        return ":" + name
+
+    def many(self, values: list[Any]) -> str:
+        """``(:pI, :pJ, ...)`` for an IN list."""
+        return "(" + ", ".join(self.bind(v) for v in values) + ")"
+
+
+def quote(name: str) -> str:
+    """An SQL identifier, double-quoted (the same on SQLite and PostgreSQL)."""
+    return '"' + name.replace('"', '""') + '"'
+
+
+def like_contains(params: Params, expression: str, needle: str) -> str:
+    """Case-insensitive substring test: ``lower(expression)`` contains ``needle``, with
+    ``%``, ``_`` and the escape character itself matched literally."""
+    escaped = needle.lower().replace("/", "//").replace("%", "/%").replace("_", "/_")
+    return f"lower({expression}) LIKE {params.bind('%' + escaped + '%')} ESCAPE '/'"
+
+
+_OPS = ("=", "!=", ">", "<", ">=", "<=")
+
+
+def _compare(params: Params, expression: str, op: str, value: Any) -> str:
+    assert op in _OPS
+    return f"{expression} {'<>' if op == '!=' else op} {params.bind(value)}"
+
+
+def _near(params: Params, expression: str, value: float) -> str:
+    eps = NUMBER_RTOL * max(1.0, abs(value))
+    return f"{expression} BETWEEN {params.bind(value - eps)} AND {params.bind(value + eps)}"
 
 
 def _type_error(f: Filter, wanted: str) -> ParameterError:
     return ParameterError(f"filter {f}: {f.key} {wanted}, got {f.raw!r}")
 
 
-def _compare(column: Any, op: str, value: Any) -> Any:
-    if op == "=":
-        return column == value
-    if op == "!=":
-        return column != value
-    if op == ">":
-        return column > value
-    if op == "<":
-        return column < value
-    if op == ">=":
-        return column >= value
-    return column <= value
+#: The kinds of typed column a filter distinguishes.
+COLUMN_KINDS = ("bool", "int", "float", "json", "text")
 
 
-def condition(f: Filter) -> Any:
-    """The SQLAlchemy condition of one filter (values are always bound parameters)."""
-    t, p = TILINGS, PROPS
-    if f.key in TEXT_COLUMNS or f.key in SHARED_COLUMNS:
-        names = group_names(f.key, f.raw) if f.op in ("=", "!=") else [f.raw]
-        if len(names) > 1:  # p6m or *632
-            column = t.c[f.key]
-            return column.in_(names) if f.op == "=" else sa.and_(column.is_not(None), column.not_in(names))
-        return column_condition(t.c[f.key], f)
-
-    # Uncorrelated "id IN (SELECT tiling_id ...)" subqueries: each is evaluated once through
-    # the (key, value) indexes, instead of once per tiling.
-    def having(*conditions: Any) -> Any:
-        return t.c.id.in_(sa.select(p.c.tiling_id).where(p.c.key == f.key, *conditions))
-
-    if f.op == "~":
-        return having(sa.func.lower(p.c.value_text).contains(f.raw.lower(), autoescape=True))
-    if f.op in ("=", "!="):
-        # each alternative is its own indexed subquery (an OR inside one would defeat the index)
-        if isinstance(f.value, bool):
-            alternatives = [p.c.value_bool == f.value, p.c.value_text == f.raw]
-        elif isinstance(f.value, int | float):
-            v = float(f.value)
-            eps = NUMBER_RTOL * max(1.0, abs(v))
-            alternatives = [p.c.value_num.between(v - eps, v + eps), p.c.value_text == f.raw]
-        else:
-            alternatives = [p.c.value_text == name for name in group_names(f.key, f.raw)]
-        equal = sa.or_(*(having(c) for c in alternatives))
-        if f.op == "=":
-            return equal
-        return sa.and_(having(), ~equal)
-    return having(_compare(p.c.value_num, f.op, float(f.value)))
-
-
-def column_condition(column: Any, f: Filter) -> Any:
+def column_condition(params: Params, expression: str, kind: str, f: Filter) -> str:
     """The condition of one filter on a typed column (a result table's, or a shared one of
     ``tilings``): text columns take ``=``, ``!=`` and ``~``; booleans ``=true``/``=false``;
-    numbers every comparison; JSON columns only ``~`` on their text."""
-    typ = column.type
-    if isinstance(typ, sa.Boolean):
+    numbers every comparison (floats ``=`` within NUMBER_RTOL); JSON columns only ``~`` on
+    their text. ``kind`` is one of COLUMN_KINDS."""
+    if kind == "bool":
         if f.op not in ("=", "!=") or not isinstance(f.value, bool):
             raise _type_error(f, "takes =true, =false or !=")
-        return _compare(column, f.op, f.value)
-    if isinstance(typ, sa.Integer | sa.Float | sa.Numeric):
+        return _compare(params, expression, f.op, f.value)
+    if kind in ("int", "float"):
         if f.op == "~" or isinstance(f.value, bool) or not isinstance(f.value, int | float):
             raise _type_error(f, "is a number")
-        if f.op in ("=", "!=") and isinstance(typ, sa.Float):
-            v = float(f.value)
-            eps = NUMBER_RTOL * max(1.0, abs(v))
-            near = column.between(v - eps, v + eps)
-            return near if f.op == "=" else ~near
-        return _compare(column, f.op, f.value)
-    if is_json(typ):
+        if f.op in ("=", "!=") and kind == "float":
+            near = _near(params, expression, float(f.value))
+            return near if f.op == "=" else f"NOT ({near})"
+        return _compare(params, expression, f.op, f.value)
+    if kind == "json":
         if f.op != "~":
             raise _type_error(f, "is JSON and takes only ~TEXT")
-        return sa.func.lower(sa.cast(column, sa.Text)).contains(f.raw.lower(), autoescape=True)
+        return like_contains(params, f"CAST({expression} AS TEXT)", f.raw)
     if f.op == "~":
-        return sa.func.lower(column).contains(f.raw.lower(), autoescape=True)
+        return like_contains(params, expression, f.raw)
     if f.op in ("=", "!="):
-        return _compare(column, f.op, f.raw)
+        return _compare(params, expression, f.op, f.raw)
     raise _type_error(f, f"is text and takes =, != or ~ (not {f.op})")
+
+
+_SHARED_KINDS = {bool: "bool", int: "int", float: "float", str: "text"}
+
+
+def condition(params: Params, f: Filter) -> str:
+    """The condition of one filter on a tiling (a row of ``tilings``): a column of ``tilings``,
+    or any property through its typed rows in ``tiling_properties``. On a list property ``=``
+    means "some element equals", ``!=`` "has the property and no element equals", ranges
+    "some element is in range"."""
+    if f.key in TEXT_COLUMNS or f.key in SHARED_COLUMNS:
+        column = "tilings." + quote(f.key)
+        names = group_names(f.key, f.raw) if f.op in ("=", "!=") else [f.raw]
+        if len(names) > 1:  # p6m or *632
+            listed = params.many(names)
+            return f"{column} IN {listed}" if f.op == "=" else f"({column} IS NOT NULL AND {column} NOT IN {listed})"
+        kind = _SHARED_KINDS[SHARED_COLUMNS[f.key]] if f.key in SHARED_COLUMNS else "text"
+        return column_condition(params, column, kind, f)
+
+    # Uncorrelated "id IN (SELECT tiling_id ...)" subqueries: each is evaluated once through
+    # the covering (key, value, tiling_id) indexes, instead of once per tiling.
+    def having(*conditions: str) -> str:
+        where = " AND ".join([f"tiling_properties.key = {params.bind(f.key)}", *conditions])
+        return f"tilings.id IN (SELECT tiling_properties.tiling_id FROM tiling_properties WHERE {where})"
+
+    if f.op == "~":
+        return having(like_contains(params, "tiling_properties.value_text", f.raw))
+    if f.op in ("=", "!="):
+        # each alternative is its own indexed subquery (an OR inside one would defeat the index)
+        text = "tiling_properties.value_text"
+        if isinstance(f.value, bool):
+            alternatives = [f"tiling_properties.value_bool = {params.bind(f.value)}",
+                            f"{text} = {params.bind(f.raw)}"]
+        elif isinstance(f.value, int | float):
+            alternatives = [_near(params, "tiling_properties.value_num", float(f.value)),
+                            f"{text} = {params.bind(f.raw)}"]
+        else:
+            alternatives = [f"{text} = {params.bind(name)}" for name in group_names(f.key, f.raw)]
+        equal = " OR ".join(having(c) for c in alternatives)
+        if f.op == "=":
+            return f"({equal})"
+        return f"({having()} AND NOT ({equal}))"
+    return having(_compare(params, "tiling_properties.value_num", f.op, float(f.value)))
 
 
 def group_names(key: str, value: str) -> list[str]:

@@ -8,7 +8,7 @@ import json
 from collections.abc import Iterable, Sequence
 from typing import IO, Any
 
-from tilekit.catalogue.codec import Entry
+from tilekit.catalogue.entry import Entry
 from tilekit.errors import ParameterError
 
 FORMATS: tuple[str, ...] = ("json", "csv", "jsonl")

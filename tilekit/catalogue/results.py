@@ -11,8 +11,9 @@ from typing import Any
 import sqlalchemy as sa
 from sqlalchemy.engine import Connection
 
-from tilekit.catalogue.codec import Entry, json_ok
-from tilekit.catalogue.filters import column_condition, parse_filter
+from tilekit.catalogue.codec import json_ok
+from tilekit.catalogue.entry import Entry
+from tilekit.catalogue.filters import Params, column_condition, parse_filter, quote
 from tilekit.errors import CatalogueError, NotFoundError, ParameterError
 from tilekit.models import is_json
 from tilekit.plugins import ResultTable, result_tables
@@ -148,10 +149,15 @@ class ResultsMixin:
                        order_by: str | None) -> sa.Select:
         t = rt.table
         stmt = sa.select(t)
+        params = Params()
+        conditions = []
         for f in (parse_filter(w) for w in where):
             if f.key not in t.c:
                 raise NotFoundError("column", f.key, [c.name for c in t.c])
-            stmt = stmt.where(column_condition(t.c[f.key], f))
+            column = t.c[f.key]
+            conditions.append(column_condition(params, f"{quote(t.name)}.{quote(column.name)}", column_kind(column.type), f))
+        if conditions:
+            stmt = stmt.where(sa.text(" AND ".join(conditions)).bindparams(**params))
         if text:
             needle = text.lower()
             texts = [c for c in t.c if isinstance(c.type, sa.String | sa.Text)]
@@ -256,6 +262,20 @@ class ResultsMixin:
                     if row is not None:
                         return self._row_entry(rt, dict(row))
         return None
+
+
+def column_kind(type_: Any) -> str:
+    """Which of filters.COLUMN_KINDS a SQLAlchemy column type is (floats compare ``=`` within a
+    tolerance; other numbers exactly)."""
+    if isinstance(type_, sa.Boolean):
+        return "bool"
+    if isinstance(type_, sa.Float):
+        return "float"
+    if isinstance(type_, sa.Integer | sa.Numeric):
+        return "int"
+    if is_json(type_):
+        return "json"
+    return "text"
 
 
 def _paged(stmt: sa.Select, limit: int | None, offset: int) -> sa.Select:

@@ -6,10 +6,12 @@ from __future__ import annotations
 import os
 import sqlite3
 from pathlib import Path
-
-import sqlalchemy as sa
+from typing import TYPE_CHECKING
 
 from tilekit.errors import CatalogueError
+
+if TYPE_CHECKING:  # the read path without SQLAlchemy (catalogue.reading) resolves URLs here
+    import sqlalchemy as sa
 
 #: Environment variable naming the catalogue URL (or a file path).
 ENV_VAR = "TILEKIT_CATALOGUE"

@@ -8,6 +8,8 @@ Modules: ``notation`` (vertex types: parse, print, canonical form, species, enum
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from tilekit.hookspecs import hookimpl
 from tilekit.lazy import lazy_exports
 from tilekit.plugins import Family
@@ -94,7 +96,5 @@ def tilekit_result_tables():
 
 @hookimpl
 def tilekit_migration_locations():
-    # measured start-up cost: tables.py loads SQLAlchemy; the folder is next to it
-    from tilekit.plugins.archimedean.tables import MIGRATIONS
-
-    return [str(MIGRATIONS)]
+    # the folder next to tables.py (which loads SQLAlchemy: a read without it asks this too)
+    return [str(Path(__file__).parent / "migrations")]

@@ -46,7 +46,7 @@ VERTEX_SPECIES = sa.Table(
 #: the columns a row takes from the search's per-type findings
 COLUMNS = frozenset(c.name for c in VERTEX_SPECIES.c) - {"run_id"}
 
-MIGRATIONS = Path(__file__).parent / "migrations"
+MIGRATIONS = Path(__file__).parent / "migrations"  # the hook names this folder itself
 
 
 def _spec(row: Mapping[str, Any]) -> dict[str, Any]:
