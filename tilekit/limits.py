@@ -18,9 +18,10 @@ would not fit in the memory the machine has available.
 from __future__ import annotations
 
 import math
+import numbers
 import os
 
-from tilekit.errors import TilekitError
+from tilekit.errors import ParameterError, TilekitError
 
 #: Tiles in one rendered patch (``tilekit render --max-tiles``).
 MAX_TILES = 2_000_000
@@ -56,6 +57,10 @@ MAX_DXF_TILES = 200_000
 #: 3.4.6.4 and Penrose rhombs, 1.4 kB for the chair and 2.3 kB for pentomino-F, whose edges
 #: are split at T-junctions; docs/benchmarks.md), with a margin.
 ADJACENCY_BYTES_PER_TILE = 3_000
+#: Tiles per chunk of a streamed substitution patch (``Tiling.iter_patches``, ``tilekit
+#: render`` past what fits in memory): about GENERATION_BYTES_PER_TILE each while a chunk
+#: is made, so ~200 MB, or less when less memory is available.
+STREAM_CHUNK_TILES = 1 << 20
 #: Fraction of the available memory one patch may take.
 MEMORY_FRACTION = 0.8
 
@@ -85,6 +90,13 @@ def refuse_over(what: str, estimate: float, limit: float, option: str | None = N
     if option:
         msg += f" (raise it with {option} N, or ask for less)"
     raise LimitError(msg)
+
+
+def check_chunk_tiles(chunk_tiles: object) -> int:
+    """A chunk size (tiles per chunk of a stream) as a positive int, or ParameterError."""
+    if isinstance(chunk_tiles, bool) or not isinstance(chunk_tiles, numbers.Integral) or chunk_tiles < 1:
+        raise ParameterError(f"chunk size {chunk_tiles!r} must be a positive whole number of tiles")
+    return int(chunk_tiles)
 
 
 def check_coordinates(bounds: tuple[float, float, float, float], what: str = "region") -> None:
