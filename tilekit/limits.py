@@ -127,13 +127,20 @@ def available_memory() -> float:
         return math.inf
 
 
+def fits_in_memory(count: float, bytes_each: float) -> bool:
+    """Whether ``count`` objects of ``bytes_each`` bytes take at most MEMORY_FRACTION of the
+    available memory."""
+    need = count * bytes_each
+    return not math.isnan(need) and need <= MEMORY_FRACTION * available_memory()
+
+
 def refuse_over_memory(what: str, count: float, bytes_each: float, hint: str = "") -> None:
     """Raise LimitError when ``count`` objects of ``bytes_each`` bytes would take more than
     MEMORY_FRACTION of the available memory: checked before allocating, whatever the count
     limits were raised to."""
     need = count * bytes_each
     avail = available_memory()
-    if math.isnan(need) or need > MEMORY_FRACTION * avail:
+    if not fits_in_memory(count, bytes_each):
         msg = (f"this would make about {_fmt(count)} {what}, about {need / 2**30:.3g} GiB at "
                f"{bytes_each:g} bytes each, more than the {avail / 2**30:.3g} GiB of memory available")
         if hint:

@@ -5,13 +5,20 @@ memory is a chunk's, not the patch's."""
 from __future__ import annotations
 
 import copy
+import json
+import shutil
 import tracemalloc
+import xml.etree.ElementTree as ET
 
 import numpy as np
 import pytest
 import shapely
+from click.testing import CliRunner
+from cliutil import assert_one_line_error
 from test_substitution import MINIMAL  # tests/plugins is on sys.path (rootdir-relative imports)
 
+from tilekit import export, limits
+from tilekit.cli import cli
 from tilekit.errors import ParameterError
 from tilekit.geometry import Affine
 from tilekit.plugins.substitution import builtin_systems, engine, levels, tiling
@@ -309,3 +316,127 @@ def test_other_families_stream_their_one_patch() -> None:
     reg = (-3, -3, 3, 3)
     (only,) = list(t.iter_patches(reg))
     assert len(only) == len(t.patch(reg))
+
+
+# ------------------------------------------------------------------ tilekit render, streamed
+
+#: Bytes of memory the CLI tests pretend are available: a depth-8 P3 (25,840 rule tiles at
+#: 400-900 bytes each to generate and write) does not fit, so it must stream.
+SMALL_MEMORY = 3e6
+
+
+@pytest.fixture
+def render(tmp_path, monkeypatch):
+    monkeypatch.delenv("TILEKIT_CATALOGUE", raising=False)
+    db = f"sqlite:///{tmp_path / 'c.sqlite'}"
+
+    def run(*args: str):
+        return CliRunner().invoke(cli, ["--catalogue", db, "render", *args], catch_exceptions=False)
+
+    # the catalogue is built (its tile counts generated) with the machine's real memory
+    assert run("chair", "--depth", "1", "-o", str(tmp_path / "warm.svg")).exit_code == 0
+    return run
+
+
+def little_memory(monkeypatch) -> None:
+    monkeypatch.setattr(limits, "available_memory", lambda: SMALL_MEMORY)
+
+
+@pytest.mark.parametrize(("name", "extra"), [("penrose-p3", ["--depth", "8"]),
+                                             ("penrose-p3", ["--region", "-80,-70,80,75"]),
+                                             ("kite-domino", ["--depth", "6"]),
+                                             ("spectre", ["--depth", "5"])])
+def test_render_streams_a_geojson_larger_than_memory(render, tmp_path, monkeypatch, name, extra) -> None:
+    t = tiling(name).configure(depth=int(extra[1])) if "--depth" in extra else tiling(name)
+    reg = shapely.box(*map(float, extra[1].split(","))) if "--region" in extra else t.default_region()
+    expect = t.patch(reg)  # made with the machine's real memory
+    out = tmp_path / "p.geojson"
+    little_memory(monkeypatch)
+    with pytest.raises(limits.LimitError, match="memory available"):  # the whole patch no longer fits
+        t.patch(reg)
+    result = render(name, *extra, "-o", str(out))
+    assert result.exit_code == 0, result.output
+    assert f"({len(expect)} tiles, streamed in chunks" in result.output
+    data = json.loads(out.read_text())
+    features = data["features"]
+    assert len(features) == len(expect)
+    assert [f["id"] for f in features] == list(range(len(expect)))
+    polys = shapely.polygons([np.array(f["geometry"]["coordinates"][0]) for f in features])
+    assert shapely.area(polys).sum() == pytest.approx(float(shapely.area(expect.geometries()).sum()), rel=1e-9)
+
+
+def test_render_streams_an_svg_picture(render, tmp_path, monkeypatch) -> None:
+    t = tiling("penrose-p3").configure(depth=8)
+    expect = t.patch(t.default_region())
+    out = tmp_path / "p.svg"
+    little_memory(monkeypatch)
+    result = render("penrose-p3", "--depth", "8", "-o", str(out))
+    assert result.exit_code == 0, result.output
+    root = ET.parse(out).getroot()
+    fills = [e for e in root.iter("{http://www.w3.org/2000/svg}path") if e.get("fill") not in (None, "none")]
+    assert len(fills) > 2  # a path per colour per chunk
+    assert sum(e.get("d").count("M") for e in fills) == len(expect)
+    x0, y0, x1, y1 = t.default_region().bounds
+    pad = 0.02 * max(x1 - x0, y1 - y0)
+    assert root.get("viewBox") == f"{x0 - pad:.6g} {-(y1 + pad):.6g} {x1 - x0 + 2 * pad:.6g} {y1 - y0 + 2 * pad:.6g}"
+
+
+@pytest.mark.parametrize("suffix", [".json", ".png", ".cut.svg", ".dxf"])
+def test_formats_that_need_the_whole_patch_still_refuse(render, tmp_path, monkeypatch, suffix) -> None:
+    little_memory(monkeypatch)
+    out = tmp_path / f"p{suffix}"
+    assert_one_line_error(render("penrose-p3", "--depth", "8", "-o", str(out)), "memory available")
+    assert not out.exists()
+
+
+def test_labels_and_max_tiles_still_refuse_a_stream(render, tmp_path, monkeypatch) -> None:
+    little_memory(monkeypatch)
+    out = tmp_path / "p.svg"
+    assert_one_line_error(render("penrose-p3", "--depth", "8", "--labels", "-o", str(out)), "memory available")
+    # --max-tiles still bounds the count, streamed or not
+    assert_one_line_error(render("penrose-p3", "--depth", "8", "--max-tiles", "1000", "-o", str(out)),
+                          "over the limit of 1,000")
+    assert not out.exists()
+
+
+def test_a_file_larger_than_the_free_disk_is_refused(render, tmp_path, monkeypatch) -> None:
+    usage = shutil.disk_usage(tmp_path)
+    monkeypatch.setattr(export.shutil, "disk_usage", lambda path: usage._replace(free=1_000_000))
+    out = tmp_path / "p.geojson"
+    # ~26,000 rule tiles at ~300 bytes: about 8 MB, over the 1 MB free
+    result = render("penrose-p3", "--depth", "8", "-o", str(out))
+    assert_one_line_error(result, "p.geojson would take about")
+    assert "GiB free in" in result.stderr and "tiles as .geojson" in result.stderr
+    assert not out.exists()
+    little_memory(monkeypatch)  # and when streaming
+    assert_one_line_error(render("penrose-p3", "--depth", "8", "-o", str(out)), "would take about")
+    # a small patch fits
+    assert render("penrose-p3", "--depth", "4", "-o", str(out)).exit_code == 0
+
+
+def test_file_size_estimates_bound_the_written_sizes(tmp_path) -> None:
+    """FILE_BYTES_PER_TILE bounds what each format writes per tile, within a factor 4 (the
+    chair's integer coordinates are short)."""
+    for name, depth in (("penrose-p3", 7), ("hat", 3), ("spectre", 3), ("chair", 4)):
+        t = tiling(name).configure(depth=depth)
+        patch = t.patch(t.default_region())
+        for suffix in (".geojson", ".svg", ".json", ".cut.svg"):
+            out = tmp_path / f"x{suffix}"
+            if suffix == ".svg":
+                out.write_text(t.render_svg(patch, region=t.default_region()))
+            else:
+                export.write_patch(patch, out)
+            size = out.stat().st_size
+            bound = export.file_size_estimate(len(patch), suffix, t.prototiles)
+            assert size <= bound <= 4 * size, (name, suffix, size, bound)
+
+
+def test_a_stream_on_a_terminal_shows_progress(render, tmp_path, monkeypatch) -> None:
+    import tilekit.cli as cli_module
+
+    little_memory(monkeypatch)
+    monkeypatch.setattr(cli_module, "on_terminal", lambda: True)
+    monkeypatch.setattr(cli_module, "PROGRESS_TILES", 1000)
+    result = render("penrose-p3", "--depth", "8", "-o", str(tmp_path / "p.geojson"))
+    assert result.exit_code == 0
+    assert "streaming" in result.stderr
