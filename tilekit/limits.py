@@ -12,7 +12,9 @@ several hundred more as SVG text. Generating it peaks higher, because the previo
 a substitution is alive while the last one is made: 94-163 bytes per tile measured at 10^6
 tiles (tracemalloc, docs/benchmarks.md), which GENERATION_BYTES_PER_TILE bounds. Whatever
 the tile limits are raised to, :func:`refuse_over_memory` refuses a patch whose arrays
-would not fit in the memory the machine has available.
+would not fit in the memory the machine has available; a substitution patch can instead be
+streamed in chunks (``Tiling.iter_patches``, STREAM_CHUNK_TILES), which ``tilekit render``
+does for the formats written from a stream (``export.STREAM_FORMATS``).
 """
 
 from __future__ import annotations
