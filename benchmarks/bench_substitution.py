@@ -12,12 +12,16 @@ Peers (each checked to produce the same placements as tilekit, as a set):
 
 Run the tables:             python benchmarks/bench_substitution.py [--runs 5] [--big]
                             python benchmarks/bench_substitution.py --memory   (bytes per tile)
+Streams (issue 13, goal 6): python benchmarks/bench_substitution.py --stream spectre:8 --sink null
+                            (--sink geojson --out FILE, --sink whole for the unchunked patch;
+                            one mode per process, so its peak RSS is its own)
 Run as pytest-benchmark:    pytest benchmarks/bench_substitution.py --benchmark-enable
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import statistics
 import sys
 import time
@@ -307,6 +311,40 @@ def test_outputs_equal_small() -> None:
     check_equal(tk, draw_as_components(complex_draw("penrose-p3", 8)))
 
 
+def main_stream(case: str, sink: str, out: str | None, chunk: int) -> None:
+    """One stream (or, ``sink='whole'``, the unchunked generation) of a depth-N patch:
+    tiles, seconds, tiles/s and the process's peak RSS (ru_maxrss: interpreter, imports and
+    all). ``null`` counts the chunks' tiles; ``geojson`` writes them to ``out``."""
+    import resource
+
+    from tilekit.export import write_patches
+    from tilekit.plugins.substitution.tiling import KeypointTiling
+
+    name, depth_text = case.split(":")
+    depth = int(depth_text)
+    t = tiling(name).configure(depth=depth)
+    list(tiling(name).configure(depth=2).iter_patches(chunk_tiles=64))  # compile and cache first
+    rss0 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+    t0 = time.perf_counter()
+    if sink == "whole":  # the unchunked arrays, bypassing the memory refusal (the engine itself)
+        if isinstance(t, KeypointTiling):
+            n = len(t.system.generate(depth)[1])
+        else:
+            lam = Affine.scaling(t.system.scale**depth)
+            protos, maps = t.seed_cluster()
+            parts = [generate(t.system, depth, lam @ m, int(p)) for p, m in zip(protos, maps)]
+            n = len(assemble(t.system, np.concatenate([a for a, _ in parts]), np.concatenate([b for _, b in parts]))[0])
+    elif sink == "null":
+        n = sum(len(p) for p in t.iter_patches(chunk_tiles=chunk))
+    else:
+        n = write_patches(t.iter_patches(chunk_tiles=chunk), out)
+    dt = time.perf_counter() - t0
+    rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+    size = f", file {os.path.getsize(out) / 1e9:.2f} GB ({os.path.getsize(out) / n:.0f} bytes/tile)" if out else ""
+    print(f"{name} depth {depth} {sink:8s} chunk {chunk:,}: {n:,} tiles in {dt:.1f} s = {n / dt / 1e6:.2f} M tiles/s; "
+          f"peak RSS {rss / 1e6:.0f} MB ({(rss - rss0) / n:.1f} bytes/tile over the {rss0 / 1e6:.0f} MB before){size}")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=5)
@@ -315,7 +353,14 @@ def main() -> None:
     ap.add_argument("--no-draw", action="store_true")
     ap.add_argument("--api", type=float, metavar="R", help="item 2: assembly and patch((-R, -R, R, R)) instead")
     ap.add_argument("--only", help="comma-separated system names")
+    ap.add_argument("--stream", metavar="NAME:DEPTH", help="goal 6: stream the depth-N patch instead")
+    ap.add_argument("--sink", choices=["null", "geojson", "whole"], default="null")
+    ap.add_argument("--out", help="the GeoJSON file of --sink geojson")
+    ap.add_argument("--chunk", type=int, default=1 << 20, help="tiles per chunk of --stream")
     args = ap.parse_args()
+    if args.stream:
+        main_stream(args.stream, args.sink, args.out, args.chunk)
+        return
     cases = CASES + (BIG if args.big else [])
     if args.only:
         cases = [c for c in cases if c[0] in args.only.split(",")]

@@ -546,7 +546,14 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
       tilekit render IH41 --param 0.1,0.2 --region -5,-5,5,5 -o ih41.svg
       tilekit render pentomino-F --tiling 0 -o f.svg
     """
-    from tilekit.export import check_export_size, output_format, write_patch
+    from tilekit.export import (
+        STREAM_FORMATS,
+        check_disk_space,
+        check_export_size,
+        export_fits_in_memory,
+        output_format,
+        write_patch,
+    )
     from tilekit.geometry import as_region
     from tilekit.plugins import family_for_file, get_family
     from tilekit.render import parse_palette, write_svg
@@ -605,8 +612,15 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
     box = parse_region(region) if region is not None else None
     # estimate first: nothing is allocated for a patch over the limit
     estimate = tiling.estimate_tiles(as_region(box) if box is not None else None)
-    check_export_size(estimate, fmt, max_tiles)
+    check_export_size(estimate, fmt, max_tiles, memory=False)
     area = as_region(box) if box is not None else tiling.default_region()
+    if not export_fits_in_memory(estimate, fmt):
+        if not (tiling.streams and fmt in STREAM_FORMATS and not labels):
+            check_export_size(estimate, fmt, max_tiles)  # the one-line refusal: this cannot stream
+        check_disk_space(out, estimate, fmt, tiling.prototiles)
+        _render_stream(tiling, area, out, fmt, estimate, palette, stroke, stroke_width, width, height, vectors)
+        return
+    check_disk_space(out, estimate, fmt, tiling.prototiles)
     if estimate > PROGRESS_TILES and on_terminal():
         click.echo(f"making about {int(estimate):,} tiles ...", err=True)
     patch = tiling.patch(area)
@@ -633,6 +647,46 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
     dpi_ = drawn.pop("dpi")
     path = write_svg(tiling.render_svg(patch, **drawn), out, dpi_)
     click.echo(f"wrote {path} ({len(patch)} tiles)")
+
+
+def _render_stream(tiling: Any, area: Any, out: str, fmt: str, estimate: float, palette: Any, stroke: str,
+                   stroke_width: float | None, width: int | None, height: int | None, vectors: bool) -> None:
+    """Write a patch larger than memory chunk by chunk (``Tiling.iter_patches``, chunks as
+    large as half the memory the export may take allows): GeoJSON features or SVG paths,
+    a progress bar on a terminal."""
+    from tilekit.export import stream_chunk_tiles, write_patches
+
+    chunk = stream_chunk_tiles(fmt)
+    options: dict[str, Any] = {}
+    if fmt == ".svg":
+        options = {"palette": palette, "stroke": stroke, "region": area, "width": width, "height": height}
+        if stroke_width is not None:
+            options["stroke_width_px"] = stroke_width
+        if vectors:
+            options["vectors"] = _vectors(tiling, area.bounds)
+    patches = tiling.iter_patches(area, chunk_tiles=chunk)
+    bar = None
+    if estimate > PROGRESS_TILES and on_terminal():
+        from rich.console import Console
+        from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+        bar = Progress(TextColumn("[bold]{task.description}"), BarColumn(), TextColumn("{task.completed:,} tiles"),
+                       TimeElapsedColumn(), console=Console(stderr=True))
+        task = bar.add_task(f"streaming {os.path.basename(out)}", total=estimate)
+        bar.start()
+
+        def shown(patches: Any) -> Any:
+            for p in patches:
+                bar.update(task, advance=len(p))
+                yield p
+
+        patches = shown(patches)
+    try:
+        count = write_patches(patches, out, **options)
+    finally:
+        if bar is not None:
+            bar.stop()
+    click.echo(f"wrote {out} ({count} tiles, streamed in chunks of at most {chunk:,})")
 
 
 def _tile_classes(tiling: Any, patch: Any) -> Any:

@@ -15,7 +15,8 @@ import html
 import importlib
 import json
 import operator
-from collections.abc import Iterator, Sequence
+import shutil
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import IO, TYPE_CHECKING, Any
@@ -23,6 +24,7 @@ from typing import IO, TYPE_CHECKING, Any
 import numpy as np
 import shapely
 
+from tilekit import limits
 from tilekit.errors import ParameterError, TilekitError
 from tilekit.geometry import POINT_TOL, Affine, snap_noise
 from tilekit.limits import (
@@ -31,11 +33,15 @@ from tilekit.limits import (
     MAX_DXF_TILES,
     MAX_REPR_TILES,
     MAX_TILES,
+    MEMORY_FRACTION,
     RENDER_BYTES_PER_TILE,
+    STREAM_CHUNK_TILES,
+    LimitError,
+    fits_in_memory,
     refuse_over,
     refuse_over_memory,
 )
-from tilekit.render import PALETTE, is_colour, parse_palette, patch_to_svg
+from tilekit.render import PALETTE, is_colour, parse_palette, patch_to_svg, svg_lines
 
 if TYPE_CHECKING:  # only for annotations: tiling.py imports this module
     from tilekit.tiling import Patch, Tiling
@@ -493,12 +499,30 @@ def iter_geojson(patch: Patch, classes: np.ndarray | None = None) -> Iterator[st
     feature per tile (id = tile index) with properties ``prototile`` (index), ``name``
     (the prototile's), ``colour``, ``aspect`` and, when ``classes`` is given (one int per
     tile, e.g. from :func:`tilekit.symmetry.orbits.patch_tile_classes`), ``transitivity_class``."""
-    n = len(patch)
-    classes = _classes(classes, n)
-    names = [json.dumps(p.name) for p in patch.prototiles]
+    return iter_geojson_patches([patch], None if classes is None else [classes])
+
+
+def iter_geojson_patches(patches: Iterable[Patch], classes: Iterable[np.ndarray] | None = None) -> Iterator[str]:
+    """One GeoJSON FeatureCollection of the tiles of a stream of patches (e.g.
+    ``Tiling.iter_patches``), as :func:`iter_geojson` writes one patch; ids run on across
+    the patches, and only one patch's text is held at once. ``classes``: one array per patch."""
     yield '{"type": "FeatureCollection", "features": [\n'
     sep = ""
-    for idx in _chunks(n):
+    first = 0
+    class_iter = iter(classes) if classes is not None else None
+    for patch in patches:
+        cls = _classes(next(class_iter), len(patch)) if class_iter is not None else None
+        for text in _geojson_features(patch, cls, first):
+            yield sep + text
+            sep = ",\n"
+        first += len(patch)
+    yield "\n]}\n"
+
+
+def _geojson_features(patch: Patch, classes: np.ndarray | None, first: int) -> Iterator[str]:
+    """The patch's features, _CHUNK tiles per text piece, ids from ``first``."""
+    names = [json.dumps(p.name) for p in patch.prototiles]
+    for idx in _chunks(len(patch)):
         text: list[str] = [""] * len(idx)
         for at, ring in _rings(patch, idx):
             k = ring.shape[1]
@@ -507,16 +531,14 @@ def iter_geojson(patch: Patch, classes: np.ndarray | None = None) -> Iterator[st
                    + ", ".join(["[%.12g, %.12g]"] * k) + ']]}, "properties": {"prototile": %d, "name": '
                    + names[p].replace("%", "%%") + ', "colour": %d, "aspect": %d'
                    + (', "transitivity_class": %d' if classes is not None else "") + "}}")
-            cols = [at[:, None], ring.reshape(len(at), 2 * k), np.full((len(at), 1), p),
+            cols = [first + at[:, None], ring.reshape(len(at), 2 * k), np.full((len(at), 1), p),
                     patch.colour[at, None], patch.aspect[at, None]]
             if classes is not None:
                 cols.append(classes[at, None])
             rows = np.concatenate([c.astype(object) for c in cols], axis=1).tolist()
             for j, row in zip((at - idx[0]).tolist(), rows):
                 text[j] = fmt % tuple(row)
-        yield sep + ",\n".join(text)
-        sep = ",\n"
-    yield "\n]}\n"
+        yield ",\n".join(text)
 
 
 def iter_json(patch: Patch, adj: Adjacency | None = None, classes: np.ndarray | None = None) -> Iterator[str]:
@@ -693,17 +715,109 @@ def tiling_mimebundle(tiling: Tiling, region: Any = None) -> dict[str, str]:
 # --------------------------------------------------------------------------- one entry point
 
 
-def check_export_size(estimate: float, fmt: str, max_tiles: float = MAX_TILES) -> None:
+#: Formats written from a stream of patches (:func:`write_patches`), so that ``tilekit render``
+#: can write a patch larger than memory: GeoJSON features and SVG paths need nothing of the
+#: tiles before them (the SVG's view box is the region). JSON lists neighbours and the cut
+#: files each shared edge once, which need the whole patch; PNG and DXF are drawn in memory.
+STREAM_FORMATS = (".geojson", ".svg")
+
+#: File bytes per tile of each text format: (fixed, per outline vertex), from the sizes
+#: measured on Penrose P3 rhombs (4 vertices: 325 / 64 / 289 / 103 bytes a tile as .geojson
+#: / .svg / .json / .cut.svg), the hat (13: 473 / 165 / 426 / 248) and the spectre (14:
+#: 651 / 221 / 588 / 369), rounded up with room for a small file's header (docs/benchmarks.md).
+FILE_BYTES_PER_TILE: dict[str, tuple[int, int]] = {
+    ".geojson": (190, 36), ".svg": (40, 16), ".json": (160, 34), ".cut.svg": (30, 28),
+}
+
+
+def _memory_per_tile(fmt: str) -> int:
+    """Peak bytes per tile of generating a patch and writing it as ``fmt``."""
+    return GENERATION_BYTES_PER_TILE + {".svg": RENDER_BYTES_PER_TILE, ".png": RENDER_BYTES_PER_TILE,
+                                        ".geojson": GENERATION_BYTES_PER_TILE}.get(fmt, ADJACENCY_BYTES_PER_TILE)
+
+
+def check_export_size(estimate: float, fmt: str, max_tiles: float = MAX_TILES, memory: bool = True) -> None:
     """Refuse an export of about ``estimate`` tiles before anything is made: over
-    ``max_tiles`` (``--max-tiles``), over MAX_DXF_TILES for DXF, or when the patch and the
-    export's arrays would not fit in memory."""
+    ``max_tiles`` (``--max-tiles``), over MAX_DXF_TILES for DXF, or (``memory``) when the
+    patch and the export's arrays would not fit in memory."""
     refuse_over("tiles", estimate, max_tiles, "--max-tiles")
     if fmt == ".dxf":
         refuse_over("tiles", estimate, MAX_DXF_TILES,
                     hint=f"a DXF drawing is built in memory, at most MAX_DXF_TILES = {MAX_DXF_TILES:,} tiles")
-    per_tile = {".svg": RENDER_BYTES_PER_TILE, ".png": RENDER_BYTES_PER_TILE,
-                ".geojson": GENERATION_BYTES_PER_TILE}.get(fmt, ADJACENCY_BYTES_PER_TILE)
-    refuse_over_memory("tiles", estimate, GENERATION_BYTES_PER_TILE + per_tile, hint="ask for a smaller depth or region")
+    if memory:
+        refuse_over_memory("tiles", estimate, _memory_per_tile(fmt), hint="ask for a smaller depth or region")
+
+
+def export_fits_in_memory(estimate: float, fmt: str) -> bool:
+    """Whether :func:`check_export_size` lets the whole patch be made in memory."""
+    return fits_in_memory(estimate, _memory_per_tile(fmt))
+
+
+def stream_chunk_tiles(fmt: str) -> int:
+    """Tiles per chunk of a streamed export: STREAM_CHUNK_TILES, or what half the memory
+    :func:`check_export_size` allows holds, when less."""
+    fit = MEMORY_FRACTION * limits.available_memory() / (2 * _memory_per_tile(fmt))
+    return int(max(1, min(STREAM_CHUNK_TILES, fit)))
+
+
+def file_size_estimate(estimate: float, fmt: str, prototiles: Sequence[Any]) -> float | None:
+    """Bytes of a ``fmt`` file of about ``estimate`` tiles of these prototiles
+    (FILE_BYTES_PER_TILE), or None for formats without a measure (PNG, DXF)."""
+    per = FILE_BYTES_PER_TILE.get(fmt)
+    if per is None:
+        return None
+    vertices = max((len(p.outline) for p in prototiles), default=0)
+    return estimate * (per[0] + per[1] * vertices)
+
+
+def check_disk_space(path: str | Path, estimate: float, fmt: str, prototiles: Sequence[Any]) -> None:
+    """LimitError (one line) when the file of about ``estimate`` tiles would not fit in the
+    free space of the file system it is written to (``shutil.disk_usage``)."""
+    size = file_size_estimate(estimate, fmt, prototiles)
+    folder = Path(path).absolute().parent
+    if size is None or not folder.is_dir():
+        return  # (a missing folder fails when the file is opened)
+    free = float(shutil.disk_usage(folder).free)
+    if size > free:
+        raise LimitError(
+            f"{Path(path).name} would take about {size / 2**30:.3g} GiB ({int(estimate):,} tiles as {fmt}), "
+            f"more than the {free / 2**30:.3g} GiB free in {folder}; ask for a smaller depth or region"
+        )
+
+
+def write_patches(patches: Iterable[Patch], path: str | Path, **svg_options: Any) -> int:
+    """Write a stream of patches (``Tiling.iter_patches``) as one .geojson or .svg file,
+    one patch at a time (STREAM_FORMATS); returns the number of tiles written. An SVG needs
+    ``region`` (its view box) among ``svg_options``, the options of
+    :func:`tilekit.render.svg_lines`."""
+    fmt = output_format(path)
+    if fmt not in STREAM_FORMATS:
+        raise ParameterError(f"{fmt} cannot be written from a stream of patches; stream {' or '.join(STREAM_FORMATS)}")
+    count = 0
+
+    def counted() -> Iterator[Patch]:
+        nonlocal count
+        for p in patches:
+            count += len(p)
+            yield p
+
+    if fmt == ".geojson":
+        if svg_options:
+            raise ParameterError(f"options {', '.join(sorted(svg_options))} apply to .svg, not .geojson")
+        write_text(iter_geojson_patches(counted()), path)
+    else:
+        if svg_options.get("region") is None:
+            raise ParameterError("a streamed SVG needs its region (the view box) before the first tile")
+        write_text(_joined(svg_lines(counted(), **svg_options)), path)
+    return count
+
+
+def _joined(lines: Iterator[str]) -> Iterator[str]:
+    """The text of ``"\n".join(lines)``, a line at a time."""
+    sep = ""
+    for line in lines:
+        yield sep + line
+        sep = "\n"
 
 
 def write_patch(patch: Patch, path: str | Path, *, classes: np.ndarray | None = None, layers: str = "one",

@@ -12,15 +12,18 @@ several hundred more as SVG text. Generating it peaks higher, because the previo
 a substitution is alive while the last one is made: 94-163 bytes per tile measured at 10^6
 tiles (tracemalloc, docs/benchmarks.md), which GENERATION_BYTES_PER_TILE bounds. Whatever
 the tile limits are raised to, :func:`refuse_over_memory` refuses a patch whose arrays
-would not fit in the memory the machine has available.
+would not fit in the memory the machine has available; a substitution patch can instead be
+streamed in chunks (``Tiling.iter_patches``, STREAM_CHUNK_TILES), which ``tilekit render``
+does for the formats written from a stream (``export.STREAM_FORMATS``).
 """
 
 from __future__ import annotations
 
 import math
+import numbers
 import os
 
-from tilekit.errors import TilekitError
+from tilekit.errors import ParameterError, TilekitError
 
 #: Tiles in one rendered patch (``tilekit render --max-tiles``).
 MAX_TILES = 2_000_000
@@ -56,6 +59,10 @@ MAX_DXF_TILES = 200_000
 #: 3.4.6.4 and Penrose rhombs, 1.4 kB for the chair and 2.3 kB for pentomino-F, whose edges
 #: are split at T-junctions; docs/benchmarks.md), with a margin.
 ADJACENCY_BYTES_PER_TILE = 3_000
+#: Tiles per chunk of a streamed substitution patch (``Tiling.iter_patches``, ``tilekit
+#: render`` past what fits in memory): about GENERATION_BYTES_PER_TILE each while a chunk
+#: is made, so ~200 MB, or less when less memory is available.
+STREAM_CHUNK_TILES = 1 << 20
 #: Fraction of the available memory one patch may take.
 MEMORY_FRACTION = 0.8
 
@@ -87,6 +94,13 @@ def refuse_over(what: str, estimate: float, limit: float, option: str | None = N
     raise LimitError(msg)
 
 
+def check_chunk_tiles(chunk_tiles: object) -> int:
+    """A chunk size (tiles per chunk of a stream) as a positive int, or ParameterError."""
+    if isinstance(chunk_tiles, bool) or not isinstance(chunk_tiles, numbers.Integral) or chunk_tiles < 1:
+        raise ParameterError(f"chunk size {chunk_tiles!r} must be a positive whole number of tiles")
+    return int(chunk_tiles)
+
+
 def check_coordinates(bounds: tuple[float, float, float, float], what: str = "region") -> None:
     """A region whose coordinates are not finite or beyond ±MAX_COORDINATE is an error."""
     if not all(math.isfinite(v) for v in bounds):
@@ -115,13 +129,20 @@ def available_memory() -> float:
         return math.inf
 
 
+def fits_in_memory(count: float, bytes_each: float) -> bool:
+    """Whether ``count`` objects of ``bytes_each`` bytes take at most MEMORY_FRACTION of the
+    available memory."""
+    need = count * bytes_each
+    return not math.isnan(need) and need <= MEMORY_FRACTION * available_memory()
+
+
 def refuse_over_memory(what: str, count: float, bytes_each: float, hint: str = "") -> None:
     """Raise LimitError when ``count`` objects of ``bytes_each`` bytes would take more than
     MEMORY_FRACTION of the available memory: checked before allocating, whatever the count
     limits were raised to."""
     need = count * bytes_each
     avail = available_memory()
-    if math.isnan(need) or need > MEMORY_FRACTION * avail:
+    if not fits_in_memory(count, bytes_each):
         msg = (f"this would make about {_fmt(count)} {what}, about {need / 2**30:.3g} GiB at "
                f"{bytes_each:g} bytes each, more than the {avail / 2**30:.3g} GiB of memory available")
         if hint:

@@ -8,7 +8,7 @@ The y axis points up, as in the book's figures.
 from __future__ import annotations
 
 import html
-from collections.abc import Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -117,15 +117,41 @@ def patch_to_svg(
     clips to it (default: the patch's bounds). The image's longer side is ``size`` pixels,
     or its width is ``width`` / its height ``height`` (the other side follows the aspect).
     """
+    if region is None and len(patch):
+        region = patch.bounds()
+        clip = False
+    else:
+        clip = region is not None
+    return "\n".join(svg_lines([patch], palette, stroke, stroke_width, labels, markings, vectors, size, region,
+                               background, width, height, stroke_width_px, clip=clip))
+
+
+def svg_lines(
+    patches: Iterable[Any],
+    palette: Sequence[str] | None = None,
+    stroke: str = "#222",
+    stroke_width: float | None = None,
+    labels: bool = False,
+    markings: bool = True,
+    vectors: tuple[Sequence[float], Sequence[float], Sequence[float]] | None = None,
+    size: int = 800,
+    region: Any = None,
+    background: str | None = "#ffffff",
+    width: int | None = None,
+    height: int | None = None,
+    stroke_width_px: float | None = None,
+    clip: bool = True,
+) -> Iterator[str]:
+    """The lines of :func:`patch_to_svg`'s SVG for the union of ``patches`` (a stream of
+    patches, e.g. ``Tiling.iter_patches``), one patch at a time: the view box comes from
+    ``region`` (needed before any tile; None: the unit box), each patch adds a filled
+    ``<path>`` per colour (and one of markings), so only one patch's text is held at once.
+    Edge labels are held until the end (their size follows the tile count): draw them on
+    patches that fit in memory. ``clip``: clip to the region and frame it."""
     palette = tuple(palette) if palette else PALETTE
     if size <= 0:
         raise ParameterError(f"image size must be positive, not {size}")
-    if region is not None:
-        x0, y0, x1, y1 = as_region(region).bounds
-    elif len(patch):
-        x0, y0, x1, y1 = patch.bounds()
-    else:
-        x0, y0, x1, y1 = (0.0, 0.0, 1.0, 1.0)
+    x0, y0, x1, y1 = as_region(region).bounds if region is not None else (0.0, 0.0, 1.0, 1.0)
     w, h = x1 - x0, y1 - y0
     pad = 0.02 * max(w, h)
     vb = (x0 - pad, -(y1 + pad), w + 2 * pad, h + 2 * pad)
@@ -142,27 +168,51 @@ def patch_to_svg(
                 "give a smaller --width/--height/--dpi")
     if not is_colour(stroke):
         raise ParseError(f"stroke colour {stroke[:40]!r} is not a CSS colour name or #rgb / #rrggbb")
-    out: list[str] = [
-        f'<svg xmlns="http://www.w3.org/2000/svg" width="{width_px}" height="{height_px}" '
-        f'viewBox="{vb[0]:.6g} {vb[1]:.6g} {vb[2]:.6g} {vb[3]:.6g}">'
-    ]
+    yield (f'<svg xmlns="http://www.w3.org/2000/svg" width="{width_px}" height="{height_px}" '
+           f'viewBox="{vb[0]:.6g} {vb[1]:.6g} {vb[2]:.6g} {vb[3]:.6g}">')
     if background:
-        out.append(
-            f'<rect x="{vb[0]:.6g}" y="{vb[1]:.6g}" width="{vb[2]:.6g}" height="{vb[3]:.6g}" '
-            f'fill="{html.escape(background)}"/>'
-        )
-    if region is not None:
+        yield (f'<rect x="{vb[0]:.6g}" y="{vb[1]:.6g}" width="{vb[2]:.6g}" height="{vb[3]:.6g}" '
+               f'fill="{html.escape(background)}"/>')
+    if clip:
         # the clip path is applied to the y-flipped group below, so it is in tile coordinates
-        out.append(
-            f'<clipPath id="region"><rect x="{x0:.6g}" y="{y0:.6g}" width="{w:.6g}" '
-            f'height="{h:.6g}"/></clipPath>'
-        )
-    clip = ' clip-path="url(#region)"' if region is not None else ""
-    out.append(f'<g transform="scale(1,-1)"{clip} stroke="{html.escape(stroke)}" '
-               f'stroke-width="{sw:.4g}" stroke-linejoin="round">')
+        yield f'<clipPath id="region"><rect x="{x0:.6g}" y="{y0:.6g}" width="{w:.6g}" height="{h:.6g}"/></clipPath>'
+    clip_attr = ' clip-path="url(#region)"' if clip else ""
+    yield (f'<g transform="scale(1,-1)"{clip_attr} stroke="{html.escape(stroke)}" '
+           f'stroke-width="{sw:.4g}" stroke-linejoin="round">')
+    tiles = 0
+    label_items: list[tuple[float, float, str]] = []
+    for patch in patches:
+        tiles += len(patch)
+        yield from _tile_lines(patch, palette, markings, labels, sw, label_items)
+    if clip and tiles:
+        # a frame on the region's border: tiles cut by the clip end on a line, not in stubs
+        # (drawn at twice the width, half of it inside the clip)
+        yield (f'<rect x="{x0:.6g}" y="{y0:.6g}" width="{w:.6g}" height="{h:.6g}" fill="none" '
+               f'stroke-width="{2 * sw:.4g}"/>')
+    if vectors is not None:
+        o, v1, v2 = (np.asarray(v, dtype=float) for v in vectors)
+        yield ('<defs><marker id="arrow" viewBox="0 0 10 10" refX="9" refY="5" markerWidth="6" '
+               'markerHeight="6" orient="auto"><path d="M0 0 L10 5 L0 10z" fill="#c00"/></marker></defs>')
+        for v in (v1, v2):
+            e = o + v
+            yield (f'<line x1="{o[0]:.6g}" y1="{o[1]:.6g}" x2="{e[0]:.6g}" y2="{e[1]:.6g}" '
+                   f'stroke="#c00" stroke-width="{2 * sw:.4g}" marker-end="url(#arrow)"/>')
+    yield "</g>"
+    if label_items:
+        fs = 0.15 * (max(w, h) / max(1.0, np.sqrt(tiles))) if tiles else 0.1
+        yield f'<g font-size="{fs:.4g}" text-anchor="middle" dominant-baseline="middle" fill="#000">'
+        for lx, ly, lab in label_items:
+            yield f'<text x="{lx:.5g}" y="{-ly:.5g}">{html.escape(lab)}</text>'
+        yield "</g>"
+    yield "</svg>"
+
+
+def _tile_lines(patch: Any, palette: Sequence[str], markings: bool, labels: bool, sw: float,
+                label_items: list[tuple[float, float, str]]) -> Iterator[str]:
+    """One patch's tiles: a filled path per colour, then one path of markings; its edge
+    labels (with ``labels``) are appended to ``label_items``."""
     by_colour: dict[int, list[str]] = {}
     mark_paths: list[str] = []
-    label_items: list[tuple[float, float, str]] = []
     for p, idx, pts in patch.groups():
         data = _path_data(pts)
         for c, d in zip(patch.colour[idx].tolist(), data):
@@ -189,35 +239,9 @@ def patch_to_svg(
                     label_items.append((lx, ly, str(lab)))
     for c in sorted(by_colour):
         fill = palette[c % len(palette)]
-        out.append(f'<path fill="{html.escape(fill)}" d="{" ".join(by_colour[c])}"/>')
+        yield f'<path fill="{html.escape(fill)}" d="{" ".join(by_colour[c])}"/>'
     if mark_paths:
-        out.append(f'<path fill="none" stroke-width="{sw * 0.8:.4g}" d="{" ".join(mark_paths)}"/>')
-    if region is not None and len(patch):
-        # a frame on the region's border: tiles cut by the clip end on a line, not in stubs
-        # (drawn at twice the width, half of it inside the clip)
-        out.append(f'<rect x="{x0:.6g}" y="{y0:.6g}" width="{w:.6g}" height="{h:.6g}" fill="none" '
-                   f'stroke-width="{2 * sw:.4g}"/>')
-    if vectors is not None:
-        o, v1, v2 = (np.asarray(v, dtype=float) for v in vectors)
-        out.append(
-            '<defs><marker id="arrow" viewBox="0 0 10 10" refX="9" refY="5" markerWidth="6" '
-            'markerHeight="6" orient="auto"><path d="M0 0 L10 5 L0 10z" fill="#c00"/></marker></defs>'
-        )
-        for v in (v1, v2):
-            e = o + v
-            out.append(
-                f'<line x1="{o[0]:.6g}" y1="{o[1]:.6g}" x2="{e[0]:.6g}" y2="{e[1]:.6g}" '
-                f'stroke="#c00" stroke-width="{2 * sw:.4g}" marker-end="url(#arrow)"/>'
-            )
-    out.append("</g>")
-    if label_items:
-        fs = 0.15 * (max(w, h) / max(1.0, np.sqrt(len(patch)))) if len(patch) else 0.1
-        out.append(f'<g font-size="{fs:.4g}" text-anchor="middle" dominant-baseline="middle" fill="#000">')
-        for lx, ly, lab in label_items:
-            out.append(f'<text x="{lx:.5g}" y="{-ly:.5g}">{html.escape(lab)}</text>')
-        out.append("</g>")
-    out.append("</svg>")
-    return "\n".join(out)
+        yield f'<path fill="none" stroke-width="{sw * 0.8:.4g}" d="{" ".join(mark_paths)}"/>'
 
 
 def svg_to_png(svg: str, path: str | Path, dpi: float = 96.0) -> None:

@@ -23,6 +23,7 @@ from tilekit import export
 from tilekit.colouring import Colouring
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.geometry import AREA_TOL, EPS, Affine, as_region, snap_noise
+from tilekit.limits import STREAM_CHUNK_TILES, check_chunk_tiles
 from tilekit.polygon import centroid, ear_clip, interior_angles, signed_area
 from tilekit.render import patch_to_svg
 
@@ -812,6 +813,18 @@ class Tiling(ABC):
     @abstractmethod
     def patch(self, region: Any) -> Patch:
         """Tiles covering ``region`` (a shapely geometry or an (x0, y0, x1, y1) box)."""
+
+    #: Whether :meth:`iter_patches` yields bounded chunks (families that can stream a patch
+    #: larger than memory set it); otherwise it yields the one patch.
+    streams: bool = False
+
+    def iter_patches(self, region: Any = None, chunk_tiles: int = STREAM_CHUNK_TILES) -> Iterator[Patch]:
+        """The tiles of ``patch(region)`` (``region=None``: the default region) as a stream
+        of patches with the same prototiles, whose union is that patch, each of about
+        ``chunk_tiles`` tiles or fewer when the family streams (:attr:`streams`). Here: the
+        one patch."""
+        check_chunk_tiles(chunk_tiles)
+        yield self.patch(self.default_region() if region is None else region)
 
     @abstractmethod
     def spec(self) -> dict[str, Any]:

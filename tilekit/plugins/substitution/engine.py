@@ -10,13 +10,21 @@ differ by a symmetry place the same tile) and quantised on two staggered grids.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterable, Iterator, Sequence
+from typing import Any
 
 import numpy as np
 import shapely
 
+from tilekit.errors import ParameterError
 from tilekit.geometry import Affine
-from tilekit.plugins.substitution.levels import expand_by_label, substitute_levels
+from tilekit.limits import STREAM_CHUNK_TILES, check_chunk_tiles
+from tilekit.plugins.substitution.levels import (
+    expand_by_label,
+    placed_points,
+    substitute_in_chunks,
+    substitute_levels,
+)
 from tilekit.plugins.substitution.system import SubstitutionSystem, inflation_radii
 from tilekit.polygon import centroid
 
@@ -44,6 +52,30 @@ def meets_box(
     return kernels.meets(proto, transform, centres, radius, box, similar=True)
 
 
+def _seeds(system: SubstitutionSystem, seed_transform: np.ndarray | None,
+           seed_prototile: int | np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
+    """The level-``depth`` supertiles to substitute: one seed, or several (a cluster)."""
+    transform = (np.eye(3) if seed_transform is None else np.asarray(seed_transform, dtype=float)).reshape(-1, 3, 3)
+    seed = system.seed if seed_prototile is None else seed_prototile
+    proto = np.broadcast_to(np.asarray(seed, dtype=np.int64).reshape(-1), (len(transform),)).copy()
+    return proto, transform
+
+
+def _level_functions(system: SubstitutionSystem, box: tuple[float, float, float, float] | None) -> tuple[Any, Any]:
+    """The expansion and (with a box) the cull that every level of the system shares."""
+    radii = inflation_radii(system) if box is not None else None
+    children = [rule.children for rule in system.rules]
+    matrices = [rule.matrices for rule in system.rules]
+
+    def expand(proto: np.ndarray, transform: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+        return expand_by_label(proto, transform, children, matrices)
+
+    def cull(proto: np.ndarray, transform: np.ndarray, n: int) -> np.ndarray:
+        return meets_box(system, proto, transform, box, radii)
+
+    return expand, cull if box is not None else None
+
+
 def generate(
     system: SubstitutionSystem,
     depth: int,
@@ -59,30 +91,52 @@ def generate(
     (``dedupe`` forces either way). Transforms are those of the rule prototiles (half-tiles
     for systems with an assembly; see :func:`assemble`).
     """
-    seed = system.seed if seed_prototile is None else int(seed_prototile)
-    proto = np.array([seed], dtype=np.int64)
-    transform = (np.eye(3) if seed_transform is None else np.asarray(seed_transform, dtype=float)).reshape(1, 3, 3)
-    radii = inflation_radii(system) if box is not None else None
+    proto, transform = _seeds(system, seed_transform, seed_prototile)
     per_level = system.kind == "overlapping" if dedupe is None else dedupe
-    children = [rule.children for rule in system.rules]
-    matrices = [rule.matrices for rule in system.rules]
-
-    def expand(proto: np.ndarray, transform: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
-        return expand_by_label(proto, transform, children, matrices)
-
-    def cull(proto: np.ndarray, transform: np.ndarray, n: int) -> np.ndarray:
-        return meets_box(system, proto, transform, box, radii)
+    expand, cull = _level_functions(system, box)
 
     def dedupe_level(proto: np.ndarray, transform: np.ndarray) -> np.ndarray:
         return unique_tiles(proto, transform, system.symmetries)
 
-    proto, transform = substitute_levels(
-        proto, transform, depth, expand, cull if box is not None else None, dedupe_level if per_level else None
-    )
+    proto, transform = substitute_levels(proto, transform, depth, expand, cull, dedupe_level if per_level else None)
     if dedupe is not False and not per_level and system.kind == "overlapping":
         keep = unique_tiles(proto, transform, system.symmetries)
         proto, transform = proto[keep], transform[keep]
     return proto, transform
+
+
+def generate_chunks(
+    system: SubstitutionSystem,
+    depth: int,
+    seed_transform: np.ndarray | None = None,
+    seed_prototile: int | np.ndarray | None = None,
+    box: tuple[float, float, float, float] | None = None,
+    chunk_tiles: int = STREAM_CHUNK_TILES,
+) -> Iterator[tuple[np.ndarray, np.ndarray]]:
+    """:func:`generate` in chunks of at most ``chunk_tiles`` rule tiles, never the whole patch.
+
+    ``seed_transform`` may be one map or a stack (k, 3, 3) of level-``depth`` seeds (a seed
+    cluster) with ``seed_prototile`` an int or k ints. The seeds are substituted to the
+    level whose supertiles each become at most ``chunk_tiles`` tiles, and runs of those
+    supertiles, in Hilbert order of their inflation discs' centres, are substituted the rest
+    of the way (:func:`levels.substitute_in_chunks`). The union of the chunks is what
+    :func:`generate` returns for each seed, tile for tile. Overlapping systems remove
+    duplicates across a whole level, so they are refused (ParameterError).
+    """
+    check_chunk_tiles(chunk_tiles)
+    if system.kind == "overlapping":
+        raise ParameterError(
+            f"{system.name} is an overlapping system, whose coincident tiles are removed across a "
+            "whole level: it cannot be generated in chunks; ask for a patch that fits in memory"
+        )
+    proto, transform = _seeds(system, seed_transform, seed_prototile)
+    expand, cull = _level_functions(system, box)
+    centres, _ = inflation_radii(system)
+
+    def placed_centres(proto: np.ndarray, transform: np.ndarray, n: int) -> np.ndarray:
+        return placed_points(proto, transform, centres)
+
+    yield from substitute_in_chunks(proto, transform, depth, expand, cull, system.descendants, placed_centres, chunk_tiles)
 
 
 def assemble(system: SubstitutionSystem, proto: np.ndarray, transform: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -98,17 +152,30 @@ def assemble(system: SubstitutionSystem, proto: np.ndarray, transform: np.ndarra
         return proto, transform
     if system.pairing_edge is not None:
         return pair_halves(system, proto, transform)
+    out_proto, out_transform = whole_tiles(system, proto, transform)
+    rep = _whole_groups(system, out_proto, out_transform)
+    keep = np.flatnonzero(rep == np.arange(len(rep)))
+    return out_proto[keep], out_transform[keep]
+
+
+def whole_tiles(system: SubstitutionSystem, proto: np.ndarray, transform: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Every half-tile's whole tile (the [assemble] table), one per half: the halves of one
+    whole tile give it twice, by maps that differ by a symmetry of it."""
     assert system.assemble_tile is not None and system.assemble_matrix is not None
     n = len(system.prototiles)
-    out_proto, out_transform = expand_by_label(
+    return expand_by_label(
         proto, transform, [system.assemble_tile[[p]] for p in range(n)], [system.assemble_matrix[[p]] for p in range(n)]
     )
+
+
+def _whole_groups(system: SubstitutionSystem, proto: np.ndarray, transform: np.ndarray,
+                  quantum: float | None = None) -> np.ndarray:
+    """For every whole tile of :func:`whole_tiles`, the index of the first copy of it: by
+    placed centroid, or by the canonical map when a whole tile's centroid lies outside it."""
     centres = _interior_centroids(system)
     if centres is None:  # a whole tile whose centroid is outside it: compare whole maps
-        keep = unique_tiles(out_proto, out_transform, system.output_symmetries)
-    else:
-        keep = unique_centres(out_proto, out_transform, centres)
-    return out_proto[keep], out_transform[keep]
+        return tile_groups(proto, transform, system.output_symmetries, quantum)
+    return centre_groups(proto, transform, centres, quantum)
 
 
 def _interior_centroids(system: SubstitutionSystem) -> np.ndarray | None:
@@ -122,48 +189,97 @@ def _interior_centroids(system: SubstitutionSystem) -> np.ndarray | None:
     return np.array(out)
 
 
-def unique_centres(proto: np.ndarray, transform: np.ndarray, centres: np.ndarray) -> np.ndarray:
-    """Indices (sorted) of the first of the tiles with equal prototile and placed centroid.
+def centre_quantum(transform: np.ndarray, centres: np.ndarray) -> float:
+    """The quantum of :func:`centre_groups`: 1e-4 of the tiles' size (median linear factor
+    of the maps) times the prototiles' extent."""
+    sigma = np.sqrt(np.abs(_det(transform[:: max(1, len(transform) // 1000)])))
+    return 1e-4 * float(np.median(sigma)) * float(np.abs(centres).max() + 1.0)
+
+
+def centre_groups(proto: np.ndarray, transform: np.ndarray, centres: np.ndarray,
+                  quantum: float | None = None) -> np.ndarray:
+    """For every tile, the index of the first tile with equal prototile and placed centroid.
 
     Tiles of a tiling that lie inside one another are the same tile, so when every
     prototile's centroid is interior, (prototile, placed centroid) identifies a placed tile
     whatever symmetry of it its map carries: the two halves of a whole rhomb give it by
-    maps differing by its mirror, and the same centroid. Centroids are quantised at 1e-4 of
-    the tiles' size on two grids offset by half a cell (two copies cannot straddle a cell
-    boundary on both); each pass is one hash of a packed int64 key (kernels.py).
+    maps differing by its mirror, and the same centroid. Centroids are quantised at
+    ``quantum`` (default :func:`centre_quantum`) on two grids offset by half a cell (two
+    copies cannot straddle a cell boundary on both); each pass is one hash of a packed int64
+    key (kernels.py).
     """
     # start-up cost: numba, as in expand_by_label
     from tilekit.plugins.substitution import kernels
 
     if len(proto) < 2:
         return np.arange(len(proto))
-    sigma = np.sqrt(np.abs(_det(transform[:: max(1, len(transform) // 1000)])))
-    quantum = 1e-4 * float(np.median(sigma)) * float(np.abs(centres).max() + 1.0)
-    keep = kernels.unique_centres(proto, transform, centres, quantum)
-    if keep is None:  # a key wider than 63 bits: group (prototile, cell) rows instead
+    if quantum is None:
+        quantum = centre_quantum(transform, centres)
+    rep = kernels.centre_groups(proto, transform, centres, quantum)
+    if rep is None:  # a key wider than 63 bits: group (prototile, cell) rows instead
         c = centres[proto]
         x = transform[:, 0, 0] * c[:, 0] + transform[:, 0, 1] * c[:, 1] + transform[:, 0, 2]
         y = transform[:, 1, 0] * c[:, 0] + transform[:, 1, 1] * c[:, 1] + transform[:, 1, 2]
-        keep = np.arange(len(proto))
-        for offset in (0.0, 0.5):
-            rows = np.column_stack([proto[keep], np.floor(x[keep] / quantum + offset), np.floor(y[keep] / quantum + offset)])
-            first, _ = _row_groups(rows.astype(np.int64))
-            keep = keep[np.sort(first)]
-    return keep
+        q = quantum
+
+        def rows(idx: np.ndarray, offset: float) -> np.ndarray:
+            return np.column_stack([proto[idx], np.floor(x[idx] / q + offset), np.floor(y[idx] / q + offset)]).astype(np.int64)
+
+        rep = _two_pass_groups(len(proto), rows)
+    return rep
+
+
+def unique_centres(proto: np.ndarray, transform: np.ndarray, centres: np.ndarray) -> np.ndarray:
+    """Indices (sorted) of the first of the tiles with equal prototile and placed centroid
+    (:func:`centre_groups`)."""
+    rep = centre_groups(proto, transform, centres)
+    return np.flatnonzero(rep == np.arange(len(rep)))
+
+
+def tile_groups(proto: np.ndarray, transform: np.ndarray, groups: Sequence[np.ndarray],
+                quantum: float | None = None) -> np.ndarray:
+    """For every tile, the index of the first tile placed the same (prototile and map modulo
+    the prototile's symmetry ``groups``, quantised at ``quantum``, default KEY_QUANTUM of
+    the median linear factor, on two staggered grids)."""
+    if len(proto) < 2:
+        return np.arange(len(proto))
+    if quantum is None:
+        quantum = tile_quantum(transform)
+    q = quantum
+
+    def rows(idx: np.ndarray, offset: float) -> np.ndarray:
+        return _canonical_keys(proto[idx], transform[idx], groups, q, offset)
+
+    return _two_pass_groups(len(proto), rows)
+
+
+def tile_quantum(transform: np.ndarray) -> float:
+    """The quantum of :func:`tile_groups`: KEY_QUANTUM of the maps' median linear factor."""
+    sigma = np.sqrt(np.abs(_det(transform)))
+    return KEY_QUANTUM * float(np.median(sigma)) if len(sigma) else KEY_QUANTUM
 
 
 def unique_tiles(proto: np.ndarray, transform: np.ndarray, groups: Sequence[np.ndarray]) -> np.ndarray:
     """Indices of one representative per distinct placed tile (sorted)."""
-    if len(proto) < 2:
-        return np.arange(len(proto))
-    sigma = np.sqrt(np.abs(transform[:, 0, 0] * transform[:, 1, 1] - transform[:, 0, 1] * transform[:, 1, 0]))
-    quantum = KEY_QUANTUM * float(np.median(sigma)) if len(sigma) else KEY_QUANTUM
-    survivors = np.arange(len(proto))
+    rep = tile_groups(proto, transform, groups)
+    return np.flatnonzero(rep == np.arange(len(rep)))
+
+
+def _two_pass_groups(n: int, rows: Any) -> np.ndarray:
+    """For each of n tiles, its group's first index: tiles with equal key rows
+    ``rows(index, 0.0)`` are grouped, then the groups' first tiles by ``rows(index, 0.5)``
+    (the keys on a grid offset by half a cell, so that two copies of a tile that straddle a
+    cell boundary of one grid meet on the other)."""
+    rep = np.arange(n)
+    keep = np.arange(n)
     for offset in (0.0, 0.5):
-        keys = _canonical_keys(proto[survivors], transform[survivors], groups, quantum, offset)
-        first, _ = _row_groups(keys)
-        survivors = survivors[np.sort(first)]
-    return survivors
+        _, (order, starts, sizes) = _row_groups(rows(keep, offset))
+        first = np.repeat(order[starts], sizes)  # per sorted row: its group's first (local)
+        now = np.arange(n)
+        now[keep[order]] = keep[first]
+        rep = now[rep]
+        keep = keep[np.sort(order[starts])]
+    return rep
 
 
 def _row_groups(keys: np.ndarray) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray, np.ndarray]]:
@@ -237,10 +353,21 @@ def pair_halves(system: SubstitutionSystem, proto: np.ndarray, transform: np.nda
     assert system.pairing_edge is not None and system.output_prototiles is not None
     if not len(proto):
         return proto, transform
+    (i, j), _ = _partners(system, transform, pairing_quantum(transform))
+    return _paired(system, transform, i, j)
+
+
+def pairing_quantum(transform: np.ndarray) -> float:
+    """The quantum of the pairing edges' end points: 100 KEY_QUANTUM of the tiles' size."""
+    return KEY_QUANTUM * 100 * float(np.median(np.sqrt(np.abs(_det(transform)))))
+
+
+def _partners(system: SubstitutionSystem, transform: np.ndarray,
+              quantum: float) -> tuple[tuple[np.ndarray, np.ndarray], np.ndarray]:
+    """((i, j) the index pairs of partner halves, the indices of halves without a partner)."""
+    assert system.pairing_edge is not None
     a, b = system.pairing_edge
     ends = Affine.apply(transform, system.prototiles[0].outline[[a, b]])  # (n, 2, 2)
-    sigma = np.sqrt(np.abs(_det(transform)))
-    quantum = KEY_QUANTUM * 100 * float(np.median(sigma))
     q = np.floor(ends / quantum + 0.5).astype(np.int64).reshape(-1, 2, 2)
     first_smaller = (q[:, 0, 0] < q[:, 1, 0]) | ((q[:, 0, 0] == q[:, 1, 0]) & (q[:, 0, 1] <= q[:, 1, 1]))
     lo = np.where(first_smaller[:, None], q[:, 0], q[:, 1])
@@ -248,7 +375,11 @@ def pair_halves(system: SubstitutionSystem, proto: np.ndarray, transform: np.nda
     keys = np.column_stack([lo, hi])
     _, (order, starts, sizes) = _row_groups(keys)
     pairs = starts[sizes == 2]
-    i, j = order[pairs], order[pairs + 1]
+    return (order[pairs], order[pairs + 1]), order[starts[sizes == 1]]
+
+
+def _paired(system: SubstitutionSystem, transform: np.ndarray, i: np.ndarray, j: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The whole tiles of the partner halves (i[k], j[k])."""
     di, dj = _det(transform[i]) > 0, _det(transform[j]) > 0
     ref = np.where(dj & ~di, j, i)
     mirror = di != dj
@@ -264,6 +395,72 @@ def pair_halves(system: SubstitutionSystem, proto: np.ndarray, transform: np.nda
     if not out_p:
         return np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3))
     return np.concatenate(out_p), np.concatenate(out_t)
+
+
+# --------------------------------------------------------------------------- streams
+
+
+def assemble_chunks(system: SubstitutionSystem,
+                    chunks: Iterable[tuple[np.ndarray, np.ndarray]]) -> Iterator[tuple[np.ndarray, np.ndarray]]:
+    """:func:`assemble` over a stream of rule-tile chunks, whose union is a patch.
+
+    The halves of one whole tile may come in different chunks: a whole tile is yielded once
+    all its halves have come (by their areas, the halves' share of the whole tile adds up to
+    1) and waits in a pending buffer until then, keyed exactly as :func:`assemble` keys it
+    (prototile and placed centroid, or the pairing edge); each chunk is grouped together
+    with the pending tiles. At the end what is still pending is handled as :func:`assemble`
+    handles a half without its partner: its whole tile is yielded (pairing systems drop
+    it). The union of the yielded chunks is ``assemble`` of the union of ``chunks``, as a
+    set of placed tiles; pending holds the tiles along the edges of the chunks so far.
+    """
+    if system.output_prototiles is None:
+        yield from chunks
+    elif system.pairing_edge is not None:
+        yield from _pair_chunks(system, chunks)
+    else:
+        yield from _whole_chunks(system, chunks)
+
+
+def _whole_chunks(system: SubstitutionSystem,
+                  chunks: Iterable[tuple[np.ndarray, np.ndarray]]) -> Iterator[tuple[np.ndarray, np.ndarray]]:
+    assert system.output_prototiles is not None and system.assemble_tile is not None
+    share = np.array([abs(p.area) / abs(system.output_prototiles[int(t)].area)
+                      for p, t in zip(system.prototiles, system.assemble_tile)])
+    centres = _interior_centroids(system)
+    pend_p, pend_t, pend_w = np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3)), np.zeros(0)
+    quantum: float | None = None
+    for proto, transform in chunks:
+        if not len(proto):
+            continue
+        wp, wt = whole_tiles(system, proto, transform)
+        if quantum is None:  # fixed for the stream: every tile of a depth has one size
+            quantum = tile_quantum(wt) if centres is None else centre_quantum(wt, centres)
+        p, t = np.concatenate([pend_p, wp]), np.concatenate([pend_t, wt])
+        w = np.concatenate([pend_w, share[proto]])
+        rep = _whole_groups(system, p, t, quantum)
+        first = np.flatnonzero(rep == np.arange(len(rep)))
+        have = np.bincount(rep, weights=w, minlength=len(rep))[first]
+        whole = have >= 1 - 1e-6
+        yield p[first[whole]], t[first[whole]]
+        pend_p, pend_t, pend_w = p[first[~whole]], t[first[~whole]], have[~whole]
+    if len(pend_p):
+        yield pend_p, pend_t
+
+
+def _pair_chunks(system: SubstitutionSystem,
+                 chunks: Iterable[tuple[np.ndarray, np.ndarray]]) -> Iterator[tuple[np.ndarray, np.ndarray]]:
+    pend_p, pend_t = np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3))
+    quantum: float | None = None
+    for proto, transform in chunks:
+        if not len(proto):
+            continue
+        if quantum is None:
+            quantum = pairing_quantum(transform)
+        p, t = np.concatenate([pend_p, proto]), np.concatenate([pend_t, transform])
+        (i, j), single = _partners(system, t, quantum)
+        yield _paired(system, t, i, j)
+        pend_p, pend_t = p[single], t[single]
+    # halves still without a partner are dropped, as pair_halves drops them
 
 
 def _det(m: np.ndarray) -> np.ndarray:

@@ -30,12 +30,12 @@ import shapely
 from tilekit.errors import ParameterError, ParseError
 from tilekit.geometry import Affine
 from tilekit.plugins.substitution.formats import read_system_data
-from tilekit.plugins.substitution.keypoint import MonotileSystem
+from tilekit.plugins.substitution.keypoint import Generation, MonotileSystem, Tiles
 from tilekit.plugins.substitution.levels import (
     expand_base,
     expand_by_label,
     meets_discs,
-    substitute_levels,
+    placed_points,
 )
 from tilekit.plugins.substitution.rules import Rule
 from tilekit.plugins.substitution.system import guarded_loader
@@ -271,36 +271,45 @@ class HatSystem(MonotileSystem):
         seed_transform: np.ndarray | None = None,
         seed_label: int | None = None,
         box: tuple[float, float, float, float] | None = None,
-    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Hats of a level-``depth`` supertile: (prototile, transform, colour) arrays.
-
-        Placements are composed exactly, as integer matrices in lattice coordinates, and
-        converted to Cartesian (and moved by ``seed_transform``) once, at the end; with a
-        ``box``, supertiles whose bounding discs miss it are dropped level by level.
-        """
-        label = np.array([self.seed if seed_label is None else seed_label], dtype=np.int64)
-        if box is None and self.tile_counts(depth, int(label[0]))[-1] > MAX_TILES:
-            count = self.tile_counts(depth, int(label[0]))[-1]
+    ) -> Tiles:
+        """Hats of a level-``depth`` supertile: (prototile, transform, colour) arrays; over
+        MAX_TILES hats without a ``box``, ParameterError (``generate_chunks`` streams them)."""
+        label = self.seed if seed_label is None else int(seed_label)
+        if box is None and self.tile_counts(depth, label)[-1] > MAX_TILES:
+            count = self.tile_counts(depth, label)[-1]
             raise ParameterError(
                 f"hat depth {depth} would make {count} hats; the limit is {MAX_TILES} (give a smaller depth or a region)"
             )
-        lattice = np.eye(3, dtype=np.int64)[None]
+        return super().generate(depth, seed_transform, seed_label, box)
+
+    def generation(self, depth: int, seed_transform: np.ndarray | None, seed_label: int | None,
+                   box: tuple[float, float, float, float] | None) -> Generation:
+        """Placements are composed exactly, as integer matrices in lattice coordinates, and
+        converted to Cartesian (and moved by ``seed_transform``) once, at the end."""
+        label = np.array([self.seed if seed_label is None else seed_label], dtype=np.int64)
 
         def cull(label: np.ndarray, lattice: np.ndarray, n: int) -> np.ndarray:
             return meets_discs(label, _placed(seed_transform, lattice), self.bounds(n), box)
 
-        label, lattice = substitute_levels(label, lattice, depth, self._expand, cull if box is not None else None)
+        def centres(label: np.ndarray, lattice: np.ndarray, n: int) -> np.ndarray:
+            return placed_points(label, _placed(seed_transform, lattice), self.bounds(n)[0])
+
         colours = []
         for j, placements in enumerate(self.base):
             colour = np.full(len(placements), 1 + j, dtype=np.int64)
             if j == 0:
                 colour = (np.linalg.det(placements[:, :2, :2]) < 0).astype(np.int64)
             colours.append(colour)
-        lattice, colour = expand_base(label, lattice, self.base, colours)
-        if not len(lattice):
-            return np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3)), np.zeros(0, dtype=np.int64)
-        transform = _placed(seed_transform, lattice)
-        return np.zeros(len(transform), dtype=np.int64), transform, colour
+
+        def finish(label: np.ndarray, lattice: np.ndarray) -> Tiles:
+            lattice, colour = expand_base(label, lattice, self.base, colours)
+            if not len(lattice):
+                return np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3)), np.zeros(0, dtype=np.int64)
+            transform = _placed(seed_transform, lattice)
+            return np.zeros(len(transform), dtype=np.int64), transform, colour
+
+        lattice = np.eye(3, dtype=np.int64)[None]
+        return Generation(label, lattice, self._expand, cull if box is not None else None, centres, finish)
 
 
 def _placed(seed_transform: np.ndarray | None, lattice: np.ndarray) -> np.ndarray:

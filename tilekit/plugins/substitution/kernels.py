@@ -91,15 +91,15 @@ def sandwich(left: np.ndarray, maps: np.ndarray, right: np.ndarray) -> np.ndarra
 
 
 @njit(cache=True, nogil=True)
-def _first_of_keys(keys):  # pragma: no cover - compiled
-    """Mask of the first occurrence of every key (open addressing, one pass)."""
+def _key_groups(keys):  # pragma: no cover - compiled
+    """For every key, the index of its first occurrence (open addressing, one pass)."""
     n = keys.shape[0]
     bits = 1
     while (1 << bits) < 2 * n + 2:
         bits += 1
     size = 1 << bits
     table = np.full(size, -1, dtype=np.int64)
-    first = np.zeros(n, dtype=np.bool_)
+    first = np.empty(n, dtype=np.int64)
     mult = np.uint64(0x9E3779B97F4A7C15)
     shift = np.uint64(64 - bits)
     for i in range(n):
@@ -109,16 +109,17 @@ def _first_of_keys(keys):  # pragma: no cover - compiled
             j = table[h]
             if j < 0:
                 table[h] = i
-                first[i] = True
+                first[i] = i
                 break
             if keys[j] == k:
+                first[i] = j
                 break
             h = (h + 1) & (size - 1)
     return first
 
 
 @njit(cache=True, nogil=True)
-def _unique_centres(proto, transform, centres, quantum):  # pragma: no cover - compiled
+def _centre_groups(proto, transform, centres, quantum):  # pragma: no cover - compiled
     n = proto.shape[0]
     x = np.empty(n)
     y = np.empty(n)
@@ -139,8 +140,10 @@ def _unique_centres(proto, transform, centres, quantum):  # pragma: no cover - c
         bits_p += 1
     if 2 * bits + bits_p > 63:
         return np.full(1, -1, dtype=np.int64)  # the packed key would not fit
+    rep = np.arange(n)
     keep = np.arange(n)
     for offset in (0.0, 0.5):
+        # group the representatives so far on this grid; rows follow their representative
         m = keep.shape[0]
         keys = np.empty(m, dtype=np.int64)
         for k in range(m):
@@ -148,22 +151,38 @@ def _unique_centres(proto, transform, centres, quantum):  # pragma: no cover - c
             qx = np.int64(np.floor((x[i] - x0) / quantum + offset))
             qy = np.int64(np.floor((y[i] - y0) / quantum + offset))
             keys[k] = (proto[i] << (2 * bits)) | (qx << bits) | qy
-        keep = keep[_first_of_keys(keys)]
-    return keep
+        first = _key_groups(keys)
+        now = np.arange(n)
+        for k in range(m):
+            now[keep[k]] = keep[first[k]]
+        for i in range(n):
+            rep[i] = now[rep[i]]
+        count = 0
+        for k in range(m):
+            if first[k] == k:
+                count += 1
+        survivors = np.empty(count, dtype=np.int64)
+        count = 0
+        for k in range(m):
+            if first[k] == k:
+                survivors[count] = keep[k]
+                count += 1
+        keep = survivors
+    return rep
 
 
-def unique_centres(proto: np.ndarray, transform: np.ndarray, centres: np.ndarray, quantum: float) -> np.ndarray | None:
-    """Sorted indices of the first tile per (prototile, placed centroid quantised at
-    ``quantum`` on two grids offset by half a cell); None when the packed key would not
-    fit in 63 bits (the caller groups rows instead)."""
+def centre_groups(proto: np.ndarray, transform: np.ndarray, centres: np.ndarray, quantum: float) -> np.ndarray | None:
+    """For every tile, the index of the first tile with its prototile and placed centroid
+    (quantised at ``quantum`` on two grids offset by half a cell); None when the packed key
+    would not fit in 63 bits (the caller groups rows instead)."""
     n = len(proto)
     if n < 2:
         return np.arange(n)
-    keep = _unique_centres(
+    rep = _centre_groups(
         np.ascontiguousarray(proto, dtype=np.int64), np.ascontiguousarray(transform, dtype=float),
         np.ascontiguousarray(centres, dtype=float), float(quantum),
     )
-    return None if len(keep) and keep[0] < 0 else keep
+    return None if len(rep) and rep[0] < 0 else rep
 
 
 @njit(cache=True, nogil=True)

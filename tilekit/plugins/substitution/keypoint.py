@@ -11,7 +11,7 @@ same array engine as for similarity systems, with per-level rule matrices.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -20,18 +20,41 @@ import shapely
 
 from tilekit.errors import ParseError
 from tilekit.geometry import Affine
+from tilekit.limits import STREAM_CHUNK_TILES, check_chunk_tiles
 from tilekit.plugins.substitution.expr import constants_with, evaluate
 from tilekit.plugins.substitution.formats import read_system_data
 from tilekit.plugins.substitution.levels import (
+    Centres,
+    Cull,
+    Expand,
     expand_base,
     expand_by_label,
     meets_discs,
+    placed_points,
+    substitute_in_chunks,
     substitute_levels,
 )
 from tilekit.plugins.substitution.rules import MatrixFacts, Rule
 from tilekit.tiling import Prototile
 
 REFLECT_Y = np.diag([-1.0, 1.0, 1.0])
+
+#: The tiles of a level-0 supertile stream: (prototile, transform, colour) arrays.
+Tiles = tuple[np.ndarray, np.ndarray, np.ndarray]
+
+
+@dataclass
+class Generation:
+    """How one monotile system substitutes a seed: the level-``depth`` seed (labels, maps),
+    the per-level expansion and cull, where a placed level-n supertile is (its bounding
+    disc's centre), and ``finish``, which places the tiles of level-0 supertiles."""
+
+    label: np.ndarray
+    maps: np.ndarray
+    expand: Expand
+    cull: Cull | None
+    centres: Centres
+    finish: Callable[[np.ndarray, np.ndarray], Tiles]
 
 
 class MonotileSystem(MatrixFacts):
@@ -66,6 +89,9 @@ class MonotileSystem(MatrixFacts):
     def tiles_per_label(self) -> np.ndarray:
         return np.array([len(b) for b in self.base], dtype=np.int64)
 
+    def leaf_tiles(self) -> np.ndarray:
+        return self.tiles_per_label().astype(float)
+
     def tile_counts(self, generations: int, start: int | None = None) -> list[int]:
         """Number of actual tiles in a level-n supertile, n = 0..generations."""
         per_label = self.tiles_per_label()
@@ -73,6 +99,39 @@ class MonotileSystem(MatrixFacts):
 
     def rep_tile(self) -> None:
         return None
+
+    def generation(self, depth: int, seed_transform: np.ndarray | None, seed_label: int | None,
+                   box: tuple[float, float, float, float] | None) -> Generation:
+        raise TypeError(f"{type(self).__name__} must define generation()")
+
+    def generate(
+        self,
+        depth: int,
+        seed_transform: np.ndarray | None = None,
+        seed_label: int | None = None,
+        box: tuple[float, float, float, float] | None = None,
+    ) -> Tiles:
+        """Tiles of a level-``depth`` supertile: (prototile, transform, colour) arrays; with a
+        ``box``, supertiles whose bounding discs miss it are dropped level by level."""
+        g = self.generation(depth, seed_transform, seed_label, box)
+        return g.finish(*substitute_levels(g.label, g.maps, depth, g.expand, g.cull))
+
+    def generate_chunks(
+        self,
+        depth: int,
+        seed_transform: np.ndarray | None = None,
+        seed_label: int | None = None,
+        box: tuple[float, float, float, float] | None = None,
+        chunk_tiles: int = STREAM_CHUNK_TILES,
+    ) -> Iterator[Tiles]:
+        """:meth:`generate` in chunks of at most ``chunk_tiles`` tiles (more only when one
+        level-0 supertile has more), whose union is ``generate``'s tiles; never the whole
+        supertile at once (:func:`levels.substitute_in_chunks`)."""
+        check_chunk_tiles(chunk_tiles)
+        g = self.generation(depth, seed_transform, seed_label, box)
+        for label, maps in substitute_in_chunks(g.label, g.maps, depth, g.expand, g.cull, self.descendants,
+                                                g.centres, chunk_tiles):
+            yield g.finish(label, maps)
 
 
 @dataclass
@@ -163,23 +222,14 @@ class KeypointSystem(MonotileSystem):
         return self._bounds[n]
 
     # ------------------------------------------------------------------ generation
-    def generate(
-        self,
-        depth: int,
-        seed_transform: np.ndarray | None = None,
-        seed_label: int | None = None,
-        box: tuple[float, float, float, float] | None = None,
-    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Tiles of a level-``depth`` supertile: (prototile, transform, colour) arrays.
-
-        Colour 1 marks the Mystic's turned spectre, 0 every other one. Odd depths get one
-        extra reflection so that every spectre is unreflected.
-        """
+    def generation(self, depth: int, seed_transform: np.ndarray | None, seed_label: int | None,
+                   box: tuple[float, float, float, float] | None) -> Generation:
+        """Colour 1 marks the Mystic's turned spectre, 0 every other one. Odd depths get one
+        extra reflection so that every spectre is unreflected."""
         label = np.array([self.seed if seed_label is None else seed_label], dtype=np.int64)
         t0 = np.eye(3) if seed_transform is None else np.asarray(seed_transform, dtype=float)
         if depth % 2 == 1 and self.reflect:
             t0 = t0 @ REFLECT_Y
-        transform = t0.reshape(1, 3, 3)
 
         def expand(label: np.ndarray, maps: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
             rules = self.rules_at(n)
@@ -188,10 +238,16 @@ class KeypointSystem(MonotileSystem):
         def cull(label: np.ndarray, maps: np.ndarray, n: int) -> np.ndarray:
             return meets_discs(label, maps, self.bounds(n), box)
 
-        label, transform = substitute_levels(label, transform, depth, expand, cull if box is not None else None)
+        def centres(label: np.ndarray, maps: np.ndarray, n: int) -> np.ndarray:
+            return placed_points(label, maps, self.bounds(n)[0])
+
         colours = [(np.arange(len(p)) > 0).astype(np.int64) for p in self.base]
-        transform, colour = expand_base(label, transform, self.base, colours)
-        return np.zeros(len(transform), dtype=np.int64), transform.astype(float, copy=False), colour
+
+        def finish(label: np.ndarray, maps: np.ndarray) -> Tiles:
+            transform, colour = expand_base(label, maps, self.base, colours)
+            return np.zeros(len(transform), dtype=np.int64), transform.astype(float, copy=False), colour
+
+        return Generation(label, t0.reshape(1, 3, 3), expand, cull if box is not None else None, centres, finish)
 
 
 # ---------------------------------------------------------------------- loading

@@ -9,9 +9,11 @@ arguments here.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 
 import numpy as np
+
+from tilekit.limits import check_chunk_tiles
 
 Expand = Callable[[np.ndarray, np.ndarray, int], tuple[np.ndarray, np.ndarray]]
 Cull = Callable[[np.ndarray, np.ndarray, int], np.ndarray]
@@ -24,15 +26,18 @@ def substitute_levels(
     expand: Expand,
     cull: Cull | None = None,
     after_level: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
+    stop: int = 0,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Substitute the placed supertiles (``label``, ``maps``) of level ``depth`` down to level 0.
+    """Substitute the placed supertiles (``label``, ``maps``) of level ``depth`` down to level
+    ``stop`` (0: the tiles).
 
-    For n = depth .. 1: keep the supertiles for which ``cull(label, maps, n)`` is true (when
-    given), then ``expand(label, maps, n)`` replaces each level-n supertile by its level-(n-1)
-    children; ``after_level(label, maps)`` may return a mask to keep (duplicates removed, for
-    overlapping systems). Finally ``cull(label, maps, 0)`` drops tiles that miss the region.
+    For n = depth .. stop + 1: keep the supertiles for which ``cull(label, maps, n)`` is true
+    (when given), then ``expand(label, maps, n)`` replaces each level-n supertile by its
+    level-(n-1) children; ``after_level(label, maps)`` may return a mask to keep (duplicates
+    removed, for overlapping systems). Finally ``cull(label, maps, stop)`` drops those that
+    miss the region.
     """
-    for n in range(depth, 0, -1):
+    for n in range(depth, stop, -1):
         if cull is not None:
             keep = cull(label, maps, n)
             label, maps = label[keep], maps[keep]
@@ -41,9 +46,100 @@ def substitute_levels(
             keep = after_level(label, maps)
             label, maps = label[keep], maps[keep]
     if cull is not None:
-        keep = cull(label, maps, 0)
+        keep = cull(label, maps, stop)
         label, maps = label[keep], maps[keep]
     return label, maps
+
+
+#: sizes(n) -> per label, how many tiles a level-n supertile of that label becomes (float)
+Sizes = Callable[[int], np.ndarray]
+#: centres(label, maps, n) -> (k, 2) points near the placed level-n supertiles
+Centres = Callable[[np.ndarray, np.ndarray, int], np.ndarray]
+
+
+def chunk_level(sizes: Sizes, depth: int, chunk_tiles: int) -> int:
+    """The highest level n <= depth whose supertiles all become at most ``chunk_tiles``
+    tiles (0 when even a level-0 supertile may have more: a chunk is then one of them)."""
+    level = 0
+    for n in range(1, depth + 1):
+        if float(np.max(sizes(n))) > chunk_tiles:
+            break
+        level = n
+    return level
+
+
+def hilbert_order(points: np.ndarray, bits: int = 16) -> np.ndarray:
+    """Indices that sort ``points`` (k, 2) along a Hilbert curve over their bounding box
+    (a 2^bits grid): points close on the curve are close in the plane, so consecutive
+    runs of the order are compact clusters. Vectorised over the points, one pass per bit."""
+    pts = np.asarray(points, dtype=float).reshape(-1, 2)
+    if len(pts) < 2:
+        return np.arange(len(pts))
+    lo = pts.min(axis=0)
+    span = max(float(np.ptp(pts, axis=0).max()), 1e-300)
+    side = 1 << bits
+    q = np.minimum(((pts - lo) / span * side).astype(np.int64), side - 1)
+    x, y = q[:, 0].copy(), q[:, 1].copy()
+    d = np.zeros(len(pts), dtype=np.int64)
+    s = side >> 1
+    while s:
+        rx = (x & s) > 0
+        ry = (y & s) > 0
+        d += s * s * ((3 * rx.astype(np.int64)) ^ ry.astype(np.int64))
+        # turn the quadrant so that the curve's sub-squares join up
+        flip = ~ry & rx
+        x = np.where(flip, side - 1 - x, x)
+        y = np.where(flip, side - 1 - y, y)
+        swap = ~ry
+        x, y = np.where(swap, y, x), np.where(swap, x, y)
+        s >>= 1
+    return np.argsort(d, kind="stable")
+
+
+def placed_points(label: np.ndarray, maps: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """``points[label[k]]`` (a point per label, in the label's frame) placed by ``maps[k]``."""
+    p = np.asarray(points, dtype=float)[label]
+    m = np.asarray(maps, dtype=float)
+    return np.einsum("nij,nj->ni", m[:, :2, :2], p) + m[:, :2, 2]
+
+
+def substitute_in_chunks(
+    label: np.ndarray,
+    maps: np.ndarray,
+    depth: int,
+    expand: Expand,
+    cull: Cull | None,
+    sizes: Sizes,
+    centres: Centres,
+    chunk_tiles: int,
+) -> Iterator[tuple[np.ndarray, np.ndarray]]:
+    """:func:`substitute_levels` in chunks of at most ``chunk_tiles`` tiles each.
+
+    The supertiles are substituted (and culled) down to the level L of
+    :func:`chunk_level`, where each supertile becomes at most ``chunk_tiles`` tiles
+    (``sizes``, from the substitution matrix); the level-L supertiles are ordered along a
+    Hilbert curve through their ``centres`` and cut greedily into runs of at most
+    ``chunk_tiles`` descendants, and each run is substituted the remaining L levels by
+    ``substitute_levels`` itself. The union of the chunks is exactly what
+    ``substitute_levels(label, maps, depth, expand, cull)`` returns (expansion and culling are
+    per tile), in another order. Held at once: the level-L supertiles and one chunk (a chunk
+    is larger than ``chunk_tiles`` only when one level-0 supertile is).
+    """
+    chunk_tiles = check_chunk_tiles(chunk_tiles)
+    level = chunk_level(sizes, depth, chunk_tiles)
+    label, maps = substitute_levels(label, maps, depth, expand, cull, stop=level)
+    if not len(label):
+        return
+    order = hilbert_order(centres(label, maps, level))
+    label, maps = label[order], maps[order]
+    weight = np.asarray(sizes(level), dtype=float)[label].tolist()
+    start, total = 0, 0.0
+    for i, w in enumerate(weight):  # per level-L supertile: a few per chunk
+        if i > start and total + w > chunk_tiles:
+            yield substitute_levels(label[start:i], maps[start:i], level, expand, cull)
+            start, total = i, 0.0
+        total += w
+    yield substitute_levels(label[start:], maps[start:], level, expand, cull)
 
 
 def expand_base(

@@ -49,6 +49,19 @@ class MatrixFacts:
         vec = np.abs(vecs[:, k].real)
         return float(vals[k].real), vec / vec.sum()
 
+    def leaf_tiles(self) -> np.ndarray:
+        """Per label, the tiles a level-0 supertile of it is (1 each; monotile systems override)."""
+        return np.ones(self.n)
+
+    def descendants(self, n: int) -> np.ndarray:
+        """Per label j, the tiles a level-n supertile of label j becomes: the row vector
+        ``leaf_tiles() @ M^n`` (floats, so deep levels do not overflow)."""
+        m = self.substitution_matrix().astype(float)
+        v = np.asarray(self.leaf_tiles(), dtype=float)
+        for _ in range(n):
+            v = v @ m
+        return v
+
     def counts(self, generations: int, start: int | None = None) -> list[list[int]]:
         """Label counts after 0..generations substitutions of one ``start`` tile (M^n e), exact."""
         mo = self.substitution_matrix().astype(object)

@@ -11,7 +11,7 @@ region.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from functools import partial
 from typing import Any
 
@@ -26,6 +26,8 @@ from tilekit.limits import (  # MAX_DEPTH: the depth range; the tile estimate is
     GENERATION_BYTES_PER_TILE,
     MAX_DEPTH,
     MAX_TILES,
+    STREAM_CHUNK_TILES,
+    check_chunk_tiles,
     refuse_over_memory,
 )
 from tilekit.plugins.substitution import engine, shapes
@@ -219,9 +221,9 @@ class SubstitutionTiling(Tiling):
             grid_size=1e-9,
         )
 
-    def raw(self, region: Any = None) -> tuple[np.ndarray, np.ndarray]:
-        """The (prototile, transform) arrays before clipping (whole tiles after assembly)."""
-        reg = as_region(region) if region is not None else None
+    def _plan(self, reg: BaseGeometry | None) -> tuple[np.ndarray, np.ndarray, int, Any]:
+        """What to substitute for ``raw(reg)``: the seeds' prototiles and maps (k,) and
+        (k, 3, 3), the depth, and the box whose tiles are kept (None: every tile)."""
         if reg is None and self.depth is None:
             raise ParameterError("a region or a fixed depth is needed")
         box = tuple(reg.bounds) if reg is not None else None
@@ -241,22 +243,46 @@ class SubstitutionTiling(Tiling):
                 # a depth with a region covers the region: move the seed onto it
                 seed, t, d = self.seed_placement(shapely.box(*box) if box else reg, depth=d)
                 members = [(seed, t)]
-        self._refuse_unaffordable(members, d, box)
-        protos, transforms = [], []
-        for seed, t in members:
-            proto, transform = engine.generate(self.system, d, t, seed, box=box)
-            protos.append(proto)
-            transforms.append(transform)
-        return engine.assemble(self.system, np.concatenate(protos), np.concatenate(transforms))
+        protos = np.array([p for p, _ in members], dtype=np.int64)
+        return protos, np.array([t for _, t in members]), d, box
 
-    def _refuse_unaffordable(self, members: Sequence[tuple[int, Any]], depth: int, box: Any) -> None:
+    def raw(self, region: Any = None) -> tuple[np.ndarray, np.ndarray]:
+        """The (prototile, transform) arrays before clipping (whole tiles after assembly)."""
+        protos, maps, d, box = self._plan(as_region(region) if region is not None else None)
+        self._refuse_unaffordable(protos, d, box)
+        out = [engine.generate(self.system, d, t, int(p), box=box) for p, t in zip(protos, maps)]
+        return engine.assemble(self.system, np.concatenate([o[0] for o in out]), np.concatenate([o[1] for o in out]))
+
+    def _refuse_unaffordable(self, protos: np.ndarray, depth: int, box: Any) -> None:
         """LimitError before generating when the rule tiles would not fit in memory: the
-        members' counts after ``depth`` substitutions (exact), or, with a box, at most what
-        fits in it, at GENERATION_BYTES_PER_TILE each."""
-        count = float(sum(sum(self.system.counts(depth, int(p))[-1]) for p, _ in members))
+        seeds' counts after ``depth`` substitutions (exact), or, with a box, at most what
+        fits in it, at GENERATION_BYTES_PER_TILE each (:meth:`iter_patches` streams instead)."""
+        count = float(sum(sum(self.system.counts(depth, int(p))[-1]) for p in protos))
         if box is not None:
             count = min(count, region_tile_estimate(shapely.box(*box), self.system.prototiles))
         refuse_over_memory("tiles", count, GENERATION_BYTES_PER_TILE, hint="ask for a smaller depth or region")
+
+    def _generation_region(self, reg: BaseGeometry | None) -> BaseGeometry | None:
+        """The region to generate for ``reg``: shaped tiles reach beyond their straight tiles,
+        so a wider box."""
+        if self._shaped is None or reg is None:
+            return reg
+        margin = self._shape_margin()
+        x0, y0, x1, y1 = reg.bounds
+        return shapely.box(x0 - margin, y0 - margin, x1 + margin, y1 + margin)
+
+    def _as_patch(self, proto: np.ndarray, transform: np.ndarray) -> Patch:
+        """A Patch of the (whole) tiles, shaped and coloured."""
+        if self._shaped is not None:
+            transform = canonical_transforms(proto, transform, self._mirrors)
+        return Patch(self.prototiles, proto, transform, colour=_colours(proto, transform, self._turns()))
+
+    def _turns(self) -> np.ndarray | bool | None:
+        """What _colours colours by: False (the prototile) for systems of several
+        prototiles, the orientation classes of a one-prototile system otherwise."""
+        if len(self.prototiles) > 1:
+            return False
+        return orientation_turns(self.system)
 
     def patch(self, region: Any = None) -> Patch:
         """Tiles meeting ``region`` (every tile of the fixed-depth patch when region is None)."""
@@ -264,19 +290,40 @@ class SubstitutionTiling(Tiling):
         if reg is not None and self.depth is not None and self._is_frame(reg):
             # the default region of a fixed depth frames the whole depth-N patch: draw all of it
             return self.patch(None).clip(reg)
-        if self._shaped is not None and reg is not None:
-            # shaped tiles reach beyond their straight tiles: generate for a wider box
-            margin = self._shape_margin()
-            x0, y0, x1, y1 = reg.bounds
-            proto, transform = self.raw(shapely.box(x0 - margin, y0 - margin, x1 + margin, y1 + margin))
-        else:
-            proto, transform = self.raw(reg)
-        if self._shaped is not None:
-            transform = canonical_transforms(proto, transform, self._mirrors)
-        patch = Patch(self.prototiles, proto, transform, colour=_colours(proto, transform, len(self.prototiles)))
+        patch = self._as_patch(*self.raw(self._generation_region(reg)))
         if reg is not None:
             patch = patch.clip(reg)
         return patch
+
+    @property
+    def streams(self) -> bool:  # type: ignore[override]
+        """Every system but an overlapping one (whose duplicates span whole levels) streams."""
+        return self.system.kind != "overlapping"
+
+    def iter_patches(self, region: Any = None, chunk_tiles: int = STREAM_CHUNK_TILES) -> Iterator[Patch]:
+        """``patch(region)`` as a stream of patches of about ``chunk_tiles`` whole tiles each,
+        never the whole patch at once (the memory refusal of :meth:`patch` does not apply).
+
+        The seeds are substituted in chunks (:func:`engine.generate_chunks`, neighbouring
+        supertiles in nearby chunks), the halves of whole tiles are paired across chunks
+        (:func:`engine.assemble_chunks`) and every chunk is shaped, coloured and clipped as
+        :meth:`patch` does: the union of the patches is ``patch(region)``, tile for tile.
+        Empty chunks are not yielded. ``region=None``: the fixed depth's whole patch.
+        """
+        check_chunk_tiles(chunk_tiles)
+        reg = as_region(region) if region is not None else None
+        if reg is not None and self.depth is not None and self._is_frame(reg):
+            reg_clip, reg = reg, None  # the frame of the whole depth-N patch: all of it, clipped
+        else:
+            reg_clip = reg
+        protos, maps, d, box = self._plan(self._generation_region(reg))
+        chunks = engine.generate_chunks(self.system, d, maps, protos, box=box, chunk_tiles=chunk_tiles)
+        for proto, transform in engine.assemble_chunks(self.system, chunks):
+            patch = self._as_patch(proto, transform)
+            if reg_clip is not None:
+                patch = patch.clip(reg_clip)
+            if len(patch):
+                yield patch
 
     def _is_frame(self, reg: BaseGeometry) -> bool:
         """Whether ``reg`` is (or holds) the box of the whole depth-N patch, default_region()."""
@@ -488,6 +535,18 @@ class KeypointTiling(SubstitutionTiling):
             raise ParameterError("a region or a fixed depth is needed")
         refuse_over_memory("tiles", region_tile_estimate(reg, s.tiles), GENERATION_BYTES_PER_TILE,
                            hint="ask for a smaller region")
+        for depth, t0 in self._candidates(reg):
+            proto, transform, colour = s.generate(depth, t0, label, box=tuple(reg.bounds))
+            patch = Patch(s.tiles, proto, transform, colour=colour).clip(reg)
+            if len(patch) and _covers(patch, reg):
+                return patch
+        raise ParameterError(f"could not cover region {reg.bounds} by depth {depth}")
+
+    def _candidates(self, reg: BaseGeometry) -> Iterator[tuple[int, np.ndarray]]:
+        """(depth, seed map) of the supertiles tried for ``reg``: centred on it, from the
+        first level whose bounding disc is twice the region's, four levels."""
+        s = self.system
+        label = self._seed_index()
         x0, y0, x1, y1 = reg.bounds
         centre = np.array([(x0 + x1) / 2, (y0 + y1) / 2])
         need = math.hypot(x1 - x0, y1 - y0) / 2
@@ -498,12 +557,44 @@ class KeypointTiling(SubstitutionTiling):
             c = s.bounds(depth)[0][label]
             if depth % 2 == 1 and s.reflect:
                 c = np.array([-c[0], c[1]])
-            t0 = Affine.translation(*(centre - c))
-            proto, transform, colour = s.generate(depth, t0, label, box=tuple(reg.bounds))
-            patch = Patch(s.tiles, proto, transform, colour=colour).clip(reg)
-            if len(patch) and _covers(patch, reg):
-                return patch
-        raise ParameterError(f"could not cover region {reg.bounds} by depth {d + 3}")
+            yield depth, Affine.translation(*(centre - c))
+
+    streams = True
+
+    def iter_patches(self, region: Any = None, chunk_tiles: int = STREAM_CHUNK_TILES) -> Iterator[Patch]:
+        """``patch(region)`` as a stream of patches of at most about ``chunk_tiles`` tiles
+        (the system's ``generate_chunks``), clipped as :meth:`patch` clips; the union is
+        ``patch(region)``. Without a fixed depth the supertile must cover the region: each
+        candidate is first streamed once to sum the area it covers (tiles do not overlap, so
+        the chunks' covered areas add up), unless the region's estimate fits in one chunk,
+        when :meth:`patch` is used as it is."""
+        check_chunk_tiles(chunk_tiles)
+        reg = as_region(region) if region is not None else None
+        s = self.system
+        label = self._seed_index()
+        box = tuple(reg.bounds) if reg is not None else None
+
+        def chunks(depth: int, t0: np.ndarray | None) -> Iterator[Patch]:
+            for proto, transform, colour in s.generate_chunks(depth, t0, label, box=box, chunk_tiles=chunk_tiles):
+                patch = Patch(s.tiles, proto, transform, colour=colour)
+                patch = patch.clip(reg) if reg is not None else patch
+                if len(patch):
+                    yield patch
+
+        if self.depth is not None:
+            yield from chunks(self.depth, None)
+            return
+        if reg is None:
+            raise ParameterError("a region or a fixed depth is needed")
+        if region_tile_estimate(reg, s.tiles) <= chunk_tiles:
+            yield self.patch(reg)
+            return
+        for depth, t0 in self._candidates(reg):
+            covered = sum(p.covered_area(reg) for p in chunks(depth, t0))
+            if covered and _covered(covered, reg):
+                yield from chunks(depth, t0)
+                return
+        raise ParameterError(f"could not cover region {reg.bounds} by depth {depth}")
 
     def raw(self, region: Any = None) -> tuple[np.ndarray, np.ndarray]:
         p = self.patch(region)
@@ -561,22 +652,63 @@ class KeypointTiling(SubstitutionTiling):
 ORIENTATION_COLOURS = 8
 
 
-def _colours(proto: np.ndarray, transform: np.ndarray, prototiles: int) -> np.ndarray:
-    """Colour by prototile; a system of one prototile (chair, sphinx, pinwheel) by the tile's
-    orientation instead: its turn (the distinct angles, or 4 bins when there are more than
-    ORIENTATION_COLOURS, as for the pinwheel) and, doubling them, its handedness."""
-    if prototiles > 1 or not len(proto):
+def _turn_keys(linear: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(turn key, reflected?) of linear parts (..., 2, 2): the angle of the first column in
+    units of 1e-4 rad, taken modulo a full turn (so that -0 and 2 pi agree)."""
+    angle = np.mod(np.arctan2(linear[..., 1, 0], linear[..., 0, 0]), 2 * np.pi)
+    full = round(2 * np.pi * 1e4)
+    key = np.mod(np.round(angle * 1e4).astype(np.int64), full)
+    det = linear[..., 0, 0] * linear[..., 1, 1] - linear[..., 0, 1] * linear[..., 1, 0]
+    return key, det < 0
+
+
+_TURNS_CACHE: dict[int, Any] = {}
+
+
+def orientation_turns(system: Any) -> np.ndarray | None:
+    """The sorted turn keys (see _turn_keys) of the tiles a one-prototile system makes from
+    an unturned seed: the closure of its children's orientations; None when there are more
+    than ORIENTATION_COLOURS (the pinwheel's are dense). A property of the system, so every
+    patch and every chunk of a stream colours a tile alike."""
+    key = id(system)
+    if key not in _TURNS_CACHE:
+        units = np.concatenate([np.asarray(r.matrices, dtype=float)[:, :2, :2] for r in system.rules]) * system.scale
+        seen: dict[tuple[int, bool], np.ndarray] = {(0, False): np.eye(2)}
+        frontier = [np.eye(2)]
+        turns: np.ndarray | None = None
+        while frontier:
+            found = np.einsum("aij,bjk->abik", np.array(frontier), units).reshape(-1, 2, 2)
+            keys, flips = _turn_keys(found)
+            frontier = []
+            for k, f, m in zip(keys.tolist(), flips.tolist(), found):
+                if (k, f) not in seen:
+                    seen[(k, f)] = m
+                    frontier.append(m)
+            if len({k for k, _ in seen}) > ORIENTATION_COLOURS:
+                break
+        else:
+            turns = np.array(sorted({k for k, _ in seen}), dtype=np.int64)
+        _TURNS_CACHE[key] = turns
+    return _TURNS_CACHE[key]
+
+
+def _colours(proto: np.ndarray, transform: np.ndarray, turns: np.ndarray | None | bool = False) -> np.ndarray:
+    """Colour by prototile (``turns`` False); a system of one prototile (chair, sphinx,
+    pinwheel) by the tile's orientation instead: its turn among the system's ``turns``
+    (orientation_turns; None: 4 bins of 90 degrees, as for the pinwheel) and, doubling
+    them, its handedness. A tile's colour depends on it alone, never on the rest of the patch."""
+    if turns is False or not len(proto):
         return proto
-    det = transform[:, 0, 0] * transform[:, 1, 1] - transform[:, 0, 1] * transform[:, 1, 0]
+    key, flip = _turn_keys(transform[:, :2, :2])
+    if turns is not None:
+        index = np.searchsorted(turns, key)
+        index = np.minimum(index, len(turns) - 1)
+        if np.array_equal(turns[index], key):
+            return index.astype(np.int64) + len(turns) * flip
+    # dense orientations (or a turn the closure missed): 4 bins
     angle = np.mod(np.arctan2(transform[:, 1, 0], transform[:, 0, 0]), 2 * np.pi)
-    key = np.round(angle * 1e4).astype(np.int64)
-    turns, index = np.unique(key, return_inverse=True)
-    if len(turns) > ORIENTATION_COLOURS:
-        index = (angle // (np.pi / 2)).astype(np.int64) % 4
-        n = 4
-    else:
-        n = len(turns)
-    return index.astype(np.int64) + n * (det < 0)
+    index = (angle // (np.pi / 2)).astype(np.int64) % 4
+    return index + 4 * flip
 
 
 def _rounded(bounds: Sequence[float]) -> tuple[float, ...]:
@@ -643,7 +775,12 @@ def _star_vertex(outline: np.ndarray) -> tuple[np.ndarray, int] | None:
 
 def _covers(patch: Patch, region: BaseGeometry) -> bool:
     """Whether the (non-overlapping) tiles cover the region, up to 1e-7 of its area."""
-    return bool(region.area - patch.covered_area(region) <= 1e-7 * region.area)
+    return _covered(patch.covered_area(region), region)
+
+
+def _covered(area: float, region: BaseGeometry) -> bool:
+    """Whether tiles covering ``area`` of the region (without overlaps) cover all of it."""
+    return bool(region.area - area <= 1e-7 * region.area)
 
 
 def _shape_key(p: Prototile) -> tuple[int, ...]:
