@@ -66,6 +66,14 @@ def main() -> None:
             [py, "-c", cli, "list", "--where", "polygons=6"], full)
         commands[f"{label}TILEKIT_READ_PATH=full tilekit {' '.join(arch)}"] = ([py, "-c", cli, *arch], full)
     try:
+        # the two read paths give the same output, byte for byte, before their times count
+        for name, (cmd, env) in commands.items():
+            if name.startswith(("TILEKIT_READ_PATH=full", "base TILEKIT_READ_PATH=full")):
+                fast = name.replace("TILEKIT_READ_PATH=full ", "")
+                same = [subprocess.run(c, env=e, capture_output=True, check=True).stdout
+                        for c, e in (commands[fast], (cmd, env))]
+                if same[0] != same[1] or not same[0]:
+                    raise SystemExit(f"{name}: output differs from {fast}")
         times: dict[str, list[tuple[float, float]]] = {k: [] for k in commands}
         for cmd, env in commands.values():  # warm-up
             run(cmd, env)
