@@ -4,6 +4,7 @@ the exports' memory and speed.
     python benchmarks/bench_exports.py adjacency --tiles 1e5 --runs 3
     python benchmarks/bench_exports.py adjacency --tiles 1e6 --runs 1 --no-peer
     python benchmarks/bench_exports.py memory --tiles 1e5
+    python benchmarks/bench_exports.py cut --tiles 1e5 --runs 5
 
 ``adjacency``: :meth:`tilekit.Patch.adjacency` (welded vertices, edges split at the vertices
 inside them, pairs by packed integer keys) against :func:`shapely_adjacency`, what a Shapely 2
@@ -12,6 +13,11 @@ hides shared edges), an STRtree of the boxes, and one vectorised DE-9IM ``relate
 candidate pair (touching: interiors disjoint, boundaries meet; edge neighbours: the boundaries
 meet in a line). Both give edge and vertex pairs, checked equal every round. Figures are
 min and median CPU seconds (``time.process_time``) and wall seconds over the rounds.
+
+``cut``: the cut lines chained into paths (:func:`tilekit.export.cut_paths`, walks that use
+each segment once, from the odd-degree vertices first) against ``shapely.line_merge`` of the
+same segments (the library call: it merges lines through vertices of degree 2 only), both
+checked to draw every segment once: paths (the cutter's head lifts), min / median seconds.
 
 ``memory``: tracemalloc peaks per tile of the adjacency, the GeoJSON text, the cut SVG and the
 DXF drawing (the figures behind ADJACENCY_BYTES_PER_TILE and MAX_DXF_TILES in tilekit/limits.py).
@@ -142,6 +148,42 @@ def memory(cat, tiles: float) -> None:
     print(f"load: {os.getloadavg()}")
 
 
+def cut(cat, tiles: float, runs: int) -> None:
+    print(f"load: {os.getloadavg()}")
+    print("| patch | tiles | segments | tilekit paths | tilekit s (min / median) | line_merge paths | "
+          "line_merge s (min / median) | cut SVG bytes: segments -> paths |")
+    print("|---|---|---|---|---|---|---|---|")
+    for label, name in CASES:
+        patch = patch_with(cat, name, tiles)
+        (_, _, segs), = export.cut_segments(patch)
+        t_ours, t_peer = [], []
+        for _ in range(runs):
+            t = time.process_time()
+            (paths,) = export.cut_paths(patch)
+            t_ours.append(time.process_time() - t)
+            t = time.process_time()
+            merged = shapely.line_merge(shapely.MultiLineString(list(segs)))
+            t_peer.append(time.process_time() - t)
+        pieces = shapely.get_parts(merged)
+        drawn = sum(len(p) - 1 for p in np.split(paths.points, paths.starts[1:-1]))
+        peer_drawn = int(sum(shapely.get_num_coordinates(pieces) - 1))
+        if drawn != len(segs) or peer_drawn != len(segs) or paths.segments != len(segs):
+            raise SystemExit(f"{name}: {drawn} / {peer_drawn} segments drawn, not {len(segs)}")
+        before = sum(len(t) for t in _segment_svg(segs))
+        after = sum(len(t) for t in export.iter_cut_svg(patch))
+        print(f"| {label} | {len(patch):,} | {len(segs):,} | {len(paths):,} | {min(t_ours):.3f} / "
+              f"{statistics.median(t_ours):.3f} | {len(pieces):,} | {min(t_peer):.3f} / {statistics.median(t_peer):.3f} "
+              f"| {before:,} -> {after:,} |")
+    print(f"load: {os.getloadavg()}")
+
+
+def _segment_svg(segs: np.ndarray):
+    """The path data of one ``M a L b`` per segment (the cut SVG before the paths)."""
+    for s in range(0, len(segs), 4096):
+        flat = segs[s : s + 4096].reshape(-1, 4)
+        yield " ".join(["M%.10g %.10g L%.10g %.10g"] * len(flat)) % tuple(flat.reshape(-1).tolist())
+
+
 def _plot(patch) -> None:
     import matplotlib  # optional dependency (plot extra), only for this row
 
@@ -152,7 +194,7 @@ def _plot(patch) -> None:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("what", choices=["adjacency", "memory"])
+    ap.add_argument("what", choices=["adjacency", "memory", "cut"])
     ap.add_argument("--tiles", type=float, default=1e5)
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--no-peer", action="store_true", help="time tilekit alone (large patches)")
@@ -161,6 +203,8 @@ def main() -> None:
     cat = tilekit.open_catalogue(args.catalogue)
     if args.what == "adjacency":
         adjacency(cat, args.tiles, args.runs, peer=not args.no_peer)
+    elif args.what == "cut":
+        cut(cat, args.tiles, args.runs)
     else:
         memory(cat, args.tiles)
 

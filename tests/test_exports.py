@@ -15,6 +15,8 @@ import pytest
 import shapely
 import shapely.affinity
 from click.testing import CliRunner
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from tilekit import Affine, Patch, Prototile
 from tilekit.cli import cli
@@ -22,6 +24,7 @@ from tilekit.errors import ParameterError
 from tilekit.export import (
     MissingDependency,
     check_export_size,
+    cut_paths,
     cut_segments,
     iter_json,
     output_format,
@@ -218,12 +221,51 @@ def test_json_lists_each_tiles_neighbours(cat, tmp_path):
     assert np.allclose(sorted(map(tuple, tile["outline"])), sorted(map(tuple, patch.polygons()[3])))
 
 
+def svg_paths(d: str) -> list[np.ndarray]:
+    """The paths of SVG path data written as M x y (L x y)* [Z], each as its points (y up,
+    a closed path ending at its first point again)."""
+    out = []
+    for piece in re.findall(r"M[^M]*", d):
+        pts = np.array(re.findall(r"-?\d+(?:\.\d*)?(?:e[-+]?\d+)?", piece), dtype=float).reshape(-1, 2) * [1, -1]
+        out.append(np.vstack([pts, pts[:1]]) if piece.rstrip().endswith("Z") else pts)
+    return out
+
+
+def layers_in_svg(text: str) -> dict[str, list[np.ndarray]]:
+    return {m.group(1): svg_paths(m.group(2)) for m in re.finditer(r'<g id="([^"]+)"[^>]*>\s*<path d="([^"]*)"', text)}
+
+
 def segments_in_svg(text: str) -> dict[str, int]:
-    return {m.group(1): m.group(2).count("M") for m in re.finditer(r'<g id="([^"]+)"[^>]*>\s*<path d="([^"]*)"', text)}
+    """Elementary segments drawn per layer (a path of k points draws k - 1)."""
+    return {name: sum(len(p) - 1 for p in paths) for name, paths in layers_in_svg(text).items()}
+
+
+def segment_set(paths: list[np.ndarray], reference: np.ndarray) -> list[tuple[int, int]]:
+    """The unordered segments of paths (consecutive points) as sorted pairs of indices of
+    their nearest ``reference`` points (every point must lie within 1e-7 of one)."""
+    from scipy.spatial import cKDTree
+
+    tree = cKDTree(reference)
+    out = []
+    for p in paths:
+        dist, idx = tree.query(p)
+        assert dist.max(initial=0.0) < 1e-7
+        out += [tuple(sorted(ab)) for ab in zip(idx[:-1].tolist(), idx[1:].tolist(), strict=True)]
+    return sorted(out)
+
+
+def dxf_paths(path) -> dict[str, list[np.ndarray]]:
+    ezdxf = pytest.importorskip("ezdxf")
+    out: dict[str, list[np.ndarray]] = {}
+    for e in ezdxf.readfile(path).modelspace():
+        assert e.dxftype() == "LWPOLYLINE"
+        pts = np.array([(x, y) for x, y, *_ in e.get_points()])
+        out.setdefault(e.dxf.layer, []).append(np.vstack([pts, pts[:1]]) if e.closed else pts)
+    return out
 
 
 def test_cut_files_draw_each_shared_edge_once_edge_to_edge(cat, tmp_path):
-    ezdxf = pytest.importorskip("ezdxf")
+    pytest.importorskip("ezdxf")
     _, patch = patch_of(cat, "3.4.6.4")
     adj = patch.adjacency()
     total = sum(len(patch.prototiles[p].outline) for p in patch.prototile.tolist())
@@ -231,15 +273,11 @@ def test_cut_files_draw_each_shared_edge_once_edge_to_edge(cat, tmp_path):
     assert segments_in_svg(patch.to_cut_svg()) == {"cut": total - len(adj.edge)}
     path = tmp_path / "p.dxf"
     assert patch.to_dxf(path) == total - len(adj.edge)
-    lines = [e for e in ezdxf.readfile(path).modelspace() if e.dxftype() == "LINE"]
-    assert len(lines) == total - len(adj.edge)
+    assert sum(len(p) - 1 for p in dxf_paths(path)["cut"]) == total - len(adj.edge)
     # a layer per colour: that colour's tile edges, minus edges shared by two tiles of it
     got = segments_in_svg(patch.to_cut_svg(layers="colour"))
     patch.to_dxf(path, layers="colour")
-    per_layer = {}
-    for e in ezdxf.readfile(path).modelspace():
-        per_layer[e.dxf.layer] = per_layer.get(e.dxf.layer, 0) + 1
-    assert per_layer == got
+    assert {k: sum(len(p) - 1 for p in v) for k, v in dxf_paths(path).items()} == got
     same = patch.colour[adj.edge[:, 0]] == patch.colour[adj.edge[:, 1]]
     for c in np.unique(patch.colour).tolist():
         mine = patch.colour == c
@@ -266,10 +304,34 @@ def test_cut_lines_of_non_edge_to_edge_patches_cover_every_boundary_once(cat, na
     assert abs(length - (shapely.length(g).sum() - common.sum())) < 1e-5 * length
     svg = patch.to_cut_svg()
     assert segments_in_svg(svg) == {"cut": len(segs)}
-    d = re.search(r'<path d="([^"]*)"', svg).group(1)
-    drawn = np.array(re.findall(r"-?\d+(?:\.\d*)?(?:e[-+]?\d+)?", d), dtype=float).reshape(-1, 4)
-    assert np.allclose(drawn, np.column_stack([segs[:, 0, 0], -segs[:, 0, 1], segs[:, 1, 0], -segs[:, 1, 1]]),
-                       rtol=0, atol=1e-8)  # the SVG's y axis points down
+    # the paths draw exactly the elementary segments, each once (the SVG's y axis points down)
+    ends = np.unique(segs.reshape(-1, 2), axis=0)
+    assert segment_set(layers_in_svg(svg)["cut"], ends) == segment_set(list(segs), ends)
+
+
+@pytest.mark.parametrize("name", ["4^4", "3.4.6.4", "chair", "penrose-p3"])
+def test_cut_paths_chain_the_segments_into_the_fewest_open_paths(cat, name, tmp_path):
+    """A walk that uses every segment once and starts at a vertex of odd degree ends at
+    another: the cut lines become exactly (odd-degree vertices) / 2 open paths, then closed
+    ones (a graph with 2k odd vertices needs at least k paths; Euler)."""
+    _, patch = patch_of(cat, name)
+    (layer, _, segs), = cut_segments(patch)
+    (paths,) = cut_paths(patch)
+    assert paths.segments == len(segs) and len(paths) < len(segs) / 2
+    drawn = [paths.points[a:b] for a, b in zip(paths.starts[:-1], paths.starts[1:], strict=True)]
+    ends = np.unique(segs.reshape(-1, 2), axis=0)
+    assert segment_set(drawn, ends) == segment_set(list(segs), ends)
+    _, degree = np.unique(segs.reshape(-1, 2), axis=0, return_counts=True)  # welded: equal ends are equal
+    odd = int((degree % 2).sum())
+    open_paths = sum(not np.array_equal(p[0], p[-1]) for p in drawn)
+    assert open_paths == odd // 2
+    # the files draw the same paths
+    svg = layers_in_svg(patch.to_cut_svg())["cut"]
+    assert len(svg) == len(paths) and segment_set(svg, ends) == segment_set(drawn, ends)
+    pytest.importorskip("ezdxf")
+    patch.to_dxf(tmp_path / "p.dxf", mm_per_unit=1.0)
+    dxf = dxf_paths(tmp_path / "p.dxf")["cut"]
+    assert len(dxf) == len(paths) and segment_set(dxf, ends) == segment_set(drawn, ends)
 
 
 @pytest.mark.parametrize("name", ["hat", "3.4.6.4"])  # one outline length; three
@@ -394,3 +456,25 @@ def test_the_docs_notebook_runs_and_draws(cat):
     assert len(svgs) >= 2 and all("<svg" in s and "<path" in s for s in svgs)
     assert any("image/png" in o.get("data", {}) for o in outputs)  # the matplotlib figure
     assert any("MAX_REPR_TILES" in o.get("data", {}).get("text/plain", "") for o in outputs)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.tuples(st.integers(0, 11), st.integers(0, 11)).filter(lambda e: e[0] != e[1]), max_size=60))
+def test_trails_use_every_edge_once_with_the_fewest_open_walks(edges):
+    """Any multigraph: the walks step along its edges, use each exactly once, and the open
+    ones number half its odd-degree vertices (Euler: no fewer walks can cover the edges)."""
+    from tilekit.kernels import trails
+
+    u = np.array([a for a, _ in edges], dtype=np.int64)
+    v = np.array([b for _, b in edges], dtype=np.int64)
+    vertices, starts = trails(u, v, 12)
+    walked = []
+    open_walks = 0
+    for a, b in zip(starts[:-1].tolist(), starts[1:].tolist(), strict=True):
+        walk = vertices[a:b].tolist()
+        assert len(walk) >= 2
+        walked += [tuple(sorted(p)) for p in zip(walk[:-1], walk[1:], strict=True)]
+        open_walks += walk[0] != walk[-1]
+    assert sorted(walked) == sorted(tuple(sorted(e)) for e in edges)
+    degree = np.bincount(np.concatenate([u, v]), minlength=12)
+    assert open_walks == int((degree % 2).sum()) // 2

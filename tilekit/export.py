@@ -374,6 +374,24 @@ def adjacency(patch: Patch, tol: float | None = None) -> Adjacency:
 # --------------------------------------------------------------------------- cut lines
 
 
+def _cut_layers(patch: Patch, layers: str, edges: Edges | None) -> tuple[Edges, list[tuple[str, int | None, np.ndarray]]]:
+    """The patch's elementary segments and, per layer, the indices of the segments it cuts
+    (see :func:`cut_segments`)."""
+    if layers not in LAYERINGS:
+        raise ParameterError(f"layers {layers!r} is not one of {', '.join(LAYERINGS)}")
+    e = tile_edges(patch) if edges is None else edges
+    if layers == "one":
+        ks = e.key[e.order]
+        first = e.order[np.concatenate([[True], ks[1:] != ks[:-1]])] if len(ks) else e.order
+        return e, [("cut", None, first)]
+    col = patch.colour[e.tile]
+    o = np.lexsort((e.key, col))
+    k, c = e.key[o], col[o]
+    first = o[np.concatenate([[True], (k[1:] != k[:-1]) | (c[1:] != c[:-1])])]
+    return e, [(f"colour-{colour}", int(colour), first[col[first] == colour])
+               for colour in np.unique(col[first]).tolist()]
+
+
 def cut_segments(patch: Patch, layers: str = "one",
                  edges: Edges | None = None) -> list[tuple[str, int | None, np.ndarray]]:
     """The lines a cutter follows, each shared edge once: ``[(layer name, colour or None,
@@ -384,36 +402,75 @@ def cut_segments(patch: Patch, layers: str = "one",
     tiles, with edges shared by two tiles of the colour once (each colour's pieces can be cut
     from their own sheet; an edge between two colours is in both layers).
     """
-    if layers not in LAYERINGS:
-        raise ParameterError(f"layers {layers!r} is not one of {', '.join(LAYERINGS)}")
-    e = tile_edges(patch) if edges is None else edges
-    if layers == "one":
-        ks = e.key[e.order]
-        first = e.order[np.concatenate([[True], ks[1:] != ks[:-1]])] if len(ks) else e.order
-        return [("cut", None, np.stack([e.points[e.u[first]], e.points[e.v[first]]], axis=1))]
-    col = patch.colour[e.tile]
-    o = np.lexsort((e.key, col))
-    k, c = e.key[o], col[o]
-    first = o[np.concatenate([[True], (k[1:] != k[:-1]) | (c[1:] != c[:-1])])]
+    e, groups = _cut_layers(patch, layers, edges)
+    return [(name, colour, np.stack([e.points[e.u[sel]], e.points[e.v[sel]]], axis=1))
+            for name, colour, sel in groups]
+
+
+@dataclass(frozen=True)
+class CutPaths:
+    """One layer's cut lines chained into paths: path t runs through ``points[starts[t]:
+    starts[t + 1]]`` (a closed path ends where it starts); ``segments`` elementary segments
+    in all, each once, as :func:`cut_segments` gives them."""
+
+    name: str
+    colour: int | None
+    points: np.ndarray
+    starts: np.ndarray
+    segments: int
+
+    def __len__(self) -> int:
+        return len(self.starts) - 1
+
+
+def cut_paths(patch: Patch, layers: str = "one", edges: Edges | None = None) -> list[CutPaths]:
+    """:func:`cut_segments` chained into paths (``kernels.trails``: walks that use every
+    segment once, started at odd-degree vertices first), so that a cutter lifts its head
+    once per path rather than once per segment: a square grid's lines become a few long
+    paths, a trivalent tiling's about one per two vertices of odd degree."""
+    from tilekit import kernels  # start-up cost: numba, only when a cut file is written
+
+    e, groups = _cut_layers(patch, layers, edges)
     out = []
-    for colour in np.unique(col[first]).tolist():
-        sel = first[col[first] == colour]
-        out.append((f"colour-{colour}", int(colour), np.stack([e.points[e.u[sel]], e.points[e.v[sel]]], axis=1)))
+    for name, colour, sel in groups:
+        vertices, starts = kernels.trails(e.u[sel], e.v[sel], len(e.points))
+        out.append(CutPaths(name, colour, e.points[vertices], starts, len(sel)))
     return out
 
 
-def _segment_text(segs: np.ndarray) -> Iterator[str]:
-    for s in range(0, len(segs), _CHUNK * 4):
-        flat = segs[s : s + _CHUNK * 4].reshape(-1, 4)
-        flat = np.column_stack([flat[:, 0], -flat[:, 1], flat[:, 2], -flat[:, 3]])
-        yield " ".join(["M%.10g %.10g L%.10g %.10g"] * len(flat)) % tuple(flat.reshape(-1).tolist())
+def _path_text(paths: CutPaths) -> Iterator[str]:
+    """SVG path data of the paths, a chunk of points at a time: ``M`` at each path's start,
+    ``L`` to each next point, ``Z`` instead of a last point that closes the path."""
+    pts, starts = paths.points, paths.starts
+    n = len(pts)
+    if not n:
+        return
+    command = np.zeros(n, dtype=bool)
+    command[starts[:-1]] = True  # a move to each path's first point
+    ends = starts[1:] - 1
+    closed = (ends > starts[:-1]) & np.all(pts[ends] == pts[starts[:-1]], axis=1)
+    drop = np.zeros(n, dtype=bool)
+    drop[ends[closed]] = True
+    z_after = np.zeros(n, dtype=bool)
+    z_after[ends[closed] - 1] = True
+    keep = np.flatnonzero(~drop)
+    kind = command.astype(np.int64) + 2 * z_after
+    for s in range(0, len(keep), _CHUNK * 8):
+        idx = keep[s : s + _CHUNK * 8]
+        cells = _PATH_CELLS[kind[idx]].tolist()
+        xy = np.column_stack([pts[idx, 0], -pts[idx, 1]])
+        yield " ".join(cells) % tuple(xy.reshape(-1).tolist())
         yield "\n"
+
+
+#: A point of SVG path data: line to it, move to it, and either followed by closing the path.
+_PATH_CELLS = np.array(["L%.10g %.10g", "M%.10g %.10g", "L%.10g %.10g Z", "M%.10g %.10g Z"], dtype=object)
 
 
 def iter_cut_svg(patch: Patch, layers: str = "one", mm_per_unit: float = 10.0,
                  stroke: str = "#ff0000", palette: Sequence[str] | None = None) -> Iterator[str]:
-    """A layered SVG of the patch's edges, each shared edge once (:func:`cut_segments`), as
-    text chunks. Sizes are in millimetres (``mm_per_unit`` per tiling unit); each layer is a
+    """A layered SVG of the patch's edges, each shared edge once, chained into paths
+    (:func:`cut_paths`), as text chunks. Sizes are in millimetres (``mm_per_unit`` per tiling unit); each layer is a
     ``<g>`` that Inkscape reads as a layer; with ``layers='colour'`` layer c is stroked in
     ``palette[c % len]`` (default CUT_PALETTE), otherwise in ``stroke``."""
     if not (mm_per_unit > 0 and np.isfinite(mm_per_unit)):
@@ -421,7 +478,7 @@ def iter_cut_svg(patch: Patch, layers: str = "one", mm_per_unit: float = 10.0,
     if not is_colour(stroke):
         raise ParameterError(f"stroke colour {stroke[:40]!r} is not a CSS colour name or #rgb / #rrggbb")
     pal = tuple(palette) if palette else CUT_PALETTE
-    groups = cut_segments(patch, layers)
+    groups = cut_paths(patch, layers)
     x0, y0, x1, y1 = patch.bounds() if len(patch) else (0.0, 0.0, 1.0, 1.0)
     w, h = x1 - x0, y1 - y0
     yield ('<?xml version="1.0" encoding="UTF-8"?>\n<svg xmlns="http://www.w3.org/2000/svg" '
@@ -429,18 +486,21 @@ def iter_cut_svg(patch: Patch, layers: str = "one", mm_per_unit: float = 10.0,
            f'width="{w * mm_per_unit:.6g}mm" height="{h * mm_per_unit:.6g}mm" '
            f'viewBox="{x0:.10g} {-y1:.10g} {w:.10g} {h:.10g}">\n')
     sw = 0.1 / mm_per_unit  # a 0.1 mm hairline
-    for name, colour, segs in groups:
+    for paths in groups:
+        name, colour = paths.name, paths.colour
         ink = pal[colour % len(pal)] if colour is not None else stroke
         yield (f'<g id="{name}" inkscape:groupmode="layer" inkscape:label="{name}" fill="none" '
-               f'stroke="{html.escape(ink)}" stroke-width="{sw:.4g}" data-segments="{len(segs)}">\n<path d="')
-        yield from _segment_text(segs)
+               f'stroke="{html.escape(ink)}" stroke-width="{sw:.4g}" data-segments="{paths.segments}" '
+               f'data-paths="{len(paths)}">\n<path d="')
+        yield from _path_text(paths)
         yield '"/>\n</g>\n'
     yield "</svg>\n"
 
 
 def write_dxf(patch: Patch, path: str | Path, layers: str = "one", mm_per_unit: float = 10.0) -> int:
-    """Write the patch's edges (each shared edge once, :func:`cut_segments`) as LINE entities
-    of a DXF file in millimetres, one DXF layer per layer; returns the number of lines. ezdxf
+    """Write the patch's edges (each shared edge once, chained into paths: :func:`cut_paths`)
+    as LWPOLYLINE entities of a DXF file in millimetres, one DXF layer per layer; returns the
+    number of elementary segments they draw. ezdxf
     (the ``dxf`` extra) holds the whole drawing in memory, so the patch is refused over
     MAX_DXF_TILES."""
     refuse_over("tiles", len(patch), MAX_DXF_TILES, hint="a DXF drawing is built in memory (MAX_DXF_TILES)")
@@ -450,12 +510,15 @@ def write_dxf(patch: Patch, path: str | Path, layers: str = "one", mm_per_unit: 
     doc = ezdxf.new("R2010", units=4)  # 4 = millimetres
     msp = doc.modelspace()
     count = 0
-    for i, (name, _colour, segs) in enumerate(cut_segments(patch, layers)):
-        doc.layers.add(name, color=1 + i % 255)
-        attribs = {"layer": name}
-        for (ax, ay), (bx, by) in (segs * mm_per_unit).tolist():  # ezdxf adds one entity per call
-            msp.add_line((ax, ay), (bx, by), dxfattribs=attribs)
-        count += len(segs)
+    for i, paths in enumerate(cut_paths(patch, layers)):
+        doc.layers.add(paths.name, color=1 + i % 255)
+        attribs = {"layer": paths.name}
+        pts = (paths.points * mm_per_unit).tolist()
+        for a, b in zip(paths.starts[:-1].tolist(), paths.starts[1:].tolist(), strict=True):
+            closed = b - a > 2 and pts[a] == pts[b - 1]
+            # ezdxf adds one entity per call: a path, not a segment
+            msp.add_lwpolyline(pts[a : b - 1] if closed else pts[a:b], close=closed, dxfattribs=attribs)
+        count += paths.segments
     try:
         doc.saveas(str(path))
     except OSError as exc:

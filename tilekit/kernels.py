@@ -44,3 +44,66 @@ def tile_bounds(prototile: np.ndarray, transform: np.ndarray, outlines: list[np.
     _bounds(np.ascontiguousarray(prototile, dtype=np.int64), np.ascontiguousarray(transform, dtype=np.float64),
             corners, counts, out)
     return out
+
+
+@njit(cache=True, nogil=True)
+def _trails(u, v, n, vertices, starts):  # pragma: no cover - compiled
+    m = u.shape[0]
+    degree = np.zeros(n + 1, dtype=np.int64)
+    for e in range(m):
+        degree[u[e] + 1] += 1
+        degree[v[e] + 1] += 1
+    first = np.cumsum(degree)  # first[x]: where vertex x's incident edges start
+    cursor = first[:-1].copy()
+    incident = np.empty(2 * m, dtype=np.int64)
+    fill = first[:-1].copy()
+    for e in range(m):
+        incident[fill[u[e]]] = e
+        fill[u[e]] += 1
+        incident[fill[v[e]]] = e
+        fill[v[e]] += 1
+    used = np.zeros(m, dtype=np.bool_)
+    left = degree[1:].copy()  # unused edges at each vertex
+    nv = 0
+    nt = 0
+    # first from the vertices with an odd number of unused edges: a walk from one ends at
+    # another, and the two become even; then every count left is even and the rest are
+    # closed walks
+    for sweep in range(2):
+        for s in range(n):
+            while left[s] > 0 and (sweep == 1 or left[s] % 2 == 1):
+                while used[incident[cursor[s]]]:
+                    cursor[s] += 1
+                starts[nt] = nv
+                nt += 1
+                vertices[nv] = s
+                nv += 1
+                x = s
+                while True:
+                    while cursor[x] < first[x + 1] and used[incident[cursor[x]]]:
+                        cursor[x] += 1
+                    if cursor[x] == first[x + 1]:
+                        break
+                    e = incident[cursor[x]]
+                    used[e] = True
+                    left[u[e]] -= 1
+                    left[v[e]] -= 1
+                    x = v[e] if u[e] == x else u[e]
+                    vertices[nv] = x
+                    nv += 1
+    starts[nt] = nv
+    return nv, nt
+
+
+def trails(u: np.ndarray, v: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """The edges (u[e], v[e]) of a graph on vertices 0..n-1 as walks that use each edge once:
+    ``(vertices, starts)``, walk t visiting ``vertices[starts[t]:starts[t + 1]]``. Walks start
+    at odd-degree vertices first, so a connected graph with 2k odd vertices gives k open walks
+    and then closed ones; a cutter's head lifts once per walk instead of once per edge."""
+    u = np.ascontiguousarray(u, dtype=np.int64)
+    v = np.ascontiguousarray(v, dtype=np.int64)
+    m = len(u)
+    vertices = np.empty(2 * m + 1, dtype=np.int64)
+    starts = np.empty(m + 1, dtype=np.int64)
+    nv, nt = _trails(u, v, int(n), vertices, starts)
+    return vertices[:nv], starts[: nt + 1]
