@@ -785,11 +785,12 @@ def tiling_mimebundle(tiling: Tiling, region: Any = None) -> dict[str, str]:
 STREAM_FORMATS = (".geojson", ".svg")
 
 #: File bytes per tile of each text format: (fixed, per outline vertex), from the sizes
-#: measured on Penrose P3 rhombs (4 vertices: 325 / 64 / 289 / 103 bytes a tile as .geojson
-#: / .svg / .json / .cut.svg), the hat (13: 473 / 165 / 426 / 248) and the spectre (14:
-#: 651 / 221 / 588 / 369), rounded up with room for a small file's header (docs/benchmarks.md).
+#: measured on Penrose P3 rhombs (4 vertices: 325 / 64 / 289 / 64 bytes a tile as .geojson
+#: / .svg / .json / .cut.svg), the hat (13: 473 / 165 / 426 / 135) and the spectre (14:
+#: 651 / 221 / 588 / 216), rounded up with room for a small file's header (docs/benchmarks.md;
+#: the cut SVG's since its lines are chained into paths).
 FILE_BYTES_PER_TILE: dict[str, tuple[int, int]] = {
-    ".geojson": (190, 36), ".svg": (40, 16), ".json": (160, 34), ".cut.svg": (30, 28),
+    ".geojson": (190, 36), ".svg": (40, 16), ".json": (160, 34), ".cut.svg": (20, 17),
 }
 
 

@@ -11,6 +11,7 @@ region.
 from __future__ import annotations
 
 import math
+import weakref
 from collections.abc import Iterator, Mapping, Sequence
 from functools import partial
 from typing import Any
@@ -662,7 +663,8 @@ def _turn_keys(linear: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return key, det < 0
 
 
-_TURNS_CACHE: dict[int, Any] = {}
+#: id(system) -> (a weak reference to the system, its turns): a dead system's id may be reused
+_TURNS_CACHE: dict[int, tuple[Any, np.ndarray | None]] = {}
 
 
 def orientation_turns(system: Any) -> np.ndarray | None:
@@ -671,25 +673,27 @@ def orientation_turns(system: Any) -> np.ndarray | None:
     than ORIENTATION_COLOURS (the pinwheel's are dense). A property of the system, so every
     patch and every chunk of a stream colours a tile alike."""
     key = id(system)
-    if key not in _TURNS_CACHE:
-        units = np.concatenate([np.asarray(r.matrices, dtype=float)[:, :2, :2] for r in system.rules]) * system.scale
-        seen: dict[tuple[int, bool], np.ndarray] = {(0, False): np.eye(2)}
-        frontier = [np.eye(2)]
-        turns: np.ndarray | None = None
-        while frontier:
-            found = np.einsum("aij,bjk->abik", np.array(frontier), units).reshape(-1, 2, 2)
-            keys, flips = _turn_keys(found)
-            frontier = []
-            for k, f, m in zip(keys.tolist(), flips.tolist(), found):
-                if (k, f) not in seen:
-                    seen[(k, f)] = m
-                    frontier.append(m)
-            if len({k for k, _ in seen}) > ORIENTATION_COLOURS:
-                break
-        else:
-            turns = np.array(sorted({k for k, _ in seen}), dtype=np.int64)
-        _TURNS_CACHE[key] = turns
-    return _TURNS_CACHE[key]
+    cached = _TURNS_CACHE.get(key)
+    if cached is not None and cached[0]() is system:
+        return cached[1]
+    units = np.concatenate([np.asarray(r.matrices, dtype=float)[:, :2, :2] for r in system.rules]) * system.scale
+    seen: dict[tuple[int, bool], np.ndarray] = {(0, False): np.eye(2)}
+    frontier = [np.eye(2)]
+    turns: np.ndarray | None = None
+    while frontier:
+        found = np.einsum("aij,bjk->abik", np.array(frontier), units).reshape(-1, 2, 2)
+        keys, flips = _turn_keys(found)
+        frontier = []
+        for k, f, m in zip(keys.tolist(), flips.tolist(), found):
+            if (k, f) not in seen:
+                seen[(k, f)] = m
+                frontier.append(m)
+        if len({k for k, _ in seen}) > ORIENTATION_COLOURS:
+            break
+    else:
+        turns = np.array(sorted({k for k, _ in seen}), dtype=np.int64)
+    _TURNS_CACHE[key] = (weakref.ref(system), turns)
+    return turns
 
 
 def _colours(proto: np.ndarray, transform: np.ndarray, turns: np.ndarray | None | bool = False) -> np.ndarray:
