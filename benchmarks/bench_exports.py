@@ -158,12 +158,10 @@ def cut(cat, tiles: float, runs: int) -> None:
         (_, _, segs), = export.cut_segments(patch)
         t_ours, t_peer = [], []
         for _ in range(runs):
-            t = time.process_time()
-            (paths,) = export.cut_paths(patch)
-            t_ours.append(time.process_time() - t)
-            t = time.process_time()
-            merged = shapely.line_merge(shapely.MultiLineString(list(segs)))
-            t_peer.append(time.process_time() - t)
+            (paths,), cpu, _ = timed(export.cut_paths, patch)
+            t_ours.append(cpu)
+            merged, cpu, _ = timed(lambda s=segs: shapely.line_merge(shapely.MultiLineString(list(s))))
+            t_peer.append(cpu)
         pieces = shapely.get_parts(merged)
         drawn = sum(len(p) - 1 for p in np.split(paths.points, paths.starts[1:-1]))
         peer_drawn = int(sum(shapely.get_num_coordinates(pieces) - 1))

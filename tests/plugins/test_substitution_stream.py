@@ -296,6 +296,18 @@ def test_bad_chunk_sizes_are_one_line_errors(bad) -> None:
         next(square_grid().iter_patches(chunk_tiles=bad))
 
 
+@pytest.mark.parametrize("name", ["spectre", "penrose-p3"])
+def test_a_stream_that_would_not_fit_is_refused_before_it_starts(name) -> None:
+    """A stream holds one chunk and the supertiles the chunks are cut from: a chunk as large
+    as a patch far beyond memory, or chunks so small that the supertiles are nearly every
+    tile, are refused (LimitError, one line) before anything is generated."""
+    t = tiling(name).configure(depth=12 if name == "spectre" else 40)
+    for chunk in (10**15, 1):
+        with pytest.raises(limits.LimitError, match="tiles held at once by the stream") as info:
+            next(t.iter_patches(chunk_tiles=chunk))
+        assert "\n" not in str(info.value)
+
+
 def test_overlapping_systems_refuse_to_stream_in_one_line() -> None:
     over = copy.deepcopy(MINIMAL)
     over["kind"] = "overlapping"

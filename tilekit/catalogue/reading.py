@@ -24,8 +24,9 @@ import os
 import sqlite3
 import sys
 import types
+from abc import ABC, abstractmethod
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
-from contextlib import contextmanager
+from contextlib import AbstractContextManager, contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -149,7 +150,7 @@ def load_entries(run: Run, rows: Sequence[Sequence[Any]]) -> list[Entry]:
     return [entries[r[0]] for r in rows]
 
 
-class TilingReader:
+class TilingReader(ABC):
     """The read queries over the ``tilings`` tables. A subclass provides :meth:`_reading`
     (a connection's ``run`` function inside a context that turns driver errors into one-line
     CatalogueErrors) and ``pm``; :meth:`family_table` says which families a plugin's result
@@ -157,10 +158,10 @@ class TilingReader:
 
     pm: pluggy.PluginManager
 
-    @contextmanager
-    def _reading(self, action: str) -> Iterator[Run]:  # pragma: no cover - abstract
-        raise NotImplementedError
-        yield
+    @abstractmethod
+    def _reading(self, action: str) -> AbstractContextManager[Run]:
+        """A context holding a connection's ``run``; driver errors inside it become one-line
+        CatalogueErrors naming ``action``."""
 
     def family_table(self, family: str | None) -> Any:
         """The result table that holds ``family``'s entries, if it has one."""

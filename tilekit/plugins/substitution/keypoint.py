@@ -11,6 +11,7 @@ same array engine as for similarity systems, with per-level rule matrices.
 from __future__ import annotations
 
 import math
+from abc import abstractmethod
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -100,9 +101,10 @@ class MonotileSystem(MatrixFacts):
     def rep_tile(self) -> None:
         return None
 
+    @abstractmethod
     def generation(self, depth: int, seed_transform: np.ndarray | None, seed_label: int | None,
                    box: tuple[float, float, float, float] | None) -> Generation:
-        raise TypeError(f"{type(self).__name__} must define generation()")
+        """How this system substitutes a level-``depth`` seed (see :class:`Generation`)."""
 
     def generate(
         self,

@@ -3,6 +3,7 @@ substitution-matrix facts (matrix, Perron-Frobenius data, exact label counts).""
 
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
 from dataclasses import dataclass
 
 import numpy as np
@@ -16,7 +17,7 @@ class Rule:
     matrices: np.ndarray
 
 
-class MatrixFacts:
+class MatrixFacts(ABC):
     """Substitution-matrix facts shared by every kind of system (similarity, keypoint, hat).
 
     A system provides ``n`` (number of labels), ``seed`` and ``child_labels()`` (per label,
@@ -26,9 +27,9 @@ class MatrixFacts:
     n: int
     seed: int
 
+    @abstractmethod
     def child_labels(self) -> list[np.ndarray]:
         """Per label j, the labels of the children in j's rule."""
-        raise TypeError(f"{type(self).__name__} must define child_labels()")
 
     def substitution_matrix(self) -> np.ndarray:
         """M[i, j] = number of label-i children in the rule of label j."""

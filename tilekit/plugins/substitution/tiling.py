@@ -311,7 +311,7 @@ class SubstitutionTiling(Tiling):
         :meth:`patch` does: the union of the patches is ``patch(region)``, tile for tile.
         Empty chunks are not yielded. ``region=None``: the fixed depth's whole patch.
         """
-        check_chunk_tiles(chunk_tiles)
+        self._check_stream(region, chunk_tiles)
         reg = as_region(region) if region is not None else None
         if reg is not None and self.depth is not None and self._is_frame(reg):
             reg_clip, reg = reg, None  # the frame of the whole depth-N patch: all of it, clipped
@@ -325,6 +325,17 @@ class SubstitutionTiling(Tiling):
                 patch = patch.clip(reg_clip)
             if len(patch):
                 yield patch
+
+    def _check_stream(self, region: Any, chunk_tiles: int) -> None:
+        """ParameterError for a chunk size that is not a positive whole number; LimitError
+        before streaming when what a stream holds at once would not fit in memory: a chunk (at
+        most the patch) and the supertiles the chunks are cut from, about (patch tiles) x
+        (growth per level) / ``chunk_tiles`` of them, at GENERATION_BYTES_PER_TILE each."""
+        chunk_tiles = check_chunk_tiles(chunk_tiles)
+        total = self.estimate_tiles(region)
+        held = min(total, chunk_tiles) + total * self.system.perron_frobenius()[0] / chunk_tiles
+        refuse_over_memory("tiles held at once by the stream", held, GENERATION_BYTES_PER_TILE,
+                           hint=f"give a chunk size nearer {STREAM_CHUNK_TILES:,} tiles")
 
     def _is_frame(self, reg: BaseGeometry) -> bool:
         """Whether ``reg`` is (or holds) the box of the whole depth-N patch, default_region()."""
@@ -569,7 +580,7 @@ class KeypointTiling(SubstitutionTiling):
         candidate is first streamed once to sum the area it covers (tiles do not overlap, so
         the chunks' covered areas add up), unless the region's estimate fits in one chunk,
         when :meth:`patch` is used as it is."""
-        check_chunk_tiles(chunk_tiles)
+        self._check_stream(region, chunk_tiles)
         reg = as_region(region) if region is not None else None
         s = self.system
         label = self._seed_index()
