@@ -7,7 +7,8 @@ numba's import (a small patch keeps the NumPy path and its start-up).
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+
+from tilekit.jit import njit
 
 
 @njit(cache=True, nogil=True)

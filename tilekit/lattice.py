@@ -27,15 +27,8 @@ from functools import cache, cached_property
 import numpy as np
 
 from tilekit.errors import GeometryError, NotFoundError, ParameterError, ParseError
+from tilekit.jit import njit
 from tilekit.tiling import Prototile
-
-try:  # numba is a hard dependency; the guard keeps import errors readable
-    from numba import njit
-except ImportError:  # pragma: no cover
-    def njit(*args, **kwargs):  # type: ignore[no-redef]
-        if args and callable(args[0]):
-            return args[0]
-        return lambda f: f
 
 
 @dataclass(frozen=True, eq=False)

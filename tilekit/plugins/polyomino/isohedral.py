@@ -26,15 +26,10 @@ from functools import lru_cache
 
 import numpy as np
 
+from tilekit.jit import njit
 from tilekit.lattice import SQUARE, Grid, _edge_tables, _trace, boundary_word, outline
 from tilekit.resources import catalogue_dir
 from tilekit.tiling import PeriodicTiling
-
-try:
-    from numba import njit
-except ImportError:  # pragma: no cover
-    def njit(*a, **k):  # type: ignore[no-redef]
-        return a[0] if a and callable(a[0]) else (lambda f: f)
 
 # kinds of factor pairing
 T, C, Q, G = 0, 1, 2, 3

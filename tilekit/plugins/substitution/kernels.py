@@ -11,7 +11,8 @@ Maps are affine (last row 0, 0, 1); integer maps (the hat's lattice maps) stay e
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+
+from tilekit.jit import njit
 
 
 @njit(cache=True, nogil=True)

@@ -7,7 +7,7 @@ grid depends only on the seed.
 
 from __future__ import annotations
 
-from numba import njit
+from tilekit.jit import njit
 
 
 @njit(cache=True, nogil=True)
