@@ -1,0 +1,120 @@
+"""Every fenced example in README.md and docs/ runs (issue 26): see tests/docrunner.py for the rules.
+
+Blocks run in document order and share their document's folder, catalogue and namespace; a fast
+block never depends on a slow one, so ``-m 'not slow'`` runs a consistent subset.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+
+import pytest
+
+from docrunner import (
+    DOCS,
+    ROOT,
+    RUN_LANGUAGES,
+    Block,
+    DocState,
+    all_blocks,
+    benchmark_invocations,
+    blocks,
+    check_benchmark_arguments,
+    console_commands,
+    run_block,
+)
+
+BLOCKS = [b for b in all_blocks() if b.lang in RUN_LANGUAGES]
+_STATES: dict[str, DocState] = {}
+
+
+def _marks(block: Block) -> list:
+    if block.tag in ("slow", "server"):
+        return [pytest.mark.slow]
+    if block.tag == "benchmark" and os.environ.get("TILEKIT_DOC_BENCHMARKS") == "1":
+        return [pytest.mark.slow]
+    return []
+
+
+def _state(block: Block, factory: pytest.TempPathFactory) -> DocState:
+    key = block.doc.relative_to(ROOT).as_posix()
+    if key not in _STATES:
+        _STATES[key] = DocState.create(block.doc, factory.mktemp(key.replace("/", "-").replace(".md", "")))
+    return _STATES[key]
+
+
+@pytest.mark.parametrize("block", [pytest.param(b, id=b.id, marks=_marks(b)) for b in BLOCKS])
+def test_documented_example_runs(block: Block, tmp_path_factory) -> None:
+    if block.tag == "ci":
+        # README's set-up commands: .ci/run takes them from README by these markers and runs them.
+        ci = (ROOT / ".ci" / "run").read_text()
+        assert "setup-command" in ci and "test-command" in ci
+        return
+    if block.tag == "benchmark" and os.environ.get("TILEKIT_DOC_BENCHMARKS") != "1":
+        invocations = benchmark_invocations(block)
+        for argv in invocations:
+            check_benchmark_arguments(argv)
+        if not invocations:  # a benchmark block of other code: run it as written
+            run_block(block, _state(block, tmp_path_factory))
+        return
+    run_block(block, _state(block, tmp_path_factory))
+
+
+def test_every_markdown_file_with_examples_is_read() -> None:
+    assert ROOT / "README.md" in DOCS
+    assert sum(1 for d in DOCS for b in blocks(d) if b.lang in RUN_LANGUAGES) == len(BLOCKS) > 40
+
+
+def test_every_example_language_is_run_or_data() -> None:
+    """A block in an unknown language would silently never run: name it or make it data."""
+    data = {"toml", "ini", "text", "json", "csv", "svg", "xml"}
+    unknown = {(b.id, b.lang) for b in all_blocks() if b.lang not in RUN_LANGUAGES | data}
+    assert unknown == set()
+
+
+def test_console_blocks_start_with_a_command() -> None:
+    for b in BLOCKS:
+        if b.lang == "console":
+            assert console_commands(b.text), b.id
+
+
+def test_readme_has_exactly_two_setup_commands_that_ci_runs_in_order() -> None:
+    tags = [b.tag for b in blocks(ROOT / "README.md") if b.tag == "ci"]
+    assert len(tags) == 2
+    text = (ROOT / "README.md").read_text()
+    assert text.index("<!-- setup-command -->") < text.index("<!-- test-command -->")
+    ci = (ROOT / ".ci" / "run").read_text()
+    assert ci.index("$setup") < ci.index("$tests")
+
+
+def test_the_runner_fails_a_wrong_documented_value(tmp_path) -> None:
+    bad = Block(ROOT / "README.md", 1, "python", "x = 2 + 2\nx  # -> 5", "fast")
+    with pytest.raises(AssertionError, match="says 5"):
+        run_block(bad, DocState.create(ROOT / "README.md", tmp_path))
+
+
+def test_the_runner_fails_a_command_whose_output_drifted(tmp_path) -> None:
+    state = DocState.create(ROOT / "README.md", tmp_path)
+    run_block(Block(ROOT / "README.md", 1, "console", "$ echo 'made 12 tiles'\nmade ... tiles", "fast"), state)
+    with pytest.raises(AssertionError, match="where the docs say"):
+        run_block(Block(ROOT / "README.md", 2, "console", "$ echo 'made 12 tiles'\nmade 13 tiles", "fast"), state)
+    with pytest.raises(AssertionError, match="status 2"):
+        run_block(Block(ROOT / "README.md", 3, "console", "$ echo fine\nerror: ...", "fast"), state)
+
+
+def test_the_runner_runs_bash_blocks_with_errexit(tmp_path) -> None:
+    state = DocState.create(ROOT / "README.md", tmp_path)
+    with pytest.raises(AssertionError, match="exited 1"):
+        run_block(Block(ROOT / "README.md", 1, "bash", "false\necho after", "fast"), state)
+    # a shell word like heesch>=2 unquoted makes a file named '=2': the example must quote it
+    run_block(Block(ROOT / "README.md", 2, "bash", "echo a>=2", "fast"), state)
+    assert (tmp_path / "=2").exists()
+
+
+def test_pip_in_examples_installs_into_the_documents_own_folder(tmp_path) -> None:
+    state = DocState.create(ROOT / "README.md", tmp_path)
+    env = state.env()
+    done = subprocess.run(["python", "-c", "import os; print(os.environ['PIP_TARGET'])"], env=env,
+                          capture_output=True, text=True, check=True)
+    assert done.stdout.strip() == str(tmp_path / "site")
