@@ -19,7 +19,7 @@ import click
 import pluggy
 
 from tilekit import limits
-from tilekit.cli_types import COUNT, INT64_MAX, POSITIVE, RUN_ID, BoundedInt, FiniteFloat
+from tilekit.cli_types import COUNT, INT64_MAX, OUTPUT, POSITIVE, RUN_ID, BoundedInt, FiniteFloat
 from tilekit.errors import NotFoundError, ParameterError, ParseError, TilekitError
 
 __all__ = ["cli", "main", "plugin_manager"]
@@ -502,7 +502,7 @@ def _vectors(tiling: Any, region: tuple[float, float, float, float]) -> tuple[An
 
 @cli.command()
 @click.argument("name", required=False)
-@click.option("-o", "--output", "out", required=True, type=click.Path(dir_okay=False),
+@click.option("-o", "--output", "out", required=True, type=OUTPUT,
               help="Output file: .svg or .png (a picture), .geojson, .json (tiles and neighbours), "
                    ".cut.svg or .dxf (edges for cutters, shared edges once); see docs/exports.md.")
 @click.option("--param", "params", multiple=True, metavar="X[,X...]", help="Tiling parameters (repeatable, or comma-separated).")
@@ -1021,7 +1021,7 @@ def catalogue_upgrade(state: State) -> None:
 @catalogue_group.command(name="export")
 @click.option("--format", "fmt", type=click.Choice(["json", "jsonl", "csv"]), default="json", show_default=True,
               help="A JSON array, JSON Lines (one object a line) or CSV; all streamed.")
-@click.option("-o", "--output", "out", type=click.Path(dir_okay=False), help="Output file (default: stdout).")
+@click.option("-o", "--output", "out", type=OUTPUT, help="Output file (default: stdout).")
 @click.option("--family", help="Only tilings of this family.")
 @click.option("--where", "where", multiple=True, metavar="EXPR", help="Filter, as for tilekit list.")
 @pass_state
@@ -1072,10 +1072,10 @@ _MAX_SAMPLES = 20_000_000
               "or an expression in x, y over the unit square, e.g. 'x*y' or 'exp(-9*((x-.5)**2+(y-.5)**2))'.")
 @click.option("--method", default="penrose", show_default=True, help="Sampler: penrose, polyomino or wang (plugins may add more).")
 @click.option("-n", "count", type=BoundedInt(1, _MAX_SAMPLES), required=True, help=f"Number of samples (1..{_MAX_SAMPLES:,}).")
-@click.option("-o", "--output", "out", type=click.Path(dir_okay=False), required=True,
+@click.option("-o", "--output", "out", type=OUTPUT, required=True,
               help="Points as .csv (x,y) or .npy, or a stipple picture as .svg / .png.")
-@click.option("--svg", "svg_out", type=click.Path(dir_okay=False), help="Also draw the stipple picture as SVG.")
-@click.option("--png", "png_out", type=click.Path(dir_okay=False), help="Also draw the stipple picture as PNG.")
+@click.option("--svg", "svg_out", type=OUTPUT, help="Also draw the stipple picture as SVG.")
+@click.option("--png", "png_out", type=OUTPUT, help="Also draw the stipple picture as PNG.")
 @click.option("--seed", type=BoundedInt(0, 2**32 - 1), default=0, show_default=True, help="Placement of the tiling.")
 @click.option("--relax", type=BoundedInt(0, 50), default=0, show_default=True, help="Lloyd iterations after sampling.")
 @click.option("--no-correction", is_flag=True, help="Leave out the sampler's correction step (penrose's table).")

@@ -66,6 +66,14 @@ STREAM_CHUNK_TILES = 1 << 20
 #: Fraction of the available memory one patch may take.
 MEMORY_FRACTION = 0.8
 
+# ---- users' files (issue 27): tilekit.files reads only regular files, bounded in size
+#: Bytes of one data file a user gives (a TOML system or texture, a .wang set, a JSON spec,
+#: a PNG density): the largest shipped file is under 100 kB, a 40,000-tile .wang set 0.6 MB.
+MAX_FILE_BYTES = 16 << 20
+#: Depth of nested lists and tables in a JSON or TOML document (tilekit.schema.parse_json /
+#: parse_toml): the deepest shipped data nests 5 levels; Python's parsers recurse per level.
+MAX_NESTING = 32
+
 
 class LimitError(TilekitError, ValueError):
     """An object would exceed a size limit; the message names estimate, limit and option."""

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 import click
 
 from tilekit import limits
-from tilekit.cli_types import POSITIVE, BoundedInt, FiniteFloat
+from tilekit.cli_types import OUTPUT, POSITIVE, BoundedInt, FiniteFloat
 from tilekit.errors import ParseError
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -68,7 +68,7 @@ def wang_group() -> None:
 
 @wang_group.command(name="render")
 @click.argument("set_name", metavar="SET")
-@click.option("-o", "--output", "out", required=True, type=click.Path(dir_okay=False), help="Output .svg or .png.")
+@click.option("-o", "--output", "out", required=True, type=OUTPUT, help="Output .svg or .png.")
 @click.option("--rows", type=POSITIVE, default=12, show_default=True)
 @click.option("--cols", type=POSITIVE, default=16, show_default=True)
 @click.option("--seed", type=BoundedInt(0), default=0, show_default=True)
@@ -107,7 +107,7 @@ def render_command(set_name: str, out: str, rows: int, cols: int, seed: int, met
 @click.option("--method", type=click.Choice(SOLVE_CHOICES), default="sat", show_default=True)
 @click.option("--fix", "fixes", multiple=True, metavar="ROW,COL=TILE", help="Fix a tile (index or name); repeatable.")
 @click.option("--time-limit", type=FiniteFloat(1e7, min=0.0), help="Seconds before giving up.")
-@click.option("-o", "--output", "out", type=click.Path(dir_okay=False), help="Also draw the tiling found (.svg/.png).")
+@click.option("-o", "--output", "out", type=OUTPUT, help="Also draw the tiling found (.svg/.png).")
 @click.option("--max-tiles", type=POSITIVE, default=limits.MAX_SOLVE_CELLS, show_default=True,
               help="Refuse grids of more than N cells.")
 @click.option("--max-variables", type=POSITIVE, default=limits.MAX_SAT_VARIABLES, show_default=True,

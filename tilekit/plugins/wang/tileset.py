@@ -34,6 +34,7 @@ from typing import Any
 import numpy as np
 
 from tilekit.errors import NotFoundError, ParseError
+from tilekit.files import read_text
 
 #: Side indices into a tile's (N, E, S, W) row.
 N, E, S, W = 0, 1, 2, 3
@@ -455,15 +456,9 @@ def _header_value(key: str, value: str, fail: Any) -> Any:
 
 
 def load_tileset(path: str | Path) -> WangTileSet:
-    """Read a ``.wang`` file (errors name the file and line)."""
-    p = Path(path)
-    try:
-        text = p.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise ParseError(f"{p}: cannot read the tile set file ({exc.strerror or exc})") from None
-    except UnicodeDecodeError as exc:
-        raise ParseError(f"{p}: not UTF-8 text (byte {exc.start}); save the tile set as UTF-8") from None
-    return parse_tileset(text, filename=str(p))
+    """Read a ``.wang`` file (errors name the file and line): a regular file of at most
+    ``limits.MAX_FILE_BYTES``, read through :func:`tilekit.files.read_text`."""
+    return parse_tileset(read_text(path, "tile set file"), filename=str(path))
 
 
 # ---------------------------------------------------------------------- the built-in sets
