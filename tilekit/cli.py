@@ -954,7 +954,7 @@ def runs(state: State, words: tuple[str, ...], fmt: str) -> None:
 def _run_words(words: tuple[str, ...]) -> tuple[str, int | None]:
     """``()``, ``(N,)``, ``(ACTION, N)`` -> (action, run id); one-line errors otherwise."""
     def number(text: str) -> int:
-        if not text.isdigit() or len(text) > 18:
+        if not (text.isascii() and text.isdigit()) or len(text) > 18:
             raise ParameterError(f"run id {text!r} is not a run number (see tilekit runs)")
         return int(text)
 
@@ -1140,9 +1140,48 @@ def serve(state: State, host: str, port: int, writable: bool, max_tiles: int) ->
     except ImportError as exc:
         raise TilekitError(f"tilekit serve needs the web extra ({exc.name} is missing): pip install 'tilekit[web]'") from None
     state.catalogue()  # open (and migrate) before binding: a bad catalogue is one line, exit 2
+    sock = _listening_socket(host, port)  # a bad --host or a taken port: one line, exit 2
     app = create_app(state.url, writable=writable, max_tiles=max_tiles, catalogue=state.catalogue())
-    click.echo(f"serving {state.catalogue().url} on http://{host}:{port}/ ({'writable' if writable else 'read-only'})", err=True)
-    uvicorn.run(app, host=host, port=port, log_level="warning")
+    bound = sock.getsockname()[1]
+    shown = f"[{host}]" if ":" in host else host
+    click.echo(f"serving {state.catalogue().url} on http://{shown}:{bound}/ ({'writable' if writable else 'read-only'})", err=True)
+    uvicorn.Server(uvicorn.Config(app, log_level="warning")).run(sockets=[sock])
+
+
+def _listening_socket(host: str, port: int) -> Any:
+    """A TCP socket bound to ``host``:``port`` and listening, or a ParameterError naming
+    the host or port and why (not an address, not this machine's, in use): uvicorn would
+    otherwise log its own line and exit 3, or raise UnicodeError on a non-ASCII name."""
+    import ipaddress
+    import re
+    import socket
+
+    what = f"--host {host[:60]!r}"
+    try:
+        ipaddress.ip_address(host)
+    except ValueError:
+        if re.fullmatch(r"[0-9.]+", host):
+            raise ParameterError(f"{what} is not an IPv4 address (four numbers 0..255, e.g. 127.0.0.1)") from None
+        try:
+            host.encode("idna")
+        except UnicodeError:
+            raise ParameterError(f"{what} is not a valid host name; give an IP address such as 127.0.0.1 "
+                                 "or a name of letters, digits, '-' and '.'") from None
+    try:
+        family, kind, proto, _, address = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM,
+                                                             flags=socket.AI_PASSIVE)[0]
+    except (OSError, UnicodeError, ValueError) as exc:
+        raise ParameterError(f"{what} cannot be resolved to an address of this machine "
+                             f"({getattr(exc, 'strerror', None) or exc})") from None
+    sock = socket.socket(family, kind, proto)
+    try:
+        sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        sock.bind(address)
+        sock.listen(2048)
+    except OSError as exc:
+        sock.close()
+        raise ParameterError(f"cannot serve on {host}:{port}: {exc.strerror or exc}") from None
+    return sock
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -42,8 +42,8 @@ class BoundedInt(click.ParamType):
             number = value
         else:
             text = str(value).strip().replace("_", "")
-            digits = text.lstrip("+-")
-            if not digits.isdigit() or not digits.isascii():
+            digits = text[1:] if text[:1] in ("+", "-") else text  # one sign at most
+            if not digits.isascii() or not digits.isdigit():
                 self.fail(f"{str(value)[:40]!r} is not a valid integer ({self._range()})", param, ctx)
             if len(digits) > 19:
                 self.fail(f"{text[:20]}... ({len(digits)} digits) is out of range {self._range()}", param, ctx)

@@ -366,7 +366,11 @@ def _dask_client(workers: int | None, scheduler: str | None) -> Any:
         ) from None
     address = scheduler or os.environ.get("TILEKIT_DASK_SCHEDULER")
     if address:
-        return Client(address), None
+        _reach_scheduler(address)
+        try:
+            return Client(address, timeout=SCHEDULER_CONNECT_SECONDS), None
+        except (OSError, ValueError, TypeError) as exc:  # TimeoutError is an OSError
+            raise _NoExecutor(f"cannot use the dask scheduler {address[:80]!r}: {_one_line(exc)}") from None
     # the cluster's processes inherit "ignore Ctrl-C", so an interrupt reaches only us
     previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if _main_thread() else None
     try:
@@ -376,6 +380,43 @@ def _dask_client(workers: int | None, scheduler: str | None) -> Any:
         if previous is not None:
             signal.signal(signal.SIGINT, previous)
     return Client(cluster), cluster
+
+
+#: Seconds to wait for a dask scheduler to answer (distributed's own default is 30).
+SCHEDULER_CONNECT_SECONDS = 10.0
+
+
+class _NoExecutor(SearchError):
+    """The executor could not start (an unreachable or malformed scheduler address): a run
+    this call created is removed again rather than left queued."""
+
+
+def _one_line(exc: BaseException) -> str:
+    return " ".join(str(exc).split())[:200] or type(exc).__name__
+
+
+def _reach_scheduler(address: str) -> None:
+    """A scheduler address that is not an address, or a TCP one nobody listens on, is one
+    line at once (distributed raises a ValueError for the first, and retries the second
+    until its connect timeout)."""
+    try:
+        from distributed.comm import parse_address
+        from distributed.comm.addressing import parse_host_port
+
+        scheme, location = parse_address(address)
+        if scheme not in ("tcp", "tls"):
+            return
+        host, port = parse_host_port(location)
+    except (ValueError, TypeError) as exc:
+        raise _NoExecutor(f"--scheduler {address[:80]!r} is not a scheduler address "
+                          f"(e.g. tcp://10.0.0.5:8786): {_one_line(exc)}") from None
+    import socket
+
+    try:
+        socket.create_connection((host, int(port)), timeout=SCHEDULER_CONNECT_SECONDS).close()
+    except (OSError, ValueError, UnicodeError) as exc:
+        raise _NoExecutor(f"cannot reach the dask scheduler at {address[:80]!r}: "
+                          f"{getattr(exc, 'strerror', None) or _one_line(exc)}") from None
 
 
 def _main_thread() -> bool:
@@ -436,6 +477,9 @@ def _check_executor(executor: str, workers: int | None, scheduler: str | None) -
             import dask.distributed  # noqa: F401
         except ImportError:
             _dask_client(workers, scheduler)
+        address = scheduler or os.environ.get("TILEKIT_DASK_SCHEDULER")
+        if address:  # nor when its scheduler cannot be reached
+            _reach_scheduler(address)
 
 
 def run_search(
@@ -466,6 +510,7 @@ def run_search(
     """
     pm = pm or catalogue._pm or get_plugin_manager()
     _check_executor(executor, workers, scheduler)
+    created: int | None = None
 
     if resume_run is not None:
         info = catalogue.run(resume_run)
@@ -504,6 +549,7 @@ def run_search(
             raise
         except Exception as exc:
             raise SearchError(f"search {search.name!r} could not split its work: {exc}") from exc
+        created = run_id
         if on_run:
             on_run(run_id)
 
@@ -524,6 +570,12 @@ def run_search(
             _close_session(catalogue, session)
             with contextlib.suppress(TilekitError):
                 catalogue.finish_run(run_id, "interrupted", error="interrupted")
+            raise
+        except _NoExecutor:
+            _close_session(catalogue, session)
+            if created is not None and catalogue.run(created).chunks_done == 0:
+                with contextlib.suppress(TilekitError):
+                    catalogue.delete_run(created)  # nothing was done: leave no queued run behind
             raise
         except _ChunkFailed as exc:
             raise SearchError(
