@@ -31,9 +31,15 @@ MAX_TILES = 2_000_000
 MAX_GRID_CELLS = 1_000_000
 #: Cells of one ``wang solve`` question (``--max-tiles``).
 MAX_SOLVE_CELLS = 1_000_000
-#: Boolean variables of one SAT encoding, cells x tiles (``wang solve --max-variables``);
-#: a variable with its clauses costs about 200 bytes.
+#: Boolean variables of one SAT encoding (``wang solve --max-variables``); what a question
+#: costs in memory is SAT_BYTES_PER_VARIABLE and SAT_BYTES_PER_CLAUSE, checked as well.
 MAX_SAT_VARIABLES = 5_000_000
+#: Peak bytes of one SAT question (clause blocks, python-sat's CaDiCaL 1.9.5, the model) per
+#: variable and per clause, fitted to 7 Wang encodings of 0.1-0.9 M variables and 0.5-2.1 M
+#: clauses (each within 0.83-1.21x; docs/benchmarks.md "Limits, measured";
+#: tests/test_limits_measured.py keeps them within 2x of what a solve takes).
+SAT_BYTES_PER_VARIABLE = 70
+SAT_BYTES_PER_CLAUSE = 230
 #: Colours of one periodic colouring (``--set colouring=``).
 MAX_COLOURS = 1_000
 #: Pixels of one PNG image (width x height).
@@ -65,6 +71,16 @@ ADJACENCY_BYTES_PER_TILE = 3_000
 STREAM_CHUNK_TILES = 1 << 20
 #: Fraction of the available memory one patch may take.
 MEMORY_FRACTION = 0.8
+
+#: Seconds one solver or builder call runs when its caller gives no budget of its own
+#: (``wang solve --time-limit``, ``wang render --time-limit``, PatchBuilder.build's
+#: max_seconds); it ends with a one-line SolverLimit naming the option that raises it.
+DEFAULT_SOLVER_SECONDS = 60.0
+#: The largest time budget an option accepts (seconds; a finite number, about 115 days).
+MAX_SOLVER_SECONDS = 1e7
+
+#: Tiles of one Wang tile set (a .wang file or a spec): the solvers' sizes grow with it.
+MAX_WANG_TILES = 10_000
 
 # ---- users' files (issue 27): tilekit.files reads only regular files, bounded in size
 #: Bytes of one data file a user gives (a TOML system or texture, a .wang set, a JSON spec,
@@ -121,19 +137,67 @@ def check_coordinates(bounds: tuple[float, float, float, float], what: str = "re
         )
 
 
+def sat_bytes(variables: float, clauses: float) -> float:
+    """Peak bytes of a SAT question of this size (SAT_BYTES_PER_VARIABLE, SAT_BYTES_PER_CLAUSE)."""
+    return SAT_BYTES_PER_VARIABLE * variables + SAT_BYTES_PER_CLAUSE * clauses
+
+
 def available_memory() -> float:
-    """Bytes of memory available to a new allocation (MemAvailable of /proc/meminfo, else
-    the free physical pages; inf when the system says neither)."""
+    """Bytes of memory available to a new allocation: MemAvailable of /proc/meminfo (else the
+    free physical pages), and no more than what this process's address-space limit
+    (RLIMIT_AS, e.g. ``ulimit -v``) or its cgroup's memory.max leaves; inf when nothing says."""
+    avail = math.inf
     try:
         with open("/proc/meminfo", encoding="ascii") as fh:
             for line in fh:
                 if line.startswith("MemAvailable:"):
+                    avail = float(line.split()[1]) * 1024
+                    break
+    except OSError:
+        pass
+    if math.isinf(avail):
+        try:
+            avail = float(os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE"))
+        except (ValueError, OSError, AttributeError):
+            pass
+    return min(avail, _address_space_left(), _cgroup_left())
+
+
+def _status_bytes(key: str) -> float | None:
+    try:
+        with open("/proc/self/status", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith(key):
                     return float(line.split()[1]) * 1024
     except OSError:
         pass
+    return None
+
+
+def _address_space_left() -> float:
+    """RLIMIT_AS minus the address space in use (VmSize), or inf without a limit."""
     try:
-        return float(os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE"))
-    except (ValueError, OSError, AttributeError):
+        import resource
+
+        soft, _ = resource.getrlimit(resource.RLIMIT_AS)
+    except (ImportError, OSError, ValueError):
+        return math.inf
+    if soft == resource.RLIM_INFINITY:
+        return math.inf
+    used = _status_bytes("VmSize:")
+    return max(0.0, soft - (used or 0.0))
+
+
+def _cgroup_left() -> float:
+    """The cgroup v2 memory.max minus memory.current, or inf without one."""
+    try:
+        with open("/sys/fs/cgroup/memory.max", encoding="ascii") as fh:
+            text = fh.read().strip()
+        if text == "max":
+            return math.inf
+        with open("/sys/fs/cgroup/memory.current", encoding="ascii") as fh:
+            return max(0.0, float(text) - float(fh.read().strip()))
+    except (OSError, ValueError):
         return math.inf
 
 

@@ -55,7 +55,7 @@ def finite_number(value: Any, what: str) -> float:
         raise ParseError(f"{what} {value!r} is not a finite number")
     return x
 
-__all__ = ["MISSING", "Field", "check", "check_nesting", "finite_number", "parse_json", "parse_toml"]
+__all__ = ["MISSING", "Field", "check", "check_nesting", "finite_number", "parse_json", "parse_toml", "shown"]
 
 
 def check_nesting(value: Any, where: str, max_depth: int = MAX_NESTING) -> Any:
@@ -181,7 +181,7 @@ def _fail(schema: Field, where: str, path: str, value: Any, n: int, problem: str
     if template:
         shown = value
         if isinstance(value, int) and value.bit_length() > 200:
-            shown = _short(value)
+            shown = shown(value)
         elif isinstance(value, str) and len(value) > 60:
             shown = value[:57] + "..."
         msg = template.format(path=path, value=shown, n=n)
@@ -190,7 +190,9 @@ def _fail(schema: Field, where: str, path: str, value: Any, n: int, problem: str
     return ParseError(f"{where}: {msg}")
 
 
-def _short(value: Any) -> str:
+def shown(value: Any) -> str:
+    """``value`` for an error message: its repr cut to 60 characters; an integer of more than
+    200 bits by its number of digits (Python refuses to print one of over 4,300)."""
     if isinstance(value, int) and value.bit_length() > 200:
         return f"an integer of about {int(value.bit_length() * math.log10(2)) + 1} digits"
     try:
@@ -207,17 +209,17 @@ def _check(schema: Field, value: Any, where: str, path: str, n: int) -> Any:
         return schema.default
     kind = schema.kind
     if not isinstance(value, _TYPES[kind]) or (isinstance(value, bool) and kind not in ("bool", "any")):
-        raise _fail(schema, where, path, value, n, f"must be {_NAMES[kind]}, got {_short(value)}")
+        raise _fail(schema, where, path, value, n, f"must be {_NAMES[kind]}, got {shown(value)}")
     if kind in ("int", "number", "expr") and isinstance(value, int | float) and not isinstance(value, bool):
         _check_number(schema, value, where, path, n)
     if schema.choices is not None and value not in schema.choices:
         raise _fail(schema, where, path, value, n,
-                    f"{_short(value)} is not one of {', '.join(map(str, schema.choices))}")
+                    f"{shown(value)} is not one of {', '.join(map(str, schema.choices))}")
     if schema.range is not None and kind in ("int", "number"):
         lo, hi = schema.range
         if (lo is not None and value < lo) or (hi is not None and value > hi):
             span = f"{'' if lo is None else lo}..{'' if hi is None else hi}"
-            raise _fail(schema, where, path, value, n, f"{_short(value)} is outside {span}")
+            raise _fail(schema, where, path, value, n, f"{shown(value)} is outside {span}")
     if kind == "list":
         return _check_list(schema, value, where, path, n)
     if kind == "table":
@@ -232,9 +234,9 @@ def _check_number(schema: Field, value: int | float, where: str, path: str, n: i
     except OverflowError:  # an int too large for a float
         finite = False
     if not finite:
-        raise _fail(schema, where, path, value, n, f"must be a finite number, got {_short(value)}")
+        raise _fail(schema, where, path, value, n, f"must be a finite number, got {shown(value)}")
     if isinstance(value, int) and abs(value) > INT_LIMIT and schema.range is None:
-        raise _fail(schema, where, path, value, n, f"{_short(value)} is outside -{INT_LIMIT}..{INT_LIMIT}")
+        raise _fail(schema, where, path, value, n, f"{shown(value)} is outside -{INT_LIMIT}..{INT_LIMIT}")
 
 
 def _check_list(schema: Field, value: Any, where: str, path: str, n: int) -> list[Any]:
@@ -242,7 +244,7 @@ def _check_list(schema: Field, value: Any, where: str, path: str, n: int) -> lis
         lo, hi = schema.length
         if len(value) < lo or (hi is not None and len(value) > hi):
             size = f"exactly {lo}" if lo == hi else (f"at least {lo}" if hi is None else f"{lo} to {hi}")
-            raise _fail(schema, where, path, value, n, f"must be a list of {size} items, got {_short(value)}")
+            raise _fail(schema, where, path, value, n, f"must be a list of {size} items, got {shown(value)}")
     if schema.items is None:
         return list(value)
     return [_check(schema.items, item, where, f"{path}[{i + 1}]", i + 1) for i, item in enumerate(value)]

@@ -34,7 +34,15 @@ import pluggy
 
 from tilekit import __version__
 from tilekit.catalogue.entry import SHARED_COLUMNS, TEXT_COLUMNS, Entry, restore_value
-from tilekit.catalogue.filters import Filter, Params, condition, like_contains, parse_filter, parse_order, quote
+from tilekit.catalogue.filters import (
+    Filter,
+    Params,
+    condition,
+    like_contains,
+    parse_filter,
+    parse_order,
+    quote,
+)
 from tilekit.catalogue.urls import resolve_url
 from tilekit.errors import CatalogueError, NotFoundError, ParameterError
 from tilekit.plugins import families, get_plugin_manager, migration_locations

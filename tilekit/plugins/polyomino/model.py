@@ -8,13 +8,14 @@
 from __future__ import annotations
 
 import json
+from collections.abc import Mapping
 from functools import cached_property
 from typing import Any
 
 import numpy as np
 import shapely
 
-from tilekit.errors import GeometryError, NotFoundError, ParameterError
+from tilekit.errors import GeometryError, NotFoundError, ParameterError, ParseError
 from tilekit.lattice import (
     SQUARE,
     as_cells,
@@ -30,6 +31,7 @@ from tilekit.lattice import (
 )
 from tilekit.plugins.polyomino.classify import MAX_INTERACTIVE, classify, corona_patch, torus_tiling
 from tilekit.plugins.polyomino.isohedral import analyse, periodic_tiling
+from tilekit.schema import Field, check, parse_json, shown
 from tilekit.tiling import Patch, PeriodicTiling, Tiling
 
 FAMILY = "polyomino"
@@ -434,16 +436,30 @@ def tiling_of(poly: Polyomino, index: int = 0) -> Tiling:
     return PolyominoTiling(poly, index) if poly.is_isohedral() else PolyominoShape(poly)
 
 
+#: A polyomino tiling's spec: the polyomino by ``code`` or usual ``name``, the 0-based index
+#: of its isohedral ``tiling``, or the ``witness`` (JSON text or value) and ``view`` of one
+#: that tiles only anisohedrally or not at all.
+SPEC = Field("table", fields={
+    "code": Field("str"), "name": Field("str"), "tiling": Field("int", range=(0, 1 << 20)),
+    "witness": Field("any"), "view": Field("str"),
+})
+
+
 def from_spec(spec) -> Tiling:
+    if not isinstance(spec, Mapping):
+        raise ParseError(f'a polyomino spec is a JSON object like {{"name": "pentomino-F"}}, not {shown(spec)}')
+    spec = check(SPEC, {k: v for k, v in spec.items() if v is not None}, "polyomino spec")
+    if not spec.get("code") and not spec.get("name"):
+        raise ParseError("a polyomino spec needs a 'code' or a 'name'")
     poly = Polyomino.parse(spec.get("code") or spec.get("name"))
     if spec.get("name") and not poly.name:
         poly.name = spec["name"]
     if not poly.is_isohedral():
         witness = spec.get("witness")
         if isinstance(witness, str):
-            witness = json.loads(witness)
+            witness = parse_json(witness, "polyomino spec witness")
         return witness_tiling(poly, witness, spec.get("view"))
-    return PolyominoTiling(poly, int(spec.get("tiling", 0) or 0))
+    return PolyominoTiling(poly, spec.get("tiling", 0))
 
 
 def polyomino(spec) -> Polyomino:
