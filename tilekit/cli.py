@@ -551,6 +551,7 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
         check_disk_space,
         check_export_size,
         export_fits_in_memory,
+        outline_vertices,
         output_format,
         write_patch,
     )
@@ -614,11 +615,13 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
     estimate = tiling.estimate_tiles(as_region(box) if box is not None else None)
     check_export_size(estimate, fmt, max_tiles, memory=False)
     area = as_region(box) if box is not None else tiling.default_region()
-    if not export_fits_in_memory(estimate, fmt):
+    vertices = outline_vertices(tiling.prototiles)
+    if not export_fits_in_memory(estimate, fmt, vertices):
         if not (tiling.streams and fmt in STREAM_FORMATS and not labels):
-            check_export_size(estimate, fmt, max_tiles)  # the one-line refusal: this cannot stream
+            check_export_size(estimate, fmt, max_tiles, vertices=vertices)  # the one-line refusal: this cannot stream
         check_disk_space(out, estimate, fmt, tiling.prototiles)
-        _render_stream(tiling, area, out, fmt, estimate, palette, stroke, stroke_width, width, height, vectors)
+        _render_stream(tiling, area, out, fmt, estimate, palette, stroke, stroke_width, width, height, vectors,
+                       vertices)
         return
     check_disk_space(out, estimate, fmt, tiling.prototiles)
     if estimate > PROGRESS_TILES and on_terminal():
@@ -650,13 +653,14 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
 
 
 def _render_stream(tiling: Any, area: Any, out: str, fmt: str, estimate: float, palette: Any, stroke: str,
-                   stroke_width: float | None, width: int | None, height: int | None, vectors: bool) -> None:
+                   stroke_width: float | None, width: int | None, height: int | None, vectors: bool,
+                   vertices: int = 4) -> None:
     """Write a patch larger than memory chunk by chunk (``Tiling.iter_patches``, chunks as
     large as half the memory the export may take allows): GeoJSON features or SVG paths,
     a progress bar on a terminal."""
     from tilekit.export import stream_chunk_tiles, write_patches
 
-    chunk = stream_chunk_tiles(fmt)
+    chunk = stream_chunk_tiles(fmt, vertices)
     options: dict[str, Any] = {}
     if fmt == ".svg":
         options = {"palette": palette, "stroke": stroke, "region": area, "width": width, "height": height}

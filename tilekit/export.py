@@ -29,6 +29,7 @@ from tilekit.errors import ParameterError, TilekitError
 from tilekit.geometry import POINT_TOL, Affine, snap_noise
 from tilekit.limits import (
     ADJACENCY_BYTES_PER_TILE,
+    EXPORT_BYTES_PER_VERTEX,
     GENERATION_BYTES_PER_TILE,
     MAX_DXF_TILES,
     MAX_REPR_TILES,
@@ -794,33 +795,45 @@ FILE_BYTES_PER_TILE: dict[str, tuple[int, int]] = {
 }
 
 
-def _memory_per_tile(fmt: str) -> int:
-    """Peak bytes per tile of generating a patch and writing it as ``fmt``."""
-    return GENERATION_BYTES_PER_TILE + {".svg": RENDER_BYTES_PER_TILE, ".png": RENDER_BYTES_PER_TILE,
-                                        ".geojson": GENERATION_BYTES_PER_TILE}.get(fmt, ADJACENCY_BYTES_PER_TILE)
+def memory_per_tile(fmt: str, vertices: int = 4) -> int:
+    """Peak bytes per tile of generating a patch and writing it as ``fmt``, for tiles of
+    ``vertices`` outline vertices: the patch's arrays (GENERATION_BYTES_PER_TILE) and the
+    larger of the format's cost per tile and per vertex (limits.EXPORT_BYTES_PER_VERTEX: a
+    tile with shaped edges costs its vertices; docs/benchmarks.md "Limits, measured")."""
+    fixed = {".svg": RENDER_BYTES_PER_TILE, ".png": RENDER_BYTES_PER_TILE,
+             ".geojson": GENERATION_BYTES_PER_TILE}.get(fmt, ADJACENCY_BYTES_PER_TILE)
+    per_vertex = EXPORT_BYTES_PER_VERTEX.get(fmt, EXPORT_BYTES_PER_VERTEX[".json"])
+    return GENERATION_BYTES_PER_TILE + max(fixed, per_vertex * vertices)
 
 
-def check_export_size(estimate: float, fmt: str, max_tiles: float = MAX_TILES, memory: bool = True) -> None:
+def outline_vertices(prototiles: Sequence[Any]) -> int:
+    """The most outline vertices of any of these prototiles (what a tile costs to draw)."""
+    return max((len(p.outline) for p in prototiles), default=4)
+
+
+def check_export_size(estimate: float, fmt: str, max_tiles: float = MAX_TILES, memory: bool = True,
+                      vertices: int = 4) -> None:
     """Refuse an export of about ``estimate`` tiles before anything is made: over
     ``max_tiles`` (``--max-tiles``), over MAX_DXF_TILES for DXF, or (``memory``) when the
-    patch and the export's arrays would not fit in memory."""
+    patch and the export's arrays, for tiles of ``vertices`` vertices, would not fit in memory."""
     refuse_over("tiles", estimate, max_tiles, "--max-tiles")
     if fmt == ".dxf":
         refuse_over("tiles", estimate, MAX_DXF_TILES,
                     hint=f"a DXF drawing is built in memory, at most MAX_DXF_TILES = {MAX_DXF_TILES:,} tiles")
     if memory:
-        refuse_over_memory("tiles", estimate, _memory_per_tile(fmt), hint="ask for a smaller depth or region")
+        refuse_over_memory("tiles", estimate, memory_per_tile(fmt, vertices),
+                           hint=f"tiles of {vertices} vertices; ask for a smaller depth or region")
 
 
-def export_fits_in_memory(estimate: float, fmt: str) -> bool:
+def export_fits_in_memory(estimate: float, fmt: str, vertices: int = 4) -> bool:
     """Whether :func:`check_export_size` lets the whole patch be made in memory."""
-    return fits_in_memory(estimate, _memory_per_tile(fmt))
+    return fits_in_memory(estimate, memory_per_tile(fmt, vertices))
 
 
-def stream_chunk_tiles(fmt: str) -> int:
+def stream_chunk_tiles(fmt: str, vertices: int = 4) -> int:
     """Tiles per chunk of a streamed export: STREAM_CHUNK_TILES, or what half the memory
     :func:`check_export_size` allows holds, when less."""
-    fit = MEMORY_FRACTION * limits.available_memory() / (2 * _memory_per_tile(fmt))
+    fit = MEMORY_FRACTION * limits.available_memory() / (2 * memory_per_tile(fmt, vertices))
     return int(max(1, min(STREAM_CHUNK_TILES, fit)))
 
 

@@ -54,6 +54,17 @@ GENERATION_BYTES_PER_TILE = 200
 #: Peak bytes per tile while a patch is drawn as SVG (measured about 405 for Penrose
 #: rhombs: the polygons, the path text and the document), with a margin.
 RENDER_BYTES_PER_TILE = 500
+#: Peak bytes per outline vertex of a tile written as each format (SVG text and its polygons,
+#: GeoJSON coordinates, JSON / cut SVG / DXF edges): a tile with shaped edges of hundreds of
+#: vertices costs them, not RENDER_BYTES_PER_TILE. Measured on IH16 with 6, 106 and 406
+#: vertices a tile (100-121 / 140-200 / 245 bytes a vertex; docs/benchmarks.md "Limits,
+#: measured"), rounded up.
+EXPORT_BYTES_PER_VERTEX = {".svg": 125, ".png": 125, ".geojson": 220, ".json": 250, ".cut.svg": 250, ".dxf": 250}
+#: Points of one edge shape (``--edge``, after a Bézier is flattened): checking a tile for
+#: self-overlap (Patch.validate of its neighbourhood) costs about 900 bytes and 4 us per
+#: squared outline vertex (IH16 measured at 106-1,606 vertices), so 100 points an edge keep a
+#: six-edge tile near 600 vertices, 0.3 GB and a second or two.
+MAX_EDGE_POINTS = 100
 #: Tiles a notebook draws inline (``_repr_svg_`` of a Patch, Tiling or catalogue entry);
 #: over it a short line of text is shown instead of a giant SVG.
 MAX_REPR_TILES = 5_000
@@ -78,6 +89,12 @@ MEMORY_FRACTION = 0.8
 DEFAULT_SOLVER_SECONDS = 60.0
 #: The largest time budget an option accepts (seconds; a finite number, about 115 days).
 MAX_SOLVER_SECONDS = 1e7
+
+#: Peak bytes per tile the patch builder places (tilekit.builder: vertex stars, the frontier,
+#: the grid index; measured on Wang rectangles of 1,600-6,400 cells, 5.8-6.5 kB) and per tile
+#: of a torus (each tile's lattice images are placed too: 42.6-43.3 kB on 900-3,600 cells).
+BUILDER_BYTES_PER_TILE = 6_500
+BUILDER_BYTES_PER_TORUS_TILE = 45_000
 
 #: Tiles of one Wang tile set (a .wang file or a spec): the solvers' sizes grow with it.
 MAX_WANG_TILES = 10_000

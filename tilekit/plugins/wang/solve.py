@@ -30,7 +30,12 @@ import numpy as np
 
 from tilekit.builder import PatchBuilder
 from tilekit.errors import ParameterError, SolverLimit
-from tilekit.limits import DEFAULT_SOLVER_SECONDS
+from tilekit.limits import (
+    BUILDER_BYTES_PER_TILE,
+    BUILDER_BYTES_PER_TORUS_TILE,
+    DEFAULT_SOLVER_SECONDS,
+    refuse_over_memory,
+)
 from tilekit.plugins.wang.check import check_grid
 from tilekit.plugins.wang.sat import (
     DEFAULT_SAT_SOLVER,
@@ -211,6 +216,9 @@ def builder_solve(
     """
 
     rows, cols, fixed_n = prepare_question(tileset, rows, cols, fixed, torus)
+    refuse_over_memory("tiles placed by the patch builder", rows * cols,
+                       BUILDER_BYTES_PER_TORUS_TILE if torus else BUILDER_BYTES_PER_TILE,
+                       hint="use method='sat' or a smaller grid")
     start = time.perf_counter()
     top = float(rows)
 
@@ -252,7 +260,7 @@ def builder_solve(
     return SolveResult(False, None, rows, cols, torus, "builder", time.perf_counter() - start, stats)
 
 
-_ADVICE = "raise max_nodes or time_limit, or use method='sat'"
+_ADVICE = "raise the time limit (--time-limit S) or max_nodes, or use method='sat'"
 
 
 def _limit_message(tileset: WangTileSet, rows: int, cols: int, torus: bool, nodes: int, start: float) -> SolverLimit:
