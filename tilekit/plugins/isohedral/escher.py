@@ -37,6 +37,7 @@ import numpy as np
 
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.files import check_output, read_text
+from tilekit.limits import MAX_COORDINATE
 from tilekit.plugins.isohedral.engine import HopEngine, IsohedralTiling, shape_classes
 from tilekit.plugins.isohedral.escher_limits import (
     DEFAULT_EDGE_POINTS,
@@ -124,6 +125,9 @@ def check_goal(points: Any, what: str = "goal") -> np.ndarray:
         raise ParseError(f"{what}: the points are not a list of [x, y] pairs (got shape {list(pts.shape)})")
     if not np.all(np.isfinite(pts)):
         raise ParseError(f"{what}: every coordinate must be a finite number")
+    if len(pts) and float(np.abs(pts).max()) > MAX_COORDINATE:
+        raise ParseError(f"{what}: coordinates must lie within ±{MAX_COORDINATE:.0e} (the goal is scaled to "
+                         f"the tile anyway), got {float(np.abs(pts).max()):.3g}")
     if len(pts) > MAX_GOAL_POINTS:
         raise ParseError(f"{what}: {len(pts)} points is more than the limit of {MAX_GOAL_POINTS}")
     if len(pts):
