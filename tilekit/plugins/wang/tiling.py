@@ -175,9 +175,10 @@ class WangTiling(Tiling):
     def from_spec(cls, spec: Mapping[str, Any]) -> WangTiling:
         """Rebuild from :meth:`spec` output: a shipped set by name, or an inline ``tileset``
         (checked against :data:`SPEC`)."""
+        if isinstance(spec, Mapping):
+            spec = check(SPEC, {k: v for k, v in spec.items() if v is not None}, "Wang spec")
         if not isinstance(spec, Mapping) or ("set" not in spec and "tileset" not in spec):
             raise ParseError(f"Wang spec must name a 'set' or give a 'tileset', got {shown(spec)}")
-        spec = check(SPEC, {k: v for k, v in spec.items() if v is not None}, "Wang spec")
         ts = WangTileSet.from_json(spec["tileset"]) if "tileset" in spec else get_tileset(spec["set"])
         return cls(ts, seed=spec.get("seed", 0), method=spec.get("method", "auto"),
                    time_limit=spec.get("time_limit", DEFAULT_SOLVER_SECONDS))
