@@ -616,9 +616,10 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
     check_export_size(estimate, fmt, max_tiles, memory=False)
     area = as_region(box) if box is not None else tiling.default_region()
     vertices = outline_vertices(tiling.prototiles)
-    if not export_fits_in_memory(estimate, fmt, vertices):
+    if not export_fits_in_memory(estimate, fmt, vertices, tiling.bytes_per_tile):
         if not (tiling.streams and fmt in STREAM_FORMATS and not labels):
-            check_export_size(estimate, fmt, max_tiles, vertices=vertices)  # the one-line refusal: this cannot stream
+            # the one-line refusal: this cannot stream
+            check_export_size(estimate, fmt, max_tiles, vertices=vertices, making=tiling.bytes_per_tile)
         check_disk_space(out, estimate, fmt, tiling.prototiles)
         _render_stream(tiling, area, out, fmt, estimate, palette, stroke, stroke_width, width, height, vectors,
                        vertices)

@@ -28,7 +28,7 @@ from tilekit import limits
 from tilekit.errors import ParameterError, TilekitError
 from tilekit.geometry import POINT_TOL, Affine, snap_noise
 from tilekit.limits import (
-    ADJACENCY_BYTES_PER_TILE,
+    ADJACENCY_BYTES_PER_VERTEX,
     EXPORT_BYTES_PER_VERTEX,
     GENERATION_BYTES_PER_TILE,
     MAX_DXF_TILES,
@@ -368,7 +368,9 @@ def adjacency_of(edges: Edges) -> Adjacency:
 def adjacency(patch: Patch, tol: float | None = None) -> Adjacency:
     """Tiles sharing an edge, a vertex only, or any point (see :class:`Adjacency`); refused
     before any work when its arrays would not fit in memory."""
-    refuse_over_memory("tiles", len(patch), ADJACENCY_BYTES_PER_TILE, hint="adjacency of a smaller patch")
+    vertices = outline_vertices(patch.prototiles)
+    refuse_over_memory("tiles", len(patch), ADJACENCY_BYTES_PER_VERTEX * vertices,
+                       hint=f"tiles of {vertices} vertices; adjacency of a smaller patch")
     return adjacency_of(tile_edges(patch, tol))
 
 
@@ -795,15 +797,14 @@ FILE_BYTES_PER_TILE: dict[str, tuple[int, int]] = {
 }
 
 
-def memory_per_tile(fmt: str, vertices: int = 4) -> int:
-    """Peak bytes per tile of generating a patch and writing it as ``fmt``, for tiles of
-    ``vertices`` outline vertices: the patch's arrays (GENERATION_BYTES_PER_TILE) and the
-    larger of the format's cost per tile and per vertex (limits.EXPORT_BYTES_PER_VERTEX: a
-    tile with shaped edges costs its vertices; docs/benchmarks.md "Limits, measured")."""
-    fixed = {".svg": RENDER_BYTES_PER_TILE, ".png": RENDER_BYTES_PER_TILE,
-             ".geojson": GENERATION_BYTES_PER_TILE}.get(fmt, ADJACENCY_BYTES_PER_TILE)
-    per_vertex = EXPORT_BYTES_PER_VERTEX.get(fmt, EXPORT_BYTES_PER_VERTEX[".json"])
-    return GENERATION_BYTES_PER_TILE + max(fixed, per_vertex * vertices)
+def memory_per_tile(fmt: str, vertices: int = 4, making: int = GENERATION_BYTES_PER_TILE) -> int:
+    """Peak bytes per tile of making a patch (``making``: the tiling's ``bytes_per_tile``)
+    and writing it as ``fmt``, for tiles of ``vertices`` outline vertices: the larger of the
+    format's cost per tile and per vertex (limits.EXPORT_BYTES_PER_VERTEX: a tile with shaped
+    edges costs its vertices; docs/benchmarks.md "Limits, measured")."""
+    fixed = RENDER_BYTES_PER_TILE if fmt in (".svg", ".png") else 0
+    per_vertex = EXPORT_BYTES_PER_VERTEX.get(fmt, ADJACENCY_BYTES_PER_VERTEX)
+    return making + max(fixed, per_vertex * vertices)
 
 
 def outline_vertices(prototiles: Sequence[Any]) -> int:
@@ -812,7 +813,7 @@ def outline_vertices(prototiles: Sequence[Any]) -> int:
 
 
 def check_export_size(estimate: float, fmt: str, max_tiles: float = MAX_TILES, memory: bool = True,
-                      vertices: int = 4) -> None:
+                      vertices: int = 4, making: int = GENERATION_BYTES_PER_TILE) -> None:
     """Refuse an export of about ``estimate`` tiles before anything is made: over
     ``max_tiles`` (``--max-tiles``), over MAX_DXF_TILES for DXF, or (``memory``) when the
     patch and the export's arrays, for tiles of ``vertices`` vertices, would not fit in memory."""
@@ -821,13 +822,14 @@ def check_export_size(estimate: float, fmt: str, max_tiles: float = MAX_TILES, m
         refuse_over("tiles", estimate, MAX_DXF_TILES,
                     hint=f"a DXF drawing is built in memory, at most MAX_DXF_TILES = {MAX_DXF_TILES:,} tiles")
     if memory:
-        refuse_over_memory("tiles", estimate, memory_per_tile(fmt, vertices),
+        refuse_over_memory("tiles", estimate, memory_per_tile(fmt, vertices, making),
                            hint=f"tiles of {vertices} vertices; ask for a smaller depth or region")
 
 
-def export_fits_in_memory(estimate: float, fmt: str, vertices: int = 4) -> bool:
+def export_fits_in_memory(estimate: float, fmt: str, vertices: int = 4,
+                          making: int = GENERATION_BYTES_PER_TILE) -> bool:
     """Whether :func:`check_export_size` lets the whole patch be made in memory."""
-    return fits_in_memory(estimate, memory_per_tile(fmt, vertices))
+    return fits_in_memory(estimate, memory_per_tile(fmt, vertices, making))
 
 
 def stream_chunk_tiles(fmt: str, vertices: int = 4) -> int:

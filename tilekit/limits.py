@@ -8,9 +8,11 @@ raises it.
 
 The defaults are sized so that a refused object would need more than a few GB: a placed tile
 costs 80-90 bytes as a Patch's arrays ((3, 3) float64 map, int64 prototile, colour) and
-several hundred more as SVG text. Generating it peaks higher, because the previous level of
-a substitution is alive while the last one is made: 94-163 bytes per tile measured at 10^6
-tiles (tracemalloc, docs/benchmarks.md), which GENERATION_BYTES_PER_TILE bounds. Whatever
+several hundred more as SVG text. Making it peaks higher, because the previous level of a
+substitution is alive while the last one is made (GENERATION_BYTES_PER_TILE) and a periodic
+patch's lattice points are filtered in blocks (PERIODIC_BYTES_PER_TILE). Every per-unit cost
+here is a measured peak (benchmarks/bench_limits.py, docs/benchmarks.md "Limits, measured"),
+and tests/test_limits_measured.py fails when an estimate is off by more than 2x. Whatever
 the tile limits are raised to, :func:`refuse_over_memory` refuses a patch whose arrays
 would not fit in the memory the machine has available; a substitution patch can instead be
 streamed in chunks (``Tiling.iter_patches``, STREAM_CHUNK_TILES), which ``tilekit render``
@@ -48,22 +50,27 @@ MAX_PNG_PIXELS = 100_000_000
 MAX_COORDINATE = 1e9
 #: Largest substitution depth any system accepts (the tile estimate is the real bound).
 MAX_DEPTH = 60
-#: Peak bytes per tile while a substitution patch is generated (measured 94-163 at 10^6
-#: tiles for every generator; see docs/benchmarks.md), with a margin.
-GENERATION_BYTES_PER_TILE = 200
+#: Peak bytes per tile while a substitution patch is made through the API (generation,
+#: culling to the region, assembly, colours): peak resident growth measured 269-648 on
+#: Penrose P3, chair, spectre, hat and Ammann-Beenker patches of 35,000-4,200,000 tiles
+#: (the engine alone, by tracemalloc, 94-163); docs/benchmarks.md "Limits, measured".
+GENERATION_BYTES_PER_TILE = 450
+#: Peak bytes per tile of a periodic patch (PeriodicTiling.patch): measured 120-290 on
+#: 3.4.6.4, 4^4 and IH41 patches of 335,000-4,000,000 tiles.
+PERIODIC_BYTES_PER_TILE = 200
 #: Peak bytes per tile while a patch is drawn as SVG (measured about 405 for Penrose
 #: rhombs: the polygons, the path text and the document), with a margin.
 RENDER_BYTES_PER_TILE = 500
 #: Peak bytes per outline vertex of a tile written as each format (SVG text and its polygons,
-#: GeoJSON coordinates, JSON / cut SVG / DXF edges): a tile with shaped edges of hundreds of
-#: vertices costs them, not RENDER_BYTES_PER_TILE. Measured on IH16 with 6, 106 and 406
-#: vertices a tile (100-121 / 140-200 / 245 bytes a vertex; docs/benchmarks.md "Limits,
-#: measured"), rounded up.
-EXPORT_BYTES_PER_VERTEX = {".svg": 125, ".png": 125, ".geojson": 220, ".json": 250, ".cut.svg": 250, ".dxf": 250}
+#: GeoJSON coordinates, JSON / cut SVG / DXF: the adjacency, ADJACENCY_BYTES_PER_VERTEX): a
+#: tile with shaped edges of hundreds of vertices costs them. Measured on IH16 with 6, 106 and
+#: 406 vertices a tile (100-163 / 138-200 / 245-296 bytes a vertex; docs/benchmarks.md
+#: "Limits, measured"), rounded up.
+EXPORT_BYTES_PER_VERTEX = {".svg": 125, ".png": 125, ".geojson": 220, ".json": 300, ".cut.svg": 300, ".dxf": 300}
 #: Points of one edge shape (``--edge``, after a Bézier is flattened): checking a tile for
-#: self-overlap (Patch.validate of its neighbourhood) costs about 900 bytes and 4 us per
-#: squared outline vertex (IH16 measured at 106-1,606 vertices), so 100 points an edge keep a
-#: six-edge tile near 600 vertices, 0.3 GB and a second or two.
+#: overlaps (Patch.validate of its 3 x 3 units) grows with its outline vertices squared:
+#: IH16 with 106 / 206 / 406 / 1,606 vertices peaked at 26 / 78 / 179 / 1,800 MB (0.2-10 s),
+#: so 100 points an edge keep a tile near 400-600 vertices and 0.2-0.4 GB.
 MAX_EDGE_POINTS = 100
 #: Tiles a notebook draws inline (``_repr_svg_`` of a Patch, Tiling or catalogue entry);
 #: over it a short line of text is shown instead of a giant SVG.
@@ -72,13 +79,14 @@ MAX_REPR_TILES = 5_000
 #: and 0.12-0.27 ms per tile (measured, docs/benchmarks.md), so 200,000 tiles is ~700 MB and up to
 #: a minute; GeoJSON, JSON and the cut SVG are streamed and need no limit of their own.
 MAX_DXF_TILES = 200_000
-#: Peak bytes per tile while the adjacency of a patch is computed (measured 0.9-1.0 kB for
-#: 3.4.6.4 and Penrose rhombs, 1.4 kB for the chair and 2.3 kB for pentomino-F, whose edges
-#: are split at T-junctions; docs/benchmarks.md), with a margin.
-ADJACENCY_BYTES_PER_TILE = 3_000
+#: Peak bytes per outline vertex of a tile while the adjacency of a patch is computed (welded
+#: vertices, edges split at T-junctions, pairs): measured 203 (Penrose P3, 4 vertices), 218
+#: (chair, 6), 195 (3.4.6.4, 6) and 282 (pentomino-F, 10: its edges are split) bytes a vertex
+#: of the largest prototile; docs/benchmarks.md "Limits, measured".
+ADJACENCY_BYTES_PER_VERTEX = 300
 #: Tiles per chunk of a streamed substitution patch (``Tiling.iter_patches``, ``tilekit
 #: render`` past what fits in memory): about GENERATION_BYTES_PER_TILE each while a chunk
-#: is made, so ~200 MB, or less when less memory is available.
+#: is made, so ~450 MB, or less when less memory is available.
 STREAM_CHUNK_TILES = 1 << 20
 #: Fraction of the available memory one patch may take.
 MEMORY_FRACTION = 0.8
