@@ -437,6 +437,18 @@ def _built_and_drawn(from_spec: Callable[[Any], Any], doc: Any) -> None:
 def _spec_bases() -> dict[str, list[dict]]:
     from tilekit.plugins.isohedral import isohedral_tiling
     from tilekit.plugins.substitution import builtin_systems
+    def svg_text(doc: Any) -> str:  # a <polygon points>, or a <path d> for a {"d": ...} document
+        def flat(value: Any) -> str:
+            if isinstance(value, list | tuple):
+                return " ".join(flat(v) for v in value)
+            return str(value)
+
+        if isinstance(doc, dict):
+            body = f'<path d="M {flat(list(doc.values()))} Z"/>'
+        else:
+            body = f'<polygon points="{flat(doc)}"/>'
+        return f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10">{body}</svg>'
+
     from tilekit.plugins.wang.tileset import get_tileset
 
     return {
@@ -542,6 +554,18 @@ def _loaders() -> dict[str, tuple[Callable[[Any], Any], str, Callable[[], list[A
                 " ".join(map(str, r)) if isinstance(r, list) else str(r) for r in v) for k, v in
                 (doc.items() if isinstance(doc, dict) else [("name", doc)])) + "\n"
 
+    def svg_text(doc: Any) -> str:  # a <polygon points>, or a <path d> for a {"d": ...} document
+        def flat(value: Any) -> str:
+            if isinstance(value, list | tuple):
+                return " ".join(flat(v) for v in value)
+            return str(value)
+
+        if isinstance(doc, dict):
+            body = f'<path d="M {flat(list(doc.values()))} Z"/>'
+        else:
+            body = f'<polygon points="{flat(doc)}"/>'
+        return f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10">{body}</svg>'
+
     from tilekit.plugins.wang.tileset import get_tileset
 
     return {
@@ -552,6 +576,9 @@ def _loaders() -> dict[str, tuple[Callable[[Any], Any], str, Callable[[], list[A
         "escherize goal": (read_goal, "fuzz.json",
                            lambda: [[[0, 0], [2, 0], [2, 1], [1, 2], [0, 1]], {"points": [[0, 0], [1, 0], [0, 1]]}],
                            json.dumps),
+        "escherize SVG goal": (read_goal, "fuzz.svg",
+                               lambda: [[[0, 0], [2, 0], [2, 1], [1, 2], [0, 1]], {"d": [[0, 0], [1, 0], [0, 1]]}],
+                               svg_text),
         ".wang tile set": (load_tileset, "fuzz.wang",
                            lambda: [get_tileset("jeandel-rao").to_json(), get_tileset("corner-2colour").to_json()],
                            wang_text),

@@ -195,7 +195,7 @@ class WangTiling(Tiling):
         return "\n".join([
             "--set seed=N           the fill's random seed",
             "--set method=M         " + ", ".join(FILL_METHODS),
-            "--set time_limit=S     seconds for the exact solver",
+            f"--set time_limit=S     seconds for the exact solver (default {DEFAULT_SOLVER_SECONDS:g})",
         ])
 
     def configure(self, **options: Any) -> WangTiling:
