@@ -564,7 +564,7 @@ def _transfer_shape(
 #: An isohedral spec, as the catalogue stores it and spec files and the web API give it
 #: (``null`` for an optional field means its default).
 SPEC = Field("table", fields={
-    "ih": Field("ref", required=True, missing="an isohedral spec needs 'ih': a type 1..93 or a name like 'IH16'"),
+    "ih": Field("ref", required=True, missing="'ih' is missing; give a type 1..93 or a name like 'IH16'"),
     "params": Field("list", items=Field("number"), length=(0, 16)),
     "edges": Field("table", values=Field("str")),
     "colouring": Field("str"),
