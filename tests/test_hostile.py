@@ -351,3 +351,93 @@ def test_foreign_files_are_left_byte_for_byte(tmp_path, kind):
         assert "left untouched" in line, line
         assert _md5(path) == before, (kind, args)
     assert sorted(p.name for p in tmp_path.iterdir()) == names, "no -wal, -shm or output file was made"
+
+
+# --------------------------------------------------------------------------- the pieces
+
+
+def test_bounded_reader(tmp_path):
+    """tilekit.files.read_bytes: regular files only (a FIFO refused at once, not after a
+    blocking open), the size checked before reading and again while reading."""
+    from tilekit.errors import ParseError
+    from tilekit.files import check_output, read_bytes, read_text
+
+    ok = tmp_path / "ok.toml"
+    ok.write_text("a = 1\n")
+    assert read_bytes(ok, "data file") == b"a = 1\n"
+    os.mkfifo(tmp_path / "pipe")
+    start = time.perf_counter()
+    for path, fragment in ((tmp_path / "pipe", "FIFO"), ("/dev/zero", "device"), (tmp_path, "directory"),
+                           (tmp_path / "missing", "does not exist"), (ok, "over the limit of 3")):
+        with pytest.raises(ParseError, match=fragment):
+            read_bytes(path, "data file", limit=3)
+    assert time.perf_counter() - start < 1.0
+    # /proc files are regular but say they are empty: the bound holds while reading
+    with pytest.raises(ParseError, match="grew past the limit of 100"):
+        read_bytes("/proc/self/maps", "data file", limit=100)
+    (tmp_path / "latin1.toml").write_bytes("caf\xe9".encode("latin-1"))
+    with pytest.raises(ParseError, match="not UTF-8"):
+        read_text(tmp_path / "latin1.toml", "data file")
+    check_output(tmp_path / "new.svg")  # a path that does not exist yet is fine
+    check_output(ok)
+    for path in (tmp_path / "pipe", "/dev/null", tmp_path):
+        with pytest.raises(TilekitError, match="give a regular file path"):
+            check_output(path)
+
+
+def test_bounded_documents():
+    """schema.parse_json / parse_toml: nesting, NaN, huge integers are one ParseError."""
+    from tilekit.errors import ParseError
+    from tilekit.limits import MAX_NESTING
+    from tilekit.schema import Field, check, parse_json, parse_toml
+
+    assert parse_json("[[1]]", "x") == [[1]]
+    assert parse_json("[" * MAX_NESTING + "]" * MAX_NESTING, "x") is not None
+    for text, fragment in (("[" * (MAX_NESTING + 1) + "]" * (MAX_NESTING + 1), "nest more than"),
+                           ("[" * 100_000 + "]" * 100_000, "nest more than"), ("[NaN]", "NaN is not a JSON number"),
+                           ("[" + "9" * 5000 + "]", "not valid JSON"), ("{", "not valid JSON")):
+        with pytest.raises(ParseError, match=fragment):
+            parse_json(text, "x.json")
+    for text, fragment in (("a = " + "[" * 2000 + "]" * 2000, "nest more than"), ("a = " + "9" * 5000, "not valid TOML"),
+                           ("a = = 1", "not valid TOML")):
+        with pytest.raises(ParseError, match=fragment):
+            parse_toml(text, "x.toml")
+    number = Field("number")
+    for value in (float("inf"), float("nan"), 10**400):
+        with pytest.raises(ParseError, match="must be a finite number"):
+            check(number, value, "spec")
+    with pytest.raises(ParseError, match=r"outside -\d+\.\.\d+"):
+        check(Field("int"), 2**70, "spec")
+
+
+def test_a_locked_catalogue_is_waited_for(monkeypatch):
+    """A worker whose catalogue is locked past SQLite's busy timeout retries within a lease
+    time (its heartbeat keeps its leases) instead of dying; other errors are not retried."""
+    from tilekit import search
+    from tilekit.errors import CatalogueError
+
+    monkeypatch.setattr(search, "POLL_SECONDS", 0.01)
+    calls = []
+
+    def locked_twice() -> str:
+        calls.append(1)
+        if len(calls) < 3:
+            raise CatalogueError("catalogue sqlite:///c.sqlite: claiming failed: database is locked")
+        return "claimed"
+
+    assert search._patiently(locked_twice) == "claimed" and len(calls) == 3
+    with pytest.raises(CatalogueError, match="no such table"):
+        search._patiently(lambda: (_ for _ in ()).throw(CatalogueError("no such table: runs")))
+    monkeypatch.setenv("TILEKIT_LEASE_SECONDS", "0.05")
+    start = time.perf_counter()
+    with pytest.raises(CatalogueError, match="locked"):
+        search._patiently(lambda: (_ for _ in ()).throw(CatalogueError("database is locked")))
+    assert time.perf_counter() - start < 1.0
+
+
+def test_available_memory_honours_the_address_space_cap():
+    """Under ``ulimit -v`` the memory a refusal compares against is what the cap leaves."""
+    code = ("import resource; resource.setrlimit(resource.RLIMIT_AS, (3 << 30, 3 << 30)); "
+            "from tilekit.limits import available_memory; print(available_memory())")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert 0 < float(out.stdout) < 3 << 30
