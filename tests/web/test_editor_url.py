@@ -80,7 +80,7 @@ def test_the_query_form():
         editor_path({"ih": 19})
     with pytest.raises(ParseError, match="'ih' is missing"):
         editor_query({"params": [1]})
-    with pytest.raises(ParseError, match="not a finite number"):
+    with pytest.raises(ParseError, match="must be a finite number"):
         editor_query({"ih": 16, "params": [float("nan")]})
 
 
