@@ -144,7 +144,9 @@ def _slots(obj: Any, prefix: tuple = ()) -> list[tuple]:
     return out
 
 
-def _mutated(base: dict, data: st.DataObject) -> dict:
+def _mutated(base: dict, data: st.DataObject, values: st.SearchStrategy = None) -> dict:
+    """``base`` with 1-3 parts replaced by ``values`` (default WRONG), or a key dropped."""
+    values = WRONG if values is None else values
     doc = copy.deepcopy(base)
     slots = _slots(doc)
     for _ in range(data.draw(st.integers(1, 3))):
@@ -156,7 +158,7 @@ def _mutated(base: dict, data: st.DataObject) -> dict:
             if isinstance(parent, dict) and data.draw(st.booleans()) and data.draw(st.booleans()):
                 parent.pop(path[-1], None)
             else:
-                parent[path[-1]] = data.draw(WRONG)
+                parent[path[-1]] = data.draw(values)
         except (KeyError, IndexError, TypeError):
             pass
     return doc
@@ -406,24 +408,11 @@ CONFUSED = st.one_of(
 
 
 def _confused(base: Any, data: st.DataObject) -> Any:
-    """``base`` with 1-3 parts replaced by CONFUSED values (or a key dropped)."""
-    doc = copy.deepcopy(base)
-    slots = _slots(doc)
-    if not slots or data.draw(st.integers(0, 19)) == 0:
-        return data.draw(CONFUSED)  # sometimes the whole document is of the wrong kind
-    for _ in range(data.draw(st.integers(1, 3))):
-        path = data.draw(st.sampled_from(slots))
-        parent = doc
-        try:
-            for k in path[:-1]:
-                parent = parent[k]
-            if isinstance(parent, dict) and data.draw(st.integers(0, 4)) == 0:
-                parent.pop(path[-1], None)
-            else:
-                parent[path[-1]] = data.draw(CONFUSED)
-        except (KeyError, IndexError, TypeError):
-            pass
-    return doc
+    """``base`` with 1-3 parts replaced by CONFUSED values (or a key dropped); now and then
+    a document of the wrong kind altogether."""
+    if not _slots(base) or data.draw(st.integers(0, 19)) == 0:
+        return data.draw(CONFUSED)
+    return _mutated(base, data, CONFUSED)
 
 
 def _built_and_drawn(from_spec: Callable[[Any], Any], doc: Any) -> None:
@@ -437,18 +426,6 @@ def _built_and_drawn(from_spec: Callable[[Any], Any], doc: Any) -> None:
 def _spec_bases() -> dict[str, list[dict]]:
     from tilekit.plugins.isohedral import isohedral_tiling
     from tilekit.plugins.substitution import builtin_systems
-    def svg_text(doc: Any) -> str:  # a <polygon points>, or a <path d> for a {"d": ...} document
-        def flat(value: Any) -> str:
-            if isinstance(value, list | tuple):
-                return " ".join(flat(v) for v in value)
-            return str(value)
-
-        if isinstance(doc, dict):
-            body = f'<path d="M {flat(list(doc.values()))} Z"/>'
-        else:
-            body = f'<polygon points="{flat(doc)}"/>'
-        return f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10">{body}</svg>'
-
     from tilekit.plugins.wang.tileset import get_tileset
 
     return {

@@ -209,16 +209,7 @@ class Catalogue(RunsMixin, ResultsMixin, TilingReader):
         with _MIGRATION_LOCK, self._errors("migrating"), self.engine.begin() as conn:
             self._lock_for_writing(conn)
             current = set(MigrationContext.configure(conn).get_current_heads())
-            for rev in current:
-                try:
-                    known = script.get_revision(rev)
-                except (CommandError, RevisionError):
-                    known = None
-                if known is None:
-                    raise CatalogueError(
-                        f"catalogue {self.url} is at migration {rev!r}, which this tilekit does not "
-                        "know (made by a newer version or a missing plugin?); left untouched"
-                    )
+            _refuse_unknown(script, current, self.url)
             if revision == "heads" and current == set(script.get_heads()):
                 self._remember_scripts(conn, current)
                 return current
@@ -524,14 +515,21 @@ def _refuse_unknown_revisions(path: Path, revisions: frozenset[str], stored: str
     if stored == f"{scripts_key(pm)}:{','.join(sorted(revisions))}":
         return
     from alembic.script import ScriptDirectory
-    from alembic.script.revision import RevisionError
-    from alembic.util import CommandError
 
     probe = Catalogue(sa.create_engine("sqlite://"), pm)  # only for its Alembic configuration
     try:
         script = ScriptDirectory.from_config(probe._alembic_config())
     finally:
         probe.close()
+    _refuse_unknown(script, revisions, str(path))
+
+
+def _refuse_unknown(script: Any, revisions: Iterable[str], where: str) -> None:
+    """CatalogueError (one line) naming the first of ``revisions`` the Alembic ``script``
+    directory does not know: the database is then left untouched."""
+    from alembic.script.revision import RevisionError
+    from alembic.util import CommandError
+
     for rev in sorted(revisions):
         try:
             known = script.get_revision(rev)
@@ -539,7 +537,7 @@ def _refuse_unknown_revisions(path: Path, revisions: frozenset[str], stored: str
             known = None
         if known is None:
             raise CatalogueError(
-                f"catalogue {path} is at migration {rev[:40]!r}, which this tilekit does not know (made by "
+                f"catalogue {where} is at migration {rev[:40]!r}, which this tilekit does not know (made by "
                 "a newer version, a missing plugin or another program?); left untouched"
             )
 
