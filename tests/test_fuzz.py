@@ -12,6 +12,7 @@ the same shape. Examples are bounded so the whole file runs in well under a minu
 from __future__ import annotations
 
 import copy
+import json
 import tomllib
 import warnings
 from collections.abc import Callable
@@ -143,7 +144,9 @@ def _slots(obj: Any, prefix: tuple = ()) -> list[tuple]:
     return out
 
 
-def _mutated(base: dict, data: st.DataObject) -> dict:
+def _mutated(base: dict, data: st.DataObject, values: st.SearchStrategy = None) -> dict:
+    """``base`` with 1-3 parts replaced by ``values`` (default WRONG), or a key dropped."""
+    values = WRONG if values is None else values
     doc = copy.deepcopy(base)
     slots = _slots(doc)
     for _ in range(data.draw(st.integers(1, 3))):
@@ -155,7 +158,7 @@ def _mutated(base: dict, data: st.DataObject) -> dict:
             if isinstance(parent, dict) and data.draw(st.booleans()) and data.draw(st.booleans()):
                 parent.pop(path[-1], None)
             else:
-                parent[path[-1]] = data.draw(WRONG)
+                parent[path[-1]] = data.draw(values)
         except (KeyError, IndexError, TypeError):
             pass
     return doc
@@ -368,3 +371,278 @@ def test_huge_params_are_errors_without_warnings(name, family, n, value):
     fam = families()[family]
     tiling = fam.from_spec({"ih": 41} if family == "isohedral" else {"system": name})
     parses_or_tilekit_error(lambda: tiling.configure(params=[value] * n).patch((-3, -3, 3, 3)))
+
+
+# --------------------------------------------------------------------------- issue 27: type-confused documents
+#
+# Every family's from_spec, every loader of a user's file and the JSON / TOML parsers, fed
+# documents whose parts are replaced by values of the wrong type, nested past any sane depth,
+# or numbers that are huge (a 400-digit integer), non-finite or at the edge of a float. The
+# outcome is a value or a TilekitError with a one-line message: never another exception, never
+# a NumPy warning. A fast profile runs by default; the slow run (-m slow) tries thousands.
+
+FUZZ_FAST = settings(max_examples=50, deadline=None, suppress_health_check=list(HealthCheck))
+FUZZ_SLOW = settings(max_examples=2000, deadline=None, suppress_health_check=list(HealthCheck))
+
+
+def _nested(depth: int, leaf: Any = 0) -> Any:
+    value = leaf
+    for _ in range(depth):
+        value = [value]
+    return value
+
+
+SCALARS = st.one_of(
+    st.none(), st.booleans(), st.integers(-3, 12), st.integers(-(10**400), 10**400),
+    st.sampled_from([2**63, -(2**63) - 1, 10**400, 10**4000]), st.floats(allow_nan=True, allow_infinity=True),
+    st.sampled_from([1e308, -1e308, 5e-324, float("inf"), float("-inf"), float("nan")]),
+    st.text(max_size=8), st.sampled_from(["", "IH28", "sqrt(2)", "1e999", "0,0:1,0", "(1)(1)(1)", "x" * 300]),
+)
+CONFUSED = st.one_of(
+    SCALARS,
+    st.lists(SCALARS, max_size=4),
+    st.dictionaries(st.text(max_size=6), SCALARS, max_size=3),
+    st.builds(_nested, st.integers(30, 200), SCALARS),
+    st.builds(lambda d: {"a": _nested(d)}, st.integers(30, 120)),
+)
+
+
+def _confused(base: Any, data: st.DataObject) -> Any:
+    """``base`` with 1-3 parts replaced by CONFUSED values (or a key dropped); now and then
+    a document of the wrong kind altogether."""
+    if not _slots(base) or data.draw(st.integers(0, 19)) == 0:
+        return data.draw(CONFUSED)
+    return _mutated(base, data, CONFUSED)
+
+
+def _built_and_drawn(from_spec: Callable[[Any], Any], doc: Any) -> None:
+    """from_spec(doc), and a patch of its default region when that is small."""
+    tiling = from_spec(doc)
+    region = tiling.default_region()
+    if tiling.estimate_tiles(region) <= 2000:
+        tiling.patch(region)
+
+
+def _spec_bases() -> dict[str, list[dict]]:
+    from tilekit.plugins.isohedral import isohedral_tiling
+    from tilekit.plugins.substitution import builtin_systems
+    from tilekit.plugins.wang.tileset import get_tileset
+
+    return {
+        "archimedean": [{"kind": "archimedean", "vertex_type": "3.4.6.4"}, {"kind": "vertex_type", "vertex_type": "4.8.8"}],
+        "laves": [{"kind": "laves", "vertex_type": "3.3.4.3.4"}],
+        "isohedral": [isohedral_tiling("IH16", params=[0.3], edges=["b=0,0:0.3,0.1:1,0"]).spec(),
+                      {"ih": 41, "params": [0.1, 0.2], "colouring": "(1 2)(2 1)(1 2)"}, {"ih": 19}],
+        "substitution": [{"system": "penrose-p3", "depth": 2, "seed": "obtuse"}, {"system": "spectre", "depth": 1},
+                         {"system": "penrose-p3", "params": [0.2], "edges": ["a=0.5,0.1"]},
+                         {"system_data": copy.deepcopy(builtin_systems()["chair"].data), "source": "x.toml", "depth": 2}],
+        "wang": [{"set": "jeandel-rao-11", "seed": 3, "method": "auto"},
+                 {"tileset": get_tileset("stochastic-2colour").to_json(), "seed": 1}],
+        "polyomino": [{"code": ".x./xx./.xx", "name": "pentomino-F", "tiling": 0},
+                      {"code": "xxx/x.x/xxx", "view": "coronas",
+                       "witness": {"kind": "coronas", "tiles": [[0, 0, 0, 0], [0, 3, 0, 1]]}},
+                      {"code": "xx/x.", "witness": {"kind": "torus", "tiles": [[0, 0, 0, 0]], "lattice": [1, 0, 1]}}],
+        "k-uniform": [{"kind": "k-uniform", "dsymbol": "3,12,12/3,3,3/0,1,2/0,2,1/1,0,2", "name": "[3.12^2] p6m"}],
+    }
+
+
+SPEC_BASES = _spec_bases()
+
+
+def test_every_family_has_a_fuzzed_spec():
+    from tilekit.plugins import families
+
+    assert set(families()) <= set(SPEC_BASES), set(families()) - set(SPEC_BASES)
+    for name, bases in SPEC_BASES.items():
+        for base in bases:
+            _built_and_drawn(families()[name].from_spec, base)  # the bases themselves build
+
+
+def _fuzz_from_spec(family: str, profile: Any) -> None:
+    from tilekit.plugins import families
+
+    from_spec = families()[family].from_spec
+
+    @profile
+    @given(st.sampled_from(SPEC_BASES[family]), st.data())
+    def run(base: dict, data: st.DataObject) -> None:
+        parses_or_tilekit_error(_built_and_drawn, from_spec, _confused(base, data))
+
+    run()
+
+
+@pytest.mark.parametrize("family", sorted(SPEC_BASES))
+def test_from_spec_never_crashes(family: str) -> None:
+    _fuzz_from_spec(family, FUZZ_FAST)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("family", sorted(SPEC_BASES))
+def test_from_spec_never_crashes_thousands(family: str) -> None:
+    _fuzz_from_spec(family, FUZZ_SLOW)
+
+
+def _toml_value(value: Any) -> str | None:
+    """``value`` as an inline TOML value (None: not representable, the key is left out)."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value) if value.bit_length() < 4000 else None
+    if isinstance(value, float):
+        return "nan" if value != value else ("inf" if value > 0 else "-inf") if value in (float("inf"), float("-inf")) else repr(value)
+    if isinstance(value, str):
+        return json.dumps(value)
+    if isinstance(value, list):
+        items = [_toml_value(v) for v in value]
+        return "[" + ", ".join(v for v in items if v is not None) + "]"
+    if isinstance(value, dict):
+        items = [(json.dumps(str(k)), _toml_value(v)) for k, v in value.items()]
+        return "{" + ", ".join(f"{k} = {v}" for k, v in items if v is not None) + "}"
+    return None
+
+
+def _toml(doc: Any) -> str:
+    if not isinstance(doc, dict):
+        doc = {"value": doc}
+    lines = [f"{json.dumps(str(k))} = {v}" for k, v in ((k, _toml_value(v)) for k, v in doc.items()) if v is not None]
+    return "\n".join(lines) + "\n"
+
+
+def _loaders() -> dict[str, tuple[Callable[[Any], Any], str, Callable[[], list[Any]], Callable[[Any], str]]]:
+    """name -> (loader of a path, file name, base documents, writer of a document as text)."""
+    from tilekit.plugins import families
+    from tilekit.plugins.isohedral.escher import read_goal
+    from tilekit.plugins.substitution import system_dir
+    from tilekit.plugins.substitution.system import load_system
+    from tilekit.plugins.wang.render import load_texture
+    from tilekit.plugins.wang.tileset import load_tileset
+    from tilekit.resources import catalogue_dir
+
+    def tomls(folder: Any) -> Callable[[], list[Any]]:
+        return lambda: [tomllib.loads(p.read_text(encoding="utf-8")) for p in sorted(folder.glob("*.toml"))[:4]]
+
+    def wang_text(doc: Any) -> str:  # a .wang file: header lines and tile lines from the document's parts
+        from tilekit.plugins.wang.tileset import WangTileSet
+
+        try:
+            return WangTileSet.from_json(doc).to_text()
+        except TilekitError:
+            return "\n".join(f"{k}: {v}" if not isinstance(v, list) else "tiles: N E S W\n" + "\n".join(
+                " ".join(map(str, r)) if isinstance(r, list) else str(r) for r in v) for k, v in
+                (doc.items() if isinstance(doc, dict) else [("name", doc)])) + "\n"
+
+    def svg_text(doc: Any) -> str:  # a <polygon points>, or a <path d> for a {"d": ...} document
+        def flat(value: Any) -> str:
+            if isinstance(value, list | tuple):
+                return " ".join(flat(v) for v in value)
+            return str(value)
+
+        if isinstance(doc, dict):
+            body = f'<path d="M {flat(list(doc.values()))} Z"/>'
+        else:
+            body = f'<polygon points="{flat(doc)}"/>'
+        return f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10">{body}</svg>'
+
+    from tilekit.plugins.wang.tileset import get_tileset
+
+    return {
+        "substitution --system": (load_system, "fuzz.toml", tomls(system_dir()), _toml),
+        "wang --texture": (load_texture, "fuzz.toml", tomls(catalogue_dir() / "wang" / "textures"), _toml),
+        "isohedral spec file": (families()["isohedral"].from_file, "fuzz.isohedral.json",
+                                lambda: [SPEC_BASES["isohedral"][0], {"family": "isohedral", "spec": {"ih": 41}}], json.dumps),
+        "escherize goal": (read_goal, "fuzz.json",
+                           lambda: [[[0, 0], [2, 0], [2, 1], [1, 2], [0, 1]], {"points": [[0, 0], [1, 0], [0, 1]]}],
+                           json.dumps),
+        "escherize SVG goal": (read_goal, "fuzz.svg",
+                               lambda: [[[0, 0], [2, 0], [2, 1], [1, 2], [0, 1]], {"d": [[0, 0], [1, 0], [0, 1]]}],
+                               svg_text),
+        ".wang tile set": (load_tileset, "fuzz.wang",
+                           lambda: [get_tileset("jeandel-rao").to_json(), get_tileset("corner-2colour").to_json()],
+                           wang_text),
+    }
+
+
+LOADERS = _loaders()
+
+
+def _fuzz_loader(name: str, tmp_path: Any, profile: Any) -> None:
+    load, filename, bases, write = LOADERS[name]
+    docs = bases()
+
+    @profile
+    @given(st.sampled_from(docs), st.data())
+    def run(base: Any, data: st.DataObject) -> None:
+        path = tmp_path / filename
+        try:
+            text = write(_confused(base, data))
+        except (ValueError, TypeError):  # e.g. json.dumps of an integer Python will not print
+            return
+        path.write_text(text, encoding="utf-8", errors="surrogatepass")
+        parses_or_tilekit_error(load, path)
+
+    run()
+
+
+@pytest.mark.parametrize("name", sorted(LOADERS))
+def test_file_loader_never_crashes(name: str, tmp_path) -> None:
+    _fuzz_loader(name, tmp_path, FUZZ_FAST)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", sorted(LOADERS))
+def test_file_loader_never_crashes_thousands(name: str, tmp_path) -> None:
+    _fuzz_loader(name, tmp_path, FUZZ_SLOW)
+
+
+JSON_TEXT = st.recursive(
+    st.one_of(st.sampled_from(["0", "-1", "1e400", "-1e400", "NaN", "Infinity", "-Infinity", "1" * 5000, "true", "null",
+                               '"x"', "1.5", "2e-400"])),
+    lambda inner: st.one_of(st.lists(inner, max_size=4).map(lambda xs: "[" + ",".join(xs) + "]"),
+                            st.lists(inner, max_size=3).map(lambda xs: "{" + ",".join(f'"k{i}":{x}' for i, x in enumerate(xs)) + "}"),
+                            st.integers(30, 3000).map(lambda d: "[" * d + "]" * d),
+                            st.integers(30, 3000).map(lambda d: '{"a":' * d + "1" + "}" * d)),
+    max_leaves=12,
+)
+
+
+def _fuzz_parsers(profile: Any) -> None:
+    from tilekit.schema import parse_json, parse_toml
+
+    @profile
+    @given(JSON_TEXT, st.text(max_size=40))
+    def run(text: str, noise: str) -> None:
+        parses_or_tilekit_error(parse_json, text, "fuzz.json")
+        parses_or_tilekit_error(parse_json, text + noise, "fuzz.json")
+        parses_or_tilekit_error(parse_toml, "a = " + text.replace(":", "="), "fuzz.toml")
+        parses_or_tilekit_error(parse_toml, noise, "fuzz.toml")
+
+    run()
+
+
+def test_json_and_toml_parsers_never_crash() -> None:
+    _fuzz_parsers(FUZZ_FAST)
+
+
+@pytest.mark.slow
+def test_json_and_toml_parsers_never_crash_thousands() -> None:
+    _fuzz_parsers(FUZZ_SLOW)
+
+
+def test_png_densities_of_any_header(tmp_path) -> None:
+    # a PNG signature, an IHDR of any size and any bytes after it: a density or one ParseError
+    # (LimitError past the pixel limit), never PIL's DecompressionBombError
+    import struct
+    import zlib
+
+    from tilekit.density import from_image
+
+    @FUZZ_FAST
+    @given(st.integers(0, 2**32 - 1), st.integers(0, 2**32 - 1), st.binary(max_size=200))
+    def run(w: int, h: int, tail: bytes) -> None:
+        body = struct.pack(">IIBBBBB", w, h, 8, 0, 0, 0, 0)
+        ihdr = struct.pack(">I", 13) + b"IHDR" + body + struct.pack(">I", zlib.crc32(b"IHDR" + body))
+        path = tmp_path / "fuzz.png"
+        path.write_bytes(b"\x89PNG\r\n\x1a\n" + ihdr + tail)
+        parses_or_tilekit_error(from_image, path)
+
+    run()

@@ -171,7 +171,10 @@ def test_ctrl_c_while_the_catalogue_is_opening(tmp_path, sig, code, word):
     import sqlite3
 
     path = tmp_path / "c.sqlite"
-    open_catalogue(f"sqlite:///{path}", seed=False).close()
+    # made by the same plugins as the child's (TILEKIT_PLUGINS), so that its migrations are
+    # known to the child, which then waits for the lock (an unknown one is refused at once)
+    made = start(f"sqlite:///{path}", "catalogue", "upgrade")
+    assert made.wait(timeout=120) == 0, made.communicate()
     holder = sqlite3.connect(path, isolation_level=None)
     holder.execute("BEGIN IMMEDIATE")
     try:

@@ -34,6 +34,7 @@ import numpy as np
 
 from tilekit.errors import GeometryError, ParameterError
 from tilekit.geometry import Affine, snap_noise
+from tilekit.limits import DEFAULT_SOLVER_SECONDS
 from tilekit.polygon import (
     StarIndex,
     cyclic_equal,
@@ -936,14 +937,15 @@ class PatchBuilder:
         seed: int = 0,
         seed_transform: np.ndarray | None = None,
         max_nodes: int = 1_000_000,
-        max_seconds: float | None = None,
+        max_seconds: float | None = DEFAULT_SOLVER_SECONDS,
     ) -> BuildResult:
         """Grow a patch from prototile ``seed`` (placed by ``seed_transform``, default the
         identity) until it has ``tiles`` tiles, or covers the disc of ``radius`` round the
         seed's centroid, or has no open edge that ``fill(edge)`` accepts (``edge`` as for a
         callable order, plus ``tile`` and ``prototile`` of the tile that owns it: e.g. "every
         edge inside this box", or "every edge of the seed" for a first corona). Stops at
-        ``max_nodes`` candidate placements or ``max_seconds``.
+        ``max_nodes`` candidate placements or ``max_seconds`` (default
+        ``limits.DEFAULT_SOLVER_SECONDS``; None: no time limit).
 
         With a ``period`` the goal may be left out: it is then a closed torus (every open
         edge of the representatives filled, so their lattice images tile the plane and the

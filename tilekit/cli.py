@@ -19,7 +19,7 @@ import click
 import pluggy
 
 from tilekit import limits
-from tilekit.cli_types import COUNT, INT64_MAX, POSITIVE, RUN_ID, BoundedInt, FiniteFloat
+from tilekit.cli_types import COUNT, INT64_MAX, OUTPUT, POSITIVE, RUN_ID, BoundedInt, FiniteFloat
 from tilekit.errors import NotFoundError, ParameterError, ParseError, TilekitError
 
 __all__ = ["cli", "main", "plugin_manager"]
@@ -502,7 +502,7 @@ def _vectors(tiling: Any, region: tuple[float, float, float, float]) -> tuple[An
 
 @cli.command()
 @click.argument("name", required=False)
-@click.option("-o", "--output", "out", required=True, type=click.Path(dir_okay=False),
+@click.option("-o", "--output", "out", required=True, type=OUTPUT,
               help="Output file: .svg or .png (a picture), .geojson, .json (tiles and neighbours), "
                    ".cut.svg or .dxf (edges for cutters, shared edges once); see docs/exports.md.")
 @click.option("--param", "params", multiple=True, metavar="X[,X...]", help="Tiling parameters (repeatable, or comma-separated).")
@@ -551,6 +551,7 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
         check_disk_space,
         check_export_size,
         export_fits_in_memory,
+        outline_vertices,
         output_format,
         write_patch,
     )
@@ -614,11 +615,14 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
     estimate = tiling.estimate_tiles(as_region(box) if box is not None else None)
     check_export_size(estimate, fmt, max_tiles, memory=False)
     area = as_region(box) if box is not None else tiling.default_region()
-    if not export_fits_in_memory(estimate, fmt):
+    vertices = outline_vertices(tiling.prototiles)
+    if not export_fits_in_memory(estimate, fmt, vertices, tiling.bytes_per_tile):
         if not (tiling.streams and fmt in STREAM_FORMATS and not labels):
-            check_export_size(estimate, fmt, max_tiles)  # the one-line refusal: this cannot stream
+            # the one-line refusal: this cannot stream
+            check_export_size(estimate, fmt, max_tiles, vertices=vertices, making=tiling.bytes_per_tile)
         check_disk_space(out, estimate, fmt, tiling.prototiles)
-        _render_stream(tiling, area, out, fmt, estimate, palette, stroke, stroke_width, width, height, vectors)
+        _render_stream(tiling, area, out, fmt, estimate, palette, stroke, stroke_width, width, height, vectors,
+                       vertices)
         return
     check_disk_space(out, estimate, fmt, tiling.prototiles)
     if estimate > PROGRESS_TILES and on_terminal():
@@ -650,13 +654,14 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
 
 
 def _render_stream(tiling: Any, area: Any, out: str, fmt: str, estimate: float, palette: Any, stroke: str,
-                   stroke_width: float | None, width: int | None, height: int | None, vectors: bool) -> None:
+                   stroke_width: float | None, width: int | None, height: int | None, vectors: bool,
+                   vertices: int = 4) -> None:
     """Write a patch larger than memory chunk by chunk (``Tiling.iter_patches``, chunks as
     large as half the memory the export may take allows): GeoJSON features or SVG paths,
     a progress bar on a terminal."""
     from tilekit.export import stream_chunk_tiles, write_patches
 
-    chunk = stream_chunk_tiles(fmt)
+    chunk = stream_chunk_tiles(fmt, vertices)
     options: dict[str, Any] = {}
     if fmt == ".svg":
         options = {"palette": palette, "stroke": stroke, "region": area, "width": width, "height": height}
@@ -954,7 +959,7 @@ def runs(state: State, words: tuple[str, ...], fmt: str) -> None:
 def _run_words(words: tuple[str, ...]) -> tuple[str, int | None]:
     """``()``, ``(N,)``, ``(ACTION, N)`` -> (action, run id); one-line errors otherwise."""
     def number(text: str) -> int:
-        if not text.isdigit() or len(text) > 18:
+        if not (text.isascii() and text.isdigit()) or len(text) > 18:
             raise ParameterError(f"run id {text!r} is not a run number (see tilekit runs)")
         return int(text)
 
@@ -1021,7 +1026,7 @@ def catalogue_upgrade(state: State) -> None:
 @catalogue_group.command(name="export")
 @click.option("--format", "fmt", type=click.Choice(["json", "jsonl", "csv"]), default="json", show_default=True,
               help="A JSON array, JSON Lines (one object a line) or CSV; all streamed.")
-@click.option("-o", "--output", "out", type=click.Path(dir_okay=False), help="Output file (default: stdout).")
+@click.option("-o", "--output", "out", type=OUTPUT, help="Output file (default: stdout).")
 @click.option("--family", help="Only tilings of this family.")
 @click.option("--where", "where", multiple=True, metavar="EXPR", help="Filter, as for tilekit list.")
 @pass_state
@@ -1072,10 +1077,10 @@ _MAX_SAMPLES = 20_000_000
               "or an expression in x, y over the unit square, e.g. 'x*y' or 'exp(-9*((x-.5)**2+(y-.5)**2))'.")
 @click.option("--method", default="penrose", show_default=True, help="Sampler: penrose, polyomino or wang (plugins may add more).")
 @click.option("-n", "count", type=BoundedInt(1, _MAX_SAMPLES), required=True, help=f"Number of samples (1..{_MAX_SAMPLES:,}).")
-@click.option("-o", "--output", "out", type=click.Path(dir_okay=False), required=True,
+@click.option("-o", "--output", "out", type=OUTPUT, required=True,
               help="Points as .csv (x,y) or .npy, or a stipple picture as .svg / .png.")
-@click.option("--svg", "svg_out", type=click.Path(dir_okay=False), help="Also draw the stipple picture as SVG.")
-@click.option("--png", "png_out", type=click.Path(dir_okay=False), help="Also draw the stipple picture as PNG.")
+@click.option("--svg", "svg_out", type=OUTPUT, help="Also draw the stipple picture as SVG.")
+@click.option("--png", "png_out", type=OUTPUT, help="Also draw the stipple picture as PNG.")
 @click.option("--seed", type=BoundedInt(0, 2**32 - 1), default=0, show_default=True, help="Placement of the tiling.")
 @click.option("--relax", type=BoundedInt(0, 50), default=0, show_default=True, help="Lloyd iterations after sampling.")
 @click.option("--no-correction", is_flag=True, help="Leave out the sampler's correction step (penrose's table).")
@@ -1140,9 +1145,48 @@ def serve(state: State, host: str, port: int, writable: bool, max_tiles: int) ->
     except ImportError as exc:
         raise TilekitError(f"tilekit serve needs the web extra ({exc.name} is missing): pip install 'tilekit[web]'") from None
     state.catalogue()  # open (and migrate) before binding: a bad catalogue is one line, exit 2
+    sock = _listening_socket(host, port)  # a bad --host or a taken port: one line, exit 2
     app = create_app(state.url, writable=writable, max_tiles=max_tiles, catalogue=state.catalogue())
-    click.echo(f"serving {state.catalogue().url} on http://{host}:{port}/ ({'writable' if writable else 'read-only'})", err=True)
-    uvicorn.run(app, host=host, port=port, log_level="warning")
+    bound = sock.getsockname()[1]
+    shown = f"[{host}]" if ":" in host else host
+    click.echo(f"serving {state.catalogue().url} on http://{shown}:{bound}/ ({'writable' if writable else 'read-only'})", err=True)
+    uvicorn.Server(uvicorn.Config(app, log_level="warning")).run(sockets=[sock])
+
+
+def _listening_socket(host: str, port: int) -> Any:
+    """A TCP socket bound to ``host``:``port`` and listening, or a ParameterError naming
+    the host or port and why (not an address, not this machine's, in use): uvicorn would
+    otherwise log its own line and exit 3, or raise UnicodeError on a non-ASCII name."""
+    import ipaddress
+    import re
+    import socket
+
+    what = f"--host {host[:60]!r}"
+    try:
+        ipaddress.ip_address(host)
+    except ValueError:
+        if re.fullmatch(r"[0-9.]+", host):
+            raise ParameterError(f"{what} is not an IPv4 address (four numbers 0..255, e.g. 127.0.0.1)") from None
+        try:
+            host.encode("idna")
+        except UnicodeError:
+            raise ParameterError(f"{what} is not a valid host name; give an IP address such as 127.0.0.1 "
+                                 "or a name of letters, digits, '-' and '.'") from None
+    try:
+        family, kind, proto, _, address = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM,
+                                                             flags=socket.AI_PASSIVE)[0]
+    except (OSError, UnicodeError, ValueError) as exc:
+        raise ParameterError(f"{what} cannot be resolved to an address of this machine "
+                             f"({getattr(exc, 'strerror', None) or exc})") from None
+    sock = socket.socket(family, kind, proto)
+    try:
+        sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        sock.bind(address)
+        sock.listen(2048)
+    except OSError as exc:
+        sock.close()
+        raise ParameterError(f"cannot serve on {host}:{port}: {exc.strerror or exc}") from None
+    return sock
 
 
 if __name__ == "__main__":  # pragma: no cover

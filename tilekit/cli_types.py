@@ -14,6 +14,9 @@ from typing import Any
 
 import click
 
+from tilekit.errors import TilekitError
+from tilekit.files import check_output
+
 #: The largest integer any option accepts by default (SQLite's and NumPy's int64).
 INT64_MAX = 2**63 - 1
 
@@ -39,8 +42,8 @@ class BoundedInt(click.ParamType):
             number = value
         else:
             text = str(value).strip().replace("_", "")
-            digits = text.lstrip("+-")
-            if not digits.isdigit() or not digits.isascii():
+            digits = text[1:] if text[:1] in ("+", "-") else text  # one sign at most
+            if not digits.isascii() or not digits.isdigit():
                 self.fail(f"{str(value)[:40]!r} is not a valid integer ({self._range()})", param, ctx)
             if len(digits) > 19:
                 self.fail(f"{text[:20]}... ({len(digits)} digits) is out of range {self._range()}", param, ctx)
@@ -77,8 +80,27 @@ class FiniteFloat(click.ParamType):
         return f"FiniteFloat({self.bound})"
 
 
+class OutputPath(click.Path):
+    """A file to write: click's path checks, and an existing path that is not a regular file
+    (a FIFO would block the command until something reads it; a device or a socket is no
+    file) refused in one line before any work (:func:`tilekit.files.check_output`)."""
+
+    def __init__(self) -> None:
+        super().__init__(dir_okay=False)
+
+    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None) -> Any:
+        path = super().convert(value, param, ctx)
+        try:
+            check_output(path, "file")
+        except TilekitError as exc:
+            self.fail(str(exc), param, ctx)
+        return path
+
+
 #: Counts and sizes: 0 or more / 1 or more, int64-bounded.
 COUNT = BoundedInt(0)
 POSITIVE = BoundedInt(1)
 #: A run id (SQLite integer primary key).
 RUN_ID = BoundedInt(1)
+#: A file a command writes.
+OUTPUT = OutputPath()

@@ -10,7 +10,9 @@ Brighter pixels and larger values mean *more* samples (``invert`` turns an image
 
 from __future__ import annotations
 
+import io
 import math
+import os
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -19,6 +21,7 @@ import numpy as np
 
 from tilekit import expr
 from tilekit.errors import ParameterError, ParseError
+from tilekit.files import read_bytes
 from tilekit.limits import refuse_over
 
 #: Largest image (width x height) read as a density; each pixel costs ~24 bytes here.
@@ -114,23 +117,28 @@ class Density:
 def from_image(path: str | Path, invert: bool = False) -> Density:
     """A density from a PNG image's luminance (0..1; bright = more samples unless ``invert``)."""
     p = Path(path)
-    if not p.is_file():
-        raise ParseError(f"density image {str(path)[:200]!r} does not exist (give a PNG file, a named "
-                         f"density ({', '.join(NAMED)}) or an expression in x and y)")
-    with open(p, "rb") as fh:
-        magic = fh.read(8)
-    if magic != b"\x89PNG\r\n\x1a\n":
+    data = read_bytes(p, "density image")
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
         raise ParseError(f"density image {p.name!r} is not a PNG file (its first bytes are not the PNG signature)")
+    if len(data) < 24 or data[12:16] != b"IHDR":
+        raise ParseError(f"density image {p.name!r} is not a PNG file (no IHDR header after the signature)")
+    # the size the header claims, refused before any decoder allocates for it (PIL's own
+    # bomb check would raise from Image.open, outside tilekit's errors)
+    w, h = int.from_bytes(data[16:20], "big"), int.from_bytes(data[20:24], "big")
+    refuse_over("density pixels", w * h, MAX_DENSITY_PIXELS, hint=f"{p.name} is {w} x {h}; scale it down")
     try:
         from PIL import Image, UnidentifiedImageError  # optional: the 'sampling' extra
     except ImportError:
         raise ParameterError("reading a PNG density needs Pillow: pip install 'tilekit[sampling]'") from None
     try:
-        with Image.open(p) as im:
-            w, h = im.size
-            refuse_over("density pixels", w * h, MAX_DENSITY_PIXELS, hint=f"{p.name} is {w} x {h}; scale it down")
+        with Image.open(io.BytesIO(data), formats=["PNG"]) as im:
+            if im.size != (w, h):
+                raise ParseError(f"density image {p.name!r}: the header's size {w} x {h} is not the image's {im.size}")
             grey = np.asarray(im.convert("L"), dtype=np.float64) / 255.0
-    except (UnidentifiedImageError, OSError, SyntaxError, ValueError) as exc:
+    except (UnidentifiedImageError, Image.DecompressionBombError, OSError, SyntaxError, ValueError,
+            EOFError, MemoryError) as exc:
+        if isinstance(exc, ParseError):
+            raise
         raise ParseError(f"density image {p.name!r} cannot be read as a PNG ({str(exc)[:120]})") from None
     if invert:
         grey = 1.0 - grey
@@ -152,7 +160,10 @@ def from_expression(text: str, size: int = EXPRESSION_GRID) -> Density:
 def density_from(spec: str, invert: bool = False, size: int = EXPRESSION_GRID) -> Density:
     """``spec`` as a density: a PNG path (ending .png, or an existing file), a name, or an expression."""
     spec = spec.strip()
-    if spec.lower().endswith(".png") or (spec not in NAMED and Path(spec).is_file()):
+    # a path when it says so (.png) or names something that exists; never an expression
+    # tried as a path first (os.path.lexists answers False, not OSError, for a text too long
+    # to be a file name)
+    if spec.lower().endswith(".png") or (spec not in NAMED and os.path.lexists(spec)):
         return from_image(spec, invert=invert)
     d = from_expression(spec, size)
     if invert:

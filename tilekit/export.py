@@ -28,7 +28,8 @@ from tilekit import limits
 from tilekit.errors import ParameterError, TilekitError
 from tilekit.geometry import POINT_TOL, Affine, snap_noise
 from tilekit.limits import (
-    ADJACENCY_BYTES_PER_TILE,
+    ADJACENCY_BYTES_PER_VERTEX,
+    EXPORT_BYTES_PER_VERTEX,
     GENERATION_BYTES_PER_TILE,
     MAX_DXF_TILES,
     MAX_REPR_TILES,
@@ -367,7 +368,9 @@ def adjacency_of(edges: Edges) -> Adjacency:
 def adjacency(patch: Patch, tol: float | None = None) -> Adjacency:
     """Tiles sharing an edge, a vertex only, or any point (see :class:`Adjacency`); refused
     before any work when its arrays would not fit in memory."""
-    refuse_over_memory("tiles", len(patch), ADJACENCY_BYTES_PER_TILE, hint="adjacency of a smaller patch")
+    vertices = outline_vertices(patch.prototiles)
+    refuse_over_memory("tiles", len(patch), ADJACENCY_BYTES_PER_VERTEX * vertices,
+                       hint=f"tiles of {vertices} vertices; adjacency of a smaller patch")
     return adjacency_of(tile_edges(patch, tol))
 
 
@@ -794,33 +797,45 @@ FILE_BYTES_PER_TILE: dict[str, tuple[int, int]] = {
 }
 
 
-def _memory_per_tile(fmt: str) -> int:
-    """Peak bytes per tile of generating a patch and writing it as ``fmt``."""
-    return GENERATION_BYTES_PER_TILE + {".svg": RENDER_BYTES_PER_TILE, ".png": RENDER_BYTES_PER_TILE,
-                                        ".geojson": GENERATION_BYTES_PER_TILE}.get(fmt, ADJACENCY_BYTES_PER_TILE)
+def memory_per_tile(fmt: str, vertices: int = 4, making: int = GENERATION_BYTES_PER_TILE) -> int:
+    """Peak bytes per tile of making a patch (``making``: the tiling's ``bytes_per_tile``)
+    and writing it as ``fmt``, for tiles of ``vertices`` outline vertices: the larger of the
+    format's cost per tile and per vertex (limits.EXPORT_BYTES_PER_VERTEX: a tile with shaped
+    edges costs its vertices; docs/benchmarks.md "Limits, measured")."""
+    fixed = RENDER_BYTES_PER_TILE if fmt in (".svg", ".png") else 0
+    per_vertex = EXPORT_BYTES_PER_VERTEX.get(fmt, ADJACENCY_BYTES_PER_VERTEX)
+    return making + max(fixed, per_vertex * vertices)
 
 
-def check_export_size(estimate: float, fmt: str, max_tiles: float = MAX_TILES, memory: bool = True) -> None:
+def outline_vertices(prototiles: Sequence[Any]) -> int:
+    """The most outline vertices of any of these prototiles (what a tile costs to draw)."""
+    return max((len(p.outline) for p in prototiles), default=4)
+
+
+def check_export_size(estimate: float, fmt: str, max_tiles: float = MAX_TILES, memory: bool = True,
+                      vertices: int = 4, making: int = GENERATION_BYTES_PER_TILE) -> None:
     """Refuse an export of about ``estimate`` tiles before anything is made: over
     ``max_tiles`` (``--max-tiles``), over MAX_DXF_TILES for DXF, or (``memory``) when the
-    patch and the export's arrays would not fit in memory."""
+    patch and the export's arrays, for tiles of ``vertices`` vertices, would not fit in memory."""
     refuse_over("tiles", estimate, max_tiles, "--max-tiles")
     if fmt == ".dxf":
         refuse_over("tiles", estimate, MAX_DXF_TILES,
                     hint=f"a DXF drawing is built in memory, at most MAX_DXF_TILES = {MAX_DXF_TILES:,} tiles")
     if memory:
-        refuse_over_memory("tiles", estimate, _memory_per_tile(fmt), hint="ask for a smaller depth or region")
+        refuse_over_memory("tiles", estimate, memory_per_tile(fmt, vertices, making),
+                           hint=f"tiles of {vertices} vertices; ask for a smaller depth or region")
 
 
-def export_fits_in_memory(estimate: float, fmt: str) -> bool:
+def export_fits_in_memory(estimate: float, fmt: str, vertices: int = 4,
+                          making: int = GENERATION_BYTES_PER_TILE) -> bool:
     """Whether :func:`check_export_size` lets the whole patch be made in memory."""
-    return fits_in_memory(estimate, _memory_per_tile(fmt))
+    return fits_in_memory(estimate, memory_per_tile(fmt, vertices, making))
 
 
-def stream_chunk_tiles(fmt: str) -> int:
+def stream_chunk_tiles(fmt: str, vertices: int = 4) -> int:
     """Tiles per chunk of a streamed export: STREAM_CHUNK_TILES, or what half the memory
     :func:`check_export_size` allows holds, when less."""
-    fit = MEMORY_FRACTION * limits.available_memory() / (2 * _memory_per_tile(fmt))
+    fit = MEMORY_FRACTION * limits.available_memory() / (2 * memory_per_tile(fmt, vertices))
     return int(max(1, min(STREAM_CHUNK_TILES, fit)))
 
 

@@ -21,6 +21,7 @@ from tilekit.limits import check_coordinates
 from tilekit.polygon import centroid as centroid
 from tilekit.polygon import regular_polygon as regular_polygon
 from tilekit.polygon import signed_area as signed_area
+from tilekit.schema import shown
 
 #: Absolute tolerance for coordinates that should coincide (tilings are drawn at unit scale).
 EPS = 1e-9
@@ -235,16 +236,18 @@ def as_region(region: Any) -> BaseGeometry:
         try:
             vals = [float(p) for p in parts]
         except ValueError:
-            raise ParseError(f"region {region!r} is not 'x0,y0,x1,y1' (four numbers)") from None
+            raise ParseError(f"region {shown(region)} is not 'x0,y0,x1,y1' (four numbers)") from None
         region = vals
     try:
         x0, y0, x1, y1 = (float(v) for v in region)
     except (TypeError, ValueError):
-        raise ParseError(f"region {region!r} is not (x0, y0, x1, y1)") from None
+        raise ParseError(f"region {shown(region)} is not (x0, y0, x1, y1)") from None
+    except OverflowError:  # an integer too large for a float
+        raise GeometryError(f"region {shown(region)} has a coordinate too large to be a number") from None
     if not all(math.isfinite(v) for v in (x0, y0, x1, y1)):
-        raise GeometryError(f"region {region!r} has a non-finite coordinate")
+        raise GeometryError(f"region {shown(region)} has a non-finite coordinate")
     if x1 <= x0 or y1 <= y0:
-        raise GeometryError(f"region {region!r} is empty: need x0 < x1 and y0 < y1")
+        raise GeometryError(f"region {shown(region)} is empty: need x0 < x1 and y0 < y1")
     check_coordinates((x0, y0, x1, y1))
     return shapely.box(x0, y0, x1, y1)
 

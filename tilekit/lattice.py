@@ -925,6 +925,11 @@ def encode(grid: Grid, cells: np.ndarray, *, is_canonical: bool = False) -> str:
     return ";".join(f"{x},{y}" for x, y in c.tolist())
 
 
+#: Largest |coordinate| of a cell in a code: fine coordinates (2x + 1 on the square grid)
+#: must stay within the +-2^20 that :func:`pack` holds.
+MAX_CODE_COORDINATE = 1 << 18
+
+
 def decode(grid: Grid, code: str) -> np.ndarray:
     """Cells (fine centres) of a code in either form; ParseError names what is wrong."""
     text = str(code).strip()
@@ -946,6 +951,9 @@ def decode(grid: Grid, code: str) -> np.ndarray:
     except ValueError:
         hint = "rows of 'x' and '.' joined by '/', e.g. 'xx/x.'" if grid is SQUARE else "'x,y;x,y;...' of cell centres"
         raise ParseError(f"malformed {grid.name} polyform code {code!r}: expected {hint}") from None
+    if any(abs(v) > MAX_CODE_COORDINATE for p in pts for v in p):
+        raise ParseError(f"{grid.name} polyform code {str(code)[:60]!r}: a coordinate is outside "
+                         f"±{MAX_CODE_COORDINATE:,} (cells are packed into 21-bit fields)")
     return np.array(pts, dtype=np.int64).reshape(-1, 2)
 
 

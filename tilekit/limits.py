@@ -8,9 +8,11 @@ raises it.
 
 The defaults are sized so that a refused object would need more than a few GB: a placed tile
 costs 80-90 bytes as a Patch's arrays ((3, 3) float64 map, int64 prototile, colour) and
-several hundred more as SVG text. Generating it peaks higher, because the previous level of
-a substitution is alive while the last one is made: 94-163 bytes per tile measured at 10^6
-tiles (tracemalloc, docs/benchmarks.md), which GENERATION_BYTES_PER_TILE bounds. Whatever
+several hundred more as SVG text. Making it peaks higher, because the previous level of a
+substitution is alive while the last one is made (GENERATION_BYTES_PER_TILE) and a periodic
+patch's lattice points are filtered in blocks (PERIODIC_BYTES_PER_TILE). Every per-unit cost
+here is a measured peak (benchmarks/bench_limits.py, docs/benchmarks.md "Limits, measured"),
+and tests/test_limits_measured.py fails when an estimate is off by more than 2x. Whatever
 the tile limits are raised to, :func:`refuse_over_memory` refuses a patch whose arrays
 would not fit in the memory the machine has available; a substitution patch can instead be
 streamed in chunks (``Tiling.iter_patches``, STREAM_CHUNK_TILES), which ``tilekit render``
@@ -31,9 +33,15 @@ MAX_TILES = 2_000_000
 MAX_GRID_CELLS = 1_000_000
 #: Cells of one ``wang solve`` question (``--max-tiles``).
 MAX_SOLVE_CELLS = 1_000_000
-#: Boolean variables of one SAT encoding, cells x tiles (``wang solve --max-variables``);
-#: a variable with its clauses costs about 200 bytes.
+#: Boolean variables of one SAT encoding (``wang solve --max-variables``); what a question
+#: costs in memory is SAT_BYTES_PER_VARIABLE and SAT_BYTES_PER_CLAUSE, checked as well.
 MAX_SAT_VARIABLES = 5_000_000
+#: Peak bytes of one SAT question (clause blocks, python-sat's CaDiCaL 1.9.5, the model) per
+#: variable and per clause, fitted to 7 Wang encodings of 0.1-0.9 M variables and 0.5-2.1 M
+#: clauses (each within 0.83-1.21x; docs/benchmarks.md "Limits, measured";
+#: tests/test_limits_measured.py keeps them within 2x of what a solve takes).
+SAT_BYTES_PER_VARIABLE = 70
+SAT_BYTES_PER_CLAUSE = 230
 #: Colours of one periodic colouring (``--set colouring=``).
 MAX_COLOURS = 1_000
 #: Pixels of one PNG image (width x height).
@@ -42,12 +50,28 @@ MAX_PNG_PIXELS = 100_000_000
 MAX_COORDINATE = 1e9
 #: Largest substitution depth any system accepts (the tile estimate is the real bound).
 MAX_DEPTH = 60
-#: Peak bytes per tile while a substitution patch is generated (measured 94-163 at 10^6
-#: tiles for every generator; see docs/benchmarks.md), with a margin.
-GENERATION_BYTES_PER_TILE = 200
+#: Peak bytes per tile while a substitution patch is made through the API (generation,
+#: culling to the region, assembly, colours): peak resident growth measured 269-648 on
+#: Penrose P3, chair, spectre, hat and Ammann-Beenker patches of 35,000-4,200,000 tiles
+#: (the engine alone, by tracemalloc, 94-163); docs/benchmarks.md "Limits, measured".
+GENERATION_BYTES_PER_TILE = 450
+#: Peak bytes per tile of a periodic patch (PeriodicTiling.patch): measured 120-290 on
+#: 3.4.6.4, 4^4 and IH41 patches of 335,000-4,000,000 tiles.
+PERIODIC_BYTES_PER_TILE = 200
 #: Peak bytes per tile while a patch is drawn as SVG (measured about 405 for Penrose
 #: rhombs: the polygons, the path text and the document), with a margin.
 RENDER_BYTES_PER_TILE = 500
+#: Peak bytes per outline vertex of a tile written as each format (SVG text and its polygons,
+#: GeoJSON coordinates, JSON / cut SVG / DXF: the adjacency, ADJACENCY_BYTES_PER_VERTEX): a
+#: tile with shaped edges of hundreds of vertices costs them. Measured on IH16 with 6, 106 and
+#: 406 vertices a tile (100-163 / 138-200 / 245-296 bytes a vertex; docs/benchmarks.md
+#: "Limits, measured"), rounded up.
+EXPORT_BYTES_PER_VERTEX = {".svg": 125, ".png": 125, ".geojson": 220, ".json": 300, ".cut.svg": 300, ".dxf": 300}
+#: Points of one edge shape (``--edge``, after a Bézier is flattened): checking a tile for
+#: overlaps (Patch.validate of its 3 x 3 units) grows with its outline vertices squared:
+#: IH16 with 106 / 206 / 406 / 1,606 vertices peaked at 26 / 78 / 179 / 1,800 MB (0.2-10 s),
+#: so 100 points an edge keep a tile near 400-600 vertices and 0.2-0.4 GB.
+MAX_EDGE_POINTS = 100
 #: Tiles a notebook draws inline (``_repr_svg_`` of a Patch, Tiling or catalogue entry);
 #: over it a short line of text is shown instead of a giant SVG.
 MAX_REPR_TILES = 5_000
@@ -55,16 +79,41 @@ MAX_REPR_TILES = 5_000
 #: and 0.12-0.27 ms per tile (measured, docs/benchmarks.md), so 200,000 tiles is ~700 MB and up to
 #: a minute; GeoJSON, JSON and the cut SVG are streamed and need no limit of their own.
 MAX_DXF_TILES = 200_000
-#: Peak bytes per tile while the adjacency of a patch is computed (measured 0.9-1.0 kB for
-#: 3.4.6.4 and Penrose rhombs, 1.4 kB for the chair and 2.3 kB for pentomino-F, whose edges
-#: are split at T-junctions; docs/benchmarks.md), with a margin.
-ADJACENCY_BYTES_PER_TILE = 3_000
+#: Peak bytes per outline vertex of a tile while the adjacency of a patch is computed (welded
+#: vertices, edges split at T-junctions, pairs): measured 203 (Penrose P3, 4 vertices), 218
+#: (chair, 6), 195 (3.4.6.4, 6) and 282 (pentomino-F, 10: its edges are split) bytes a vertex
+#: of the largest prototile; docs/benchmarks.md "Limits, measured".
+ADJACENCY_BYTES_PER_VERTEX = 300
 #: Tiles per chunk of a streamed substitution patch (``Tiling.iter_patches``, ``tilekit
 #: render`` past what fits in memory): about GENERATION_BYTES_PER_TILE each while a chunk
-#: is made, so ~200 MB, or less when less memory is available.
+#: is made, so ~450 MB, or less when less memory is available.
 STREAM_CHUNK_TILES = 1 << 20
 #: Fraction of the available memory one patch may take.
 MEMORY_FRACTION = 0.8
+
+#: Seconds one solver or builder call runs when its caller gives no budget of its own
+#: (``wang solve --time-limit``, ``wang render --time-limit``, PatchBuilder.build's
+#: max_seconds); it ends with a one-line SolverLimit naming the option that raises it.
+DEFAULT_SOLVER_SECONDS = 60.0
+#: The largest time budget an option accepts (seconds; a finite number, about 115 days).
+MAX_SOLVER_SECONDS = 1e7
+
+#: Peak bytes per tile the patch builder places (tilekit.builder: vertex stars, the frontier,
+#: the grid index; measured on Wang rectangles of 1,600-6,400 cells, 5.8-6.5 kB) and per tile
+#: of a torus (each tile's lattice images are placed too: 42.6-43.3 kB on 900-3,600 cells).
+BUILDER_BYTES_PER_TILE = 6_500
+BUILDER_BYTES_PER_TORUS_TILE = 45_000
+
+#: Tiles of one Wang tile set (a .wang file or a spec): the solvers' sizes grow with it.
+MAX_WANG_TILES = 10_000
+
+# ---- users' files (issue 27): tilekit.files reads only regular files, bounded in size
+#: Bytes of one data file a user gives (a TOML system or texture, a .wang set, a JSON spec,
+#: a PNG density): the largest shipped file is under 100 kB, a 40,000-tile .wang set 0.6 MB.
+MAX_FILE_BYTES = 16 << 20
+#: Depth of nested lists and tables in a JSON or TOML document (tilekit.schema.parse_json /
+#: parse_toml): the deepest shipped data nests 5 levels; Python's parsers recurse per level.
+MAX_NESTING = 32
 
 
 class LimitError(TilekitError, ValueError):
@@ -113,19 +162,67 @@ def check_coordinates(bounds: tuple[float, float, float, float], what: str = "re
         )
 
 
+def sat_bytes(variables: float, clauses: float) -> float:
+    """Peak bytes of a SAT question of this size (SAT_BYTES_PER_VARIABLE, SAT_BYTES_PER_CLAUSE)."""
+    return SAT_BYTES_PER_VARIABLE * variables + SAT_BYTES_PER_CLAUSE * clauses
+
+
 def available_memory() -> float:
-    """Bytes of memory available to a new allocation (MemAvailable of /proc/meminfo, else
-    the free physical pages; inf when the system says neither)."""
+    """Bytes of memory available to a new allocation: MemAvailable of /proc/meminfo (else the
+    free physical pages), and no more than what this process's address-space limit
+    (RLIMIT_AS, e.g. ``ulimit -v``) or its cgroup's memory.max leaves; inf when nothing says."""
+    avail = math.inf
     try:
         with open("/proc/meminfo", encoding="ascii") as fh:
             for line in fh:
                 if line.startswith("MemAvailable:"):
+                    avail = float(line.split()[1]) * 1024
+                    break
+    except OSError:
+        pass
+    if math.isinf(avail):
+        try:
+            avail = float(os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE"))
+        except (ValueError, OSError, AttributeError):
+            pass
+    return min(avail, _address_space_left(), _cgroup_left())
+
+
+def _status_bytes(key: str) -> float | None:
+    try:
+        with open("/proc/self/status", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith(key):
                     return float(line.split()[1]) * 1024
     except OSError:
         pass
+    return None
+
+
+def _address_space_left() -> float:
+    """RLIMIT_AS minus the address space in use (VmSize), or inf without a limit."""
     try:
-        return float(os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE"))
-    except (ValueError, OSError, AttributeError):
+        import resource
+
+        soft, _ = resource.getrlimit(resource.RLIMIT_AS)
+    except (ImportError, OSError, ValueError):
+        return math.inf
+    if soft == resource.RLIM_INFINITY:
+        return math.inf
+    used = _status_bytes("VmSize:")
+    return max(0.0, soft - (used or 0.0))
+
+
+def _cgroup_left() -> float:
+    """The cgroup v2 memory.max minus memory.current, or inf without one."""
+    try:
+        with open("/sys/fs/cgroup/memory.max", encoding="ascii") as fh:
+            text = fh.read().strip()
+        if text == "max":
+            return math.inf
+        with open("/sys/fs/cgroup/memory.current", encoding="ascii") as fh:
+            return max(0.0, float(text) - float(fh.read().strip()))
+    except (OSError, ValueError):
         return math.inf
 
 

@@ -1,14 +1,13 @@
 """Where the shipped data lives at run time (catalogue/ and migrations/ inside the wheel), and
-reading its TOML files with one-line errors."""
+reading TOML data files with one-line errors (through the bounded reader, tilekit.files)."""
 
 from __future__ import annotations
 
-import tomllib
 from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from tilekit.errors import ParseError
+from tilekit import files
 
 
 def _locate(package: str, folder: str) -> Path:
@@ -29,16 +28,8 @@ def migrations_dir() -> Path:
 
 
 def read_toml(path: str | Path, what: str) -> dict[str, Any]:
-    """Parse a TOML data file; a ParseError names ``what`` and the file (and, from tomllib,
-    the line) when it cannot be read or is not TOML."""
-    p = Path(path)
-    try:
-        text = p.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise ParseError(f"{what} {str(p)!r} cannot be read: {exc.strerror or exc}") from None
-    except UnicodeDecodeError as exc:
-        raise ParseError(f"{what} {p.name}: not UTF-8 text (byte {exc.start}); save it as UTF-8") from None
-    try:
-        return tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise ParseError(f"{what} {p.name}: not valid TOML ({exc})") from None
+    """Parse a TOML data file (a shipped one or a user's): :func:`tilekit.files.read_toml`,
+    so only a regular file of bounded size is read and its nesting is bounded; a ParseError
+    names ``what`` and the file (and, from tomllib, the line) when it cannot be read or is
+    not TOML."""
+    return files.read_toml(path, what)

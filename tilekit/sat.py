@@ -81,19 +81,49 @@ def check_solver(solver: str) -> str:
     return solver
 
 
+#: Clauses turned into Python lists at a time when a block is handed to a solver.
+BLOCK_ROWS = 1 << 16
+
+
 class CNF:
     """Clauses over variables ``1..top``, with fresh-variable numbering and cardinality encodings.
 
     ``clauses`` is a plain list of lists of non-zero ints (DIMACS literals), so array code can
-    ``extend`` it with ``ndarray.tolist()`` rows directly.
+    ``extend`` it with ``ndarray.tolist()`` rows directly. Array code with many clauses of one
+    width adds them as a *block* instead (:meth:`add_block`: a 2-D integer array, a clause
+    per row), which stays an array until the solver takes it, :data:`BLOCK_ROWS` rows at a
+    time: a binary clause costs 8-16 bytes there against about 140 as a list of two ints.
     """
 
     def __init__(self, clauses: Iterable[Sequence[int]] = (), top: int = 0) -> None:
         self.clauses: list[list[int]] = [list(map(int, c)) for c in clauses]
+        self.blocks: list[Any] = []
         self.top = max([top, *(abs(v) for c in self.clauses for v in c)])
 
     def __len__(self) -> int:
-        return len(self.clauses)
+        return len(self.clauses) + sum(len(b) for b in self.blocks)
+
+    def literals(self) -> int:
+        """How many literals the clauses hold (a solver's memory grows with them)."""
+        return sum(len(c) for c in self.clauses) + sum(int(b.size) for b in self.blocks)
+
+    def add_block(self, block: Any) -> None:
+        """Add one clause per row of the 2-D integer array ``block`` (non-zero literals)."""
+        if getattr(block, "ndim", 0) != 2 or block.dtype.kind not in "iu":
+            raise ParameterError(f"a clause block is a 2-D integer array, not {type(block).__name__}")
+        if block.size:
+            if block.shape[1] == 0 or not block.all():
+                raise ParameterError("a clause block's rows are non-empty clauses of non-zero literals")
+            self.top = max(self.top, int(abs(block).max()))
+            self.blocks.append(block)
+
+    def rows(self) -> Iterator[list[int]]:
+        """Every clause as a list of ints: the list clauses, then the blocks' rows, converted
+        :data:`BLOCK_ROWS` at a time."""
+        yield from self.clauses
+        for block in self.blocks:
+            for start in range(0, len(block), BLOCK_ROWS):
+                yield from block[start:start + BLOCK_ROWS].tolist()
 
     def new_var(self) -> int:
         """One fresh variable."""
@@ -186,9 +216,9 @@ class SatAnswer:
         return [v for v in (self.model or ()) if v > 0]
 
 
-def _clauses_of(cnf: CNF | Iterable[Sequence[int]]) -> list[list[int]]:
+def _clauses_of(cnf: CNF | Iterable[Sequence[int]]) -> Iterable[list[int]]:
     if isinstance(cnf, CNF):
-        return cnf.clauses
+        return cnf.rows() if cnf.blocks else cnf.clauses
     if isinstance(cnf, list) and (not cnf or isinstance(cnf[0], list)):
         return cnf  # already rows of literals: no copy (encodings hand over 10^5+ clauses)
     return [list(c) for c in cnf]

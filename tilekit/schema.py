@@ -15,6 +15,13 @@ Traceback (most recent call last):
 ...
 tilekit.errors.ParseError: tiles.toml: outline must be a list of at least 3 items, got [[0, 0], [1, 0]]
 
+Documents a user gives are parsed by :func:`parse_json` and :func:`parse_toml`: a syntax error,
+nesting deeper than ``limits.MAX_NESTING`` (Python's parsers recurse once per level), a
+non-finite number or an integer too long to convert are one ParseError, never a
+RecursionError or ValueError. Numbers checked by a schema must be finite (a 400-digit integer
+or ``inf`` is not a parameter), and integers fit in 64 bits unless the field's range says
+otherwise.
+
 Paths are TOML's dotted keys (``placement.steps[3]``, counting list items from 1). A field's
 ``error`` (and ``missing``) replaces the generic message where a format has a message of its
 own; it may name ``{path}``, ``{value}`` and ``{n}`` (the 1-based number of the list item the
@@ -24,12 +31,18 @@ field belongs to). Line numbers come from the TOML parser where it gives one
 
 from __future__ import annotations
 
+import json
 import math
+import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
 from tilekit.errors import ParseError
+from tilekit.limits import MAX_NESTING
+
+#: The largest integer a schema's "int" field takes unless its range says otherwise (int64).
+INT_LIMIT = 2**63 - 1
 
 
 def finite_number(value: Any, what: str) -> float:
@@ -42,7 +55,61 @@ def finite_number(value: Any, what: str) -> float:
         raise ParseError(f"{what} {value!r} is not a finite number")
     return x
 
-__all__ = ["MISSING", "Field", "check"]
+__all__ = ["MISSING", "Field", "check", "check_nesting", "finite_number", "parse_json", "parse_toml", "shown"]
+
+
+def check_nesting(value: Any, where: str, max_depth: int = MAX_NESTING) -> Any:
+    """``value`` unchanged when its lists and tables nest at most ``max_depth`` deep (walked
+    without recursion), else a one-line ParseError naming ``where``."""
+    stack = [(value, 0)]
+    while stack:
+        item, depth = stack.pop()
+        if isinstance(item, Mapping):
+            children: Any = item.values()
+        elif isinstance(item, list | tuple):
+            children = item
+        else:
+            continue
+        if depth >= max_depth:
+            raise ParseError(f"{where}: lists and tables nest more than {max_depth} deep")
+        stack.extend((child, depth + 1) for child in children)
+    return value
+
+
+def _no_constant(name: str) -> Any:
+    raise ParseError(f"{name} is not a JSON number; give a finite number")
+
+
+def parse_json(text: str | bytes, where: str, max_depth: int = MAX_NESTING) -> Any:
+    """JSON text as Python values, or a one-line ParseError naming ``where``: bad syntax,
+    ``NaN`` / ``Infinity``, an integer of more digits than Python converts, nesting deeper
+    than ``max_depth``."""
+    try:
+        value = json.loads(text, parse_constant=_no_constant)
+    except ParseError as exc:
+        raise ParseError(f"{where}: {exc}") from None
+    except json.JSONDecodeError as exc:
+        raise ParseError(f"{where}: not valid JSON ({exc.msg}, line {exc.lineno} column {exc.colno})") from None
+    except RecursionError:
+        raise ParseError(f"{where}: lists and tables nest more than {max_depth} deep") from None
+    except (ValueError, UnicodeDecodeError) as exc:  # e.g. an integer of over 4,300 digits
+        raise ParseError(f"{where}: not valid JSON ({str(exc)[:100]})") from None
+    return check_nesting(value, where, max_depth)
+
+
+def parse_toml(text: str, where: str, max_depth: int = MAX_NESTING) -> dict[str, Any]:
+    """TOML text as a table, or a one-line ParseError naming ``where`` (with tomllib's line
+    and column): bad syntax, an integer of more digits than Python converts, nesting deeper
+    than ``max_depth``."""
+    try:
+        value = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ParseError(f"{where}: not valid TOML ({exc})") from None
+    except RecursionError:
+        raise ParseError(f"{where}: lists and tables nest more than {max_depth} deep") from None
+    except ValueError as exc:  # e.g. an integer of over 4,300 digits
+        raise ParseError(f"{where}: not valid TOML ({str(exc)[:100]})") from None
+    return check_nesting(value, where, max_depth)
 
 
 class _Missing:
@@ -112,14 +179,26 @@ def check(schema: Field, value: Any, where: str, path: str = "") -> Any:
 def _fail(schema: Field, where: str, path: str, value: Any, n: int, problem: str, missing: bool = False) -> ParseError:
     template = (schema.missing if missing and schema.missing else None) or schema.error
     if template:
-        msg = template.format(path=path, value=value, n=n)
+        shown = value
+        if isinstance(value, int) and value.bit_length() > 200:
+            shown = shown(value)
+        elif isinstance(value, str) and len(value) > 60:
+            shown = value[:57] + "..."
+        msg = template.format(path=path, value=shown, n=n)
     else:
         msg = f"{path or 'top level'} {problem}"
     return ParseError(f"{where}: {msg}")
 
 
-def _short(value: Any) -> str:
-    text = repr(value)
+def shown(value: Any) -> str:
+    """``value`` for an error message: its repr cut to 60 characters; an integer of more than
+    200 bits by its number of digits (Python refuses to print one of over 4,300)."""
+    if isinstance(value, int) and value.bit_length() > 200:
+        return f"an integer of about {int(value.bit_length() * math.log10(2)) + 1} digits"
+    try:
+        text = repr(value)
+    except (ValueError, RecursionError):
+        text = f"a {type(value).__name__}"
     return text if len(text) <= 60 else text[:57] + "..."
 
 
@@ -130,15 +209,17 @@ def _check(schema: Field, value: Any, where: str, path: str, n: int) -> Any:
         return schema.default
     kind = schema.kind
     if not isinstance(value, _TYPES[kind]) or (isinstance(value, bool) and kind not in ("bool", "any")):
-        raise _fail(schema, where, path, value, n, f"must be {_NAMES[kind]}, got {_short(value)}")
+        raise _fail(schema, where, path, value, n, f"must be {_NAMES[kind]}, got {shown(value)}")
+    if kind in ("int", "number", "expr") and isinstance(value, int | float) and not isinstance(value, bool):
+        _check_number(schema, value, where, path, n)
     if schema.choices is not None and value not in schema.choices:
         raise _fail(schema, where, path, value, n,
-                    f"{_short(value)} is not one of {', '.join(map(str, schema.choices))}")
+                    f"{shown(value)} is not one of {', '.join(map(str, schema.choices))}")
     if schema.range is not None and kind in ("int", "number"):
         lo, hi = schema.range
         if (lo is not None and value < lo) or (hi is not None and value > hi):
             span = f"{'' if lo is None else lo}..{'' if hi is None else hi}"
-            raise _fail(schema, where, path, value, n, f"{value!r} is outside {span}")
+            raise _fail(schema, where, path, value, n, f"{shown(value)} is outside {span}")
     if kind == "list":
         return _check_list(schema, value, where, path, n)
     if kind == "table":
@@ -146,12 +227,24 @@ def _check(schema: Field, value: Any, where: str, path: str, n: int) -> Any:
     return value
 
 
+def _check_number(schema: Field, value: int | float, where: str, path: str, n: int) -> None:
+    """A number must be finite, and an int within INT_LIMIT unless the field's range bounds it."""
+    try:
+        finite = math.isfinite(value)
+    except OverflowError:  # an int too large for a float
+        finite = False
+    if not finite:
+        raise _fail(schema, where, path, value, n, f"must be a finite number, got {shown(value)}")
+    if isinstance(value, int) and abs(value) > INT_LIMIT and schema.range is None:
+        raise _fail(schema, where, path, value, n, f"{shown(value)} is outside -{INT_LIMIT}..{INT_LIMIT}")
+
+
 def _check_list(schema: Field, value: Any, where: str, path: str, n: int) -> list[Any]:
     if schema.length is not None:
         lo, hi = schema.length
         if len(value) < lo or (hi is not None and len(value) > hi):
             size = f"exactly {lo}" if lo == hi else (f"at least {lo}" if hi is None else f"{lo} to {hi}")
-            raise _fail(schema, where, path, value, n, f"must be a list of {size} items, got {_short(value)}")
+            raise _fail(schema, where, path, value, n, f"must be a list of {size} items, got {shown(value)}")
     if schema.items is None:
         return list(value)
     return [_check(schema.items, item, where, f"{path}[{i + 1}]", i + 1) for i, item in enumerate(value)]

@@ -17,6 +17,7 @@ import logging
 import math
 import os
 import signal
+import sys
 import threading
 import time
 import uuid
@@ -27,6 +28,7 @@ import pluggy
 
 from tilekit.catalogue import Catalogue, auto_type, lease_seconds
 from tilekit.errors import NotFoundError, ParameterError, SearchError, TilekitError
+from tilekit.limits import refuse_over_memory
 from tilekit.plugins import ChunkResult, Search, get_plugin_manager, get_search
 from tilekit.signals import Terminated, sigterm_raises
 
@@ -196,13 +198,13 @@ def work(
     them when their leases expire. A chunk that raises releases its lease, marks the run
     failed and raises :class:`_ChunkFailed`; an interrupt releases the lease and propagates.
     """
-    owner = catalogue.start_worker(run_id, session)
+    owner = _patiently(catalogue.start_worker, run_id, session)
     beat = _Heartbeat(catalogue, owner)
     beat.start()
     recorded = 0
     try:
         while not beat.stop.is_set():
-            claimed = catalogue.claim(run_id, owner)
+            claimed = _patiently(catalogue.claim, run_id, owner)
             if claimed is None:
                 break
             if not claimed:
@@ -218,7 +220,8 @@ def work(
                     raise _ChunkFailed(index, SearchError(
                         f"search {search.name!r}: run_chunk returned {type(result).__name__} "
                         f"for chunk {index}, not a ChunkResult"))
-                if catalogue.record_chunk(run_id, index, result, time.perf_counter() - started, owner=owner):
+                spent = time.perf_counter() - started
+                if _patiently(catalogue.record_chunk, run_id, index, result, spent, owner=owner):
                     recorded += 1
                 if on_record is not None:
                     on_record(index)
@@ -228,8 +231,30 @@ def work(
         raise
     finally:
         beat.end()
-        catalogue.finish_worker(owner)
+        _patiently(catalogue.finish_worker, owner)
     return recorded
+
+
+def _locked(exc: BaseException) -> bool:
+    """A SQLite catalogue whose write lock another process held past the busy timeout."""
+    text = str(exc)
+    return "database is locked" in text or "database table is locked" in text
+
+
+def _patiently(call: Callable[..., Any], *args: Any, **kwargs: Any) -> Any:
+    """``call(*args, **kwargs)``, retried while the catalogue is locked by other writers (many workers on
+    one SQLite file), for up to a lease time: the heartbeat keeps this worker's leases alive
+    meanwhile, so waiting loses nothing, where giving up would kill the worker."""
+    deadline = time.monotonic() + lease_seconds()
+    pause = POLL_SECONDS
+    while True:
+        try:
+            return call(*args, **kwargs)
+        except TilekitError as exc:
+            if not _locked(exc) or time.monotonic() + pause > deadline:
+                raise
+        time.sleep(pause)
+        pause = min(2.0, pause * 1.5)
 
 
 # --------------------------------------------------------------------------- executors
@@ -265,11 +290,18 @@ def _child_main(url: str, run_id: int, session: str, search: Search, params: Map
     threading.Thread(target=watch, daemon=True).start()
     from tilekit.catalogue import open_catalogue
 
-    catalogue = open_catalogue(url, seed=False, migrate=False, pm=pm)
+    try:
+        catalogue = _patiently(open_catalogue, url, seed=False, migrate=False, pm=pm)
+    except TilekitError as exc:
+        print(f"error: worker {os.getpid()}: {' '.join(str(exc).split())}", file=sys.stderr)
+        os._exit(2)
     try:
         work(catalogue, run_id, search, params, session)
     except _ChunkFailed:
         os._exit(3)
+    except TilekitError as exc:  # the catalogue failed this worker: one line, not a traceback
+        print(f"error: worker {os.getpid()}: {' '.join(str(exc).split())}", file=sys.stderr)
+        os._exit(2)
     finally:
         catalogue.close()
 
@@ -366,7 +398,11 @@ def _dask_client(workers: int | None, scheduler: str | None) -> Any:
         ) from None
     address = scheduler or os.environ.get("TILEKIT_DASK_SCHEDULER")
     if address:
-        return Client(address), None
+        _reach_scheduler(address)
+        try:
+            return Client(address, timeout=SCHEDULER_CONNECT_SECONDS), None
+        except (OSError, ValueError, TypeError) as exc:  # TimeoutError is an OSError
+            raise _NoExecutor(f"cannot use the dask scheduler {address[:80]!r}: {_one_line(exc)}") from None
     # the cluster's processes inherit "ignore Ctrl-C", so an interrupt reaches only us
     previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if _main_thread() else None
     try:
@@ -376,6 +412,43 @@ def _dask_client(workers: int | None, scheduler: str | None) -> Any:
         if previous is not None:
             signal.signal(signal.SIGINT, previous)
     return Client(cluster), cluster
+
+
+#: Seconds to wait for a dask scheduler to answer (distributed's own default is 30).
+SCHEDULER_CONNECT_SECONDS = 10.0
+
+
+class _NoExecutor(SearchError):
+    """The executor could not start (an unreachable or malformed scheduler address): a run
+    this call created is removed again rather than left queued."""
+
+
+def _one_line(exc: BaseException) -> str:
+    return " ".join(str(exc).split())[:200] or type(exc).__name__
+
+
+def _reach_scheduler(address: str) -> None:
+    """A scheduler address that is not an address, or a TCP one nobody listens on, is one
+    line at once (distributed raises a ValueError for the first, and retries the second
+    until its connect timeout)."""
+    try:
+        from distributed.comm import parse_address
+        from distributed.comm.addressing import parse_host_port
+
+        scheme, location = parse_address(address)
+        if scheme not in ("tcp", "tls"):
+            return
+        host, port = parse_host_port(location)
+    except (ValueError, TypeError) as exc:
+        raise _NoExecutor(f"--scheduler {address[:80]!r} is not a scheduler address "
+                          f"(e.g. tcp://10.0.0.5:8786): {_one_line(exc)}") from None
+    import socket
+
+    try:
+        socket.create_connection((host, int(port)), timeout=SCHEDULER_CONNECT_SECONDS).close()
+    except (OSError, ValueError, UnicodeError) as exc:
+        raise _NoExecutor(f"cannot reach the dask scheduler at {address[:80]!r}: "
+                          f"{getattr(exc, 'strerror', None) or _one_line(exc)}") from None
 
 
 def _main_thread() -> bool:
@@ -426,6 +499,42 @@ def _run_dask(catalogue: Catalogue, run_id: int, search: Search, params: Mapping
 # --------------------------------------------------------------------------- run_search
 
 
+#: Worker processes per CPU this machine runs at most (the process executor and a local dask
+#: cluster): more only wait for each other, and each holds an interpreter with the library.
+WORKERS_PER_CPU = 4
+#: Peak bytes of one worker process (Python, NumPy, SQLAlchemy, the plugins and its chunks:
+#: 75-76 MB RSS on vertex-species, 124 MB on k-uniform --k 2, 4 workers; docs/benchmarks.md
+#: "Limits, measured").
+WORKER_BYTES = 128 << 20
+
+
+def max_workers(catalogue: Catalogue | None = None, executor: str = "process", scheduler: str | None = None) -> int:
+    """The most workers a run may ask for: WORKERS_PER_CPU per CPU for processes of this
+    machine, and as many for a SQLite catalogue whatever runs them (one file takes one
+    writer at a time; every other worker waits for the lock)."""
+    local = executor == "process" or (executor == "dask" and not (scheduler or os.environ.get("TILEKIT_DASK_SCHEDULER")))
+    sqlite = catalogue is not None and catalogue.engine.url.get_backend_name() == "sqlite"
+    if local or sqlite:
+        return WORKERS_PER_CPU * (os.cpu_count() or 1)
+    return 4096
+
+
+def _check_workers(catalogue: Catalogue, executor: str, workers: int | None, scheduler: str | None) -> None:
+    """Refuse (one line) more workers than the machine and the database can serve, before a
+    run is created: ``max_workers``, and for local processes the memory they would take."""
+    if workers is None or executor == "local":
+        return
+    cap = max_workers(catalogue, executor, scheduler)
+    if workers > cap:
+        where = "a SQLite catalogue" if catalogue.engine.url.get_backend_name() == "sqlite" else "this machine"
+        raise ParameterError(
+            f"--workers {workers} is more than {where} can serve: at most {cap} ({WORKERS_PER_CPU} per CPU, "
+            f"{os.cpu_count() or 1} CPUs); give --workers {cap} or fewer"
+        )
+    if executor == "process" or cap < 4096:
+        refuse_over_memory("worker processes", workers, WORKER_BYTES, hint="give fewer --workers")
+
+
 def _check_executor(executor: str, workers: int | None, scheduler: str | None) -> None:
     if executor not in EXECUTORS:
         raise ParameterError(f"executor {executor!r} is not one of: {', '.join(EXECUTORS)}")
@@ -436,6 +545,9 @@ def _check_executor(executor: str, workers: int | None, scheduler: str | None) -
             import dask.distributed  # noqa: F401
         except ImportError:
             _dask_client(workers, scheduler)
+        address = scheduler or os.environ.get("TILEKIT_DASK_SCHEDULER")
+        if address:  # nor when its scheduler cannot be reached
+            _reach_scheduler(address)
 
 
 def run_search(
@@ -466,6 +578,8 @@ def run_search(
     """
     pm = pm or catalogue._pm or get_plugin_manager()
     _check_executor(executor, workers, scheduler)
+    _check_workers(catalogue, executor, workers, scheduler)
+    created: int | None = None
 
     if resume_run is not None:
         info = catalogue.run(resume_run)
@@ -504,6 +618,7 @@ def run_search(
             raise
         except Exception as exc:
             raise SearchError(f"search {search.name!r} could not split its work: {exc}") from exc
+        created = run_id
         if on_run:
             on_run(run_id)
 
@@ -524,6 +639,12 @@ def run_search(
             _close_session(catalogue, session)
             with contextlib.suppress(TilekitError):
                 catalogue.finish_run(run_id, "interrupted", error="interrupted")
+            raise
+        except _NoExecutor:
+            _close_session(catalogue, session)
+            if created is not None and catalogue.run(created).chunks_done == 0:
+                with contextlib.suppress(TilekitError):
+                    catalogue.delete_run(created)  # nothing was done: leave no queued run behind
             raise
         except _ChunkFailed as exc:
             raise SearchError(

@@ -23,7 +23,12 @@ from tilekit import export
 from tilekit.colouring import Colouring
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.geometry import AREA_TOL, EPS, Affine, as_region, snap_noise
-from tilekit.limits import STREAM_CHUNK_TILES, check_chunk_tiles
+from tilekit.limits import (
+    GENERATION_BYTES_PER_TILE,
+    PERIODIC_BYTES_PER_TILE,
+    STREAM_CHUNK_TILES,
+    check_chunk_tiles,
+)
 from tilekit.polygon import centroid, ear_clip, interior_angles, signed_area
 from tilekit.render import patch_to_svg
 
@@ -818,6 +823,10 @@ class Tiling(ABC):
     #: larger than memory set it); otherwise it yields the one patch.
     streams: bool = False
 
+    #: Peak bytes per tile while :meth:`patch` makes a patch (measured per engine, limits.py):
+    #: what the memory checks multiply :meth:`estimate_tiles` by.
+    bytes_per_tile: int = GENERATION_BYTES_PER_TILE
+
     def iter_patches(self, region: Any = None, chunk_tiles: int = STREAM_CHUNK_TILES) -> Iterator[Patch]:
         """The tiles of ``patch(region)`` (``region=None``: the default region) as a stream
         of patches with the same prototiles, whose union is that patch, each of about
@@ -900,6 +909,8 @@ class PeriodicTiling(Tiling):
     is its aspect number (default i); the ``colouring`` assigns colours per aspect and
     permutes them from unit to unit (§5.4.3).
     """
+
+    bytes_per_tile = PERIODIC_BYTES_PER_TILE
 
     def __init__(
         self,

@@ -9,9 +9,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import shapely
 from click.testing import CliRunner
 from cliutil import assert_one_line_error
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from tilekit.cli import cli
@@ -112,6 +113,8 @@ def test_distance_is_invariant_under_similarities_of_the_goal(angle, log_scale, 
         return
     r = rng.uniform(0.4, 1.0, len(t))
     goal = np.column_stack([r * np.cos(t), r * np.sin(t)])
+    # angles within half a turn (seed 1288: 44-178 degrees) close across the other edges
+    assume(shapely.LinearRing(goal).is_simple)
     tile = ih1_goal()
     base = escher.shape_distance(tile, goal)
     moved = similar(goal, angle, math.exp(log_scale), (dx, dy), mirror)
@@ -273,7 +276,7 @@ def test_bad_options_are_one_line_errors(tmp_path, goal_file, args, fragment):
 
 def test_missing_goal_file(tmp_path):
     result = CliRunner().invoke(cli, ["escherize", str(tmp_path / "nope.svg"), "-o", str(tmp_path / "o")])
-    assert_one_line_error(result, "cannot be read")
+    assert_one_line_error(result, "does not exist")
 
 
 def test_command_writes_ranked_specs_that_reopen(tmp_path, goal_file):
@@ -319,7 +322,7 @@ def test_library_checks_its_sizes():
 @pytest.mark.parametrize(
     ("text", "fragment"),
     [
-        ("{", "not a readable JSON spec"),
+        ("{", "not valid JSON"),
         ("[1, 2]", "an isohedral spec is a JSON object"),
         ('{"family": "wang", "spec": {}}', "a 'wang' spec"),
         ('{"spec": {"ih": 999}}', "999"),

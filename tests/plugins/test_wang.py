@@ -151,7 +151,7 @@ def test_malformed_sets_name_file_line_and_problem(text, line, needle):
 
 
 def test_load_tileset_missing_file(tmp_path):
-    with pytest.raises(ParseError, match="cannot read"):
+    with pytest.raises(ParseError, match="does not exist"):
         load_tileset(tmp_path / "nope.wang")
 
 

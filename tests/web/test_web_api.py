@@ -130,7 +130,10 @@ def test_request_size_limits(client):
     r = client.post("/api/render", content=b"[1, 2]")
     assert r.status_code == 400 and r.json()["error"] == "request body must be a JSON object"
     r = client.post("/api/render", content=b"{nope")
-    assert r.status_code == 400 and r.json()["error"] == "request body is not JSON"
+    assert r.status_code == 400 and r.json()["error"].startswith("request body: not valid JSON")
+    # nesting that would exhaust the parser's recursion (a 500 before issue 27): one line, 400
+    r = client.post("/api/render", content=b'{"a":' + b"[" * 30_000 + b"]" * 30_000 + b"}")
+    assert r.status_code == 400 and "nest more than" in r.json()["error"]
 
 
 def test_no_write_endpoint_without_writable(client, web_catalogue, app):

@@ -209,16 +209,7 @@ class Catalogue(RunsMixin, ResultsMixin, TilingReader):
         with _MIGRATION_LOCK, self._errors("migrating"), self.engine.begin() as conn:
             self._lock_for_writing(conn)
             current = set(MigrationContext.configure(conn).get_current_heads())
-            for rev in current:
-                try:
-                    known = script.get_revision(rev)
-                except (CommandError, RevisionError):
-                    known = None
-                if known is None:
-                    raise CatalogueError(
-                        f"catalogue {self.url} is at migration {rev!r}, which this tilekit does not "
-                        "know (made by a newer version or a missing plugin?); left untouched"
-                    )
+            _refuse_unknown(script, current, self.url)
             if revision == "heads" and current == set(script.get_heads()):
                 self._remember_scripts(conn, current)
                 return current
@@ -514,6 +505,43 @@ def _begin_immediate(conn: Connection) -> None:
         conn.exec_driver_sql(f"PRAGMA busy_timeout = {BUSY_TIMEOUT_MS}")
 
 
+def _refuse_unknown_revisions(path: Path, revisions: frozenset[str], stored: str | None,
+                              pm: pluggy.PluginManager) -> None:
+    """Before a SQLite file is opened for writing (a pragma is a write: ``journal_mode=WAL``
+    changes header bytes 18-19), every Alembic revision it records must be one of the
+    installed scripts; otherwise it was made by a newer tilekit, a missing plugin or someone
+    else, and is left untouched. The ``catalogue_meta`` row of the last upgrade answers
+    without Alembic when the scripts have not changed since."""
+    if stored == f"{scripts_key(pm)}:{','.join(sorted(revisions))}":
+        return
+    from alembic.script import ScriptDirectory
+
+    probe = Catalogue(sa.create_engine("sqlite://"), pm)  # only for its Alembic configuration
+    try:
+        script = ScriptDirectory.from_config(probe._alembic_config())
+    finally:
+        probe.close()
+    _refuse_unknown(script, revisions, str(path))
+
+
+def _refuse_unknown(script: Any, revisions: Iterable[str], where: str) -> None:
+    """CatalogueError (one line) naming the first of ``revisions`` the Alembic ``script``
+    directory does not know: the database is then left untouched."""
+    from alembic.script.revision import RevisionError
+    from alembic.util import CommandError
+
+    for rev in sorted(revisions):
+        try:
+            known = script.get_revision(rev)
+        except (CommandError, RevisionError):
+            known = None
+        if known is None:
+            raise CatalogueError(
+                f"catalogue {where} is at migration {rev[:40]!r}, which this tilekit does not know (made by "
+                "a newer version, a missing plugin or another program?); left untouched"
+            )
+
+
 def _sqlite_pragmas(dbapi_connection: Any, _record: Any) -> None:
     cursor = dbapi_connection.cursor()
     try:
@@ -563,7 +591,10 @@ def open_catalogue(
     read_only = False
     if path is not None:
         explicit = url is not None or bool(os.environ.get(ENV_VAR, "").strip())
-        read_only = check_sqlite_file(path, create_parent=not explicit)
+        found = check_sqlite_file(path, create_parent=not explicit, meta_key=SCRIPTS_KEY)
+        read_only = found.read_only
+        if found.revisions is not None:
+            _refuse_unknown_revisions(path, found.revisions, found.meta, pm or get_plugin_manager())
     try:
         if read_only and engine_factory is None:
             engine = _read_only_engine(sa_url, path)

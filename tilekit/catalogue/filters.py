@@ -101,6 +101,20 @@ class Params(dict):
         return "(" + ", ".join(self.bind(v) for v in values) + ")"
 
 
+_ORDER_KEY = re.compile(r"^-?[A-Za-z_][A-Za-z0-9_\-]*$")
+
+
+def parse_order(order_by: str | None) -> tuple[str, bool]:
+    """``--order KEY`` or ``-KEY`` -> (key in snake case, descending?): one optional leading
+    ``-`` before a name of letters, digits, ``_`` and ``-``; anything else (an empty key,
+    ``--name``, spaces) is a ParseError naming the valid form. None means ``name``."""
+    text = "name" if order_by is None else str(order_by).strip()
+    if not _ORDER_KEY.match(text):
+        raise ParseError(f"order key {text[:60]!r} is not KEY or -KEY (a column or property name, "
+                         "e.g. name, -polygons)")
+    return text.lstrip("-").replace("-", "_").lower(), text.startswith("-")
+
+
 def quote(name: str) -> str:
     """An SQL identifier, double-quoted (the same on SQLite and PostgreSQL)."""
     return '"' + name.replace('"', '""') + '"'

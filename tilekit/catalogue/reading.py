@@ -34,7 +34,15 @@ import pluggy
 
 from tilekit import __version__
 from tilekit.catalogue.entry import SHARED_COLUMNS, TEXT_COLUMNS, Entry, restore_value
-from tilekit.catalogue.filters import Filter, Params, condition, like_contains, parse_filter, quote
+from tilekit.catalogue.filters import (
+    Filter,
+    Params,
+    condition,
+    like_contains,
+    parse_filter,
+    parse_order,
+    quote,
+)
 from tilekit.catalogue.urls import resolve_url
 from tilekit.errors import CatalogueError, NotFoundError, ParameterError
 from tilekit.plugins import families, get_plugin_manager, migration_locations
@@ -220,9 +228,7 @@ class TilingReader(ABC):
     def _order(self, params: Params, order_by: str) -> str:
         """The ORDER BY clause: a column or a property (its least numeric, then least text
         value), ``-key`` descending, missing values last, then name and id."""
-        key = (order_by or "name").strip()
-        descending = key.startswith("-")
-        key = key.lstrip("-+").replace("-", "_").lower()
+        key, descending = parse_order(order_by)
         columns = {*TEXT_COLUMNS, *SHARED_COLUMNS, "id", "created_at", "updated_at"}
         if key in columns:
             exprs = ["tilings." + quote(key)]

@@ -13,7 +13,7 @@ from sqlalchemy.engine import Connection
 
 from tilekit.catalogue.codec import json_ok
 from tilekit.catalogue.entry import Entry
-from tilekit.catalogue.filters import Params, column_condition, parse_filter, quote
+from tilekit.catalogue.filters import Params, column_condition, parse_filter, parse_order, quote
 from tilekit.errors import CatalogueError, NotFoundError, ParameterError
 from tilekit.models import is_json
 from tilekit.plugins import ResultTable, result_tables
@@ -164,9 +164,7 @@ class ResultsMixin:
             if texts:
                 stmt = stmt.where(sa.or_(*(sa.func.lower(c).contains(needle, autoescape=True) for c in texts)))
         if order_by is not None:
-            key = order_by.strip()
-            descending = key.startswith("-")
-            key = key.lstrip("-+").replace("-", "_").lower()
+            key, descending = parse_order(order_by)
             if key == "name":
                 key = rt.name_column or rt.key[0]
             if key not in t.c:

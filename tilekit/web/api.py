@@ -30,6 +30,7 @@ from tilekit.errors import (
 )
 from tilekit.plugins import families as fams
 from tilekit.render import parse_palette
+from tilekit.schema import parse_json
 from tilekit.web.limits import RenderTooLarge
 from tilekit.web.service import (
     MAX_EDGES,
@@ -170,10 +171,7 @@ async def read_json(request: Request) -> dict[str, Any]:
         if size > MAX_BODY:
             raise BodyTooLarge(f"request body over {MAX_BODY} bytes")
         chunks.append(chunk)
-    try:
-        data = json.loads(b"".join(chunks) or b"{}")
-    except (ValueError, UnicodeDecodeError):
-        raise ParseError("request body is not JSON") from None
+    data = parse_json(b"".join(chunks) or b"{}", "request body")  # bounded nesting, finite numbers
     if not isinstance(data, dict):
         raise ParseError("request body must be a JSON object")
     return data

@@ -27,6 +27,7 @@ from tilekit.builder import TWO_PI, BuildResult, PatchBuilder, VertexView
 from tilekit.colouring import Colouring
 from tilekit.errors import GeometryError, ParseError
 from tilekit.geometry import Affine, snap_noise
+from tilekit.limits import DEFAULT_SOLVER_SECONDS
 from tilekit.plugins.archimedean.notation import (
     VertexType,
     arrangements,
@@ -131,7 +132,7 @@ def seed_radius(vt: VertexType) -> float:
 
 
 def grow(vertex_type: VertexType | str, radius: float, *, max_nodes: int = 200_000,
-         max_seconds: float | None = None, seed_size: int | None = None) -> BuildResult:
+         max_seconds: float | None = DEFAULT_SOLVER_SECONDS, seed_size: int | None = None) -> BuildResult:
     """Grow a patch round a seed polygon in which every closed vertex has ``vertex_type``."""
     vt = parse_vertex_type(vertex_type) if isinstance(vertex_type, str) else vertex_type
     sizes = vt.sizes

@@ -14,6 +14,7 @@ from tilekit.errors import ParameterError, ParseError
 from tilekit.plugins import CatalogueRecord
 from tilekit.plugins.archimedean import construct
 from tilekit.plugins.archimedean.notation import VertexType, format_sequence, parse_sequence
+from tilekit.schema import Field, check, shown
 from tilekit.symmetry import ORBIFOLD
 from tilekit.tiling import Tiling
 
@@ -168,14 +169,26 @@ def vertex_type_records(vt: VertexType, props: Mapping[str, Any]) -> list[Catalo
     )]
 
 
+#: An archimedean or Laves spec: the vertex type, its kind, the hand of a chiral one.
+SPEC = Field("table", fields={
+    "kind": Field("str"),
+    "vertex_type": Field("str", required=True, missing="the spec has no vertex_type (e.g. '3.4.6.4')"),
+    "hand": Field("str"),
+})
+
+
+def _checked(spec: Any, family: str) -> dict[str, Any]:
+    if not isinstance(spec, Mapping):
+        raise ParseError(f"the {family} spec must be a JSON object like {{'vertex_type': '3.4.6.4'}}, not {shown(spec)}")
+    return check(SPEC, {k: v for k, v in spec.items() if v is not None}, f"{family} spec")
+
+
 def archimedean_from_spec(spec: Mapping[str, Any]) -> Tiling:
+    spec = _checked(spec, "archimedean")
     kind = spec.get("kind")
-    try:
-        vt = VertexType.parse(str(spec["vertex_type"]))
-    except KeyError:
-        raise ParseError(f"archimedean spec {dict(spec)!r} has no vertex_type") from None
+    vt = VertexType.parse(spec["vertex_type"])
     if kind == "archimedean":
-        return construct.archimedean_tiling(vt, str(spec.get("hand", "")))
+        return construct.archimedean_tiling(vt, spec.get("hand", ""))
     if kind == "vertex_type":
         if vt.geometry != "euclidean":
             raise ParameterError(f"vertex type {vt} is {vt.geometry}: it has no plane tiling to draw")
@@ -186,9 +199,7 @@ def archimedean_from_spec(spec: Mapping[str, Any]) -> Tiling:
 
 
 def laves_from_spec(spec: Mapping[str, Any]) -> Tiling:
+    spec = _checked(spec, "laves")
     if spec.get("kind") != "laves":
-        raise ParseError(f"laves spec kind {spec.get('kind')!r} is not 'laves'")
-    try:
-        return construct.laves_tiling(str(spec["vertex_type"]), str(spec.get("hand", "")))
-    except KeyError:
-        raise ParseError(f"laves spec {dict(spec)!r} has no vertex_type") from None
+        raise ParseError(f"laves spec kind {shown(spec.get('kind'))} is not 'laves'")
+    return construct.laves_tiling(spec["vertex_type"], spec.get("hand", ""))

@@ -12,6 +12,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from tilekit.errors import ParseError
+from tilekit.files import read_json
 from tilekit.hookspecs import hookimpl
 from tilekit.lazy import lazy_exports
 from tilekit.plugins import Family
@@ -68,13 +69,8 @@ SPEC_SUFFIX = ".isohedral.json"
 def _from_file(path: str) -> Any:
     """A tiling from a spec file: ``{"family": "isohedral", "spec": {...}}`` (the web editor's
     export and escherize's output) or a bare spec ``{"ih": 16, ...}``."""
-    import json
-
     name = Path(path).name
-    try:
-        data = json.loads(Path(path).read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
-        raise ParseError(f"{name}: not a readable JSON spec ({exc.__class__.__name__})") from None
+    data = read_json(path, "isohedral spec file")
     if isinstance(data, dict) and "spec" in data:
         if data.get("family", "isohedral") != "isohedral":
             raise ParseError(f"{name}: a {data.get('family')!r} spec, not an isohedral one")

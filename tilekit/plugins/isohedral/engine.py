@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import functools
 import math
+import numbers
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -43,6 +44,7 @@ from tilekit.plugins.isohedral.templates import (
     topology_valences,
 )
 from tilekit.polygon import signed_area
+from tilekit.schema import Field, check, shown
 from tilekit.tiling import Patch, PeriodicTiling, Prototile
 
 FAMILY = "isohedral"
@@ -255,6 +257,22 @@ def tile_outlines(patch: Patch, prototile: int = 0) -> np.ndarray:
 MAX_PARAM = 1e6
 
 
+def _param_values(name: str, params: Any) -> tuple[float, ...]:
+    """Tiling vertex parameters as floats, or a ParameterError naming the first that is not
+    a number (a string, a list, None, an integer too large for a float)."""
+    if isinstance(params, str | bytes) or not isinstance(params, Sequence | np.ndarray):
+        raise ParameterError(f"{name}: params {shown(params)} must be a list of numbers")
+    out = []
+    for p in params:
+        if isinstance(p, bool) or not isinstance(p, numbers.Real):
+            raise ParameterError(f"{name}: parameter {shown(p)} is not a number")
+        try:
+            out.append(float(p))
+        except OverflowError:
+            raise ParameterError(f"{name}: parameter {shown(p)} is too large (within ±{MAX_PARAM:g})") from None
+    return tuple(out)
+
+
 class IsohedralTiling(PeriodicTiling):
     """A tiling of one of the 93 isohedral types with given parameters, edge shapes and colouring.
 
@@ -281,7 +299,7 @@ class IsohedralTiling(PeriodicTiling):
         tv = self.parameterization
         if params is None:
             params = tv.default
-        params = tuple(float(p) for p in params)
+        params = _param_values(t.name, params)
         if len(params) != tv.parameters:
             raise ParameterError(
                 f"{t.name} takes {tv.parameters} parameter(s) ({t.parameterization}), got {len(params)}"
@@ -320,6 +338,8 @@ class IsohedralTiling(PeriodicTiling):
         proto = Prototile(outline, name=t.name, corners=corners, edge_labels=_symbol_labels(t.symbol, outline, corners))
         if isinstance(colouring, str):
             colouring = Colouring.parse(colouring)
+        if colouring is not None and not isinstance(colouring, Colouring):
+            raise ParameterError(f"{t.name}: colouring {colouring!r} is not text like '(1 2)(2 1)(2 1)'")
         col = colouring or t.colouring
         super().__init__(
             [proto],
@@ -476,8 +496,8 @@ class IsohedralTiling(PeriodicTiling):
                     value = [v for v in value.split(",") if v.strip()]
                 try:
                     params = tuple(float(v) for v in value)
-                except (TypeError, ValueError):
-                    raise ParameterError(f"{self.name}: params {value!r} are not numbers") from None
+                except (TypeError, ValueError, OverflowError):
+                    raise ParameterError(f"{self.name}: params {shown(value)} are not numbers") from None
             elif key == "edges":
                 for item in [value] if isinstance(value, str) else value or ():
                     if isinstance(item, str):
@@ -541,19 +561,33 @@ def _transfer_shape(
     return EdgeShape(c, shape.smooth)
 
 
+#: An isohedral spec, as the catalogue stores it and spec files and the web API give it
+#: (``null`` for an optional field means its default).
+SPEC = Field("table", fields={
+    "ih": Field("ref", required=True, missing="'ih' is missing; give a type 1..93 or a name like 'IH16'"),
+    "params": Field("list", items=Field("number"), length=(0, 16)),
+    "edges": Field("table", values=Field("str")),
+    "colouring": Field("str"),
+})
+
+
+def checked_spec(spec: Any) -> dict[str, Any]:
+    """``spec`` checked against :data:`SPEC` (types, finite numbers), or one ParseError."""
+    if not isinstance(spec, Mapping):
+        raise ParseError(f'an isohedral spec is a JSON object like {{"ih": 16, "params": [0.3]}}, not {shown(spec)}')
+    return check(SPEC, {k: v for k, v in spec.items() if v is not None}, "isohedral spec")
+
+
 def _spec_ih(spec: Mapping[str, Any]) -> Any:
-    try:
-        return spec["ih"]
-    except (KeyError, TypeError):
-        raise ParseError(f"isohedral spec {dict(spec) if isinstance(spec, Mapping) else spec!r} has no 'ih'") from None
+    return checked_spec(spec)["ih"]
 
 
 def unmarked_from_spec(spec: Mapping[str, Any]) -> IsohedralTiling:
     """An unmarked isohedral tiling from ``{"ih": 16, "params": [...], "edges": {...}}``."""
-    t = get_template(_spec_ih(spec))
-    edges = {k: EdgeShape.parse(v) for k, v in (spec.get("edges") or {}).items()}
-    col = spec.get("colouring")
-    return IsohedralTiling(t.ih, spec.get("params"), edges, col)
+    spec = checked_spec(spec)
+    t = get_template(spec["ih"])
+    edges = {k: EdgeShape.parse(v) for k, v in spec.get("edges", {}).items()}
+    return IsohedralTiling(t.ih, spec.get("params"), edges, spec.get("colouring"))
 
 
 def _symbol_labels(symbol: Any, outline: Any, corners: Any) -> tuple[str, ...] | None:

@@ -36,6 +36,8 @@ from typing import Any
 import numpy as np
 
 from tilekit.errors import GeometryError, ParameterError, ParseError
+from tilekit.files import check_output, read_text
+from tilekit.limits import MAX_COORDINATE
 from tilekit.plugins.isohedral.engine import HopEngine, IsohedralTiling, shape_classes
 from tilekit.plugins.isohedral.escher_limits import (
     DEFAULT_EDGE_POINTS,
@@ -53,6 +55,7 @@ from tilekit.plugins.isohedral.shapes import EdgeShape
 from tilekit.plugins.isohedral.spec import editor_path
 from tilekit.plugins.isohedral.templates import get_template, load_parameterizations
 from tilekit.polygon import signed_area
+from tilekit.schema import parse_json
 
 # ------------------------------------------------------------------------ limits
 
@@ -122,6 +125,9 @@ def check_goal(points: Any, what: str = "goal") -> np.ndarray:
         raise ParseError(f"{what}: the points are not a list of [x, y] pairs (got shape {list(pts.shape)})")
     if not np.all(np.isfinite(pts)):
         raise ParseError(f"{what}: every coordinate must be a finite number")
+    if len(pts) and float(np.abs(pts).max()) > MAX_COORDINATE:
+        raise ParseError(f"{what}: coordinates must lie within ±{MAX_COORDINATE:.0e} (the goal is scaled to "
+                         f"the tile anyway), got {float(np.abs(pts).max()):.3g}")
     if len(pts) > MAX_GOAL_POINTS:
         raise ParseError(f"{what}: {len(pts)} points is more than the limit of {MAX_GOAL_POINTS}")
     if len(pts):
@@ -237,28 +243,14 @@ def read_goal(path: str | os.PathLike) -> np.ndarray:
     (``[[x, y], ...]`` or ``{"points": [[x, y], ...]}``), checked by :func:`check_goal`."""
     p = Path(path)
     name = p.name
-    try:
-        size = p.stat().st_size
-    except OSError as exc:
-        raise ParseError(f"goal file {str(path)!r} cannot be read ({exc.strerror})") from None
-    if not p.is_file():
-        raise ParseError(f"goal {str(path)!r} is not a file")
-    if size > MAX_GOAL_BYTES:
-        raise ParseError(f"{name}: {size} bytes is more than the limit of {MAX_GOAL_BYTES} for a goal file")
     suffix = p.suffix.lower()
     if suffix not in (".svg", ".json"):
         raise ParseError(f"goal {name!r} must be an .svg or .json file")
-    try:
-        text = p.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ParseError(f"{name}: cannot be read as UTF-8 text ({exc.__class__.__name__})") from None
+    text = read_text(p, "goal file", MAX_GOAL_BYTES)
     if suffix == ".svg":
         pts = read_svg_goal(text, name)
     else:
-        try:
-            data = json.loads(text)
-        except json.JSONDecodeError as exc:
-            raise ParseError(f"{name}: not valid JSON ({exc.msg}, line {exc.lineno})") from None
+        data = parse_json(text, name)
         if isinstance(data, dict):
             data = data.get("points")
         if not isinstance(data, list) or not all(
@@ -266,7 +258,10 @@ def read_goal(path: str | os.PathLike) -> np.ndarray:
             for q in data
         ):
             raise ParseError(f'{name}: the goal must be a JSON list of [x, y] number pairs (or {{"points": [...]}})')
-        pts = np.array(data, dtype=float).reshape(-1, 2)
+        try:
+            pts = np.array(data, dtype=float).reshape(-1, 2)
+        except OverflowError:
+            raise ParseError(f"{name}: a coordinate is too large to be a number (every coordinate must be finite)") from None
     return check_goal(pts, name)
 
 
@@ -879,7 +874,14 @@ def write_outputs(results: Sequence[EscherResult], goal: np.ndarray, out_dir: st
     from tilekit.render import write_svg  # start-up cost: the renderer loads shapely (~0.1 s)
 
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    names = [f"{rank:02d}-{r.name}{end}" for rank, r in enumerate(results, 1)
+             for end in (".isohedral.json", "-tile.svg", "-tiling.svg")]
+    for name in [*names, "ranking.json"]:
+        check_output(out / name)  # a FIFO among them would block the writer
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise ParameterError(f"output directory {str(out)!r} cannot be made: {exc.strerror or exc}") from None
     written = []
     for rank, r in enumerate(results, 1):
         stem = f"{rank:02d}-{r.name}"

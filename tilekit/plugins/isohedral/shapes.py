@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from tilekit.errors import ParameterError, ParseError
+from tilekit.limits import MAX_EDGE_POINTS
 
 #: Points per cubic Bézier segment when a smooth shape is flattened.
 BEZIER_SAMPLES = 12
@@ -65,6 +66,13 @@ class EdgeShape:
             raise ParameterError(
                 f"a smooth (cubic Bézier) edge shape needs 3k+1 control points, got {len(pts)}"
             )
+        drawn = BEZIER_SAMPLES * ((len(pts) - 1) // 3) + 1 if self.smooth else len(pts)
+        if drawn > MAX_EDGE_POINTS + 2:
+            raise ParameterError(
+                f"edge shape of {drawn - 2:,} interior points{' once flattened' if self.smooth else ''} is over the "
+                f"limit of {MAX_EDGE_POINTS} (limits.MAX_EDGE_POINTS: a tile's overlap check grows with its "
+                "vertices squared)"
+            )
         pts = pts.copy()
         pts[0] = (0.0, 0.0)
         pts[-1] = (1.0, 0.0)
@@ -99,10 +107,12 @@ class EdgeShape:
         smooth = False
         if s.lower().startswith("bezier:"):
             smooth, s = True, s[len("bezier:") :]
+        if s.count(":") > 4 * MAX_EDGE_POINTS:  # refused before thousands of numbers are read
+            raise ParameterError(f"edge shape of {s.count(':') + 1:,} points is over the limit of {MAX_EDGE_POINTS}")
         try:
             pts = [tuple(float(v) for v in p.split(",")) for p in s.split(":") if p.strip()]
         except ValueError:
-            raise ParseError(f"edge shape {text!r} is not points 'x,y:x,y:...' (numbers)") from None
+            raise ParseError(f"edge shape {text[:60]!r} is not points 'x,y:x,y:...' (numbers)") from None
         if any(len(p) != 2 for p in pts):
             raise ParseError(f"edge shape {text!r}: every point must be 'x,y'")
         if not all(math.isfinite(v) for p in pts for v in p):

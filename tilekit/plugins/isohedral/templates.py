@@ -452,7 +452,12 @@ def load_templates() -> dict[int, Template]:
 
 def parse_ih_name(name: str | int) -> int:
     """'IH16', 'ih16', 'IH016' or 16 -> 16; NotFoundError otherwise."""
+    if isinstance(name, bool) or not isinstance(name, int | str):
+        raise NotFoundError("isohedral type", repr(name)[:40], [f"IH{i}" for i in range(1, 94)])
     if isinstance(name, int):
+        if not 1 <= name <= 93:
+            raise NotFoundError("isohedral type", str(name) if abs(name) < 10**40 else "a huge number",
+                                [f"IH{i}" for i in range(1, 94)])
         n = name
     else:
         m = re.fullmatch(r"(?i)\s*(?:ih)?0*(\d{1,4})\s*", str(name))

@@ -263,6 +263,8 @@ class DSymbol:
             raise ValueError("the five lists of a D-symbol text must have the same, non-zero length")
         if any(m < 3 for m in face + degree):
             raise ValueError("face sizes (m01) and vertex degrees (m12) must be at least 3")
+        if any(m > 42 for m in face + degree):  # 3.7.42: no polygon at a Euclidean vertex has more sides
+            raise ValueError("face sizes (m01) and vertex degrees (m12) must be at most 42")
         for name, s in (("σ0", s0), ("σ1", s1), ("σ2", s2)):
             if any(not 0 <= v < n or s[v] != i for i, v in enumerate(s)):
                 raise ValueError(f"{name} is not an involution on 0..{n - 1}")

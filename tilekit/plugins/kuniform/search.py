@@ -96,14 +96,15 @@ def tiling_of(symbol: DSymbol, name: str = "") -> KUniformTiling:
 
 
 def from_spec(spec: Mapping[str, Any]) -> KUniformTiling:
-    text = spec.get("dsymbol")
+    text = spec.get("dsymbol") if isinstance(spec, Mapping) else None
     if not isinstance(text, str):
         raise ParseError("a k-uniform spec needs 'dsymbol': the text m01/m12/σ0/σ1/σ2")
     try:
         symbol = DSymbol.decode(text)
     except ValueError as exc:
         raise ParseError(f"k-uniform spec: {exc}") from None
-    return tiling_of(symbol, name=str(spec.get("name", "")))
+    name = spec.get("name", "")
+    return tiling_of(symbol, name=name if isinstance(name, str) else "")
 
 
 # --------------------------------------------------------------------------- the search

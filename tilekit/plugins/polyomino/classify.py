@@ -29,11 +29,12 @@ from typing import Any
 import numpy as np
 
 from tilekit.colouring import Colouring
-from tilekit.errors import ParameterError
+from tilekit.errors import ParameterError, ParseError
 from tilekit.lattice import Grid, outline
 from tilekit.plugins.polyomino.heesch import MAX_LEVEL_LIMIT, Corona, HeeschSolver, heesch
 from tilekit.plugins.polyomino.placements import Forms
 from tilekit.plugins.polyomino.torus import TorusSearch, TorusTiling
+from tilekit.schema import Field, check
 from tilekit.symmetry import wallpaper_group
 from tilekit.tiling import Patch, PeriodicTiling
 
@@ -186,10 +187,30 @@ def _undecided(levels: int, torus: int | None, seconds: float, reason: str, witn
 
 # --------------------------------------------------------------------------- witnesses as tilings
 
+#: A stored witness's placements: (form, x, y, class) integer rows.
+_WITNESS_ROWS = Field("list", required=True, length=(1, 1 << 20),
+                      items=Field("list", items=Field("int", range=(-(1 << 18), 1 << 18)), length=(4, 4)))
+#: A torus witness's lattice (a, b, d): v1 = (a, b), v2 = (0, d) in cells.
+_LATTICE = Field("list", required=True, items=Field("int", range=(-(1 << 18), 1 << 18)), length=(3, 3))
+
+
+def _witness_rows(witness: Any, forms: Forms, what: str, lattice: bool = False) -> np.ndarray:
+    """A witness's ``tiles`` as an (n, 4) array, checked (types, sizes, form indices in range,
+    classes 0..n), or a one-line ParseError naming ``what``."""
+    fields = {"tiles": _WITNESS_ROWS, **({"lattice": _LATTICE} if lattice else {})}
+    checked = check(Field("table", fields=fields), witness, what)
+    t = np.asarray(checked["tiles"], dtype=np.int64).reshape(-1, 4)
+    if (t[:, 0] >= forms.J).any() or (t[:, 0] < 0).any():
+        raise ParseError(f"{what}: a placement's form index is outside 0..{forms.J - 1}")
+    if (t[:, 3] < 0).any() or (t[:, 3] > len(t)).any():
+        raise ParseError(f"{what}: a placement's class is outside 0..{len(t)}")
+    return t
+
+
 def corona_patch(grid: Grid, cells: np.ndarray, corona: dict, name: str = "") -> Patch:
     """A stored corona witness as a Patch, colour and aspect = corona number."""
     forms = Forms(grid, cells)
-    t = np.asarray(corona["tiles"], dtype=np.int64).reshape(-1, 4)
+    t = _witness_rows(corona, forms, "polyomino corona witness")
     proto = outline(grid, forms.cells, name=name)
     return Patch([proto], np.zeros(len(t), dtype=np.int64), forms.affine(t[:, :3]), colour=t[:, 3], aspect=t[:, 3])
 
@@ -197,8 +218,10 @@ def corona_patch(grid: Grid, cells: np.ndarray, corona: dict, name: str = "") ->
 def torus_tiling(grid: Grid, cells: np.ndarray, witness: dict, name: str = "", family: str = "polyomino") -> PeriodicTiling:
     """A stored torus witness as a PeriodicTiling whose aspects are the transitivity classes."""
     forms = Forms(grid, cells)
-    t = np.asarray(witness["tiles"], dtype=np.int64).reshape(-1, 4)
+    t = _witness_rows(witness, forms, "polyomino torus witness", lattice=True)
     a, b, d = (int(x) for x in witness["lattice"])
+    if a == 0 or d == 0:
+        raise ParseError(f"polyomino torus witness: lattice {[a, b, d]} is degenerate (a and d must not be 0)")
     p = grid.period
     v1, v2 = grid.xy(np.array([a * p, b * p])), grid.xy(np.array([0, d * p]))
     proto = outline(grid, forms.cells, name=name)

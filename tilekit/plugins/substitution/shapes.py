@@ -23,6 +23,7 @@ import shapely
 
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.geometry import Affine
+from tilekit.limits import MAX_EDGE_POINTS
 from tilekit.plugins.substitution.engine import _row_groups, assemble, generate
 from tilekit.plugins.substitution.system import SubstitutionSystem
 from tilekit.tiling import Prototile
@@ -157,6 +158,9 @@ def parse_edge_shape(text: str) -> tuple[str, np.ndarray]:
     if "=" not in text:
         raise ParseError(f"edge shape {text!r} is not 'name=x,y:x,y:...'")
     name, _, body = text.partition("=")
+    if body.count(":") > MAX_EDGE_POINTS + 2:
+        raise ParameterError(f"edge shape of {body.count(':') + 1:,} points is over the limit of {MAX_EDGE_POINTS} "
+                             "(limits.MAX_EDGE_POINTS)")
     pts = []
     for part in filter(None, body.split(":")):
         try:
@@ -171,6 +175,9 @@ def parse_edge_shape(text: str) -> tuple[str, np.ndarray]:
         pts = pts[1:]
     if pts and np.allclose(pts[-1], (1.0, 0.0), atol=1e-9):
         pts = pts[:-1]
+    if len(pts) > MAX_EDGE_POINTS:
+        raise ParameterError(f"edge shape of {len(pts)} interior points is over the limit of {MAX_EDGE_POINTS} "
+                             "(limits.MAX_EDGE_POINTS)")
     return name.strip(), np.array(pts, dtype=float).reshape(-1, 2)
 
 

@@ -11,6 +11,7 @@ region.
 from __future__ import annotations
 
 import math
+import numbers
 import weakref
 from collections.abc import Iterator, Mapping, Sequence
 from functools import partial
@@ -41,6 +42,7 @@ from tilekit.plugins.substitution.shapes import (
 )
 from tilekit.plugins.substitution.system import SubstitutionSystem, load_data
 from tilekit.polygon import inscribed_disc
+from tilekit.schema import Field, check, shown
 from tilekit.tiling import Patch, Prototile, Tiling, region_tile_estimate
 
 
@@ -403,16 +405,12 @@ class SubstitutionTiling(Tiling):
                 f"{self.name} does not take option(s) {', '.join(sorted(options))}; "
                 "valid: depth, seed, params, edges, r1, theta1, r2, theta2"
             )
-        if depth is not None:
-            try:
-                depth = int(depth)
-            except (TypeError, ValueError):
-                raise ParameterError(f"depth {depth!r} is not an integer") from None
+        depth = _depth(depth)
         if params is not None:
             try:
                 params = [float(v) for v in params]
-            except (TypeError, ValueError):
-                raise ParameterError(f"params {params!r} are not numbers") from None
+            except (TypeError, ValueError, OverflowError):
+                raise ParameterError(f"params {shown(params)} are not numbers") from None
         if isinstance(edges, str):
             edges = [edges]
         return SubstitutionTiling(self.system, depth, seed, self._spec_source, params, edges, quasivertex)
@@ -644,11 +642,7 @@ class KeypointTiling(SubstitutionTiling):
             raise ParameterError(
                 f"{self.name} does not take option(s) {', '.join(sorted(options))}; valid: depth, seed"
             )
-        if depth is not None:
-            try:
-                depth = int(depth)
-            except (TypeError, ValueError):
-                raise ParameterError(f"depth {depth!r} is not an integer") from None
+        depth = _depth(depth)
         return KeypointTiling(self.system, depth, seed, self._spec_source)
 
     def describe(self) -> str:
@@ -805,8 +799,27 @@ def _shape_key(p: Prototile) -> tuple[int, ...]:
     return (len(pts), round(abs(p.area) * 1e6), *sorted(np.round(edges * 1e6).astype(int).tolist()))
 
 
+_NUMBER = Field("number")
+
+#: A substitution spec as the catalogue stores it (the options are those of ``configure``).
+SPEC = Field("table", fields={
+    "system": Field("str"),
+    "system_data": Field("table"),
+    "source": Field("str"),
+    "depth": Field("int", range=(0, MAX_DEPTH)),
+    "seed": Field("str"),
+    "params": Field("list", items=_NUMBER, length=(0, 64)),
+    "edges": Field("list", items=Field("str"), length=(0, 64)),
+    **{k: _NUMBER for k in ("r1", "theta1", "r2", "theta2")},
+})
+
+
 def tiling_from_spec(spec: Mapping[str, Any], systems: Mapping[str, SubstitutionSystem]) -> SubstitutionTiling:
-    """Rebuild a tiling from ``{"system": name}`` or ``{"system_data": {...}}`` plus options."""
+    """Rebuild a tiling from ``{"system": name}`` or ``{"system_data": {...}}`` plus options
+    (checked against :data:`SPEC`: types, ranges, finite numbers)."""
+    if not isinstance(spec, Mapping):
+        raise ParseError(f'a substitution spec is a JSON object like {{"system": "penrose-p3"}}, not {shown(spec)}')
+    spec = check(SPEC, {k: v for k, v in spec.items() if v is not None}, "substitution spec")
     if "system_data" in spec:
         system = load_data(spec["system_data"], source=str(spec.get("source", "<spec>")))
     elif "system" in spec:
@@ -820,6 +833,21 @@ def tiling_from_spec(spec: Mapping[str, Any], systems: Mapping[str, Substitution
     tiling = make_tiling(system, spec_source=source)
     options = {k: spec[k] for k in ("depth", "seed", "params", "edges", "r1", "theta1", "r2", "theta2") if k in spec}
     return tiling.configure(**options) if options else tiling
+
+
+def _depth(depth: Any) -> int | None:
+    """A depth option (an int, or text of one) as an int, or a ParameterError: never
+    truncated (2.5), never an OverflowError (inf)."""
+    if depth is None:
+        return None
+    if isinstance(depth, str):
+        text = depth.strip()
+        if not (text.isascii() and text.isdigit() and len(text) <= 3):
+            raise ParameterError(f"depth {shown(depth)} is not an integer 0..{MAX_DEPTH}")
+        return int(text)
+    if isinstance(depth, bool) or not isinstance(depth, numbers.Integral):
+        raise ParameterError(f"depth {shown(depth)} is not an integer 0..{MAX_DEPTH}")
+    return int(depth)
 
 
 _EDGE_CLASS_CACHE: dict[int, Any] = {}

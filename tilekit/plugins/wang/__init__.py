@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Any
 import tilekit
 from tilekit.errors import ParameterError
 from tilekit.lazy import lazy_exports
+from tilekit.limits import DEFAULT_SOLVER_SECONDS
 from tilekit.plugins import CatalogueRecord, ChunkResult, Family, Sampler, Search, SearchParam
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -157,7 +158,7 @@ def periodicity_run_chunk(params: Mapping[str, Any], chunk: Mapping[str, Any]) -
     method = str(params.get("method") or "sat")
     limit = params.get("time_limit")
     result = wang_procedure(
-        ts, int(chunk["to_m"]), method=method, time_limit=None if limit in (None, "") else float(limit),
+        ts, int(chunk["to_m"]), method=method, time_limit=DEFAULT_SOLVER_SECONDS if limit in (None, "") else float(limit),
         start_m=int(chunk.get("from_m", 1)),
     )
     return ChunkResult(results=[result.to_json()], records=[record_for(ts, result)])
@@ -178,7 +179,7 @@ PERIODICITY = Search(
         SearchParam("set", str, None, "a shipped Wang set name or a .wang file", required=True),
         SearchParam("max_m", int, 8, "largest m to try", min=1, max=64),
         SearchParam("method", str, "sat", "solver for the tori and squares", choices=("sat", "builder", "backtrack")),
-        SearchParam("time_limit", float, None, "seconds per solver call (none: no limit)", min=0.01, max=86_400.0),
+        SearchParam("time_limit", float, DEFAULT_SOLVER_SECONDS, "seconds per solver call", min=0.01, max=86_400.0),
     ),
     chunks=periodicity_chunks,
     run_chunk=periodicity_run_chunk,

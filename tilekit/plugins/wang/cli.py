@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 import click
 
 from tilekit import limits
-from tilekit.cli_types import POSITIVE, BoundedInt, FiniteFloat
+from tilekit.cli_types import OUTPUT, POSITIVE, BoundedInt, FiniteFloat
 from tilekit.errors import ParseError
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -68,7 +68,7 @@ def wang_group() -> None:
 
 @wang_group.command(name="render")
 @click.argument("set_name", metavar="SET")
-@click.option("-o", "--output", "out", required=True, type=click.Path(dir_okay=False), help="Output .svg or .png.")
+@click.option("-o", "--output", "out", required=True, type=OUTPUT, help="Output .svg or .png.")
 @click.option("--rows", type=POSITIVE, default=12, show_default=True)
 @click.option("--cols", type=POSITIVE, default=16, show_default=True)
 @click.option("--seed", type=BoundedInt(0), default=0, show_default=True)
@@ -79,8 +79,11 @@ def wang_group() -> None:
               help="Image size in pixels (the longer side).")
 @click.option("--max-tiles", type=POSITIVE, default=limits.MAX_GRID_CELLS, show_default=True,
               help="Refuse grids of more than N cells.")
+@click.option("--time-limit", type=FiniteFloat(limits.MAX_SOLVER_SECONDS, min=1e-3),
+              default=limits.DEFAULT_SOLVER_SECONDS, show_default=True,
+              help="Seconds the exact solver may take when the set has no direct fill (then a one-line error).")
 def render_command(set_name: str, out: str, rows: int, cols: int, seed: int, method: str, texture: str | None,
-                   size: int, max_tiles: int) -> None:
+                   size: int, max_tiles: int, time_limit: float) -> None:
     """Fill a ROWS x COLS grid with SET and draw it.
 
     \b
@@ -94,7 +97,7 @@ def render_command(set_name: str, out: str, rows: int, cols: int, seed: int, met
 
     limits.refuse_over("grid cells", rows * cols, max_tiles, "--max-tiles")
     ts = _tileset(set_name)
-    grid = WangTiling(ts, seed=seed, method=method).grid(0, 0, rows, cols)
+    grid = WangTiling(ts, seed=seed, method=method, time_limit=time_limit).grid(0, 0, rows, cols)
     path = write_wang_image(grid, ts, out, texture=texture, size=size)
     click.echo(f"wrote {path} ({rows * cols} tiles of {ts.name})")
 
@@ -106,14 +109,17 @@ def render_command(set_name: str, out: str, rows: int, cols: int, seed: int, met
 @click.option("--torus", is_flag=True, help="Ask for a torus (a periodic unit) instead of a rectangle.")
 @click.option("--method", type=click.Choice(SOLVE_CHOICES), default="sat", show_default=True)
 @click.option("--fix", "fixes", multiple=True, metavar="ROW,COL=TILE", help="Fix a tile (index or name); repeatable.")
-@click.option("--time-limit", type=FiniteFloat(1e7, min=0.0), help="Seconds before giving up.")
-@click.option("-o", "--output", "out", type=click.Path(dir_okay=False), help="Also draw the tiling found (.svg/.png).")
+@click.option("--time-limit", type=FiniteFloat(limits.MAX_SOLVER_SECONDS, min=1e-3),
+              default=limits.DEFAULT_SOLVER_SECONDS, show_default=True,
+              help="Seconds before the solver gives up with a one-line error.")
+@click.option("-o", "--output", "out", type=OUTPUT, help="Also draw the tiling found (.svg/.png).")
 @click.option("--max-tiles", type=POSITIVE, default=limits.MAX_SOLVE_CELLS, show_default=True,
               help="Refuse grids of more than N cells.")
 @click.option("--max-variables", type=POSITIVE, default=limits.MAX_SAT_VARIABLES, show_default=True,
-              help="Refuse SAT encodings of more than N variables (cells x tiles).")
+              help="Refuse SAT encodings of more than N variables (cells x tiles, edges x colours); "
+                   "encodings that would not fit in memory are refused too.")
 def solve_command(set_name: str, rows: int, cols: int, torus: bool, method: str, fixes: tuple[str, ...],
-                  time_limit: float | None, out: str | None, max_tiles: int, max_variables: int) -> None:
+                  time_limit: float, out: str | None, max_tiles: int, max_variables: int) -> None:
     """Does SET tile a ROWS x COLS rectangle (or torus) with the fixed tiles?
 
     \b
@@ -128,10 +134,8 @@ def solve_command(set_name: str, rows: int, cols: int, torus: bool, method: str,
 
     limits.refuse_over("grid cells", rows * cols, max_tiles, "--max-tiles")
     ts = _tileset(set_name)
-    if method == "sat":
-        limits.refuse_over("SAT variables", rows * cols * len(ts), max_variables, "--max-variables",
-                           hint=f"{rows} x {cols} cells x {len(ts)} tiles")
-    result = solve(ts, rows, cols, torus=torus, fixed=_fixed(fixes), method=method, time_limit=time_limit)
+    options = {"max_variables": max_variables} if method == "sat" else {}
+    result = solve(ts, rows, cols, torus=torus, fixed=_fixed(fixes), method=method, time_limit=time_limit, **options)
     click.echo(f"{ts.name}: {result.describe()}")
     if result.tiles:
         names = ts.tile_names

@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from tilekit.errors import ParameterError
+from tilekit.limits import refuse_over_memory
 from tilekit.plugins.wang.check import grid_size
 from tilekit.plugins.wang.tileset import E, N, S, W, WangTileSet, tile_prototiles
 from tilekit.tiling import Patch
@@ -43,8 +44,11 @@ def _scanline_tables(tileset: WangTileSet) -> tuple[np.ndarray, np.ndarray]:
     # each tile is a candidate for (n, w), (ANY, w), (n, ANY) and (ANY, ANY)
     keys = np.concatenate([n_key * (c + 1) + w_key, any_ * (c + 1) + w_key, n_key * (c + 1) + any_, any_ * (c + 1) + any_])
     tiles = np.tile(np.arange(len(tileset)), 4)
+    refuse_over_memory("scanline table entries", float(c + 1) ** 2, 16, hint=f"set {tileset.name!r} has {c} colours")
     counts = np.bincount(keys, minlength=(c + 1) ** 2)
     kmax = int(counts.max())
+    refuse_over_memory("scanline table entries", float(c + 1) ** 2 * kmax, 8,
+                       hint=f"set {tileset.name!r} has {c} colours and up to {kmax} tiles per pair")
     order = np.argsort(keys, kind="stable")
     sk = keys[order]
     slot = np.arange(len(sk)) - np.searchsorted(sk, sk, side="left")

@@ -27,6 +27,13 @@ from typing import Any
 import numpy as np
 
 from tilekit.errors import ParameterError, SolverLimit
+from tilekit.limits import (
+    DEFAULT_SOLVER_SECONDS,
+    MAX_SAT_VARIABLES,
+    refuse_over,
+    refuse_over_memory,
+    sat_bytes,
+)
 from tilekit.plugins.wang.check import check_grid, grid_size
 from tilekit.plugins.wang.tileset import E, N, S, W, WangTileSet
 from tilekit.sat import (  # re-exported: the names this module had before tilekit.sat
@@ -116,8 +123,16 @@ def fixed_conflict(
     return None
 
 
+#: Colours per edge orientation up to which "at most one colour per edge" is pairwise
+#: (p(p-1)/2 binary clauses); above it a sequential counter (p-1 auxiliary variables and
+#: 3p-4 clauses), so a set with thousands of colours costs linear, not quadratic, clauses.
+PAIRWISE_AMO_MAX = 6
+
+
 class _Encoding:
-    """Variable numbering and clause generation for one rows x cols grid."""
+    """Variable numbering and clause generation for one rows x cols grid; the clauses come
+    as blocks of equal-width rows (:meth:`tilekit.sat.CNF.add_block`), and :meth:`size`
+    counts variables, clauses and literals without making them."""
 
     def __init__(self, tileset: WangTileSet, rows: int, cols: int, torus: bool) -> None:
         self.ts = tileset
@@ -133,6 +148,8 @@ class _Encoding:
         self.h_base = self.x_base + cells * t
         self.v_base = self.h_base + self.h_lines * cols * c
         self.top = self.v_base + rows * self.v_lines * c - 1
+        self.palettes = (tileset.horizontal_colours, tileset.vertical_colours)
+        self.edges = (self.h_lines * cols, rows * self.v_lines)
 
     def x(self, i: np.ndarray, j: np.ndarray, t: np.ndarray) -> np.ndarray:
         return self.x_base + (i * self.cols + j) * self.n_tiles + t
@@ -145,15 +162,37 @@ class _Encoding:
         line = line % self.cols if self.torus else line
         return self.v_base + (i * self.v_lines + line) * self.n_colours + k
 
-    def clauses(self) -> list[list[int]]:
+    def size(self) -> tuple[int, int, int]:
+        """(variables, clauses, literals) of the encoding, counted without making it."""
+        cells, t = self.rows * self.cols, self.n_tiles
+        variables, clauses, literals = self.top, cells + 4 * cells * t, cells * t + 8 * cells * t
+        for palette, edges in zip(self.palettes, self.edges):
+            p = len(palette)
+            clauses += edges
+            literals += edges * p
+            if p <= PAIRWISE_AMO_MAX:
+                clauses += edges * (p * (p - 1) // 2)
+                literals += edges * p * (p - 1)
+            else:
+                variables += edges * (p - 1)
+                clauses += edges * (3 * p - 4)
+                literals += edges * 2 * (3 * p - 4)
+        for palette in (*self.palettes, *self.palettes):  # support: N and S, W and E
+            clauses += cells * len(palette)
+            literals += cells * (len(palette) + t)  # each tile carries one colour per side
+        return variables, clauses, literals
+
+    def blocks(self, cnf: CNF) -> None:
+        """Add the encoding's clauses to ``cnf`` as blocks (and its auxiliary variables)."""
         ts, rows, cols, t = self.ts, self.rows, self.cols, self.n_tiles
-        out: list[list[int]] = []
+        cnf.reserve(self.top)
         ii, jj = np.divmod(np.arange(rows * cols), cols)
         tt = np.arange(t)
         # at least one tile per cell
-        out.extend(self.x(ii[:, None], jj[:, None], tt[None, :]).tolist())
+        xs = self.x(ii[:, None], jj[:, None], tt[None, :])
+        cnf.add_block(xs)
         # tile -> its four edge colours
-        xvar = self.x(ii[:, None], jj[:, None], tt[None, :]).ravel()
+        xvar = xs.ravel()
         ci = np.repeat(ii, t)
         cj = np.repeat(jj, t)
         cols4 = ts.tiles[np.tile(tt, rows * cols)]
@@ -163,30 +202,28 @@ class _Encoding:
             self.v(ci, cj, cols4[:, W]),
             self.v(ci, cj + 1, cols4[:, E]),
         ):
-            out.extend(np.column_stack([-xvar, lits]).tolist())
-        # at most one colour per edge, over the colours that can appear on that orientation
-        hcol, vcol = ts.horizontal_colours, ts.vertical_colours
+            cnf.add_block(np.column_stack([-xvar, lits]))
+        # exactly one colour per edge, over the colours that can appear on that orientation
         hl, hj = np.divmod(np.arange(self.h_lines * cols), cols)
         vi, vl = np.divmod(np.arange(rows * self.v_lines), self.v_lines)
-        for palette, var, a, b in ((hcol, self.h, hl, hj), (vcol, self.v, vi, vl)):
+        for palette, var, a, b in ((self.palettes[0], self.h, hl, hj), (self.palettes[1], self.v, vi, vl)):
+            lits = var(a[:, None], b[:, None], palette[None, :])  # (edges, p)
             # at least one colour per edge: implied by the tile clauses, but stated it helps
             # the solver (Jeandel-Rao 80 x 80: 5.5 s -> 2.4 s with CaDiCaL 1.9.5)
-            out.extend(var(a[:, None], b[:, None], palette[None, :]).tolist())
-            pa, pb = np.triu_indices(len(palette), 1)
-            if len(pa):
-                lhs = var(a[:, None], b[:, None], palette[pa][None, :]).ravel()
-                rhs = var(a[:, None], b[:, None], palette[pb][None, :]).ravel()
-                out.extend(np.column_stack([-lhs, -rhs]).tolist())
+            cnf.add_block(lits)
+            _at_most_one(cnf, lits)
         # support: colour k on an edge needs a matching tile on each side that exists
-        self._support(out)
-        return out
+        self._support(cnf)
 
-    def _support(self, out: list[list[int]]) -> None:
+    def _support(self, cnf: CNF) -> None:
         ts, rows, cols = self.ts, self.rows, self.cols
+        ii, jj = np.divmod(np.arange(rows * cols), cols)
         for side, colours_of in ((N, ts.horizontal_colours), (S, ts.horizontal_colours), (W, ts.vertical_colours), (E, ts.vertical_colours)):
-            for k in colours_of.tolist():
-                carriers = np.flatnonzero(ts.tiles[:, side] == k)
-                ii, jj = np.divmod(np.arange(rows * cols), cols)
+            order = np.argsort(ts.tiles[:, side], kind="stable")
+            bounds = np.searchsorted(ts.tiles[order, side], colours_of, side="left")
+            ends = np.searchsorted(ts.tiles[order, side], colours_of, side="right")
+            for k, lo, hi in zip(colours_of.tolist(), bounds.tolist(), ends.tolist()):
+                carriers = order[lo:hi]
                 # edges whose this-side cell exists: every cell supports its own edge
                 if side == N:
                     ev = self.h(ii, jj, k)
@@ -197,12 +234,31 @@ class _Encoding:
                 else:
                     ev = self.v(ii, jj + 1, k)
                 xs = self.x(ii[:, None], jj[:, None], carriers[None, :])
-                out.extend(np.column_stack([-ev, xs]).tolist())
+                cnf.add_block(np.column_stack([-ev, xs]))
 
     def decode(self, model: list[int]) -> np.ndarray:
         rows, cols, t = self.rows, self.cols, self.n_tiles
         vals = np.asarray(model[: rows * cols * t]) > 0
         return vals.reshape(rows, cols, t).argmax(axis=2)
+
+
+def _at_most_one(cnf: CNF, lits: np.ndarray) -> None:
+    """At most one literal true in each row of ``lits`` (n, p): pairwise for small p, else
+    Sinz's sequential counter with p-1 fresh variables s_1..s_{p-1} per row:
+    x_1 -> s_1; x_i -> s_i, s_{i-1} -> s_i, x_i -> not s_{i-1} (1 < i < p); x_p -> not s_{p-1}."""
+    n, p = lits.shape
+    if p < 2 or n == 0:
+        return
+    if p <= PAIRWISE_AMO_MAX:
+        pa, pb = np.triu_indices(p, 1)
+        cnf.add_block(np.column_stack([-lits[:, pa].ravel(), -lits[:, pb].ravel()]))
+        return
+    s = np.asarray(cnf.new_vars(n * (p - 1)), dtype=np.int64).reshape(n, p - 1)
+    pairs = [np.column_stack([-lits[:, : p - 1].ravel(), s.ravel()]),          # x_i -> s_i, i < p
+             np.column_stack([-s[:, :-1].ravel(), s[:, 1:].ravel()]),           # s_{i-1} -> s_i
+             np.column_stack([-lits[:, 1:].ravel(), -s.ravel()])]               # x_i -> not s_{i-1}, i > 1
+    for block in pairs:
+        cnf.add_block(block)
 
 
 def sat_solve(
@@ -212,31 +268,50 @@ def sat_solve(
     torus: bool = False,
     fixed: Mapping[Any, Any] | None = None,
     solver: str = DEFAULT_SAT_SOLVER,
-    time_limit: float | None = None,
+    time_limit: float | None = DEFAULT_SOLVER_SECONDS,
+    max_variables: float = MAX_SAT_VARIABLES,
 ) -> SolveResult:
     """Decide whether ``tileset`` tiles a rows x cols rectangle (or torus) with ``fixed`` tiles.
 
+    The question is refused before its clauses are made when it has more than
+    ``max_variables`` variables or would not fit in memory (:func:`check_sat_size`).
     A tiling found is checked by the independent :func:`check_grid` before it is returned.
-    With ``time_limit`` (seconds) the solver is interrupted (or, for CaDiCaL, which python-sat
-    cannot interrupt, run in a child process that is killed) and :class:`SolverLimit` raised.
+    After ``time_limit`` seconds (default ``limits.DEFAULT_SOLVER_SECONDS``; None: no limit)
+    the solver is interrupted (or, for CaDiCaL, which python-sat cannot interrupt, run in a
+    child process that is killed) and :class:`SolverLimit` raised.
     """
     check_solver(solver)
     rows, cols, fixed_n = prepare_question(tileset, rows, cols, fixed, torus)
     start = time.perf_counter()
     enc = _Encoding(tileset, rows, cols, torus)
+    check_sat_size(enc, tileset, max_variables)
     cnf = CNF(top=enc.top)
-    cnf.clauses = enc.clauses()
+    enc.blocks(cnf)
     assumptions = [int(enc.x(i, j, t)) for (i, j), t in fixed_n.items()]
     answer = solve(cnf, assumptions, solver=solver, time_limit=time_limit)
-    stats = {"variables": enc.top, "clauses": len(cnf), "solver": solver, **answer.stats}
+    stats = {"variables": cnf.top, "clauses": len(cnf), "literals": cnf.literals(), "solver": solver, **answer.stats}
     seconds = time.perf_counter() - start
     if answer.satisfiable is None:
-        raise no_answer(solver, tileset, rows, cols, torus, f"{time_limit} s", "raise time_limit")
+        raise no_answer(solver, tileset, rows, cols, torus, f"{time_limit:g} s", "raise the time limit (--time-limit S)")
     grid = None
     if answer.satisfiable:
         grid = enc.decode(answer.model)
         check_grid(grid, tileset, torus=torus, fixed=fixed_n)
     return SolveResult(bool(answer.satisfiable), grid, rows, cols, torus, f"sat:{solver}", seconds, stats)
+
+
+def sat_size(tileset: WangTileSet, rows: int, cols: int, torus: bool = False) -> tuple[int, int, int]:
+    """(variables, clauses, literals) of the SAT question, counted without making it."""
+    return _Encoding(tileset, rows, cols, torus).size()
+
+
+def check_sat_size(enc: _Encoding, tileset: WangTileSet, max_variables: float = MAX_SAT_VARIABLES) -> None:
+    """Refuse (LimitError, one line) a question over ``max_variables`` variables or whose
+    measured cost (``limits.sat_bytes``) would not fit in the memory available."""
+    variables, clauses, _ = enc.size()
+    hint = f"{enc.rows} x {enc.cols} cells x {len(tileset)} tiles, {clauses:,} clauses"
+    refuse_over("SAT variables", variables, max_variables, "--max-variables", hint=hint)
+    refuse_over_memory("SAT clauses", clauses, sat_bytes(variables, clauses) / max(clauses, 1), hint=hint)
 
 
 def prepare_question(

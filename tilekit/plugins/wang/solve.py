@@ -30,6 +30,12 @@ import numpy as np
 
 from tilekit.builder import PatchBuilder
 from tilekit.errors import ParameterError, SolverLimit
+from tilekit.limits import (
+    BUILDER_BYTES_PER_TILE,
+    BUILDER_BYTES_PER_TORUS_TILE,
+    DEFAULT_SOLVER_SECONDS,
+    refuse_over_memory,
+)
 from tilekit.plugins.wang.check import check_grid
 from tilekit.plugins.wang.sat import (
     DEFAULT_SAT_SOLVER,
@@ -54,7 +60,7 @@ def backtrack_solve(
     torus: bool = False,
     fixed: Mapping[Any, Any] | None = None,
     max_nodes: int | None = 10_000_000,
-    time_limit: float | None = None,
+    time_limit: float | None = DEFAULT_SOLVER_SECONDS,
 ) -> SolveResult:
     """Depth-first search in scanline order with an explicit stack (no recursion limit).
 
@@ -198,7 +204,7 @@ def builder_solve(
     torus: bool = False,
     fixed: Mapping[Any, Any] | None = None,
     max_nodes: int | None = 2_000_000,
-    time_limit: float | None = None,
+    time_limit: float | None = DEFAULT_SOLVER_SECONDS,
 ) -> SolveResult:
     """Decide the rectangle or torus question with :class:`tilekit.builder.PatchBuilder`.
 
@@ -210,6 +216,9 @@ def builder_solve(
     """
 
     rows, cols, fixed_n = prepare_question(tileset, rows, cols, fixed, torus)
+    refuse_over_memory("tiles placed by the patch builder", rows * cols,
+                       BUILDER_BYTES_PER_TORUS_TILE if torus else BUILDER_BYTES_PER_TILE,
+                       hint="use method='sat' or a smaller grid")
     start = time.perf_counter()
     top = float(rows)
 
@@ -251,7 +260,7 @@ def builder_solve(
     return SolveResult(False, None, rows, cols, torus, "builder", time.perf_counter() - start, stats)
 
 
-_ADVICE = "raise max_nodes or time_limit, or use method='sat'"
+_ADVICE = "raise the time limit (--time-limit S) or max_nodes, or use method='sat'"
 
 
 def _limit_message(tileset: WangTileSet, rows: int, cols: int, torus: bool, nodes: int, start: float) -> SolverLimit:
@@ -286,14 +295,16 @@ def solve(
     torus: bool = False,
     fixed: Mapping[Any, Any] | None = None,
     method: str = "sat",
-    time_limit: float | None = None,
+    time_limit: float | None = DEFAULT_SOLVER_SECONDS,
     **options: Any,
 ) -> SolveResult:
     """Does ``tileset`` tile a rows x cols rectangle (or torus) with the ``fixed`` tiles?
 
     ``fixed`` maps (row, column) to a tile index or name. ``method`` is 'sat' (default),
     'builder' or 'backtrack'. Every tiling returned has passed the independent
-    checker; "does not tile" is a proof (exhausted search or an UNSAT answer).
+    checker; "does not tile" is a proof (exhausted search or an UNSAT answer). The call
+    ends with a one-line :class:`SolverLimit` after ``time_limit`` seconds (default
+    ``limits.DEFAULT_SOLVER_SECONDS``; None: no limit).
     """
     if method == "sat":
         return sat_solve(tileset, rows, cols, torus, fixed, time_limit=time_limit, solver=options.pop("solver", DEFAULT_SAT_SOLVER), **options)
@@ -358,13 +369,16 @@ def wang_procedure(
     tileset: WangTileSet,
     max_m: int,
     method: str = "sat",
-    time_limit: float | None = None,
+    time_limit: float | None = DEFAULT_SOLVER_SECONDS,
     start_m: int = 1,
+    total_limit: float | None = None,
 ) -> WangProcedureResult:
     """Wang's procedure (§6.2) for m = start_m .. max_m.
 
     For each m, first an m x m torus (found: periodic, stop), then the m x m square (no
-    tiling: does not tile, stop). ``time_limit`` bounds each single solver call.
+    tiling: does not tile, stop). ``time_limit`` bounds each single solver call (default
+    ``limits.DEFAULT_SOLVER_SECONDS``), ``total_limit`` the whole procedure: past it, the
+    calls left end in a SolverLimit.
     """
     try:
         max_m = int(max_m)
@@ -375,13 +389,23 @@ def wang_procedure(
         raise ParameterError(f"Wang's procedure needs 1 <= start_m <= max_m, got start_m={start_m}, max_m={max_m}")
     began = time.perf_counter()
     steps: list[dict[str, Any]] = []
+
+    def budget() -> float | None:
+        if total_limit is None:
+            return time_limit
+        left = total_limit - (time.perf_counter() - began)
+        if left <= 0:
+            raise SolverLimit(f"Wang's procedure for set {tileset.name!r} ran out of its {total_limit:g} s "
+                              f"before m = {m}")
+        return left if time_limit is None else min(time_limit, left)
+
     for m in range(start_m, max_m + 1):
-        tor = solve(tileset, m, m, torus=True, method=method, time_limit=time_limit)
+        tor = solve(tileset, m, m, torus=True, method=method, time_limit=budget())
         step: dict[str, Any] = {"m": m, "torus": tor.tiles, "torus_seconds": round(tor.seconds, 6)}
         if tor.tiles:
             steps.append(step)
             return WangProcedureResult(tileset.name, max_m, "periodic", m, tor.grid, steps, time.perf_counter() - began)
-        sq = solve(tileset, m, m, torus=False, method=method, time_limit=time_limit)
+        sq = solve(tileset, m, m, torus=False, method=method, time_limit=budget())
         step.update({"square": sq.tiles, "square_seconds": round(sq.seconds, 6)})
         steps.append(step)
         if not sq.tiles:

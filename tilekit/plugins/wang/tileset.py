@@ -34,6 +34,8 @@ from typing import Any
 import numpy as np
 
 from tilekit.errors import NotFoundError, ParseError
+from tilekit.files import read_text
+from tilekit.limits import MAX_WANG_TILES, refuse_over_memory
 
 #: Side indices into a tile's (N, E, S, W) row.
 N, E, S, W = 0, 1, 2, 3
@@ -122,45 +124,32 @@ class WangTileSet:
         """Number of distinct edge colours (horizontal and vertical counted separately)."""
         return len(self.horizontal_colours) + len(self.vertical_colours)
 
-    @cached_property
-    def nw_table(self) -> tuple[np.ndarray, np.ndarray]:
-        """(choices, counts): ``choices[n, w, k]`` is the k-th tile with N=n and W=w.
-
-        ``counts[n, w]`` says how many there are (unused slots hold -1). Indices run over
-        all colour indices, so a lookup needs no remapping.
-        """
-        c = len(self.colours)
-        key = self.tiles[:, N] * c + self.tiles[:, W]
-        counts = np.bincount(key, minlength=c * c).reshape(c, c)
-        kmax = max(1, int(counts.max()))
-        choices = np.full((c, c, kmax), -1, dtype=np.int64)
-        order = np.argsort(key, kind="stable")
-        sorted_key = key[order]
-        starts = np.searchsorted(sorted_key, sorted_key, side="left")
-        slot = np.arange(len(order)) - starts
-        choices[sorted_key // c, sorted_key % c, slot] = order
-        return choices, counts
-
     def _nw_counts(self) -> np.ndarray:
-        """Tiles per (n, w) over the pairs of colours that can meet at a tile's NW corner.
+        """Tiles per (n, w) over the pairs of colours that can meet at a tile's NW corner
+        (pairs without a tile count 0), counted over the tiles, not over a colours x colours
+        table: a set with thousands of colours costs its tiles, not colours squared.
 
-        For edge sets every pair of a horizontal and a vertical colour can; for corner sets
-        only pairs that agree on the colour of the shared north-west corner.
+        For edge sets every pair of a horizontal and a vertical colour can meet; for corner
+        sets only pairs that agree on the colour of the shared north-west corner.
         """
-        _, counts = self.nw_table
         h, v = self.horizontal_colours, self.vertical_colours
-        sub = counts[np.ix_(h, v)]
+        hpos = np.searchsorted(h, self.tiles[:, N])
+        vpos = np.searchsorted(v, self.tiles[:, W])
+        _, counts = np.unique(hpos * len(v) + vpos, return_counts=True)
         if self.corners is None:
-            return sub.ravel()
-        c = len(self.colours)
-        west_end = np.full(c, -1)  # corner at the west end of a horizontal edge colour
-        north_end = np.full(c, -1)  # corner at the north end of a vertical edge colour
-        west_end[self.tiles[:, N]] = self.corners[:, 3]
-        west_end[self.tiles[:, S]] = self.corners[:, 2]
-        north_end[self.tiles[:, W]] = self.corners[:, 3]
-        north_end[self.tiles[:, E]] = self.corners[:, 0]
-        meet = west_end[h][:, None] == north_end[v][None, :]
-        return sub[meet]
+            meeting = len(h) * len(v)
+        else:
+            c = len(self.colours)
+            west_end = np.full(c, -1)  # corner at the west end of a horizontal edge colour
+            north_end = np.full(c, -1)  # corner at the north end of a vertical edge colour
+            west_end[self.tiles[:, N]] = self.corners[:, 3]
+            west_end[self.tiles[:, S]] = self.corners[:, 2]
+            north_end[self.tiles[:, W]] = self.corners[:, 3]
+            north_end[self.tiles[:, E]] = self.corners[:, 0]
+            k = len(self.corner_colours)
+            meeting = int(np.bincount(west_end[h], minlength=k) @ np.bincount(north_end[v], minlength=k))
+        # a tile's own N and W meet, so the pairs with tiles are among the meeting ones
+        return np.concatenate([counts, np.zeros(meeting - len(counts), dtype=counts.dtype)])
 
     @cached_property
     def complete(self) -> bool:
@@ -180,6 +169,7 @@ class WangTileSet:
         if self.corners is None:
             return None
         k = len(self.corner_colours)
+        refuse_over_memory("corner table entries", float(k) ** 4, 8, hint=f"set {self.name!r} has {k} corner colours")
         table = np.full((k, k, k, k), -1, dtype=np.int64)
         # later duplicates lose to the first tile listed (reverse assignment keeps the first)
         idx = np.arange(len(self.corners))[::-1]
@@ -190,6 +180,9 @@ class WangTileSet:
     @cached_property
     def corner_complete(self) -> bool:
         """Corner set with a tile for every assignment of corner colours (random access works)."""
+        k = len(self.corner_colours)
+        if self.corners is None or len(self) < k**4:  # too few tiles for every colouring
+            return False
         table = self.corner_table
         return table is not None and bool((table >= 0).all())
 
@@ -265,10 +258,7 @@ class WangTileSet:
 
 def _index(tokens: Iterable[str]) -> tuple[tuple[str, ...], dict[str, int]]:
     """Colour tokens in a stable order: numeric tokens numerically, then the rest as written."""
-    seen: list[str] = []
-    for t in tokens:
-        if t not in seen:
-            seen.append(t)
+    seen = list(dict.fromkeys(tokens))
     numeric = sorted((t for t in seen if t.isdigit()), key=int)
     other = [t for t in seen if not t.isdigit()]
     order = tuple(numeric + other)
@@ -282,6 +272,7 @@ def from_tuples(
     **meta: Any,
 ) -> WangTileSet:
     """A set from (N, E, S, W) colour tuples (any hashable tokens; converted with ``str``)."""
+    _check_count(name, tiles)
     rows = [tuple(str(c) for c in t) for t in tiles]
     for i, r in enumerate(rows):
         if len(r) != 4:
@@ -303,6 +294,7 @@ def from_corners(
     Each edge gets the colour 'a/b' of its two end points read west-to-east (N and S edges)
     or north-to-south (E and W edges), so that matching edges is matching corners.
     """
+    _check_count(name, corners)
     rows = [tuple(str(c) for c in t) for t in corners]
     for i, r in enumerate(rows):
         if len(r) != 4:
@@ -323,6 +315,12 @@ def from_corners(
         name=name, tiles=arr, colours=colours, tile_names=tuple(tile_names), corners=carr,
         corner_colours=ccols, **meta,
     )
+
+
+def _check_count(name: str, tiles: Sequence[Any]) -> None:
+    """At most MAX_WANG_TILES tiles, checked before anything is made of them."""
+    if len(tiles) > MAX_WANG_TILES:
+        raise ParseError(f"tile set {name!r} has {len(tiles):,} tiles; a set holds at most {MAX_WANG_TILES:,}")
 
 
 def _check_duplicates(name: str, arr: np.ndarray, tile_names: Sequence[str], what: str = "tile") -> None:
@@ -350,6 +348,8 @@ def parse_tileset(text: str, filename: str = "<text>") -> WangTileSet:
     rows: list[tuple[str, ...]] = []
     names: list[str] = []
     row_lines: list[int] = []
+    line_of_row: dict[tuple[str, ...], int] = {}
+    line_of_name: dict[str, int] = {}
     header_line = 0
     for lineno, raw in enumerate(text.splitlines(), start=1):
         line = _COMMENT.sub("", raw).strip()
@@ -386,11 +386,14 @@ def parse_tileset(text: str, filename: str = "<text>") -> WangTileSet:
             if not _TOKEN.match(tok):
                 raise fail(lineno, f"colour {tok!r} must be letters, digits, '_', '.', '+' or '-'")
         colours = tuple(parts[i] for i in order)
-        if colours in rows:
-            raise fail(lineno, f"tile {' '.join(parts[:4])} repeats the tile on line {row_lines[rows.index(colours)]}")
+        if colours in line_of_row:
+            raise fail(lineno, f"tile {' '.join(parts[:4])} repeats the tile on line {line_of_row[colours]}")
         tname = parts[4] if len(parts) == 5 else f"t{len(rows)}"
-        if tname in names:
-            raise fail(lineno, f"tile name {tname!r} repeats the one on line {row_lines[names.index(tname)]}")
+        if tname in line_of_name:
+            raise fail(lineno, f"tile name {tname!r} repeats the one on line {line_of_name[tname]}")
+        if len(rows) == MAX_WANG_TILES:
+            raise fail(lineno, f"more than {MAX_WANG_TILES:,} tiles; a set holds at most {MAX_WANG_TILES:,}")
+        line_of_row[colours] = line_of_name[tname] = lineno
         rows.append(colours)
         names.append(tname)
         row_lines.append(lineno)
@@ -455,15 +458,9 @@ def _header_value(key: str, value: str, fail: Any) -> Any:
 
 
 def load_tileset(path: str | Path) -> WangTileSet:
-    """Read a ``.wang`` file (errors name the file and line)."""
-    p = Path(path)
-    try:
-        text = p.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise ParseError(f"{p}: cannot read the tile set file ({exc.strerror or exc})") from None
-    except UnicodeDecodeError as exc:
-        raise ParseError(f"{p}: not UTF-8 text (byte {exc.start}); save the tile set as UTF-8") from None
-    return parse_tileset(text, filename=str(p))
+    """Read a ``.wang`` file (errors name the file and line): a regular file of at most
+    ``limits.MAX_FILE_BYTES``, read through :func:`tilekit.files.read_text`."""
+    return parse_tileset(read_text(path, "tile set file"), filename=str(path))
 
 
 # ---------------------------------------------------------------------- the built-in sets

@@ -4,6 +4,7 @@ periodic torus unit, or an exact solver), and the facts the catalogue stores abo
 from __future__ import annotations
 
 import math
+import numbers
 from collections.abc import Mapping
 from functools import cache
 from typing import Any
@@ -14,6 +15,7 @@ from shapely.geometry.base import BaseGeometry
 
 from tilekit.errors import GeometryError, ParameterError, ParseError, SolverLimit
 from tilekit.geometry import as_region
+from tilekit.limits import DEFAULT_SOLVER_SECONDS, MAX_SOLVER_SECONDS
 from tilekit.plugins.wang.fill import (
     grid_to_patch,
     random_access_fill,
@@ -32,6 +34,7 @@ from tilekit.plugins.wang.tileset import (
     get_tileset,
     tile_prototiles,
 )
+from tilekit.schema import Field, check, shown
 from tilekit.tiling import Patch, Prototile, Tiling
 
 FAMILY = "wang"
@@ -40,6 +43,8 @@ FAMILY = "wang"
 FILL_METHODS = ("auto", "random-access", "scanline", "periodic", "solver")
 #: Wang's procedure runs up to this m when records are built (cheap for every shipped set).
 BUILD_MAX_M = 6
+#: Seconds ``method='auto'`` spends looking for a small torus unit of a user's set.
+PERIODIC_PROBE_SECONDS = 10.0
 #: Largest region (in tiles) the exact solver is asked to fill by ``patch``.
 MAX_SOLVER_TILES = 10_000
 
@@ -53,14 +58,15 @@ class WangTiling(Tiling):
 
     family = FAMILY
 
-    def __init__(self, tileset: WangTileSet, seed: int = 0, method: str = "auto", time_limit: float = 60.0) -> None:
+    def __init__(self, tileset: WangTileSet, seed: int = 0, method: str = "auto",
+                 time_limit: float = DEFAULT_SOLVER_SECONDS) -> None:
         if method not in FILL_METHODS:
-            raise ParameterError(f"Wang fill method {method!r} is not one of {', '.join(FILL_METHODS)}")
+            raise ParameterError(f"Wang fill method {shown(method)} is not one of {', '.join(FILL_METHODS)}")
         self.tileset = tileset
         self.name = tileset.name
-        self.seed = int(seed)
+        self.seed = _seed(seed)
         self.method = method
-        self.time_limit = float(time_limit)
+        self.time_limit = _seconds(time_limit)
 
     # -- Tiling API ------------------------------------------------------------
     @property
@@ -75,7 +81,7 @@ class WangTiling(Tiling):
             return "random-access"
         if self.tileset.complete:
             return "scanline"
-        if periodic_unit(self.tileset) is not None:
+        if periodic_unit(self.tileset, min(PERIODIC_PROBE_SECONDS, self.time_limit)) is not None:
             return "periodic"
         return "solver"
 
@@ -90,7 +96,7 @@ class WangTiling(Tiling):
             seq = np.random.SeedSequence([self.seed & 0xFFFFFFFF, x0 & 0xFFFFFFFF, y0 & 0xFFFFFFFF])
             return scanline_fill(self.tileset, rows, cols, seed=int(seq.generate_state(1)[0]))
         if method == "periodic":
-            unit = periodic_unit(self.tileset)
+            unit = periodic_unit(self.tileset, min(PERIODIC_PROBE_SECONDS, self.time_limit))
             if unit is None:
                 raise ParameterError(
                     f"set {self.tileset.name!r} has no torus tiling of side <= {BUILD_MAX_M}; "
@@ -167,15 +173,15 @@ class WangTiling(Tiling):
 
     @classmethod
     def from_spec(cls, spec: Mapping[str, Any]) -> WangTiling:
-        """Rebuild from :meth:`spec` output: a shipped set by name, or an inline ``tileset``."""
+        """Rebuild from :meth:`spec` output: a shipped set by name, or an inline ``tileset``
+        (checked against :data:`SPEC`)."""
+        if isinstance(spec, Mapping):
+            spec = check(SPEC, {k: v for k, v in spec.items() if v is not None}, "Wang spec")
         if not isinstance(spec, Mapping) or ("set" not in spec and "tileset" not in spec):
-            raise ParseError(f"Wang spec must name a 'set' or give a 'tileset', got {spec!r}")
-        ts = WangTileSet.from_json(spec["tileset"]) if "tileset" in spec else get_tileset(str(spec["set"]))
-        try:
-            seed = int(spec.get("seed", 0))
-        except (TypeError, ValueError):
-            raise ParseError(f"Wang spec seed {spec.get('seed')!r} is not an integer") from None
-        return cls(ts, seed=seed, method=str(spec.get("method", "auto")))
+            raise ParseError(f"Wang spec must name a 'set' or give a 'tileset', got {shown(spec)}")
+        ts = WangTileSet.from_json(spec["tileset"]) if "tileset" in spec else get_tileset(spec["set"])
+        return cls(ts, seed=spec.get("seed", 0), method=spec.get("method", "auto"),
+                   time_limit=spec.get("time_limit", DEFAULT_SOLVER_SECONDS))
 
     def properties(self) -> dict[str, Any]:
         return dict(set_facts(self.tileset))
@@ -189,7 +195,7 @@ class WangTiling(Tiling):
         return "\n".join([
             "--set seed=N           the fill's random seed",
             "--set method=M         " + ", ".join(FILL_METHODS),
-            "--set time_limit=S     seconds for the exact solver",
+            f"--set time_limit=S     seconds for the exact solver (default {DEFAULT_SOLVER_SECONDS:g})",
         ])
 
     def configure(self, **options: Any) -> WangTiling:
@@ -199,22 +205,46 @@ class WangTiling(Tiling):
             if value is None or (key in ("params", "edges") and not value):
                 continue  # the CLI passes empty defaults for options this family ignores
             if key == "seed":
-                try:
-                    seed = int(value)
-                except (TypeError, ValueError):
-                    raise ParameterError(f"seed={value!r} is not an integer") from None
+                seed = _seed(value.strip() if isinstance(value, str) else value)
             elif key == "method":
                 method = str(value)
             elif key == "time_limit":
-                try:
-                    limit = float(value)
-                except (TypeError, ValueError):
-                    raise ParameterError(f"time_limit={value!r} is not a number of seconds") from None
+                limit = _seconds(value)
             else:
                 raise ParameterError(
                     f"Wang tilings take the options seed, method and time_limit, not {key!r}"
                 )
         return WangTiling(self.tileset, seed=seed, method=method, time_limit=limit)
+
+
+#: A Wang tiling's spec (what :meth:`WangTiling.spec` writes).
+SPEC = Field("table", fields={
+    "set": Field("str"),
+    "tileset": Field("table"),
+    "seed": Field("int", range=(-2**63, 2**63 - 1)),
+    "method": Field("str", choices=FILL_METHODS),
+    "time_limit": Field("number", range=(1e-3, MAX_SOLVER_SECONDS)),
+})
+
+
+def _seed(value: Any) -> int:
+    """A fill seed: an integer (or its decimal text) within int64, else a ParameterError."""
+    if isinstance(value, str) and value.lstrip("-").isascii() and value.lstrip("-").isdigit() and len(value) <= 20:
+        value = int(value)
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or not -2**63 <= value < 2**63:
+        raise ParameterError(f"seed={shown(value)} is not an integer (within ±2**63)")
+    return int(value)
+
+
+def _seconds(value: Any) -> float:
+    """A time limit in seconds: a finite number in 0.001 .. MAX_SOLVER_SECONDS."""
+    try:
+        seconds = float(value)
+    except (TypeError, ValueError, OverflowError):
+        raise ParameterError(f"time_limit={shown(value)} is not a number of seconds") from None
+    if not 1e-3 <= seconds <= MAX_SOLVER_SECONDS:  # false for nan too
+        raise ParameterError(f"time_limit={shown(value)} must be a number of seconds in 0.001..{MAX_SOLVER_SECONDS:g}")
+    return seconds
 
 
 # ---------------------------------------------------------------------- facts and records
@@ -261,16 +291,17 @@ def _build_time_procedure(name: str) -> WangProcedureResult:
     return wang_procedure(get_tileset(name), BUILD_MAX_M)
 
 
-def periodic_unit(ts: WangTileSet) -> np.ndarray | None:
+def periodic_unit(ts: WangTileSet, seconds: float = PERIODIC_PROBE_SECONDS) -> np.ndarray | None:
     """An m x m torus tiling (m <= BUILD_MAX_M) of the set, or None if Wang's procedure found
-    none that small (cached: the build-time run for shipped sets, else one run per set)."""
+    none that small within ``seconds`` (cached: the build-time run for shipped sets, else one
+    run per set)."""
     if builtin_sets().get(ts.name) is ts:
         proc = _build_time_procedure(ts.name)
     else:
         proc = ts.__dict__.get("_procedure")
         if proc is None:
             try:
-                proc = wang_procedure(ts, BUILD_MAX_M, time_limit=10.0)
+                proc = wang_procedure(ts, BUILD_MAX_M, time_limit=None, total_limit=seconds)
             except SolverLimit:
                 proc = WangProcedureResult(ts.name, BUILD_MAX_M, "no_answer", None, None)
             ts.__dict__["_procedure"] = proc
