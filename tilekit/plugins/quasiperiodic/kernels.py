@@ -123,12 +123,31 @@ def fill(e, f, pairs, inv, pair_bounds, box, region, margin, tol, out_pair, out_
     return at
 
 
+@njit(cache=True, nogil=True)
+def place(pair, lower, turn, offset, kind, out_maps, out_kind):  # pragma: no cover - compiled
+    """Each rhomb's map (its pair's rotation, translated to its lower vertex plus the pair's
+    offset) and prototile, written in one pass."""
+    for i in range(pair.shape[0]):
+        p = pair[i]
+        c, s = turn[p, 0], turn[p, 1]
+        out_maps[i, 0, 0] = c
+        out_maps[i, 0, 1] = -s
+        out_maps[i, 0, 2] = lower[i, 0] + offset[p, 0]
+        out_maps[i, 1, 0] = s
+        out_maps[i, 1, 1] = c
+        out_maps[i, 1, 2] = lower[i, 1] + offset[p, 1]
+        out_maps[i, 2, 0] = 0.0
+        out_maps[i, 2, 1] = 0.0
+        out_maps[i, 2, 2] = 1.0
+        out_kind[i] = kind[p]
+
+
 def rhombs_in(e: np.ndarray, f: np.ndarray, pairs: np.ndarray, inv: np.ndarray, pair_bounds: np.ndarray,
               box: tuple[float, ...], region: tuple[float, ...], margin: float, tol: float, with_k: bool
               ) -> tuple[int, np.ndarray, np.ndarray, np.ndarray | None, np.ndarray]:
     """(candidates, pair, lower, K less the anchor's or None, status) of one window: the
-    arrays hold exactly the rhombs kept; ``status[0] >= 0`` names a singular intersection
-    (pair, m_r, m_s, third grid), where the fill stopped."""
+    arrays are the rhombs kept; ``status[0] >= 0`` names a singular intersection (pair, m_r,
+    m_s, third grid), where the fill stopped."""
     box_a = np.asarray(box, dtype=np.float64)
     region_a = np.asarray(region, dtype=np.float64)
     total = int(count(e, f, pairs, box_a))
@@ -138,7 +157,6 @@ def rhombs_in(e: np.ndarray, f: np.ndarray, pairs: np.ndarray, inv: np.ndarray, 
     status = np.full(4, -1, dtype=np.int64)
     kept = int(fill(e, f, pairs, inv, pair_bounds, box_a, region_a, margin, tol, out_pair, out_lower,
                     out_k if with_k else np.empty((1, e.shape[0]), dtype=np.int64), with_k, status))
-    if kept < total:  # the region's box test dropped some: keep exactly the rhombs, no slack
-        out_pair, out_lower = out_pair[:kept].copy(), out_lower[:kept].copy()
-        out_k = out_k[:kept].copy() if with_k else out_k
-    return total, out_pair, out_lower, out_k if with_k else None, status
+    # views of the kept rows: the region's box test drops about a perimeter's worth of the
+    # candidates (0.5 % at 10^6 tiles), less than a copy would cost
+    return total, out_pair[:kept], out_lower[:kept], out_k[:kept] if with_k else None, status

@@ -164,19 +164,14 @@ class QuasiperiodicTiling(Tiling):
 
     def _patch(self, rh: multigrid.Rhombs) -> Patch:
         """The Patch of some rhombs: prototile (kind) and map from each pair's placement."""
+        # start-up cost: numba, loaded by multigrid.rhombs already
+        from tilekit.plugins.quasiperiodic import kernels
+
         st = self.star
-        m = len(rh)
-        t = np.zeros((m, 3, 3))
-        cos, sin = st.pair_turn[:, 0][rh.pair], st.pair_turn[:, 1][rh.pair]
-        t[:, 0, 0] = cos
-        t[:, 0, 1] = -sin
-        t[:, 1, 0] = sin
-        t[:, 1, 1] = cos
-        t[:, 0, 2] = rh.lower[:, 0] + st.pair_offset[:, 0][rh.pair]
-        t[:, 1, 2] = rh.lower[:, 1] + st.pair_offset[:, 1][rh.pair]
-        t[:, 2, 2] = 1.0
-        kind = st.pair_kind[rh.pair]
-        return Patch(st.prototiles, kind, t, colour=kind, aspect=rh.pair)
+        maps = np.empty((len(rh), 3, 3))
+        kind = np.empty(len(rh), dtype=np.int64)
+        kernels.place(rh.pair, rh.lower, st.pair_turn, st.pair_offset, st.pair_kind, maps, kind)
+        return Patch(st.prototiles, kind, maps, colour=kind, aspect=rh.pair)
 
     def iter_patches(self, region: Any = None, chunk_tiles: int = STREAM_CHUNK_TILES) -> Iterator[Patch]:
         """``patch(region)`` as bands across the region's longer side of about ``chunk_tiles``
