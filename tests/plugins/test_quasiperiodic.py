@@ -20,6 +20,8 @@ import pytest
 import shapely
 from click.testing import CliRunner
 from cliutil import assert_one_line_error
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from tilekit.errors import ParameterError, ParseError, TilekitError
 from tilekit.limits import LimitError
@@ -513,3 +515,34 @@ def test_errors_are_tilekit_errors():
     for bad in (lambda: star(2), lambda: QuasiperiodicTiling(5, "x")):
         with pytest.raises(TilekitError):
             bad()
+
+
+@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.sampled_from(["n", "gamma", "singular", "depth"]),
+       st.one_of(st.text(alphabet="0123456789.-+e, naif_", max_size=24), st.integers(-10**20, 10**20),
+                 st.floats(allow_nan=True, allow_infinity=True),
+                 st.lists(st.one_of(st.floats(), st.text(max_size=5)), max_size=14)))
+def test_any_option_value_makes_a_tiling_or_a_tilekit_error(key, value):
+    # --set KEY=VALUE reaches configure() as text (the Python API may pass anything): either a
+    # tiling whose patch is valid, or a TilekitError, never another exception
+    try:
+        t = QuasiperiodicTiling(5).configure(**{key: value})
+    except TilekitError as exc:
+        assert "\n" not in str(exc)
+        return
+    assert t.patch((-4, -4, 4, 4)).validate((-4, -4, 4, 4))
+
+
+def test_cli_streams_a_region_over_the_memory_estimate(cli, tmp_path, monkeypatch):
+    # render writes a patch that would not fit in memory band by band (Tiling.iter_patches)
+    import json
+
+    from tilekit import limits
+
+    monkeypatch.setattr(limits, "available_memory", lambda: 2e5)  # 3,147 tiles need 630 kB
+    r = cli("render", "multigrid-7", "--region", "0,0,60,40", "-o", "big.geojson")
+    assert r.exit_code == 0 and "streamed in chunks" in r.output, r.output
+    features = json.loads((tmp_path / "big.geojson").read_text())["features"]
+    monkeypatch.undo()
+    want = QuasiperiodicTiling(7).patch((0, 0, 60, 40))
+    assert len(features) == len(want)

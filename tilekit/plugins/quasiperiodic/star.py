@@ -40,9 +40,12 @@ def check_order(n: object) -> int:
         raise ParameterError(f"n={n!r} is not a whole number; valid: {MIN_N}..{MAX_N}")
     if isinstance(n, str):
         text = n.strip()
-        if not text.lstrip("+-").isdigit() or len(text) > 6:
-            raise ParameterError(f"n={n[:20]!r} is not a whole number; valid: {MIN_N}..{MAX_N}")
-        n = int(text)
+        try:
+            if len(text) > 6 or not text.isascii():
+                raise ValueError(text)
+            n = int(text)
+        except ValueError:
+            raise ParameterError(f"n={n[:20]!r} is not a whole number; valid: {MIN_N}..{MAX_N}") from None
     if isinstance(n, float) and n.is_integer():
         n = int(n)
     if not isinstance(n, int | np.integer):
