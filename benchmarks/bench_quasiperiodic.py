@@ -22,6 +22,7 @@ import os
 import statistics
 import time
 import tracemalloc
+from functools import partial
 
 import numpy as np
 
@@ -90,9 +91,9 @@ def speed(runs: int, tiles: float) -> None:
     for n in ORDERS:
         g, st, bounds = default_gamma(n), star(n), region_for(n, tiles)
         t = QuasiperiodicTiling(n)
-        rmin, rmed, rh = timed(lambda: multigrid.rhombs(st, g, bounds), runs)
-        pmin, pmed, patch = timed(lambda: t.patch(bounds), runs)
-        qmin, qmed, (pp, pl) = timed(lambda: peer_numpy(n, g, bounds), runs)
+        rmin, rmed, rh = timed(partial(multigrid.rhombs, st, g, bounds), runs)
+        pmin, pmed, patch = timed(partial(t.patch, bounds), runs)
+        qmin, qmed, (pp, pl) = timed(partial(peer_numpy, n, g, bounds), runs)
         assert keys(rh.pair, rh.lower) == keys(pp, pl), "the peer made other rhombs"
         assert len(patch) == len(rh)
         m = len(rh)
@@ -103,8 +104,8 @@ def speed(runs: int, tiles: float) -> None:
     bounds = region_for(5, tiles)
     t = QuasiperiodicTiling(5)
     p3 = substitution("penrose-p3")
-    pmin, pmed, mine = timed(lambda: t.patch(bounds), runs)
-    smin, smed, theirs = timed(lambda: p3.patch(bounds), runs)
+    pmin, pmed, mine = timed(partial(t.patch, bounds), runs)
+    smin, smed, theirs = timed(partial(p3.patch, bounds), runs)
     print("| Penrose rhombs in the same box | tiles | min / median s | M tiles/s |")
     print("|---|---:|---|---:|")
     print(f"| multigrid-5 `patch(region)` | {len(mine):,} | {pmin:.3f} / {pmed:.3f} | {len(mine) / pmed / 1e6:.1f} |")
@@ -117,7 +118,7 @@ def speed(runs: int, tiles: float) -> None:
     for size in (500, tiles):
         for centre in ((0.0, 0.0), (1e6, 1e6)):
             bounds = region_for(5, size, centre)
-            amin, amed, got = timed(lambda: t.patch(bounds), runs if size > 1000 else 50 * runs)
+            amin, amed, got = timed(partial(t.patch, bounds), runs if size > 1000 else 50 * runs)
             print(f"| ~{size:,.0f} tiles | {centre} | {len(got):,} | {amin * 1e3:.2f} / {amed * 1e3:.2f} ms |")
     print(f"\n# {load()}")
 
@@ -129,9 +130,9 @@ def memory(tiles: float) -> None:
     for n in ORDERS:
         g, st, bounds = default_gamma(n), star(n), region_for(n, tiles)
         t = QuasiperiodicTiling(n)
-        for name, f in ((f"n = {n} multigrid.rhombs", lambda: multigrid.rhombs(st, g, bounds)),
-                        (f"n = {n} patch()", lambda: t.patch(bounds)),
-                        (f"n = {n} NumPy peer", lambda: peer_numpy(n, g, bounds))):
+        for name, f in ((f"n = {n} multigrid.rhombs", partial(multigrid.rhombs, st, g, bounds)),
+                        (f"n = {n} patch()", partial(t.patch, bounds)),
+                        (f"n = {n} NumPy peer", partial(peer_numpy, n, g, bounds))):
             f()  # compile and warm caches outside the measurement
             tracemalloc.start()
             out = f()
