@@ -39,7 +39,7 @@ class BoundedInt(click.ParamType):
             number = value
         else:
             text = str(value).strip().replace("_", "")
-            digits = text.lstrip("+-")
+            digits = text[1:] if text[:1] in "+-" else text  # one sign at most ('--0' is no integer)
             if not digits.isdigit() or not digits.isascii():
                 self.fail(f"{str(value)[:40]!r} is not a valid integer ({self._range()})", param, ctx)
             if len(digits) > 19:
