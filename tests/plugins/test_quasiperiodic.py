@@ -347,7 +347,7 @@ def test_ten_fold_is_the_pentagrid_with_two_grids_reversed():
 
 def test_singular_offsets_are_refused_in_one_line():
     with pytest.raises(SingularGrid) as err:
-        QuasiperiodicTiling(5, 0.0)  # every line of every grid through the origin's lattice
+        QuasiperiodicTiling(5, 0.0)  # a line of each of the five grids through the origin
     assert isinstance(err.value, ParameterError)
     assert "singular" in str(err.value) and "\n" not in str(err.value)
 
