@@ -8,8 +8,10 @@ import pytest
 
 import tilekit.geometry
 import tilekit.polygon
+from tilekit.geometry import Affine
 from tilekit.polygon import (
     area,
+    canonical_cycle,
     centroid,
     congruences,
     interior_angles,
@@ -51,3 +53,46 @@ def test_vertex_stars_of_the_hexagonal_tiling_have_three_corners():
     stars = vertex_stars(patch.polygons())
     inner = np.hypot(*stars.points.T) < 2
     assert set(stars.valence()[inner].tolist()) == {3}
+
+
+def test_canonical_cycle_reads_a_word_either_way_round():
+    word = [("a", 1), ("b", 2), ("b", 3), ("c", 1)]
+    turned = word[2:] + word[:2]
+    assert canonical_cycle(word) == canonical_cycle(turned) == canonical_cycle(list(reversed(word)))
+    assert canonical_cycle(word) != canonical_cycle([("a", 1), ("b", 3), ("b", 2), ("c", 1)])
+
+
+def _codes(patch, radius, inside):
+    polys = patch.polygons()
+    stars = vertex_stars(polys)
+    labels = [len(p) for p in polys]
+    centres = np.array([p.mean(axis=0) for p in polys])
+    keep = [v for v in range(len(stars)) if inside(stars.points[v])]
+    star_codes = {stars.star_code(v, polys, labels) for v in keep}
+    hoods = set()
+    for v in keep:
+        near = np.flatnonzero(np.hypot(*(centres - stars.points[v]).T) < radius)
+        hoods.add(stars.neighbourhood_code(v, polys, labels, centres, near))
+    return star_codes, hoods
+
+
+def test_star_and_neighbourhood_codes_of_a_vertex_transitive_tiling():
+    # 3.4.6.4 has one vertex orbit: one star, and one neighbourhood of every radius
+    from tilekit.plugins.archimedean import archimedean_tiling
+
+    patch = archimedean_tiling("3.4.6.4").patch((-9, -9, 9, 9))
+    stars, hoods = _codes(patch, 2.3, lambda p: np.abs(p).max() < 5)
+    assert len(stars) == 1 and len(hoods) == 1
+    (star,) = stars
+    assert sorted(label for label, *_ in star) == [3, 4, 4, 6]
+
+
+def test_codes_do_not_change_under_isometries():
+    from tilekit.plugins.archimedean import archimedean_tiling
+
+    patch = archimedean_tiling("3^3.4^2").patch((-9, -9, 9, 9))
+    moved = patch.transformed(Affine.translation(17.25, -3.5) @ Affine.rotation(0.7) @ np.diag([1.0, -1.0, 1.0]))
+    a = _codes(patch, 1.9, lambda p: np.abs(p).max() < 5)
+    inv = np.linalg.inv(Affine.translation(17.25, -3.5) @ Affine.rotation(0.7) @ np.diag([1.0, -1.0, 1.0]))
+    b = _codes(moved, 1.9, lambda p: np.abs(Affine.apply(inv, p[None])[0]).max() < 5)
+    assert a == b and None not in a[0]

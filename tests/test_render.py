@@ -61,3 +61,31 @@ def test_region_clip_is_in_tile_coordinates() -> None:
     assert box == pytest.approx([-1, 0.5, 2.5, 1.0])
     group = next(g for g in root.iter(SVG + "g") if g.get("clip-path"))
     assert group.get("transform") == "scale(1,-1)"
+
+
+def _path_points(svg: str) -> np.ndarray:
+    root = ET.fromstring(svg)
+    d = " ".join(p.get("d") for p in root.iter(SVG + "path") if p.get("fill") not in (None, "none"))
+    nums = [float(v) for v in d.replace("M", " ").replace("L", " ").replace("Z", " ").split()]
+    return np.array(nums).reshape(-1, 2)
+
+
+@pytest.mark.parametrize("where", [(1e6, 1e6), (-3.5e5, 7.25e4)])
+def test_a_patch_far_from_the_origin_is_drawn_where_its_view_box_is(where) -> None:
+    # path coordinates have 5 significant digits: far away the drawing is moved to the origin
+    # by a whole number, so the tiles keep their shapes (at (10^6, 10^6) they had collapsed)
+    near = triangle_patch()
+    shift = np.round(where)
+    far = near.transformed(Affine.translation(*shift))
+    svg = patch_to_svg(far, region=(shift[0] - 2, shift[1] - 2, shift[0] + 2, shift[1] + 2))
+    root = ET.fromstring(svg)
+    x, y, w, h = (float(v) for v in root.get("viewBox").split())
+    assert (x, y, w, h) == pytest.approx((-2.08, -2.08, 4.16, 4.16))
+    assert np.allclose(_path_points(svg), _path_points(patch_to_svg(near, region=(-2, -2, 2, 2))))
+
+
+def test_a_patch_near_the_origin_is_drawn_in_its_own_coordinates() -> None:
+    patch = triangle_patch().transformed(Affine.translation(30.0, 0.0))
+    pts = _path_points(patch_to_svg(patch, region=(25, -5, 35, 5)))
+    corners = np.concatenate([p for p in patch.polygons()])
+    assert pts.min(axis=0) == pytest.approx(corners.min(axis=0), abs=1e-3)

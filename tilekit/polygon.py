@@ -37,6 +37,7 @@ _AREA_EPS = 1e-9
 
 __all__ = [
     "area",
+    "canonical_cycle",
     "centroid",
     "congruences",
     "cyclic_equal",
@@ -384,6 +385,61 @@ class VertexStars:
         found = (self.index_of.find(x, y) for x, y in np.asarray(points, dtype=float).reshape(-1, 2).tolist())
         return np.fromiter((-1 if v is None else v for v in found), dtype=np.int64)
 
+    def corners_at(self, v: int, polygons: Sequence[np.ndarray]) -> list[tuple[int, float, np.ndarray, np.ndarray]]:
+        """The corners at vertex ``v`` counter-clockwise round it: (tile, interior angle, the
+        corner's first edge, its second edge), the edges as vectors from v, the first on the
+        corner's clockwise side; outlines given clockwise (reflected placements) are read the
+        other way round."""
+        out = []
+        for c in self.members(v):
+            t, i = int(self.tile[c]), int(self.index[c])
+            pts = np.asarray(polygons[t], dtype=float)
+            k = len(pts)
+            nxt, prv = pts[(i + 1) % k] - pts[i], pts[i - 1] - pts[i]
+            if signed_area(pts) < 0:
+                nxt, prv = prv, nxt
+            angle = math.atan2(nxt[0] * prv[1] - nxt[1] * prv[0], float(nxt @ prv)) % TWO_PI
+            out.append((t, angle, nxt, prv))
+        out.sort(key=lambda c: math.atan2(c[2][1], c[2][0]))
+        return out
+
+    def star_code(self, v: int, polygons: Sequence[np.ndarray], labels: Sequence[Hashable],
+                  quantum: float = 1e-4) -> tuple | None:
+        """Vertex ``v``'s star up to congruence (rotations and reflections): the cyclic word
+        of its corners (label, angle, edge lengths) in canonical form (:func:`canonical_cycle`),
+        numbers in units of ``quantum`` (radians for angles); None when the corners do not
+        close round v (a vertex on a patch's boundary, or one an edge passes through)."""
+        corners = self.corners_at(v, polygons)
+        if abs(sum(c[1] for c in corners) - TWO_PI) > 1e-6:
+            return None
+
+        def q(x: float) -> int:
+            return round(x / quantum)
+
+        word = [(labels[t], q(a), q(float(np.hypot(*nx))), q(float(np.hypot(*pv)))) for t, a, nx, pv in corners]
+        mirror = [(lab, a, lp, ln) for lab, a, ln, lp in reversed(word)]
+        return canonical_cycle(word, mirror)
+
+    def neighbourhood_code(self, v: int, polygons: Sequence[np.ndarray], labels: Sequence[Hashable],
+                           centres: np.ndarray, near: np.ndarray, quantum: float = 1e-4) -> tuple:
+        """The tiles ``near`` (indices) about vertex ``v`` up to the isometries fixing v: each
+        as (label, x, y) of its centre in units of ``quantum``, in every frame that puts an edge
+        leaving v along +x, directly or mirrored; the least of the sorted words. Two vertices
+        get the same code exactly when an isometry maps one onto the other and the near
+        tiles onto the near tiles (labels kept), up to ``quantum``."""
+        rel = np.asarray(centres, dtype=float)[near] - self.points[v]
+        labs = [labels[int(t)] for t in near]
+        best: tuple | None = None
+        for _, _, edge, _ in self.corners_at(v, polygons):
+            c, s = edge / math.hypot(*edge)
+            x = np.rint((rel[:, 0] * c + rel[:, 1] * s) / quantum).astype(np.int64).tolist()
+            y = np.rint((rel[:, 1] * c - rel[:, 0] * s) / quantum).astype(np.int64).tolist()
+            for sign in (1, -1):
+                word = tuple(sorted(zip(labs, x, [sign * w for w in y])))
+                if best is None or word < best:
+                    best = word
+        return best if best is not None else ()
+
     def reach(self, polygons: Sequence[shapely.Geometry] | np.ndarray, tol: float) -> np.ndarray:
         """Per vertex, how many of ``polygons`` (shapely geometries) come within ``tol`` of
         it: the tiles with a corner there and those whose edge passes through it (a vertex
@@ -391,6 +447,20 @@ class VertexStars:
         tree = shapely.STRtree(np.asarray(polygons))
         hit, _ = tree.query(shapely.points(self.points), predicate="dwithin", distance=tol)
         return np.bincount(hit, minlength=len(self.points))
+
+
+def canonical_cycle(word: Sequence, mirror: Sequence | None = None) -> tuple:
+    """The least of the cyclic shifts of ``word`` and of ``mirror`` (the word read the other
+    way round; default: reversed): a cyclic word up to rotation and reflection, e.g. the
+    corners round a vertex.
+
+    >>> canonical_cycle([3, 1, 2]), canonical_cycle([2, 1, 3])
+    ((1, 2, 3), (1, 2, 3))
+    """
+    forms = []
+    for base in (list(word), list(reversed(word)) if mirror is None else list(mirror)):
+        forms += [tuple(base[i:] + base[:i]) for i in range(len(base))]
+    return min(forms) if forms else ()
 
 
 def vertex_stars(polygons: Sequence[np.ndarray], quantum: float = 1e-6) -> VertexStars:

@@ -153,6 +153,12 @@ def svg_lines(
         raise ParameterError(f"image size must be positive, not {size}")
     x0, y0, x1, y1 = as_region(region).bounds if region is not None else (0.0, 0.0, 1.0, 1.0)
     w, h = x1 - x0, y1 - y0
+    # far from the origin (more than 10 region sizes) the drawing is moved to it, by a whole
+    # number, since coordinates are written to 5 significant digits
+    shift = np.zeros(2)
+    if max(abs(x0), abs(x1), abs(y0), abs(y1)) > 10 * max(w, h):
+        shift = np.round([(x0 + x1) / 2, (y0 + y1) / 2])
+        x0, x1, y0, y1 = x0 - shift[0], x1 - shift[0], y0 - shift[1], y1 - shift[1]
     pad = 0.02 * max(w, h)
     vb = (x0 - pad, -(y1 + pad), w + 2 * pad, h + 2 * pad)
     if width is not None:
@@ -183,7 +189,7 @@ def svg_lines(
     label_items: list[tuple[float, float, str]] = []
     for patch in patches:
         tiles += len(patch)
-        yield from _tile_lines(patch, palette, markings, labels, sw, label_items)
+        yield from _tile_lines(patch, palette, markings, labels, sw, label_items, shift)
     if clip and tiles:
         # a frame on the region's border: tiles cut by the clip end on a line, not in stubs
         # (drawn at twice the width, half of it inside the clip)
@@ -191,6 +197,7 @@ def svg_lines(
                f'stroke-width="{2 * sw:.4g}"/>')
     if vectors is not None:
         o, v1, v2 = (np.asarray(v, dtype=float) for v in vectors)
+        o = o - shift
         yield ('<defs><marker id="arrow" viewBox="0 0 10 10" refX="9" refY="5" markerWidth="6" '
                'markerHeight="6" orient="auto"><path d="M0 0 L10 5 L0 10z" fill="#c00"/></marker></defs>')
         for v in (v1, v2):
@@ -208,20 +215,20 @@ def svg_lines(
 
 
 def _tile_lines(patch: Any, palette: Sequence[str], markings: bool, labels: bool, sw: float,
-                label_items: list[tuple[float, float, str]]) -> Iterator[str]:
-    """One patch's tiles: a filled path per colour, then one path of markings; its edge
-    labels (with ``labels``) are appended to ``label_items``."""
+                label_items: list[tuple[float, float, str]], shift: np.ndarray) -> Iterator[str]:
+    """One patch's tiles, moved by ``-shift``: a filled path per colour, then one path of
+    markings; its edge labels (with ``labels``) are appended to ``label_items``."""
     by_colour: dict[int, list[str]] = {}
     mark_paths: list[str] = []
     for p, idx, pts in patch.groups():
-        data = _path_data(pts)
+        data = _path_data(pts - shift)
         for c, d in zip(patch.colour[idx].tolist(), data):
             by_colour.setdefault(c, []).append(d)
         proto = patch.prototiles[p]
         if markings and proto.marking:
             for mk in proto.marking:
                 mpts = Affine.apply(patch.transform[idx], mk)
-                mark_paths.extend(_path_data(mpts, closed=False))
+                mark_paths.extend(_path_data(mpts - shift, closed=False))
         if labels and proto.edge_labels is not None:
             outline = proto.outline
             if proto.corners is not None:  # shaped edges: one label per tiling edge, on its chord
@@ -233,7 +240,7 @@ def _tile_lines(patch: Any, palette: Sequence[str], markings: bool, labels: bool
                 texts = list(proto.edge_labels)
             cen = outline.mean(axis=0)
             inset = mids + 0.18 * (cen - mids)
-            where = Affine.apply(patch.transform[idx], inset)  # (m, k, 2)
+            where = Affine.apply(patch.transform[idx], inset) - shift  # (m, k, 2)
             for tile_pts in where:
                 for (lx, ly), lab in zip(tile_pts.tolist(), texts):
                     label_items.append((lx, ly, str(lab)))

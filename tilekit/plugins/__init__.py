@@ -29,6 +29,7 @@ DEFAULT_PLUGINS: tuple[str, ...] = (
     "tilekit.plugins.wang",
     "tilekit.plugins.polyomino",
     "tilekit.plugins.kuniform",
+    "tilekit.plugins.quasiperiodic",
 )
 
 
