@@ -306,6 +306,22 @@ def test_straight_seams_are_the_diagonals_and_midlines():
     assert (corner.labels == quadrant).all()
 
 
+def test_corner_3colour_has_every_colouring_once():
+    # Lagae and Dutre's complete corner set over k colours: one tile per colouring, k^4 = 81
+    ts = get_tileset("corner-3colour")
+    assert len(ts) == 81 and len({tuple(r) for r in ts.corners.tolist()}) == 81
+    assert ts.corner_complete and synth.choose_method(ts) == "random-access"
+
+
+def test_given_positions_rebuild_the_same_tiles():
+    ex = noise_image(160, 4)
+    a = texture.make_texture_tiles(ex, get_tileset(CORNER), tile=16, seed=3, tries=4)
+    b = texture.make_texture_tiles(ex, get_tileset(CORNER), tile=16, positions=a.meta["positions"])
+    assert (a.pixels == b.pixels).all()
+    with pytest.raises(ParameterError, match="positions must be 2"):
+        texture.make_texture_tiles(ex, get_tileset(CORNER), tile=16, positions=[[0, 0], [150, 0]])
+
+
 def test_atlas_round_trip(tmp_path):
     tex = texture.make_texture_tiles(exemplars.example("noise", 128), get_tileset(CORNER), tile=16, tries=2)
     path = tex.save(tmp_path / "a.png")

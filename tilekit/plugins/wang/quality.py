@@ -141,10 +141,14 @@ def autocorrelation(image: np.ndarray, max_lag: int | None = None) -> np.ndarray
 
 
 def repetition(image: np.ndarray, tile: int, max_side: int = MAX_CORRELATION_SIDE) -> dict[str, Any]:
-    """The autocorrelation peak at lags of at least ``tile`` / 2 (Chebyshev), on the top-left
-    crop of at most ``max_side`` pixels a side: ``peak`` (Pearson's r) and its ``lag`` (dy, dx)."""
+    """The autocorrelation peak at lags of at least ``tile`` / 2 (Chebyshev) and at most a
+    quarter of the crop (so every overlap holds most of it), on the top-left crop of at most
+    ``max_side`` pixels a side: ``peak`` (Pearson's r) and its ``lag`` (dy, dx)."""
     a = np.asarray(image)[:max_side, :max_side]
-    r = autocorrelation(a)
+    if min(a.shape[:2]) // 4 < max(1, tile // 2):
+        raise ParameterError(f"a crop of {min(a.shape[:2])} px is too small to see repetition of {tile} px tiles; "
+                             f"give at least {4 * max(1, tile // 2)} px")
+    r = autocorrelation(a, max_lag=min(a.shape[:2]) // 4)
     lag = (r.shape[0] - 1) // 2
     dy, dx = np.meshgrid(np.arange(-lag, lag + 1), np.arange(-lag, lag + 1), indexing="ij")
     far = np.maximum(np.abs(dy), np.abs(dx)) >= max(1, tile // 2)

@@ -43,8 +43,10 @@ MAX_SIDE = limits.MAX_TEXTURE_SIDE
 MAX_ORIGIN = 1 << 48
 #: Bytes of pixels in one block of rows.
 CHUNK_BYTES = 8 << 20
-#: Margin on the sampled compression ratio when a PNG's size is estimated.
+#: Margin on the sampled compression ratio when a PNG's size is estimated, and the most bytes
+#: of rows the sample compresses.
 SIZE_MARGIN = 1.25
+SAMPLE_BYTES = 2 << 20
 #: Default zlib level and PNG filter of a texture (docs/benchmarks.md measures the choices).
 LEVEL = 6
 FILTER = "none"
@@ -97,12 +99,11 @@ def _grid_blocks(tex: TextureTiles, method: str, seed: int, i0: int, i1: int, j0
         yield i, random_access_fill(ts, k, cols, x0=j0, y0=-(i + k), seed=seed)
 
 
-def texture_rows(tex: TextureTiles, width: int, height: int, method: str = "auto", seed: int = 0,
-                 x0: int = 0, y0: int = 0, chunk_bytes: int | None = None) -> Iterator[np.ndarray]:
-    """The texture's pixels in the window [x0, x0 + width) x [y0, y0 + height) as blocks of
-    rows from the top, (k, width, 3) uint8 each, about ``chunk_bytes`` (default
-    :data:`CHUNK_BYTES`) a block. The scanline
-    fill starts at the texture's origin, so a window away from it needs random access."""
+def _row_blocks(tex: TextureTiles, width: int, height: int, method: str, seed: int, x0: int, y0: int,
+                chunk_bytes: int | None) -> Iterator[tuple[int, np.ndarray, int, int]]:
+    """Blocks of texture rows as (first row's offset in the window, index (k, cols) into
+    ``tex.rows`` flattened to (tiles * T, 3T), xoff, cols): a block's pixels are that index
+    gathered, (k, cols * T, 3), cropped to columns xoff .. xoff + width."""
     width, height, x0, y0 = check_window(width, height, x0, y0)
     method = choose_method(tex.tileset, method)
     if method == "scanline" and (x0, y0) != (0, 0):
@@ -112,19 +113,27 @@ def texture_rows(tex: TextureTiles, width: int, height: int, method: str = "auto
     j0, j1 = x0 // t, (x0 + width - 1) // t
     i0, i1 = y0 // t, (y0 + height - 1) // t
     cols = j1 - j0 + 1
-    xoff = x0 - j0 * t
-    row_bytes = cols * t * 3
-    rows_per_chunk = max(1, int(CHUNK_BYTES if chunk_bytes is None else chunk_bytes) // row_bytes)
+    rows_per_chunk = max(1, int(CHUNK_BYTES if chunk_bytes is None else chunk_bytes) // (cols * t * 3))
     tiles_per_block = max(1, rows_per_chunk // t)
-    source = tex.rows  # (tiles, T, 3T)
-    whole = xoff == 0 and width == cols * t
     for ia, grid in _grid_blocks(tex, method, seed, i0, i1, j0, cols, tiles_per_block):
         lo = max(y0, ia * t)
         hi = min(y0 + height, (ia + len(grid)) * t)
         for ya in range(lo, hi, rows_per_chunk):
             y = np.arange(ya, min(hi, ya + rows_per_chunk))
-            block = source[grid[y // t - ia], (y % t)[:, None]].reshape(len(y), cols * t, 3)
-            yield block if whole else block[:, xoff:xoff + width]
+            yield ya - y0, grid[y // t - ia] * t + (y % t)[:, None], x0 - j0 * t, cols
+
+
+def texture_rows(tex: TextureTiles, width: int, height: int, method: str = "auto", seed: int = 0,
+                 x0: int = 0, y0: int = 0, chunk_bytes: int | None = None) -> Iterator[np.ndarray]:
+    """The texture's pixels in the window [x0, x0 + width) x [y0, y0 + height) as blocks of
+    rows from the top, (k, width, 3) uint8 each, about ``chunk_bytes`` (default
+    :data:`CHUNK_BYTES`) a block. The scanline fill starts at the texture's origin, so a
+    window away from it needs random access."""
+    t = tex.tile
+    source = tex.rows.reshape(-1, 3 * t)  # tile pixel rows: row r of tile k is k * T + r
+    for _, index, xoff, cols in _row_blocks(tex, width, height, method, seed, x0, y0, chunk_bytes):
+        block = source[index].reshape(len(index), cols * t, 3)
+        yield block if xoff == 0 and cols * t == width else block[:, xoff:xoff + width]
 
 
 def texture_window(tex: TextureTiles, x0: int, y0: int, width: int, height: int, seed: int = 0) -> np.ndarray:
@@ -140,10 +149,16 @@ def render_texture(tex: TextureTiles, width: int, height: int, method: str = "au
     limits.refuse_over_memory("texture pixels", float(width) * height, 3.0,
                               hint="stream it to a file instead (write_texture)")
     out = np.empty((height, width, 3), dtype=np.uint8)
-    y = 0
-    for block in texture_rows(tex, width, height, method, seed, x0, y0):
-        out[y:y + len(block)] = block
-        y += len(block)
+    t = tex.tile
+    source = tex.rows.reshape(-1, 3 * t)
+    # one block: the output is in memory anyway, and one gather is the fastest
+    whole = (height + 2 * t) * (width + 2 * t) * 3
+    for y, index, xoff, cols in _row_blocks(tex, width, height, method, seed, x0, y0, whole):
+        k = len(index)
+        if xoff == 0 and cols * t == width:  # gather straight into the output
+            np.take(source, index, axis=0, out=out[y:y + k].reshape(k, cols, 3 * t))
+        else:
+            out[y:y + k] = source[index].reshape(k, cols * t, 3)[:, xoff:xoff + width]
     return out
 
 
@@ -152,9 +167,10 @@ def estimate_png_bytes(sample: np.ndarray, width: int, height: int, level: int =
     the sample's compressed size per row, scaled to the height, times SIZE_MARGIN, plus the
     chunks' overhead."""
     rows = sample.reshape(len(sample), -1)
+    rows = rows[:max(1, SAMPLE_BYTES // rows.shape[1])]
     filtered = filter_rows(rows, np.zeros(rows.shape[1], dtype=np.uint8), 3, filter)
     packed = zlib.compress(filtered.tobytes(), level)
-    per_row = len(packed) / len(sample)
+    per_row = len(packed) / len(rows)
     data = per_row * height * SIZE_MARGIN
     return data + 12 * (data / IDAT_BYTES + 4) + 1024
 

@@ -421,11 +421,13 @@ def _labels(tileset: WangTileSet, tile: int, seams: list[SeamResult], use: np.nd
 
 
 def make_texture_tiles(example: np.ndarray, tileset: WangTileSet, tile: int = 128, band: int | None = None,
-                       seed: int = 0, tries: int = 8, straight: bool = False, name: str = "") -> TextureTiles:
+                       seed: int = 0, tries: int = 8, straight: bool = False, name: str = "",
+                       positions: Any = None) -> TextureTiles:
     """The tiles of ``tileset`` made from ``example`` ((h, w, 3) uint8): source patches at
-    the best of ``tries`` random draws of positions, joined by minimum-error cuts within
-    ``band`` pixels of the straight seams (default T/4; ``straight`` keeps the straight
-    seams, for comparison)."""
+    the best of ``tries`` random draws of positions (or at ``positions``, the top-left
+    corners of the patches in the order of ``meta["sources"]``, as a made set records them),
+    joined by minimum-error cuts within ``band`` pixels of the straight seams (default T/4;
+    ``straight`` keeps the straight seams, for comparison)."""
     tile = check_tile_size(tile, tileset)
     ex = np.asarray(example)
     if ex.dtype != np.uint8 or ex.ndim != 3 or ex.shape[2] != 3:
@@ -439,9 +441,17 @@ def make_texture_tiles(example: np.ndarray, tileset: WangTileSet, tile: int = 12
     keys, use = tile_sources(tileset)
     side = window_side(tileset, tile, band)
     rng = np.random.default_rng(seed)
+    draws = None
+    if positions is not None:
+        fixed = np.asarray(positions, dtype=np.int64)
+        if fixed.shape != (len(keys), 2) or (fixed < 0).any() or (fixed[:, 0] + side > ex.shape[0]).any() \
+                or (fixed[:, 1] + side > ex.shape[1]).any():
+            raise ParameterError(f"positions must be {len(keys)} (row, column) corners of {side} px patches "
+                                 f"inside the {ex.shape[1]} x {ex.shape[0]} example")
+        draws = [fixed]
     best: tuple[float, np.ndarray, list[SeamResult]] | None = None
-    for _ in range(tries):
-        positions = candidate_positions(ex.shape[:2], len(keys), side, rng)
+    for k in range(1 if draws else tries):
+        positions = draws[k] if draws else candidate_positions(ex.shape[:2], len(keys), side, rng)
         offsets = label_offsets(tileset, tile, band, positions)
         seams = _solve_seams(tileset, tile, band, ex, offsets, use, straight)
         total = float(sum(s.cost.sum() for s in seams))
