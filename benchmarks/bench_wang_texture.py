@@ -4,10 +4,12 @@ peak memory of a streamed 64k x 64k PNG.
 
 Both sides use the same scanline fill (``scanline_fill`` / ``scanline_rows`` with one seed) and
 their pixels are checked equal before anything is timed; the PNG files are decoded (Pillow) and
-compared. Timings are min / median of ``--runs`` runs in one process.
+compared. Timings are min / median of ``--runs`` runs in one process, the contenders taking
+turns within each round, and each ratio is the median of the rounds' ratios.
 
     python benchmarks/bench_wang_texture.py                      # pixels (5 runs) and PNG (3 runs), 16k x 16k
     python benchmarks/bench_wang_texture.py --huge 65536         # one 64k x 64k PNG: time, peak RSS
+    python benchmarks/bench_wang_texture.py --peer-memory 16384  # the peer's PNG alone: time, peak RSS
 """
 
 from __future__ import annotations
@@ -51,17 +53,28 @@ def peer_png(tex: TextureTiles, side: int, seed: int, path: Path, level: int) ->
     Image.fromarray(peer_paste(tex, side, seed)).save(path, compress_level=level)
 
 
-def timed(fn, runs: int) -> tuple[float, float]:
-    times = []
-    for _ in range(runs):
-        t = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t)
-    return min(times), statistics.median(times)
-
-
 def load() -> str:
     return "load average " + " ".join(f"{v:.2f}" for v in os.getloadavg())
+
+
+def interleaved(rows: list, runs: int) -> list[list[float]]:
+    """Seconds of each of ``rows`` (name, fn) over ``runs`` rounds, the rows taking turns within
+    a round (A B C A B C ...), so a change of the machine's load touches all alike."""
+    times: list[list[float]] = [[] for _ in rows]
+    for _ in range(runs):
+        for k, (_, fn) in enumerate(rows):
+            t = time.perf_counter()
+            fn()
+            times[k].append(time.perf_counter() - t)
+    return times
+
+
+def report(rows: list, times: list[list[float]], mpx: float, peer: int, sizes: dict | None = None) -> None:
+    for k, (name, _) in enumerate(rows):
+        ratio = statistics.median(p / t for p, t in zip(times[peer], times[k]))
+        extra = f", {sizes[name] / 2**20:.0f} MiB" if sizes and name in sizes else ""
+        print(f"  {name}: {min(times[k]):.2f} / {statistics.median(times[k]):.2f} s = "
+              f"{mpx / statistics.median(times[k]):.0f} Mpx/s (median){extra}; peer / this, median of pairs: {ratio:.2f}")
 
 
 def pixels(tex: TextureTiles, side: int, runs: int) -> None:
@@ -71,19 +84,16 @@ def pixels(tex: TextureTiles, side: int, runs: int) -> None:
         assert (peer_paste(tex, side, 1, order) == ours).all()
     del ours
     print(f"pixels in memory, {side} x {side} ({mpx:.0f} Mpx), {load()}")
-    rows = [("tilekit render_texture (row blocks into one array)", lambda: render_texture(tex, side, side, "scanline", 1)),
+    rows = [("tilekit render_texture", lambda: render_texture(tex, side, side, "scanline", 1)),
             ("peer: fill + one gather of tile rows", lambda: peer_paste(tex, side, 1, "gather")),
             ("peer: fill + tiles[grid].transpose", lambda: peer_paste(tex, side, 1, "transpose"))]
-    for name, fn in rows:
-        lo, med = timed(fn, runs)
-        print(f"  {name}: {lo:.2f} / {med:.2f} s = {mpx / med:.0f} Mpx/s (median)")
+    report(rows, interleaved(rows, runs), mpx, peer=1)
 
 
 def png(tex: TextureTiles, side: int, runs: int, level: int, folder: Path) -> None:
     from PIL import Image
 
     Image.MAX_IMAGE_PIXELS = None  # our own files, decoded to check them
-
     mpx = side * side / 1e6
     ours_path, peer_path = folder / "ours.png", folder / "peer.png"
     write_texture(tex, ours_path, side, side, method="scanline", seed=1, level=level)
@@ -96,10 +106,11 @@ def png(tex: TextureTiles, side: int, runs: int, level: int, folder: Path) -> No
             ("tilekit write_texture, streamed, 2 threads",
              lambda: write_texture(tex, ours_path, side, side, "scanline", 1, level=level, threads=2)),
             ("peer: paste + Pillow save", lambda: peer_png(tex, side, 1, peer_path, level))]
-    for name, fn in rows:
-        lo, med = timed(fn, runs)
-        path = peer_path if name.startswith("peer") else ours_path
-        print(f"  {name}: {lo:.2f} / {med:.2f} s = {mpx / med:.0f} Mpx/s (median), {path.stat().st_size / 2**20:.0f} MiB")
+    times = interleaved(rows, runs)
+    sizes = {rows[0][0]: ours_path.stat().st_size, rows[1][0]: ours_path.stat().st_size,
+             rows[2][0]: peer_path.stat().st_size}
+    report(rows, times, mpx, peer=2, sizes=sizes)
+    print(f"  ({load()})")
 
 
 def huge(tex: TextureTiles, side: int, level: int, threads: int, folder: Path) -> None:
@@ -116,6 +127,18 @@ def huge(tex: TextureTiles, side: int, level: int, threads: int, folder: Path) -
     path.unlink()
 
 
+def peer_memory(tex: TextureTiles, side: int, level: int, folder: Path) -> None:
+    path = folder / "peer.png"
+    before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    t = time.perf_counter()
+    peer_png(tex, side, 1, path, level)
+    dt = time.perf_counter() - t
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    print(f"peer PNG {side} x {side}, zlib level {level}: {dt:.1f} s; peak RSS {peak / 1024:.0f} MiB "
+          f"({before / 1024:.0f} MiB before writing); {load()}")
+    path.unlink()
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--side", type=int, default=16384)
@@ -124,13 +147,17 @@ def main() -> None:
     ap.add_argument("--level", type=int, default=6)
     ap.add_argument("--huge", type=int, default=0, help="write one streamed PNG of this side instead")
     ap.add_argument("--threads", type=int, default=1)
-    ap.add_argument("--folder", default=tempfile.gettempdir())
+    ap.add_argument("--peer-memory", type=int, default=0, help="write one peer PNG of this side instead")
+    ap.add_argument("--folder", default=None, help="where the PNGs go (default: a new private temporary folder)")
     args = ap.parse_args()
     tex = tiles()
-    folder = Path(args.folder)
+    folder = Path(args.folder or tempfile.mkdtemp(prefix="bench-wang-texture-"))
     render_texture(tex, 256, 256, "scanline", 1)  # compile the scanline kernel outside the timings
     if args.huge:
         huge(tex, args.huge, args.level, args.threads, folder)
+        return
+    if args.peer_memory:
+        peer_memory(tex, args.peer_memory, args.level, folder)
         return
     pixels(tex, args.side, args.runs)
     png(tex, args.side, args.png_runs, args.level, folder)

@@ -156,7 +156,7 @@ def render_texture(tex: TextureTiles, width: int, height: int, method: str = "au
     for y, index, xoff, cols in _row_blocks(tex, width, height, method, seed, x0, y0, whole):
         k = len(index)
         if xoff == 0 and cols * t == width:  # gather straight into the output
-            np.take(source, index, axis=0, out=out[y:y + k].reshape(k, cols, 3 * t))
+            np.take(source, index, axis=0, out=out[y:y + k].reshape(k, cols, 3 * t), mode="clip")  # unbuffered
         else:
             out[y:y + k] = source[index].reshape(k, cols * t, 3)[:, xoff:xoff + width]
     return out
