@@ -20,6 +20,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 from click.testing import CliRunner
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from tilekit.errors import ParameterError, ParseError
 from tilekit.limits import LimitError
@@ -89,6 +91,22 @@ def test_png_rows_round_trip_for_every_filter(channels, threads):
         got = np.asarray(Image.open(io.BytesIO(buf.getvalue())))
         assert (got.reshape(img.shape) == img).all(), name
         assert chunks[b"tEXt"] == [b"Title\0t"]
+
+
+@settings(max_examples=40, deadline=None)
+@given(h=st.integers(1, 12), w=st.integers(1, 12), channels=st.sampled_from([1, 2, 3, 4]),
+       kind=st.sampled_from(sorted(FILTERS)), threads=st.integers(1, 3), level=st.integers(0, 9),
+       cuts=st.lists(st.integers(0, 12), max_size=4), seed=st.integers(0, 2**32 - 1))
+def test_png_round_trips_any_block_split(h, w, channels, kind, threads, level, cuts, seed):
+    img = np.random.default_rng(seed).integers(0, 256, (h, w, channels), dtype=np.uint8)
+    edges = sorted({0, h, *(c for c in cuts if c < h)})
+    buf = io.BytesIO()
+    with PngWriter(buf, w, h, channels, level=level, filter=kind, threads=threads) as png:
+        for a, b in zip(edges, edges[1:]):
+            png.write(img[a:b])
+    _, raw = decode(buf.getvalue())
+    assert len(raw) == h * (w * channels + 1)
+    assert (np.asarray(Image.open(io.BytesIO(buf.getvalue()))).reshape(img.shape) == img).all()
 
 
 def test_png_none_filter_stores_the_bytes():
@@ -329,6 +347,24 @@ def test_atlas_round_trip(tmp_path):
     assert (back.pixels == tex.pixels).all() and back.tileset.to_json() == tex.tileset.to_json()
     assert back.meta == tex.meta and back.tile == 16
     assert np.asarray(Image.open(path)).shape == (4 * 16, 4 * 16, 3)  # 16 tiles in 4 columns
+
+
+@pytest.mark.parametrize("text,fragment", [
+    (None, "has no 'tilekit-wang-texture' text chunk"),
+    ("{not json", "chunk is malformed"),
+    ('{"version": 1, "tile": 16}', "chunk is malformed"),
+    ('{"version": 2, "tile": 16, "columns": 4, "set": SET}', "format version 2"),
+    ('{"version": 1, "tile": 32, "columns": 4, "set": SET}', "do not fit its 64 x 64 pixels"),
+    ('{"version": 1, "tile": 16, "columns": 4, "set": {"name": "x"}}', "chunk is malformed"),
+])
+def test_malformed_atlases_are_refused(tmp_path, text, fragment):
+    import json
+
+    chunk = None if text is None else text.replace("SET", json.dumps(get_tileset(CORNER).to_json()))
+    path = tmp_path / "atlas.png"
+    write_png(path, noise_image(64), text=None if chunk is None else {texture.ATLAS_KEY: chunk})
+    with pytest.raises(ParseError, match=fragment):
+        texture.load_texture_tiles(path)
 
 
 def test_more_tiles_than_patches_share_patches():
