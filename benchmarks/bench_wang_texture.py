@@ -150,17 +150,23 @@ def main() -> None:
     ap.add_argument("--peer-memory", type=int, default=0, help="write one peer PNG of this side instead")
     ap.add_argument("--folder", default=None, help="where the PNGs go (default: a new private temporary folder)")
     args = ap.parse_args()
+    if args.folder:
+        run(args, Path(args.folder))
+    else:
+        with tempfile.TemporaryDirectory(prefix="bench-wang-texture-") as folder:
+            run(args, Path(folder))
+
+
+def run(args: argparse.Namespace, folder: Path) -> None:
     tex = tiles()
-    folder = Path(args.folder or tempfile.mkdtemp(prefix="bench-wang-texture-"))
     render_texture(tex, 256, 256, "scanline", 1)  # compile the scanline kernel outside the timings
     if args.huge:
         huge(tex, args.huge, args.level, args.threads, folder)
-        return
-    if args.peer_memory:
+    elif args.peer_memory:
         peer_memory(tex, args.peer_memory, args.level, folder)
-        return
-    pixels(tex, args.side, args.runs)
-    png(tex, args.side, args.png_runs, args.level, folder)
+    else:
+        pixels(tex, args.side, args.runs)
+        png(tex, args.side, args.png_runs, args.level, folder)
 
 
 if __name__ == "__main__":
