@@ -230,7 +230,8 @@ def tilekit_families() -> list[Family]:
             description=(
                 "Tile sets live in catalogue/wang/*.wang. Complete sets fill by Cohen et al.'s "
                 "scanline method, corner sets by hashed random access, others by a SAT solver. "
-                "Options: seed=N, method=auto|random-access|scanline|solver."
+                "Options: seed=N, method=auto|random-access|scanline|solver. Textures from an example "
+                "image: tilekit wang texture / synth (docs/families/wang-textures.md)."
             ),
             from_file=_from_file,
         )
