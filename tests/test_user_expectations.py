@@ -111,6 +111,7 @@ def test_render_width_height_dpi_stroke(cat, tmp_path):
     [], ["render"], ["list"], ["show"], ["families"], ["search"], ["search", "vertex-species"], ["runs"],
     ["catalogue"], ["catalogue", "export"], ["catalogue", "path"], ["catalogue", "upgrade"], ["catalogue", "seed"],
     ["wang"], ["wang", "render"], ["wang", "solve"],
+    ["wang", "example"], ["wang", "texture"], ["wang", "synth"], ["wang", "scatter"],
 ])
 def test_help_has_an_example(cat, command):
     # tilekit COMMAND --help shows at least one example invocation

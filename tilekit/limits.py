@@ -90,6 +90,14 @@ ADJACENCY_BYTES_PER_VERTEX = 300
 STREAM_CHUNK_TILES = 1 << 20
 #: Fraction of the available memory one patch may take.
 MEMORY_FRACTION = 0.8
+#: Wang textures (§7.5): width and height of a streamed texture (``wang synth``), the tile side
+#: (``wang texture --tile``), all tiles of one atlas (2^26 RGB pixels are 192 MiB), an example
+#: image's pixels, and the bytes of an image file read (example or atlas).
+MAX_TEXTURE_SIDE = 1 << 16
+MAX_TEXTURE_TILE = 1024
+MAX_ATLAS_PIXELS = 1 << 26
+MAX_EXAMPLE_PIXELS = 4096 * 4096
+MAX_IMAGE_BYTES = 256 << 20
 
 #: Seconds one solver or builder call runs when its caller gives no budget of its own
 #: (``wang solve --time-limit``, ``wang render --time-limit``, PatchBuilder.build's

@@ -63,6 +63,14 @@ _LAZY = {
     "WangTiling": "tilekit.plugins.wang.tiling",
     "periodic_unit": "tilekit.plugins.wang.tiling",
     "set_facts": "tilekit.plugins.wang.tiling",
+    "TextureTiles": "tilekit.plugins.wang.texture",
+    "load_texture_tiles": "tilekit.plugins.wang.texture",
+    "make_texture_tiles": "tilekit.plugins.wang.texture",
+    "render_texture": "tilekit.plugins.wang.synth",
+    "texture_rows": "tilekit.plugins.wang.synth",
+    "texture_window": "tilekit.plugins.wang.synth",
+    "write_texture": "tilekit.plugins.wang.synth",
+    "scatter_points": "tilekit.plugins.wang.scatter",
 }
 __getattr__, __dir__ = lazy_exports(__name__, _LAZY, pinned=("solve",))
 
@@ -70,6 +78,7 @@ __getattr__, __dir__ = lazy_exports(__name__, _LAZY, pinned=("solve",))
 __all__ = [
     "FILL_METHODS",
     "SolveResult",
+    "TextureTiles",
     "WangProcedureResult",
     "WangTileSet",
     "WangTiling",
@@ -83,19 +92,26 @@ __all__ = [
     "grid_mismatches",
     "grid_to_patch",
     "load_texture",
+    "load_texture_tiles",
     "load_tileset",
+    "make_texture_tiles",
     "parse_tileset",
     "patch_mismatches",
     "periodic_unit",
     "random_access_fill",
     "random_access_tiles",
     "record_for",
+    "render_texture",
     "sat_solve",
     "scanline_fill",
+    "scatter_points",
     "set_facts",
     "solve",
+    "texture_rows",
+    "texture_window",
     "wang_procedure",
     "wang_svg",
+    "write_texture",
     "write_wang_image",
 ]
 
@@ -215,7 +231,8 @@ def tilekit_families() -> list[Family]:
             description=(
                 "Tile sets live in catalogue/wang/*.wang. Complete sets fill by Cohen et al.'s "
                 "scanline method, corner sets by hashed random access, others by a SAT solver. "
-                "Options: seed=N, method=auto|random-access|scanline|solver."
+                "Options: seed=N, method=auto|random-access|scanline|solver. Textures from an example "
+                "image: tilekit wang texture / synth (docs/families/wang-textures.md)."
             ),
             from_file=_from_file,
         )

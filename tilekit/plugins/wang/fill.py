@@ -16,6 +16,8 @@ Both return integer grids (``grid[i, j]``: row i from the north, column j from t
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+
 import numpy as np
 
 from tilekit.errors import ParameterError
@@ -73,21 +75,44 @@ def scanline_fill(
     can occur), or the fill could get stuck; ``seed`` makes the fill repeatable.
     """
     rows, cols = grid_size(rows, cols, "fill", MAX_FILL_TILES)
+    return next(scanline_rows(tileset, rows, cols, seed, block=rows))
+
+
+def scanline_rows(
+    tileset: WangTileSet,
+    rows: int,
+    cols: int,
+    seed: int | None = None,
+    block: int = 256,
+) -> Iterator[np.ndarray]:
+    """The grid of :func:`scanline_fill` as blocks of at most ``block`` rows, from the north:
+    each block continues from the south colours of the one before and draws the next
+    ``block * cols`` numbers of the same generator, so the blocks stacked equal
+    ``scanline_fill(tileset, rows, cols, seed)`` and a fill of any height needs the memory
+    of one block."""
     if not tileset.complete:
         raise ParameterError(
             f"set {tileset.name!r} is not complete (some north/west colour pair has no tile), so "
             "the scanline fill can get stuck; use the exact solver (method='solver') instead"
         )
+    if isinstance(block, bool) or not isinstance(block, int | np.integer) or block < 1:
+        raise ParameterError(f"block {block!r} must be a positive whole number of rows")
+    rows, cols = grid_size(rows, cols, "fill")
+    grid_size(min(block, rows), cols, "fill block", MAX_FILL_TILES)
     choices, counts = _scanline_tables(tileset)
+    south = tileset.tiles[:, S].astype(np.int64)
+    east = tileset.tiles[:, E].astype(np.int64)
     rng = np.random.default_rng(seed)
-    u = rng.random(rows * cols)
-    grid = np.empty((rows, cols), dtype=np.int64)
+    north = np.full(cols, counts.shape[0] - 1, dtype=np.int64)  # ANY: nothing above the first row
     # start-up cost: numba loads (~0.25 s) only when a fill runs, not when the family is listed
     from tilekit.plugins.wang.kernels import scanline_loop
 
-    scanline_loop(choices, counts, tileset.tiles[:, S].astype(np.int64), tileset.tiles[:, E].astype(np.int64),
-                  u.reshape(rows, cols), grid)
-    return grid
+    for start in range(0, rows, block):
+        k = min(block, rows - start)
+        grid = np.empty((k, cols), dtype=np.int64)
+        scanline_loop(choices, counts, south, east, rng.random(k * cols).reshape(k, cols), grid, north)
+        north = south[grid[-1]]
+        yield grid
 
 
 # ---------------------------------------------------------------------- random access
