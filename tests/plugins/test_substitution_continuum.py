@@ -35,6 +35,7 @@ from tilekit.plugins.substitution.continuum import (
 )
 from tilekit.plugins.substitution.hat import LATTICE, hat_system_from_data
 from tilekit.plugins.substitution.shapes import complement, spectre_edge
+from tilekit.plugins.substitution.tiling import match_placements
 from tilekit.polygon import congruences, signed_area
 from tilekit.tiling import Patch
 
@@ -305,7 +306,9 @@ def test_neighbour_table_matches_shapely() -> None:
     shape (hat, turtle, a generic member)."""
     for t in [tiling("hat"), tiling("hat", shape="turtle"), tiling("hat", a=1, b=0.5)]:
         patch = t.patch((-10, -10, 10, 10))
-        table = patch.tile_table(t.tile_labels(patch, (-10, -10, 10, 10)))
+        labels = t.tile_labels(patch, (-10, -10, 10, 10))
+        assert set(labels) == {"H", "T", "P", "F"}  # every tile of the region patch found again
+        table = patch.tile_table(labels)
         g = shapely.set_precision(patch.geometries(), 1e-9)
         tree = shapely.STRtree(g)
         i, j = tree.query(g, predicate="intersects")
@@ -386,6 +389,18 @@ def test_curved_spectre_edge_is_its_own_complement_and_tiles() -> None:
     assert_valid(t.patch(region), region)
     with pytest.raises(ParameterError, match="in \\(0, 0.2\\]"):
         tiling("spectre", curved="0.5")
+
+
+def test_curved_and_deformed_tilings_stream_as_they_patch() -> None:
+    """iter_patches in small chunks gives the tiles of patch(region), curved or deformed."""
+    for t in [tiling("spectre", curved=1), tiling("hat", a=2, b=1)]:
+        region = (-15, -15, 15, 15)
+        whole = t.patch(region)
+        parts = list(t.iter_patches(region, chunk_tiles=40))
+        assert len(parts) > 1 and parts[0].prototiles[0] is t.prototiles[0]
+        joined = np.concatenate([p.transform for p in parts])
+        assert len(joined) == len(whole)
+        assert np.all(match_placements(whole.transform, joined) >= 0)
 
 
 # ------------------------------------------------------------------ catalogue and CLI

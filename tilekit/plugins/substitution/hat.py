@@ -10,7 +10,8 @@ product of (k, 3, 3) stacks as the keypoint engine (``keypoint.py``), with per-l
 Level 0: H carries four hats (one reflected), T one, P two, F two. The data (lattice
 coordinates of the hat and the metatiles, the cluster assembly and the supertile children)
 is ``catalogue/substitution/hat/hat.toml``; this module turns it into a system with the
-KeypointSystem interface, so ``KeypointTiling`` serves its patches.
+KeypointSystem interface, so ``HatTiling`` (a ``KeypointTiling``) serves its patches; the
+continuum Tile(a, b) deforms this hierarchy (``continuum.py``).
 
 Colours of generated hats: 0 unreflected hat of an H, 1 the reflected hat of an H, 2 the
 hat of a T, 3 hats of a P, 4 hats of an F.

@@ -720,6 +720,8 @@ class KeypointTiling(SubstitutionTiling):
         for j, slots in enumerate(s.rules):
             kids = ", ".join(s.labels[k] if k >= 0 else "-" for k in slots)
             lines.append(f"  {s.labels[j]} -> {kids}")
+        lines.append("options of tilekit render:")
+        lines += ["  " + line for line in self.options_help().splitlines()]
         return "\n".join(lines)
 
     def supertiles(self, patch: Patch, region: Any = None, level: int = 0) -> tuple[np.ndarray, np.ndarray]:
