@@ -1,7 +1,7 @@
 """The hat's continuum Tile(a, b), supertile overlays and tile tables (issue 26, hatviz #7).
 
 Source: D. Smith, J. S. Myers, C. S. Kaplan, C. Goodman-Strauss, "An aperiodic monotile",
-arXiv:2303.10798 (2023), §6: Tile(a, b) keeps the hat's edge directions and gives its edges
+arXiv:2303.10798 (2023), the section on Tile(a, b): Tile(a, b) keeps the hat's edge directions and gives its edges
 along the lattice directions length a and the others length b; the hat is Tile(1, sqrt3), the
 turtle Tile(sqrt3, 1) (10 kites), the chevron Tile(0, 1), the comet Tile(1, 0); hat tilings
 deform edge by edge into combinatorially equivalent Tile(a, b) tilings. Tile(1, 1) is the
@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import csv
 import dataclasses
+import itertools
 import json
 import math
 
@@ -37,7 +38,7 @@ from tilekit.plugins.substitution.hat import LATTICE, hat_system_from_data
 from tilekit.plugins.substitution.shapes import complement, spectre_edge
 from tilekit.plugins.substitution.tiling import match_placements
 from tilekit.polygon import congruences, signed_area
-from tilekit.tiling import Patch
+from tilekit.tiling import Patch, PeriodicTiling
 
 SQRT3 = math.sqrt(3)
 KITE = SQRT3  # the kite of the hat's scale: sides 1, 1, sqrt3, sqrt3
@@ -66,7 +67,7 @@ def whole(a: float, b: float, depth: int, label: int = 0) -> Patch:
 
 
 def test_edges_keep_their_directions_and_take_lengths_a_and_b() -> None:
-    """§6: Tile(a, b) has the hat's 14 edges (the edge of length 2 as two), 8 of length a
+    """arXiv:2303.10798: Tile(a, b) has the hat's 14 edges (the edge of length 2 as two), 8 of length a
     along the lattice directions and 6 of length b between them, in the hat's directions."""
     hat_pts = hat().tile.outline
     hat_edges = np.roll(hat_pts, -1, axis=0) - hat_pts
@@ -199,7 +200,7 @@ def test_generic_members_tile_regions_and_deep_supertiles(a: float, b: float) ->
 
 @pytest.mark.parametrize(("a", "b"), [(SQRT3, 1.0), *GENERIC])
 def test_combinatorially_equivalent_to_the_hat_tiling(a: float, b: float) -> None:
-    """§6: the Tile(a, b) tiling is the hat tiling deformed edge by edge: the same tiles (in
+    """arXiv:2303.10798: the Tile(a, b) tiling is the hat tiling deformed edge by edge: the same tiles (in
     the same order, with the same colours and orientations) share the same edges."""
     hat_patch, other = whole(1.0, SQRT3, 3, 2), whole(a, b, 3, 2)
     assert len(hat_patch) == len(other) == hat().tile_counts(3, 2)[-1]
@@ -231,6 +232,28 @@ def test_ends_of_the_continuum_keep_the_pairs_that_share_an_edge_that_stays() ->
         expect = {(int(x), int(y)) for x, y, c in zip(lo, hi, turn) if c == kept_class}
         assert {tuple(p) for p in oa.edge.tolist()} == expect
         assert {tuple(p) for p in ha.touching.tolist()} <= {tuple(p) for p in oa.touching.tolist()}
+
+
+@pytest.mark.parametrize("shape", ["chevron", "comet"])
+def test_ends_of_the_continuum_tile_periodically(shape: str) -> None:
+    """arXiv:2303.10798: the chevron and the comet are no aperiodic monotiles; each even tiles by
+    translations alone: a lattice of two sums of its vertex differences whose cell has the
+    tile's area, checked with Patch.validate on a region, is found by a small search."""
+    tile = tiling("hat", shape=shape).prototiles[0]
+    pts = tile.outline
+    diffs = {tuple(np.round(p - q, 9)) for p in pts for q in pts if not np.allclose(p, q)}
+    sums = {tuple(np.round(np.add(d, e), 9)) for d in diffs for e in diffs} | diffs
+    vectors = sorted((v for v in sums if np.hypot(*v) > 1e-9), key=lambda v: (np.hypot(*v), v))
+    region = (-6, -6, 6, 6)
+    for v1, v2 in itertools.combinations(vectors, 2):
+        if abs(abs(v1[0] * v2[1] - v1[1] * v2[0]) - abs(tile.area)) < 1e-9:
+            periodic = PeriodicTiling([tile], [0], np.eye(3)[None], v1, v2)
+            if periodic.patch(region).validate(region):
+                break
+    else:
+        pytest.fail(f"no lattice tiling of the {shape} found")
+    assert tiling("hat", shape=shape).properties()["aperiodic"] is False
+    assert tiling("hat", shape="turtle").properties()["aperiodic"] is True
 
 
 def test_hat_member_is_the_hat_system_and_spectre_is_the_spectre() -> None:

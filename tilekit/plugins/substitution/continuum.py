@@ -1,4 +1,4 @@
-"""The hat's continuum Tile(a, b) (Smith, Myers, Kaplan, Goodman-Strauss, arXiv:2303.10798 §6).
+"""The hat's continuum Tile(a, b) (Smith, Myers, Kaplan, Goodman-Strauss, arXiv:2303.10798).
 
 The hat's 14 edges (its edge of length 2 counted as two) are of two classes: 8 of length 1
 along the triangular lattice's directions (0, 60, ..., 300 degrees) and 6 of length sqrt3

@@ -828,8 +828,8 @@ def match_placements(transforms: np.ndarray, among: np.ndarray) -> np.ndarray:
 
 
 class HatTiling(KeypointTiling):
-    """The hat's tilings and their deformations, the continuum Tile(a, b) (arXiv:2303.10798
-    §6, :mod:`.continuum`): ``a`` and ``b`` (numbers or expressions such as ``sqrt3``) or
+    """The hat's tilings and their deformations, the continuum Tile(a, b) (arXiv:2303.10798;
+    :mod:`.continuum`): ``a`` and ``b`` (numbers or expressions such as ``sqrt3``) or
     ``shape`` (a named member of the hat file's ``[continuum.members]``: hat, turtle,
     chevron, comet). Tile(a, a) is handled as the paper does: it is the Spectre's polygon,
     whose tilings without reflected tiles come from the spectre system, so ``a == b == 1``
@@ -917,7 +917,7 @@ class HatTiling(KeypointTiling):
         if member is not None and member.aperiodic is not None:
             props["aperiodic"] = member.aperiodic
         elif self.a == 0 or self.b == 0:
-            props["aperiodic"] = False  # the ends of the continuum tile periodically too (§6)
+            props["aperiodic"] = False  # the ends of the continuum tile periodically too
         return props
 
     def describe(self) -> str:
