@@ -503,7 +503,7 @@ def _vectors(tiling: Any, region: tuple[float, float, float, float]) -> tuple[An
 @cli.command()
 @click.argument("name", required=False)
 @click.option("-o", "--output", "out", required=True, type=OUTPUT,
-              help="Output file: .svg or .png (a picture), .geojson, .json (tiles and neighbours), "
+              help="Output file: .svg or .png (a picture), .geojson, .json or .csv (tiles and neighbours), "
                    ".cut.svg or .dxf (edges for cutters, shared edges once); see docs/exports.md.")
 @click.option("--param", "params", multiple=True, metavar="X[,X...]", help="Tiling parameters (repeatable, or comma-separated).")
 @click.option("--edge", "edges", multiple=True, metavar="SPEC", help="Edge shape 'name=x,y:x,y:...' (repeatable).")
@@ -630,9 +630,10 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
     patch = tiling.patch(area)
     if not picture:
         classes = _tile_classes(tiling, patch) if fmt in (".geojson", ".json") else None
+        names = tiling.tile_labels(patch, area) if fmt in (".json", ".csv") else None
         # --stroke's default is the picture's outline colour; cut lines are red unless it is given
         write_patch(patch, out, classes=classes, layers=layers or "one", mm_per_unit=mm_per_unit or 10.0,
-                    palette=palette, stroke=stroke if stroke != "#222" else None)
+                    palette=palette, stroke=stroke if stroke != "#222" else None, labels=names)
         click.echo(f"wrote {out} ({len(patch)} tiles)")
         return
     if len(patch) > PROGRESS_TILES and on_terminal():

@@ -52,9 +52,10 @@ FORMATS: dict[str, str] = {
     ".svg": "picture (SVG)",
     ".png": "picture (PNG, png extra)",
     ".geojson": "GeoJSON FeatureCollection, one Polygon feature per tile",
-    ".json": "tiles (outline, prototile, colour, aspect) with their neighbours",
+    ".json": "tiles (outline, prototile, colour, aspect, centre, angle, reflected) with their neighbours",
     ".cut.svg": "layered SVG of edges, each shared edge once (cutters, plotters)",
     ".dxf": "DXF of edges, each shared edge once (dxf extra)",
+    ".csv": "tile table: index, centre, angle, reflected, prototile, colour, label, edge neighbours",
 }
 
 #: Strokes of a cut SVG's colour layers (``--layers colour``): saturated and far apart, as
@@ -441,6 +442,28 @@ def cut_paths(patch: Patch, layers: str = "one", edges: Edges | None = None) -> 
     return out
 
 
+def group_boundaries(patch: Patch, group: np.ndarray, outer: bool = False, edges: Edges | None = None) -> np.ndarray:
+    """The lines between groups of tiles (the supertiles of a substitution tiling, say) as
+    elementary segments (m, 2, 2), each once: the segments whose two tiles lie in different
+    groups (``group``: one int per tile) and, with ``outer``, the segments of one tile only
+    (the patch's own boundary). Exact for non-edge-to-edge patches (:class:`Edges`)."""
+    group = np.asarray(group, dtype=np.int64).reshape(-1)
+    if len(group) != len(patch):
+        raise ParameterError(f"{len(group)} group numbers for {len(patch)} tiles")
+    e = tile_edges(patch) if edges is None else edges
+    o = e.order
+    if not len(o):
+        return np.zeros((0, 2, 2))
+    k, g = e.key[o], group[e.tile[o]]
+    start = np.flatnonzero(np.concatenate([[True], k[1:] != k[:-1]]))
+    count = np.diff(np.append(start, len(k)))
+    keep = np.minimum.reduceat(g, start) != np.maximum.reduceat(g, start)
+    if outer:
+        keep |= count == 1
+    sel = o[start[keep]]
+    return np.stack([e.points[e.u[sel]], e.points[e.v[sel]]], axis=1)
+
+
 def _path_text(paths: CutPaths) -> Iterator[str]:
     """SVG path data of the paths, a chunk of points at a time: ``M`` at each path's start,
     ``L`` to each next point, ``Z`` instead of a last point that closes the path."""
@@ -607,14 +630,89 @@ def _geojson_features(patch: Patch, classes: np.ndarray | None, first: int) -> I
         yield ",\n".join(text)
 
 
-def iter_json(patch: Patch, adj: Adjacency | None = None, classes: np.ndarray | None = None) -> Iterator[str]:
+@dataclass(frozen=True)
+class TileTable:
+    """One row per tile of a patch, as columns: ``centre`` (n, 2) the tile's centroid,
+    ``angle`` (n,) its turn in degrees in [0, 360) and ``reflected`` (n,) whether it is the
+    mirror image (tile = prototile, reflected in the x axis if ``reflected``, turned by
+    ``angle`` about the origin, then moved), ``prototile`` and ``colour`` (n,), ``label`` (n,)
+    a name per tile or None, and the edge neighbours in CSR form: tile t's are
+    ``index[offsets[t]:offsets[t + 1]]`` (:meth:`Adjacency.neighbours`)."""
+
+    centre: np.ndarray
+    angle: np.ndarray
+    reflected: np.ndarray
+    prototile: np.ndarray
+    colour: np.ndarray
+    label: np.ndarray | None
+    offsets: np.ndarray
+    index: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.angle)
+
+    def neighbours(self, t: int) -> np.ndarray:
+        """The tiles sharing an edge with tile ``t``."""
+        return self.index[self.offsets[t]:self.offsets[t + 1]]
+
+
+def tile_table(patch: Patch, labels: Sequence[str] | np.ndarray | None = None,
+               adj: Adjacency | None = None) -> TileTable:
+    """The :class:`TileTable` of ``patch``, with ``labels`` (one name per tile) when given;
+    neighbours from :func:`adjacency` (edge neighbours: their boundaries share a segment)."""
+    n = len(patch)
+    lab = None
+    if labels is not None:
+        lab = np.asarray(labels, dtype=object).reshape(-1)
+        if len(lab) != n:
+            raise ParameterError(f"{len(lab)} labels for {n} tiles")
+    lin = patch.transform[:, :2, :2]
+    angle = np.round(np.degrees(np.arctan2(lin[:, 1, 0], lin[:, 0, 0])), 9) % 360.0
+    reflected = lin[:, 0, 0] * lin[:, 1, 1] - lin[:, 0, 1] * lin[:, 1, 0] < 0
+    offsets, index = (adjacency(patch) if adj is None else adj).neighbours("edge")
+    return TileTable(patch.centres(), angle + 0.0, reflected, patch.prototile.copy(), patch.colour.copy(), lab,
+                     offsets, index)
+
+
+def _csv_cell(text: str) -> str:
+    """A CSV cell (RFC 4180): quoted when it holds a comma, a quote or a line break."""
+    return '"' + text.replace('"', '""') + '"' if any(c in text for c in ',"\r\n') else text
+
+
+def iter_csv(patch: Patch, labels: Sequence[str] | np.ndarray | None = None,
+             adj: Adjacency | None = None) -> Iterator[str]:
+    """The patch's :func:`tile_table` as CSV, streamed: a header ``index,x,y,angle,reflected,
+    prototile,colour[,label],neighbours`` and a row per tile, its edge neighbours'
+    indices separated by spaces in one cell (centres with 12 significant digits)."""
+    table = tile_table(patch, labels, adj)
+    cols = ["index", "x", "y", "angle", "reflected", "prototile", "colour"]
+    cols += ["label"] if table.label is not None else []
+    yield ",".join(cols + ["neighbours"]) + "\n"
+    fmt = "%d,%.12g,%.12g,%.12g,%d,%d,%d"
+    for idx in _chunks(len(table)):
+        rows = np.column_stack([idx, table.centre[idx], table.angle[idx], table.reflected[idx],
+                                table.prototile[idx], table.colour[idx]]).astype(object).tolist()
+        lines = []
+        for t, row in zip(idx.tolist(), rows):
+            cells = fmt % tuple(row)
+            if table.label is not None:
+                cells += "," + _csv_cell(str(table.label[t]))
+            lines.append(cells + "," + " ".join(map(str, table.neighbours(t).tolist())) + "\n")
+        yield "".join(lines)
+
+
+def iter_json(patch: Patch, adj: Adjacency | None = None, classes: np.ndarray | None = None,
+              labels: Sequence[str] | np.ndarray | None = None) -> Iterator[str]:
     """The patch as JSON, streamed: ``{"prototiles": [{name, outline}], "tiles": [{"outline",
-    "prototile", "colour", "aspect", "neighbours", "vertex_neighbours"}]}`` where a tile's
-    ``neighbours`` share an edge with it and its ``vertex_neighbours`` only a point; with
-    ``classes`` (one int per tile) each tile also has its ``transitivity_class``."""
+    "prototile", "colour", "aspect", "centre", "angle", "reflected", "neighbours",
+    "vertex_neighbours"}]}`` where a tile's ``neighbours`` share an edge with it and its
+    ``vertex_neighbours`` only a point, and ``centre``, ``angle``, ``reflected`` are its
+    :func:`tile_table` row; with ``classes`` (one int per tile) each tile also has its
+    ``transitivity_class``, with ``labels`` (one name per tile) its ``label``."""
     classes = _classes(classes, len(patch))
     adj = adjacency(patch) if adj is None else adj
-    eo, ei = adj.neighbours("edge")
+    table = tile_table(patch, labels, adj)
+    eo, ei = table.offsets, table.index
     vo, vi = adj.neighbours("vertex")
     protos = [{"name": p.name, "outline": np.round(p.outline, 12).tolist()} for p in patch.prototiles]
     yield '{"prototiles": ' + json.dumps(protos) + ', "tiles": [\n'
@@ -624,12 +722,19 @@ def iter_json(patch: Patch, adj: Adjacency | None = None, classes: np.ndarray | 
         for at, ring in _rings(patch, idx):
             k = ring.shape[1] - 1
             fmt = ('{"outline": [' + ", ".join(["[%.12g, %.12g]"] * k) + '], "prototile": %d, "colour": %d, "aspect": %d, '
+                   + '"centre": [%.12g, %.12g], "angle": %.12g, '
                    + ('"transitivity_class": %d, ' if classes is not None else ""))
-            ints = [patch.prototile[at], patch.colour[at], patch.aspect[at]] + ([classes[at]] if classes is not None else [])
+            ints = [patch.prototile[at], patch.colour[at], patch.aspect[at]]
             rows = np.concatenate([ring[:, :-1].reshape(len(at), 2 * k).astype(object),
-                                   np.column_stack(ints).astype(object)], axis=1).tolist()
+                                   np.column_stack(ints).astype(object),
+                                   table.centre[at].astype(object), table.angle[at, None].astype(object)]
+                                  + ([classes[at, None].astype(object)] if classes is not None else []),
+                                  axis=1).tolist()
             for t, row in zip(at.tolist(), rows):
-                text[t - int(idx[0])] = (fmt % tuple(row) + '"neighbours": ' + str(ei[eo[t]:eo[t + 1]].tolist())
+                extra = '"reflected": ' + ("true" if table.reflected[t] else "false") + ", "
+                if table.label is not None:
+                    extra += '"label": ' + json.dumps(str(table.label[t])) + ", "
+                text[t - int(idx[0])] = (fmt % tuple(row) + extra + '"neighbours": ' + str(ei[eo[t]:eo[t + 1]].tolist())
                                          + ', "vertex_neighbours": ' + str(vi[vo[t]:vo[t + 1]].tolist()) + "}")
         yield sep + ",\n".join(text)
         sep = ",\n"
@@ -788,12 +893,13 @@ def tiling_mimebundle(tiling: Tiling, region: Any = None) -> dict[str, str]:
 STREAM_FORMATS = (".geojson", ".svg")
 
 #: File bytes per tile of each text format: (fixed, per outline vertex), from the sizes
-#: measured on Penrose P3 rhombs (4 vertices: 325 / 64 / 289 / 64 bytes a tile as .geojson
-#: / .svg / .json / .cut.svg), the hat (13: 473 / 165 / 426 / 135) and the spectre (14:
-#: 651 / 221 / 588 / 216), rounded up with room for a small file's header (docs/benchmarks.md;
-#: the cut SVG's since its lines are chained into paths).
+#: measured on Penrose P3 rhombs (4 vertices: 325 / 64 / 357 / 64 / 62 bytes a tile as
+#: .geojson / .svg / .json / .cut.svg / .csv), the hat (13: 473 / 165 / 492 / 135 / 56, with
+#: metatile labels) and the spectre (14: 651 / 221 / 681 / 216 / 66, with labels), rounded up
+#: with room for a small file's header and for the longer indices of large patches
+#: (docs/benchmarks.md; the cut SVG's since its lines are chained into paths).
 FILE_BYTES_PER_TILE: dict[str, tuple[int, int]] = {
-    ".geojson": (190, 36), ".svg": (40, 16), ".json": (160, 34), ".cut.svg": (20, 17),
+    ".geojson": (190, 36), ".svg": (40, 16), ".json": (240, 34), ".cut.svg": (20, 17), ".csv": (130, 0),
 }
 
 
@@ -900,18 +1006,22 @@ def _joined(lines: Iterator[str]) -> Iterator[str]:
 
 
 def write_patch(patch: Patch, path: str | Path, *, classes: np.ndarray | None = None, layers: str = "one",
-                mm_per_unit: float = 10.0, palette: Sequence[str] | None = None, stroke: str | None = None) -> str:
-    """Write ``patch`` as the format its suffix names (.geojson, .json, .cut.svg, .dxf; the
-    pictures .svg / .png go through tilekit.render); returns the format's suffix."""
+                mm_per_unit: float = 10.0, palette: Sequence[str] | None = None, stroke: str | None = None,
+                labels: Sequence[str] | np.ndarray | None = None) -> str:
+    """Write ``patch`` as the format its suffix names (.geojson, .json, .csv, .cut.svg, .dxf;
+    the pictures .svg / .png go through tilekit.render); returns the format's suffix.
+    ``labels`` (a name per tile, e.g. ``Tiling.tile_labels``) go into .json and .csv."""
     fmt = output_format(path)
     if fmt in (".svg", ".png"):
         raise ParameterError(f"{fmt} is a picture: draw it with Patch.to_svg / tilekit.render.write_image")
-    if fmt in (".geojson", ".json") and (layers != "one"):
+    if fmt in (".geojson", ".json", ".csv") and (layers != "one"):
         raise ParameterError(f"layers apply to .cut.svg and .dxf output, not {fmt}")
     if fmt == ".geojson":
         write_text(iter_geojson(patch, classes), path)
     elif fmt == ".json":
-        write_text(iter_json(patch, classes=classes), path)
+        write_text(iter_json(patch, classes=classes, labels=labels), path)
+    elif fmt == ".csv":
+        write_text(iter_csv(patch, labels), path)
     elif fmt == ".cut.svg":
         write_text(iter_cut_svg(patch, layers, mm_per_unit, stroke or "#ff0000", palette), path)
     else:

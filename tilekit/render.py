@@ -108,6 +108,7 @@ def patch_to_svg(
     width: int | None = None,
     height: int | None = None,
     stroke_width_px: float | None = None,
+    overlay: Sequence[tuple[np.ndarray, str, float]] = (),
 ) -> str:
     """SVG text for a patch.
 
@@ -116,6 +117,8 @@ def patch_to_svg(
     (origin, v1, v2) draws the translation vectors as arrows; ``region`` sets the view box and
     clips to it (default: the patch's bounds). The image's longer side is ``size`` pixels,
     or its width is ``width`` / its height ``height`` (the other side follows the aspect).
+    ``overlay`` is lines drawn over the tiles: (segments (m, 2, 2), colour, width as a
+    multiple of the outline's) per set, e.g. supertile outlines.
     """
     if region is None and len(patch):
         region = patch.bounds()
@@ -123,7 +126,7 @@ def patch_to_svg(
     else:
         clip = region is not None
     return "\n".join(svg_lines([patch], palette, stroke, stroke_width, labels, markings, vectors, size, region,
-                               background, width, height, stroke_width_px, clip=clip))
+                               background, width, height, stroke_width_px, clip=clip, overlay=overlay))
 
 
 def svg_lines(
@@ -141,6 +144,7 @@ def svg_lines(
     height: int | None = None,
     stroke_width_px: float | None = None,
     clip: bool = True,
+    overlay: Sequence[tuple[np.ndarray, str, float]] = (),
 ) -> Iterator[str]:
     """The lines of :func:`patch_to_svg`'s SVG for the union of ``patches`` (a stream of
     patches, e.g. ``Tiling.iter_patches``), one patch at a time: the view box comes from
@@ -190,6 +194,13 @@ def svg_lines(
     for patch in patches:
         tiles += len(patch)
         yield from _tile_lines(patch, palette, markings, labels, sw, label_items, shift)
+    for segments, colour, factor in overlay:
+        if not is_colour(colour):
+            raise ParseError(f"overlay colour {colour[:40]!r} is not a CSS colour name or #rgb / #rrggbb")
+        segs = np.asarray(segments, dtype=float).reshape(-1, 2, 2) - shift
+        if len(segs):
+            yield (f'<path fill="none" stroke="{html.escape(colour)}" stroke-width="{factor * sw:.4g}" '
+                   f'stroke-linecap="round" d="{" ".join(_path_data(segs, closed=False))}"/>')
     if clip and tiles:
         # a frame on the region's border: tiles cut by the clip end on a line, not in stubs
         # (drawn at twice the width, half of it inside the clip)

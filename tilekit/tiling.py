@@ -325,11 +325,16 @@ class Patch:
 
     def clip(self, region: Any, mode: str = "intersects") -> Patch:
         """The tiles that meet ``region`` (mode 'intersects') or lie inside it ('within')."""
+        return self.subset(self.clip_index(region, mode))
+
+    def clip_index(self, region: Any, mode: str = "intersects") -> np.ndarray:
+        """The indices (ascending) of the tiles :meth:`clip` keeps, for per-tile arrays kept
+        beside the patch."""
         reg = as_region(region)
         if mode not in ("intersects", "within"):
             raise ParameterError(f"clip mode {mode!r} is not 'intersects' or 'within'")
         if not len(self):
-            return self
+            return np.zeros(0, dtype=np.int64)
         b = self.tile_bounds()
         x0, y0, x1, y1 = reg.bounds
         cand = np.flatnonzero((b[:, 2] >= x0) & (b[:, 0] <= x1) & (b[:, 3] >= y0) & (b[:, 1] <= y1))
@@ -346,7 +351,7 @@ class Patch:
             keep = shapely.intersects(reg, g) & ~shapely.touches(reg, g)
         else:
             keep = shapely.covers(reg.buffer(1e-7), g)
-        return self.subset(np.sort(np.concatenate([sure, cand[keep]])) if len(sure) else cand[keep])
+        return np.sort(np.concatenate([sure, cand[keep]])) if len(sure) else cand[keep]
 
     def _geometries_at(self, index: np.ndarray) -> np.ndarray:
         """Polygons of the tiles at ``index`` (from the cache, or built for those alone)."""
@@ -509,6 +514,11 @@ class Patch:
     def to_shapely(self) -> np.ndarray:
         """Every tile as a shapely Polygon (object array, tile order, float noise snapped)."""
         return export.to_shapely(self)
+
+    def tile_table(self, labels: Sequence[str] | np.ndarray | None = None) -> export.TileTable:
+        """A row per tile: centre, angle, reflected, prototile, colour, ``labels`` (a name per
+        tile, when given) and edge neighbours (``tilekit render -o tiles.csv``; docs/exports.md)."""
+        return export.tile_table(self, labels)
 
     def to_geopandas(self, classes: np.ndarray | None = None) -> Any:
         """A GeoDataFrame with a row per tile (the ``geo`` extra)."""
@@ -882,6 +892,12 @@ class Tiling(ABC):
         """
         reg = self.default_region() if region is None else as_region(region)
         return region_tile_estimate(reg, self.prototiles)
+
+    def tile_labels(self, patch: Patch, region: Any = None) -> np.ndarray | None:
+        """A name per tile of ``patch`` (made by ``self.patch(region)``) for tile tables, e.g.
+        the hat's level-0 metatile H, T, P or F, or None when the family has none (the
+        table's ``label`` column is then left out)."""
+        return None
 
     def render_svg(self, patch: Patch, **options: Any) -> str:
         """SVG text of a patch of this tiling (``tilekit render`` draws through it); options as

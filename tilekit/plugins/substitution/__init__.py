@@ -105,10 +105,16 @@ def tilekit_families() -> list[Family]:
 @tilekit.hookimpl
 def tilekit_catalogue_records() -> list[CatalogueRecord]:
     # measured start-up cost: as in from_spec (records are built only when seeding)
-    from tilekit.plugins.substitution.tiling import system_properties
+    from tilekit.plugins.substitution.continuum import members
+    from tilekit.plugins.substitution.hat import HatSystem
+    from tilekit.plugins.substitution.tiling import continuum_records, system_properties
 
     records = []
     for name, system in builtin_systems().items():
+        aliases = [str(a) for a in system.facts.get("aliases", [])]
+        if isinstance(system, HatSystem):  # the hat is a member of its continuum Tile(a, b) too
+            hat = members(system).get(name)
+            aliases += list(hat.aliases) if hat is not None else []
         records.append(
             CatalogueRecord(
                 family="substitution",
@@ -116,9 +122,12 @@ def tilekit_catalogue_records() -> list[CatalogueRecord]:
                 spec={"system": name},
                 title=system.title,
                 properties=system_properties(system),
-                aliases=[str(a) for a in system.facts.get("aliases", [])],
+                aliases=aliases,
             )
         )
+        if isinstance(system, HatSystem):  # turtle, chevron, comet: the hat's tilings deformed
+            for member, spec, title, props, more in continuum_records(system):
+                records.append(CatalogueRecord("substitution", member, spec, title, props, more))
     return records
 
 

@@ -163,6 +163,17 @@ _HAT_PLACEMENT = Field(
     },
 )
 _LABEL = Field("str", choices=("H", "T", "P", "F"))
+_MEMBER = Field(
+    "table",
+    error="{path} must be a table {{a = EXPR, b = EXPR, title = TEXT}}",
+    fields={
+        "a": Field("expr", required=True, missing="{path} needs 'a' and 'b' (edge lengths)"),
+        "b": Field("expr", required=True, missing="{path} needs 'a' and 'b' (edge lengths)"),
+        "title": Field("str"),
+        "aperiodic": Field("bool"),
+        "aliases": Field("list", default=[], items=Field("str"), error="{path} must be a list of names"),
+    },
+)
 
 #: ``engine = "hat-metatiles"``: the hat's metatiles H, T, P, F and their cluster.
 HAT = Field(
@@ -199,6 +210,13 @@ HAT = Field(
                                   fields={label: Field("list", required=True, items=INDEX, length=(1, None),
                                                        error=f"[cluster.children] {label} must list cluster tile indices")
                                           for label in ("H", "T", "P", "F")}),
+            },
+        ),
+        "continuum": Field(
+            "table", default={}, error="[continuum] must be a table",
+            fields={
+                "equilateral": Field("str", error="[continuum] equilateral must name a system"),
+                "members": Field("table", default={}, values=_MEMBER, error="[continuum.members] must be a table"),
             },
         ),
         "properties": PROPERTIES,

@@ -10,7 +10,8 @@ product of (k, 3, 3) stacks as the keypoint engine (``keypoint.py``), with per-l
 Level 0: H carries four hats (one reflected), T one, P two, F two. The data (lattice
 coordinates of the hat and the metatiles, the cluster assembly and the supertile children)
 is ``catalogue/substitution/hat/hat.toml``; this module turns it into a system with the
-KeypointSystem interface, so ``KeypointTiling`` serves its patches.
+KeypointSystem interface, so ``HatTiling`` (a ``KeypointTiling``) serves its patches; the
+continuum Tile(a, b) deforms this hierarchy (``continuum.py``).
 
 Colours of generated hats: 0 unreflected hat of an H, 1 the reflected hat of an H, 2 the
 hat of a T, 3 hats of a P, 4 hats of an F.
@@ -27,7 +28,7 @@ from typing import Any, ClassVar
 import numpy as np
 import shapely
 
-from tilekit.errors import ParameterError, ParseError
+from tilekit.errors import ParseError
 from tilekit.geometry import Affine
 from tilekit.plugins.substitution.formats import read_system_data
 from tilekit.plugins.substitution.keypoint import Generation, MonotileSystem, Tiles
@@ -110,7 +111,7 @@ class HatSystem(MonotileSystem):
     """The hat's metatile substitution, with the interface of ``KeypointSystem``."""
 
     #: ``generate`` without a region refuses more hats than this (ParameterError)
-    max_tiles: ClassVar[int] = MAX_TILES
+    max_tiles: ClassVar[float] = MAX_TILES
 
     name: str
     title: str
@@ -126,7 +127,12 @@ class HatSystem(MonotileSystem):
     data: dict[str, Any] = field(default_factory=dict)
     kind: str = "keypoint"
     reflect: bool = False
-    _levels: list[tuple[list[Rule], list[np.ndarray], list[np.ndarray]]] = field(default_factory=list)
+    #: the file's checked ``[continuum]`` table (continuum.py reads it: members Tile(a, b))
+    continuum: dict[str, Any] = field(default_factory=dict)
+    #: the lifted hierarchy, built on first use by ``continuum.lifts_of``
+    lifted: Any = field(default=None, repr=False, compare=False)
+    _levels: list[tuple[list[Rule], list[np.ndarray], list[np.ndarray], np.ndarray, np.ndarray]] = field(
+        default_factory=list)
     _bounds: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
 
     @property
@@ -175,12 +181,22 @@ class HatSystem(MonotileSystem):
         self._build(n)
         return self._levels[n - 1][2]
 
+    def cluster_at(self, n: int) -> tuple[np.ndarray, np.ndarray]:
+        """The whole cluster assembled for level n (n >= 1), in the level-n supertiles' frame:
+        its level-(n-1) supertiles' labels (k,) and exact lattice maps (k, 3, 3), in the order
+        of ``[cluster] attach`` (the children of each label are among them)."""
+        if n < 1:
+            raise ValueError("levels start at 1")
+        self._build(n)
+        return self._levels[n - 1][3], self._levels[n - 1][4]
+
     def _build(self, n: int) -> None:
         while len(self._levels) < n:
             prev = self.outlines(len(self._levels))
             self._levels.append(self._next_level(prev))
 
-    def _next_level(self, shapes: list[np.ndarray]) -> tuple[list[Rule], list[np.ndarray]]:
+    def _next_level(self, shapes: list[np.ndarray]) -> tuple[list[Rule], list[np.ndarray], list[np.ndarray],
+                                                             np.ndarray, np.ndarray]:
         index = {nm: i for i, nm in enumerate(self.labels)}
         labels: list[int] = []
         maps: list[np.ndarray] = []
@@ -221,28 +237,11 @@ class HatSystem(MonotileSystem):
         map_arr = np.array(maps)
         lat_arr = np.array(lattice)
         rules = [Rule(lab_arr[c], map_arr[c]) for c in self.cluster_children]
-        return rules, _outlines(vertex), [lat_arr[c] for c in self.cluster_children]
+        return rules, _outlines(vertex), [lat_arr[c] for c in self.cluster_children], lab_arr, lat_arr
 
-    def bounds(self, n: int) -> tuple[np.ndarray, np.ndarray]:
-        """Per label, a centre and radius bounding its level-n supertile's hats."""
-        while len(self._bounds) <= n:
-            k = len(self._bounds)
-            centres, radii = [], []
-            if k == 0:
-                for b in self.base:
-                    pts = Affine.apply(to_cartesian(b), self.tile.outline).reshape(-1, 2)
-                    c = pts.mean(axis=0)
-                    centres.append(c)
-                    radii.append(float(np.linalg.norm(pts - c, axis=1).max()))
-            else:
-                pc, pr = self._bounds[k - 1]
-                for rule in self.rules_at(k):
-                    img = np.einsum("nij,nj->ni", rule.matrices[:, :2, :2], pc[rule.children]) + rule.matrices[:, :2, 2]
-                    c = img.mean(axis=0)
-                    centres.append(c)
-                    radii.append(float((np.linalg.norm(img - c, axis=1) + pr[rule.children]).max()))
-            self._bounds.append((np.array(centres), np.array(radii)))
-        return self._bounds[n]
+    def placed_base(self) -> list[np.ndarray]:
+        """Per label, the Cartesian placements of its metatile's hats."""
+        return [to_cartesian(b) for b in self.base]
 
     # ------------------------------------------------------------------ generation
     def lattice_supertiles(self, depth: int, level: int = 0, seed_label: int | None = None) -> tuple[np.ndarray, np.ndarray]:
@@ -265,23 +264,6 @@ class HatSystem(MonotileSystem):
         children = [rule.children for rule in self.rules_at(n)]
         return expand_by_label(label, lattice, children, self.lattice_rules_at(n))
 
-    def generate(
-        self,
-        depth: int,
-        seed_transform: np.ndarray | None = None,
-        seed_label: int | None = None,
-        box: tuple[float, float, float, float] | None = None,
-    ) -> Tiles:
-        """Hats of a level-``depth`` supertile: (prototile, transform, colour) arrays; over
-        MAX_TILES hats without a ``box``, ParameterError (``generate_chunks`` streams them)."""
-        label = self.seed if seed_label is None else int(seed_label)
-        if box is None and self.tile_counts(depth, label)[-1] > MAX_TILES:
-            count = self.tile_counts(depth, label)[-1]
-            raise ParameterError(
-                f"hat depth {depth} would make {count} hats; the limit is {MAX_TILES} (give a smaller depth or a region)"
-            )
-        return super().generate(depth, seed_transform, seed_label, box)
-
     def generation(self, depth: int, seed_transform: np.ndarray | None, seed_label: int | None,
                    box: tuple[float, float, float, float] | None) -> Generation:
         """Placements are composed exactly, as integer matrices in lattice coordinates, and
@@ -294,12 +276,7 @@ class HatSystem(MonotileSystem):
         def centres(label: np.ndarray, lattice: np.ndarray, n: int) -> np.ndarray:
             return placed_points(label, _placed(seed_transform, lattice), self.bounds(n)[0])
 
-        colours = []
-        for j, placements in enumerate(self.base):
-            colour = np.full(len(placements), 1 + j, dtype=np.int64)
-            if j == 0:
-                colour = (np.linalg.det(placements[:, :2, :2]) < 0).astype(np.int64)
-            colours.append(colour)
+        colours = hat_colours(self.base)
 
         def finish(label: np.ndarray, lattice: np.ndarray) -> Tiles:
             lattice, colour = expand_base(label, lattice, self.base, colours)
@@ -310,6 +287,18 @@ class HatSystem(MonotileSystem):
 
         lattice = np.eye(3, dtype=np.int64)[None]
         return Generation(label, lattice, self._expand, cull if box is not None else None, centres, finish)
+
+
+def hat_colours(base: list[np.ndarray]) -> list[np.ndarray]:
+    """Per metatile label, its tiles' colours: 0 an unreflected tile of an H, 1 the reflected
+    one, 2 T, 3 P, 4 F (label j > 0: 1 + j)."""
+    out = []
+    for j, placements in enumerate(base):
+        colour = np.full(len(placements), 1 + j, dtype=np.int64)
+        if j == 0:
+            colour = (np.linalg.det(np.asarray(placements, dtype=float)[:, :2, :2]) < 0).astype(np.int64)
+        out.append(colour)
+    return out
 
 
 def _placed(seed_transform: np.ndarray | None, lattice: np.ndarray) -> np.ndarray:
@@ -409,6 +398,7 @@ def hat_system_from_data(data: Mapping[str, Any], source: str = "<data>") -> Hat
         facts=dict(data.get("properties", {})),
         source=source,
         data=dict(raw),
+        continuum=dict(data.get("continuum", {})),
     )
     _derived_facts(system)
     check_hat_system(system)

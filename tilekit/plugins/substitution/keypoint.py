@@ -14,12 +14,12 @@ import math
 from abc import abstractmethod
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 import shapely
 
-from tilekit.errors import ParseError
+from tilekit.errors import ParameterError, ParseError
 from tilekit.geometry import Affine
 from tilekit.limits import STREAM_CHUNK_TILES, check_chunk_tiles
 from tilekit.plugins.substitution.expr import constants_with, evaluate
@@ -65,6 +65,11 @@ class MonotileSystem(MatrixFacts):
     tile: Prototile
     labels: Sequence[str]
     base: Sequence[np.ndarray]
+    name: str
+    #: per level, the bounding discs :meth:`bounds` computed (a field of each system)
+    _bounds: list[tuple[np.ndarray, np.ndarray]]
+    #: ``generate`` without a region refuses a supertile of more tiles than this (ParameterError)
+    max_tiles: ClassVar[float] = math.inf
 
     @property
     def n(self) -> int:
@@ -106,6 +111,60 @@ class MonotileSystem(MatrixFacts):
                    box: tuple[float, float, float, float] | None) -> Generation:
         """How this system substitutes a level-``depth`` seed (see :class:`Generation`)."""
 
+    @abstractmethod
+    def rules_at(self, n: int) -> list[Rule]:
+        """Per label, the children (label indices) and rigid maps building level n from n-1."""
+
+    def placed_base(self) -> Sequence[np.ndarray]:
+        """Per label, the Cartesian placements (m, 3, 3) of a level-0 supertile's tiles."""
+        return self.base
+
+    def bounds(self, n: int) -> tuple[np.ndarray, np.ndarray]:
+        """Per label, a centre and radius bounding its level-n supertile's tiles (in its own
+        frame): the tiles' points at level 0, then each level's children's discs, kept."""
+        kept = self._bounds
+        while len(kept) <= n:
+            centres, radii = [], []
+            if not kept:
+                for maps in self.placed_base():
+                    pts = Affine.apply(maps, self.tile.outline).reshape(-1, 2)
+                    c = pts.mean(axis=0)
+                    centres.append(c)
+                    radii.append(float(np.linalg.norm(pts - c, axis=1).max()))
+            else:
+                pc, pr = kept[-1]
+                for rule in self.rules_at(len(kept)):
+                    img = placed_points(rule.children, rule.matrices, pc)
+                    c = img.mean(axis=0)
+                    centres.append(c)
+                    radii.append(float((np.linalg.norm(img - c, axis=1) + pr[rule.children]).max()))
+            kept.append((np.array(centres), np.array(radii)))
+        return kept[n]
+
+    def rigid_generation(self, seed: np.ndarray, seed_label: int | None, box: tuple[float, float, float, float] | None,
+                         colours: Sequence[np.ndarray]) -> Generation:
+        """The :class:`Generation` of a system whose rules are Cartesian rigid maps
+        (``rules_at``): the seed placed by ``seed`` (3, 3), each level one batched expansion,
+        culled by :meth:`bounds`, tiles placed by ``base`` and coloured ``colours[label]``."""
+        label = np.array([self.seed if seed_label is None else seed_label], dtype=np.int64)
+
+        def expand(label: np.ndarray, maps: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+            rules = self.rules_at(n)
+            return expand_by_label(label, maps, [r.children for r in rules], [r.matrices for r in rules])
+
+        def cull(label: np.ndarray, maps: np.ndarray, n: int) -> np.ndarray:
+            return meets_discs(label, maps, self.bounds(n), box)
+
+        def centres(label: np.ndarray, maps: np.ndarray, n: int) -> np.ndarray:
+            return placed_points(label, maps, self.bounds(n)[0])
+
+        def finish(label: np.ndarray, maps: np.ndarray) -> Tiles:
+            transform, colour = expand_base(label, maps, self.base, colours)
+            return np.zeros(len(transform), dtype=np.int64), transform.astype(float, copy=False), colour
+
+        return Generation(label, np.asarray(seed, dtype=float).reshape(1, 3, 3), expand,
+                          cull if box is not None else None, centres, finish)
+
     def generate(
         self,
         depth: int,
@@ -115,8 +174,47 @@ class MonotileSystem(MatrixFacts):
     ) -> Tiles:
         """Tiles of a level-``depth`` supertile: (prototile, transform, colour) arrays; with a
         ``box``, supertiles whose bounding discs miss it are dropped level by level."""
+        self.refuse_whole(depth, seed_label, box)
         g = self.generation(depth, seed_transform, seed_label, box)
         return g.finish(*substitute_levels(g.label, g.maps, depth, g.expand, g.cull))
+
+    def refuse_whole(self, depth: int, seed_label: int | None, box: Any) -> None:
+        """ParameterError when a whole (``box`` None) level-``depth`` supertile has more than
+        ``max_tiles`` tiles (``generate_chunks`` streams them)."""
+        if box is None and math.isfinite(self.max_tiles):
+            count = self.tile_counts(depth, self.seed if seed_label is None else int(seed_label))[-1]
+            if count > self.max_tiles:
+                raise ParameterError(f"{self.name} depth {depth} would make {count} {self.tile.name}s; the limit "
+                                     f"is {self.max_tiles} (give a smaller depth or a region)")
+
+    def generate_grouped(
+        self,
+        depth: int,
+        level: int,
+        seed_transform: np.ndarray | None = None,
+        seed_label: int | None = None,
+        box: tuple[float, float, float, float] | None = None,
+    ) -> tuple[Tiles, np.ndarray, np.ndarray]:
+        """:meth:`generate`'s tiles, in the same order, and for each tile the index of the
+        level-``level`` supertile it lies in (levels above ``depth``: the seed) and that
+        supertile's label index. The level-``level`` supertiles are substituted like the
+        others, each tile's supertile index repeated for its children, so the cost is
+        :meth:`generate`'s plus an integer array."""
+        self.refuse_whole(depth, seed_label, box)
+        g = self.generation(depth, seed_transform, seed_label, box)
+        top = max(0, min(int(level), depth))
+        label, maps = substitute_levels(g.label, g.maps, depth, g.expand, g.cull, stop=top)
+        group = np.arange(len(label))
+        group_label = label.copy()
+        kids = np.array([len(c) for c in self.child_labels()], dtype=np.int64)
+        for n in range(top, 0, -1):
+            group = np.repeat(group, kids[label])
+            label, maps = g.expand(label, maps, n)
+            if g.cull is not None:
+                keep = g.cull(label, maps, n - 1)
+                label, maps, group = label[keep], maps[keep], group[keep]
+        group = np.repeat(group, self.tiles_per_label()[label])
+        return g.finish(label, maps), group, group_label
 
     def generate_chunks(
         self,
@@ -198,58 +296,16 @@ class KeypointSystem(MonotileSystem):
             out.append(Rule(slots[used], ts[used]))
         return out
 
-    def bounds(self, n: int) -> tuple[np.ndarray, np.ndarray]:
-        """Per label, a centre and radius bounding its level-n supertile (in its own frame)."""
-        while len(self._bounds) <= n:
-            k = len(self._bounds)
-            if k == 0:
-                pts = self.tile.outline
-                centres, radii = [], []
-                for b in self.base:
-                    allpts = np.concatenate(list(Affine.apply(b, pts)))
-                    c = allpts.mean(axis=0)
-                    centres.append(c)
-                    radii.append(float(np.linalg.norm(allpts - c, axis=1).max()))
-                self._bounds.append((np.array(centres), np.array(radii)))
-                continue
-            pc, pr = self._bounds[k - 1]
-            rules = self.rules_at(k)
-            centres, radii = [], []
-            for rule in rules:
-                img = np.einsum("nij,nj->ni", rule.matrices[:, :2, :2], pc[rule.children]) + rule.matrices[:, :2, 2]
-                c = img.mean(axis=0)
-                centres.append(c)
-                radii.append(float((np.linalg.norm(img - c, axis=1) + pr[rule.children]).max()))
-            self._bounds.append((np.array(centres), np.array(radii)))
-        return self._bounds[n]
-
     # ------------------------------------------------------------------ generation
     def generation(self, depth: int, seed_transform: np.ndarray | None, seed_label: int | None,
                    box: tuple[float, float, float, float] | None) -> Generation:
         """Colour 1 marks the Mystic's turned spectre, 0 every other one. Odd depths get one
         extra reflection so that every spectre is unreflected."""
-        label = np.array([self.seed if seed_label is None else seed_label], dtype=np.int64)
         t0 = np.eye(3) if seed_transform is None else np.asarray(seed_transform, dtype=float)
         if depth % 2 == 1 and self.reflect:
             t0 = t0 @ REFLECT_Y
-
-        def expand(label: np.ndarray, maps: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
-            rules = self.rules_at(n)
-            return expand_by_label(label, maps, [r.children for r in rules], [r.matrices for r in rules])
-
-        def cull(label: np.ndarray, maps: np.ndarray, n: int) -> np.ndarray:
-            return meets_discs(label, maps, self.bounds(n), box)
-
-        def centres(label: np.ndarray, maps: np.ndarray, n: int) -> np.ndarray:
-            return placed_points(label, maps, self.bounds(n)[0])
-
         colours = [(np.arange(len(p)) > 0).astype(np.int64) for p in self.base]
-
-        def finish(label: np.ndarray, maps: np.ndarray) -> Tiles:
-            transform, colour = expand_base(label, maps, self.base, colours)
-            return np.zeros(len(transform), dtype=np.int64), transform.astype(float, copy=False), colour
-
-        return Generation(label, t0.reshape(1, 3, 3), expand, cull if box is not None else None, centres, finish)
+        return self.rigid_generation(t0, seed_label, box, colours)
 
 
 # ---------------------------------------------------------------------- loading

@@ -210,3 +210,26 @@ def shaped_tiles(tiles: Sequence[Prototile], classes: EdgeClasses, shapes: Seque
                 f"edge shapes make tile {tile.name!r} self-intersect; use smaller or different shapes"
             ) from None
     return out
+
+
+#: Points of the S-curve of :func:`spectre_edge` (interior points of one edge).
+SPECTRE_EDGE_POINTS = 15
+
+
+def spectre_edge(height: float, points: int = SPECTRE_EDGE_POINTS) -> np.ndarray:
+    """An S-shaped unit edge shape, y = height * sin(2 pi x) from (0, 0) to (1, 0): turned by
+    a half-turn about its midpoint it is itself, so it is its own complement and fits every
+    edge of a tiling onto the edge it meets -- when the two tiles have the same handedness;
+    a reflected tile brings the mirrored S, which does not fit. Put on every edge of Tile(1, 1),
+    it makes the Spectre, which tiles only without reflections (arXiv:2305.17743)."""
+    x = np.arange(1, points + 1) / (points + 1)
+    return np.column_stack([x, height * np.sin(2 * np.pi * x)])
+
+
+def curved_tiles(tiles: Sequence[Prototile], shape: np.ndarray) -> list[Prototile]:
+    """The tiles with every edge replaced by ``shape``, which must be its own complement
+    (:func:`spectre_edge`); ParameterError when a tile then self-intersects."""
+    if not np.allclose(complement(shape), shape, atol=1e-12):
+        raise ParameterError("an edge shape on every edge must be its own complement (turned a half-turn)")
+    classes = EdgeClasses(tuple(tuple((0, 1) for _ in t.outline) for t in tiles), 1, tuple(None for _ in tiles))
+    return shaped_tiles(tiles, classes, [shape])

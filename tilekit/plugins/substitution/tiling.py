@@ -22,6 +22,7 @@ import shapely
 from shapely.geometry.base import BaseGeometry
 from shapely.geometry.polygon import orient
 
+from tilekit import export
 from tilekit.errors import GeometryError, NotFoundError, ParameterError, ParseError
 from tilekit.geometry import Affine, as_region
 from tilekit.limits import (  # MAX_DEPTH: the depth range; the tile estimate is the real bound
@@ -32,8 +33,10 @@ from tilekit.limits import (  # MAX_DEPTH: the depth range; the tile estimate is
     check_chunk_tiles,
     refuse_over_memory,
 )
-from tilekit.plugins.substitution import engine, shapes
+from tilekit.plugins.substitution import builtin_systems, continuum, engine, shapes
 from tilekit.plugins.substitution import quasivertex as qv
+from tilekit.plugins.substitution.expr import evaluate
+from tilekit.plugins.substitution.hat import HatSystem
 from tilekit.plugins.substitution.shapes import (
     canonical_transforms,
     edge_classes,
@@ -42,6 +45,7 @@ from tilekit.plugins.substitution.shapes import (
 )
 from tilekit.plugins.substitution.system import SubstitutionSystem, load_data
 from tilekit.polygon import inscribed_disc
+from tilekit.render import patch_to_svg
 from tilekit.schema import Field, check, shown
 from tilekit.tiling import Patch, Prototile, Tiling, region_tile_estimate
 
@@ -470,7 +474,7 @@ def system_properties(system: SubstitutionSystem, generations: int = 6) -> dict[
     if system.facts.get("nonperiodic", aperiodic):
         props["periodic"] = False
     for key, value in system.facts.items():
-        if key not in props and isinstance(value, str | int | float | bool | list):
+        if key not in props and key != "aliases" and isinstance(value, str | int | float | bool | list):
             props[key] = value
     return props
 
@@ -500,12 +504,17 @@ class KeypointTiling(SubstitutionTiling):
     bounding disc is twice the region's, and goes one level further while the tiles do not
     cover the region (the supertiles are not convex, so their inner radius is measured, not
     assumed).
+
+    Options beyond ``depth`` and ``seed``: ``overlay`` (supertile levels whose outlines
+    :meth:`render_svg` draws over the tiles) and, for a system whose tiles are never
+    reflected (``chiral`` in its facts: the Spectre), ``curved`` (every edge an S-shaped
+    curve, the Spectre's curved edges: :func:`shapes.spectre_edge`).
     """
 
     system: Any
 
     def __init__(self, system: Any, depth: int | None = None, seed: str | None = None,
-                 spec_source: Mapping[str, Any] | None = None) -> None:
+                 spec_source: Mapping[str, Any] | None = None, overlay: Any = None, curved: Any = None) -> None:
         self.system = system
         self.name = system.name
         if depth is not None and not 0 <= depth <= MAX_DEPTH // 4:
@@ -522,14 +531,44 @@ class KeypointTiling(SubstitutionTiling):
         self._shaped = None
         self.quasivertex = None
         self._mirrors = None
+        self.overlay = overlay_levels(overlay)
+        self.curved = curve_amplitude(curved)
+        if self.curved is not None:
+            if not system.facts.get("chiral"):
+                raise ParameterError(
+                    f"curved edges fit only tilings without reflected tiles (the spectre); {system.name}'s "
+                    "tiles come in both hands"
+                )
+            self._shaped = shapes.curved_tiles(system.tiles, shapes.spectre_edge(self.curved))
 
     def _seed_index(self) -> int:
         return self.system.labels.index(self.seed) if self.seed is not None else self.system.seed
 
     def patch(self, region: Any = None) -> Patch:
+        return self._generated(region)[0]
+
+    def _generated(self, region: Any = None, level: int | None = None) -> tuple[Patch, np.ndarray | None, np.ndarray | None]:
+        """``patch(region)``, and with a ``level``, for each of its tiles the index of the
+        level-``level`` supertile it lies in and that supertile's label index (the same
+        generation, :meth:`MonotileSystem.generate_grouped`)."""
         reg = as_region(region) if region is not None else None
         s = self.system
         label = self._seed_index()
+        margin = self._shape_margin() if self._shaped is not None else 0.0
+
+        def make(depth: int, t0: np.ndarray | None, box: Any) -> tuple[Patch, np.ndarray | None, np.ndarray | None]:
+            if box is not None and margin:
+                box = (box[0] - margin, box[1] - margin, box[2] + margin, box[3] + margin)
+            if level is None:
+                (proto, transform, colour), group, names = s.generate(depth, t0, label, box=box), None, None
+            else:
+                (proto, transform, colour), group, names = s.generate_grouped(depth, level, t0, label, box=box)
+            patch = Patch(self.prototiles, proto, transform, colour=colour)
+            if reg is None:
+                return patch, group, names
+            keep = patch.clip_index(reg)
+            return patch.subset(keep), None if group is None else group[keep], names
+
         count = float(self._full_count(self.depth if self.depth is not None else 0))
         if self.depth is not None:
             box = tuple(reg.bounds) if reg is not None else None
@@ -538,18 +577,15 @@ class KeypointTiling(SubstitutionTiling):
             if box is not None or count <= getattr(s, "max_tiles", math.inf):
                 # (over its own whole-supertile limit, the system's generate refuses by count)
                 refuse_over_memory("tiles", count, GENERATION_BYTES_PER_TILE, hint="ask for a smaller depth or region")
-            proto, transform, colour = s.generate(self.depth, seed_label=label, box=box)
-            patch = Patch(s.tiles, proto, transform, colour=colour)
-            return patch.clip(reg) if reg is not None else patch
+            return make(self.depth, None, box)
         if reg is None:
             raise ParameterError("a region or a fixed depth is needed")
         refuse_over_memory("tiles", region_tile_estimate(reg, s.tiles), GENERATION_BYTES_PER_TILE,
                            hint="ask for a smaller region")
         for depth, t0 in self._candidates(reg):
-            proto, transform, colour = s.generate(depth, t0, label, box=tuple(reg.bounds))
-            patch = Patch(s.tiles, proto, transform, colour=colour).clip(reg)
-            if len(patch) and _covers(patch, reg):
-                return patch
+            out = make(depth, t0, tuple(reg.bounds))
+            if len(out[0]) and _covers(out[0], reg):
+                return out
         raise ParameterError(f"could not cover region {reg.bounds} by depth {depth}")
 
     def _candidates(self, reg: BaseGeometry) -> Iterator[tuple[int, np.ndarray]]:
@@ -569,7 +605,10 @@ class KeypointTiling(SubstitutionTiling):
                 c = np.array([-c[0], c[1]])
             yield depth, Affine.translation(*(centre - c))
 
-    streams = True
+    @property
+    def streams(self) -> bool:  # type: ignore[override]
+        """Streams, unless an overlay is asked for (supertile outlines need the whole patch)."""
+        return not self.overlay
 
     def iter_patches(self, region: Any = None, chunk_tiles: int = STREAM_CHUNK_TILES) -> Iterator[Patch]:
         """``patch(region)`` as a stream of patches of at most about ``chunk_tiles`` tiles
@@ -583,10 +622,13 @@ class KeypointTiling(SubstitutionTiling):
         s = self.system
         label = self._seed_index()
         box = tuple(reg.bounds) if reg is not None else None
+        margin = self._shape_margin() if self._shaped is not None else 0.0
+        if box is not None and margin:
+            box = (box[0] - margin, box[1] - margin, box[2] + margin, box[3] + margin)
 
         def chunks(depth: int, t0: np.ndarray | None) -> Iterator[Patch]:
             for proto, transform, colour in s.generate_chunks(depth, t0, label, box=box, chunk_tiles=chunk_tiles):
-                patch = Patch(s.tiles, proto, transform, colour=colour)
+                patch = Patch(self.prototiles, proto, transform, colour=colour)
                 patch = patch.clip(reg) if reg is not None else patch
                 if len(patch):
                     yield patch
@@ -633,17 +675,37 @@ class KeypointTiling(SubstitutionTiling):
         return shapely.box(-6 * size, -6 * size, 6 * size, 6 * size)
 
     def options_help(self) -> str:
-        return "--depth N              level of the supertile (0..15)\n--set seed=LABEL       the supertile label to start from"
+        lines = [
+            f"--depth N              level of the supertile (0..{MAX_DEPTH // 4})",
+            "--set seed=LABEL       the supertile label to start from",
+            f"--set overlay=L[,L..]  draw the outlines of the level-L supertiles over the tiles (0..{MAX_DEPTH // 4})",
+        ]
+        if self.system.facts.get("chiral"):
+            lines.append(f"--set curved=H         S-shaped edges (the Spectre's), height H in (0, {MAX_CURVE}]; 1 or true: "
+                         f"{DEFAULT_CURVE}")
+        return "\n".join(lines)
+
+    def _options(self, options: dict[str, Any]) -> dict[str, Any]:
+        """Pop the options every keypoint tiling takes (depth, seed, overlay, curved) into
+        constructor keywords, current values for those not given."""
+        depth = options.pop("depth", self.depth)
+        return {"depth": _depth(depth), "seed": options.pop("seed", self.seed),
+                "overlay": options.pop("overlay", self.overlay), "curved": options.pop("curved", self.curved)}
 
     def configure(self, **options: Any) -> KeypointTiling:
-        depth = options.pop("depth", self.depth)
-        seed = options.pop("seed", self.seed)
+        kept = self._options(options)
         if options:
-            raise ParameterError(
-                f"{self.name} does not take option(s) {', '.join(sorted(options))}; valid: depth, seed"
-            )
-        depth = _depth(depth)
-        return KeypointTiling(self.system, depth, seed, self._spec_source)
+            valid = "depth, seed, overlay" + (", curved" if self.system.facts.get("chiral") else "")
+            raise ParameterError(f"{self.name} does not take option(s) {', '.join(sorted(options))}; valid: {valid}")
+        return KeypointTiling(self.system, spec_source=self._spec_source, **kept)
+
+    def spec(self) -> dict[str, Any]:
+        out = super().spec()
+        if self.overlay:
+            out["overlay"] = list(self.overlay)
+        if self.curved is not None:
+            out["curved"] = self.curved
+        return out
 
     def describe(self) -> str:
         s = self.system
@@ -651,7 +713,235 @@ class KeypointTiling(SubstitutionTiling):
         for j, slots in enumerate(s.rules):
             kids = ", ".join(s.labels[k] if k >= 0 else "-" for k in slots)
             lines.append(f"  {s.labels[j]} -> {kids}")
+        lines.append("options of tilekit render:")
+        lines += ["  " + line for line in self.options_help().splitlines()]
         return "\n".join(lines)
+
+    def supertiles(self, patch: Patch, region: Any = None, level: int = 0) -> tuple[np.ndarray, np.ndarray]:
+        """For each tile of ``patch`` (made by ``self.patch(region)``), the index of the
+        level-``level`` supertile it lies in and that supertile's label index; -1 for a tile
+        the same generation does not make (a patch from elsewhere). The generation is made
+        again with the supertiles followed, and its tiles matched to the patch's by their
+        placements."""
+        full, group, names = self._generated(region, level)
+        assert group is not None and names is not None
+        at = match_placements(patch.transform, full.transform)
+        found = at >= 0
+        out_group = np.where(found, group[np.maximum(at, 0)], -1)
+        out_label = np.where(found, names[np.maximum(out_group, 0)], -1)
+        return out_group, out_label
+
+    def tile_labels(self, patch: Patch, region: Any = None) -> np.ndarray | None:
+        """Each tile's level-0 supertile label (the hat's metatile H, T, P, F; the spectre's
+        Gamma .. Psi), "" for a tile this tiling's generation does not make."""
+        _, label = self.supertiles(patch, region, 0)
+        names = np.array(list(self.system.labels) + [""], dtype=object)
+        return names[label]
+
+    def render_svg(self, patch: Patch, **options: Any) -> str:
+        """The picture, with the outlines of the supertiles of each ``overlay`` level drawn
+        over the tiles (lines between tiles of different supertiles, found on the tiles'
+        shared edges: :func:`tilekit.export.group_boundaries`), thicker for higher levels."""
+        if not self.overlay or not len(patch):
+            return patch_to_svg(patch, **options)
+        region = options.get("region")
+        edges = export.tile_edges(patch)
+        lines = []
+        for i, level in enumerate(self.overlay):
+            group, _ = self.supertiles(patch, region, level)
+            missing = group < 0
+            group = np.where(missing, -1 - np.arange(len(group)), group)  # unknown tiles: their own
+            segments = export.group_boundaries(patch, group, outer=region is None, edges=edges)
+            lines.append((segments, OVERLAY_COLOURS[i % len(OVERLAY_COLOURS)], 2.0 + 1.5 * i))
+        return patch_to_svg(patch, overlay=lines, **options)
+
+
+#: Strokes of the overlay levels, lowest level first.
+OVERLAY_COLOURS = ("#b40000", "#1f3fbf", "#0a7a2a", "#7a2a9a")
+#: Height of the default S-curve of ``curved`` (a fraction of the edge), and the largest allowed.
+DEFAULT_CURVE = 0.1
+MAX_CURVE = 0.2
+
+
+def overlay_levels(value: Any) -> tuple[int, ...]:
+    """``overlay`` as a sorted tuple of supertile levels ('1', '0,2', 2, [0, 2]; None or ''
+    for none); ParameterError naming the valid range."""
+    if value is None or value == "" or value == ():
+        return ()
+    items = value.split(",") if isinstance(value, str) else (list(value) if isinstance(value, list | tuple) else [value])
+    out = set()
+    for item in items:
+        try:
+            level = int(str(item).strip())
+        except ValueError:
+            level = -1
+        if not 0 <= level <= MAX_DEPTH // 4 or isinstance(item, bool):
+            raise ParameterError(f"overlay {value!r}: give supertile levels 0..{MAX_DEPTH // 4}, "
+                                 "e.g. overlay=1 or overlay=0,2")
+        out.add(level)
+    return tuple(sorted(out))
+
+
+def curve_amplitude(value: Any) -> float | None:
+    """``curved`` as the S-curve's height, a fraction of the edge: true/1/yes/on the
+    default, false/0/no/off/None none, else a number in (0, MAX_CURVE]."""
+    if value is None or value is False:
+        return None
+    text = str(value).strip().lower()
+    if value is True or text in ("true", "yes", "on", "1"):
+        return DEFAULT_CURVE
+    if text in ("false", "no", "off", "0", ""):
+        return None
+    try:
+        h = float(text)
+    except ValueError:
+        h = math.nan
+    if not (math.isfinite(h) and 0 < h <= MAX_CURVE):
+        raise ParameterError(f"curved={value!r}: give true (height {DEFAULT_CURVE}) or the S-curve's height as a "
+                             f"fraction of the edge in (0, {MAX_CURVE}]")
+    return h
+
+
+def match_placements(transforms: np.ndarray, among: np.ndarray) -> np.ndarray:
+    """For each placement (n, 3, 3), the index of the equal one in ``among`` (m, 3, 3), or -1;
+    equal up to float noise (1e-9 relative to the largest translation), by sorted keys."""
+    a = np.asarray(transforms, dtype=float).reshape(-1, 9)[:, [0, 1, 2, 3, 4, 5]]
+    b = np.asarray(among, dtype=float).reshape(-1, 9)[:, [0, 1, 2, 3, 4, 5]]
+    if not len(a) or not len(b):
+        return np.full(len(a), -1, dtype=np.int64)
+    scale = max(1.0, float(np.abs(b[:, [2, 5]]).max()))
+    tol = 1e-9 * scale
+    ka = np.round(a / tol).astype(np.int64)
+    kb = np.round(b / tol).astype(np.int64)
+    rows = np.ascontiguousarray(kb).view([("", np.int64)] * 6).reshape(-1)
+    order = np.argsort(rows, kind="stable")
+    keys = np.ascontiguousarray(ka).view([("", np.int64)] * 6).reshape(-1)
+    at = np.minimum(np.searchsorted(rows[order], keys), len(b) - 1)
+    return np.where(rows[order][at] == keys, order[at], -1)
+
+
+class HatTiling(KeypointTiling):
+    """The hat's tilings and their deformations, the continuum Tile(a, b) (arXiv:2303.10798;
+    :mod:`.continuum`): ``a`` and ``b`` (numbers or expressions such as ``sqrt3``) or
+    ``shape`` (a named member of the hat file's ``[continuum.members]``: hat, turtle,
+    chevron, comet). Tile(a, a) is handled as the paper does: it is the Spectre's polygon,
+    whose tilings without reflected tiles come from the spectre system, so ``a == b == 1``
+    (or ``shape=spectre``) gives that system's tiling."""
+
+    def __init__(self, hat: Any, depth: int | None = None, seed: str | None = None,
+                 spec_source: Mapping[str, Any] | None = None, overlay: Any = None, curved: Any = None,
+                 a: float | None = None, b: float | None = None, shape: str | None = None) -> None:
+        self.hat = hat
+        self.a, self.b, self.shape = a, b, shape
+        system = hat if a is None or b is None else continuum.continuum_system(hat, a, b)
+        super().__init__(system, depth, seed, spec_source, overlay, curved)
+        if shape is not None:
+            self.name = shape
+        elif a is not None and b is not None:
+            self.name = continuum.tile_name(a, b)
+
+    def options_help(self) -> str:
+        names = ", ".join([*continuum.members(self.hat), str(self.hat.continuum.get("equilateral", ""))])
+        return "\n".join([
+            super().options_help(),
+            f"--set a=A --set b=B     Tile(a, b): edges along the lattice directions a, between them b (0..{continuum.MAX_EDGE:g};"
+            " expressions such as sqrt3; the hat is a=1, b=sqrt3)",
+            f"--set shape=NAME       a named member: {names}",
+        ])
+
+    def configure(self, **options: Any) -> KeypointTiling:
+        a, b, shape = options.pop("a", None), options.pop("b", None), options.pop("shape", None)
+        kept = self._options(options)
+        if options:
+            raise ParameterError(f"{self.name} does not take option(s) {', '.join(sorted(options))}; "
+                                 "valid: depth, seed, overlay, a, b, shape")
+        if shape is not None and (a is not None or b is not None):
+            raise ParameterError(f"give shape={shape} or a and b, not both")
+        if shape is not None:
+            return self._member(str(shape).strip(), kept)
+        if a is not None or b is not None:
+            if a is None or b is None:
+                raise ParameterError("Tile(a, b) needs both a and b (the hat is a=1, b=sqrt3)")
+            return self._member_ab(*continuum.check_edges(_edge_value(a, "a"), _edge_value(b, "b")), None, kept)
+        return HatTiling(self.hat, spec_source=self._spec_source, a=self.a, b=self.b, shape=self.shape, **kept)
+
+    def _member(self, name: str, kept: dict[str, Any]) -> KeypointTiling:
+        members = continuum.members(self.hat)
+        if name == self.hat.continuum.get("equilateral"):
+            return self._member_ab(1.0, 1.0, name, kept)
+        if name not in members:
+            valid = ", ".join([*members, str(self.hat.continuum.get("equilateral", ""))])
+            raise ParameterError(f"shape {name!r} is not a named member of the hat's continuum; valid: {valid}")
+        m = members[name]
+        return self._member_ab(m.a, m.b, name, kept)
+
+    def _member_ab(self, a: float, b: float, name: str | None, kept: dict[str, Any]) -> KeypointTiling:
+        """The tiling of Tile(a, b) (a checked pair), named ``name`` when it is a member."""
+        if math.isclose(a, b, rel_tol=1e-12):
+            equilateral = self.hat.continuum.get("equilateral")
+            if equilateral is None:
+                raise ParameterError("Tile(a, a) has no tilings here: the hat file names no equilateral system")
+            if not math.isclose(a, 1.0, rel_tol=1e-12):
+                raise ParameterError(f"Tile({a:g}, {b:g}) is the Spectre's polygon, offered as the {equilateral} "
+                                     f"tiling at edge length 1: give a=1 b=1 or shape={equilateral}")
+            return KeypointTiling(builtin_systems()[equilateral], spec_source={"system": equilateral}, **kept)
+        hat = continuum.members(self.hat).get("hat")
+        if hat is not None and math.isclose(a, hat.a, rel_tol=1e-12) and math.isclose(b, hat.b, rel_tol=1e-12):
+            # the hat itself: its own exact lattice generation
+            return HatTiling(self.hat, spec_source=self._spec_source, shape=None if name in (None, "hat") else name,
+                             **kept)
+        return HatTiling(self.hat, spec_source=self._spec_source, a=a, b=b, shape=name, **kept)
+
+    def spec(self) -> dict[str, Any]:
+        out = super().spec()
+        if self.shape is not None:
+            out["shape"] = self.shape
+        elif self.a is not None and self.b is not None:
+            out["a"], out["b"] = self.a, self.b
+        return out
+
+    def properties(self) -> dict[str, Any]:
+        props = system_properties(self.system)
+        if self.a is None or self.b is None:
+            return props
+        props.update({"tile": self.system.tile.name, "edge_a": self.a, "edge_b": self.b,
+                      "tile_area": round(abs(self.system.tile.area), 12)})
+        member = continuum.members(self.hat).get(self.shape or "")
+        if member is not None and member.aperiodic is not None:
+            props["aperiodic"] = member.aperiodic
+        elif self.a == 0 or self.b == 0:
+            props["aperiodic"] = False  # the ends of the continuum tile periodically too
+        return props
+
+    def describe(self) -> str:
+        text = super().describe()
+        if self.a is None or self.b is None:
+            return text
+        return (f"{self.system.tile.name}: the hat's edges along the lattice directions of length {self.a:.9g}, "
+                f"the others {self.b:.9g}; area {abs(self.system.tile.area):.9g}; the hat's tilings deformed edge "
+                "by edge\n" + text)
+
+
+def _edge_value(value: Any, name: str) -> float:
+    """An edge length from a number or a safe expression (``sqrt3``, ``1/2``)."""
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        return float(value)
+    try:
+        return evaluate(str(value))
+    except ParseError as exc:
+        raise ParameterError(f"Tile(a, b): {name}={value!r} is not a number or an expression ({exc})") from None
+
+
+def continuum_records(hat: Any) -> list[tuple[str, dict[str, Any], str, dict[str, Any], list[str]]]:
+    """(name, spec, title, properties, aliases) of the hat continuum's named members other
+    than the hat itself (its record is the system's), for the catalogue."""
+    out = []
+    for name, member in continuum.members(hat).items():
+        if name == "hat":
+            continue
+        t = HatTiling(hat).configure(shape=name)
+        out.append((name, t.spec(), member.title, t.properties(), list(member.aliases)))
+    return out
 
 
 #: Orientation classes a one-prototile system is coloured by (turns are binned when more).
@@ -831,7 +1121,8 @@ def tiling_from_spec(spec: Mapping[str, Any], systems: Mapping[str, Substitution
         raise ParseError("substitution spec needs 'system' (a built-in name) or 'system_data'")
     source = {k: spec[k] for k in ("system", "system_data", "source") if k in spec}
     tiling = make_tiling(system, spec_source=source)
-    options = {k: spec[k] for k in ("depth", "seed", "params", "edges", "r1", "theta1", "r2", "theta2") if k in spec}
+    options = {k: spec[k] for k in ("depth", "seed", "params", "edges", "r1", "theta1", "r2", "theta2", "a", "b",
+                                    "shape", "overlay", "curved") if k in spec}
     return tiling.configure(**options) if options else tiling
 
 
@@ -862,6 +1153,8 @@ def _edge_classes(system: SubstitutionSystem) -> Any:
 
 def make_tiling(system: Any, spec_source: Mapping[str, Any] | None = None) -> SubstitutionTiling:
     """The tiling class that fits the system (similarity rules or keypoint placement)."""
+    if isinstance(system, HatSystem):
+        return HatTiling(system, spec_source=spec_source)
     if getattr(system, "kind", "") == "keypoint":
         return KeypointTiling(system, spec_source=spec_source)
     return SubstitutionTiling(system, spec_source=spec_source)
