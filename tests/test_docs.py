@@ -10,7 +10,6 @@ import os
 import subprocess
 
 import pytest
-
 from docrunner import (
     DOCS,
     ROOT,
