@@ -568,6 +568,7 @@ SPEC = Field("table", fields={
     "params": Field("list", items=Field("number"), length=(0, 16)),
     "edges": Field("table", values=Field("str")),
     "colouring": Field("str"),
+    "split": Field("table", values=Field("any")),  # checked by split.checked_split
 })
 
 
