@@ -15,7 +15,7 @@ from tilekit.plugins.isohedral import escher_limits as lim
 
 
 @click.command(name="escherize")
-@click.argument("goal", metavar="GOAL.svg|GOAL.json")
+@click.argument("goals", nargs=-1, required=True, metavar="GOAL.svg|GOAL.json [GOAL_B]")
 @click.option("-o", "--output", "out", required=True, type=click.Path(file_okay=False),
               help="Directory for the specs, tile and tiling SVGs and ranking.json.")
 @click.option("--types", metavar="IH1,IH4,...", help="The types to try (default: all 81 unmarked types).")
@@ -28,25 +28,39 @@ from tilekit.plugins.isohedral import escher_limits as lim
               help="Starts of the parameter search per type.")
 @click.option("--edge-points", type=BoundedInt(1, lim.MAX_EDGE_POINTS), default=lim.DEFAULT_EDGE_POINTS,
               show_default=True, help="Interior control points of each fundamental edge shape.")
+@click.option("--path-points", type=BoundedInt(1, lim.MAX_PATH_POINTS), default=lim.DEFAULT_PATH_POINTS,
+              show_default=True, help="With two goals: interior points of the splitting path.")
 @click.option("--reflection/--no-reflection", default=True, show_default=True,
               help="Also match the mirror image of the goal (a type's tilings are closed under reflection).")
 @click.option("--workers", type=BoundedInt(1, lim.MAX_WORKERS), default=1, show_default=True,
               help="Processes fitting types in parallel.")
 @click.option("--seed", type=BoundedInt(0, 2**32 - 1), default=0, show_default=True,
               help="Seed of the random starts.")
-def escherize_command(goal: str, out: str, types: str | None, all_types: bool, top: int, samples: int, starts: int,
-                      edge_points: int, reflection: bool, workers: int, seed: int) -> None:
+def escherize_command(goals: tuple[str, ...], out: str, types: str | None, all_types: bool, top: int, samples: int,
+                      starts: int, edge_points: int, path_points: int, reflection: bool, workers: int,
+                      seed: int) -> None:
     """Find the isohedral tiles that best resemble GOAL (Kaplan and Salesin's Escherization).
 
     GOAL is an SVG file with one <path> (M/L/H/V/Z), <polygon> or <polyline>, or a JSON list
     of [x, y] points: a simple polygon. Every type's tiling vertex parameters and edge shapes
     are fitted; the best TOP are ranked by distance (0 = similar) and written to -o DIR.
 
+    With two goals (dihedral Escherization, Kaplan and Salesin 2004) each type's tile is split
+    in two by a path between two boundary points (its ends and --path-points interior points
+    are fitted too) and ranked by the larger of the two pieces' distances from their goals,
+    which are matched at their relative size (areas within 25x). A type's search is bounded
+    by --starts Nelder-Mead runs of at most 40 (n + 1) evaluations each (n: the type's
+    parameters, plus the two ends with two goals) and a 40-evaluation polish.
+
     \b
     Examples:
       tilekit escherize fish.svg --top 3 -o fish/
       tilekit escherize star.json --types IH1,IH4,IH28 --workers 2 -o star/
+      tilekit escherize bird.json fish.json --types IH1,IH2 -o pair/
     """
+    if len(goals) > 2:
+        raise TilekitError(f"escherize takes one goal (monohedral) or two (dihedral), got {len(goals)}: "
+                           + " ".join(goals[:4]))
     # measured start-up cost: the fit loads NumPy, shapely, scipy and the engine (~1 s), so
     # it is imported when the command runs, not when `tilekit --help` lists it
     try:
@@ -61,6 +75,10 @@ def escherize_command(goal: str, out: str, types: str | None, all_types: bool, t
     if types is not None and all_types:
         raise TilekitError("give --types or --all, not both")
     chosen = escher.parse_types(types) if types is not None else escher.unmarked_types()
+    if len(goals) == 2:
+        _dihedral(goals, out, chosen, top, samples, starts, edge_points, path_points, reflection, workers, seed)
+        return
+    goal = goals[0]
     target = escher.read_goal(goal)
     settings = escher.Settings(samples=samples, starts=starts, edge_points=edge_points,
                                reflection=reflection, seed=seed)
@@ -82,3 +100,31 @@ def escherize_command(goal: str, out: str, types: str | None, all_types: bool, t
     click.echo("in the web editor (tilekit serve, then http://127.0.0.1:8000 and the path; also in ranking.json):")
     for rank, r in enumerate(best, 1):
         click.echo(f"{rank:>4}  {r.editor()}")
+
+
+def _dihedral(goals: tuple[str, ...], out: str, chosen: list[int], top: int, samples: int, starts: int,
+              edge_points: int, path_points: int, reflection: bool, workers: int, seed: int) -> None:
+    """``tilekit escherize GOAL_A GOAL_B``: the split tiles whose pieces resemble the goals."""
+    # measured start-up cost: as the monohedral fit (NumPy, shapely, scipy, the engine, ~1 s)
+    from tilekit.plugins.isohedral import dihedral, escher
+
+    a = escher.read_goal(goals[0])
+    b = escher.read_goal(goals[1])
+    dihedral.check_goals(a, b)
+    settings = dihedral.DihedralSettings(samples=samples, starts=starts, edge_points=edge_points,
+                                         path_points=path_points, reflection=reflection, seed=seed)
+    results, failed = dihedral.escherize_dihedral(a, b, chosen, settings=settings, workers=workers)
+    if not results:
+        raise TilekitError(f"no type gave a valid split tiling for {goals[0]} and {goals[1]}: "
+                           + "; ".join(f"IH{ih}: {why}" for ih, why in failed[:3]))
+    best = results[:top]
+    written = dihedral.write_outputs(best, [a, b], out)
+    click.echo(f"{len(a)}-gon and {len(b)}-gon goals, {len(chosen)} types, {len(results)} fitted"
+               + (f", {len(failed)} without a valid tiling" if failed else ""))
+    click.echo("rank  type   distance   goal A    goal B  note")
+    for rank, r in enumerate(best, 1):
+        note = "" if r.shrink == 1.0 else f"shapes shrunk to {r.shrink:g} to tile (fit {r.fitted_distance:.4f})"
+        click.echo(f"{rank:>4}  {r.name:<5}  {r.distance:8.5f}  {r.distances[0]:8.5f}  {r.distances[1]:8.5f}  {note}".rstrip())
+    click.echo(f"wrote {len(written)} files to {out}")
+    first = f"{out.rstrip('/')}/01-{best[0].name}-split.isohedral.json"
+    click.echo(f"reopen: tilekit render --system {first} -o {best[0].name}-split.svg")

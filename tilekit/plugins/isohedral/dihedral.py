@@ -15,15 +15,18 @@ parameters and the two ends; end pairs are screened first at the default paramet
 
 from __future__ import annotations
 
+import json
 import math
 import time
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from tilekit.errors import GeometryError, ParameterError, ParseError
+from tilekit.files import check_output
 from tilekit.plugins.isohedral import escher
 from tilekit.plugins.isohedral.engine import IsohedralTiling
 from tilekit.plugins.isohedral.escher import (
@@ -532,3 +535,70 @@ def escherize_dihedral(goal_a: Any, goal_b: Any, types: Iterable[int] | None = N
     good = sorted((o for o in outs if isinstance(o, DihedralResult)), key=lambda r: (r.distance, r.ih))
     failed = [o for o in outs if not isinstance(o, DihedralResult)]
     return good, failed
+
+
+# ------------------------------------------------------------------------ output
+
+
+def pieces_svg(result: DihedralResult, goals: Sequence[np.ndarray], size: int = 400) -> str:
+    """SVG of the split tile (piece 0 and piece 1 filled) with each goal aligned onto its
+    piece (dashed)."""
+    tiling = result.tiling()
+    pieces = [np.asarray(p.outline, dtype=float) for p in tiling.prototiles]
+    aligned = [escher.align_onto(pc, g, mir) for pc, g, mir in zip(pieces, goals, result.mirrored)]
+    pts = np.vstack(pieces + aligned)
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    span = float(max(hi - lo)) * 1.08 or 1.0
+    mid = (lo + hi) / 2
+
+    def path(q: np.ndarray) -> str:
+        xy = (q - mid) / span * size + size / 2
+        xy[:, 1] = size - xy[:, 1]
+        return "M" + " L".join(f"{x:.2f},{y:.2f}" for x, y in xy) + " Z"
+
+    fills, strokes = ("#f4c27a", "#7fb0d6"), ("#c0392b", "#1f4e79")
+    body = "".join(f'<path d="{path(q)}" fill="{fills[i]}" stroke="#222" stroke-width="1.5"/>' for i, q in enumerate(pieces))
+    body += "".join(f'<path d="{path(q)}" fill="none" stroke="{strokes[i]}" stroke-width="1.5" stroke-dasharray="5,3"/>'
+                    for i, q in enumerate(aligned))
+    return (f'<svg xmlns="http://www.w3.org/2000/svg" width="{size}" height="{size}" viewBox="0 0 {size} {size}">'
+            f'<rect width="{size}" height="{size}" fill="white"/>{body}'
+            f'<text x="8" y="18" font-family="sans-serif" font-size="13">{result.name} split  d = {result.distance:.4f} '
+            f'(A {result.distances[0]:.4f}, B {result.distances[1]:.4f})</text></svg>')
+
+
+def spec_file(result: DihedralResult) -> dict[str, Any]:
+    """The JSON written next to the pictures: the family's export form plus the fit."""
+    return {"family": "isohedral", "name": f"{result.name} split", "spec": result.spec(),
+            "escherize": {k: v for k, v in result.to_json().items() if k != "spec"}}
+
+
+def write_outputs(results: Sequence[DihedralResult], goals: Sequence[np.ndarray], out_dir: str | Path) -> list[Path]:
+    """For each result ``NN-IHn-split.isohedral.json`` (the spec, reopened by ``tilekit render
+    --system``), ``NN-IHn-pieces.svg`` (the pieces, goals aligned) and ``NN-IHn-tiling.svg``;
+    and ``ranking.json``. Returns the files written."""
+    from tilekit.render import write_svg  # start-up cost: the renderer loads shapely (~0.1 s)
+
+    out = Path(out_dir)
+    names = [f"{rank:02d}-{r.name}{end}" for rank, r in enumerate(results, 1)
+             for end in ("-split.isohedral.json", "-pieces.svg", "-tiling.svg")]
+    for name in [*names, "ranking.json"]:
+        check_output(out / name)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise ParameterError(f"output directory {str(out)!r} cannot be made: {exc.strerror or exc}") from None
+    written = []
+    for rank, r in enumerate(results, 1):
+        stem = f"{rank:02d}-{r.name}"
+        p = out / f"{stem}-split.isohedral.json"
+        p.write_text(json.dumps(spec_file(r), indent=1) + "\n")
+        written.append(p)
+        p = out / f"{stem}-pieces.svg"
+        p.write_text(pieces_svg(r, goals))
+        written.append(p)
+        tiling = r.tiling()
+        written.append(write_svg(tiling.render_svg(tiling.patch(tiling.default_region())), out / f"{stem}-tiling.svg"))
+    p = out / "ranking.json"
+    p.write_text(json.dumps([dict(rank=i, **r.to_json()) for i, r in enumerate(results, 1)], indent=1) + "\n")
+    written.append(p)
+    return written

@@ -807,11 +807,17 @@ def aligned_goal(result: EscherResult, goal: np.ndarray, samples: int = DEFAULT_
     """The goal polygon moved by the similarity that best fits it onto the result's tile
     (mirrored first when the fit matched the mirror image), for drawing the two together:
     the metric's alignment, with the goal's starting offset refined continuously."""
+    return align_onto(np.asarray(result.tiling().prototile.outline, dtype=float), goal, result.mirrored, samples)
+
+
+def align_onto(outline: np.ndarray, goal: np.ndarray, mirrored: bool, samples: int = DEFAULT_SAMPLES) -> np.ndarray:
+    """The goal (mirrored first if ``mirrored``) moved by the similarity that best fits it onto
+    the closed ``outline`` ((k, 2)), the starting offset refined continuously."""
     from scipy.optimize import minimize_scalar  # start-up cost: scipy (~0.3 s), only here
 
-    tile = _complex(np.asarray(result.tiling().prototile.outline, dtype=float))
+    tile = _complex(np.asarray(outline, dtype=float))
     g = _complex(check_goal(goal))
-    src = np.conj(g)[::-1] if result.mirrored else g
+    src = np.conj(g)[::-1] if mirrored else g
     zs = resample(tile, samples)
     zc = zs - zs.mean()
     bank = GoalBank.build(np.column_stack([src.real, src.imag]), samples, reflection=False)
