@@ -93,6 +93,16 @@ def check_goals(goal_a: Any, goal_b: Any) -> tuple[np.ndarray, np.ndarray]:
     return a, b
 
 
+def split_distances(tiling: SplitTiling, goal_a: Any, goal_b: Any, samples: int = DEFAULT_SAMPLES,
+                    reflection: bool = True) -> tuple[float, float]:
+    """The Kaplan-Salesin distance of each piece of a split tiling from its goal (the search
+    minimises the larger)."""
+    a, b = check_goals(goal_a, goal_b)
+    pieces = [np.asarray(p.outline, dtype=float) for p in tiling.prototiles]
+    return (escher.shape_distance(pieces[0], a, samples, reflection),
+            escher.shape_distance(pieces[1], b, samples, reflection))
+
+
 @dataclass(frozen=True)
 class DihedralSettings:
     samples: int = DEFAULT_SAMPLES

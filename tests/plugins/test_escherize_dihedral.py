@@ -1,0 +1,265 @@
+"""Dihedral Escherization (Kaplan and Salesin 2004; Kaplan 2009, §7.3): split tilings (an
+isohedral tile cut in two by a path between two boundary points), recovery of a known split
+tile, the metric's invariances per piece, and the one-line errors."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+import shapely
+from click.testing import CliRunner
+from cliutil import assert_one_line_error
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from tilekit.cli import cli
+from tilekit.errors import GeometryError, ParameterError, ParseError
+from tilekit.plugins.isohedral import dihedral
+from tilekit.plugins.isohedral.engine import IsohedralTiling
+from tilekit.plugins.isohedral.shapes import EdgeShape
+from tilekit.plugins.isohedral.spec import tiling_from_spec
+from tilekit.plugins.isohedral.split import (
+    SplitTiling,
+    boundary_position,
+    outline_position,
+    piece_rows,
+)
+from tilekit.polygon import signed_area
+
+pytest.importorskip("scipy")
+
+#: A generic IH1 tile (three J shapes, four interior points each: inside the fitted tile space
+#: at the default --edge-points) split by a two-point path from 0.4 of the way along edge 0
+#: to 0.6 along edge 3 (inside the default --path-points 4's space).
+SPEC = {
+    "ih": 1,
+    "params": [0.12, 0.5, 0.15, 0.6],
+    "edges": {"a": "0.2,0.1:0.4,0.12:0.6,-0.1:0.8,-0.05", "b": "0.25,-0.1:0.5,-0.1:0.6,0.1:0.8,0.05",
+              "c": "0.2,0.1:0.4,0.1:0.6,0.1:0.8,0.05"},
+    "split": {"ends": [0.4, 3.6], "path": "0,0:0.3,0.15:0.7,-0.1:1,0"},
+}
+
+
+def known() -> SplitTiling:
+    t = tiling_from_spec(SPEC)
+    assert isinstance(t, SplitTiling)
+    return t
+
+
+def pieces(t: SplitTiling) -> list[np.ndarray]:
+    return [np.asarray(p.outline, dtype=float) for p in t.prototiles]
+
+
+def similar(pts: np.ndarray, angle: float, scale: float, shift: tuple[float, float], mirror: bool = False) -> np.ndarray:
+    c, s = math.cos(angle), math.sin(angle)
+    q = pts * [1, -1] if mirror else pts
+    return scale * q @ np.array([[c, s], [-s, c]]) + np.asarray(shift)
+
+
+# --------------------------------------------------------------------------- split tilings
+
+
+def test_piece_rows_partition_the_outline():
+    """Each outline vertex strictly between the ends is in exactly one piece, the ends in both,
+    the path's points in both (reversed in piece 0)."""
+    m, k = 30, 3
+    for u, v in [(2.0, 18.0), (2.5, 17.25), (27.5, 3.0), (0.0, 29.5)]:
+        p0, p1 = piece_rows(m, u, v, k)
+        inner0 = {int(r[0]) for r in p0[1:-k - 1]}
+        inner1 = {int(r[0]) for r in p1[1:-k - 1]}
+        assert not inner0 & inner1
+        on_end = {int(math.floor(w)) for w in (u, v) if w == math.floor(w)}
+        assert inner0 | inner1 | on_end == set(range(m))
+        assert [int(r[0]) for r in p0[-k:]] == [m + 2, m + 1, m] and [int(r[0]) for r in p1[-k:]] == [m, m + 1, m + 2]
+
+
+def test_boundary_positions_round_trip():
+    counts = np.array([5, 3, 7, 1])
+    for s in [0.0, 0.4, 1.0, 2.75, 3.5]:
+        assert boundary_position(counts, outline_position(counts, s)) == pytest.approx(s)
+
+
+def test_split_tiling_is_a_valid_dihedral_tiling_whose_pieces_make_the_tile():
+    t = known()
+    base = t.base
+    a0, a1 = (signed_area(q) for q in pieces(t))
+    assert a0 > 0 and a1 > 0
+    assert a0 + a1 == pytest.approx(signed_area(np.asarray(base.prototile.outline)), rel=1e-12)
+    union = shapely.union(*(shapely.Polygon(q) for q in pieces(t)))
+    assert union.symmetric_difference(shapely.Polygon(base.prototile.outline)).area < 1e-12
+    region = t.default_region()
+    patch = t.patch(region)
+    assert set(patch.prototile.tolist()) == {0, 1}
+    report = patch.validate(region)
+    assert report.ok, report.summary()
+    # every placed tile of the base tiling is there as its two pieces
+    assert len(patch) >= 2 * len(base.patch(region)) - 8
+
+
+def test_split_spec_round_trips_and_reopens_from_a_file(tmp_path):
+    t = known()
+    again = tiling_from_spec(t.spec())
+    assert again.spec() == t.spec()
+    for p, q in zip(pieces(t), pieces(again)):
+        assert np.array_equal(p, q)
+    f = tmp_path / "t.isohedral.json"
+    f.write_text(json.dumps({"family": "isohedral", "spec": t.spec()}))
+    out = tmp_path / "t.svg"
+    result = CliRunner().invoke(cli, ["--catalogue", f"sqlite:///{tmp_path / 'c.db'}", "render", "--system", str(f),
+                                      "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    assert out.read_text().count("<path") >= 2  # one path per colour: both pieces drawn
+
+
+@pytest.mark.parametrize(
+    ("split", "error", "fragment"),
+    [
+        ({"ends": [1.0, 1.0]}, ParameterError, "the same point"),
+        ({"ends": [0.5, 6.5]}, ParameterError, "must lie in [0, 6)"),
+        ({"ends": [0.5]}, ParseError, "ends"),
+        ({"path": "0,0:1,0"}, ParseError, "'ends' is missing"),
+        ({"ends": [0.5, 3.5], "path": "0,0:0.5,3:1,0"}, GeometryError, "split"),  # the path leaves the tile
+        ({"ends": [0.5, 3.5], "path": "0,0:0.6,0.2:0.6,-0.2:0.4,-0.2:0.4,0.2:1,0"}, GeometryError, "crosses itself"),
+        ("half", ParseError, "not an object"),
+    ],
+)
+def test_bad_splits_are_one_line_errors(tmp_path, split, error, fragment):
+    spec = {**SPEC, "split": split}
+    with pytest.raises(error) as info:
+        tiling_from_spec(spec)
+    assert fragment in str(info.value) and "\n" not in str(info.value)
+    f = tmp_path / "bad.isohedral.json"
+    f.write_text(json.dumps({"spec": spec}))
+    result = CliRunner().invoke(cli, ["--catalogue", f"sqlite:///{tmp_path / 'c.db'}", "render", "--system", str(f),
+                                      "-o", str(tmp_path / "x.svg")])
+    assert_one_line_error(result, fragment)
+
+
+# --------------------------------------------------------------------------- the metric
+
+
+@settings(max_examples=25, deadline=None)
+@given(
+    angles=st.tuples(st.floats(-math.pi, math.pi), st.floats(-math.pi, math.pi)),
+    log_scales=st.tuples(st.floats(-5, 5), st.floats(-5, 5)),
+    shifts=st.tuples(st.floats(-1e3, 1e3), st.floats(-1e3, 1e3)),
+    mirror=st.tuples(st.booleans(), st.booleans()),
+)
+def test_piece_distances_are_invariant_under_separate_similarities_of_the_goals(angles, log_scales, shifts, mirror):
+    """Each piece is compared with its own goal by its own best similarity: moving, turning,
+    scaling or mirroring either goal leaves both distances (here: of a different split of the
+    same tile, so they are not 0) unchanged."""
+    t = known()
+    other = SplitTiling(t.base, 1.5, 4.2, EdgeShape.parse("0.5,0.1"))
+    a, b = pieces(t)
+    base = dihedral.split_distances(other, a, b)
+    assert min(base) > 0.01
+    # scales within 5x of each other keep the goals' area ratio under the limit
+    ls = (log_scales[0], log_scales[0] + (log_scales[1] - log_scales[0]) / 7)
+    moved = [similar(g, angles[i], math.exp(ls[i]), (shifts[i], -shifts[1 - i]), mirror[i]) for i, g in enumerate((a, b))]
+    got = dihedral.split_distances(other, *moved)
+    assert got == pytest.approx(base, abs=2e-6)
+
+
+def test_each_piece_of_the_known_split_is_at_distance_zero_from_itself():
+    t = known()
+    assert max(dihedral.split_distances(t, *pieces(t))) < 1e-7
+
+
+# --------------------------------------------------------------------------- the search
+
+
+def test_a_known_split_tile_is_recovered_and_ranked_first():
+    """The two pieces of a known IH1 split tile, each moved by its own similarity (one of them
+    mirrored), are recovered at distance < 1e-6 by IH1 and ranked above IH41 (a quadrilateral
+    type, > 1e-3 away); the result tiles (Patch.validate) and is closer than the search's
+    starting tile (default parameters, straight edges, a straight chord)."""
+    a, b = pieces(known())
+    a = similar(a, 0.7, 3.0, (5.0, -2.0))
+    b = similar(b, -2.0, 2.5, (-1.0, 4.0), mirror=True)
+    results, failed = dihedral.escherize_dihedral(a, b, [41, 1])
+    assert not failed
+    assert [r.ih for r in results] == [1, 41]
+    best = results[0]
+    assert best.distance < 1e-6 and results[1].distance > 1e-3
+    tiling = best.tiling()
+    assert max(dihedral.split_distances(tiling, a, b)) == pytest.approx(best.distance, abs=1e-9)
+    region = tiling.default_region()
+    assert tiling.patch(region).validate(region).ok
+    start = SplitTiling(IsohedralTiling(1), 0.5, 3.5)
+    assert max(dihedral.split_distances(start, a, b)) > 0.05
+
+
+def test_command_writes_split_specs_that_reopen(tmp_path):
+    a, b = pieces(known())
+    fa, fb = tmp_path / "a.json", tmp_path / "b.json"
+    fa.write_text(json.dumps(a.tolist()))
+    fb.write_text(json.dumps(b.tolist()))
+    out = tmp_path / "out"
+    result = CliRunner().invoke(cli, ["escherize", str(fa), str(fb), "--types", "IH41", "--starts", "1",
+                                      "--samples", "64", "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    ranking = json.loads((out / "ranking.json").read_text())
+    assert [r["name"] for r in ranking] == ["IH41"]
+    spec = json.loads((out / "01-IH41-split.isohedral.json").read_text())
+    assert spec["spec"] == ranking[0]["spec"] and "split" in spec["spec"]
+    tiling = tiling_from_spec(spec["spec"])
+    d = dihedral.split_distances(tiling, a, b, samples=64)
+    assert max(d) == pytest.approx(ranking[0]["distance"], abs=1e-9)
+    assert list(d) == pytest.approx(ranking[0]["distances"], abs=1e-9)
+    assert (out / "01-IH41-pieces.svg").read_text().count("<path") == 4  # two pieces, two goals
+    svg = tmp_path / "r.svg"
+    reopened = CliRunner().invoke(cli, ["--catalogue", f"sqlite:///{tmp_path / 'c.db'}", "render", "--system",
+                                        str(out / "01-IH41-split.isohedral.json"), "-o", str(svg)])
+    assert reopened.exit_code == 0, reopened.output
+
+
+@pytest.mark.parametrize(
+    ("goal_b", "fragment"),
+    [
+        ([[0, 0], [1, 1], [1, 0], [0, 1]], "goal B: the polygon crosses itself"),
+        ([[0, 0], [1, 1]], "at least 3"),
+        ((np.array([[0, 0], [1, 0], [1, 1], [0, 1]]) * 0.01).tolist(), "give goals within 25x"),
+        ((np.array([[0, 0], [1, 0], [1, 1], [0, 1]]) * 100).tolist(), "goal B's area is"),
+    ],
+)
+def test_bad_goal_pairs_are_one_line_errors(tmp_path, goal_b, fragment):
+    a = [[0, 0], [2, 0], [2, 1], [0, 1]]
+    with pytest.raises(ParseError, match=None) as info:
+        dihedral.check_goals(a, goal_b)
+    assert fragment.replace("goal B: ", "") in str(info.value)
+    fa, fb = tmp_path / "a.json", tmp_path / "b.json"
+    fa.write_text(json.dumps(a))
+    fb.write_text(json.dumps(goal_b))
+    result = CliRunner().invoke(cli, ["escherize", str(fa), str(fb), "-o", str(tmp_path / "out")])
+    assert_one_line_error(result, fragment.replace("goal B: ", ""))
+    assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize(
+    ("extra", "fragment"),
+    [
+        (["c.json"], "one goal (monohedral) or two (dihedral), got 3"),
+        (["--path-points", "0"], "out of range 1..24"),
+        (["--path-points", "25"], "out of range 1..24"),
+    ],
+)
+def test_bad_dihedral_invocations_are_one_line_errors(tmp_path, extra, fragment):
+    sq = [[0, 0], [1, 0], [1, 1], [0, 1]]
+    for name in ("a.json", "b.json", "c.json"):
+        (tmp_path / name).write_text(json.dumps(sq))
+    args = [str(tmp_path / "a.json"), str(tmp_path / "b.json")]
+    args += [str(tmp_path / e) if e.endswith(".json") else e for e in extra]
+    result = CliRunner().invoke(cli, ["escherize", *args, "-o", str(tmp_path / "out")])
+    assert_one_line_error(result, fragment)
+
+
+def test_library_checks_its_settings():
+    a, b = pieces(known())
+    with pytest.raises(ParameterError, match="path points"):
+        dihedral.escherize_dihedral(a, b, [1], settings=dihedral.DihedralSettings(path_points=0))
+    with pytest.raises(ParameterError, match="marked"):
+        dihedral.escherize_dihedral(a, b, [19])
