@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -33,14 +34,8 @@ pytest.importorskip("scipy")
 
 #: A generic IH1 tile (three J shapes, four interior points each: inside the fitted tile space
 #: at the default --edge-points) split by a two-point path from 0.4 of the way along edge 0
-#: to 0.6 along edge 3 (inside the default --path-points 4's space).
-SPEC = {
-    "ih": 1,
-    "params": [0.12, 0.5, 0.15, 0.6],
-    "edges": {"a": "0.2,0.1:0.4,0.12:0.6,-0.1:0.8,-0.05", "b": "0.25,-0.1:0.5,-0.1:0.6,0.1:0.8,0.05",
-              "c": "0.2,0.1:0.4,0.1:0.6,0.1:0.8,0.05"},
-    "split": {"ends": [0.4, 3.6], "path": "0,0:0.3,0.15:0.7,-0.1:1,0"},
-}
+#: to 0.6 along edge 3 (inside the default --path-points 4's space); the benchmark uses it too.
+SPEC = json.loads((Path(__file__).resolve().parent.parent / "data" / "escher" / "ih1-split.json").read_text())
 
 
 def known() -> SplitTiling:
