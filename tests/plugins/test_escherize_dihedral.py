@@ -18,7 +18,7 @@ from hypothesis import strategies as st
 
 from tilekit.cli import cli
 from tilekit.errors import GeometryError, ParameterError, ParseError
-from tilekit.plugins.isohedral import dihedral
+from tilekit.plugins.isohedral import dihedral, heaven
 from tilekit.plugins.isohedral.engine import IsohedralTiling
 from tilekit.plugins.isohedral.shapes import EdgeShape
 from tilekit.plugins.isohedral.spec import tiling_from_spec
@@ -258,3 +258,60 @@ def test_library_checks_its_settings():
         dihedral.escherize_dihedral(a, b, [1], settings=dihedral.DihedralSettings(path_points=0))
     with pytest.raises(ParameterError, match="marked"):
         dihedral.escherize_dihedral(a, b, [19])
+
+
+# --------------------------------------------------------------------------- Heaven and Hell
+
+
+def test_two_colourings_exist_exactly_for_the_topologies_with_even_vertex_valences():
+    """A plane tiling's tiles can be coloured in two colours with every pair of edge-neighbours
+    different iff every tiling vertex has even valence (face 2-colourability of a plane map):
+    of the 81 unmarked types, the 43 of topologies 4^4 (30), 6^3 (8), 4.8^2 (4) and 4.6.12 (1)."""
+    from tilekit.plugins.isohedral.templates import get_template, topology_valences
+
+    even = [ih for ih in range(1, 94) if not get_template(ih).marked
+            and all(v % 2 == 0 for v in topology_valences(get_template(ih).topology))]
+    assert heaven.heaven_hell_types() == even
+    assert len(even) == 43
+
+
+def test_heaven_and_hell_from_a_goal_and_its_mirror_image(tmp_path):
+    """A chiral IH41 tile and its mirror image as the two goals: one IH41 tile matches both
+    (distance < 1e-6; a type's tilings are closed under reflection), and its tiling, coloured
+    by the found two-colouring, is valid with every pair of edge-neighbours in two colours."""
+    t = IsohedralTiling("IH41", None, {"a": EdgeShape.parse("0.3,0.15:0.6,-0.1")}, check=True)
+    a = np.asarray(t.prototile.outline)
+    b = similar(a, 1.0, 2.0, (3.0, 1.0), mirror=True)
+    results, failed = heaven.heaven_hell(a, b, [41, 44])
+    assert not failed
+    best = results[0]
+    assert best.ih == 41 and best.distance < 1e-6 and best.mirrored[0] != best.mirrored[1]
+    tiling = best.tiling()
+    region = tiling.default_region()
+    patch = tiling.patch(region)
+    assert patch.validate(region).ok
+    pairs = patch.adjacency().edge
+    assert len(pairs) and np.all(patch.colour[pairs[:, 0]] != patch.colour[pairs[:, 1]])
+    assert set(patch.colour.tolist()) == {0, 1}
+
+
+def test_heaven_and_hell_command(tmp_path):
+    t = IsohedralTiling("IH41", None, {"a": EdgeShape.parse("0.3,0.15:0.6,-0.1")}, check=True)
+    a = np.asarray(t.prototile.outline)
+    fa, fb = tmp_path / "a.json", tmp_path / "b.json"
+    fa.write_text(json.dumps(a.tolist()))
+    fb.write_text(json.dumps((a * [-1, 1]).tolist()))
+    out = tmp_path / "out"
+    result = CliRunner().invoke(cli, ["escherize", str(fa), str(fb), "--heaven-hell", "--types", "IH41",
+                                      "--starts", "1", "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    spec = json.loads((out / "01-IH41-hh.isohedral.json").read_text())
+    assert spec["spec"]["colouring"] == "(1)(2 1)(2 1)"  # the checkerboard
+    assert (out / "01-IH41-tile.svg").exists() and (out / "01-IH41-tiling.svg").exists()
+    reopened = CliRunner().invoke(cli, ["--catalogue", f"sqlite:///{tmp_path / 'c.db'}", "render", "--system",
+                                        str(out / "01-IH41-hh.isohedral.json"), "-o", str(tmp_path / "r.svg")])
+    assert reopened.exit_code == 0, reopened.output
+    bad = CliRunner().invoke(cli, ["escherize", str(fa), str(fb), "--heaven-hell", "--types", "IH1", "-o", str(out)])
+    assert_one_line_error(bad, "IH1 has no two-colouring")
+    one = CliRunner().invoke(cli, ["escherize", str(fa), "--heaven-hell", "-o", str(out)])
+    assert_one_line_error(one, "--heaven-hell needs two goals")

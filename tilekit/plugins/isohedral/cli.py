@@ -30,6 +30,9 @@ from tilekit.plugins.isohedral import escher_limits as lim
               show_default=True, help="Interior control points of each fundamental edge shape.")
 @click.option("--path-points", type=BoundedInt(1, lim.MAX_PATH_POINTS), default=lim.DEFAULT_PATH_POINTS,
               show_default=True, help="With two goals: interior points of the splitting path.")
+@click.option("--heaven-hell", is_flag=True,
+              help="With two goals: one tile resembling both, two-coloured so that neighbours differ "
+                   "(Dress's Heaven and Hell patterns; the types whose tilings allow it).")
 @click.option("--reflection/--no-reflection", default=True, show_default=True,
               help="Also match the mirror image of the goal (a type's tilings are closed under reflection).")
 @click.option("--workers", type=BoundedInt(1, lim.MAX_WORKERS), default=1, show_default=True,
@@ -37,8 +40,8 @@ from tilekit.plugins.isohedral import escher_limits as lim
 @click.option("--seed", type=BoundedInt(0, 2**32 - 1), default=0, show_default=True,
               help="Seed of the random starts.")
 def escherize_command(goals: tuple[str, ...], out: str, types: str | None, all_types: bool, top: int, samples: int,
-                      starts: int, edge_points: int, path_points: int, reflection: bool, workers: int,
-                      seed: int) -> None:
+                      starts: int, edge_points: int, path_points: int, heaven_hell: bool, reflection: bool,
+                      workers: int, seed: int) -> None:
     """Find the isohedral tiles that best resemble GOAL (Kaplan and Salesin's Escherization).
 
     GOAL is an SVG file with one <path> (M/L/H/V/Z), <polygon> or <polyline>, or a JSON list
@@ -58,6 +61,8 @@ def escherize_command(goals: tuple[str, ...], out: str, types: str | None, all_t
       tilekit escherize star.json --types IH1,IH4,IH28 --workers 2 -o star/
       tilekit escherize bird.json fish.json --types IH1,IH2 -o pair/
     """
+    if heaven_hell and len(goals) != 2:
+        raise TilekitError("--heaven-hell needs two goals (GOAL_A GOAL_B): the one tile is matched to both")
     if len(goals) > 2:
         raise TilekitError(f"escherize takes one goal (monohedral) or two (dihedral), got {len(goals)}: "
                            + " ".join(goals[:4]))
@@ -74,11 +79,13 @@ def escherize_command(goals: tuple[str, ...], out: str, types: str | None, all_t
 
     if types is not None and all_types:
         raise TilekitError("give --types or --all, not both")
-    chosen = escher.parse_types(types) if types is not None else escher.unmarked_types()
+    chosen = escher.parse_types(types) if types is not None else None
     if len(goals) == 2:
-        _dihedral(goals, out, chosen, top, samples, starts, edge_points, path_points, reflection, workers, seed)
+        _dihedral(goals, out, chosen, top, samples, starts, edge_points, path_points, heaven_hell, reflection,
+                  workers, seed)
         return
     goal = goals[0]
+    chosen = chosen or escher.unmarked_types()
     target = escher.read_goal(goal)
     settings = escher.Settings(samples=samples, starts=starts, edge_points=edge_points,
                                reflection=reflection, seed=seed)
@@ -102,20 +109,30 @@ def escherize_command(goals: tuple[str, ...], out: str, types: str | None, all_t
         click.echo(f"{rank:>4}  {r.editor()}")
 
 
-def _dihedral(goals: tuple[str, ...], out: str, chosen: list[int], top: int, samples: int, starts: int,
-              edge_points: int, path_points: int, reflection: bool, workers: int, seed: int) -> None:
-    """``tilekit escherize GOAL_A GOAL_B``: the split tiles whose pieces resemble the goals."""
+def _dihedral(goals: tuple[str, ...], out: str, chosen: list[int] | None, top: int, samples: int, starts: int,
+              edge_points: int, path_points: int, heaven_hell: bool, reflection: bool, workers: int, seed: int) -> None:
+    """``tilekit escherize GOAL_A GOAL_B``: the split tiles whose pieces resemble the goals
+    (with ``--heaven-hell``: the two-coloured tiles that resemble both)."""
     # measured start-up cost: as the monohedral fit (NumPy, shapely, scipy, the engine, ~1 s)
-    from tilekit.plugins.isohedral import dihedral, escher
+    from tilekit.plugins.isohedral import dihedral, escher, heaven
 
     a = escher.read_goal(goals[0])
     b = escher.read_goal(goals[1])
     dihedral.check_goals(a, b)
     settings = dihedral.DihedralSettings(samples=samples, starts=starts, edge_points=edge_points,
                                          path_points=path_points, reflection=reflection, seed=seed)
-    results, failed = dihedral.escherize_dihedral(a, b, chosen, settings=settings, workers=workers)
+    if heaven_hell:
+        if chosen is not None:
+            bad = [ih for ih in chosen if ih not in heaven.heaven_hell_types()]
+            if bad:
+                raise TilekitError(f"--heaven-hell: IH{bad[0]} has no two-colouring in which neighbouring tiles "
+                                   "differ; valid types: " + ",".join(f"IH{t}" for t in heaven.heaven_hell_types()))
+        results, failed = heaven.heaven_hell(a, b, chosen, settings=settings)
+    else:
+        results, failed = dihedral.escherize_dihedral(a, b, chosen, settings=settings, workers=workers)
+    chosen = chosen or (heaven.heaven_hell_types() if heaven_hell else escher.unmarked_types())
     if not results:
-        raise TilekitError(f"no type gave a valid split tiling for {goals[0]} and {goals[1]}: "
+        raise TilekitError(f"no type gave a valid tiling for {goals[0]} and {goals[1]}: "
                            + "; ".join(f"IH{ih}: {why}" for ih, why in failed[:3]))
     best = results[:top]
     written = dihedral.write_outputs(best, [a, b], out)
@@ -126,5 +143,6 @@ def _dihedral(goals: tuple[str, ...], out: str, chosen: list[int], top: int, sam
         note = "" if r.shrink == 1.0 else f"shapes shrunk to {r.shrink:g} to tile (fit {r.fitted_distance:.4f})"
         click.echo(f"{rank:>4}  {r.name:<5}  {r.distance:8.5f}  {r.distances[0]:8.5f}  {r.distances[1]:8.5f}  {note}".rstrip())
     click.echo(f"wrote {len(written)} files to {out}")
-    first = f"{out.rstrip('/')}/01-{best[0].name}-split.isohedral.json"
-    click.echo(f"reopen: tilekit render --system {first} -o {best[0].name}-split.svg")
+    kind = "hh" if heaven_hell else "split"
+    first = f"{out.rstrip('/')}/01-{best[0].name}-{kind}.isohedral.json"
+    click.echo(f"reopen: tilekit render --system {first} -o {best[0].name}-{kind}.svg")

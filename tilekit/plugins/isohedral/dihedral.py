@@ -206,43 +206,55 @@ def project_split(model: SplitModel, p: np.ndarray, u: float, v: float, banks: S
                   ridge: float = RIDGES[0], x: np.ndarray | None = None) -> tuple[float, list[float], np.ndarray]:
     """Alternate ``steps`` times: resample and align both pieces, then the joint projection
     of x (with one free translation per piece). Returns (max distance, both distances, x)."""
+    x = model.start(p, u, v) if x is None else x
+    return project_pieces(model, p, piece_rows(model.m, u, v, model.k), banks, steps, ridge, x, (u, v))
+
+
+def project_pieces(model: SplitModel, p: np.ndarray, rows: Sequence[np.ndarray], banks: Sequence[GoalBank],
+                   steps: int, ridge: float, x: np.ndarray, ends: tuple[float, float] | None = None
+                   ) -> tuple[float, list[float], np.ndarray]:
+    """The alternation of :func:`project_split` for any outlines given as rows over the point
+    table (each matched to its goal bank): the split's two pieces, or (Heaven and Hell) the
+    whole tile twice. With ``ends``, the path is pulled towards its chord."""
     f, g = model.table(p)
-    rows = piece_rows(model.m, u, v, model.k)
     fr = [apply_rows(r, f) for r in rows]
     gr = [apply_rows(r, g) for r in rows]
-    x = model.start(p, u, v) if x is None else x.copy()
+    x = x.copy()
     nx, nc, k = len(x), model.nc, model.k
-    # the pull of the path towards its chord: q - (C x + h), as rows R x - h
-    cm, ch = model.chord(f, g, u, v)
-    sel = np.zeros((k, nx), dtype=complex)
-    sel[:, nc : nc + k] = np.eye(k)
-    sel[:, nc + k :] = 1j * np.eye(k)
-    pull = sel - cm
-    pull_rows = np.vstack([pull.real, pull.imag])
-    pull_rhs = np.concatenate([ch.real, ch.imag])
+    pull_rows = pull_rhs = None
+    if ends is not None and k:
+        # the pull of the path towards its chord: q - (C x + h), as rows R x - h
+        cm, ch = model.chord(f, g, *ends)
+        sel = np.zeros((k, nx), dtype=complex)
+        sel[:, nc : nc + k] = np.eye(k)
+        sel[:, nc + k :] = 1j * np.eye(k)
+        pull = sel - cm
+        pull_rows = np.vstack([pull.real, pull.imag])
+        pull_rhs = np.concatenate([ch.real, ch.imag])
     verts = model.tile.vertices(p)
     scale2 = float(np.mean(np.abs(np.roll(verts, -1) - verts) ** 2))
     ds = [1.0, 1.0]
     for step in range(steps + 1):
-        systems = [_piece_system(fr[i], gr[i], x, banks[i]) for i in range(2)]
+        systems = [_piece_system(fr[i], gr[i], x, banks[i]) for i in range(len(rows))]
         ds = [s[0] for s in systems]
         if step == steps or any(s[1] is None for s in systems):
             break
         n2 = systems[0][1].shape[0]
-        big = np.zeros((2 * n2, nx + 4))
-        big[:n2, :nx], big[n2:, :nx] = systems[0][1], systems[1][1]
+        big = np.zeros((len(rows) * n2, nx + 2 * len(rows)))
         half = n2 // 2
-        for i in range(2):  # one translation (tx, ty) per piece, weighted as its rows
-            big[i * n2 : i * n2 + half, nx + 2 * i] = -systems[i][3]
-            big[i * n2 + half : (i + 1) * n2, nx + 2 * i + 1] = -systems[i][3]
-        rhs_vec = np.concatenate([systems[0][2], systems[1][2]])
+        for i, sysm in enumerate(systems):  # one translation (tx, ty) per piece, weighted as its rows
+            big[i * n2 : (i + 1) * n2, :nx] = sysm[1]
+            big[i * n2 : i * n2 + half, nx + 2 * i] = -sysm[3]
+            big[i * n2 + half : (i + 1) * n2, nx + 2 * i + 1] = -sysm[3]
+        rhs_vec = np.concatenate([sysm[2] for sysm in systems])
         lhs = big.T @ big
         rhs = big.T @ rhs_vec
         lhs[:nc, :nc] += ridge * np.eye(nc)
         rhs[:nc] += ridge * model.tile.c0
-        rq = ridge / scale2
-        lhs[:nx, :nx] += rq * (pull_rows.T @ pull_rows)
-        rhs[:nx] += rq * (pull_rows.T @ pull_rhs)
+        if pull_rows is not None:
+            rq = ridge / scale2
+            lhs[:nx, :nx] += rq * (pull_rows.T @ pull_rows)
+            rhs[:nx] += rq * (pull_rows.T @ pull_rhs)
         x = np.linalg.solve(lhs, rhs)[:nx]
     return max(ds), ds, x
 
@@ -553,10 +565,17 @@ def escherize_dihedral(goal_a: Any, goal_b: Any, types: Iterable[int] | None = N
 def pieces_svg(result: DihedralResult, goals: Sequence[np.ndarray], size: int = 400) -> str:
     """SVG of the split tile (piece 0 and piece 1 filled) with each goal aligned onto its
     piece (dashed)."""
-    tiling = result.tiling()
-    pieces = [np.asarray(p.outline, dtype=float) for p in tiling.prototiles]
-    aligned = [escher.align_onto(pc, g, mir) for pc, g, mir in zip(pieces, goals, result.mirrored)]
-    pts = np.vstack(pieces + aligned)
+    pieces = [np.asarray(p.outline, dtype=float) for p in result.tiling().prototiles]
+    title = (f"{result.name} split  d = {result.distance:.4f} (A {result.distances[0]:.4f}, "
+             f"B {result.distances[1]:.4f})")
+    return overlay_svg(title, pieces, [escher.align_onto(pc, g, mir) for pc, g, mir in zip(pieces, goals, result.mirrored)],
+                       size)
+
+
+def overlay_svg(title: str, shapes: Sequence[np.ndarray], goals: Sequence[np.ndarray], size: int = 400) -> str:
+    """SVG of filled shapes (first light, second dark) and aligned goals (dashed, red then
+    blue) in one frame, with a title."""
+    pts = np.vstack([*shapes, *goals])
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     span = float(max(hi - lo)) * 1.08 or 1.0
     mid = (lo + hi) / 2
@@ -567,30 +586,35 @@ def pieces_svg(result: DihedralResult, goals: Sequence[np.ndarray], size: int = 
         return "M" + " L".join(f"{x:.2f},{y:.2f}" for x, y in xy) + " Z"
 
     fills, strokes = ("#f4c27a", "#7fb0d6"), ("#c0392b", "#1f4e79")
-    body = "".join(f'<path d="{path(q)}" fill="{fills[i]}" stroke="#222" stroke-width="1.5"/>' for i, q in enumerate(pieces))
-    body += "".join(f'<path d="{path(q)}" fill="none" stroke="{strokes[i]}" stroke-width="1.5" stroke-dasharray="5,3"/>'
-                    for i, q in enumerate(aligned))
+    body = "".join(f'<path d="{path(q)}" fill="{fills[i % 2]}" fill-opacity="0.85" stroke="#222" stroke-width="1.5"/>'
+                   for i, q in enumerate(shapes))
+    body += "".join(f'<path d="{path(q)}" fill="none" stroke="{strokes[i % 2]}" stroke-width="1.5" '
+                    'stroke-dasharray="5,3"/>' for i, q in enumerate(goals))
     return (f'<svg xmlns="http://www.w3.org/2000/svg" width="{size}" height="{size}" viewBox="0 0 {size} {size}">'
             f'<rect width="{size}" height="{size}" fill="white"/>{body}'
-            f'<text x="8" y="18" font-family="sans-serif" font-size="13">{result.name} split  d = {result.distance:.4f} '
-            f'(A {result.distances[0]:.4f}, B {result.distances[1]:.4f})</text></svg>')
+            f'<text x="8" y="18" font-family="sans-serif" font-size="13">{title}</text></svg>')
 
 
-def spec_file(result: DihedralResult) -> dict[str, Any]:
+def spec_file(result: Any) -> dict[str, Any]:
     """The JSON written next to the pictures: the family's export form plus the fit."""
-    return {"family": "isohedral", "name": f"{result.name} split", "spec": result.spec(),
+    kind = "split" if isinstance(result, DihedralResult) else "heaven and hell"
+    return {"family": "isohedral", "name": f"{result.name} {kind}", "spec": result.spec(),
             "escherize": {k: v for k, v in result.to_json().items() if k != "spec"}}
 
 
-def write_outputs(results: Sequence[DihedralResult], goals: Sequence[np.ndarray], out_dir: str | Path) -> list[Path]:
+def write_outputs(results: Sequence[Any], goals: Sequence[np.ndarray], out_dir: str | Path) -> list[Path]:
     """For each result ``NN-IHn-split.isohedral.json`` (the spec, reopened by ``tilekit render
     --system``), ``NN-IHn-pieces.svg`` (the pieces, goals aligned) and ``NN-IHn-tiling.svg``;
-    and ``ranking.json``. Returns the files written."""
+    and ``ranking.json``. Heaven-and-Hell results (:mod:`.heaven`) are written the same way
+    as ``NN-IHn-hh.isohedral.json`` and ``NN-IHn-tile.svg`` (the tile with both goals).
+    Returns the files written."""
     from tilekit.render import write_svg  # start-up cost: the renderer loads shapely (~0.1 s)
 
     out = Path(out_dir)
+    split = all(isinstance(r, DihedralResult) for r in results)
+    spec_end, pic_end = ("-split.isohedral.json", "-pieces.svg") if split else ("-hh.isohedral.json", "-tile.svg")
     names = [f"{rank:02d}-{r.name}{end}" for rank, r in enumerate(results, 1)
-             for end in ("-split.isohedral.json", "-pieces.svg", "-tiling.svg")]
+             for end in (spec_end, pic_end, "-tiling.svg")]
     for name in [*names, "ranking.json"]:
         check_output(out / name)
     try:
@@ -600,11 +624,11 @@ def write_outputs(results: Sequence[DihedralResult], goals: Sequence[np.ndarray]
     written = []
     for rank, r in enumerate(results, 1):
         stem = f"{rank:02d}-{r.name}"
-        p = out / f"{stem}-split.isohedral.json"
+        p = out / f"{stem}{spec_end}"
         p.write_text(json.dumps(spec_file(r), indent=1) + "\n")
         written.append(p)
-        p = out / f"{stem}-pieces.svg"
-        p.write_text(pieces_svg(r, goals))
+        p = out / f"{stem}{pic_end}"
+        p.write_text(pieces_svg(r, goals) if split else r.tile_svg(goals))
         written.append(p)
         tiling = r.tiling()
         written.append(write_svg(tiling.render_svg(tiling.patch(tiling.default_region())), out / f"{stem}-tiling.svg"))
