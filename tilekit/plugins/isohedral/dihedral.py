@@ -15,7 +15,6 @@ parameters and the two ends; end pairs are screened first at the default paramet
 
 from __future__ import annotations
 
-import json
 import math
 import time
 from collections.abc import Callable, Iterable, Sequence
@@ -26,7 +25,6 @@ from typing import Any
 import numpy as np
 
 from tilekit.errors import GeometryError, ParameterError, ParseError
-from tilekit.files import check_output
 from tilekit.plugins.isohedral import escher
 from tilekit.plugins.isohedral.engine import IsohedralTiling
 from tilekit.plugins.isohedral.escher import (
@@ -40,19 +38,14 @@ from tilekit.plugins.isohedral.escher import (
     GoalBank,
     TypeModel,
     check_goal,
-    check_samples,
     resample,
     type_model,
 )
 from tilekit.plugins.isohedral.escher_limits import (
-    DEFAULT_EDGE_POINTS,
     DEFAULT_PATH_POINTS,
     DEFAULT_SAMPLES,
-    DEFAULT_STARTS,
-    MAX_EDGE_POINTS,
     MAX_GOAL_AREA_RATIO,
     MAX_PATH_POINTS,
-    MAX_STARTS,
     MAX_WORKERS,
 )
 from tilekit.plugins.isohedral.shapes import EdgeShape
@@ -104,20 +97,13 @@ def split_distances(tiling: SplitTiling, goal_a: Any, goal_b: Any, samples: int 
 
 
 @dataclass(frozen=True)
-class DihedralSettings:
-    samples: int = DEFAULT_SAMPLES
-    starts: int = DEFAULT_STARTS
-    edge_points: int = DEFAULT_EDGE_POINTS
+class DihedralSettings(escher.Settings):
+    """The monohedral search's settings and the splitting path's interior points."""
+
     path_points: int = DEFAULT_PATH_POINTS
-    reflection: bool = True
-    seed: int = 0
 
     def check(self) -> None:
-        check_samples(self.samples)
-        if not (isinstance(self.starts, int) and 1 <= self.starts <= MAX_STARTS):
-            raise ParameterError(f"starts {self.starts!r} must be an integer from 1 to {MAX_STARTS}")
-        if not (isinstance(self.edge_points, int) and 1 <= self.edge_points <= MAX_EDGE_POINTS):
-            raise ParameterError(f"edge points {self.edge_points!r} must be an integer from 1 to {MAX_EDGE_POINTS}")
+        super().check()
         if not (isinstance(self.path_points, int) and 1 <= self.path_points <= MAX_PATH_POINTS):
             raise ParameterError(f"path points {self.path_points!r} must be an integer from 1 to {MAX_PATH_POINTS}")
 
@@ -263,7 +249,7 @@ def project_pieces(model: SplitModel, p: np.ndarray, rows: Sequence[np.ndarray],
 
 
 @dataclass
-class DihedralResult:
+class DihedralResult(escher.TypeFit):
     """The best split tile of one type for a pair of goals."""
 
     ih: int
@@ -280,15 +266,9 @@ class DihedralResult:
     mirrored: tuple[bool, bool] = (False, False)
     note: str = ""
 
-    @property
-    def name(self) -> str:
-        return f"IH{self.ih}"
-
     def spec(self) -> dict[str, Any]:
         """The isohedral family's spec with its ``split`` table (``tiling_from_spec`` reads it)."""
-        out: dict[str, Any] = {"ih": self.ih, "params": list(self.params)}
-        if self.edges:
-            out["edges"] = dict(self.edges)
+        out = self.base_spec()
         out["split"] = {"ends": list(self.ends), "path": self.path}
         return out
 
@@ -327,18 +307,12 @@ def _bad_pieces(pieces: list[np.ndarray], outline: np.ndarray) -> int:
     return 0
 
 
+@escher.one_blas_thread
 def escherize_dihedral_type(goal_a: Any, goal_b: Any, ih: int,
                             settings: DihedralSettings = DihedralSettings()) -> DihedralResult:
     """The split tile of type ``ih`` whose pieces best resemble ``goal_a`` and ``goal_b``:
     end pairs screened, Nelder-Mead over (parameters, ends) with the projection inside, a
     joint least-squares polish, then the engine's checks (:class:`~.split.SplitTiling`)."""
-    from threadpoolctl import threadpool_limits  # start-up cost: loaded only for a search
-
-    with threadpool_limits(limits=1, user_api="blas"):  # tiny matrices: BLAS threads only cost
-        return _fit(goal_a, goal_b, ih, settings)
-
-
-def _fit(goal_a: Any, goal_b: Any, ih: int, settings: DihedralSettings) -> DihedralResult:
     from scipy.optimize import minimize  # start-up cost: scipy (~0.3 s), only for a search
 
     settings.check()
@@ -401,16 +375,7 @@ def _fit(goal_a: Any, goal_b: Any, ih: int, settings: DihedralSettings) -> Dihed
     if polished is not None:
         candidates.insert(0, polished[:4])
         evaluations += polished[4]
-    result = None
-    for cand in candidates:
-        try:
-            r = _valid_result(model, *cand, goals, settings)
-        except GeometryError:
-            continue
-        if result is None or r.distance < result.distance:
-            result = r
-    if result is None:
-        raise GeometryError(f"IH{ih}: no valid split tiling found near the fit")
+    result = escher.best_valid(candidates, lambda *c: _valid_result(model, *c, goals, settings), f"IH{ih} split")
     result.evaluations = evaluations
     result.seconds = time.perf_counter() - t0
     return result
@@ -539,21 +504,7 @@ def escherize_dihedral(goal_a: Any, goal_b: Any, types: Iterable[int] | None = N
             raise ParameterError(f"IH{ih} is a marked type; escherization takes the 81 unmarked types")
     if not (isinstance(workers, int) and 1 <= workers <= MAX_WORKERS):
         raise ParameterError(f"workers {workers!r} must be an integer from 1 to {MAX_WORKERS}")
-    jobs = [(a, b, ih, settings) for ih in todo]
-    outs: list[DihedralResult | tuple[int, str]] = []
-    if workers == 1 or len(jobs) == 1:
-        for job in jobs:
-            outs.append(_run_one(job))
-            if progress:
-                progress(outs[-1])
-    else:
-        from concurrent.futures import ProcessPoolExecutor
-
-        with ProcessPoolExecutor(max_workers=min(workers, len(jobs))) as pool:
-            for out in pool.map(_run_one, jobs, chunksize=1):
-                outs.append(out)
-                if progress:
-                    progress(out)
+    outs = escher.run_jobs(_run_one, [(a, b, ih, settings) for ih in todo], workers, progress)
     good = sorted((o for o in outs if isinstance(o, DihedralResult)), key=lambda r: (r.distance, r.ih))
     failed = [o for o in outs if not isinstance(o, DihedralResult)]
     return good, failed
@@ -608,31 +559,8 @@ def write_outputs(results: Sequence[Any], goals: Sequence[np.ndarray], out_dir: 
     and ``ranking.json``. Heaven-and-Hell results (:mod:`.heaven`) are written the same way
     as ``NN-IHn-hh.isohedral.json`` and ``NN-IHn-tile.svg`` (the tile with both goals).
     Returns the files written."""
-    from tilekit.render import write_svg  # start-up cost: the renderer loads shapely (~0.1 s)
-
-    out = Path(out_dir)
-    split = all(isinstance(r, DihedralResult) for r in results)
-    spec_end, pic_end = ("-split.isohedral.json", "-pieces.svg") if split else ("-hh.isohedral.json", "-tile.svg")
-    names = [f"{rank:02d}-{r.name}{end}" for rank, r in enumerate(results, 1)
-             for end in (spec_end, pic_end, "-tiling.svg")]
-    for name in [*names, "ranking.json"]:
-        check_output(out / name)
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise ParameterError(f"output directory {str(out)!r} cannot be made: {exc.strerror or exc}") from None
-    written = []
-    for rank, r in enumerate(results, 1):
-        stem = f"{rank:02d}-{r.name}"
-        p = out / f"{stem}{spec_end}"
-        p.write_text(json.dumps(spec_file(r), indent=1) + "\n")
-        written.append(p)
-        p = out / f"{stem}{pic_end}"
-        p.write_text(pieces_svg(r, goals) if split else r.tile_svg(goals))
-        written.append(p)
-        tiling = r.tiling()
-        written.append(write_svg(tiling.render_svg(tiling.patch(tiling.default_region())), out / f"{stem}-tiling.svg"))
-    p = out / "ranking.json"
-    p.write_text(json.dumps([dict(rank=i, **r.to_json()) for i, r in enumerate(results, 1)], indent=1) + "\n")
-    written.append(p)
-    return written
+    if all(isinstance(r, DihedralResult) for r in results):
+        return escher.write_ranked(results, out_dir, ("-split.isohedral.json", "-pieces.svg"), spec_file,
+                                   lambda r: pieces_svg(r, goals))
+    return escher.write_ranked(results, out_dir, ("-hh.isohedral.json", "-tile.svg"), spec_file,
+                               lambda r: r.tile_svg(goals))

@@ -81,7 +81,7 @@ def two_colouring(tiling: IsohedralTiling) -> Colouring | None:
 
 
 @dataclass
-class HeavenResult:
+class HeavenResult(escher.TypeFit):
     """The best two-coloured tile of one type for a pair of goals."""
 
     ih: int
@@ -95,14 +95,9 @@ class HeavenResult:
     shrink: float = 1.0
     mirrored: tuple[bool, bool] = (False, False)
 
-    @property
-    def name(self) -> str:
-        return f"IH{self.ih}"
-
     def spec(self) -> dict[str, Any]:
-        out: dict[str, Any] = {"ih": self.ih, "params": list(self.params)}
-        if self.edges:
-            out["edges"] = dict(self.edges)
+        """The isohedral spec of the tile with its two-colouring."""
+        out = self.base_spec()
         out["colouring"] = self.colouring
         return out
 
@@ -124,16 +119,10 @@ class HeavenResult:
                 "evaluations": self.evaluations, "seconds": self.seconds}
 
 
+@escher.one_blas_thread
 def heaven_hell_type(goal_a: Any, goal_b: Any, ih: int, settings: DihedralSettings = DEFAULT_SETTINGS) -> HeavenResult:
     """The tile of type ``ih`` nearest both goals (the larger distance), two-coloured so that
     neighbours differ; GeometryError when the type has no such colouring."""
-    from threadpoolctl import threadpool_limits  # start-up cost: loaded only for a search
-
-    with threadpool_limits(limits=1, user_api="blas"):  # tiny matrices: BLAS threads only cost
-        return _fit(goal_a, goal_b, ih, settings)
-
-
-def _fit(goal_a: Any, goal_b: Any, ih: int, settings: DihedralSettings) -> HeavenResult:
     # start-up cost: scipy (~0.3 s), only for a search
     from scipy.optimize import least_squares, minimize
 
@@ -210,16 +199,7 @@ def _fit(goal_a: Any, goal_b: Any, ih: int, settings: DihedralSettings) -> Heave
             evaluations += int(res.nfev)
     except ValueError:  # a degenerate outline at a trial point: keep the projection's answer
         pass
-    result = None
-    for p, cc in candidates:
-        try:
-            r = _valid(model, p, cc, goals, settings)
-        except GeometryError:
-            continue
-        if result is None or r.distance < result.distance:
-            result = r
-    if result is None:
-        raise GeometryError(f"IH{ih}: no valid tiling found near the fit")
+    result = escher.best_valid(candidates, lambda p, cc: _valid(model, p, cc, goals, settings), f"IH{ih}")
     result.evaluations = evaluations
     result.seconds = time.perf_counter() - t0
     return result
