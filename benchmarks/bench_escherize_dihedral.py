@@ -102,12 +102,16 @@ def timed(fn, *args):  # noqa: ANN001, ANN202 - a benchmark helper
     return out, time.process_time() - c0, time.perf_counter() - w0
 
 
-def main() -> None:
-    ap = argparse.ArgumentParser()
+def build_parser() -> argparse.ArgumentParser:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--types", default="IH1,IH41,IH84")
     ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--skip-peer", action="store_true")
-    args = ap.parse_args()
+    return ap
+
+
+def main() -> None:
+    args = build_parser().parse_args()
     types = escher.parse_types(args.types)
     settings = dihedral.DihedralSettings()
     known = tiling_from_spec(KNOWN)
