@@ -18,7 +18,7 @@ from hypothesis import strategies as st
 
 from tilekit.cli import cli
 from tilekit.errors import GeometryError, ParameterError, ParseError
-from tilekit.plugins.isohedral import dihedral, heaven
+from tilekit.plugins.isohedral import dihedral, escher, heaven
 from tilekit.plugins.isohedral.engine import IsohedralTiling
 from tilekit.plugins.isohedral.shapes import EdgeShape
 from tilekit.plugins.isohedral.spec import tiling_from_spec
@@ -315,3 +315,74 @@ def test_heaven_and_hell_command(tmp_path):
     assert_one_line_error(bad, "IH1 has no two-colouring")
     one = CliRunner().invoke(cli, ["escherize", str(fa), "--heaven-hell", "-o", str(out)])
     assert_one_line_error(one, "--heaven-hell needs two goals")
+
+
+# --------------------------------------------------------------------------- metamorphosis
+
+
+@pytest.mark.parametrize(
+    ("ih", "params", "edges"),
+    [
+        (1, [0.12, 0.5, 0.15, 0.6], {"a": "0.2,0.1:0.4,0.12:0.6,-0.1:0.8,-0.05", "c": "0.3,0.1:0.7,0.1"}),
+        (41, None, {"a": "0.3,0.15:0.6,-0.1"}),
+        (16, None, {"b": "0.25,0.12:0.5,0:0.75,-0.12"}),  # an S edge (centrally symmetric shapes)
+        (84, None, {}),  # no shapes: the strip is the tiling itself
+    ],
+)
+def test_metamorphosis_strip_is_a_tiling_from_the_start_tile_to_the_end_tile(ih, params, edges):
+    """Every edge is interpolated at its own midpoint, so neighbours agree: the strip has no
+    gap and no overlap (Patch.validate), its tiles left of the strip are the start tile and
+    right of it the end tile (distance 0 after a similarity, same area)."""
+    from tilekit.plugins.isohedral.metamorphosis import metamorphosis
+
+    end = IsohedralTiling(ih, params, {k: EdgeShape.parse(v) for k, v in edges.items()}, check=True)
+    start = IsohedralTiling(ih, list(end.params))
+    patch, box = metamorphosis(start, end, 8, 2)
+    region = shapely.box(*box)
+    report = patch.validate(region)
+    assert report.ok, report.summary()
+    seen = {0: 0, 1: 0}
+    corners = np.array(end.prototile.corners)  # the same outline indices at every t (equal point counts)
+    for proto, aspect in zip(patch.prototiles, patch.aspect):
+        q = np.asarray(proto.outline)
+        # a reflected aspect's outline was clockwise and is stored reversed
+        mirrored = np.linalg.det(end.unit_transform[aspect][:2, :2]) < 0
+        at = len(q) - 1 - corners if mirrored else corners
+        mids = (q[at] + np.roll(q[at], -1, axis=0)) / 2
+        # every edge's midpoint left of the strip (t = 0) or right of it (t = 1)
+        for side, keyframe, outside in ((0, start, mids[:, 0].max() <= 1e-9), (1, end, mids[:, 0].min() >= box[2] - 1e-9)):
+            if outside:
+                seen[side] += 1
+                assert signed_area(q) == pytest.approx(keyframe.prototile.area, rel=1e-9)
+                assert escher.shape_distance(q, np.asarray(keyframe.prototile.outline)) < 1e-6
+    assert seen[0] > 0 and seen[1] > 0
+
+
+def test_metamorphosis_refuses_keyframes_it_cannot_interpolate():
+    from tilekit.plugins.isohedral.metamorphosis import metamorphosis
+
+    a = IsohedralTiling(1)
+    with pytest.raises(ParameterError, match="two tilings of one type"):
+        metamorphosis(a, IsohedralTiling(2))
+    with pytest.raises(ParameterError, match="parameters .* differ"):
+        metamorphosis(a, IsohedralTiling(1, [0.12, 0.5, 0.15, 0.6]))
+    with pytest.raises(ParameterError, match="same number of points"):
+        metamorphosis(IsohedralTiling(1, None, {"a": EdgeShape.parse("0.5,0.1")}),
+                      IsohedralTiling(1, None, {"a": EdgeShape.parse("0.3,0.1:0.6,0.1")}))
+    with pytest.raises(ParameterError, match="2..40 columns"):
+        metamorphosis(a, a, 41)
+
+
+def test_metamorphosis_command(tmp_path):
+    end = IsohedralTiling(41, None, {"a": EdgeShape.parse("0.3,0.15:0.6,-0.1")}, check=True)
+    f = tmp_path / "end.isohedral.json"
+    f.write_text(json.dumps({"family": "isohedral", "spec": end.spec()}))
+    result = CliRunner().invoke(cli, ["metamorphosis", str(f), "--columns", "6", "-o", str(tmp_path / "m.svg")])
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "m.svg").read_text().startswith("<svg")
+    other = tmp_path / "other.isohedral.json"
+    other.write_text(json.dumps({"spec": {"ih": 1}}))
+    bad = CliRunner().invoke(cli, ["metamorphosis", str(f), "--start", str(other), "-o", str(tmp_path / "x.svg")])
+    assert_one_line_error(bad, "two tilings of one type")
+    big = CliRunner().invoke(cli, ["metamorphosis", str(f), "--columns", "99", "-o", str(tmp_path / "x.svg")])
+    assert_one_line_error(big, "out of range 2..40")

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import click
 
-from tilekit.cli_types import BoundedInt
+from tilekit.cli_types import OUTPUT, BoundedInt
 from tilekit.errors import TilekitError
 from tilekit.plugins.isohedral import escher_limits as lim
 
@@ -146,3 +146,43 @@ def _dihedral(goals: tuple[str, ...], out: str, chosen: list[int] | None, top: i
     kind = "hh" if heaven_hell else "split"
     first = f"{out.rstrip('/')}/01-{best[0].name}-{kind}.isohedral.json"
     click.echo(f"reopen: tilekit render --system {first} -o {best[0].name}-{kind}.svg")
+
+
+@click.command(name="metamorphosis")
+@click.argument("end", metavar="END.isohedral.json")
+@click.option("--start", metavar="START.isohedral.json",
+              help="The left keyframe (default: END's type and parameters with straight edges).")
+@click.option("--columns", type=BoundedInt(2, 40), default=12, show_default=True,
+              help="Strip width in tile-sized cells.")
+@click.option("--rows", type=BoundedInt(1, 20), default=3, show_default=True, help="Strip height in tile-sized cells.")
+@click.option("-o", "--output", "out", required=True, type=OUTPUT, help="The strip as .svg or .png.")
+def metamorphosis_command(end: str, start: str | None, columns: int, rows: int, out: str) -> None:
+    """Draw a strip whose tiles change from START's tile (left) to END's (right).
+
+    END and START are isohedral spec files (what `tilekit escherize` writes, or the editor's
+    export) of one type with the same parameters; edge shapes with the same numbers of points
+    are interpolated edge by edge across the strip (parquet deformations, exercise 5.13;
+    Escher's metamorphoses, §7.3). The strip is at most 40 x 20 tile-sized cells.
+
+    \b
+    Example:
+      tilekit metamorphosis fish/01-IH3.isohedral.json --columns 10 -o morph.svg
+    """
+    # measured start-up cost: the engine and shapely (~0.5 s), loaded when the command runs
+    import shapely
+
+    from tilekit.plugins.isohedral import _from_file
+    from tilekit.plugins.isohedral.engine import IsohedralTiling
+    from tilekit.plugins.isohedral.metamorphosis import metamorphosis
+    from tilekit.render import patch_to_svg, write_svg
+
+    last = _from_file(end)
+    if not isinstance(last, IsohedralTiling):
+        raise TilekitError(f"{end}: a metamorphosis takes an unmarked isohedral tiling without a split")
+    first = _from_file(start) if start else IsohedralTiling(last.template.ih, list(last.params))
+    if not isinstance(first, IsohedralTiling):
+        raise TilekitError(f"{start}: a metamorphosis takes an unmarked isohedral tiling without a split")
+    patch, box = metamorphosis(first, last, columns, rows)
+    strip = patch.clip(shapely.box(*box))
+    path = write_svg(patch_to_svg(strip), out)
+    click.echo(f"wrote {path} ({len(strip)} tiles, {last.name}, {columns} x {rows})")
