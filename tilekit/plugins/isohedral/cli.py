@@ -53,7 +53,9 @@ def escherize_command(goals: tuple[str, ...], out: str, types: str | None, all_t
     are fitted too) and ranked by the larger of the two pieces' distances from their goals,
     which are matched at their relative size (areas within 25x). A type's search is bounded
     by --starts Nelder-Mead runs of at most 40 (n + 1) evaluations each (n: the type's
-    parameters, plus the two ends with two goals) and a 40-evaluation polish.
+    parameters, plus the two ends with two goals) and a 40-evaluation polish;
+    with two goals every ordered pair of tile corners and edge midpoints (at most
+    132) is screened first.
 
     \b
     Examples:
@@ -127,7 +129,7 @@ def _dihedral(goals: tuple[str, ...], out: str, chosen: list[int] | None, top: i
             if bad:
                 raise TilekitError(f"--heaven-hell: IH{bad[0]} has no two-colouring in which neighbouring tiles "
                                    "differ; valid types: " + ",".join(f"IH{t}" for t in heaven.heaven_hell_types()))
-        results, failed = heaven.heaven_hell(a, b, chosen, settings=settings)
+        results, failed = heaven.heaven_hell(a, b, chosen, settings=settings, workers=workers)
     else:
         results, failed = dihedral.escherize_dihedral(a, b, chosen, settings=settings, workers=workers)
     chosen = chosen or (heaven.heaven_hell_types() if heaven_hell else escher.unmarked_types())
@@ -168,13 +170,12 @@ def metamorphosis_command(end: str, start: str | None, columns: int, rows: int, 
     Example:
       tilekit metamorphosis fish/01-IH3.isohedral.json --columns 10 -o morph.svg
     """
-    # measured start-up cost: the engine and shapely (~0.5 s), loaded when the command runs
-    import shapely
+    import shapely  # start-up cost: loaded when the command runs, not by `tilekit --help`
 
-    from tilekit.plugins.isohedral import _from_file
-    from tilekit.plugins.isohedral.engine import IsohedralTiling
-    from tilekit.plugins.isohedral.metamorphosis import metamorphosis
-    from tilekit.render import patch_to_svg, write_svg
+    from tilekit.plugins.isohedral import _from_file  # start-up cost: as every import below
+    from tilekit.plugins.isohedral.engine import IsohedralTiling  # start-up cost: the engine
+    from tilekit.plugins.isohedral.metamorphosis import metamorphosis  # start-up cost: the engine
+    from tilekit.render import patch_to_svg, write_svg  # start-up cost: the renderer (shapely)
 
     last = _from_file(end)
     if not isinstance(last, IsohedralTiling):

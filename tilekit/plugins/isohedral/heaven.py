@@ -45,6 +45,7 @@ from tilekit.plugins.isohedral.escher import (
     resample,
     type_model,
 )
+from tilekit.plugins.isohedral.escher_limits import MAX_WORKERS
 from tilekit.plugins.isohedral.spec import tiling_from_spec
 from tilekit.tiling import Patch
 
@@ -242,20 +243,27 @@ def heaven_hell_types() -> list[int]:
     return list(_types())
 
 
+def _run_one(args: tuple[np.ndarray, np.ndarray, int, DihedralSettings]) -> HeavenResult | tuple[int, str]:
+    a, b, ih, settings = args
+    try:
+        return heaven_hell_type(a, b, ih, settings)
+    except (ParameterError, GeometryError) as exc:
+        return ih, str(exc)
+
+
 def heaven_hell(goal_a: Any, goal_b: Any, types: Iterable[int] | None = None, *,
-                settings: DihedralSettings = DEFAULT_SETTINGS) -> tuple[list[HeavenResult], list[tuple[int, str]]]:
-    """Fit every type in ``types`` (default: :func:`heaven_hell_types`); results sorted by
-    distance and the types that gave none (with the reason)."""
+                settings: DihedralSettings = DEFAULT_SETTINGS, workers: int = 1
+                ) -> tuple[list[HeavenResult], list[tuple[int, str]]]:
+    """Fit every type in ``types`` (default: :func:`heaven_hell_types`), in ``workers``
+    processes; results sorted by distance and the types that gave none (with the reason)."""
     settings.check()
     a, b = check_goals(goal_a, goal_b)
     todo = list(types) if types is not None else heaven_hell_types()
-    good, failed = [], []
     for ih in todo:
         if escher.get_template(ih).marked:
             raise ParameterError(f"IH{ih} is a marked type; escherization takes the 81 unmarked types")
-        try:
-            good.append(heaven_hell_type(a, b, ih, settings))
-        except (ParameterError, GeometryError) as exc:
-            failed.append((ih, str(exc)))
-    good.sort(key=lambda r: (r.distance, r.ih))
-    return good, failed
+    if not (isinstance(workers, int) and 1 <= workers <= MAX_WORKERS):
+        raise ParameterError(f"workers {workers!r} must be an integer from 1 to {MAX_WORKERS}")
+    outs = escher.run_jobs(_run_one, [(a, b, ih, settings) for ih in todo], workers)
+    good = sorted((o for o in outs if isinstance(o, HeavenResult)), key=lambda r: (r.distance, r.ih))
+    return good, [o for o in outs if not isinstance(o, HeavenResult)]
