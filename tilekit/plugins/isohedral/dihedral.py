@@ -265,6 +265,7 @@ class DihedralResult(escher.TypeFit):
     fitted_distance: float = 0.0
     mirrored: tuple[bool, bool] = (False, False)
     note: str = ""
+    area_ratio: float = 1.0  # piece 0's area over piece 1's (the goals' is matched within AREA_SLACK)
 
     def spec(self) -> dict[str, Any]:
         """The isohedral family's spec with its ``split`` table (``tiling_from_spec`` reads it)."""
@@ -278,7 +279,8 @@ class DihedralResult(escher.TypeFit):
     def to_json(self) -> dict[str, Any]:
         return {"ih": self.ih, "name": self.name, "distance": self.distance, "distances": list(self.distances),
                 "fitted_distance": self.fitted_distance, "shrink": self.shrink, "mirrored": list(self.mirrored),
-                "spec": self.spec(), "evaluations": self.evaluations, "seconds": self.seconds, "note": self.note}
+                "area_ratio": self.area_ratio, "spec": self.spec(), "evaluations": self.evaluations,
+                "seconds": self.seconds, "note": self.note}
 
 
 def _wrap(model: SplitModel, u: float, v: float) -> tuple[float, float, float]:
@@ -289,12 +291,18 @@ def _wrap(model: SplitModel, u: float, v: float) -> tuple[float, float, float]:
     return u, v, max(0.0, MIN_END_GAP - gap)
 
 
-def _area_penalty(pieces: list[np.ndarray], log_goal_ratio: float) -> float:
+def _area_excess(pieces: Sequence[np.ndarray], log_goal_ratio: float) -> float:
+    """How far (in log ratio) the pieces' area ratio strays beyond AREA_SLACK from the goals'
+    (complex outlines; a piece without positive area: 10)."""
     a0 = 0.5 * float(np.sum((np.conj(pieces[0]) * np.roll(pieces[0], -1)).imag))
     a1 = 0.5 * float(np.sum((np.conj(pieces[1]) * np.roll(pieces[1], -1)).imag))
     if a0 <= 0 or a1 <= 0:
-        return 1.0
-    return AREA_PENALTY * max(0.0, abs(math.log(a0 / a1) - log_goal_ratio) - math.log(AREA_SLACK))
+        return 10.0
+    return max(0.0, abs(math.log(a0 / a1) - log_goal_ratio) - math.log(AREA_SLACK))
+
+
+def _area_penalty(pieces: list[np.ndarray], log_goal_ratio: float) -> float:
+    return AREA_PENALTY * _area_excess(pieces, log_goal_ratio)
 
 
 def _bad_pieces(pieces: list[np.ndarray], outline: np.ndarray) -> int:
@@ -375,7 +383,10 @@ def escherize_dihedral_type(goal_a: Any, goal_b: Any, ih: int,
     if polished is not None:
         candidates.insert(0, polished[:4])
         evaluations += polished[4]
-    result = escher.best_valid(candidates, lambda *c: _valid_result(model, *c, goals, settings), f"IH{ih} split")
+    # candidates scored as the search scores them: distance plus the area steering
+    result = escher.best_valid(candidates, lambda *c: _valid_result(model, *c, goals, settings), f"IH{ih} split",
+                               lambda r: r.distance + AREA_PENALTY * max(
+                                   0.0, abs(math.log(r.area_ratio) - log_ratio) - math.log(AREA_SLACK)))
     result.evaluations = evaluations
     result.seconds = time.perf_counter() - t0
     return result
@@ -401,11 +412,15 @@ def _polish(model: SplitModel, p: np.ndarray, x: np.ndarray, u: float, v: float,
         bases.append(float(bank.offsets[row]) + shift)
     ridge = math.sqrt(POLISH_RIDGE)
     c0 = model.tile.c0
+    log_ratio = math.log(signed_area(goals[0]) / signed_area(goals[1]))
 
     def resid(z: np.ndarray) -> np.ndarray:
         uu, vv, short = _wrap(model, z[npar + nx], z[npar + nx + 1])
         out = []
-        for i, piece in enumerate(model.pieces(z[:npar], z[npar : npar + nx], uu, vv)):
+        pieces = model.pieces(z[:npar], z[npar : npar + nx], uu, vv)
+        # the pieces' relative size, as in the search (a hinge: zero within AREA_SLACK)
+        out.append([AREA_PENALTY * _area_excess(pieces, log_ratio)])
+        for i, piece in enumerate(pieces):
             zc = resample(piece, n)
             zc = zc - zc.mean()
             w = resample(srcs[i], n, bases[i] + z[-2 + i])
@@ -426,7 +441,7 @@ def _polish(model: SplitModel, p: np.ndarray, x: np.ndarray, u: float, v: float,
     z = res.x
     if not np.all(np.isfinite(z)) or model.tile.polygon_ok(z[:npar]):
         return None
-    r = res.fun
+    r = res.fun[1:]
     d = max(math.sqrt(float(np.sum(r[: 2 * n] ** 2))), math.sqrt(float(np.sum(r[2 * n : 4 * n] ** 2))))
     if d >= d0:
         return None
@@ -473,9 +488,11 @@ def _valid_result(model: SplitModel, p: np.ndarray, x: np.ndarray, u: float, v: 
             escher._distance(piece, goal, settings.samples, settings.reflection, refine=True)[0]
             for piece, goal in zip(model.pieces(p, x, u, v), goals))
         edges = {lab: sh.to_text() for lab, sh in base.edge_shapes.items()}
+        areas = [p.area for p in tiling.prototiles]
         return DihedralResult(model.tile.ih, max(ds), (ds[0], ds[1]), [float(t) for t in p], edges, (s, t),
                               path.to_text(), shrink=alpha, fitted_distance=fitted, mirrored=(mirrored[0], mirrored[1]),
-                              note="" if alpha == 1.0 else f"shapes shrunk to {alpha:g}: {note}")
+                              note="" if alpha == 1.0 else f"shapes shrunk to {alpha:g}: {note}",
+                              area_ratio=areas[0] / areas[1])
     raise GeometryError(f"IH{model.tile.ih}: no valid split tiling found near the fit ({note})")
 
 

@@ -837,16 +837,19 @@ def one_blas_thread(fit: Callable[..., Any]) -> Callable[..., Any]:
     return run
 
 
-def best_valid(candidates: Iterable[tuple[Any, ...]], make: Callable[..., Any], name: str) -> Any:
-    """The result of smallest ``distance`` among ``make(*candidate)`` that the engine accepts
-    (``make`` raises GeometryError for a candidate with no valid tiling), or GeometryError."""
+def best_valid(candidates: Iterable[tuple[Any, ...]], make: Callable[..., Any], name: str,
+               score: Callable[[Any], float] | None = None) -> Any:
+    """The result of smallest ``score`` (default: its ``distance``) among ``make(*candidate)``
+    that the engine accepts (``make`` raises GeometryError for a candidate with no valid
+    tiling), or GeometryError."""
+    score = score or (lambda r: r.distance)
     result = None
     for cand in candidates:
         try:
             r = make(*cand)
         except GeometryError:
             continue
-        if result is None or r.distance < result.distance:
+        if result is None or score(r) < score(result):
             result = r
     if result is None:
         raise GeometryError(f"{name}: no valid tiling found near the fit")
