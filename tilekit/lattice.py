@@ -343,8 +343,7 @@ def boundary_cycles(grid: Grid, cells: np.ndarray) -> list[tuple[np.ndarray, np.
         nbs = ci + grid.neighbours[ti]
         for k in range(len(vs)):
             a, b = vs[k], vs[(k + 1) % len(vs)]
-            mid2 = a + b  # the neighbour across edge (a, b) is the one nearest its midpoint
-            j = int(np.argmin(((2 * nbs - mid2) ** 2).sum(axis=1)))
+            j = _across(grid, nbs, a, b)
             if tuple(nbs[j].tolist()) in keys:
                 continue
             out_edges.setdefault(tuple(a.tolist()), []).append(tuple(b.tolist()))
@@ -376,6 +375,14 @@ def boundary_cycles(grid: Grid, cells: np.ndarray) -> list[tuple[np.ndarray, np.
             cycles.append((np.array(verts, dtype=np.int64), np.array(letters, dtype=np.int64)))
     cycles.sort(key=lambda cyc: -_signed_area(grid.xy(cyc[0])))
     return cycles
+
+
+def _across(grid: Grid, nbs: np.ndarray, a: np.ndarray, b: np.ndarray) -> int:
+    """Index of the neighbour (centres ``nbs``) across the edge (a, b): the one nearest the
+    edge's midpoint in Cartesian distance (fine coordinates are skewed on the hexagonal and
+    triangular grids, where a fine-coordinate distance ties two neighbours)."""
+    d = grid.xy(2 * np.asarray(nbs) - (np.asarray(a) + np.asarray(b)))
+    return int(np.argmin((d ** 2).sum(axis=1)))
 
 
 def _signed_area(p: np.ndarray) -> float:
@@ -513,7 +520,7 @@ def _edge_tables(grid: Grid):
             for k in range(V):
                 a, b = grid.vertices[r, k], grid.vertices[r, (k + 1) % V]
                 nbs = grid.neighbours[r]
-                j = int(np.argmin(((2 * nbs - (a + b)) ** 2).sum(axis=1)))
+                j = _across(grid, nbs, a, b)
                 ea[r, k], eb[r, k], en[r, k] = a, b, nbs[j]
                 el[r, k] = int(np.nonzero((grid.edge_dirs == b - a).all(axis=1))[0][0])
         _EDGE_CACHE[grid.name] = (ea, eb, en, el)
