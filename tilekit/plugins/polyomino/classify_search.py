@@ -1,5 +1,6 @@
-"""The ``polyomino-classify`` search: :func:`classify.classify` over every free polyomino,
-chunked like the enumeration (Redelmeier prefixes), rows into the polyominoes table."""
+"""The ``polyomino-classify`` search: :func:`classify.classify` over every free polyform of one
+grid (``--grid square|hex|iamond``), chunked like the enumeration (Redelmeier prefixes), rows
+into the polyominoes table with their ``grid``."""
 
 from __future__ import annotations
 
@@ -7,7 +8,7 @@ import time
 from typing import Any
 
 from tilekit.errors import ParameterError
-from tilekit.lattice import SQUARE, encode, enumerate_free, holes, symmetry_from_mask
+from tilekit.lattice import enumerate_free, holes, symmetry_from_mask
 from tilekit.plugins import ChunkResult, Search, SearchParam
 from tilekit.plugins.polyomino.classify import (
     CLASSIFY_SOLVER,
@@ -18,7 +19,7 @@ from tilekit.plugins.polyomino.classify import (
 )
 from tilekit.plugins.polyomino.heesch import MAX_LEVEL_LIMIT
 from tilekit.plugins.polyomino.isohedral import analyse_many
-from tilekit.plugins.polyomino.model import make_row
+from tilekit.plugins.polyomino.model import GRID_NAMES, grid_of, make_row, row_code
 from tilekit.plugins.polyomino.search import prefix_chunks, prefix_depth
 from tilekit.sat import SAT_SOLVERS
 
@@ -36,6 +37,7 @@ def check_params(params: dict[str, Any]) -> None:
     if not 1 <= lo <= n:
         raise ParameterError(f"--min-cells must be between 1 and --max-cells ({n}), got {lo}")
     check_bounds(**_bounds(params))
+    grid_of(params.get("grid") or "square")
 
 
 def chunks(params: dict[str, Any]) -> list[dict[str, Any]]:
@@ -44,15 +46,17 @@ def chunks(params: dict[str, Any]) -> list[dict[str, Any]]:
     check_params(params)
     n = int(params["max_cells"])
     # deeper than the enumeration's: a classification chunk should be seconds of SAT work
-    return prefix_chunks(n, prefix_depth(n, int(params.get("prefix_depth") or 0), spare=4, most=8))
+    return prefix_chunks(n, prefix_depth(n, int(params.get("prefix_depth") or 0), spare=4, most=8),
+                         grid_of(params.get("grid") or "square"))
 
 
 def run_chunk(params: dict[str, Any], chunk: dict[str, Any]):
-    """Classify every free polyomino of the chunk; rows for the polyominoes table, counts."""
+    """Classify every free polyform of the chunk; rows for the polyominoes table, counts."""
+    grid = grid_of(params.get("grid") or "square")
     n = int(params["max_cells"])
     lo = int(params.get("min_cells") or 1)
     maxsize = int(chunk["below"]) - 1 if "below" in chunk else n
-    polys, hole_flags, masks, _ = enumerate_free(SQUARE, n, prefix=list(chunk.get("prefix") or []),
+    polys, hole_flags, masks, _ = enumerate_free(grid, n, prefix=list(chunk.get("prefix") or []),
                                                  root=int(chunk.get("root", 0)), maxsize=maxsize,
                                                  with_symmetry=True)
     rows: list[dict] = []
@@ -65,7 +69,7 @@ def run_chunk(params: dict[str, Any], chunk: dict[str, Any]):
     # the boundary-word test of the whole chunk in one compiled call (isohedral.analyse_many)
     t0 = time.monotonic()
     plain = [polys[i] for i in keep if not hole_flags[i]]
-    analysed = iter(analyse_many(SQUARE, plain))
+    analysed = iter(analyse_many(grid, plain))
     bulk = (time.monotonic() - t0) / max(1, len(keep))
     bounds = _bounds(params)
     for i in keep:
@@ -73,12 +77,12 @@ def run_chunk(params: dict[str, Any], chunk: dict[str, Any]):
         size = len(cells)
         t0 = time.monotonic() - bulk
         analysis = None if holey else next(analysed)
-        c = classify(SQUARE, cells, analysis, has_holes=bool(holey), **bounds,
+        c = classify(grid, cells, analysis, has_holes=bool(holey), **bounds,
                      time_limit=float(params.get("time_limit") or 0) or None,
                      solver=str(params.get("solver") or CLASSIFY_SOLVER))
-        hc = len(holes(SQUARE, cells)) if holey else 0
-        row = make_row(cells, bool(holey), hc, analysis, code=encode(SQUARE, cells, is_canonical=True),
-                       symmetry=symmetry_from_mask(SQUARE, mask))
+        hc = len(holes(grid, cells)) if holey else 0
+        row = make_row(cells, bool(holey), hc, analysis, code=row_code(grid, cells, is_canonical=True),
+                       symmetry=symmetry_from_mask(grid, mask), grid=grid)
         rows.append(row | c.columns())
         bump(f"free_{size}")
         bump(f"tiles_{size}" if c.tiles == "true" else f"nontilers_{size}" if c.tiles == "false" else f"undecided_{size}")
@@ -98,7 +102,8 @@ def run_chunk(params: dict[str, Any], chunk: dict[str, Any]):
 def summarize(params: dict[str, Any], results: list[dict[str, Any]]) -> dict[str, Any]:
     """The bounds of the run (the per-size tallies are the summed counts)."""
     b = _bounds(params)
-    return {"max_cells": int(params["max_cells"]), "max_level": b["max_level"], "torus_tiles": b["torus_tiles"]}
+    return {"max_cells": int(params["max_cells"]), "max_level": b["max_level"], "torus_tiles": b["torus_tiles"],
+            "grid": str(params.get("grid") or "square")}
 
 
 def _bounds(params: dict[str, Any]) -> dict[str, int]:
@@ -111,10 +116,12 @@ def _bounds(params: dict[str, Any]) -> dict[str, int]:
 def _search() -> Search:
     return Search(
         "polyomino-classify",
-        "classify every free polyomino: isohedral, anisohedral (least k found on tori), or a "
+        "classify every free polyform of a grid: isohedral, anisohedral (least k found on tori), or a "
         "non-tiler with its Heesch numbers (Kaplan 2022, by SAT)",
         "polyomino",
         [
+            SearchParam("grid", str, "square", "the cell grid: square (polyominoes), hex (polyhexes), iamond "
+                        "(polyiamonds)", choices=list(GRID_NAMES)),
             SearchParam("max_cells", int, 10, f"largest size (at most {MAX_CLASSIFY})", min=1, max=MAX_CLASSIFY),
             SearchParam("min_cells", int, 1, "smallest size classified (smaller ones are skipped)", min=1,
                         max=MAX_CLASSIFY),

@@ -58,13 +58,13 @@ def check_params(params: Mapping[str, Any]) -> None:
         )
 
 
-def prefix_chunks(n: int, depth: int) -> list[dict[str, Any]]:
+def prefix_chunks(n: int, depth: int, grid=SQUARE) -> list[dict[str, Any]]:
     """The top chunk (every node of size < depth) and one chunk per node of size ``depth``
     of Redelmeier's tree for sizes up to n (see the module docstring: a partition)."""
     out: list[dict[str, Any]] = []
     if depth > 1:
         out.append({"root": 0, "prefix": [], "below": depth})
-    for p in prefixes(SQUARE, n, depth, 0):
+    for p in prefixes(grid, n, depth, 0):
         out.append({"root": 0, "prefix": p})
     return out
 

@@ -1,6 +1,7 @@
 """The polyomino family's result table, on the plugin's own metadata (created by its Alembic branch).
 
-One row per free polyomino: the canonical code is the natural key; ``result_table()`` is the
+One row per free polyform (the ``grid`` column: square, hex, iamond, ...): the canonical code
+is the natural key (other grids' codes carry their grid as a prefix, ``hex:0,0;3,0``); ``result_table()`` is the
 ``tilekit.plugins.ResultTable`` the ``tilekit_result_tables`` hook returns.
 """
 
@@ -61,7 +62,12 @@ def row_title(row: Mapping[str, Any]) -> str:
         kind = row["verdict"]
     else:
         kind = "isohedral" if row.get("isohedral") else ("with holes" if row.get("holes") else "not isohedral")
-    return f"{row.get('name') or row['code']}: {row['cells']}-omino, {row.get('symmetry', '')}, {kind}"
+    cell = _CELL_NAMES.get(row.get("grid") or "square", "cell")
+    return f"{row.get('name') or row['code']}: {row['cells']}-{cell}, {row.get('symmetry', '')}, {kind}"
+
+
+#: A row's grid -> the name of its n-cell forms (kept here: titles are drawn without loading the lattice).
+_CELL_NAMES = {"square": "omino", "hex": "hex", "iamond": "iamond", "kite": "kite"}
 
 
 def result_table():
