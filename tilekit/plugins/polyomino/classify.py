@@ -64,7 +64,7 @@ class Classification:
 
     def columns(self) -> dict[str, Any]:
         """The classification columns of a polyominoes row."""
-        return {"tiles": self.tiles, "anisohedral_k": self.anisohedral_k, "heesch": self.heesch,
+        return {"tiles": self.tiles, "isohedral": self.isohedral, "anisohedral_k": self.anisohedral_k, "heesch": self.heesch,
                 "heesch_holes": self.heesch_holes,
                 "witness": None if self.witness is None else json.dumps(self.witness, separators=(",", ":")),
                 "verdict": self.verdict}
@@ -137,6 +137,18 @@ def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes:
                 if best is None or tt.k < best.k:
                     best = tt
             tried_m = bound
+            if best is not None and best.k == 1:
+                # one transitivity class: an isohedral tiling the boundary-word templates did not
+                # give (a grid without a complete boundary criterion, such as the kite grid)
+                witness = best.to_json()
+                a_, b_, d_ = best.lattice
+                witness["group"] = wallpaper_group(torus_tiling(grid, cells, witness)).iuc
+                return Classification("true", True, witness=witness,
+                                      verdict=f"tiles isohedrally: a torus tiling with one transitivity class "
+                                              f"({best.m} tiles per translational unit, period lattice ({a_},{b_}),"
+                                              f"(0,{d_}), symmetry group {witness['group']})",
+                                      evidence={"step": "torus", "m": best.m, "lattice": list(best.lattice),
+                                                "seconds": round(time.monotonic() - t0, 3)})
             if best is not None:
                 a_, b_, d_ = best.lattice
                 witness = best.to_json()

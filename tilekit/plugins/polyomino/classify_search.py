@@ -8,7 +8,7 @@ import time
 from typing import Any
 
 from tilekit.errors import ParameterError
-from tilekit.lattice import enumerate_free, holes, symmetry_from_mask
+from tilekit.lattice import GRIDS, encode, enumerate_free, holes, symmetry_from_mask
 from tilekit.plugins import ChunkResult, Search, SearchParam
 from tilekit.plugins.polyomino.classify import (
     CLASSIFY_SOLVER,
@@ -19,7 +19,7 @@ from tilekit.plugins.polyomino.classify import (
 )
 from tilekit.plugins.polyomino.heesch import MAX_LEVEL_LIMIT
 from tilekit.plugins.polyomino.isohedral import analyse_many
-from tilekit.plugins.polyomino.model import GRID_NAMES, grid_of, make_row, row_code
+from tilekit.plugins.polyomino.model import grid_of, make_row
 from tilekit.plugins.polyomino.search import prefix_chunks, prefix_depth
 from tilekit.sat import SAT_SOLVERS
 
@@ -81,7 +81,7 @@ def run_chunk(params: dict[str, Any], chunk: dict[str, Any]):
                      time_limit=float(params.get("time_limit") or 0) or None,
                      solver=str(params.get("solver") or CLASSIFY_SOLVER))
         hc = len(holes(grid, cells)) if holey else 0
-        row = make_row(cells, bool(holey), hc, analysis, code=row_code(grid, cells, is_canonical=True),
+        row = make_row(cells, bool(holey), hc, analysis, code=encode(grid, cells, is_canonical=True),
                        symmetry=symmetry_from_mask(grid, mask), grid=grid)
         rows.append(row | c.columns())
         bump(f"free_{size}")
@@ -121,7 +121,7 @@ def _search() -> Search:
         "polyomino",
         [
             SearchParam("grid", str, "square", "the cell grid: square (polyominoes), hex (polyhexes), iamond "
-                        "(polyiamonds)", choices=list(GRID_NAMES)),
+                        "(polyiamonds), kite (polykites), ...", choices=list(GRIDS)),
             SearchParam("max_cells", int, 10, f"largest size (at most {MAX_CLASSIFY})", min=1, max=MAX_CLASSIFY),
             SearchParam("min_cells", int, 1, "smallest size classified (smaller ones are skipped)", min=1,
                         max=MAX_CLASSIFY),

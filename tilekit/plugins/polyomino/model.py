@@ -3,8 +3,8 @@
 ``tilekit.polyomino("pentomino-F")`` (or a code such as ``".xx/xx./.x."``) returns a
 :class:`Polyomino`; ``.is_isohedral()`` runs the boundary-word test and ``.tilings()`` gives one
 :class:`PolyominoTiling` (a ``PeriodicTiling``) per Heesch type found. The same class holds a
-polyform of any grid of :mod:`tilekit.lattice`: a code ``hex:0,0;3,0`` (the grid's short name,
-a colon, then the fine cell centres) is a dihex, ``iamond:1,1;2,2`` a diamond.
+polyform of any grid of :mod:`tilekit.lattice`: a code ``hex:0,0;3,0`` (the grid's name, a
+colon, then the fine cell centres) is a dihex, ``iamond:1,1;2,2`` a diamond.
 """
 
 from __future__ import annotations
@@ -19,7 +19,6 @@ import shapely
 
 from tilekit.errors import GeometryError, NotFoundError, ParameterError, ParseError
 from tilekit.lattice import (
-    GRIDS,
     SQUARE,
     Grid,
     as_cells,
@@ -27,6 +26,7 @@ from tilekit.lattice import (
     canonical,
     decode,
     encode,
+    get_grid,
     holes,
     outline,
     symmetry_elements,
@@ -66,37 +66,10 @@ USUAL = {
 }
 
 
-#: Short names of the grids (a row's ``grid`` column, ``--grid``, a code's prefix) -> lattice
-#: grid names; a grid not listed is known by its lattice name.
-GRID_NAMES = {"square": "square", "hex": "hexagonal", "iamond": "triangular"}
-
-
-def short_name(grid: Grid) -> str:
-    """The grid's name in rows and codes: ``square``, ``hex``, ``iamond``, or its lattice name."""
-    for short, name in GRID_NAMES.items():
-        if name == grid.name:
-            return short
-    return grid.name
-
-
 def grid_of(name: str | Grid) -> Grid:
-    """A grid by its short or lattice name; an unknown one is a one-line NotFoundError listing
-    the grids."""
-    if isinstance(name, Grid):
-        return name
-    text = str(name).strip()
-    full = GRID_NAMES.get(text, text)
-    if full in GRIDS:
-        return GRIDS[full]
-    known = sorted({short_name(g) for g in GRIDS.values()})
-    raise NotFoundError("grid", text, known)
-
-
-def row_code(grid: Grid, cells: np.ndarray, *, is_canonical: bool = False) -> str:
-    """A polyform's code in the results table: the square grid's rows of x and ., other grids'
-    ``short:x,y;x,y...`` (the prefix keeps codes of different grids apart)."""
-    code = encode(grid, cells, is_canonical=is_canonical)
-    return code if grid.name == SQUARE.name else f"{short_name(grid)}:{code}"
+    """A grid by name (``square``, ``hex``, ``iamond``, ``kite``, ... or an alias); an unknown
+    one is a one-line NotFoundError listing the grids (:func:`tilekit.lattice.get_grid`)."""
+    return get_grid(name)
 
 
 def _name_index() -> dict[str, str]:
@@ -121,7 +94,7 @@ class Polyomino:
         self.grid = grid_of(grid)
         c = as_cells(self.grid, cells)
         self.cells = canonical(self.grid, c, "free")
-        self.code = row_code(self.grid, self.cells)
+        self.code = encode(self.grid, self.cells)
         self.name = name or (usual_name(self.code) if self.grid.name == SQUARE.name else None)
 
     @classmethod
@@ -134,7 +107,7 @@ class Polyomino:
         if sep and head.strip() and not set(head) <= set("x./"):
             grid = grid_of(head)
             if grid.name != SQUARE.name:
-                return cls(decode(grid, rest), grid=grid)
+                return cls(decode(grid, t), grid=grid)
             t = rest.strip()
         if t in USUAL:
             return cls(decode(SQUARE, USUAL[t]), name=t)
@@ -238,7 +211,7 @@ def make_row(cells: np.ndarray, has_holes: bool, hole_count: int, analysis: dict
     one). ``cell_list`` is (column, row) pairs on the square grid, fine centres elsewhere."""
 
     square = grid.name == SQUARE.name
-    code = code or row_code(grid, cells)
+    code = code or encode(grid, cells)
     if square:
         q = (cells - 1) // 2
         q = q - q.min(axis=0)
@@ -249,7 +222,7 @@ def make_row(cells: np.ndarray, has_holes: bool, hole_count: int, analysis: dict
     row = {
         "code": code,
         "name": name if name is not None else (usual_name(code) if square else None),
-        "grid": short_name(grid),
+        "grid": grid.name,
         "cells": int(len(cells)),
         "cell_list": json.dumps(q.tolist()),
         "holes": bool(has_holes),

@@ -52,7 +52,7 @@ def row_spec(row: Mapping[str, Any]) -> dict:
     """A result row -> the spec the polyomino family's ``from_spec`` reads (show / render):
     a stored classification witness (coronas, or an anisohedral tiling) comes along."""
     spec = {"code": row["code"], "name": row.get("name") or row["code"]}
-    if row.get("witness") and not row.get("isohedral"):
+    if row.get("witness"):  # a non-tiler's coronas, or a torus tiling (k classes; k = 1 off the boundary test)
         spec["witness"] = json.loads(row["witness"])
     return spec
 
