@@ -9,6 +9,7 @@ same for polyiamonds.
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 from tilekit.lattice import HEXAGONAL, SQUARE, TRIANGULAR, enumerate_free
@@ -17,6 +18,13 @@ from tilekit.plugins.polyomino.isohedral import _template_arrays, analyse, perio
 # n = 1.. ; the sequences' first terms
 A075214 = [1, 1, 3, 7, 22, 76, 290, 1018, 3715]  # isohedral polyhexes
 A075223 = [1, 1, 1, 3, 4, 12, 23, 66, 133, 316, 514, 1987, 2398]  # isohedral polyiamonds
+A070766 = [1, 1, 3, 7, 22, 77, 294, 1054, 3788]  # polyhexes that tile
+A075215 = [0, 0, 0, 0, 0, 1, 4, 36, 73]  # anisohedral polyhexes
+A070768 = [0, 0, 0, 0, 0, 4, 37, 381, 2717]  # hole-free polyhexes that do not tile
+A038144 = [0, 0, 0, 0, 0, 1, 2, 13, 67]  # polyhexes with holes
+A071332 = [1, 1, 1, 3, 4, 12, 23, 66, 139, 341, 567, 2034, 2495]  # polyiamonds that tile
+A075224 = [0, 0, 0, 0, 0, 0, 0, 0, 6, 25, 53, 47, 97]  # anisohedral polyiamonds
+A071334 = [0, 0, 0, 0, 0, 0, 1, 0, 20, 103, 594, 1192, 6290]  # hole-free polyiamonds that do not tile
 
 
 def _hole_free(grid, n):
@@ -55,7 +63,7 @@ def test_templates_follow_the_grid_turns():
     the third- and sixth-turn templates need 60/120-degree ones (absent from the square grid)."""
     usable = {g.name: {t[0] for t in _template_arrays(g)[5]} for g in (SQUARE, HEXAGONAL, TRIANGULAR)}
     assert "quarterturn" in usable["square"] and not usable["square"] & {"threefold", "sixfold-1", "sixfold-2"}
-    for name in ("hexagonal", "triangular"):
+    for name in ("hex", "iamond"):
         assert "quarterturn" not in usable[name]
         assert {"threefold", "sixfold-1", "sixfold-2"} <= usable[name]
 
@@ -84,4 +92,63 @@ def test_every_built_tiling_is_a_tiling(grid, n):
         for bt in a["tilings"][:1]:
             t = periodic_tiling(grid, p, bt)
             region = shapely.box(-6, -6, 6, 6)
-            t.patch(region).validate(region)
+            assert t.patch(region).validate(region)
+
+
+def _classified(grid, n, **bounds):
+    """Counts of the classification of every free n-form, each verdict checked independently:
+    a torus tiling drawn in the plane has no gap and no overlap (Patch.validate), and a
+    non-tiler's corona witness has no overlap."""
+    import shapely
+
+    from tilekit.plugins.polyomino.classify import classify, corona_patch, torus_tiling
+
+    polys, holes, _ = enumerate_free(grid, n, maxsize=n, with_holes=True)
+    counts = dict.fromkeys(("tiles", "isohedral", "anisohedral", "holefree_nontilers", "holey", "undecided"), 0)
+    for p, h in zip(polys, holes):
+        if len(p) != n:
+            continue
+        a = None if h else analyse(grid, p, construct=False)
+        c = classify(grid, p, a, has_holes=bool(h), **bounds)
+        if c.tiles == "true":
+            counts["tiles"] += 1
+            counts["isohedral" if c.isohedral else "anisohedral"] += 1
+            if c.witness is not None:  # a torus tiling: check it geometrically
+                t = torus_tiling(grid, p, c.witness)
+                x0, y0, x1, y1 = shapely.MultiPoint(np.vstack([t.v1, t.v2, -t.v1, -t.v2])).bounds
+                region = shapely.box(x0, y0, x1, y1)
+                assert t.patch(region).validate(region), p.tolist()
+        elif c.tiles == "false":
+            counts["holey" if h else "holefree_nontilers"] += 1
+            if not h:
+                assert c.witness["hc"] is None or corona_patch(grid, p, c.witness["hc"]).validate()
+        else:
+            counts["undecided"] += 1
+    return counts
+
+
+def _expected(n, tiles, iso, aniso, nontilers, holey):
+    return {"tiles": tiles[n - 1], "isohedral": iso[n - 1], "anisohedral": aniso[n - 1],
+            "holefree_nontilers": nontilers[n - 1], "holey": holey[n - 1], "undecided": 0}
+
+
+@pytest.mark.parametrize("n", [5, 6])
+def test_polyhexes_classified_as_myers(n):
+    """Tilers, isohedral, anisohedral, hole-free non-tilers and holey n-hexes equal A070766,
+    A075214, A075215, A070768 and A038144."""
+    assert _classified(HEXAGONAL, n) == _expected(n, A070766, A075214, A075215, A070768, A038144)
+
+
+@pytest.mark.parametrize("n", [7, 8])
+def test_polyiamonds_classified_as_myers(n):
+    """The V-heptiamond is the one hole-free non-tiler to n = 8 (A071334; Gardner)."""
+    holey = [0] * 13
+    assert _classified(TRIANGULAR, n) == _expected(n, A071332, A075223, A075224, A071334, holey)
+
+
+@pytest.mark.slow
+def test_polyiamonds_9_classified_as_myers():
+    """139 of the 160 9-iamonds tile, 6 only anisohedrally; 20 hole-free ones do not tile, and
+    one has a hole (A000577(9) = 160; A071332, A075224, A071334)."""
+    holey = [0] * 8 + [1]
+    assert _classified(TRIANGULAR, 9) == _expected(9, A071332, A075223, A075224, A071334, holey)
