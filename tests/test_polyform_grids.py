@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from tilekit.lattice import HEXAGONAL, SQUARE, TRIANGULAR, enumerate_free
+from tilekit.lattice import HEXAGONAL, SQUARE, TRIANGULAR, encode, enumerate_free
 from tilekit.plugins.polyomino.isohedral import _template_arrays, analyse, periodic_tiling
 
 # n = 1.. ; the sequences' first terms
@@ -152,3 +152,45 @@ def test_polyiamonds_9_classified_as_myers():
     one has a hole (A000577(9) = 160; A071332, A075224, A071334)."""
     holey = [0] * 8 + [1]
     assert _classified(TRIANGULAR, 9) == _expected(9, A071332, A075223, A075224, A071334, holey)
+
+
+#: The hat (Smith, Myers, Kaplan and Goodman-Strauss, "An aperiodic monotile", 2023) as eight
+#: cells of the kite grid: the cells whose union is the outline of tilekit's hat data
+#: (catalogue/substitution hat, [tile] outline) scaled onto the grid.
+HAT = "kite:1,1;-1,2;-5,4;1,4;-4,5;-1,5;-2,7;-1,8"
+
+
+def test_the_hat_is_eight_kites_of_the_grid():
+    from tilekit.lattice import KITE, outline, parse_polyform
+
+    cells = parse_polyform(KITE, HAT)
+    proto = outline(KITE, cells)
+    assert len(proto.outline) == 13  # the hat's 13 corners (its 14th vertex is on a straight side)
+    kite = KITE.cell_polygons(KITE.roots[:1])[0]
+    x, y = kite[:, 0], kite[:, 1]
+    kite_area = 0.5 * abs(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+    assert abs(abs(proto.area) - 8 * kite_area) < 1e-9
+    # it is one of the 873 free 8-kites (A057786), found by the enumeration from its cell types
+    found = {encode(KITE, p)
+             for r in range(len(KITE.roots)) for p in enumerate_free(KITE, 8, root=r, maxsize=8)[0] if len(p) == 8}
+    assert len(found) == 873 and HAT in found
+
+
+def test_the_hat_is_undecided_never_a_non_tiler():
+    """The hat tiles, only aperiodically: surrounded to the level limit, and no torus up to 12
+    tiles per translational unit has a cover, so the classification must stop at 'undecided'
+    with those bounds, never 'false' and never a periodic tiling. The corona witness is checked
+    for overlaps and has the hat at its centre."""
+    from tilekit.lattice import KITE, parse_polyform
+    from tilekit.plugins.polyomino.classify import classify, corona_patch
+
+    cells = parse_polyform(KITE, HAT)
+    a = analyse(KITE, cells, construct=False)
+    assert not a["isohedral"]
+    c = classify(KITE, cells, a, probe=2, max_level=3, torus_tiles=12, time_limit=300)
+    assert c.tiles == "undecided"
+    assert c.verdict.startswith("undecided up to 3 coronas and 12 tiles per translational unit")
+    hc = c.witness["hc"]
+    assert hc["k"] == 3 and not hc["holes"]
+    patch = corona_patch(KITE, cells, hc)
+    assert patch.validate()

@@ -7,6 +7,8 @@ from __future__ import annotations
 import time
 from typing import Any
 
+import numpy as np
+
 from tilekit.errors import ParameterError
 from tilekit.lattice import GRIDS, encode, enumerate_free, holes, symmetry_from_mask
 from tilekit.plugins import ChunkResult, Search, SearchParam
@@ -81,6 +83,9 @@ def run_chunk(params: dict[str, Any], chunk: dict[str, Any]):
                      time_limit=float(params.get("time_limit") or 0) or None,
                      solver=str(params.get("solver") or CLASSIFY_SOLVER))
         hc = len(holes(grid, cells)) if holey else 0
+        # the enumeration's cells are canonical but in search-tree order: other grids' codes list
+        # them in (y, x) order (as Polyomino.code does), so a code names one form
+        cells = cells[np.lexsort((cells[:, 0], cells[:, 1]))]
         row = make_row(cells, bool(holey), hc, analysis, code=encode(grid, cells, is_canonical=True),
                        symmetry=symmetry_from_mask(grid, mask), grid=grid)
         rows.append(row | c.columns())
