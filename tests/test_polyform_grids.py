@@ -194,3 +194,22 @@ def test_the_hat_is_undecided_never_a_non_tiler():
     assert hc["k"] == 3 and not hc["holes"]
     patch = corona_patch(KITE, cells, hc)
     assert patch.validate()
+
+
+def test_bad_grid_inputs_are_one_line_errors():
+    from tilekit.errors import GeometryError, NotFoundError, ParameterError
+    from tilekit.plugins.polyomino.classify_search import check_params
+    from tilekit.plugins.polyomino.model import Polyomino
+
+    with pytest.raises(NotFoundError, match="grids: square, hex, iamond, kite"):
+        check_params({"max_cells": 5, "grid": "pentagonal"})
+    # past the square grid's 14 cells in free forms: refused with the estimate, before any run
+    with pytest.raises(ParameterError, match=r"13 on the hex grid means about [\d,]+ free forms \(estimated\)"):
+        check_params({"max_cells": 13, "grid": "hex"})
+    with pytest.raises(ParameterError, match="beyond the classification's limit of 14 cells"):
+        check_params({"max_cells": 15, "grid": "square"})
+    check_params({"max_cells": 16, "grid": "iamond"})  # polyiamonds to 16: about 10^5 forms
+    with pytest.raises(GeometryError, match="disconnected"):
+        Polyomino.parse("hex:0,0;9,0")
+    with pytest.raises(GeometryError, match="not a cell"):
+        Polyomino.parse("iamond:1,1;3,3")

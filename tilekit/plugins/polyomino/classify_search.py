@@ -10,7 +10,16 @@ from typing import Any
 import numpy as np
 
 from tilekit.errors import ParameterError
-from tilekit.lattice import GRIDS, encode, enumerate_free, holes, symmetry_from_mask
+from tilekit.lattice import (
+    GRIDS,
+    SQUARE,
+    Grid,
+    count_fixed,
+    encode,
+    enumerate_free,
+    holes,
+    symmetry_from_mask,
+)
 from tilekit.plugins import ChunkResult, Search, SearchParam
 from tilekit.plugins.polyomino.classify import (
     CLASSIFY_SOLVER,
@@ -27,19 +36,53 @@ from tilekit.sat import SAT_SOLVERS
 
 #: The classification stores rows up to this size (the enumeration's own limit).
 MAX_CLASSIFY = 14
+#: Other grids' largest size (Kaplan's tables go to 24-iamonds); the estimate of the forms
+#: (:func:`check_size`) is what stops most grids well before it.
+MAX_CLASSIFY_OTHER = 24
+#: Sizes counted exactly by the estimate of a run's forms (beyond, the last ratio extrapolates).
+_COUNTED = 8
+
+
+def estimated_forms(grid: Grid, n: int) -> int:
+    """Free forms of sizes 1..n on ``grid``: counted to 8 cells (Redelmeier, under a second),
+    beyond that extrapolated with the growth of the last counted size (an underestimate: the
+    ratio still grows)."""
+    k = min(n, _COUNTED)
+    free = count_fixed(grid, k, free=True)["free"]
+    total = float(free[1:k + 1].sum())
+    last, growth = float(free[k]), float(free[k]) / max(1.0, float(free[k - 1])) if k > 1 else 1.0
+    for _ in range(k, n):
+        last *= growth
+        total += last
+    return int(total)
+
+
+def check_size(grid: Grid, n: int) -> None:
+    """Refuse a run that would take on more forms than the square grid's largest (MAX_CLASSIFY
+    cells), with the estimate, before the run is created."""
+    if grid.name == SQUARE.name:
+        return
+    mine, limit = estimated_forms(grid, n), estimated_forms(SQUARE, MAX_CLASSIFY)
+    if mine > limit:
+        raise ParameterError(f"--max-cells {n} on the {grid.name} grid means about {mine:,} free forms (estimated), "
+                             f"over the classification's limit of {limit:,} (the square grid's {MAX_CLASSIFY} cells); "
+                             f"ask for fewer cells")
 
 
 def check_params(params: dict[str, Any]) -> None:
     n = params.get("max_cells")
     if not isinstance(n, int) or n < 1:
         raise ParameterError(f"--max-cells must be a positive integer, got {n!r}")
-    if n > MAX_CLASSIFY:
-        raise ParameterError(f"--max-cells {n} is beyond the classification's limit of {MAX_CLASSIFY} cells")
+    grid = grid_of(params.get("grid") or "square")
+    most = MAX_CLASSIFY if grid.name == SQUARE.name else MAX_CLASSIFY_OTHER
+    if n > most:
+        raise ParameterError(f"--max-cells {n} is beyond the classification's limit of {most} cells"
+                             + ("" if grid.name == SQUARE.name else f" on the {grid.name} grid"))
     lo = int(params.get("min_cells") or 1)
     if not 1 <= lo <= n:
         raise ParameterError(f"--min-cells must be between 1 and --max-cells ({n}), got {lo}")
     check_bounds(**_bounds(params))
-    grid_of(params.get("grid") or "square")
+    check_size(grid, n)
 
 
 def chunks(params: dict[str, Any]) -> list[dict[str, Any]]:
@@ -127,9 +170,11 @@ def _search() -> Search:
         [
             SearchParam("grid", str, "square", "the cell grid: square (polyominoes), hex (polyhexes), iamond "
                         "(polyiamonds), kite (polykites), ...", choices=list(GRIDS)),
-            SearchParam("max_cells", int, 10, f"largest size (at most {MAX_CLASSIFY})", min=1, max=MAX_CLASSIFY),
+            SearchParam("max_cells", int, 10, f"largest size (at most {MAX_CLASSIFY} on the square grid, "
+                        f"{MAX_CLASSIFY_OTHER} on the others, and no more free forms than the square grid's "
+                        f"{MAX_CLASSIFY} cells: refused with the estimate)", min=1, max=MAX_CLASSIFY_OTHER),
             SearchParam("min_cells", int, 1, "smallest size classified (smaller ones are skipped)", min=1,
-                        max=MAX_CLASSIFY),
+                        max=MAX_CLASSIFY_OTHER),
             SearchParam("probe", int, 2, "coronas tried before the torus search", min=1, max=MAX_LEVEL_LIMIT),
             SearchParam("max_level", int, 5, "most coronas tried before 'undecided'", min=1, max=MAX_LEVEL_LIMIT),
             SearchParam("torus_tiles", int, DEFAULT_TORUS_TILES, "most tiles per translational unit tried on tori", min=2,
