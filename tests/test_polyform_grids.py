@@ -206,7 +206,7 @@ def test_bad_grid_inputs_are_one_line_errors():
     # past the square grid's 14 cells in free forms: refused with the estimate, before any run
     with pytest.raises(ParameterError, match=r"13 on the hex grid means about [\d,]+ free forms \(estimated\)"):
         check_params({"max_cells": 13, "grid": "hex"})
-    with pytest.raises(ParameterError, match="beyond the classification's limit of 14 cells"):
+    with pytest.raises(ParameterError, match="max_cells.*beyond the classification.s limit of 14 cells on the square grid"):
         check_params({"max_cells": 15, "grid": "square"})
     check_params({"max_cells": 16, "grid": "iamond"})  # polyiamonds to 16: about 10^5 forms
     with pytest.raises(GeometryError, match="disconnected"):

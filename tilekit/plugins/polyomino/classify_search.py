@@ -76,8 +76,8 @@ def check_params(params: dict[str, Any]) -> None:
     grid = grid_of(params.get("grid") or "square")
     most = MAX_CLASSIFY if grid.name == SQUARE.name else MAX_CLASSIFY_OTHER
     if n > most:
-        raise ParameterError(f"--max-cells {n} is beyond the classification's limit of {most} cells"
-                             + ("" if grid.name == SQUARE.name else f" on the {grid.name} grid"))
+        raise ParameterError(f"parameter 'max_cells' (--max-cells) {n} is beyond the classification's limit of "
+                             f"{most} cells on the {grid.name} grid")
     lo = int(params.get("min_cells") or 1)
     if not 1 <= lo <= n:
         raise ParameterError(f"--min-cells must be between 1 and --max-cells ({n}), got {lo}")
