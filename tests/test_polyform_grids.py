@@ -213,3 +213,24 @@ def test_bad_grid_inputs_are_one_line_errors():
         Polyomino.parse("hex:0,0;9,0")
     with pytest.raises(GeometryError, match="not a cell"):
         Polyomino.parse("iamond:1,1;3,3")
+
+
+@pytest.mark.parametrize("code", ["hex:0,0;3,0;6,0", "iamond:1,1;2,2;4,1", "kite:1,1;4,1;1,4"])
+def test_a_one_class_torus_tiling_is_isohedral(code):
+    """Without the boundary-word test (an empty analysis) the torus search alone must find
+    these isohedral tilers' one-class tilings and call them isohedral, not 'anisohedral with
+    1 class' (what the 9-iamonds got before): the exact one-class torus test."""
+    import shapely
+
+    from tilekit.lattice import get_grid, parse_polyform
+    from tilekit.plugins.polyomino.classify import classify, torus_tiling
+
+    grid = get_grid(code.split(":")[0])
+    cells = parse_polyform(grid, code)
+    c = classify(grid, cells, {}, probe=1, max_level=2)
+    assert c.tiles == "true" and c.isohedral and c.anisohedral_k is None
+    assert c.verdict.startswith("tiles isohedrally: a torus tiling with one transitivity class")
+    assert c.witness["k"] == 1
+    t = torus_tiling(grid, cells, c.witness)
+    region = shapely.box(-2, -2, 2, 2)
+    assert t.patch(region).validate(region)
