@@ -234,3 +234,45 @@ def test_a_one_class_torus_tiling_is_isohedral(code):
     t = torus_tiling(grid, cells, c.witness)
     region = shapely.box(-2, -2, 2, 2)
     assert t.patch(region).validate(region)
+
+
+def test_hex_rows_list_show_render_and_web(catalogue_cli, tmp_path):
+    """The classification search on the hex grid stores rows with grid=hex that `list`,
+    `show`, `render` and the web pages read as for polyominoes (A070768(6) = 4 hole-free
+    non-tilers to 6 cells, one with Heesch number 2; A075215(6) = 1 anisohedral)."""
+    import json
+    from urllib.parse import quote
+
+    from starlette.testclient import TestClient
+
+    from tilekit.web import create_app
+
+    run = catalogue_cli.run
+    res = run("search", "polyomino-classify", "--grid", "hex", "--max-cells", "6")
+    assert res.exit_code == 0, res.output
+
+    def count(*where):
+        return catalogue_cli.count("polyomino", "grid=hex", *where)
+
+    assert count() == 1 + 1 + 3 + 7 + 22 + 82  # A000228
+    assert count("tiles=false", "holes=false") == 4
+    assert count("tiles=true", "isohedral=false") == 1
+    assert count("heesch=2") == 1
+    assert catalogue_cli.count("polyomino", "grid=square") == 0
+    r = run("list", "--family", "polyomino", "--where", "grid=hex", "--where", "heesch=2", "--format", "json")
+    code = json.loads(r.output)[0]["code"]
+    assert code == "hex:0,0;3,0;6,0;-3,3;6,3;-6,6"
+    res = run("show", code)
+    assert res.exit_code == 0 and "6-hex" in res.output and "Heesch number 2" in res.output
+    for view, name in ((None, "h2.svg"), ("holes", "hh.png")):
+        out = tmp_path / name
+        res = run("render", code, *(("--set", f"view={view}") if view else ()), "-o", str(out))
+        assert res.exit_code == 0 and out.stat().st_size > 0, res.output
+    r = run("list", "--family", "polyomino", "--where", "grid=hex", "--where", "isohedral=false",
+            "--where", "tiles=true", "--format", "json")
+    aniso = json.loads(r.output)[0]["code"]
+    res = run("render", aniso, "-o", str(tmp_path / "aniso.svg"))
+    assert res.exit_code == 0, res.output
+    with TestClient(create_app(catalogue_cli.url)) as client:
+        for url in (f"/tiling/{quote(code, safe='')}", f"/thumb/{quote(aniso, safe='')}.svg"):
+            assert client.get(url).status_code == 200, url
