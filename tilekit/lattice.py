@@ -188,7 +188,7 @@ HEXAGONAL = Grid(
     edge_dirs=np.array([[-2, 1], [-1, -1], [1, -2], [2, -1], [1, 1], [-1, 2]]),
     group=_HX_G, group_names=_HX_N, to_xy=_UV / math.sqrt(1 / 3) * 1.0 / 1.0, cell_name="hex",
     shapes=("hexagon",), aliases=("hexagonal",), hole_min=3,
-    reference="polyhexes: OEIS A000228 (free), A001207 (fixed), A038147 (free, with holes)",
+    reference="polyhexes: OEIS A000228 (free), A001207 (fixed), A038144 (free, with holes)",
 )
 
 TRIANGULAR = Grid(
