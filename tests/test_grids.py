@@ -25,7 +25,7 @@ from tilekit.lattice import (
     count_fixed,
     decode,
     encode,
-    enumerate_free,
+    free_polyforms,
     get_grid,
     hole_count,
     holes,
@@ -142,18 +142,6 @@ def test_published_counts_slow():
             assert c["holey"][1:].tolist() == A038144[:n]
 
 
-def _all_roots(grid, n: int):
-    """enumerate_free from every root (cell type): each free form once, by the type of the
-    least cell of its canonical image."""
-    polys, flags, free = [], [], np.zeros(n + 1, np.int64)
-    for r in range(len(grid.roots)):
-        p, f, c = enumerate_free(grid, n, root=r, with_holes=True)
-        polys += p
-        flags += f.tolist()
-        free += c["free"]
-    return polys, flags, {"free": free}
-
-
 def _naive_free(grid, n: int) -> list[set[tuple]]:
     """An independent enumerator: grow every free form by one neighbour, keep the distinct
     canonical forms as sets (plain Python sets and the grid's neighbour tables, no Redelmeier)."""
@@ -184,11 +172,11 @@ def test_enumeration_equals_an_independent_enumerator(grid, n):
     """Redelmeier (compiled) and the naive growth give the same free forms on every grid, and
     the compiled hole flags agree with shapely's holes of the union of the cell polygons."""
     levels = _naive_free(grid, n)
-    polys, flags, counts = _all_roots(grid, n)
+    polys, flags, free = free_polyforms(grid, n, with_holes=True)
     for size in range(1, n + 1):
         got = {frozenset(map(tuple, p.tolist())) for p in polys if len(p) == size}
         assert got == levels[size - 1], size
-        assert counts["free"][size] == len(levels[size - 1])
+        assert free[size] == len(levels[size - 1])
     for p, h in zip(polys, flags):
         k = _shapely_holes(grid, p)
         assert k >= 0 and bool(k) == bool(h) and hole_count(grid, p) == len(holes(grid, p)) == k
@@ -196,7 +184,7 @@ def test_enumeration_equals_an_independent_enumerator(grid, n):
 
 @pytest.mark.parametrize("grid", ALL, ids=lambda g: g.name)
 def test_codes_round_trip_and_outlines_have_the_cells_area(grid):
-    polys, flags, _ = _all_roots(grid, 5)
+    polys, flags, _ = free_polyforms(grid, 5, with_holes=True)
     for p, h in zip(polys, flags):
         code = encode(grid, p)
         assert encode(grid, decode(grid, code)) == code
