@@ -21,6 +21,8 @@ from tilekit.lattice import (
     GRIDS,
     KITE,
     as_cells,
+    boundary_cycles,
+    boundary_word,
     canonical,
     count_fixed,
     decode,
@@ -210,3 +212,19 @@ def test_bad_codes_name_the_cell():
         decode(KITE, "kite:1;2")
     with pytest.raises(GeometryError, match="no cells"):
         decode(KITE, "kite:")
+
+
+@pytest.mark.parametrize("grid", ALL, ids=lambda g: g.name)
+def test_outer_boundary_of_forms_with_holes(grid):
+    """The compiled outer trace of a form with a hole equals boundary_cycles' outer cycle, and
+    the cycles enclose the cells' area (outer minus holes)."""
+    n = {"bevelhex": 6, "octasquare": 6}.get(grid.name, 8)
+    polys, flags, _ = free_polyforms(grid, n, with_holes=True)
+    for p in (p for p, h in zip(polys, flags) if h):
+        v, w = boundary_word(grid, p)
+        cycles = boundary_cycles(grid, p)
+        assert v.tolist() == cycles[0][0].tolist() and w.tolist() == cycles[0][1].tolist()
+        area = sum(Polygon(c).area for c in grid.cell_polygons(p))
+        signed = [Polygon(grid.vertex_xy(c[0])).area * (1 if k == 0 else -1) for k, c in enumerate(cycles)]
+        assert sum(signed) == pytest.approx(area, rel=1e-9)
+
