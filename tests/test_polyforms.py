@@ -147,3 +147,24 @@ def test_a_code_that_is_not_a_connected_set_names_the_cell():
         from_spec({"code": "kite:1,1;13,1"})
     with pytest.raises(GeometryError, match=r"cell \(1, 1\) is not a cell centre of the octasquare grid"):
         from_spec({"code": "octasquare:0,0;1,1"})
+
+
+A000577 = [1, 1, 1, 3, 4, 12, 24, 66]  # free polyiamonds
+
+
+def test_stored_run_on_both_databases(db_url):
+    """run_search on SQLite and PostgreSQL: polyiamond rows to n = 8 per size equal A000577,
+    and the isohedral flags this search leaves untested are stored as NULL."""
+    from tilekit.catalogue import open_catalogue
+    from tilekit.search import run_search
+
+    cat = open_catalogue(db_url)
+    run_id = run_search(cat, "polyforms", {"grid": "iamond", "max_cells": 8})
+    info = cat.run(run_id)
+    assert info.status == "done" and info.rows == sum(A000577)
+    with cat.engine.connect() as conn:
+        per_size = dict(conn.execute(sa.text(
+            "SELECT cells, count(*) FROM polyominoes WHERE grid = 'iamond' GROUP BY cells")).all())
+        nulls = conn.execute(sa.text("SELECT count(*) FROM polyominoes WHERE isohedral IS NULL")).scalar()
+    assert [per_size[k] for k in range(1, 9)] == A000577
+    assert nulls == sum(A000577)
