@@ -1,21 +1,30 @@
-"""Cell lattices (square, hexagonal, triangular) as a few integer tables, and polyforms on them.
+"""Cell grids as a few integer tables, and polyforms on them.
 
 A grid is data, in the manner of Kaplan's heesch-sat: every algorithm below (Redelmeier
 enumeration, canonical forms, symmetry groups, boundary words, holes, outlines) reads only
-these tables, so a new grid is one more table.
+these tables, so a new grid is one more table. Ten grids: square, hex, iamond (tabled by
+hand) and kite, octasquare, trihex, drafter, abolo, halfcairo, bevelhex (each one
+:func:`grid_from_cells` table: prototype cells, the point group and the period; the cell
+types, edge neighbours and edge directions are derived). Cell types may differ in shape and
+number of edges (``Grid.degree``).
 
-Coordinates are *fine* integer coordinates in which cell centres and cell vertices are both
-lattice points and the grid's point group acts by integer 2x2 matrices about the origin:
+Coordinates are *fine* integer coordinates in which cell reference points and cell vertices
+are both lattice points and the grid's point group acts by integer 2x2 matrices about the
+origin:
 
 - square: centres (2x+1, 2y+1), vertices (2x, 2y); Cartesian = fine / 2.
-- hexagonal and triangular: coordinates in the basis u = (1, 0), v = (1/2, sqrt(3)/2) scaled
+- hex and iamond: coordinates in the basis u = (1, 0), v = (1/2, sqrt(3)/2) scaled
   by 3, so hexagon centres are (3a, 3b) and triangle centroids (3a+1, 3b+1) (pointing up) or
   (3a+2, 3b+2) (pointing down).
+- the others: see each table's comment (60-degree basis for kite, trihex, drafter, bevelhex;
+  square basis for octasquare, abolo, halfcairo); ``Grid.vertex_xy`` gives exact Cartesian
+  vertices (regular octagons and dodecagons through a per-residue shift).
 
-The translations of a grid are ``period * Z^2``; a cell's *type* is its centre modulo the
-period (one type for squares and hexagons, two for triangles), and neighbour offsets and
-vertex offsets are tabled per type. Boundary words are written over the grid's edge
-directions (``edge_dirs``; counter-clockwise boundary, interior on the left).
+The translations of a grid are ``period * Z^2``; a cell's *type* is its reference point
+modulo the period, and neighbour offsets and vertex offsets are tabled per type. Boundary
+words are written over the grid's edge directions (``edge_dirs``; counter-clockwise
+boundary, interior on the left). Redelmeier's tree is rooted at one cell type
+(:func:`enumerate_free` ``root=``); :func:`free_polyforms` walks every type's.
 """
 
 from __future__ import annotations
@@ -188,7 +197,7 @@ HEXAGONAL = Grid(
     edge_dirs=np.array([[-2, 1], [-1, -1], [1, -2], [2, -1], [1, 1], [-1, 2]]),
     group=_HX_G, group_names=_HX_N, to_xy=_UV / math.sqrt(1 / 3) * 1.0 / 1.0, cell_name="hex",
     shapes=("hexagon",), aliases=("hexagonal",), hole_min=3,
-    reference="polyhexes: OEIS A000228 (free), A001207 (fixed), A038147 (free, with holes)",
+    reference="polyhexes: OEIS A000228 (free), A001207 (fixed), A038144 (free, with holes)",
 )
 
 TRIANGULAR = Grid(
@@ -1174,7 +1183,8 @@ def prefixes(grid: Grid, n: int, depth: int, root: int) -> list[list[int]]:
 
 def enumerate_free(grid: Grid, n: int, prefix=(), root: int = 0, maxsize: int | None = None,
                    with_holes: bool = False, with_symmetry: bool = False):
-    """The free polyforms (canonical representatives, as centres) in one subtree, with counts.
+    """The free polyforms (canonical representatives, as centres) in one subtree of the tree
+    rooted at cell type ``root``, with counts (all types: :func:`free_polyforms`).
 
     Returns (polyforms, counts), or with ``with_holes`` (polyforms, has-hole flags, counts),
     or with ``with_symmetry`` (polyforms, has-hole flags, symmetry bitmasks, counts). The
@@ -1197,6 +1207,27 @@ def enumerate_free(grid: Grid, n: int, prefix=(), root: int = 0, maxsize: int | 
     if with_holes:
         return polys, out[:, n].astype(bool), counts
     return polys, counts
+
+
+def free_polyforms(grid: Grid, n: int, *, with_holes: bool = False):
+    """Every free polyform of 1..n cells on ``grid``: :func:`enumerate_free` from each cell
+    type (a form comes from the type of the least cell of its canonical image, once).
+
+    Returns (polyforms, free counts (n + 1,)), or with ``with_holes`` (polyforms, has-hole
+    flags, free counts). On a grid with several cell types, ``enumerate_free(grid, n)``
+    alone walks only type 0's tree and misses the rest.
+    """
+    polys: list[np.ndarray] = []
+    flags: list[np.ndarray] = []
+    free = np.zeros(n + 1, np.int64)
+    for r in range(len(grid.roots)):
+        p, f, c = enumerate_free(grid, n, root=r, with_holes=True)
+        polys += p
+        flags.append(f)
+        free += c["free"]
+    if with_holes:
+        return polys, np.concatenate(flags), free
+    return polys, free
 
 
 def symmetry_from_mask(grid: Grid, mask: int) -> str:
