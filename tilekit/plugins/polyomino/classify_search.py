@@ -11,7 +11,6 @@ import numpy as np
 
 from tilekit.errors import ParameterError
 from tilekit.lattice import (
-    GRIDS,
     SQUARE,
     Grid,
     count_fixed,
@@ -22,10 +21,12 @@ from tilekit.lattice import (
 )
 from tilekit.plugins import ChunkResult, Search, SearchParam
 from tilekit.plugins.polyomino.classify import (
+    CLASSIFIED_GRIDS,
     CLASSIFY_SOLVER,
     DEFAULT_TORUS_TILES,
     MAX_TORUS_TILES,
     check_bounds,
+    check_grid,
     classify,
 )
 from tilekit.plugins.polyomino.heesch import MAX_LEVEL_LIMIT
@@ -74,6 +75,7 @@ def check_params(params: dict[str, Any]) -> None:
     if not isinstance(n, int) or n < 1:
         raise ParameterError(f"--max-cells must be a positive integer, got {n!r}")
     grid = grid_of(params.get("grid") or "square")
+    check_grid(grid)
     most = MAX_CLASSIFY if grid.name == SQUARE.name else MAX_CLASSIFY_OTHER
     if n > most:
         raise ParameterError(f"parameter 'max_cells' (--max-cells) {n} is beyond the classification's limit of "
@@ -169,7 +171,7 @@ def _search() -> Search:
         "polyomino",
         [
             SearchParam("grid", str, "square", "the cell grid: square (polyominoes), hex (polyhexes), iamond "
-                        "(polyiamonds), kite (polykites), ...", choices=list(GRIDS)),
+                        "(polyiamonds), kite (polykites)", choices=list(CLASSIFIED_GRIDS)),
             SearchParam("max_cells", int, 10, f"largest size (at most {MAX_CLASSIFY} on the square grid, "
                         f"{MAX_CLASSIFY_OTHER} on the others, and no more free forms than the square grid's "
                         f"{MAX_CLASSIFY} cells: refused with the estimate)", min=1, max=MAX_CLASSIFY_OTHER),
