@@ -66,11 +66,15 @@ def timed(fn, runs: int) -> tuple[list[float], object]:
     return times, out
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--runs", type=int, default=3)
-    ap.add_argument("--grids", default=",".join(GRIDS))
-    args = ap.parse_args()
+    ap.add_argument("--runs", type=int, default=3, help="timed runs per side (min and median)")
+    ap.add_argument("--grids", default=",".join(GRIDS), help="comma-separated grid names")
+    return ap
+
+
+def main() -> None:
+    args = build_parser().parse_args()
     for name in args.grids.split(","):
         grid = get_grid(name)
         n = SIZES[grid.name]
