@@ -967,8 +967,9 @@ def _canon_check(poly, size, bx, by, mats, period, keys, tmp):
 
 
 @njit(cache=True)
-def _has_hole(poly, size, bx, by, roots, nbr, period, grid_buf, stack):
-    """Flood fill of the empty cells of a bounding box (plus a margin) from its corner."""
+def _has_hole(poly, size, bx, by, roots, nbr, period, grid_buf, stack, restype):
+    """Flood fill of the empty cells of a bounding box (plus a margin) from its corner.
+    ``restype[(y % period) * period + x % period]`` is the cell type at a position (-1: none)."""
     x0 = bx[poly[0]]
     x1 = x0
     y0 = by[poly[0]]
@@ -992,7 +993,7 @@ def _has_hole(poly, size, bx, by, roots, nbr, period, grid_buf, stack):
     w = x1 - x0 + 1
     h = y1 - y0 + 1
     if w * h > grid_buf.shape[0]:
-        return False
+        raise ValueError("the hole test's box is larger than its buffer")
     # 0 unknown/empty, 1 filled, 2 reached-from-outside
     for i in range(w * h):
         grid_buf[i] = 0
@@ -1005,16 +1006,12 @@ def _has_hole(poly, size, bx, by, roots, nbr, period, grid_buf, stack):
     stack[0] = (sy - y0) * w + (sx - x0)
     top = 1
     reached = 0  # reached cells of the inner box (the start, in the margin, is not one)
-    nr = roots.shape[0]
     while top > 0:
         top -= 1
         p = stack[top]
         px = p % w + x0
         py = p // w + y0
-        t = 0
-        for r in range(nr):
-            if (px - roots[r, 0]) % period == 0 and (py - roots[r, 1]) % period == 0:
-                t = r
+        t = restype[(py % period) * period + px % period]
         for j in range(nbr.shape[1]):
             qx = px + nbr[t, j, 0]
             qy = py + nbr[t, j, 1]
@@ -1031,9 +1028,8 @@ def _has_hole(poly, size, bx, by, roots, nbr, period, grid_buf, stack):
     total = 0
     for yy in range(iy0, iy1 + 1):
         for xx in range(ix0, ix1 + 1):
-            for r in range(nr):
-                if (xx - roots[r, 0]) % period == 0 and (yy - roots[r, 1]) % period == 0:
-                    total += 1
+            if restype[(yy % period) * period + xx % period] >= 0:
+                total += 1
     return reached + size < total
 
 
@@ -1064,7 +1060,17 @@ def _redelmeier(nb, bx, by, n, prefix, plen, maxsize, mats, period, roots, nbr, 
     poly = np.zeros(n + 1, np.int64)
     keys = np.zeros(n + 1, np.int64)
     tmp = np.zeros(n + 1, np.int64)
-    gbuf = np.zeros((8 * period * (n + 4)) ** 2, np.int64)
+    # the hole test's box: the cells span at most (n - 1) neighbour steps, plus the period
+    # alignment and the two-period margin on each side (see _has_hole), so this side bounds it
+    step = 0
+    for t in range(nbr.shape[0]):
+        for j in range(nbr.shape[1]):
+            step = max(step, abs(nbr[t, j, 0]), abs(nbr[t, j, 1]))
+    side = (n + 1) * step + 8 * period
+    gbuf = np.zeros(side * side, np.int64)
+    restype = np.full(period * period, -1, np.int64)
+    for r in range(roots.shape[0]):
+        restype[roots[r, 1] * period + roots[r, 0]] = r
     path = np.zeros(n + 1, np.int64)
     entered = np.zeros(n + 2, np.uint8)
     stack = np.empty(gbuf.shape[0], np.int64)
@@ -1102,7 +1108,8 @@ def _redelmeier(nb, bx, by, n, prefix, plen, maxsize, mats, period, roots, nbr, 
                     ok, sym = _canon_check(poly, size, bx, by, mats, period, keys, tmp)
                     if ok:
                         free[size] += 1
-                        hh = size >= hole_min and _has_hole(poly, size, bx, by, roots, nbr, period, gbuf, stack)
+                        hh = size >= hole_min and _has_hole(poly, size, bx, by, roots, nbr, period, gbuf, stack,
+                                                            restype)
                         if hh:
                             holey[size] += 1
                         if mode == 2:
