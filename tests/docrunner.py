@@ -26,9 +26,14 @@ Other languages (toml, ini, text) are data, shown not run.
 
 The working folder holds symlinks to the checkout's top-level folders (tests, catalogue, docs,
 benchmarks), so examples are written as a user types them in a checkout, and what they write
-stays out of it. ``TILEKIT_CATALOGUE`` points at a catalogue file in the folder; ``pip install``
-goes to a folder of the document's own (``PIP_TARGET``, on ``PYTHONPATH``), never into the
-environment that runs the tests.
+stays out of it. ``TILEKIT_CATALOGUE`` points at a catalogue file in the folder. ``pip install``
+goes into a virtual environment of the document's own (``venv`` in the folder, first on ``PATH``
+and, for the test environment's ``tilekit`` and the in-process Python blocks, on ``PYTHONPATH``),
+never into the environment that runs the tests; that environment's packages are visible to it
+(a ``.pth`` file), so pip finds tilekit installed, as it is for a user. (``PIP_TARGET`` is no
+isolation for this: pip ignores installed packages under it, so a plugin's ``tilekit``
+requirement would be fetched from an index, and it breaks pip's isolated builds of a source
+folder with "Cannot set --home and --prefix together".)
 """
 
 from __future__ import annotations
@@ -44,6 +49,7 @@ import shlex
 import signal
 import subprocess
 import sys
+import sysconfig
 import time
 import tokenize
 import urllib.request
@@ -124,15 +130,43 @@ class DocState:
             link = folder / name
             if not link.exists():
                 link.symlink_to(ROOT / name)
-        (folder / "site").mkdir(exist_ok=True)
-        return cls(doc, folder, {"__name__": "__doc_example__"})
+        state = cls(doc, folder, {"__name__": "__doc_example__"})
+        state._make_venv()
+        return state
+
+    @property
+    def venv(self) -> Path:
+        return self.folder / "venv"
+
+    @property
+    def site(self) -> Path:
+        """The document's own site-packages, where its ``pip install`` puts packages."""
+        return Path(sysconfig.get_path("purelib", vars={"base": str(self.venv), "platbase": str(self.venv)}))
+
+    def _make_venv(self) -> None:
+        """A venv without pip of its own (made in a fraction of a second): a ``.pth`` file adds
+        the test environment's site-packages after its own, and ``bin/pip`` runs that pip with
+        the venv's interpreter, so it installs into the venv."""
+        if self.venv.exists():
+            return
+        subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(self.venv)], check=True)
+        self.site.mkdir(parents=True, exist_ok=True)
+        tested = sysconfig.get_path("purelib")
+        (self.site / "_tilekit_docs_test_env.pth").write_text(f"import site; site.addsitedir({tested!r})\n")
+        python = self.venv / "bin" / "python"
+        for name in ("pip", "pip3"):
+            script = self.venv / "bin" / name
+            script.write_text(f"#!{python}\nimport sys\nfrom pip._internal.cli.main import main\n"
+                              "sys.exit(main())\n")
+            script.chmod(0o755)
 
     def env(self) -> dict[str, str]:
         env = dict(os.environ)
         env["TILEKIT_CATALOGUE"] = f"sqlite:///{self.folder / 'catalogue.sqlite'}"
-        env["PIP_TARGET"] = str(self.folder / "site")
-        env["PYTHONPATH"] = os.pathsep.join(p for p in (str(self.folder / "site"), env.get("PYTHONPATH", "")) if p)
-        env["PATH"] = os.pathsep.join([str(Path(sys.executable).parent), env.get("PATH", "")])
+        env.pop("PIP_TARGET", None)
+        env["VIRTUAL_ENV"] = str(self.venv)
+        env["PYTHONPATH"] = os.pathsep.join(p for p in (str(self.site), env.get("PYTHONPATH", "")) if p)
+        env["PATH"] = os.pathsep.join([str(self.venv / "bin"), str(Path(sys.executable).parent), env.get("PATH", "")])
         env["COLUMNS"] = "200"
         env.pop("TILEKIT_PLUGINS", None)
         return env
@@ -183,7 +217,7 @@ def _run_python(block: Block, state: DocState) -> None:
     old_cwd = os.getcwd()
     os.environ.update(state.env())
     os.chdir(state.folder)
-    sys.path.insert(0, str(state.folder / "site"))
+    sys.path.insert(0, str(state.site))
     try:
         for stmt in tree.body:
             where = f"{block.doc.relative_to(ROOT)}:{block.line + stmt.lineno}"
@@ -202,7 +236,7 @@ def _run_python(block: Block, state: DocState) -> None:
             except Exception as e:  # noqa: BLE001 - reported with the line that raised
                 raise DocError(f"{where}: {type(e).__name__}: {e}") from e
     finally:
-        sys.path.remove(str(state.folder / "site"))
+        sys.path.remove(str(state.site))
         os.chdir(old_cwd)
         os.environ.clear()
         os.environ.update(old_env)

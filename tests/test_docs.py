@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import os
 import subprocess
+import sysconfig
+from pathlib import Path
 
 import pytest
 from docrunner import (
@@ -111,9 +113,26 @@ def test_the_runner_runs_bash_blocks_with_errexit(tmp_path) -> None:
     assert (tmp_path / "=2").exists()
 
 
-def test_pip_in_examples_installs_into_the_documents_own_folder(tmp_path) -> None:
+def test_pip_in_examples_installs_into_the_documents_own_venv(tmp_path) -> None:
+    """A documented ``pip install`` of a package that needs tilekit finds tilekit installed and
+    lands in the document's venv, seen by ``tilekit`` and the Python blocks, never in the
+    environment that runs the tests."""
     state = DocState.create(ROOT / "README.md", tmp_path)
-    env = state.env()
-    done = subprocess.run(["python", "-c", "import os; print(os.environ['PIP_TARGET'])"], env=env,
-                          capture_output=True, text=True, check=True)
-    assert done.stdout.strip() == str(tmp_path / "site")
+    package = tmp_path / "docs-pip-probe"
+    (package / "docs_pip_probe").mkdir(parents=True)
+    (package / "docs_pip_probe" / "__init__.py").write_text("ANSWER = 42\n")
+    (package / "pyproject.toml").write_text(
+        '[build-system]\nrequires = ["setuptools>=61"]\nbuild-backend = "setuptools.build_meta"\n'
+        '[project]\nname = "docs-pip-probe"\nversion = "1.0"\ndependencies = ["tilekit"]\n'
+        '[tool.setuptools]\npackages = ["docs_pip_probe"]\n')
+    # --no-build-isolation: setuptools comes from the test environment, nothing is downloaded
+    run_block(Block(ROOT / "README.md", 1, "bash",
+                    "pip install --no-build-isolation ./docs-pip-probe\n"
+                    "python -c 'import docs_pip_probe, tilekit'", "fast"), state)
+    assert (state.site / "docs_pip_probe" / "__init__.py").is_file()
+    assert not (Path(sysconfig.get_path("purelib")) / "docs_pip_probe").exists()
+    run_block(Block(ROOT / "README.md", 2, "python",
+                    "import docs_pip_probe\ndocs_pip_probe.ANSWER  # -> 42", "fast"), state)
+    done = subprocess.run(["tilekit", "--help"], env=state.env(), capture_output=True, text=True)
+    assert done.returncode == 0
+    assert "PIP_TARGET" not in state.env()
