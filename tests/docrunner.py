@@ -18,15 +18,21 @@ A block is tagged by an HTML comment on the line right before its fence:
   HTTP on the address it printed, and is then stopped.
 - ``<!-- run: benchmark -->``: a measurement that takes minutes to hours; runs when
   ``TILEKIT_DOC_BENCHMARKS=1``. Otherwise each ``python benchmarks/X.py ARGS`` in it is checked to
-  name a script whose argument parser accepts ARGS (``--help`` must not be among them).
+  name a script whose argument parser accepts ARGS (``--help`` must not be among them), every
+  other ``benchmarks/X.py`` it names must exist, and the rest is checked without being run:
+  a Python block must compile and its imports resolve, a shell block must parse (``bash -n``).
+- ``<!-- run: postgres -->``: needs a PostgreSQL server: runs when ``TILEKIT_TEST_POSTGRES``
+  names one (skipped otherwise), with ``DATABASE_URL`` set to a fresh database on it, dropped
+  afterwards.
 - ``<!-- setup-command -->`` / ``<!-- test-command -->``: README's two set-up commands, which
   .ci/run runs verbatim in order; not run again here.
 
 Other languages (toml, ini, text) are data, shown not run.
 
 The working folder holds symlinks to the checkout's top-level folders (tests, catalogue, docs,
-benchmarks), so examples are written as a user types them in a checkout, and what they write
-stays out of it. ``TILEKIT_CATALOGUE`` points at a catalogue file in the folder. ``pip install``
+benchmarks, and what ``pip install '.[extra]'`` reads: pyproject.toml, setup.py, README.md,
+tilekit, migrations), so examples are written as a user types them in a checkout, and what they
+write stays out of it. ``TILEKIT_CATALOGUE`` points at a catalogue file in the folder. ``pip install``
 goes into a virtual environment of the document's own (``venv`` in the folder, first on ``PATH``
 and, for the test environment's ``tilekit`` and the in-process Python blocks, on ``PYTHONPATH``),
 never into the environment that runs the tests; that environment's packages are visible to it
@@ -62,8 +68,11 @@ DOCS = [ROOT / "README.md", *sorted((ROOT / "docs").rglob("*.md"))]
 RUN_LANGUAGES = {"python", "console", "bash", "sh"}
 TAG = re.compile(r"^<!--\s*(run:\s*(?P<tag>[a-z]+)|(?P<ci>setup-command|test-command))\b.*-->\s*$")
 FENCE = re.compile(r"^```(?P<lang>[A-Za-z0-9_+-]*)\s*$")
-LINKED = ("tests", "catalogue", "docs", "benchmarks")
-TIMEOUT = {"fast": 300, "slow": 3600, "server": 60, "benchmark": 6 * 3600}
+LINKED = ("tests", "catalogue", "docs", "benchmarks",
+          # what `pip install '.[extra]'` reads, as in a checkout
+          "pyproject.toml", "setup.py", "README.md", "tilekit", "migrations")
+TIMEOUT = {"fast": 300, "slow": 3600, "server": 60, "benchmark": 6 * 3600, "postgres": 300}
+POSTGRES_SERVER = "TILEKIT_TEST_POSTGRES"
 
 
 @dataclass(frozen=True)
@@ -122,6 +131,7 @@ class DocState:
     folder: Path
     namespace: dict[str, Any] = field(default_factory=dict)
     done: set[int] = field(default_factory=set)
+    extra_env: dict[str, str] = field(default_factory=dict)
 
     @classmethod
     def create(cls, doc: Path, folder: Path) -> DocState:
@@ -169,6 +179,7 @@ class DocState:
         env["PATH"] = os.pathsep.join([str(self.venv / "bin"), str(Path(sys.executable).parent), env.get("PATH", "")])
         env["COLUMNS"] = "200"
         env.pop("TILEKIT_PLUGINS", None)
+        env.update(self.extra_env)
         return env
 
 
@@ -180,6 +191,29 @@ def run_block(block: Block, state: DocState) -> None:
     elif block.lang in ("bash", "sh"):
         _run_bash(block, state)
     state.done.add(block.line)
+
+
+@contextlib.contextmanager
+def postgres_database(state: DocState, server: str):
+    """A fresh database on the PostgreSQL server, as ``DATABASE_URL`` of the document's
+    commands while the block runs; dropped afterwards."""
+    import uuid
+
+    import sqlalchemy as sa
+
+    admin = sa.create_engine(server, isolation_level="AUTOCOMMIT")
+    name = f"tilekit_docs_{uuid.uuid4().hex[:12]}"
+    with admin.connect() as conn:
+        conn.execute(sa.text(f'CREATE DATABASE "{name}"'))
+    state.extra_env["DATABASE_URL"] = sa.engine.make_url(server).set(database=name).render_as_string(
+        hide_password=False)
+    try:
+        yield
+    finally:
+        state.extra_env.pop("DATABASE_URL", None)
+        with admin.connect() as conn:
+            conn.execute(sa.text(f'DROP DATABASE IF EXISTS "{name}" WITH (FORCE)'))
+        admin.dispose()
 
 
 # -- python ---------------------------------------------------------------------------------
@@ -362,9 +396,35 @@ def benchmark_invocations(block: Block) -> list[list[str]]:
         for part in re.split(r"\s*(?:&&|;|\|)\s*", command.split(" #")[0]):
             words = shlex.split(part)
             for i, w in enumerate(words):
-                if w.startswith("benchmarks/") and w.endswith(".py"):
+                # a script run by Python; `pytest benchmarks/X.py` is a pytest-benchmark suite
+                if (w.startswith("benchmarks/") and w.endswith(".py") and i > 0
+                        and Path(words[i - 1]).name.startswith("python")):
                     out.append(words[i:])
     return out
+
+
+def check_benchmark_block(block: Block) -> None:
+    """A benchmark block checked without running it: the benchmark files it names exist; Python
+    compiles and its imports resolve; shell commands parse."""
+    for name in re.findall(r"\bbenchmarks/[\w./-]+\.py\b", block.text):
+        if not (ROOT / name).is_file():
+            raise DocError(f"{block.id}: no benchmark file {name}")
+    if block.lang == "python":
+        try:
+            tree = ast.parse(block.text, filename=block.id)
+        except SyntaxError as e:
+            raise DocError(f"{block.id}: not Python: {e}") from None
+        imports = [stmt for stmt in tree.body if isinstance(stmt, ast.Import | ast.ImportFrom)]
+        try:
+            exec(compile(ast.Module(imports, []), block.id, "exec"), {"__name__": "__doc_benchmark__"})
+        except ImportError as e:
+            raise DocError(f"{block.id}: {type(e).__name__}: {e}") from None
+        return
+    script = ("\n".join(c for c, _ in console_commands(block.text)) if block.lang == "console"
+              else block.text)
+    done = subprocess.run(["bash", "-n"], input=script, capture_output=True, text=True)
+    if done.returncode != 0:
+        raise DocError(f"{block.id}: not a shell script: {done.stderr.strip()}")
 
 
 def check_benchmark_arguments(argv: list[str]) -> None:

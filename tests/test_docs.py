@@ -14,6 +14,7 @@ from pathlib import Path
 import pytest
 from docrunner import (
     DOCS,
+    POSTGRES_SERVER,
     ROOT,
     RUN_LANGUAGES,
     Block,
@@ -22,7 +23,9 @@ from docrunner import (
     benchmark_invocations,
     blocks,
     check_benchmark_arguments,
+    check_benchmark_block,
     console_commands,
+    postgres_database,
     run_block,
 )
 
@@ -53,11 +56,17 @@ def test_documented_example_runs(block: Block, tmp_path_factory) -> None:
         assert "setup-command" in ci and "test-command" in ci
         return
     if block.tag == "benchmark" and os.environ.get("TILEKIT_DOC_BENCHMARKS") != "1":
-        invocations = benchmark_invocations(block)
-        for argv in invocations:
+        for argv in benchmark_invocations(block):
             check_benchmark_arguments(argv)
-        if not invocations:  # a benchmark block of other code: run it as written
-            run_block(block, _state(block, tmp_path_factory))
+        check_benchmark_block(block)  # minutes to hours: checked, not run
+        return
+    if block.tag == "postgres":
+        server = os.environ.get(POSTGRES_SERVER)
+        if not server:
+            pytest.skip(f"needs a PostgreSQL server: set {POSTGRES_SERVER}")
+        state = _state(block, tmp_path_factory)
+        with postgres_database(state, server):
+            run_block(block, state)
         return
     run_block(block, _state(block, tmp_path_factory))
 
@@ -136,3 +145,22 @@ def test_pip_in_examples_installs_into_the_documents_own_venv(tmp_path) -> None:
     done = subprocess.run(["tilekit", "--help"], env=state.env(), capture_output=True, text=True)
     assert done.returncode == 0
     assert "PIP_TARGET" not in state.env()
+
+
+def test_a_benchmark_block_is_checked_not_run(tmp_path) -> None:
+    ok = Block(ROOT / "docs/benchmarks.md", 1, "python",
+               "import time\nfrom tilekit.plugins.wang import solve\ntime.sleep(3600)", "benchmark")
+    check_benchmark_block(ok)  # returns at once: the sleep is not run
+    bad = Block(ROOT / "docs/benchmarks.md", 2, "python", "from tilekit.plugins.wang import no_such_name", "benchmark")
+    with pytest.raises(AssertionError, match="no_such_name"):
+        check_benchmark_block(bad)
+    with pytest.raises(AssertionError, match="no benchmark file"):
+        check_benchmark_block(Block(ROOT / "docs/benchmarks.md", 3, "console",
+                                    "$ pytest benchmarks/bench_nothing.py --benchmark-enable", "benchmark"))
+    with pytest.raises(AssertionError, match="not a shell script"):
+        check_benchmark_block(Block(ROOT / "docs/benchmarks.md", 4, "bash", "for x in; do", "benchmark"))
+    # only scripts run by Python are checked against their parser
+    assert benchmark_invocations(Block(ROOT / "docs/benchmarks.md", 5, "console",
+                                       "$ pytest benchmarks/bench_core.py --benchmark-enable\n"
+                                       "$ .venv/bin/python benchmarks/bench_wang.py --fills-only", "benchmark")) == [
+        ["benchmarks/bench_wang.py", "--fills-only"]]
