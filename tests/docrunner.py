@@ -71,7 +71,7 @@ FENCE = re.compile(r"^```(?P<lang>[A-Za-z0-9_+-]*)\s*$")
 LINKED = ("tests", "catalogue", "docs", "benchmarks",
           # what `pip install '.[extra]'` reads, as in a checkout
           "pyproject.toml", "setup.py", "README.md", "tilekit", "migrations")
-TIMEOUT = {"fast": 300, "slow": 3600, "server": 60, "benchmark": 6 * 3600, "postgres": 300}
+TIMEOUT = {"fast": 300, "slow": 3600, "server": 180, "benchmark": 6 * 3600, "postgres": 300}
 POSTGRES_SERVER = "TILEKIT_TEST_POSTGRES"
 
 
@@ -352,14 +352,23 @@ def _run_server(command: str, state: DocState, block: Block) -> None:
         return
     printed: list[str] = []
     deadline = time.monotonic() + TIMEOUT["server"]
+    fd = proc.stdout.fileno()
+
+    def read_some() -> str:
+        # the pipe is non-blocking: a text wrapper's read() fails on a pipe with no data yet
+        try:
+            return os.read(fd, 1 << 16).decode(errors="replace")
+        except BlockingIOError:
+            return ""
+
     try:
         url = None
-        os.set_blocking(proc.stdout.fileno(), False)
+        os.set_blocking(fd, False)
         while time.monotonic() < deadline and url is None:
             if proc.poll() is not None:
-                rest = proc.stdout.read() or ""
+                rest = read_some()
                 raise DocError(f"{block.id}: `{command}` exited {proc.returncode}:\n{''.join(printed) + rest}")
-            chunk = proc.stdout.read() or ""
+            chunk = read_some()
             printed.append(chunk)
             m = SERVING.search("".join(printed))
             if m:

@@ -164,3 +164,11 @@ def test_a_benchmark_block_is_checked_not_run(tmp_path) -> None:
                                        "$ pytest benchmarks/bench_core.py --benchmark-enable\n"
                                        "$ .venv/bin/python benchmarks/bench_wang.py --fills-only", "benchmark")) == [
         ["benchmarks/bench_wang.py", "--fills-only"]]
+
+
+def test_a_server_block_passes_when_the_server_answers_and_fails_when_it_exits(tmp_path) -> None:
+    state = DocState.create(ROOT / "README.md", tmp_path)
+    # prints "Serving HTTP on 127.0.0.1 port N (http://127.0.0.1:N/)", then answers 200 at /
+    run_block(Block(ROOT / "README.md", 1, "bash", "python -u -m http.server 0 --bind 127.0.0.1", "server"), state)
+    with pytest.raises(AssertionError, match="exited 3"):
+        run_block(Block(ROOT / "README.md", 2, "bash", "sh -c 'echo starting; exit 3'", "server"), state)
