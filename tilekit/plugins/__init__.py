@@ -206,7 +206,8 @@ def make_plugin_manager(extra_plugins: Iterable[object] = ()) -> pluggy.PluginMa
             if ep.name in wanted and pm.get_plugin(ep.name) is None:
                 pm.register(ep.load(), name=ep.name)
     for plugin in extra_plugins:
-        pm.register(plugin)
+        if not pm.is_registered(plugin):  # e.g. an installed plugin, already loaded by its entry point
+            pm.register(plugin)
     return pm
 
 
