@@ -1,0 +1,106 @@
+"""The compiled layer step of the hyperbolic boundary automaton (numba; see layers.py).
+
+One pass over the boundary finds the runs of edges joined at vertices with q − 1 tiles (one
+new tile each, its matrix the parent's times the run's first half-turn: 27 products, no
+temporaries), then walks the new tiles' free edges with a stack: a vertex the two tiles on
+either side fill (q tiles) cancels against the edge before it, its count carried to the next
+vertex, so cascades cost nothing extra. The NumPy formulation (runs by repeat/cumsum and
+cancellations in passes, ``layers._cancel``) is kept as the tests' independent check.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from tilekit.jit import njit
+
+
+@njit(cache=True, nogil=True)
+def grow(count, owner, slot, layer, half, p, q):  # pragma: no cover - compiled
+    """One layer: (new transforms (G, 3, 3), new count, owner, slot), or an empty transform
+    array with status in count[0] when the boundary does not grow as a disc's (-1: no open
+    vertex, -2: a tile enclosed, -3: the stack emptied, -4: a vertex over q tiles)."""
+    n = count.shape[0]
+    bad = np.empty(0, np.int64)
+    G = 0
+    s0 = -1
+    for i in range(n):
+        if count[i] != q - 1:
+            G += 1
+            if s0 < 0:
+                s0 = i
+    if G == 0:
+        return np.empty((0, 3, 3)), np.full(1, -1, np.int64), bad, bad
+    parent = np.empty(G, np.int64)
+    pslot = np.empty(G, np.int64)
+    jcount = np.empty(G, np.int64)
+    run = np.zeros(G, np.int64)
+    g = -1
+    for t in range(n):
+        i = s0 + t
+        if i >= n:
+            i -= n
+        if count[i] != q - 1:
+            g += 1
+            parent[g] = owner[i]
+            pslot[g] = slot[i]
+            jcount[g] = count[i]
+        run[g] += 1
+    out = np.empty((G, 3, 3))
+    cap = 0
+    g0 = -1
+    for g in range(G):
+        free = p - run[g]
+        if free < 1:
+            return np.empty((0, 3, 3)), np.full(1, -2, np.int64), bad, bad
+        cap += free
+        if g0 < 0 and free >= 2:
+            g0 = g
+        a = layer[parent[g]]
+        b = half[pslot[g]]
+        for r in range(3):
+            for c in range(3):
+                out[g, r, c] = a[r, 0] * b[0, c] + a[r, 1] * b[1, c] + a[r, 2] * b[2, c]
+    if g0 < 0:
+        return np.empty((0, 3, 3)), np.full(1, -2, np.int64), bad, bad
+    sc = np.empty(cap, np.int64)
+    so = np.empty(cap, np.int64)
+    ss = np.empty(cap, np.int64)
+    top = 0
+    carry = 0
+    # the walk starts at a vertex of one new tile alone (count 1), g0's second vertex, and
+    # ends with g0's first (a junction), so no cancellation needs a vertex not yet seen
+    for t in range(G + 1):
+        g = g0 + t
+        if g >= G:
+            g -= G
+        free = p - run[g]
+        k0 = 1 if t == 0 else 0
+        k1 = 1 if t == G else free
+        for k in range(k0, k1):
+            c = (jcount[g] + 2 if k == 0 else 1) + carry
+            carry = 0
+            if c == q:
+                if top == 0:
+                    return np.empty((0, 3, 3)), np.full(1, -3, np.int64), bad, bad
+                top -= 1
+                carry = sc[top]
+            elif c > q:
+                return np.empty((0, 3, 3)), np.full(1, -4, np.int64), bad, bad
+            else:
+                sc[top] = c
+                so[top] = g
+                s = pslot[g] + 1 + k
+                ss[top] = s % p
+                top += 1
+    lo = 0
+    if carry:
+        sc[0] += carry
+    while top - lo > 3 and sc[lo] == q:
+        top -= 1
+        sc[lo + 1] += sc[top]
+        lo += 1
+    for i in range(lo, top):
+        if sc[i] >= q:
+            return np.empty((0, 3, 3)), np.full(1, -4, np.int64), bad, bad
+    return out, sc[lo:top].copy(), so[lo:top].copy(), ss[lo:top].copy()
