@@ -382,3 +382,11 @@ def test_cli_list_show_render(cli, tmp_path):
 ])
 def test_cli_bad_input_is_one_line(cli, args, needle):
     assert_one_line_error(cli("render", *args, "-o", "x.svg"), needle)
+
+
+def test_compiled_outlines_equal_numpy():
+    patch = RegularTiling(7, 3, depth=9).patch()
+    assert len(patch) == 29261  # A001354 summed to layer 9: past the compiled threshold
+    fast = patch.projected()
+    slow = model.poincare(model.apply(patch.transform, patch.proto.points))
+    assert np.abs(fast - slow).max() < 1e-12

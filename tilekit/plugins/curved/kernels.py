@@ -104,3 +104,23 @@ def grow(count, owner, slot, layer, half, p, q):  # pragma: no cover - compiled
         if sc[i] >= q:
             return np.empty((0, 3, 3)), np.full(1, -4, np.int64), bad, bad
     return out, sc[lo:top].copy(), so[lo:top].copy(), ss[lo:top].copy()
+
+
+@njit(cache=True, nogil=True)
+def poincare_points(transforms, points):  # pragma: no cover - compiled
+    """(n, k, 2) Poincaré-disc coordinates of hyperboloid points (k, 3) moved by each of the
+    (n, 3, 3) Lorentz transforms: nine products and one division a point, no temporaries."""
+    n = transforms.shape[0]
+    k = points.shape[0]
+    out = np.empty((n, k, 2))
+    for i in range(n):
+        m = transforms[i]
+        for j in range(k):
+            px, py, pt = points[j, 0], points[j, 1], points[j, 2]
+            x = m[0, 0] * px + m[0, 1] * py + m[0, 2] * pt
+            y = m[1, 0] * px + m[1, 1] * py + m[1, 2] * pt
+            t = m[2, 0] * px + m[2, 1] * py + m[2, 2] * pt
+            s = 1.0 / (1.0 + t)
+            out[i, j, 0] = x * s
+            out[i, j, 1] = y * s
+    return out

@@ -52,6 +52,11 @@ def _proto(patch: Patch) -> ModelPrototile:
     return proto
 
 
+#: Tiles from which the Poincaré outlines come from the compiled kernel (below it NumPy's
+#: matmul is as fast and spares numba's import).
+_COMPILED = 20_000
+
+
 class ModelPatch(Patch):
     """Tiles of a spherical or hyperbolic tiling: columns as in :class:`Patch`, transforms on
     the model, geometry projected (see the module)."""
@@ -77,15 +82,28 @@ class ModelPatch(Patch):
         """(n, 3) tile centres on the model (the images of the pole)."""
         return self.transform[:, :, 2].copy()
 
+    def projected(self, index: np.ndarray | slice | None = None, corners: bool = False) -> np.ndarray:
+        """(n, k, 2) outlines in the drawing plane (``corners``: the polygon's vertices only);
+        a large hyperbolic patch through one compiled pass (kernels.poincare_points)."""
+        proto = self.proto
+        t = self.transform if index is None else self.transform[index]
+        pts = proto.points[list(proto.corners or ())] if corners else proto.points
+        if proto.sign < 0 and len(t) >= _COMPILED:
+            # measured start-up cost: numba's import (~0.3 s) only for large patches
+            from tilekit.plugins.curved.kernels import poincare_points
+
+            return poincare_points(np.ascontiguousarray(t), np.ascontiguousarray(pts))
+        return proto.project(model.apply(t, pts))
+
     # the core's geometry, projected ------------------------------------------------
     def groups(self):  # type: ignore[override]
         if len(self):
-            yield 0, np.arange(len(self)), self.proto.project(self.model_points())
+            yield 0, np.arange(len(self)), self.projected()
 
     def tile_bounds(self) -> np.ndarray:
         if not len(self):
             return np.zeros((0, 4))
-        pts = self.proto.project(self.model_points())
+        pts = self.projected()
         return np.concatenate([pts.min(axis=1), pts.max(axis=1)], axis=1)
 
     def centres(self) -> np.ndarray:
@@ -94,7 +112,7 @@ class ModelPatch(Patch):
     def _geometries_at(self, index: np.ndarray) -> np.ndarray:
         if not len(index):
             return np.empty(0, dtype=object)
-        return shapely.polygons(self.proto.project(self.model_points(index)))
+        return shapely.polygons(self.projected(index))
 
     def subset(self, index: Any) -> ModelPatch:
         return ModelPatch(self.prototiles, self.prototile[index], self.transform[index],

@@ -14,7 +14,6 @@ import numpy as np
 
 from tilekit.errors import ParameterError
 from tilekit.geometry import as_region
-from tilekit.plugins.curved import model
 
 DEFAULT_PALETTE = ("#f4d35e", "#ee964b", "#f95738", "#5aa9e6", "#7fc8f8", "#c1e1c1", "#a3c4bc", "#ffd6e0")
 
@@ -97,7 +96,7 @@ def curved_svg(tiling: Any, patch: Any, palette: Any = None, stroke: str = "#222
         out.append(f'<circle cx="0" cy="0" r="1" fill="#eef2f6" stroke="{stroke}" stroke-width="{sw:.6g}"/>')
     if len(patch):
         if hyper:
-            verts = model.poincare(patch.model_vertices())
+            verts = patch.projected(corners=True)
             paths = _polygon_paths(verts, arcs=True)
             for c in np.unique(patch.colour):
                 sel = patch.colour == c
