@@ -36,14 +36,16 @@ import numpy as np
 
 from tilekit.plugins.curved import model
 from tilekit.plugins.curved.kernels import poincare_points
-from tilekit.plugins.curved.layers import hyperbolic_layers
+from tilekit.plugins.curved.layers import hyperbolic_transforms
+from tilekit.plugins.curved.tiling import RegularTiling
 
 CASES = [((7, 3), 11), ((7, 3), 13), ((5, 4), 11), ((5, 4), 13)]
 
 
 def tilekit_polygons(p: int, q: int, depth: int) -> np.ndarray:
     """(N, p + 1, 2): each tile's centre then its vertices, Poincaré disc."""
-    t = np.concatenate(list(hyperbolic_layers(p, q, depth)))
+    capacity = int(RegularTiling(p, q, depth=depth).estimate_tiles()) + 1
+    t, _ = hyperbolic_transforms(p, q, depth, capacity)
     pts = np.vstack([[0.0, 0.0, 1.0], model.RegularPolygon(p, q).vertices()])
     return poincare_points(t, pts)
 
@@ -100,18 +102,20 @@ def same_polygons(ours: np.ndarray, theirs: np.ndarray) -> bool:
     return True
 
 
-def timed(fn, runs: int) -> tuple[float, float, object]:
-    fn()  # warm-up: numba compiles (or loads its cache) here
-    times = []
-    out = None
-    for _ in range(runs):
-        t0 = time.perf_counter()
-        out = fn()
-        times.append(time.perf_counter() - t0)
-        del out
-        out = None
-    out = fn()
-    return min(times), statistics.median(times), out
+def timed(fns: dict, runs: int) -> dict:
+    """Each function's (min, median) seconds over ``runs`` runs, the functions taking turns
+    (A B C A B C ...) so that a drift of the machine's load falls on all of them alike; the
+    first round is a warm-up (numba compiles or loads its cache there), not counted."""
+    times: dict = {name: [] for name in fns}
+    for r in range(runs + 1):
+        for name, fn in fns.items():
+            t0 = time.perf_counter()
+            out = fn()
+            dt = time.perf_counter() - t0
+            del out
+            if r:
+                times[name].append(dt)
+    return {name: (min(v), statistics.median(v)) for name, v in times.items()}
 
 
 def main() -> None:
@@ -123,16 +127,17 @@ def main() -> None:
     print(f"{'{p,q}':7} {'depth':>5} {'polygons':>10}   {'tilekit min/med s':>17}   {'GR min/med s':>13} "
           f"{'GRC min/med s':>13}  {'GR sector':>13}   {'GR/tk':>6} {'GRC/tk':>6} {'sect/tk':>7}  equal")
     for (p, q), depth in CASES:
-        tk_min, tk_med, ours = timed(partial(tilekit_polygons, p, q, depth), args.runs)
-        gr_min, gr_med, gr = timed(quiet(partial(peer_gr, p, q, depth)), args.runs)
-        grc_min, grc_med, grc = timed(quiet(partial(peer_grc, p, q, depth)), args.runs)
-        sec_min, sec_med, _ = timed(quiet(partial(peer_gr_sector, p, q, depth)), args.runs)
+        fns = {"tk": partial(tilekit_polygons, p, q, depth), "gr": quiet(partial(peer_gr, p, q, depth)),
+               "grc": quiet(partial(peer_grc, p, q, depth)), "sec": quiet(partial(peer_gr_sector, p, q, depth))}
+        ours, gr, grc = fns["tk"](), fns["gr"](), fns["grc"]()
         ok = same_polygons(ours, gr) and same_polygons(ours, grc)
-        print(f"{{{p},{q}}}   {depth:5d} {len(ours):10,d}   {tk_min:8.3f} {tk_med:8.3f}   {gr_min:6.3f} {gr_med:6.3f} "
-              f"{grc_min:6.3f} {grc_med:6.3f}  {sec_min:6.3f} {sec_med:6.3f}   {gr_med / tk_med:6.2f} "
-              f"{grc_med / tk_med:6.2f} {sec_med / tk_med:7.2f}  {ok}")
+        n = len(ours)
         del ours, gr, grc
-
+        t = timed(fns, args.runs)
+        tk = t["tk"][1]
+        print(f"{{{p},{q}}}   {depth:5d} {n:10,d}   {t['tk'][0]:8.3f} {tk:8.3f}   {t['gr'][0]:6.3f} {t['gr'][1]:6.3f} "
+              f"{t['grc'][0]:6.3f} {t['grc'][1]:6.3f}  {t['sec'][0]:6.3f} {t['sec'][1]:6.3f}   {t['gr'][1] / tk:6.2f} "
+              f"{t['grc'][1] / tk:6.2f} {t['sec'][1] / tk:7.2f}  {ok}")
 
 if __name__ == "__main__":
     main()

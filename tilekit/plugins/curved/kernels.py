@@ -16,12 +16,13 @@ from tilekit.jit import njit
 
 
 @njit(cache=True, nogil=True)
-def grow(count, owner, slot, layer, half, p, q):  # pragma: no cover - compiled
-    """One layer: (new transforms (G, 3, 3), new count, owner, slot), or an empty transform
-    array with status in count[0] when the boundary does not grow as a disc's (-1: no open
-    vertex, -2: a tile enclosed, -3: the stack emptied, -4: a vertex over q tiles)."""
+def grow(count, owner, slot, layer, half, p, q, out):  # pragma: no cover - compiled
+    """One layer: its G transforms written to out[:G] (out has room for len(count)), and the
+    new boundary (count, owner, slot). Returns (G, count, owner, slot), or (status, ...) with
+    a negative status when the boundary does not grow as a disc's (-1: no open vertex, -2: a
+    tile enclosed, -3: a cancellation past the start, -4: a vertex over q tiles)."""
     n = count.shape[0]
-    bad = np.empty(0, np.int64)
+    bad = np.empty(0, np.int32)
     G = 0
     s0 = -1
     for i in range(n):
@@ -30,11 +31,11 @@ def grow(count, owner, slot, layer, half, p, q):  # pragma: no cover - compiled
             if s0 < 0:
                 s0 = i
     if G == 0:
-        return np.empty((0, 3, 3)), np.full(1, -1, np.int64), bad, bad
-    parent = np.empty(G, np.int64)
-    pslot = np.empty(G, np.int64)
-    jcount = np.empty(G, np.int64)
-    run = np.zeros(G, np.int64)
+        return -1, bad, bad, bad
+    parent = np.empty(G, np.int32)
+    pslot = np.empty(G, np.int32)
+    jcount = np.empty(G, np.int32)
+    run = np.zeros(G, np.int32)
     g = -1
     for t in range(n):
         i = s0 + t
@@ -46,26 +47,26 @@ def grow(count, owner, slot, layer, half, p, q):  # pragma: no cover - compiled
             pslot[g] = slot[i]
             jcount[g] = count[i]
         run[g] += 1
-    out = np.empty((G, 3, 3))
     cap = 0
     g0 = -1
     for g in range(G):
         free = p - run[g]
         if free < 1:
-            return np.empty((0, 3, 3)), np.full(1, -2, np.int64), bad, bad
+            return -2, bad, bad, bad
         cap += free
         if g0 < 0 and free >= 2:
             g0 = g
         a = layer[parent[g]]
         b = half[pslot[g]]
         for r in range(3):
+            a0, a1, a2 = a[r, 0], a[r, 1], a[r, 2]
             for c in range(3):
-                out[g, r, c] = a[r, 0] * b[0, c] + a[r, 1] * b[1, c] + a[r, 2] * b[2, c]
+                out[g, r, c] = a0 * b[0, c] + a1 * b[1, c] + a2 * b[2, c]
     if g0 < 0:
-        return np.empty((0, 3, 3)), np.full(1, -2, np.int64), bad, bad
-    sc = np.empty(cap, np.int64)
-    so = np.empty(cap, np.int64)
-    ss = np.empty(cap, np.int64)
+        return -2, bad, bad, bad
+    sc = np.empty(cap, np.int32)
+    so = np.empty(cap, np.int32)
+    ss = np.empty(cap, np.int32)
     top = 0
     carry = 0
     # the walk starts at a vertex of one new tile alone (count 1), g0's second vertex, and
@@ -82,11 +83,11 @@ def grow(count, owner, slot, layer, half, p, q):  # pragma: no cover - compiled
             carry = 0
             if c == q:
                 if top == 0:
-                    return np.empty((0, 3, 3)), np.full(1, -3, np.int64), bad, bad
+                    return -3, bad, bad, bad
                 top -= 1
                 carry = sc[top]
             elif c > q:
-                return np.empty((0, 3, 3)), np.full(1, -4, np.int64), bad, bad
+                return -4, bad, bad, bad
             else:
                 sc[top] = c
                 so[top] = g
@@ -102,8 +103,8 @@ def grow(count, owner, slot, layer, half, p, q):  # pragma: no cover - compiled
         lo += 1
     for i in range(lo, top):
         if sc[i] >= q:
-            return np.empty((0, 3, 3)), np.full(1, -4, np.int64), bad, bad
-    return out, sc[lo:top].copy(), so[lo:top].copy(), ss[lo:top].copy()
+            return -4, bad, bad, bad
+    return G, sc[lo:top], so[lo:top], ss[lo:top]
 
 
 @njit(cache=True, nogil=True)

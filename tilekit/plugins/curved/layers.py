@@ -67,6 +67,11 @@ _GROW_ERRORS = {
 }
 
 
+def _start(p: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The central tile's boundary: p vertices with one tile each, edge j its edge j."""
+    return np.ones(p, dtype=np.int32), np.zeros(p, dtype=np.int32), np.arange(p, dtype=np.int32)
+
+
 def hyperbolic_layers(p: int, q: int, depth: int | None = None) -> Iterator[np.ndarray]:
     """The transforms (n_k, 3, 3) of layer k = 0, 1, ..., depth (forever when depth is None),
     each layer made by one compiled pass (:func:`tilekit.plugins.curved.kernels.grow`)."""
@@ -76,21 +81,48 @@ def hyperbolic_layers(p: int, q: int, depth: int | None = None) -> Iterator[np.n
     half = np.ascontiguousarray(RegularPolygon(p, q).half_turns())
     layer = np.eye(3)[None].copy()
     yield layer
-    count = np.ones(p, dtype=np.int64)
-    owner = np.zeros(p, dtype=np.int64)
-    slot = np.arange(p, dtype=np.int64)
+    count, owner, slot = _start(p)
     k = 0
     while depth is None or k < depth:
         k += 1
-        layer, count, owner, slot = grow(count, owner, slot, layer, half, p, q)
-        if not len(layer):
-            raise GeometryError(f"{{{p},{q}}} layer {k}: " + _GROW_ERRORS[int(count[0])])
+        out = np.empty((len(count), 3, 3))
+        g, count, owner, slot = grow(count, owner, slot, layer, half, p, q, out)
+        if g < 0:
+            raise GeometryError(f"{{{p},{q}}} layer {k}: " + _GROW_ERRORS[int(g)])
+        layer = out[:g]
         yield layer
 
 
-def layer_counts(p: int, q: int, depth: int) -> list[int]:
+def hyperbolic_transforms(p: int, q: int, depth: int, capacity: int = 0) -> tuple[np.ndarray, list[int]]:
+    """Layers 0..depth in one (N, 3, 3) array, written in place layer after layer (no
+    concatenation), and the layer sizes. ``capacity``: the expected N (an estimate; the
+    buffer grows when it is short, and an untouched tail costs no memory)."""
+    # measured start-up cost: as in hyperbolic_layers
+    from tilekit.plugins.curved.kernels import grow
+
+    half = np.ascontiguousarray(RegularPolygon(p, q).half_turns())
+    buf = np.empty((max(capacity, 64), 3, 3))
+    buf[0] = np.eye(3)
+    start, end = 0, 1
+    sizes = [1]
+    count, owner, slot = _start(p)
+    for k in range(1, depth + 1):
+        if end + len(count) > len(buf):
+            bigger = np.empty((max(end + len(count), 2 * len(buf)), 3, 3))
+            bigger[:end] = buf[:end]
+            buf = bigger
+        g, count, owner, slot = grow(count, owner, slot, buf[start:end], half, p, q, buf[end:])
+        if g < 0:
+            raise GeometryError(f"{{{p},{q}}} layer {k}: " + _GROW_ERRORS[int(g)])
+        start, end = end, end + g
+        sizes.append(g)
+    return buf[:end], sizes
+
+
+def layer_counts(p: int, q: int, depth: int, stop_over: int | None = None) -> list[int]:
     """Tiles in layers 0..depth from the boundary automaton in NumPy alone (no matrices, no
-    compiled code): the independent formulation the tests hold the compiled one to."""
+    compiled code): the independent formulation the tests hold the compiled one to.
+    ``stop_over``: stop after the first layer with more tiles than this."""
     out = [1]
     count = np.ones(p, dtype=np.int64)
     owner = np.zeros(p, dtype=np.int64)
@@ -103,6 +135,8 @@ def layer_counts(p: int, q: int, depth: int) -> list[int]:
         run = np.diff(np.append(starts, len(count)))
         free = p - run
         out.append(len(starts))
+        if stop_over is not None and out[-1] > stop_over:
+            break
         g = np.repeat(np.arange(len(starts)), free)
         offset = np.arange(int(free.sum())) - np.repeat(np.cumsum(free) - free, free)
         new_slot = (slot[starts][g] + 1 + offset) % p

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator, Mapping
+from functools import lru_cache
 from typing import Any
 
 import numpy as np
@@ -61,6 +62,25 @@ def _number(name: str, value: Any, lo: float, hi: float, integer: bool) -> float
         kind = "an integer" if integer else "a number"
         raise ParameterError(f"{name} must be {kind} {lo:g}..{hi:g}, got {str(value)[:40]}")
     return int(f) if integer else f
+
+
+@lru_cache(maxsize=256)
+def _exact_counts(p: int, q: int, depth: int) -> tuple[int, ...]:
+    """Layer counts 0..depth, stopping after the first layer over 10^4 tiles (cheap: the NumPy
+    automaton over at most a few 10^4 boundary vertices)."""
+    return tuple(layers.layer_counts(p, q, depth, stop_over=10_000))
+
+
+def _layer_estimate(p: int, q: int, depth: int) -> float:
+    counts = _exact_counts(p, q, depth)
+    total = float(sum(counts[: depth + 1]))
+    if len(counts) <= depth:
+        ratio = max(b / max(a, 1) for a, b in zip(counts[-5:-1], counts[-4:]))
+        last = float(counts[-1])
+        for _ in range(depth + 1 - len(counts)):
+            last *= ratio
+            total += last
+    return total
 
 
 class RegularTiling(Tiling):
@@ -114,28 +134,15 @@ class RegularTiling(Tiling):
 
     def estimate_tiles(self, region: Any = None) -> float:
         """Tiles of the patch before any is made: the sphere's face count; for layers, the exact
-        counts while a layer has at most 10^5 tiles, then the last growth ratio (which falls
-        towards its limit, so this is an upper bound); for a radius, the disc's area over a
-        tile's, the disc grown by a tile's circumradius."""
+        counts while a layer has at most 10^4 tiles, then the largest of the last four growth
+        ratios (the ratios settle towards their limit from above or oscillate about it); for a
+        radius, the disc's area over a tile's, the disc grown by a tile's circumradius."""
         if not self.hyperbolic:
             return float(4 * math.pi / self.polygon.area)
         if self.radius is not None:
             r = self.radius + self.polygon.circumradius
             return 1.0 + 2 * math.pi * (math.cosh(r) - 1) / self.polygon.area
-        depth = self._depth()
-        counts: list[int] = [1]
-        while len(counts) <= depth and counts[-1] <= 100_000:
-            counts = layers.layer_counts(self.p, self.q, min(depth, 2 * len(counts) + 2))
-            if len(counts) > depth:
-                break
-        total = float(sum(counts[: depth + 1]))
-        if len(counts) <= depth:
-            ratio = counts[-1] / max(counts[-2], 1)
-            last = float(counts[-1])
-            for _ in range(depth + 1 - len(counts)):
-                last *= ratio
-                total += last
-        return total
+        return _layer_estimate(self.p, self.q, self._depth())
 
     def _check_size(self, estimate: float) -> None:
         what = f"tiles of {{{self.p},{self.q}}}"
@@ -181,6 +188,15 @@ class RegularTiling(Tiling):
                     yield patch
 
     def patch(self, region: Any = None) -> ModelPatch:
+        """The tiles of :meth:`iter_patches` as one patch; layers of the whole disc are written
+        in place into one array (no concatenation)."""
+        reg = None if region is None else as_region(region)
+        if self.hyperbolic and self.radius is None and (reg is None or reg.covers(shapely.box(-1, -1, 1, 1))):
+            estimate = self.estimate_tiles(region)
+            self._check_size(estimate)
+            t, sizes = layers.hyperbolic_transforms(self.p, self.q, self._depth(), capacity=int(estimate) + 1)
+            colour = np.repeat(np.arange(len(sizes), dtype=np.int64), sizes)
+            return ModelPatch([self._proto], np.zeros(len(t), dtype=np.int64), t, colour=colour)
         parts = list(self.iter_patches(region, chunk_tiles=STREAM_CHUNK_TILES))
         if not parts:
             return ModelPatch([self._proto], np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3)))
