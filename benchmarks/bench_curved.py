@@ -118,10 +118,14 @@ def timed(fns: dict, runs: int) -> dict:
     return {name: (min(v), statistics.median(v)) for name, v in times.items()}
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--runs", type=int, default=5)
-    args = ap.parse_args()
+    ap.add_argument("--runs", type=int, default=5, help="timed runs of each side (after one warm-up round)")
+    return ap
+
+
+def main() -> None:
+    args = build_parser().parse_args()
     warnings.simplefilter("ignore")
     print(f"load average {os.getloadavg()[0]:.2f} {os.getloadavg()[1]:.2f}, {os.cpu_count()} cores")
     print(f"{'{p,q}':7} {'depth':>5} {'polygons':>10}   {'tilekit min/med s':>17}   {'GR min/med s':>13} "

@@ -42,7 +42,7 @@ def check_pq(p: object, q: object, want: str | None = None) -> tuple[int, int]:
             raise ParameterError(f"{name} must be an integer 3..{MAX_PQ}, got {type(v).__name__}")
         try:
             f = float(v)
-        except ValueError:
+        except (ValueError, OverflowError):
             raise ParameterError(f"{name} must be an integer 3..{MAX_PQ}, got {str(v)[:40]!r}") from None
         if not math.isfinite(f) or f != int(f) or not 3 <= f <= MAX_PQ:
             raise ParameterError(f"{name} must be an integer 3..{MAX_PQ}, got {str(v)[:40]}")

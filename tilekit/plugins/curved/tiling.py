@@ -56,7 +56,7 @@ def _number(name: str, value: Any, lo: float, hi: float, integer: bool) -> float
         raise ParameterError(f"{name} must be a number {lo:g}..{hi:g}, got {type(value).__name__}")
     try:
         f = float(value)
-    except ValueError:
+    except (ValueError, OverflowError):
         raise ParameterError(f"{name} must be a number {lo:g}..{hi:g}, got {str(value)[:40]!r}") from None
     if not math.isfinite(f) or not lo <= f <= hi or (integer and f != int(f)):
         kind = "an integer" if integer else "a number"
