@@ -30,6 +30,7 @@ from tilekit.limits import (
 )
 from tilekit.plugins.curved import layers, model
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
+from tilekit.plugins.curved.render import curved_svg
 from tilekit.tiling import Patch, Tiling
 
 #: Layers of a hyperbolic patch when neither depth nor radius is given.
@@ -203,8 +204,6 @@ class RegularTiling(Tiling):
         return parts[0] if len(parts) == 1 else ModelPatch.concat(parts)  # type: ignore[return-value]
 
     def render_svg(self, patch: Patch, **options: Any) -> str:
-        from tilekit.plugins.curved.render import curved_svg
-
         return curved_svg(self, patch, **options)
 
     # -- records and options -------------------------------------------------------------
