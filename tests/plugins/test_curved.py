@@ -390,3 +390,16 @@ def test_compiled_outlines_equal_numpy():
     fast = patch.projected()
     slow = model.poincare(model.apply(patch.transform, patch.proto.points))
     assert np.abs(fast - slow).max() < 1e-12
+
+
+def test_bytes_per_tile_bounds_the_peak():
+    import tracemalloc
+
+    RegularTiling(5, 4, depth=2).patch()  # compile / load the kernels outside the measurement
+    for pq, depth in [((7, 3), 10), ((5, 4), 10), ((3, 7), 20)]:
+        t = RegularTiling(*pq, depth=depth)
+        tracemalloc.start()
+        n = len(t.patch())
+        peak = tracemalloc.get_traced_memory()[1]
+        tracemalloc.stop()
+        assert 96 <= peak / n <= t.bytes_per_tile, (pq, peak / n)

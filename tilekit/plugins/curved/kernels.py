@@ -17,7 +17,8 @@ from tilekit.jit import njit
 
 @njit(cache=True, nogil=True)
 def grow(count, owner, slot, layer, half, p, q, out):  # pragma: no cover - compiled
-    """One layer: its G transforms written to out[:G] (out has room for len(count)), and the
+    """One layer: its G transforms written to out[:G] (out has room for the G vertices of
+    count other than q − 1), and the
     new boundary (count, owner, slot). Returns (G, count, owner, slot), or (status, ...) with
     a negative status when the boundary does not grow as a disc's (-1: no open vertex, -2: a
     tile enclosed, -3: a cancellation past the start, -4: a vertex over q tiles)."""

@@ -107,8 +107,9 @@ def hyperbolic_transforms(p: int, q: int, depth: int, capacity: int = 0) -> tupl
     sizes = [1]
     count, owner, slot = _start(p)
     for k in range(1, depth + 1):
-        if end + len(count) > len(buf):
-            bigger = np.empty((max(end + len(count), 2 * len(buf)), 3, 3))
+        need = end + int(np.count_nonzero(count != q - 1))  # the next layer's size exactly
+        if need > len(buf):
+            bigger = np.empty((max(need, 2 * len(buf)), 3, 3))
             bigger[:end] = buf[:end]
             buf = bigger
         g, count, owner, slot = grow(count, owner, slot, buf[start:end], half, p, q, buf[end:])

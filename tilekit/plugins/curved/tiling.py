@@ -43,9 +43,10 @@ MAX_RADIUS = 25.0
 #: Points per edge of the projected outlines (exports, clipping); the SVG draws true arcs.
 DEFAULT_SAMPLES = 8
 MAX_SAMPLES = 64
-#: Bytes per tile while a patch is made: the 72-byte matrix, colour and aspect, and the
-#: projected outline of the bounding-box test, made a layer at a time.
-CURVED_BYTES_PER_TILE = 400
+#: Peak bytes per tile while a patch is made: the Patch's 96 (the 72-byte matrix, prototile,
+#: colour, aspect) plus the last boundary; measured with tracemalloc at 96-137 for {7,3},
+#: {5,4}, {3,7} patches of 0.4-0.9 M tiles (tests/plugins/test_curved.py keeps it a bound).
+CURVED_BYTES_PER_TILE = 200
 
 _OPTIONS = ("p", "q", "depth", "radius", "samples")
 
