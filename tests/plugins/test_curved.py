@@ -324,7 +324,7 @@ def test_bad_specs_and_options():
         RegularTiling.from_spec({"p": 7, "q": 3, "colour": 1})
     with pytest.raises(ParseError, match="needs p and q"):
         RegularTiling.from_spec({"p": 7})
-    with pytest.raises(ParameterError, match="valid: p, q, depth, radius, samples"):
+    with pytest.raises(ParameterError, match="valid: p, q, depth, radius, samples, plane"):
         RegularTiling(7, 3).configure(size=3)
     with pytest.raises(ParameterError, match="drawn whole"):
         RegularTiling(4, 3).configure(depth=2)
@@ -376,7 +376,9 @@ def test_cli_list_show_render(cli, tmp_path):
     (["{7,3}", "--set", "radius=24"], "over the limit"),
     (["{7,3}", "--set", "p=4", "--set", "q=4"], "Euclidean plane"),
     (["{7,3}", "--set", "q=two"], "q must be an integer 3..60"),
-    (["{7,3}", "--set", "colour=red"], "valid: p, q, depth, radius, samples"),
+    (["{7,3}", "--set", "colour=red"], "valid: p, q, depth, radius, samples, plane"),
+    (["{7,3}", "--set", "plane=halfplane"], "plane must be one of poincare, klein"),
+    (["cube", "--set", "plane=klein"], "plane applies to hyperbolic tilings"),
     (["cube", "--depth", "3"], "drawn whole"),
     (["cube", "--set", "p=7"], "is hyperbolic, not spherical"),
 ])
@@ -403,3 +405,20 @@ def test_bytes_per_tile_bounds_the_peak():
         peak = tracemalloc.get_traced_memory()[1]
         tracemalloc.stop()
         assert 96 <= peak / n <= t.bytes_per_tile, (pq, peak / n)
+
+
+def test_klein_plane_draws_chords():
+    """In the Klein model a geodesic is a straight chord: every sampled edge point lies on the
+    segment between its edge's ends, and the SVG has no arcs; the patch validates there too."""
+    t = RegularTiling(5, 4, depth=3, samples=6, plane="klein")
+    patch = t.patch()
+    out = patch.projected().reshape(len(patch), 5, 6, 2)
+    a, b = out[:, :, 0], np.roll(out[:, :, 0], -1, axis=1)
+    for k in range(1, 6):
+        pt = out[:, :, k]
+        cross = (b[..., 0] - a[..., 0]) * (pt[..., 1] - a[..., 1]) - (b[..., 1] - a[..., 1]) * (pt[..., 0] - a[..., 0])
+        assert np.abs(cross).max() < 1e-12
+    svg = t.render_svg(patch)
+    assert " A" not in svg and "L" in svg
+    assert patch.validate(shapely.Point(0, 0).buffer(0.5, 32)).ok
+    assert RegularTiling.from_spec(t.spec()).plane == "klein"

@@ -32,16 +32,19 @@ from tilekit.tiling import Patch, Prototile, ValidationReport
 class ModelPrototile(Prototile):
     """A prototile whose ``outline`` is the projected central tile and ``points`` the same
     boundary on the model (k, 3); ``corners`` are the polygon's vertices among them;
-    ``sign`` is +1 for the sphere, −1 for the hyperbolic plane."""
+    ``sign`` is +1 for the sphere, −1 for the hyperbolic plane; ``plane`` the hyperbolic
+    drawing plane, 'poincare' (conformal, geodesics are arcs) or 'klein' (geodesics are
+    chords); ``view`` the sphere's viewing rotation."""
 
     points: np.ndarray | None = None
     sign: int = -1
     view: np.ndarray | None = None
+    plane: str = "poincare"
 
     def project(self, pts: np.ndarray) -> np.ndarray:
         """Model points (..., 3) to the drawing plane (..., 2)."""
         if self.sign < 0:
-            return model.poincare(pts)
+            return model.klein(pts) if self.plane == "klein" else model.poincare(pts)
         return model.orthographic(pts @ self.view.T if self.view is not None else pts)
 
 
@@ -88,7 +91,7 @@ class ModelPatch(Patch):
         proto = self.proto
         t = self.transform if index is None else self.transform[index]
         pts = proto.points[list(proto.corners or ())] if corners else proto.points
-        if proto.sign < 0 and len(t) >= _COMPILED:
+        if proto.sign < 0 and proto.plane == "poincare" and len(t) >= _COMPILED:
             # measured start-up cost: numba's import (~0.3 s) only for large patches
             from tilekit.plugins.curved.kernels import poincare_points
 
@@ -145,8 +148,8 @@ class ModelPatch(Patch):
         return Patch([ref], np.zeros(n * p, dtype=np.int64), m, colour=np.repeat(np.arange(n), p))
 
     def validate(self, region: Any = None, tolerance: float = AREA_TOL) -> ValidationReport:
-        """No overlap, and ``region`` (in the drawing plane, the Poincaré disc) covered: for a
-        hyperbolic patch the core's check on :meth:`klein_triangles`, the region carried
+        """No overlap, and ``region`` (in the drawing plane's disc) covered: for a
+        hyperbolic patch the core's check on :meth:`klein_triangles`, a Poincaré region carried
         to the Klein model point by point along its densified boundary; for a spherical one
         :func:`sphere_report` (``region`` None: the whole sphere)."""
         if self.proto.sign > 0:
@@ -159,8 +162,8 @@ class ModelPatch(Patch):
                 poly = poly.convex_hull
             ring = np.asarray(shapely.segmentize(poly, 0.01).exterior.coords)
             if (np.hypot(ring[:, 0], ring[:, 1]) >= 1).any():
-                raise GeometryError("a hyperbolic patch's region must lie inside the unit (Poincaré) disc")
-            reg = shapely.Polygon(model.poincare_to_klein(ring))
+                raise GeometryError("a hyperbolic patch's region must lie inside the unit disc")
+            reg = poly if self.proto.plane == "klein" else shapely.Polygon(model.poincare_to_klein(ring))
         report = tri.validate(reg, tolerance)
         p = len(self.proto.corners or ())
         fan = report.overlaps

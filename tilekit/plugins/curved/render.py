@@ -1,6 +1,7 @@
 """SVG of curved tilings: the Poincaré disc with every edge the true circular arc (a geodesic
-is an arc of a circle orthogonal to the unit circle, or a diameter), and the sphere in
-orthographic projection, the far side faint behind the near side.
+is an arc of a circle orthogonal to the unit circle, or a diameter), the Klein disc with
+straight edges, and the sphere in orthographic projection, the far side faint behind the
+near side.
 
 One ``<path>`` per colour; coordinates are the model plane's (the disc's radius is 1, y up),
 so the picture is resolution independent and a PNG is cairosvg's rasterization of it.
@@ -97,7 +98,7 @@ def curved_svg(tiling: Any, patch: Any, palette: Any = None, stroke: str = "#222
     if len(patch):
         if hyper:
             verts = patch.projected(corners=True)
-            paths = _polygon_paths(verts, arcs=True)
+            paths = _polygon_paths(verts, arcs=proto is None or proto.plane == "poincare")
             for c in np.unique(patch.colour):
                 sel = patch.colour == c
                 out.append(f'<path fill="{pal[int(c) % len(pal)]}" stroke="{stroke}" stroke-width="{sw:.6g}" '

@@ -48,7 +48,9 @@ MAX_SAMPLES = 64
 #: {5,4}, {3,7} patches of 0.4-0.9 M tiles (tests/plugins/test_curved.py keeps it a bound).
 CURVED_BYTES_PER_TILE = 200
 
-_OPTIONS = ("p", "q", "depth", "radius", "samples")
+_OPTIONS = ("p", "q", "depth", "radius", "samples", "plane")
+#: The hyperbolic drawing planes (``--set plane=...``).
+PLANES = ("poincare", "klein")
 
 _PALETTE = ("#f4d35e", "#ee964b", "#f95738", "#0d3b66", "#5aa9e6", "#7fc8f8", "#c1e1c1", "#a3c4bc")
 
@@ -92,7 +94,13 @@ class RegularTiling(Tiling):
     bytes_per_tile = CURVED_BYTES_PER_TILE
 
     def __init__(self, p: int = 7, q: int = 3, *, depth: int | None = None, radius: float | None = None,
-                 samples: int = DEFAULT_SAMPLES, name: str = "", title: str = "", want: str | None = None) -> None:
+                 samples: int = DEFAULT_SAMPLES, plane: str = "poincare", name: str = "", title: str = "",
+                 want: str | None = None) -> None:
+        if not isinstance(plane, str) or plane not in PLANES:
+            raise ParameterError(f"plane must be one of {', '.join(PLANES)}, got {str(plane)[:40]}")
+        self.plane = plane
+        if plane != "poincare" and model.kind_of(*model.check_pq(p, q)) == model.SPHERE:
+            raise ParameterError("plane applies to hyperbolic tilings; a sphere is drawn in orthographic view")
         self.p, self.q = model.check_pq(p, q, want)
         self.kind = model.kind_of(self.p, self.q)
         self.family = self.kind
@@ -107,10 +115,12 @@ class RegularTiling(Tiling):
         sign = 1 if self.kind == model.SPHERE else -1
         view = model.view_rotation() if sign > 0 else None
         pts = self.polygon.outline(self.samples)
-        flat = model.poincare(pts) if sign < 0 else model.orthographic(pts @ view.T)
+        flat = ((model.klein(pts) if plane == "klein" else model.poincare(pts)) if sign < 0
+                else model.orthographic(pts @ view.T))
         # the outline the core sees is the central tile in the drawing plane; the model
         # points are what the transforms act on
         self._proto = ModelPrototile(flat, name=f"{{{self.p},{self.q}}}", points=pts, sign=sign, view=view,
+                                     plane=plane,
                                      corners=tuple(range(0, len(pts), self.samples)))
 
     # -- the Tiling interface ------------------------------------------------------
@@ -259,7 +269,9 @@ class RegularTiling(Tiling):
             f"--set p=P --set q=Q         the Schläfli symbol {{P,Q}} (3..{model.MAX_PQ}; the family's geometry)",
             f"--set samples=N             points per edge of exported outlines (1..{MAX_SAMPLES}, default "
             f"{DEFAULT_SAMPLES}); SVG draws true arcs",
-            "--region x0,y0,x1,y1        the part of the Poincaré disc (or the sphere's picture) to keep",
+            "--set plane=P                the hyperbolic drawing plane: poincare (default; edges are arcs) or "
+            "klein (edges are chords)",
+            "--region x0,y0,x1,y1        the part of the disc (or the sphere's picture) to keep",
         ])
 
     def configure(self, **options: Any) -> RegularTiling:
@@ -276,6 +288,7 @@ class RegularTiling(Tiling):
                                  "apply to hyperbolic tilings")
         same = (model.check_pq(p, q) == (self.p, self.q))
         return RegularTiling(p, q, depth=depth, radius=radius, samples=options.get("samples", self.samples),
+                             plane=options.get("plane", self.plane),
                              name=self.name if same else "", title=self.title if same else "", want=self.kind)
 
     def spec(self) -> dict[str, Any]:
@@ -286,6 +299,8 @@ class RegularTiling(Tiling):
             out["radius"] = self.radius
         if self.samples != DEFAULT_SAMPLES:
             out["samples"] = self.samples
+        if self.plane != "poincare":
+            out["plane"] = self.plane
         if self.name != f"{self.kind}-{self.p}-{self.q}":
             out["name"] = self.name
         if self.title:
@@ -296,12 +311,13 @@ class RegularTiling(Tiling):
     def from_spec(cls, spec: Mapping[str, Any], want: str | None = None) -> RegularTiling:
         if not isinstance(spec, Mapping):
             raise ParseError(f"{want or 'curved'} spec must be a table, got {type(spec).__name__}")
-        unknown = set(spec) - {"p", "q", "depth", "radius", "samples", "name", "title"}
+        unknown = set(spec) - {"p", "q", "depth", "radius", "samples", "plane", "name", "title"}
         if unknown:
             raise ParseError(f"{want or 'curved'} spec has unknown key(s) {', '.join(sorted(map(str, unknown)))}; "
-                             "valid: p, q, depth, radius, samples, name, title")
+                             "valid: p, q, depth, radius, samples, plane, name, title")
         if "p" not in spec or "q" not in spec:
             raise ParseError(f"{want or 'curved'} spec needs p and q (the Schläfli symbol {{p,q}})")
         return cls(spec["p"], spec["q"], depth=spec.get("depth"), radius=spec.get("radius"),
-                   samples=spec.get("samples", DEFAULT_SAMPLES), name=str(spec.get("name", "")),
+                   samples=spec.get("samples", DEFAULT_SAMPLES), plane=spec.get("plane", "poincare"),
+                   name=str(spec.get("name", "")),
                    title=str(spec.get("title", "")), want=want)
