@@ -26,7 +26,7 @@ import shapely
 
 from tilekit import limits
 from tilekit.errors import ParameterError, TilekitError
-from tilekit.geometry import POINT_TOL, Affine, snap_noise
+from tilekit.geometry import POINT_TOL, snap_noise
 from tilekit.limits import (
     ADJACENCY_BYTES_PER_VERTEX,
     EXPORT_BYTES_PER_VERTEX,
@@ -557,16 +557,14 @@ def write_dxf(patch: Patch, path: str | Path, layers: str = "one", mm_per_unit: 
 
 def _rings(patch: Patch, idx: np.ndarray) -> Iterator[tuple[np.ndarray, np.ndarray]]:
     """(tile indices, closed counter-clockwise rings (m, k + 1, 2)) per prototile among
-    ``idx`` (reflected tiles' outlines are reversed, as RFC 7946 asks)."""
-    proto = patch.prototile[idx]
-    for p, shape in enumerate(patch.prototiles):
-        at = idx[proto == p]
-        if not len(at):
-            continue
-        pts = Affine.apply(patch.transform[at], shape.outline)
-        flip = np.linalg.det(patch.transform[at, :2, :2]) < 0
+    ``idx`` (clockwise outlines, i.e. reflected tiles', are reversed, as RFC 7946 asks).
+    The outlines come from the patch's own ``groups`` (a Patch subclass whose transforms
+    are not affine, such as the curved family's, draws its tiles there)."""
+    for _, local, pts in patch.subset(idx).groups():
+        x, y = pts[..., 0], pts[..., 1]
+        flip = (x * np.roll(y, -1, axis=1) - np.roll(x, -1, axis=1) * y).sum(axis=1) < 0
         pts[flip] = pts[flip, ::-1]
-        yield at, np.concatenate([pts, pts[:, :1]], axis=1)
+        yield idx[local], np.concatenate([pts, pts[:, :1]], axis=1)
 
 
 def _chunks(n: int) -> Iterator[np.ndarray]:

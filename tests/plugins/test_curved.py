@@ -422,3 +422,34 @@ def test_klein_plane_draws_chords():
     assert " A" not in svg and "L" in svg
     assert patch.validate(shapely.Point(0, 0).buffer(0.5, 32)).ok
     assert RegularTiling.from_spec(t.spec()).plane == "klein"
+
+
+def test_a_stream_of_layers_exports_as_geojson_and_svg(tmp_path):
+    """What `tilekit render` does with a patch larger than memory: the core's streamed
+    writers over iter_patches, one chunk at a time."""
+    import json
+
+    from tilekit.export import write_patches
+
+    t = RegularTiling(7, 3, depth=6)
+    n = write_patches(t.iter_patches(chunk_tiles=500), tmp_path / "s.geojson")
+    assert n == 1625
+    features = json.loads((tmp_path / "s.geojson").read_text())["features"]
+    assert len(features) == 1625
+    ring = np.array(features[100]["geometry"]["coordinates"][0])
+    assert len(ring) == 7 * t.samples + 1 and (np.hypot(ring[:, 0], ring[:, 1]) < 1).all()
+    n = write_patches(t.iter_patches(chunk_tiles=500), tmp_path / "s.svg", region=t.default_region())
+    assert n == 1625 and (tmp_path / "s.svg").read_text().count("M") >= 1625
+
+
+def test_adjacency_pairs_are_the_tiles_two_inradii_apart():
+    """The core's adjacency on the projected outlines: edge neighbours are exactly the tiles
+    whose centres are 2 * inradius apart (the half-turn about an edge's midpoint)."""
+    t = RegularTiling(7, 3, depth=4)
+    patch = t.patch()
+    pairs = {tuple(e) for e in np.sort(np.asarray(patch.adjacency().edge), axis=1).tolist()}
+    c = patch.model_centres()
+    d = model.HYPERBOLIC_GEOMETRY.acos(c[:, None, 2] * c[None, :, 2] - c[:, None, 0] * c[None, :, 0]
+                                       - c[:, None, 1] * c[None, :, 1])
+    i, j = np.nonzero(np.triu(np.abs(d - 2 * t.polygon.inradius) < 1e-7, 1))
+    assert pairs == set(zip(i.tolist(), j.tolist())) and len(pairs) == 546

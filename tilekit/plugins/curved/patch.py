@@ -117,6 +117,12 @@ class ModelPatch(Patch):
             return np.empty(0, dtype=object)
         return shapely.polygons(self.projected(index))
 
+    def adjacency(self, tol: float | None = None) -> Any:
+        """The core's adjacency on the projected outlines, welding points within ``tol``
+        (default 1e-9 of the disc's radius: the core's default scales with the matrices'
+        linear part, which for a Lorentz map grows with the tile's distance, not its size)."""
+        return super().adjacency(1e-9 if tol is None else tol)
+
     def subset(self, index: Any) -> ModelPatch:
         return ModelPatch(self.prototiles, self.prototile[index], self.transform[index],
                           self.colour[index], self.aspect[index])
