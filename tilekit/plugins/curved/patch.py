@@ -117,11 +117,21 @@ class ModelPatch(Patch):
             return np.empty(0, dtype=object)
         return shapely.polygons(self.projected(index))
 
-    def adjacency(self, tol: float | None = None) -> Any:
-        """The core's adjacency on the projected outlines, welding points within ``tol``
-        (default 1e-9 of the disc's radius: the core's default scales with the matrices'
-        linear part, which for a Lorentz map grows with the tile's distance, not its size)."""
-        return super().adjacency(1e-9 if tol is None else tol)
+    def weld_tolerance(self) -> float:
+        """1e-9 of the disc's radius: the core's default scales with the matrices' linear
+        part, which for a Lorentz map grows with the tile's distance, not with its size."""
+        return 1e-9
+
+    def orientations(self) -> tuple[np.ndarray, np.ndarray]:
+        """Each tile's turn in the drawing plane (the direction from its centre to its first
+        vertex, less the central tile's) and reflected (never: the tiles are placed by
+        products of half-turns)."""
+        proto = self.proto
+        v0 = self.projected(corners=True)[:, 0]
+        c = self.centres()
+        ref = proto.project(proto.points[0])
+        angle = np.degrees(np.arctan2(v0[:, 1] - c[:, 1], v0[:, 0] - c[:, 0]) - np.arctan2(ref[1], ref[0]))
+        return np.round(angle, 9) % 360.0, np.zeros(len(self), dtype=bool)
 
     def subset(self, index: Any) -> ModelPatch:
         return ModelPatch(self.prototiles, self.prototile[index], self.transform[index],
