@@ -453,3 +453,14 @@ def test_adjacency_pairs_are_the_tiles_two_inradii_apart():
                                        - c[:, None, 1] * c[None, :, 1])
     i, j = np.nonzero(np.triu(np.abs(d - 2 * t.polygon.inradius) < 1e-7, 1))
     assert pairs == set(zip(i.tolist(), j.tolist())) and len(pairs) == 546
+
+
+def test_tile_table_rows():
+    """The tile table of a curved patch: centres in the disc, turns in [0, 360), nothing
+    reflected, the centre tile's edge neighbours the seven tiles of layer 1."""
+    patch = RegularTiling(7, 3, depth=2).patch()
+    table = patch.tile_table()
+    assert (np.hypot(table.centre[:, 0], table.centre[:, 1]) < 1).all()
+    assert ((table.angle >= 0) & (table.angle < 360)).all() and not table.reflected.any()
+    assert table.angle[0] == 0
+    assert sorted(table.index[table.offsets[0]:table.offsets[1]].tolist()) == list(range(1, 8))
