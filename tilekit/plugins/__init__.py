@@ -30,6 +30,7 @@ DEFAULT_PLUGINS: tuple[str, ...] = (
     "tilekit.plugins.polyomino",
     "tilekit.plugins.kuniform",
     "tilekit.plugins.quasiperiodic",
+    "tilekit.plugins.curved",
 )
 
 
