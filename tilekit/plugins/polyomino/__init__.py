@@ -26,10 +26,12 @@ def _from_spec(spec: Mapping[str, Any]) -> Any:
     code = spec.get("code") if isinstance(spec, Mapping) else None
     classified = isinstance(spec, Mapping) and (spec.get("classified") or any(k in spec for k in _CLASSIFIED))
     if isinstance(code, str) and ":" in code and not classified:
-        # a polyform on another grid ("kite:1,1;5,2") that no classification has touched
+        # a polyform on another grid ("kite:1,1;5,2") that no classification has touched;
+        # start-up cost: numba, as above
         from tilekit.plugins.polyomino.polyform import from_spec as polyform_spec
 
         return polyform_spec(spec)
+    # start-up cost: numba, as above
     from tilekit.plugins.polyomino.model import from_spec
 
     if isinstance(spec, Mapping) and "classified" in spec:
