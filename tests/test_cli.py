@@ -67,7 +67,7 @@ def test_list_table_json_csv(pm, db):
     assert {d["name"] for d in data} == {"6^3", "3^4.6", "3.4.6.4", "3.6.3.6", "4.6.12"}
     hexagonal = next(d for d in data if d["name"] == "6^3")
     assert hexagonal["family"] == "testgrid" and hexagonal["title"] == "regular hexagonal tiling"
-    assert hexagonal["polygons"] == [6] and hexagonal["vertex_degree"] == 3 and hexagonal["periodic"] is True
+    assert hexagonal["sides"] == [6] and hexagonal["vertex_degree"] == 3 and hexagonal["periodic"] is True
 
     out = run(db, "list", "--where", "vertex_degree>=5", "--where", "symmetry_group!=p6m", "--format", "csv").stdout
     rows = list(csv.DictReader(io.StringIO(out)))
@@ -106,7 +106,7 @@ def test_show(pm, db):
     out = result.stdout
     assert "name: 4^4" in out and "family: testgrid" in out and "aliases: 4.4.4.4, (4^4)" in out
     assert "symmetry_group" in out and "p4m" in out
-    assert "polygons" in out and "vertex_degree" in out
+    assert "sides" in out and "vertex_degree" in out
     assert out.rstrip().endswith("regular tiling 4^4: one 4-gon shape")  # tiling.describe()
 
 

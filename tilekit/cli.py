@@ -1190,5 +1190,11 @@ def _listening_socket(host: str, port: int) -> Any:
     return sock
 
 
+# commands kept in their own module (keys, prototile), registered here
+from tilekit import cli_extra  # noqa: E402  (it reads this module's helpers when it runs)
+
+cli_extra.register(cli)
+
+
 if __name__ == "__main__":  # pragma: no cover
     main()

@@ -44,6 +44,13 @@ from tilekit.catalogue.filters import (
     quote,
 )
 from tilekit.catalogue.urls import resolve_url
+from tilekit.catalogue.vocabulary import (
+    KEY_ALIASES,
+    KeyInfo,
+    canonical_key,
+    key_infos,
+    shared_filter,
+)
 from tilekit.errors import CatalogueError, NotFoundError, ParameterError
 from tilekit.plugins import families, get_plugin_manager, migration_locations
 from tilekit.resources import catalogue_dir, migrations_dir
@@ -185,6 +192,52 @@ class TilingReader(ABC):
         with self._reading("reading property keys") as run:
             return sorted(row[0] for row in run(sql, params))
 
+    def key_families(self) -> dict[str, set[str]]:
+        """Every property key present in the catalogue, with the families whose tilings have it."""
+        sql = ("SELECT DISTINCT tiling_properties.key, tilings.family FROM tiling_properties"
+               " JOIN tilings ON tilings.id = tiling_properties.tiling_id")
+        out: dict[str, set[str]] = {}
+        with self._reading("reading property keys") as run:
+            for key, family in run(sql, {}):
+                out.setdefault(key, set()).add(family)
+        return out
+
+    def key_table(self, family: str | None = None) -> list[KeyInfo]:
+        """What ``tilekit keys [FAMILY]`` prints: every queryable key of the tilings (of one
+        family) with its type, the families that have it and an example value, shared keys
+        first (see :mod:`tilekit.catalogue.vocabulary`)."""
+        params = Params()
+        source = " FROM tiling_properties JOIN tilings ON tilings.id = tiling_properties.tiling_id"
+        if family is not None:
+            source += f" WHERE tilings.family = {params.bind(family)}"
+        with self._reading("reading property keys") as run:
+            rows = run("SELECT tiling_properties.key, tiling_properties.kind, tilings.family,"
+                       " max(tiling_properties.position), min(tiling_properties.value_text),"
+                       " min(tiling_properties.value_num)" + source
+                       + " GROUP BY tiling_properties.key, tiling_properties.kind, tilings.family", params)
+            counts = run("SELECT tiling_properties.key, tilings.family, count(DISTINCT tilings.id)" + source
+                         + " GROUP BY tiling_properties.key, tilings.family", params)
+        return key_infos(rows, counts)
+
+    def _check_keys(self, family: str | None, keys: Sequence[str]) -> None:
+        """A key no tiling has is a NotFoundError suggesting the closest keys; a key the
+        catalogue has, but not in ``family`` (which has tilings), is a ParameterError naming
+        the families that have it."""
+        if not keys:
+            return
+        owners = self.key_families()
+        for key in keys:
+            found = owners.get(key)
+            if not found:
+                if key in SHARED_COLUMNS:
+                    continue
+                raise NotFoundError("property", key, [*TEXT_COLUMNS, *SHARED_COLUMNS, *sorted(owners),
+                                                      *KEY_ALIASES])
+            if family is not None and family not in found and self.count(family) > 0:
+                raise ParameterError(
+                    f"family {family!r} has no property {key!r}; {', '.join(sorted(found))} "
+                    f"{'has' if len(found) == 1 else 'have'} it (tilekit keys {family} lists {family}'s keys)")
+
     def count(self, family: str | None = None) -> int:
         """Number of tilings (of one family)."""
         params = Params()
@@ -207,13 +260,8 @@ class TilingReader(ABC):
         conditions = []
         if family is not None:
             conditions.append(f"tilings.family = {params.bind(family)}")
-        filters = [parse_filter(w) for w in where]
-        unknown = [f.key for f in filters if f.key not in TEXT_COLUMNS and f.key not in SHARED_COLUMNS]
-        if unknown:
-            known = set(self.property_keys())
-            for key in unknown:
-                if key not in known:
-                    raise NotFoundError("property", key, [*TEXT_COLUMNS, *SHARED_COLUMNS, *sorted(known)])
+        filters = [shared_filter(parse_filter(w)) for w in where]
+        self._check_keys(family, [f.key for f in filters if f.key not in TEXT_COLUMNS])
         conditions += [condition(params, f) for f in filters]
         if text:
             alias = like_contains(params, "tiling_aliases.alias", text)
@@ -229,6 +277,7 @@ class TilingReader(ABC):
         """The ORDER BY clause: a column or a property (its least numeric, then least text
         value), ``-key`` descending, missing values last, then name and id."""
         key, descending = parse_order(order_by)
+        key = canonical_key(key)
         columns = {*TEXT_COLUMNS, *SHARED_COLUMNS, "id", "created_at", "updated_at"}
         if key in columns:
             exprs = ["tilings." + quote(key)]

@@ -48,6 +48,7 @@ def tilekit_catalogue_records():
             "periodic": bool(a["isohedral"]),
             "k_hedral": 1,
             "cells": poly.n,
+            "sides": [len(poly.prototile().outline)],
             "code": poly.code,
             "symmetry": poly.symmetry,
             "holes": poly.has_holes,
