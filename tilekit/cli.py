@@ -1139,12 +1139,13 @@ def serve(state: State, host: str, port: int, writable: bool, max_tiles: int) ->
 
     Example: tilekit serve --port 8000, then open http://127.0.0.1:8000/
     """
-    try:
-        import uvicorn
+    from tilekit.errors import optional
 
-        from tilekit.web import create_app
-    except ImportError as exc:
-        raise TilekitError(f"tilekit serve needs the web extra ({exc.name} is missing): pip install 'tilekit[web]'") from None
+    for module in ("starlette", "uvicorn"):  # the web extra, checked before anything starts
+        optional(module, "web", "tilekit serve")
+    import uvicorn
+
+    from tilekit.web import create_app
     state.catalogue()  # open (and migrate) before binding: a bad catalogue is one line, exit 2
     sock = _listening_socket(host, port)  # a bad --host or a taken port: one line, exit 2
     app = create_app(state.url, writable=writable, max_tiles=max_tiles, catalogue=state.catalogue())

@@ -555,6 +555,19 @@ def _sqlite_pragmas(dbapi_connection: Any, _record: Any) -> None:
         cursor.close()
 
 
+def missing_driver(sa_url: sa.URL, exc: ImportError) -> str:
+    """What to install when a URL's database driver is missing: PostgreSQL through the
+    ``postgresql`` extra (psycopg 3, so a ``postgresql+psycopg://`` URL), others by name."""
+    module = (getattr(exc, "name", None) or str(exc)).split(".")[0]
+    if sa_url.get_backend_name() == "postgresql":
+        if sa_url.get_driver_name() == "psycopg":
+            return (f"the PostgreSQL driver {module} is not installed; install it with: "
+                    "pip install 'tilekit[postgresql]'")
+        return (f"the PostgreSQL driver {module} ({sa_url.get_driver_name()}) is not installed; install the "
+                "postgresql extra (pip install 'tilekit[postgresql]') and write the URL as postgresql+psycopg://...")
+    return f"the database driver {module} is not installed ({sa_url.get_backend_name()} URLs need it)"
+
+
 def _read_only_engine(sa_url: sa.URL, path: Path) -> Engine:
     """A SQLite engine that only reads (immutable: no lock, no -wal or -shm file is made)."""
     import sqlite3
@@ -600,7 +613,9 @@ def open_catalogue(
             engine = _read_only_engine(sa_url, path)
         else:
             engine = (engine_factory or sa.create_engine)(sa_url)
-    except (ArgumentError, ImportError, SQLAlchemyError) as exc:
+    except ImportError as exc:
+        raise CatalogueError(f"cannot open catalogue {display(sa_url)}: {missing_driver(sa_url, exc)}") from None
+    except (ArgumentError, SQLAlchemyError) as exc:
         raise CatalogueError(f"cannot open catalogue {display(sa_url)}: {one_line(exc)}") from None
     if sa_url.get_backend_name() == "sqlite" and not read_only:
         event.listen(engine, "connect", _sqlite_pragmas)
