@@ -50,6 +50,7 @@ from tilekit.plugins import (
     families,
     get_plugin_manager,
     migration_locations,
+    normalise,
 )
 from tilekit.resources import migrations_dir
 
@@ -389,10 +390,31 @@ class Catalogue(RunsMixin, ResultsMixin, TilingReader):
         return [*names, *aliases]
 
     def get(self, name: str) -> Entry:
-        """The tiling called ``name`` or having it as an alias (exact, then case-insensitive).
+        """The tiling called ``name`` or having it as an alias (exact, then case-insensitive),
+        or, failing those, the one a plugin reads ``name`` as (``tilekit_normalise``: an
+        equivalent incidence symbol, vertex type, polyomino code or D-symbol).
 
         Raises NotFoundError suggesting the closest names.
         """
+        found = self._get(name)
+        if found is not None:
+            return found
+        key, value = normalise("name", name, self.pm)
+        if (key, value) != ("name", name):
+            if key == "name":
+                found = self._get(value)
+            else:
+                matches = self.query(where=[Filter(key, "=", value, value)], limit=2)
+                if len(matches) > 1:
+                    raise ParameterError(f"{name!r} names several tilings ({matches[0].name}, {matches[1].name} ...): "
+                                         f"tilekit list --where '{key}={value}' lists them")
+                found = matches[0] if matches else None
+            if found is not None:
+                return found
+        raise NotFoundError("tiling", name, self.names())
+
+    def _get(self, name: str) -> Entry | None:
+        """The tiling called ``name`` or having it as an alias, or a result-table row, or None."""
         t, a = TILINGS, ALIASES
         cols = (t.c.id, t.c.name, t.c.family, t.c.title, t.c.spec)
         attempts = [
@@ -406,10 +428,7 @@ class Catalogue(RunsMixin, ResultsMixin, TilingReader):
                 rows = conn.execute(stmt.order_by(t.c.id)).all()
                 if len(rows) >= 1:
                     return load_entries(_runner(conn), rows[:1])[0]
-        found = self._result_lookup(name)
-        if found is not None:
-            return found
-        raise NotFoundError("tiling", name, self.names())
+        return self._result_lookup(name)
 
     def tiling(self, name: str) -> Any:
         """The :class:`tilekit.Tiling` called ``name``, rebuilt by its family's ``from_spec``."""

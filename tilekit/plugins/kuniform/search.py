@@ -86,6 +86,7 @@ class KUniformTiling(PeriodicTiling):
             "k_hedral": len(set(self.symbol.face)),
             "edge_to_edge": True,
             "chambers": self.symbol.size,
+            "dsymbol": self.symbol.encode(),
             "unit_tiles": len(self.unit_prototile),
         })
         return props

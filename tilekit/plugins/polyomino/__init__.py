@@ -90,3 +90,20 @@ def tilekit_result_tables():
 
     rt = result_table()
     return [rt] if rt is not None else []
+
+
+@hookimpl
+def tilekit_normalise(key: str, value: str) -> tuple[str, str] | None:
+    """A polyomino code in any orientation or position (``x../xxx``) as its canonical code, in
+    ``code`` filters and as a name (each polyomino's record has its code as an alias)."""
+    text = value.strip()
+    if key not in ("code", "name") or not text or not set(text) <= set("x./") or "x" not in text:
+        return None
+    # measured start-up cost: the model loads NumPy and the lattice code; only for a code
+    from tilekit.errors import TilekitError
+    from tilekit.plugins.polyomino.model import Polyomino
+
+    try:
+        return key, Polyomino.parse(text).code
+    except TilekitError:
+        return None
