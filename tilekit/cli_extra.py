@@ -80,9 +80,79 @@ def keys_command(state: Any, family: str | None, fmt: str) -> None:
     click.echo(_cli()._table(["key", "type", "families", "tilings", "example", "aliases"], rows, {2: 48}))
 
 
+def prototile_patch(tiling: Any, index: int) -> Any:
+    """A patch of one tile: prototile ``index`` of ``tiling`` at the origin, unmoved (its
+    outline with any shaped edges, its marking), or a ParameterError naming the valid range."""
+    import numpy as np
+
+    from tilekit.tiling import Patch
+
+    protos = tiling.prototiles
+    if not 0 <= index < len(protos):
+        names = ", ".join(f"{i}: {p.name or '-'}" for i, p in enumerate(protos[:12]))
+        raise ParameterError(f"--index {index}: {tiling.name or 'the tiling'} has {len(protos)} prototile"
+                             f"{'s' if len(protos) != 1 else ''} (--index 0..{len(protos) - 1}; {names})")
+    return Patch([protos[index]], np.zeros(1, dtype=np.int64), np.eye(3)[None])
+
+
+@click.command(name="prototile")
+@click.argument("name")
+@click.option("--index", type=BoundedInt(0, 10_000), default=0, show_default=True,
+              help="Which prototile (0-based; the message names how many there are).")
+@click.option("-o", "--output", "out", required=True, type=OUTPUT,
+              help="Output file: .svg or .png (the shape drawn), .geojson or .json (its polygon), .dxf or "
+                   ".cut.svg (its outline as a cut path); see docs/exports.md.")
+@click.option("--param", "params", multiple=True, metavar="X[,X...]", help="Tiling parameters, as for render.")
+@click.option("--edge", "edges", multiple=True, metavar="SPEC", help="Edge shape 'name=x,y:x,y:...', as for render.")
+@click.option("--set", "settings", multiple=True, metavar="KEY=VALUE", help="A family-specific option, as for render.")
+@click.option("--tiling", "which", metavar="WHICH", help="Which of the tile's tilings, as for render.")
+@click.option("--mm-per-unit", type=click.FloatRange(1e-6, 1e6), default=10.0, show_default=True,
+              help=".dxf / .cut.svg: millimetres per tiling unit.")
+@click.pass_obj
+def prototile_command(state: Any, name: str, index: int, out: str, params: tuple[str, ...], edges: tuple[str, ...],
+                      settings: tuple[str, ...], which: str | None, mm_per_unit: float) -> None:
+    """Export one prototile of any tiling (an isohedral tile with its edge shapes, a Laves
+    tile, a polyomino, the hat ...) as a picture, GeoJSON or a cut file, at the origin in the
+    tiling's units.
+
+    \b
+    Examples:
+      tilekit prototile IH16 --edge 'a=0,0:0.3,0.2:1,0' -o ih16-tile.svg
+      tilekit prototile cairo -o cairo-tile.dxf
+      tilekit prototile penrose-p3 --index 1 -o thin.geojson
+    """
+    from tilekit.export import output_format, write_patch
+    from tilekit.render import write_image
+
+    cli = _cli()
+    fmt = output_format(out)  # an unknown suffix fails before any work
+    if fmt == ".csv":
+        raise ParameterError("a prototile has no tile table: write .svg, .png, .geojson, .json, .dxf or .cut.svg")
+    tiling = state.catalogue().tiling(name)
+    options: dict[str, Any] = {}
+    if params:
+        options["params"] = [v for p in params for v in cli._floats(p, "--param", cli.MAX_PARAM)]
+    if edges:
+        options["edges"] = list(edges)
+    options.update(cli.parse_settings(settings))
+    if which is not None:
+        options["tiling"] = which
+    if options:
+        tiling = tiling.configure(**options)
+    patch = prototile_patch(tiling, index)
+    proto = patch.prototiles[0]
+    if fmt in (".svg", ".png"):
+        write_image(patch, out)
+    else:
+        write_patch(patch, out, mm_per_unit=mm_per_unit)
+    from tilekit.polygon import area, corner_count
+
+    click.echo(f"wrote {out} (prototile {index} of {len(tiling.prototiles)}"
+               f"{': ' + proto.name if proto.name else ''}; {corner_count(proto.outline, proto.corners)} sides, "
+               f"area {float(area(proto.outline)):.6g})")
+
+
 def register(group: click.Group) -> None:
     """Add this module's commands to the ``tilekit`` group."""
     group.add_command(keys_command)
-
-
-__all__ = ["register", "keys_command", "OUTPUT", "BoundedInt", "ParameterError"]
+    group.add_command(prototile_command)

@@ -15,6 +15,9 @@ from tilekit.errors import ParseError
 from tilekit.hookspecs import hookimpl
 from tilekit.lazy import lazy_exports
 from tilekit.plugins import Family
+from tilekit.plugins.archimedean.notation import (
+    VertexType,  # standard library only: cheap at start-up
+)
 
 __all__ = ["VertexType", "archimedean_tiling", "laves_prototile", "laves_tiling", "parse_vertex_type"]
 
@@ -112,8 +115,6 @@ def tilekit_normalise(key: str, value: str) -> tuple[str, str] | None:
     (``(4.3.4.6)`` an Archimedean tiling, ``[4.3.4.6]`` its Laves dual, a trailing l/r the hand)."""
     if key not in ("vertex_type", "name"):
         return None
-    from tilekit.plugins.archimedean.notation import VertexType  # standard library only
-
     m = _WRAPPED.match(value)
     if m is None or m.group(1) + m.group(3) not in ("", "()", "[]"):
         return None

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from functools import lru_cache
 
-from tilekit.errors import NotFoundError, ParseError
+from tilekit.errors import NotFoundError, ParameterError, ParseError
 from tilekit.plugins.isohedral.symbols import IncidenceSymbol
 from tilekit.plugins.isohedral.templates import load_templates, topology_valences
 
@@ -74,8 +74,6 @@ def normalised(key: str, value: str) -> tuple[str, str] | None:
             return None
     matches = sorted(ih for (_, form), ih in canonical_index().items() if form == canonical)
     if len(matches) > 1:
-        from tilekit.errors import ParameterError
-
         templates = load_templates()
         raise ParameterError(
             f"incidence symbol {sym} describes {', '.join(f'IH{ih} ({templates[ih].topology})' for ih in matches)}; "
