@@ -706,3 +706,18 @@ def test_changed_plugins_refresh_shipped_records_keeping_search_results(url, mon
     assert cat.get("new-in-upgrade").name == "new-in-upgrade"
     assert cat.get("search-result").name == "search-result"  # never dropped
     assert cat.refresh_shipped() is None
+
+
+def test_a_resumed_run_is_not_finished_until_it_finishes_again(cat):
+    """Issue 26: ``runs show`` of a resumed run showed the finished_at of its interruption."""
+    run_id = cat.create_run("demo", {"n": 1}, [{"i": 0}])
+    owner = cat.start_worker(run_id, "first")
+    cat.finish_worker(owner)
+    cat.finish_run(run_id, "interrupted")
+    stopped = cat.run(run_id).finished_at
+    assert cat.run(run_id).status == "interrupted" and stopped is not None
+    owner = cat.start_worker(run_id, "resumed")
+    assert cat.run(run_id).status == "running" and cat.run(run_id).finished_at is None
+    cat.finish_worker(owner)
+    cat.finish_run(run_id, "done")
+    assert cat.run(run_id).finished_at >= stopped

@@ -211,3 +211,24 @@ def test_keys_of_a_result_table_family_are_its_columns(cli):
     assert keys["polygons"] == "json" and keys["valence"] == "int" and keys["species_tiles"] == "bool"
     assert cli.run("list", "--family", "vertex-species", "--count", "--where", "valence>=3").exit_code == 0
     assert_one_line_error(cli.run("keys", "no-such-family"), "unknown family 'no-such-family'")
+
+
+def test_keys_aliases_and_symbols_on_every_database(db_url):
+    """The same vocabulary, key table and normalised filters on SQLite and PostgreSQL."""
+    from tilekit import open_catalogue
+    from tilekit.errors import ParameterError
+
+    cat = open_catalogue(db_url)
+    try:
+        infos = {i.key: i for i in cat.key_table()}
+        assert infos["sides"].type == "list of int" and infos["aperiodic"].type == "bool"
+        assert infos["edge_kinds"].tilings == 93 and infos["edge_kinds"].families == ("isohedral",)
+        assert cat.count_matching(where=["sides=6"]) == cat.count_matching(where=["polygons=6"]) > 20
+        assert cat.count_matching(family="isohedral", where=["edges=6"]) == 20
+        assert [e.name for e in cat.query(where=["vertex_type=4.3.4.6"])] == ["3.4.6.4", "[3.4.6.4]"]
+        assert [e.name for e in cat.query(family="isohedral", limit=3, offset=8)] == ["IH9", "IH10", "IH11"]
+        assert cat.get("[c+b+a+a-b-c-; c-a+b+]").name == "IH16"
+        with pytest.raises(ParameterError, match="isohedral has it"):
+            cat.query(family="wang", where=["edge_kinds=JJ"])
+    finally:
+        cat.close()

@@ -523,7 +523,7 @@ def _vectors(tiling: Any, region: tuple[float, float, float, float]) -> tuple[An
 @click.option("--dpi", type=FiniteFloat(2400, min=10), default=96.0, show_default=True,
               help="PNG resolution: pixels are scaled by DPI/96.")
 @click.option("--stroke", default="#222", show_default=True, metavar="COLOUR", help="Outline colour (CSS name or #rrggbb).")
-@click.option("--stroke-width", type=FiniteFloat(1e3, min=0.0), help="Outline width in pixels (default 1.2).")
+@click.option("--stroke-width", type=FiniteFloat(1e3, min=0.0), help="Outline width in pixels (default: 1.2 for tiles 14 px across or more, thinner for smaller tiles, none under 2.5 px).")
 @click.option("--layers", type=click.Choice(["one", "colour"]), default=None,
               help=".cut.svg / .dxf: one layer of every edge (default), or a layer per colour.")
 @click.option("--mm-per-unit", type=FiniteFloat(1e6, min=1e-6), default=None,
