@@ -211,3 +211,17 @@ def test_names_sort_naturally(cli):
     paged = [n for off in range(0, 93, 40) for n in listed(cli, "--family", "isohedral", "--limit", "40",
                                                            "--offset", str(off))]
     assert paged == iso
+
+
+def test_polyomino_codes_in_the_result_table(cli):
+    """``--family polyomino`` reads the search's result table: a code in any orientation finds
+    its row there too (the 5 free tetrominoes, A000105(4) = 5)."""
+    r = cli.run("search", "polyominoes", "--max-cells", "4")
+    assert r.exit_code == 0, r.output
+    rows = json.loads(cli.run("list", "--family", "polyomino", "--where", "cells=4", "--format", "json").stdout)
+    assert len(rows) == 5
+    for row in rows:
+        for text in orientations(row["code"]):
+            found = json.loads(cli.run("list", "--family", "polyomino", "--where", f"code={text}",
+                                       "--format", "json").stdout)
+            assert [f["code"] for f in found] == [row["code"]], text
