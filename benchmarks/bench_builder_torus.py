@@ -85,13 +85,18 @@ def _load_peer(path: str) -> type:
     return mod.PatchBuilder
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
+    """The command line this benchmark takes (docs/benchmarks.md shows its invocations)."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--sides", type=int, nargs="+", default=[10, 32, 100])
     ap.add_argument("--peer", help="path of another builder.py to time on the same tori")
     ap.add_argument("--peer-max-side", type=int, default=100)
     ap.add_argument("--repeat", type=int, default=5, help="runs per torus (min and median are shown)")
-    args = ap.parse_args()
+    return ap
+
+
+def main() -> None:
+    args = build_parser().parse_args()
     builders = [("this", PatchBuilder)]
     if args.peer:
         builders.append(("peer", _load_peer(args.peer)))

@@ -222,7 +222,8 @@ def peer_benchmark(n: int, count: int, repeat: int) -> None:
           f"{statistics.median(peers_solve) / max(1e-9, statistics.median(ours_solve)):.2f}")
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
+    """The command line this benchmark takes (docs/benchmarks.md shows its invocations)."""
     ap = argparse.ArgumentParser()
     ap.add_argument("--max-cells", type=int, default=10)
     ap.add_argument("--min-cells", type=int, default=1)
@@ -230,7 +231,11 @@ def main() -> None:
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--peer", type=int, default=0, help="time the peer encoding on this many non-tilers")
     ap.add_argument("--repeat", type=int, default=5)
-    args = ap.parse_args()
+    return ap
+
+
+def main() -> None:
+    args = build_parser().parse_args()
     print(f"load before: {os.getloadavg()}")
     if args.peer:
         peer_benchmark(args.max_cells, args.peer, args.repeat)

@@ -185,7 +185,8 @@ def main_overlay(runs: int, depth: int, level: int) -> None:
           f"   (line length {mine:.6g} both)")
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
+    """The command line this benchmark takes (docs/benchmarks.md shows its invocations)."""
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("mode", choices=["generate", "overlay"])
     ap.add_argument("--runs", type=int, default=5)
@@ -193,7 +194,11 @@ def main() -> None:
     ap.add_argument("--level", type=int, default=2)
     ap.add_argument("-a", type=float, default=1.0)
     ap.add_argument("-b", type=float, default=2.0)
-    args = ap.parse_args()
+    return ap
+
+
+def main() -> None:
+    args = build_parser().parse_args()
     if args.mode == "generate":
         main_generate(args.runs, args.depth or [5, 6, 7], args.a, args.b)
     else:

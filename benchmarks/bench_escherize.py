@@ -77,13 +77,18 @@ def run_all(goal: np.ndarray, workers: int, repeat: int) -> tuple[list[float], l
     return walls, results
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
+    """The command line this benchmark takes (docs/benchmarks.md shows its invocations)."""
     ap = argparse.ArgumentParser()
     ap.add_argument("--goal", default=str(ROOT / "tests" / "data" / "escher" / "fish.json"))
     ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--peer-types", default="all")
     ap.add_argument("--skip-peer", action="store_true")
-    args = ap.parse_args()
+    return ap
+
+
+def main() -> None:
+    args = build_parser().parse_args()
     goal = escher.read_goal(args.goal)
     print(f"goal {args.goal}: {len(goal)} points; load {os.getloadavg()}")
 

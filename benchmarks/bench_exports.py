@@ -190,14 +190,19 @@ def _plot(patch) -> None:
     ax.figure.savefig(io.BytesIO(), format="png", dpi=100)
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
+    """The command line this benchmark takes (docs/benchmarks.md shows its invocations)."""
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("what", choices=["adjacency", "memory", "cut"])
     ap.add_argument("--tiles", type=float, default=1e5)
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--no-peer", action="store_true", help="time tilekit alone (large patches)")
     ap.add_argument("--catalogue", default=f"sqlite:///{tempfile.gettempdir()}/bench_exports.sqlite")
-    args = ap.parse_args()
+    return ap
+
+
+def main() -> None:
+    args = build_parser().parse_args()
     cat = tilekit.open_catalogue(args.catalogue)
     if args.what == "adjacency":
         adjacency(cat, args.tiles, args.runs, peer=not args.no_peer)

@@ -12,8 +12,8 @@ or with pytest-benchmark:           pytest benchmarks/bench_isohedral.py --bench
 
 from __future__ import annotations
 
+import argparse
 import math
-import sys
 import time
 
 import numpy as np
@@ -102,9 +102,17 @@ def test_tactile_fill_100k(benchmark, bench_setup):
     assert len(out) >= 0.9 * TARGET_TILES
 
 
+def build_parser() -> argparse.ArgumentParser:
+    """The command line this benchmark takes (docs/benchmarks.md shows its invocations)."""
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("ih", nargs="?", type=int, default=16, help="the IH type (default 16)")
+    ap.add_argument("tiles", nargs="?", type=int, default=TARGET_TILES, help="about how many tiles")
+    return ap
+
+
 if __name__ == "__main__":
-    ih = int(sys.argv[1]) if len(sys.argv) > 1 else 16
-    n = int(sys.argv[2]) if len(sys.argv) > 2 else TARGET_TILES
+    args = build_parser().parse_args()
+    ih, n = args.ih, args.tiles
     r = measure(ih, n)
     print(f"IH{ih}, {r['outline_points']}-point outline")
     print(f"tilekit : {r['tilekit_tiles']:>8} tiles in {r['tilekit_seconds']:.3f} s = {r['tilekit_tiles_per_s']:,.0f} tiles/s")

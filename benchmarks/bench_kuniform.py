@@ -32,12 +32,17 @@ def enumerate_k(k: int, symmetry_breaking: bool) -> tuple[dict, float]:
     return found, time.process_time() - started
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
+    """The command line this benchmark takes (docs/benchmarks.md shows its invocations)."""
     ap = argparse.ArgumentParser()
     ap.add_argument("--k", type=int, nargs="+", default=[1, 2, 3])
     ap.add_argument("--plain-max-k", type=int, default=3, help="largest k for the plain search")
     ap.add_argument("--layout", action="store_true", help="also time laying every tiling out")
-    args = ap.parse_args()
+    return ap
+
+
+def main() -> None:
+    args = build_parser().parse_args()
     print(f"load average {os.getloadavg()[0]:.2f}; stars: {sum(len(stabilizer_classes(t.polygons)) for t in vertex_types())}"
           f" ({Star.__name__} = vertex type x stabilizer class)")
     print("| k | tilings | search CPU s | plain search CPU s | plain / search |" + (" layout CPU s |" if args.layout else ""))

@@ -235,11 +235,16 @@ CASES: list[Case] = [
 ]
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
+    """The command line this benchmark takes (docs/benchmarks.md shows its invocations)."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--small", action="store_true", help="only the cases tests/test_limits_measured.py runs")
     ap.add_argument("--only", default="", help="only cases whose engine starts with this")
-    args = ap.parse_args()
+    return ap
+
+
+def main() -> None:
+    args = build_parser().parse_args()
     print(f"load: {os.getloadavg()[0]:.2f} {os.getloadavg()[1]:.2f} {os.getloadavg()[2]:.2f} "
           f"(1/5/15 min), {os.cpu_count()} CPUs")
     print(f"{'engine':34} {'case':42} {'peak MB':>8} {'s':>6}  {'units':30} {'B/unit':>9} {'est/meas':>8}")

@@ -153,13 +153,18 @@ def bench_validate(sizes: list[float], runs: int, peer_limit: float) -> None:
                       flush=True)
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
+    """The command line this benchmark takes (docs/benchmarks.md shows its invocations)."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("what", choices=["patch", "validate"])
     ap.add_argument("--sizes", nargs="+", type=float, default=None, help="tiles (about)")
     ap.add_argument("--runs", type=int, default=5)
     ap.add_argument("--peer-limit", type=float, default=2e5, help="validate: largest patch the peer runs on")
-    args = ap.parse_args()
+    return ap
+
+
+def main() -> None:
+    args = build_parser().parse_args()
     print(f"load: {os.getloadavg()[0]:.2f} {os.getloadavg()[1]:.2f} {os.getloadavg()[2]:.2f} (1, 5, 15 min)", flush=True)
     if args.what == "patch":
         bench_patch(args.sizes or [1e5, 1e6, 1e7], args.runs)

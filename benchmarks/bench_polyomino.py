@@ -105,12 +105,17 @@ def parallel_fixed(n: int, depth: int, workers: int) -> tuple[int, float]:
     return total, time.perf_counter() - t
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
+    """The command line this benchmark takes (docs/benchmarks.md shows its invocations)."""
     ap = argparse.ArgumentParser()
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--n18", action="store_true")
     ap.add_argument("--quick", action="store_true")
-    a = ap.parse_args()
+    return ap
+
+
+def main() -> None:
+    a = build_parser().parse_args()
     print("uptime:", os.popen("uptime").read().strip())
     count_fixed(SQUARE, 4, free=True)  # compile / load the numba cache
     n = 10 if a.quick else 11

@@ -148,12 +148,17 @@ def memory(tiles: float) -> None:
             print(f"| {name} | {count:,} | {peak / count:.0f} | {size / count:.0f} |")
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
+    """The command line this benchmark takes (docs/benchmarks.md shows its invocations)."""
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--runs", type=int, default=5)
     ap.add_argument("--tiles", type=float, default=1e6)
     ap.add_argument("--memory", action="store_true", help="bytes per tile instead of times")
-    args = ap.parse_args()
+    return ap
+
+
+def main() -> None:
+    args = build_parser().parse_args()
     QuasiperiodicTiling(5).patch((-5, -5, 5, 5))  # load numba's cached loops before timing
     if args.memory:
         memory(args.tiles)

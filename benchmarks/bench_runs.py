@@ -216,12 +216,17 @@ def bench_workers(repeat, chunks=16, work=0.25):
     return out
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
+    """The command line this benchmark takes (docs/benchmarks.md shows its invocations)."""
     ap = argparse.ArgumentParser()
     ap.add_argument("--postgres", default=os.environ.get("TILEKIT_TEST_POSTGRES"))
     ap.add_argument("--rows", type=int, default=1_000_000)
     ap.add_argument("--repeat", type=int, default=5)
-    args = ap.parse_args()
+    return ap
+
+
+def main() -> None:
+    args = build_parser().parse_args()
     tmp = Path(tempfile.mkdtemp())
     counter = iter(range(10_000))
     backends = {"SQLite": lambda: f"sqlite:///{tmp / f'c{next(counter)}.sqlite'}"}

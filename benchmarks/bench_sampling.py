@@ -80,12 +80,17 @@ def timed(fn, repeat: int):
     return min(times), statistics.median(times), out
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
+    """The command line this benchmark takes (docs/benchmarks.md shows its invocations)."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--n", type=int, default=1_000_000)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--skip-scipy", action="store_true", help="leave out qmc.PoissonDisk (slow at 10^6)")
-    args = ap.parse_args()
+    return ap
+
+
+def main() -> None:
+    args = build_parser().parse_args()
     n = args.n
     uniform = density_from("uniform", size=64)
     ramp = density_from("ramp")

@@ -33,11 +33,16 @@ def run(cmd: list[str], env: dict[str, str]) -> tuple[float, float]:
     return usage.ru_utime + usage.ru_stime, wall
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
+    """The command line this benchmark takes (docs/benchmarks.md shows its invocations)."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=7)
     ap.add_argument("--base", help="another tilekit checkout to time as well (PYTHONPATH)")
-    args = ap.parse_args()
+    return ap
+
+
+def main() -> None:
+    args = build_parser().parse_args()
     tmp = Path(tempfile.mkdtemp(prefix="tilekit-startup-"))
     py = sys.executable
     cli = "from tilekit.cli import main; main()"

@@ -345,7 +345,8 @@ def main_stream(case: str, sink: str, out: str | None, chunk: int) -> None:
           f"peak RSS {rss / 1e6:.0f} MB ({(rss - rss0) / n:.1f} bytes/tile over the {rss0 / 1e6:.0f} MB before){size}")
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
+    """The command line this benchmark takes (docs/benchmarks.md shows its invocations)."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=5)
     ap.add_argument("--big", action="store_true", help="the 10^6-10^7 sizes too")
@@ -357,7 +358,11 @@ def main() -> None:
     ap.add_argument("--sink", choices=["null", "geojson", "whole"], default="null")
     ap.add_argument("--out", help="the GeoJSON file of --sink geojson")
     ap.add_argument("--chunk", type=int, default=1 << 20, help="tiles per chunk of --stream")
-    args = ap.parse_args()
+    return ap
+
+
+def main() -> None:
+    args = build_parser().parse_args()
     if args.stream:
         main_stream(args.stream, args.sink, args.out, args.chunk)
         return

@@ -183,13 +183,18 @@ def solvers(sizes: list[int], limit: float) -> None:
         print("| " + " | ".join(row) + " |")
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
+    """The command line this benchmark takes (docs/benchmarks.md shows its invocations)."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", default="4,6,8,10,12,16,20,30,40,60,80")
     parser.add_argument("--limit", type=float, default=60.0, help="seconds per builder/backtracking call")
     parser.add_argument("--fills-only", action="store_true", help="only the fill table")
     parser.add_argument("--runs", type=int, default=5)
-    args = parser.parse_args()
+    return parser
+
+
+def main() -> None:
+    args = build_parser().parse_args()
     fills(args.runs)
     print()
     if args.fills_only:

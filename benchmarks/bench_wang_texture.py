@@ -139,7 +139,8 @@ def peer_memory(tex: TextureTiles, side: int, level: int, folder: Path) -> None:
     path.unlink()
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
+    """The command line this benchmark takes (docs/benchmarks.md shows its invocations)."""
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--side", type=int, default=16384)
     ap.add_argument("--runs", type=int, default=5)
@@ -149,7 +150,11 @@ def main() -> None:
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--peer-memory", type=int, default=0, help="write one peer PNG of this side instead")
     ap.add_argument("--folder", default=None, help="where the PNGs go (default: a new private temporary folder)")
-    args = ap.parse_args()
+    return ap
+
+
+def main() -> None:
+    args = build_parser().parse_args()
     if args.folder:
         run(args, Path(args.folder))
     else:

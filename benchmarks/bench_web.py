@@ -92,12 +92,17 @@ def one_pass(client: httpx.Client, names: list[str], cap: float, workers: int = 
     return times, time.perf_counter() - start, bad
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
+    """The command line this benchmark takes (docs/benchmarks.md shows its invocations)."""
     ap = argparse.ArgumentParser()
     ap.add_argument("--count", type=int, default=200)
     ap.add_argument("--cap", type=float, default=30.0, help="seconds per pass at most")
     ap.add_argument("--concurrency", type=int, default=4)
-    args = ap.parse_args()
+    return ap
+
+
+def main() -> None:
+    args = build_parser().parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         db = Path(tmp) / "bench.sqlite"
         make_catalogue(db, args.count)

@@ -11,7 +11,7 @@ Needs the 'sampling' extra.
 
 from __future__ import annotations
 
-import sys
+import argparse
 import time
 
 import numpy as np
@@ -23,8 +23,16 @@ from tilekit.sampling import train_corrections, write_corrections
 GROWTH = {"penrose": ((1 + 5**0.5) / 2) ** 2, "polyomino": 4.0}
 
 
+def build_parser() -> argparse.ArgumentParser:
+    """The command line of this script: the sampling methods to train (default both)."""
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("methods", nargs="*", choices=sorted(GROWTH), default=sorted(GROWTH),
+                    metavar="METHOD", help=f"one of {', '.join(sorted(GROWTH))} (default: all)")
+    return ap
+
+
 def main() -> None:
-    for method in sys.argv[1:] or ("penrose", "polyomino"):
+    for method in build_parser().parse_args().methods:
         t0 = time.perf_counter()
         # sizes over one substitution's growth in count, so that the leaves' E = integral / tau
         # sweeps through every bin of (0, 1]

@@ -18,17 +18,28 @@ A block is tagged by an HTML comment on the line right before its fence:
   HTTP on the address it printed, and is then stopped.
 - ``<!-- run: benchmark -->``: a measurement that takes minutes to hours; runs when
   ``TILEKIT_DOC_BENCHMARKS=1``. Otherwise each ``python benchmarks/X.py ARGS`` in it is checked to
-  name a script whose argument parser accepts ARGS (``--help`` must not be among them).
+  name a script whose argument parser accepts ARGS (``--help`` must not be among them), every
+  other ``benchmarks/X.py`` it names must exist, and the rest is checked without being run:
+  a Python block must compile and its imports resolve, a shell block must parse (``bash -n``).
+- ``<!-- run: postgres -->``: needs a PostgreSQL server: runs when ``TILEKIT_TEST_POSTGRES``
+  names one (skipped otherwise), with ``DATABASE_URL`` set to a fresh database on it, dropped
+  afterwards.
 - ``<!-- setup-command -->`` / ``<!-- test-command -->``: README's two set-up commands, which
   .ci/run runs verbatim in order; not run again here.
 
 Other languages (toml, ini, text) are data, shown not run.
 
 The working folder holds symlinks to the checkout's top-level folders (tests, catalogue, docs,
-benchmarks), so examples are written as a user types them in a checkout, and what they write
-stays out of it. ``TILEKIT_CATALOGUE`` points at a catalogue file in the folder; ``pip install``
-goes to a folder of the document's own (``PIP_TARGET``, on ``PYTHONPATH``), never into the
-environment that runs the tests.
+benchmarks, and what ``pip install '.[extra]'`` reads: pyproject.toml, setup.py, README.md,
+tilekit, migrations), so examples are written as a user types them in a checkout, and what they
+write stays out of it. ``TILEKIT_CATALOGUE`` points at a catalogue file in the folder. ``pip install``
+goes into a virtual environment of the document's own (``venv`` in the folder, first on ``PATH``
+and, for the test environment's ``tilekit`` and the in-process Python blocks, on ``PYTHONPATH``),
+never into the environment that runs the tests; that environment's packages are visible to it
+(a ``.pth`` file), so pip finds tilekit installed, as it is for a user. (``PIP_TARGET`` is no
+isolation for this: pip ignores installed packages under it, so a plugin's ``tilekit``
+requirement would be fetched from an index, and it breaks pip's isolated builds of a source
+folder with "Cannot set --home and --prefix together".)
 """
 
 from __future__ import annotations
@@ -44,6 +55,7 @@ import shlex
 import signal
 import subprocess
 import sys
+import sysconfig
 import time
 import tokenize
 import urllib.request
@@ -56,8 +68,11 @@ DOCS = [ROOT / "README.md", *sorted((ROOT / "docs").rglob("*.md"))]
 RUN_LANGUAGES = {"python", "console", "bash", "sh"}
 TAG = re.compile(r"^<!--\s*(run:\s*(?P<tag>[a-z]+)|(?P<ci>setup-command|test-command))\b.*-->\s*$")
 FENCE = re.compile(r"^```(?P<lang>[A-Za-z0-9_+-]*)\s*$")
-LINKED = ("tests", "catalogue", "docs", "benchmarks")
-TIMEOUT = {"fast": 300, "slow": 3600, "server": 60, "benchmark": 6 * 3600}
+LINKED = ("tests", "catalogue", "docs", "benchmarks",
+          # what `pip install '.[extra]'` reads, as in a checkout
+          "pyproject.toml", "setup.py", "README.md", "tilekit", "migrations")
+TIMEOUT = {"fast": 300, "slow": 3600, "server": 180, "benchmark": 6 * 3600, "postgres": 300}
+POSTGRES_SERVER = "TILEKIT_TEST_POSTGRES"
 
 
 @dataclass(frozen=True)
@@ -116,6 +131,7 @@ class DocState:
     folder: Path
     namespace: dict[str, Any] = field(default_factory=dict)
     done: set[int] = field(default_factory=set)
+    extra_env: dict[str, str] = field(default_factory=dict)
 
     @classmethod
     def create(cls, doc: Path, folder: Path) -> DocState:
@@ -124,17 +140,46 @@ class DocState:
             link = folder / name
             if not link.exists():
                 link.symlink_to(ROOT / name)
-        (folder / "site").mkdir(exist_ok=True)
-        return cls(doc, folder, {"__name__": "__doc_example__"})
+        state = cls(doc, folder, {"__name__": "__doc_example__"})
+        state._make_venv()
+        return state
+
+    @property
+    def venv(self) -> Path:
+        return self.folder / "venv"
+
+    @property
+    def site(self) -> Path:
+        """The document's own site-packages, where its ``pip install`` puts packages."""
+        return Path(sysconfig.get_path("purelib", vars={"base": str(self.venv), "platbase": str(self.venv)}))
+
+    def _make_venv(self) -> None:
+        """A venv without pip of its own (made in a fraction of a second): a ``.pth`` file adds
+        the test environment's site-packages after its own, and ``bin/pip`` runs that pip with
+        the venv's interpreter, so it installs into the venv."""
+        if self.venv.exists():
+            return
+        subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(self.venv)], check=True)
+        self.site.mkdir(parents=True, exist_ok=True)
+        tested = sysconfig.get_path("purelib")
+        (self.site / "_tilekit_docs_test_env.pth").write_text(f"import site; site.addsitedir({tested!r})\n")
+        python = self.venv / "bin" / "python"
+        for name in ("pip", "pip3"):
+            script = self.venv / "bin" / name
+            script.write_text(f"#!{python}\nimport sys\nfrom pip._internal.cli.main import main\n"
+                              "sys.exit(main())\n")
+            script.chmod(0o755)
 
     def env(self) -> dict[str, str]:
         env = dict(os.environ)
         env["TILEKIT_CATALOGUE"] = f"sqlite:///{self.folder / 'catalogue.sqlite'}"
-        env["PIP_TARGET"] = str(self.folder / "site")
-        env["PYTHONPATH"] = os.pathsep.join(p for p in (str(self.folder / "site"), env.get("PYTHONPATH", "")) if p)
-        env["PATH"] = os.pathsep.join([str(Path(sys.executable).parent), env.get("PATH", "")])
+        env.pop("PIP_TARGET", None)
+        env["VIRTUAL_ENV"] = str(self.venv)
+        env["PYTHONPATH"] = os.pathsep.join(p for p in (str(self.site), env.get("PYTHONPATH", "")) if p)
+        env["PATH"] = os.pathsep.join([str(self.venv / "bin"), str(Path(sys.executable).parent), env.get("PATH", "")])
         env["COLUMNS"] = "200"
         env.pop("TILEKIT_PLUGINS", None)
+        env.update(self.extra_env)
         return env
 
 
@@ -146,6 +191,29 @@ def run_block(block: Block, state: DocState) -> None:
     elif block.lang in ("bash", "sh"):
         _run_bash(block, state)
     state.done.add(block.line)
+
+
+@contextlib.contextmanager
+def postgres_database(state: DocState, server: str):
+    """A fresh database on the PostgreSQL server, as ``DATABASE_URL`` of the document's
+    commands while the block runs; dropped afterwards."""
+    import uuid
+
+    import sqlalchemy as sa
+
+    admin = sa.create_engine(server, isolation_level="AUTOCOMMIT")
+    name = f"tilekit_docs_{uuid.uuid4().hex[:12]}"
+    with admin.connect() as conn:
+        conn.execute(sa.text(f'CREATE DATABASE "{name}"'))
+    state.extra_env["DATABASE_URL"] = sa.engine.make_url(server).set(database=name).render_as_string(
+        hide_password=False)
+    try:
+        yield
+    finally:
+        state.extra_env.pop("DATABASE_URL", None)
+        with admin.connect() as conn:
+            conn.execute(sa.text(f'DROP DATABASE IF EXISTS "{name}" WITH (FORCE)'))
+        admin.dispose()
 
 
 # -- python ---------------------------------------------------------------------------------
@@ -183,7 +251,7 @@ def _run_python(block: Block, state: DocState) -> None:
     old_cwd = os.getcwd()
     os.environ.update(state.env())
     os.chdir(state.folder)
-    sys.path.insert(0, str(state.folder / "site"))
+    sys.path.insert(0, str(state.site))
     try:
         for stmt in tree.body:
             where = f"{block.doc.relative_to(ROOT)}:{block.line + stmt.lineno}"
@@ -202,7 +270,7 @@ def _run_python(block: Block, state: DocState) -> None:
             except Exception as e:  # noqa: BLE001 - reported with the line that raised
                 raise DocError(f"{where}: {type(e).__name__}: {e}") from e
     finally:
-        sys.path.remove(str(state.folder / "site"))
+        sys.path.remove(str(state.site))
         os.chdir(old_cwd)
         os.environ.clear()
         os.environ.update(old_env)
@@ -284,14 +352,23 @@ def _run_server(command: str, state: DocState, block: Block) -> None:
         return
     printed: list[str] = []
     deadline = time.monotonic() + TIMEOUT["server"]
+    fd = proc.stdout.fileno()
+
+    def read_some() -> str:
+        # the pipe is non-blocking: a text wrapper's read() fails on a pipe with no data yet
+        try:
+            return os.read(fd, 1 << 16).decode(errors="replace")
+        except BlockingIOError:
+            return ""
+
     try:
         url = None
-        os.set_blocking(proc.stdout.fileno(), False)
+        os.set_blocking(fd, False)
         while time.monotonic() < deadline and url is None:
             if proc.poll() is not None:
-                rest = proc.stdout.read() or ""
+                rest = read_some()
                 raise DocError(f"{block.id}: `{command}` exited {proc.returncode}:\n{''.join(printed) + rest}")
-            chunk = proc.stdout.read() or ""
+            chunk = read_some()
             printed.append(chunk)
             m = SERVING.search("".join(printed))
             if m:
@@ -328,9 +405,35 @@ def benchmark_invocations(block: Block) -> list[list[str]]:
         for part in re.split(r"\s*(?:&&|;|\|)\s*", command.split(" #")[0]):
             words = shlex.split(part)
             for i, w in enumerate(words):
-                if w.startswith("benchmarks/") and w.endswith(".py"):
+                # a script run by Python; `pytest benchmarks/X.py` is a pytest-benchmark suite
+                if (w.startswith("benchmarks/") and w.endswith(".py") and i > 0
+                        and Path(words[i - 1]).name.startswith("python")):
                     out.append(words[i:])
     return out
+
+
+def check_benchmark_block(block: Block) -> None:
+    """A benchmark block checked without running it: the benchmark files it names exist; Python
+    compiles and its imports resolve; shell commands parse."""
+    for name in re.findall(r"\bbenchmarks/[\w./-]+\.py\b", block.text):
+        if not (ROOT / name).is_file():
+            raise DocError(f"{block.id}: no benchmark file {name}")
+    if block.lang == "python":
+        try:
+            tree = ast.parse(block.text, filename=block.id)
+        except SyntaxError as e:
+            raise DocError(f"{block.id}: not Python: {e}") from None
+        imports = [stmt for stmt in tree.body if isinstance(stmt, ast.Import | ast.ImportFrom)]
+        try:
+            exec(compile(ast.Module(imports, []), block.id, "exec"), {"__name__": "__doc_benchmark__"})
+        except ImportError as e:
+            raise DocError(f"{block.id}: {type(e).__name__}: {e}") from None
+        return
+    script = ("\n".join(c for c, _ in console_commands(block.text)) if block.lang == "console"
+              else block.text)
+    done = subprocess.run(["bash", "-n"], input=script, capture_output=True, text=True)
+    if done.returncode != 0:
+        raise DocError(f"{block.id}: not a shell script: {done.stderr.strip()}")
 
 
 def check_benchmark_arguments(argv: list[str]) -> None:

@@ -225,6 +225,8 @@ def test_parse_filter_rejects_malformed(bad):
     with pytest.raises(ParseError) as info:
         parse_filter(bad)
     assert "\n" not in str(info.value)
+    # only a bare key (what bash leaves of an unquoted heesch>=2) gets the hint about quoting
+    assert ("quote the filter" in str(info.value)) == (bad == "polygons")
 
 
 @given(

@@ -88,6 +88,8 @@ def test_list_family_text_paging(pm, db):
     "args, fragment",
     [
         (["list", "--where", "polygons"], "is not of the form"),
+        # what bash passes for an unquoted `--where heesch>=2` (stdout goes to a file '=2')
+        (["list", "--where", "heesch"], "quote the filter, e.g. --where 'heesch>=2'"),
         (["list", "--where", "polygon=3"], "did you mean 'polygons'"),
         (["list", "--where", "k_hedral>=many"], "needs a number"),
         (["list", "--family", "testgrd"], "did you mean 'testgrid'"),

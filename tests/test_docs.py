@@ -8,10 +8,13 @@ from __future__ import annotations
 
 import os
 import subprocess
+import sysconfig
+from pathlib import Path
 
 import pytest
 from docrunner import (
     DOCS,
+    POSTGRES_SERVER,
     ROOT,
     RUN_LANGUAGES,
     Block,
@@ -20,7 +23,9 @@ from docrunner import (
     benchmark_invocations,
     blocks,
     check_benchmark_arguments,
+    check_benchmark_block,
     console_commands,
+    postgres_database,
     run_block,
 )
 
@@ -51,11 +56,17 @@ def test_documented_example_runs(block: Block, tmp_path_factory) -> None:
         assert "setup-command" in ci and "test-command" in ci
         return
     if block.tag == "benchmark" and os.environ.get("TILEKIT_DOC_BENCHMARKS") != "1":
-        invocations = benchmark_invocations(block)
-        for argv in invocations:
+        for argv in benchmark_invocations(block):
             check_benchmark_arguments(argv)
-        if not invocations:  # a benchmark block of other code: run it as written
-            run_block(block, _state(block, tmp_path_factory))
+        check_benchmark_block(block)  # minutes to hours: checked, not run
+        return
+    if block.tag == "postgres":
+        server = os.environ.get(POSTGRES_SERVER)
+        if not server:
+            pytest.skip(f"needs a PostgreSQL server: set {POSTGRES_SERVER}")
+        state = _state(block, tmp_path_factory)
+        with postgres_database(state, server):
+            run_block(block, state)
         return
     run_block(block, _state(block, tmp_path_factory))
 
@@ -111,9 +122,53 @@ def test_the_runner_runs_bash_blocks_with_errexit(tmp_path) -> None:
     assert (tmp_path / "=2").exists()
 
 
-def test_pip_in_examples_installs_into_the_documents_own_folder(tmp_path) -> None:
+def test_pip_in_examples_installs_into_the_documents_own_venv(tmp_path) -> None:
+    """A documented ``pip install`` of a package that needs tilekit finds tilekit installed and
+    lands in the document's venv, seen by ``tilekit`` and the Python blocks, never in the
+    environment that runs the tests."""
     state = DocState.create(ROOT / "README.md", tmp_path)
-    env = state.env()
-    done = subprocess.run(["python", "-c", "import os; print(os.environ['PIP_TARGET'])"], env=env,
-                          capture_output=True, text=True, check=True)
-    assert done.stdout.strip() == str(tmp_path / "site")
+    package = tmp_path / "docs-pip-probe"
+    (package / "docs_pip_probe").mkdir(parents=True)
+    (package / "docs_pip_probe" / "__init__.py").write_text("ANSWER = 42\n")
+    (package / "pyproject.toml").write_text(
+        '[build-system]\nrequires = ["setuptools>=61"]\nbuild-backend = "setuptools.build_meta"\n'
+        '[project]\nname = "docs-pip-probe"\nversion = "1.0"\ndependencies = ["tilekit"]\n'
+        '[tool.setuptools]\npackages = ["docs_pip_probe"]\n')
+    # --no-build-isolation: setuptools comes from the test environment, nothing is downloaded
+    run_block(Block(ROOT / "README.md", 1, "bash",
+                    "pip install --no-build-isolation ./docs-pip-probe\n"
+                    "python -c 'import docs_pip_probe, tilekit'", "fast"), state)
+    assert (state.site / "docs_pip_probe" / "__init__.py").is_file()
+    assert not (Path(sysconfig.get_path("purelib")) / "docs_pip_probe").exists()
+    run_block(Block(ROOT / "README.md", 2, "python",
+                    "import docs_pip_probe\ndocs_pip_probe.ANSWER  # -> 42", "fast"), state)
+    done = subprocess.run(["tilekit", "--help"], env=state.env(), capture_output=True, text=True)
+    assert done.returncode == 0
+    assert "PIP_TARGET" not in state.env()
+
+
+def test_a_benchmark_block_is_checked_not_run(tmp_path) -> None:
+    ok = Block(ROOT / "docs/benchmarks.md", 1, "python",
+               "import time\nfrom tilekit.plugins.wang import solve\ntime.sleep(3600)", "benchmark")
+    check_benchmark_block(ok)  # returns at once: the sleep is not run
+    bad = Block(ROOT / "docs/benchmarks.md", 2, "python", "from tilekit.plugins.wang import no_such_name", "benchmark")
+    with pytest.raises(AssertionError, match="no_such_name"):
+        check_benchmark_block(bad)
+    with pytest.raises(AssertionError, match="no benchmark file"):
+        check_benchmark_block(Block(ROOT / "docs/benchmarks.md", 3, "console",
+                                    "$ pytest benchmarks/bench_nothing.py --benchmark-enable", "benchmark"))
+    with pytest.raises(AssertionError, match="not a shell script"):
+        check_benchmark_block(Block(ROOT / "docs/benchmarks.md", 4, "bash", "for x in; do", "benchmark"))
+    # only scripts run by Python are checked against their parser
+    assert benchmark_invocations(Block(ROOT / "docs/benchmarks.md", 5, "console",
+                                       "$ pytest benchmarks/bench_core.py --benchmark-enable\n"
+                                       "$ .venv/bin/python benchmarks/bench_wang.py --fills-only", "benchmark")) == [
+        ["benchmarks/bench_wang.py", "--fills-only"]]
+
+
+def test_a_server_block_passes_when_the_server_answers_and_fails_when_it_exits(tmp_path) -> None:
+    state = DocState.create(ROOT / "README.md", tmp_path)
+    # prints "Serving HTTP on 127.0.0.1 port N (http://127.0.0.1:N/)", then answers 200 at /
+    run_block(Block(ROOT / "README.md", 1, "bash", "python -u -m http.server 0 --bind 127.0.0.1", "server"), state)
+    with pytest.raises(AssertionError, match="exited 3"):
+        run_block(Block(ROOT / "README.md", 2, "bash", "sh -c 'echo starting; exit 3'", "server"), state)

@@ -444,6 +444,8 @@ def _spec_bases() -> dict[str, list[dict]]:
                        "witness": {"kind": "coronas", "tiles": [[0, 0, 0, 0], [0, 3, 0, 1]]}},
                       {"code": "xx/x.", "witness": {"kind": "torus", "tiles": [[0, 0, 0, 0]], "lattice": [1, 0, 1]}}],
         "k-uniform": [{"kind": "k-uniform", "dsymbol": "3,12,12/3,3,3/0,1,2/0,2,1/1,0,2", "name": "[3.12^2] p6m"}],
+        "spherical": [{"p": 5, "q": 3}, {"p": 3, "q": 4, "samples": 3, "name": "octahedron"}],
+        "hyperbolic": [{"p": 7, "q": 3, "depth": 3}, {"p": 5, "q": 4, "radius": 2.5, "samples": 2}],
     }
 
 

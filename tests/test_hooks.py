@@ -48,6 +48,19 @@ def test_one_plugin_adds_properties_to_another_familys_records(monkeypatch):
     assert [r.properties["ih"] for r in records] == list(range(1, 94))
 
 
+def test_an_extra_plugin_already_loaded_is_registered_once(monkeypatch):
+    """A plugin's tests pass its module as an extra plugin; when the package is also installed,
+    its entry point has loaded the same module already (docs/plugins.md)."""
+    import tilekit.plugins.archimedean as archimedean
+
+    monkeypatch.setenv("TILEKIT_PLUGINS", "archimedean")
+    annotator = Annotator()
+    pm = make_plugin_manager(extra_plugins=[archimedean, annotator, annotator])
+    assert pm.get_plugins() == {archimedean, annotator}
+    names = [r.name for r in catalogue_records(pm)]
+    assert names and len(names) == len(set(names))  # each record once
+
+
 def test_tilekit_plugins_lists_plugins_hooks_and_sources():
     pm = make_plugin_manager()
     infos = {i.name: i for i in plugin_info(pm)}

@@ -178,7 +178,7 @@ def test_compiled_hole_count_and_outer_boundary_agree_with_the_python_ones(grid,
     holey = 0
     for p, h in zip(polys, flags):
         assert hole_count(grid, p) == len(holes(grid, p))
-        if h and grid is not HEXAGONAL:  # boundary_cycles raises on holey polyhexes (a known gap)
+        if h:
             v, w = boundary_word(grid, p)
             v2, w2 = boundary_cycles(grid, p)[0]
             assert v.tolist() == v2.tolist() and w.tolist() == w2.tolist()

@@ -26,7 +26,7 @@ import shapely
 
 from tilekit import limits
 from tilekit.errors import MissingDependency, ParameterError, TilekitError, optional  # noqa: F401  (re-exported)
-from tilekit.geometry import POINT_TOL, Affine, snap_noise
+from tilekit.geometry import snap_noise
 from tilekit.limits import (
     ADJACENCY_BYTES_PER_VERTEX,
     EXPORT_BYTES_PER_VERTEX,
@@ -106,12 +106,9 @@ def _flat_outlines(patch: Patch) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 def weld_tolerance(patch: Patch) -> float:
-    """POINT_TOL scaled by the patch's tile size (the median tile diameter, at least 1)."""
-    if not len(patch):
-        return POINT_TOL
-    diam = np.array([float(np.ptp(p.outline, axis=0).max()) for p in patch.prototiles])
-    scale = np.sqrt(np.abs(np.linalg.det(patch.transform[:, :2, :2])))
-    return POINT_TOL * max(1.0, float(np.median(diam[patch.prototile] * scale)))
+    """The tolerance within which the patch's outline points are one point
+    (:meth:`Patch.weld_tolerance`: POINT_TOL scaled by the median tile diameter)."""
+    return patch.weld_tolerance()
 
 
 def weld(points: np.ndarray, tol: float) -> tuple[np.ndarray, np.ndarray]:
@@ -545,16 +542,14 @@ def write_dxf(patch: Patch, path: str | Path, layers: str = "one", mm_per_unit: 
 
 def _rings(patch: Patch, idx: np.ndarray) -> Iterator[tuple[np.ndarray, np.ndarray]]:
     """(tile indices, closed counter-clockwise rings (m, k + 1, 2)) per prototile among
-    ``idx`` (reflected tiles' outlines are reversed, as RFC 7946 asks)."""
-    proto = patch.prototile[idx]
-    for p, shape in enumerate(patch.prototiles):
-        at = idx[proto == p]
-        if not len(at):
-            continue
-        pts = Affine.apply(patch.transform[at], shape.outline)
-        flip = np.linalg.det(patch.transform[at, :2, :2]) < 0
+    ``idx`` (clockwise outlines, i.e. reflected tiles', are reversed, as RFC 7946 asks).
+    The outlines come from the patch's own ``groups`` (a Patch subclass whose transforms
+    are not affine, such as the curved family's, draws its tiles there)."""
+    for _, local, pts in patch.subset(idx).groups():
+        x, y = pts[..., 0], pts[..., 1]
+        flip = (x * np.roll(y, -1, axis=1) - np.roll(x, -1, axis=1) * y).sum(axis=1) < 0
         pts[flip] = pts[flip, ::-1]
-        yield at, np.concatenate([pts, pts[:, :1]], axis=1)
+        yield idx[local], np.concatenate([pts, pts[:, :1]], axis=1)
 
 
 def _chunks(n: int) -> Iterator[np.ndarray]:
@@ -654,9 +649,7 @@ def tile_table(patch: Patch, labels: Sequence[str] | np.ndarray | None = None,
         lab = np.asarray(labels, dtype=object).reshape(-1)
         if len(lab) != n:
             raise ParameterError(f"{len(lab)} labels for {n} tiles")
-    lin = patch.transform[:, :2, :2]
-    angle = np.round(np.degrees(np.arctan2(lin[:, 1, 0], lin[:, 0, 0])), 9) % 360.0
-    reflected = lin[:, 0, 0] * lin[:, 1, 1] - lin[:, 0, 1] * lin[:, 1, 0] < 0
+    angle, reflected = patch.orientations()
     offsets, index = (adjacency(patch) if adj is None else adj).neighbours("edge")
     return TileTable(patch.centres(), angle + 0.0, reflected, patch.prototile.copy(), patch.colour.copy(), lab,
                      offsets, index)

@@ -1,21 +1,30 @@
-"""Cell lattices (square, hexagonal, triangular) as a few integer tables, and polyforms on them.
+"""Cell grids as a few integer tables, and polyforms on them.
 
 A grid is data, in the manner of Kaplan's heesch-sat: every algorithm below (Redelmeier
 enumeration, canonical forms, symmetry groups, boundary words, holes, outlines) reads only
-these tables, so a new grid is one more table.
+these tables, so a new grid is one more table. Ten grids: square, hex, iamond (tabled by
+hand) and kite, octasquare, trihex, drafter, abolo, halfcairo, bevelhex (each one
+:func:`grid_from_cells` table: prototype cells, the point group and the period; the cell
+types, edge neighbours and edge directions are derived). Cell types may differ in shape and
+number of edges (``Grid.degree``).
 
-Coordinates are *fine* integer coordinates in which cell centres and cell vertices are both
-lattice points and the grid's point group acts by integer 2x2 matrices about the origin:
+Coordinates are *fine* integer coordinates in which cell reference points and cell vertices
+are both lattice points and the grid's point group acts by integer 2x2 matrices about the
+origin:
 
 - square: centres (2x+1, 2y+1), vertices (2x, 2y); Cartesian = fine / 2.
-- hexagonal and triangular: coordinates in the basis u = (1, 0), v = (1/2, sqrt(3)/2) scaled
+- hex and iamond: coordinates in the basis u = (1, 0), v = (1/2, sqrt(3)/2) scaled
   by 3, so hexagon centres are (3a, 3b) and triangle centroids (3a+1, 3b+1) (pointing up) or
   (3a+2, 3b+2) (pointing down).
+- the others: see each table's comment (60-degree basis for kite, trihex, drafter, bevelhex;
+  square basis for octasquare, abolo, halfcairo); ``Grid.vertex_xy`` gives exact Cartesian
+  vertices (regular octagons and dodecagons through a per-residue shift).
 
-The translations of a grid are ``period * Z^2``; a cell's *type* is its centre modulo the
-period (one type for squares and hexagons, two for triangles), and neighbour offsets and
-vertex offsets are tabled per type. Boundary words are written over the grid's edge
-directions (``edge_dirs``; counter-clockwise boundary, interior on the left).
+The translations of a grid are ``period * Z^2``; a cell's *type* is its reference point
+modulo the period, and neighbour offsets and vertex offsets are tabled per type. Boundary
+words are written over the grid's edge directions (``edge_dirs``; counter-clockwise
+boundary, interior on the left). Redelmeier's tree is rooted at one cell type
+(:func:`enumerate_free` ``root=``); :func:`free_polyforms` walks every type's.
 """
 
 from __future__ import annotations
@@ -45,6 +54,21 @@ class Grid:
     group_names: tuple[str, ...]  # e.g. "r1" (rotation by one step), "s0" (reflection)
     to_xy: np.ndarray  # (2, 2) fine coordinates -> Cartesian
     cell_name: str = "cell"
+    #: (R,) edges (= vertices = edge neighbours) of each cell type; None: all R types have V.
+    #: Shorter types are padded: their vertex list repeats its last vertex and their neighbour
+    #: list its last neighbour, so set-like uses (floods, Redelmeier's untried set) need no care.
+    degree: np.ndarray | None = None
+    #: (R,) name of each cell type's shape, e.g. "octagon" / "square"
+    shapes: tuple[str, ...] = ()
+    #: other names :func:`get_grid` accepts
+    aliases: tuple[str, ...] = ()
+    #: (period, period, 2) Cartesian offset added to a *vertex* by its residue class: grids whose
+    #: exact drawing is not an integer lattice (regular octagons) are drawn through it; None: linear
+    vertex_shift: np.ndarray | None = None
+    #: least size of a polyform with a hole (enumeration skips the hole test below it)
+    hole_min: int = 1
+    #: where the grid's cells and counts are published (cited by the tests and docs)
+    reference: str = ""
 
     # -- derived tables -------------------------------------------------------
     @cached_property
@@ -96,9 +120,41 @@ class Grid:
         return np.asarray(pts, dtype=float) @ self.to_xy.T
 
     def vertices_of(self, c: np.ndarray) -> np.ndarray:
+        """(k, V, 2) fine vertices of each cell (a type with fewer repeats its last vertex)."""
         c = np.asarray(c, dtype=np.int64).reshape(-1, 2)
         t = self.cell_type(c)
         return c[:, None, :] + self.vertices[t]
+
+    @cached_property
+    def degrees(self) -> np.ndarray:
+        """(R,) the number of edges of each cell type."""
+        if self.degree is None:
+            return np.full(len(self.roots), self.vertices.shape[1], dtype=np.int64)
+        return np.asarray(self.degree, dtype=np.int64)
+
+    def vertex_xy(self, pts: np.ndarray) -> np.ndarray:
+        """Exact Cartesian position of fine *vertices* (the linear map plus ``vertex_shift``)."""
+        p = np.asarray(pts, dtype=np.int64)
+        out = self.xy(p)
+        if self.vertex_shift is not None:
+            m = np.mod(p, self.period)
+            out = out + self.vertex_shift[m[..., 0], m[..., 1]]
+        return out
+
+    def cell_polygons(self, cells: np.ndarray) -> list[np.ndarray]:
+        """Each cell's polygon, counter-clockwise, in exact Cartesian coordinates."""
+        c = np.asarray(cells, dtype=np.int64).reshape(-1, 2)
+        t = self.cell_type(c)
+        if (t < 0).any():
+            bad = c[t < 0][0].tolist()
+            raise GeometryError(f"{tuple(bad)} is not a cell centre of the {self.name} grid")
+        deg = self.degrees
+        return [self.vertex_xy(ci + self.vertices[ti][: deg[ti]]) for ci, ti in zip(c, t)]
+
+    def describe_cells(self) -> str:
+        """The cell centres as text: their residues modulo the period (for error messages)."""
+        res = ", ".join(f"({x}, {y})" for x, y in self.roots.tolist())
+        return f"cell centres of the {self.name} grid are (x, y) = one of {res} modulo {self.period}"
 
 
 def _rot_group(r: np.ndarray, s: np.ndarray, order: int) -> tuple[np.ndarray, tuple[str, ...]]:
@@ -129,37 +185,238 @@ SQUARE = Grid(
     vertices=np.array([[[-1, -1], [1, -1], [1, 1], [-1, 1]]]),
     edge_dirs=np.array([[2, 0], [0, 2], [-2, 0], [0, -2]]),
     group=_SQ_G, group_names=_SQ_N, to_xy=np.eye(2) / 2.0, cell_name="omino",
+    shapes=("square",), aliases=("omino",), hole_min=7,
+    reference="polyominoes: OEIS A000105 (free), A001168 (fixed), A001419 (with holes)",
 )
 
 HEXAGONAL = Grid(
-    "hexagonal", 3,
+    "hex", 3,
     roots=np.array([[0, 0]]),
     neighbours=np.array([[[3, 0], [0, 3], [-3, 3], [-3, 0], [0, -3], [3, -3]]]),
     vertices=np.array([[[1, 1], [-1, 2], [-2, 1], [-1, -1], [1, -2], [2, -1]]]),
     edge_dirs=np.array([[-2, 1], [-1, -1], [1, -2], [2, -1], [1, 1], [-1, 2]]),
     group=_HX_G, group_names=_HX_N, to_xy=_UV / math.sqrt(1 / 3) * 1.0 / 1.0, cell_name="hex",
+    shapes=("hexagon",), aliases=("hexagonal",), hole_min=3,
+    reference="polyhexes: OEIS A000228 (free), A001207 (fixed), A038144 (free, with holes)",
 )
 
 TRIANGULAR = Grid(
-    "triangular", 3,
+    "iamond", 3,
     roots=np.array([[1, 1], [2, 2]]),
     neighbours=np.array([[[1, 1], [-2, 1], [1, -2]], [[-1, -1], [2, -1], [-1, 2]]]),
     vertices=np.array([[[-1, -1], [2, -1], [-1, 2]], [[1, -2], [1, 1], [-2, 1]]]),
     edge_dirs=np.array([[3, 0], [0, 3], [-3, 3], [-3, 0], [0, -3], [3, -3]]),
     group=_HX_G, group_names=_HX_N, to_xy=_UV * 1.0, cell_name="iamond",
+    shapes=("triangle", "triangle"), aliases=("triangular",), hole_min=3,
+    reference="polyiamonds: OEIS A000577 (free), A001420 (fixed), A070764 (free, with holes)",
 )
 
-GRIDS = {g.name: g for g in (SQUARE, HEXAGONAL, TRIANGULAR)}
+
+# --------------------------------------------------------------------------- grids from cell tables
+
+def _angle_order(v: np.ndarray) -> np.ndarray:
+    return np.argsort(np.mod(np.arctan2(v[:, 1], v[:, 0]), 2 * math.pi), kind="stable")
+
+
+def grid_from_cells(name: str, period: int, cells: list[tuple[str, tuple[int, int], list[tuple[int, int]]]],
+                    symmetry: str, to_xy: np.ndarray, *, cell_name: str, aliases: tuple[str, ...] = (),
+                    regular: tuple[int, float] | None = None, reference: str = "") -> Grid:
+    """A :class:`Grid` from one table: a few prototype cells (shape name, an integer reference
+    point inside the cell, its vertices counter-clockwise, all in fine coordinates), the point
+    group (``"square"``: the 8 symmetries of Z^2, ``"hex"``: the 12 of the triangular lattice,
+    both about the origin) and ``period`` (the translations are ``period * Z^2``).
+
+    Everything else is derived: the cell types are the images of the prototypes under the
+    group, reduced modulo the period; the edge neighbours are the cells sharing each edge
+    (found geometrically: the cell holding the reversed edge); the edge directions are the
+    distinct edge vectors. ``regular = (i, inradius)`` draws prototype i as a regular polygon
+    of that Cartesian inradius (a vertex shift per residue class), for grids whose regular
+    drawing has no integer coordinates (4.8.8, 4.6.12). A table that does not describe an
+    edge-to-edge tiling (an edge with no twin, two cells on one residue) raises ValueError.
+    """
+    if symmetry == "square":
+        group, names = _SQ_G, _SQ_N
+    elif symmetry == "hex":
+        group, names = _HX_G, _HX_N
+    else:
+        raise ValueError(f"grid {name}: symmetry must be 'square' or 'hex', not {symmetry!r}")
+    P = period
+    types: dict[tuple[int, int], tuple[str, np.ndarray]] = {}
+    for shape, centre, verts in cells:
+        c = np.array(centre, dtype=np.int64)
+        vs = np.array(verts, dtype=np.int64) - c
+        for m in group:
+            gc, gv = m @ c, vs @ m.T
+            if np.linalg.det(m) < 0:
+                gv = gv[::-1]
+            res = tuple(int(v) for v in np.mod(gc, P))
+            if res in types:
+                old = types[res]
+                same = old[0] == shape and {tuple(v) for v in old[1].tolist()} == {tuple(v) for v in gv.tolist()}
+                if not same:
+                    raise ValueError(f"grid {name}: two different cells on residue {res}")
+                continue
+            types[res] = (shape, gv)
+    roots = np.array(list(types), dtype=np.int64)
+    shapes = tuple(types[tuple(r)][0] for r in roots.tolist())
+    vlists = [types[tuple(r)][1] for r in roots.tolist()]
+    deg = np.array([len(v) for v in vlists], dtype=np.int64)
+    V = int(deg.max())
+    # every directed edge (absolute, of the cells near the origin) -> its cell
+    span = range(-2, 3)
+    owner: dict[tuple, tuple[int, int]] = {}
+    for root, vs in zip(roots, vlists):
+        for i in span:
+            for j in span:
+                c = root + P * np.array([i, j])
+                pts = c + vs
+                for k in range(len(pts)):
+                    a, b = pts[k], pts[(k + 1) % len(pts)]
+                    owner[(*a.tolist(), *b.tolist())] = tuple(c.tolist())
+    nbrs = np.zeros((len(roots), V, 2), dtype=np.int64)
+    verts_out = np.zeros((len(roots), V, 2), dtype=np.int64)
+    dirs: set[tuple[int, int]] = set()
+    for r, (root, vs) in enumerate(zip(roots, vlists)):
+        pts = root + vs
+        for k in range(len(pts)):
+            a, b = pts[k], pts[(k + 1) % len(pts)]
+            twin = owner.get((*b.tolist(), *a.tolist()))
+            if twin is None:
+                raise ValueError(f"grid {name}: edge {a.tolist()}-{b.tolist()} of cell {root.tolist()} has no twin")
+            nbrs[r, k] = np.array(twin) - root
+            dirs.add(tuple((b - a).tolist()))
+        nbrs[r, len(pts):] = nbrs[r, len(pts) - 1]
+        verts_out[r, : len(pts)] = vs
+        verts_out[r, len(pts):] = vs[-1]
+    d = np.array(sorted(dirs), dtype=np.int64)
+    d = d[_angle_order(d.astype(float) @ to_xy.T)]
+    shift = None
+    if regular is not None:
+        shift = _regular_shift(group, to_xy, P, roots, vlists, *regular)
+    return Grid(name, P, roots=roots, neighbours=nbrs, vertices=verts_out, edge_dirs=d, group=group,
+                group_names=names, to_xy=to_xy, cell_name=cell_name, degree=deg, shapes=shapes,
+                aliases=aliases, vertex_shift=shift, hole_min=1, reference=reference)
+
+
+def _regular_shift(group, to_xy, P, roots, vlists, which: int, inradius: float) -> np.ndarray:
+    """The vertex shift table drawing cell type ``which`` as a regular polygon (the vertices'
+    directions from its centre snapped to the regular k-gon's), spread over every vertex
+    residue class by the group."""
+    root, vs = roots[which], vlists[which]
+    k = len(vs)
+    lin = vs.astype(float) @ to_xy.T
+    ang = np.arctan2(lin[:, 1], lin[:, 0])
+    step = math.pi / k
+    snapped = (2 * np.round((ang / step - 1) / 2) + 1) * step
+    exact = (inradius / math.cos(step)) * np.column_stack([np.cos(snapped), np.sin(snapped)])
+    inv = np.linalg.inv(to_xy)
+    shift = np.full((P, P, 2), np.nan)
+    for m in group:
+        cart = to_xy @ m @ inv  # the group element as a Cartesian isometry
+        for v, e in zip(vs, exact):
+            gv = m @ (root + v)
+            off = cart @ e - to_xy @ (m @ v)
+            res = tuple(np.mod(gv, P).tolist())
+            if np.isnan(shift[res]).any():
+                shift[res] = off
+            elif not np.allclose(shift[res], off):
+                raise ValueError(f"regular drawing is not consistent at vertex residue {res}")
+    for r, vl in zip(roots, vlists):
+        for v in vl:
+            res = tuple(np.mod(r + v, P).tolist())
+            if np.isnan(shift[res]).any():
+                raise ValueError(f"regular drawing: vertex residue {res} is on no regular cell")
+    return np.nan_to_num(shift)
+
+
+# The grids of Kaplan's heesch-sat beyond the three above, each one table (shape, reference
+# point, vertices counter-clockwise, in fine coordinates); the tests check that the cells
+# tile the plane (no gap, no overlap), that neighbours share a full edge, and the counts.
+KITE = grid_from_cells(
+    "kite", 6,
+    # the deltoidal trihexagonal tiling (dual of 3.4.6.4): each hexagon (centres 6 Z^2 in the
+    # 60-degree basis) cut into six kites from its centre to two edge midpoints and a corner
+    [("kite", (1, 1), [(0, 0), (3, 0), (2, 2), (0, 3)])],
+    "hex", _UV / 2.0, cell_name="kite",
+    reference="polykites: OEIS A057786 (free)",
+)
+
+OCTASQUARE = grid_from_cells(
+    "octasquare", 4,
+    # the truncated square tiling 4.8.8: octagons centred on 4 Z^2, squares between them
+    [("octagon", (0, 0), [(2, -1), (2, 1), (1, 2), (-1, 2), (-2, 1), (-2, -1), (-1, -2), (1, -2)]),
+     ("square", (2, 2), [(2, 1), (3, 2), (2, 3), (1, 2)])],
+    "square", np.eye(2) / 4.0, cell_name="octasquare", regular=(0, 0.5),
+    reference="poly-(4.8.8) octasquare forms: Kaplan's heesch-sat (-octasquare)",
+)
+
+TRIHEX = grid_from_cells(
+    "trihex", 6,
+    # the trihexagonal tiling 3.6.3.6: hexagons centred on 6 Z^2, two triangles per hexagon
+    [("hexagon", (0, 0), [(3, 0), (0, 3), (-3, 3), (-3, 0), (0, -3), (3, -3)]),
+     ("triangle", (2, 2), [(3, 0), (3, 3), (0, 3)])],
+    "hex", _UV / 2.0, cell_name="trihex",
+    reference="poly-(3.6.3.6) trihex forms: Kaplan's heesch-sat (-trihex)",
+)
+
+DRAFTER = grid_from_cells(
+    "drafter", 18,
+    # the kisrhombille tiling (dual of 4.6.12): each hexagon (centres 18 Z^2) cut into twelve
+    # 30-60-90 triangles from its centre, an edge midpoint and a corner
+    [("drafter", (5, 2), [(0, 0), (9, 0), (6, 6)])],
+    "hex", _UV / 6.0, cell_name="drafter",
+    reference="polydrafters on the kisrhombille grid: Kaplan's heesch-sat (-drafter)",
+)
+
+ABOLO = grid_from_cells(
+    "abolo", 6,
+    # the tetrakis square tiling (dual of 4.8.8): each square (centres 6 Z^2) cut by its
+    # diagonals into four right isosceles triangles
+    [("abolo", (0, -2), [(-3, -3), (3, -3), (0, 0)])],
+    "square", np.eye(2) / 6.0, cell_name="abolo",
+    reference="polyaboloes on the tetrakis square grid: Kaplan's heesch-sat (-abolo)",
+)
+
+HALFCAIRO = grid_from_cells(
+    "halfcairo", 12,
+    # each square of side 12 around a hub (12 Z^2) cut into four triangles (hub and a side's
+    # middle third) and four corner quadrilaterals; two of each make a Cairo pentagon
+    [("triangle", (4, 0), [(0, 0), (6, -3), (6, 3)]),
+     ("quadrilateral", (4, 4), [(0, 0), (6, 3), (6, 6), (3, 6)])],
+    "square", np.eye(2) / 12.0, cell_name="halfcairo",
+    reference="half-Cairo cells: Kaplan's heesch-sat (-halfcairo)",
+)
+
+BEVELHEX = grid_from_cells(
+    "bevelhex", 6,
+    # the truncated trihexagonal tiling 4.6.12: dodecagons centred on 6 Z^2 (60-degree basis),
+    # hexagons at the triangle centres, squares at the edge midpoints
+    [("dodecagon", (0, 0), [(2, 1), (1, 2), (-1, 3), (-2, 3), (-3, 2), (-3, 1),
+                            (-2, -1), (-1, -2), (1, -3), (2, -3), (3, -2), (3, -1)]),
+     ("hexagon", (2, 2), [(2, 1), (3, 1), (3, 2), (2, 3), (1, 3), (1, 2)]),
+     ("square", (3, 0), [(3, -1), (4, -1), (3, 1), (2, 1)])],
+    "hex", _UV / 2.0, cell_name="bevelhex", regular=(0, (2 + math.sqrt(3)) / (2 * (3 + math.sqrt(3)))),
+    reference="poly-(4.6.12) bevelhex forms: Kaplan's heesch-sat (-bevelhex)",
+)
+
+GRIDS = {g.name: g for g in (SQUARE, HEXAGONAL, TRIANGULAR, KITE, OCTASQUARE, TRIHEX, DRAFTER, ABOLO,
+                             HALFCAIRO, BEVELHEX)}
+_ALIASES = {a: g for g in GRIDS.values() for a in g.aliases}
 
 
 def get_grid(name: str | Grid) -> Grid:
+    """A grid by name (``square``, ``hex``, ``iamond``, ``kite``, ...; or an alias such as
+    ``hexagonal``); NotFoundError lists the grids."""
     if isinstance(name, Grid):
         return name
-    try:
-        return GRIDS[name]
-    except KeyError:
-
-        raise NotFoundError("grid", name, GRIDS) from None
+    key = str(name).strip().lower()
+    if key in GRIDS:
+        return GRIDS[key]
+    if key in _ALIASES:
+        return _ALIASES[key]
+    err = NotFoundError("grid", str(name), list(GRIDS))
+    err.args = (f"{err.args[0].split(';')[0]}; grids: {', '.join(GRIDS)}",)
+    raise err
 
 
 # --------------------------------------------------------------------------- canonical forms
@@ -224,10 +481,12 @@ def as_cells(grid: Grid, cells) -> np.ndarray:
         raise GeometryError("a polyform needs at least one cell; the cell set is empty")
     if not grid.is_cell(c).all():
         bad = c[~grid.is_cell(c)][0].tolist()
-        raise GeometryError(f"{tuple(bad)} is not a cell centre of the {grid.name} grid")
+        raise GeometryError(f"cell {tuple(bad)} is not a cell centre of the {grid.name} grid ({grid.describe_cells()})")
     keys = {tuple(p) for p in c.tolist()}
     if len(keys) != len(c):
-        raise GeometryError("a polyform's cells must be distinct (a cell is repeated)")
+        seen_once: set[tuple] = set()
+        rep = next(k for k in map(tuple, c.tolist()) if k in seen_once or seen_once.add(k))
+        raise GeometryError(f"a polyform's cells must be distinct: cell {rep} is repeated")
     seen = {tuple(c[0].tolist())}
     stack = [c[0]]
     while stack:
@@ -238,8 +497,10 @@ def as_cells(grid: Grid, cells) -> np.ndarray:
                 seen.add(k)
                 stack.append(q)
     if len(seen) != len(keys):
+        lost = next(k for k in map(tuple, c.tolist()) if k not in seen)
         raise GeometryError(
-            f"the cells are disconnected: {len(seen)} of {len(keys)} are edge-connected to the first"
+            f"the cells are disconnected: cell {lost} is not edge-connected to cell "
+            f"{tuple(c[0].tolist())} ({len(seen)} of {len(keys)} cells are)"
         )
     return c
 
@@ -263,9 +524,9 @@ def hole_count(grid: Grid, cells: np.ndarray) -> int:
 @njit(cache=True)
 def _empty_components(c, roots, nbr, period):
     """Edge-connected components of the empty cells in the bounding box of ``c`` plus a margin
-    of two periods: (label per box position, -1 where no empty cell; x0, y0, w, count). The
-    scan meets the margin first, so component 0 is the outside (the margin is connected and
-    holes never reach it); components 1.. are the holes."""
+    of two periods: (label per box position, -1 where no empty cell; x0, y0, w, count).
+    Label 0 is the outside (every component reaching beyond one period of the cells; holes
+    never do); labels 1.. are the holes."""
     n = c.shape[0]
     x0 = c[0, 0]
     x1 = x0
@@ -276,6 +537,11 @@ def _empty_components(c, roots, nbr, period):
         x1 = max(x1, c[k, 0])
         y0 = min(y0, c[k, 1])
         y1 = max(y1, c[k, 1])
+    # the inner box: within one period of the cells; every empty cell beyond it is outside
+    ix0 = x0 - period
+    ix1 = x1 + period
+    iy0 = y0 - period
+    iy1 = y1 + period
     m = 2 * period
     x0 = x0 - (x0 % period) - m
     y0 = y0 - (y0 % period) - m
@@ -323,7 +589,26 @@ def _empty_components(c, roots, nbr, period):
                     stack[top] = q
                     top += 1
         comps += 1
-    return lab, x0, y0, w, comps
+    # a component with a cell outside the inner box is the outside (label 0; on grids whose
+    # cells at the box's far edge have all their neighbours beyond it, such cells come out as
+    # components of their own); the others, renumbered 1.., are the holes
+    outside = np.zeros(comps, np.uint8)
+    for v in range(w * h):
+        if lab[v] >= 0:
+            px = v % w + x0
+            py = v // w + y0
+            if px < ix0 or px > ix1 or py < iy0 or py > iy1:
+                outside[lab[v]] = 1
+    new = np.zeros(comps, np.int64)
+    k = 1
+    for i in range(comps):
+        if outside[i] == 0:
+            new[i] = k
+            k += 1
+    for v in range(w * h):
+        if lab[v] >= 0:
+            lab[v] = new[lab[v]]
+    return lab, x0, y0, w, k
 
 
 # --------------------------------------------------------------------------- boundary
@@ -337,17 +622,13 @@ def boundary_cycles(grid: Grid, cells: np.ndarray) -> list[tuple[np.ndarray, np.
     c = np.asarray(cells, dtype=np.int64).reshape(-1, 2)
     keys = {tuple(p) for p in c.tolist()}
     t = grid.cell_type(c)
+    ea, eb, en, _ = _edge_tables(grid)
     out_edges: dict[tuple, list[tuple]] = {}
     for ci, ti in zip(c, t):
-        vs = ci + grid.vertices[ti]
-        nbs = ci + grid.neighbours[ti]
-        for k in range(len(vs)):
-            a, b = vs[k], vs[(k + 1) % len(vs)]
-            mid2 = a + b  # the neighbour across edge (a, b) is the one nearest its midpoint
-            j = int(np.argmin(((2 * nbs - mid2) ** 2).sum(axis=1)))
-            if tuple(nbs[j].tolist()) in keys:
+        for k in range(int(grid.degrees[ti])):
+            if tuple((ci + en[ti, k]).tolist()) in keys:
                 continue
-            out_edges.setdefault(tuple(a.tolist()), []).append(tuple(b.tolist()))
+            out_edges.setdefault(tuple((ci + ea[ti, k]).tolist()), []).append(tuple((ci + eb[ti, k]).tolist()))
     dirs = grid.edge_dirs
     angle = np.arctan2(*(grid.xy(dirs)[:, ::-1].T))
     cycles = []
@@ -376,6 +657,21 @@ def boundary_cycles(grid: Grid, cells: np.ndarray) -> list[tuple[np.ndarray, np.
             cycles.append((np.array(verts, dtype=np.int64), np.array(letters, dtype=np.int64)))
     cycles.sort(key=lambda cyc: -_signed_area(grid.xy(cyc[0])))
     return cycles
+
+
+def _across(grid: Grid, r: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Offset of the neighbour across the edge (a, b) (offsets from a root of type r): the
+    neighbour whose own vertex list holds the edge reversed (exact, no distances)."""
+    root = grid.roots[r]
+    for off in grid.neighbours[r]:
+        q = root + off
+        t = int(grid.cell_type(q[None])[0])
+        vs = (q + grid.vertices[t][: grid.degrees[t]] - root).tolist()
+        k = len(vs)
+        for i in range(k):
+            if vs[i] == b.tolist() and vs[(i + 1) % k] == a.tolist():
+                return off
+    raise GeometryError(f"the {grid.name} grid's tables have no neighbour across edge {a.tolist()}-{b.tolist()}")
 
 
 def _signed_area(p: np.ndarray) -> float:
@@ -449,10 +745,10 @@ def _occupancy(c, period):
 def _trace_outer(c, types, ea, eb, en, el, period, turn, out_v, out_l):
     """The outer boundary cycle, exactly as :func:`boundary_cycles` returns it first: from the
     least vertex (y, x), interior on the left, the sharpest right turn at a vertex where
-    cycles touch. Returns its length (-1 if more than four edges leave one vertex)."""
+    cycles touch. Returns its length (-1 if more than six edges leave one vertex)."""
     n = c.shape[0]
     occ, x0, y0, w, h = _occupancy(c, period)
-    S = 4
+    S = 6
     nout = np.zeros(w * h, np.int64)
     nxt = np.full((w * h, S), -1, np.int64)
     let = np.zeros((w * h, S), np.int64)
@@ -507,15 +803,15 @@ def _edge_tables(grid: Grid):
         R, V = grid.vertices.shape[:2]
         ea = np.zeros((R, V, 2), np.int64)
         eb = np.zeros((R, V, 2), np.int64)
-        en = np.zeros((R, V, 2), np.int64)
+        en = np.zeros((R, V, 2), np.int64)  # padding edges (a type with < V) point at the cell itself
         el = np.zeros((R, V), np.int64)
         for r in range(R):
-            for k in range(V):
-                a, b = grid.vertices[r, k], grid.vertices[r, (k + 1) % V]
-                nbs = grid.neighbours[r]
-                j = int(np.argmin(((2 * nbs - (a + b)) ** 2).sum(axis=1)))
-                ea[r, k], eb[r, k], en[r, k] = a, b, nbs[j]
+            k_r = int(grid.degrees[r])
+            for k in range(k_r):
+                a, b = grid.vertices[r, k], grid.vertices[r, (k + 1) % k_r]
+                ea[r, k], eb[r, k], en[r, k] = a, b, _across(grid, r, a, b)
                 el[r, k] = int(np.nonzero((grid.edge_dirs == b - a).all(axis=1))[0][0])
+            ea[r, k_r:] = eb[r, k_r:] = grid.vertices[r, 0]
         _EDGE_CACHE[grid.name] = (ea, eb, en, el)
     return _EDGE_CACHE[grid.name]
 
@@ -562,12 +858,16 @@ def _trace(c, types, ea, eb, en, el, period, out_v, out_l):
     return cnt
 
 
+#: The letters of boundary words as text: digits, then lower- and upper-case letters.
+WORD_ALPHABET = "0123456789abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+
+
 def word_text(letters) -> str:
-    """A boundary word as text, one digit per letter."""
+    """A boundary word as text, one character per letter (0-9, then a-z, A-Z)."""
     a = np.asarray(letters, dtype=np.int64)
-    if a.size and (a.min() < 0 or a.max() > 9):
-        raise ValueError(f"boundary letters must be 0-9, got {a.tolist()}")
-    return (a.astype(np.uint8) + 48).tobytes().decode("ascii")
+    if a.size and (a.min() < 0 or a.max() >= len(WORD_ALPHABET)):
+        raise ValueError(f"boundary letters must be 0-{len(WORD_ALPHABET) - 1}, got {a.tolist()}")
+    return "".join(WORD_ALPHABET[i] for i in a.tolist())
 
 
 def outline(grid: Grid, cells: np.ndarray, name: str = ""):
@@ -575,7 +875,7 @@ def outline(grid: Grid, cells: np.ndarray, name: str = ""):
 
     verts, letters = boundary_word(grid, cells)
     keep = letters != np.roll(letters, 1)
-    return Prototile(grid.xy(verts[keep]), name=name)
+    return Prototile(grid.vertex_xy(verts[keep]), name=name)
 
 
 # --------------------------------------------------------------------------- Redelmeier
@@ -667,8 +967,9 @@ def _canon_check(poly, size, bx, by, mats, period, keys, tmp):
 
 
 @njit(cache=True)
-def _has_hole(poly, size, bx, by, roots, nbr, period, grid_buf, stack):
-    """Flood fill of the empty cells of a bounding box (plus a margin) from its corner."""
+def _has_hole(poly, size, bx, by, roots, nbr, period, grid_buf, stack, restype):
+    """Flood fill of the empty cells of a bounding box (plus a margin) from its corner.
+    ``restype[(y % period) * period + x % period]`` is the cell type at a position (-1: none)."""
     x0 = bx[poly[0]]
     x1 = x0
     y0 = by[poly[0]]
@@ -680,6 +981,10 @@ def _has_hole(poly, size, bx, by, roots, nbr, period, grid_buf, stack):
         x1 = max(x1, x)
         y0 = min(y0, y)
         y1 = max(y1, y)
+    ix0 = x0 - period  # the inner box (see _empty_components)
+    ix1 = x1 + period
+    iy0 = y0 - period
+    iy1 = y1 + period
     m = 2 * period
     x0 = x0 - (x0 % period) - m
     y0 = y0 - (y0 % period) - m
@@ -688,7 +993,7 @@ def _has_hole(poly, size, bx, by, roots, nbr, period, grid_buf, stack):
     w = x1 - x0 + 1
     h = y1 - y0 + 1
     if w * h > grid_buf.shape[0]:
-        return False
+        raise ValueError("the hole test's box is larger than its buffer")
     # 0 unknown/empty, 1 filled, 2 reached-from-outside
     for i in range(w * h):
         grid_buf[i] = 0
@@ -700,17 +1005,13 @@ def _has_hole(poly, size, bx, by, roots, nbr, period, grid_buf, stack):
     grid_buf[(sy - y0) * w + (sx - x0)] = 2
     stack[0] = (sy - y0) * w + (sx - x0)
     top = 1
-    reached = 1
-    nr = roots.shape[0]
+    reached = 0  # reached cells of the inner box (the start, in the margin, is not one)
     while top > 0:
         top -= 1
         p = stack[top]
         px = p % w + x0
         py = p // w + y0
-        t = 0
-        for r in range(nr):
-            if (px - roots[r, 0]) % period == 0 and (py - roots[r, 1]) % period == 0:
-                t = r
+        t = restype[(py % period) * period + px % period]
         for j in range(nbr.shape[1]):
             qx = px + nbr[t, j, 0]
             qy = py + nbr[t, j, 1]
@@ -721,14 +1022,14 @@ def _has_hole(poly, size, bx, by, roots, nbr, period, grid_buf, stack):
                 grid_buf[q] = 2
                 stack[top] = q
                 top += 1
-                reached += 1
-    # count all cell centres in the box
+                if qx >= ix0 and qx <= ix1 and qy >= iy0 and qy <= iy1:
+                    reached += 1
+    # count the cell centres of the inner box: one not reached from outside is in a hole
     total = 0
-    for yy in range(y0, y1 + 1):
-        for xx in range(x0, x1 + 1):
-            for r in range(nr):
-                if (xx - roots[r, 0]) % period == 0 and (yy - roots[r, 1]) % period == 0:
-                    total += 1
+    for yy in range(iy0, iy1 + 1):
+        for xx in range(ix0, ix1 + 1):
+            if restype[(yy % period) * period + xx % period] >= 0:
+                total += 1
     return reached + size < total
 
 
@@ -759,7 +1060,17 @@ def _redelmeier(nb, bx, by, n, prefix, plen, maxsize, mats, period, roots, nbr, 
     poly = np.zeros(n + 1, np.int64)
     keys = np.zeros(n + 1, np.int64)
     tmp = np.zeros(n + 1, np.int64)
-    gbuf = np.zeros((8 * period * (n + 4)) ** 2, np.int64)
+    # the hole test's box: the cells span at most (n - 1) neighbour steps, plus the period
+    # alignment and the two-period margin on each side (see _has_hole), so this side bounds it
+    step = 0
+    for t in range(nbr.shape[0]):
+        for j in range(nbr.shape[1]):
+            step = max(step, abs(nbr[t, j, 0]), abs(nbr[t, j, 1]))
+    side = (n + 1) * step + 8 * period
+    gbuf = np.zeros(side * side, np.int64)
+    restype = np.full(period * period, -1, np.int64)
+    for r in range(roots.shape[0]):
+        restype[roots[r, 1] * period + roots[r, 0]] = r
     path = np.zeros(n + 1, np.int64)
     entered = np.zeros(n + 2, np.uint8)
     stack = np.empty(gbuf.shape[0], np.int64)
@@ -797,7 +1108,8 @@ def _redelmeier(nb, bx, by, n, prefix, plen, maxsize, mats, period, roots, nbr, 
                     ok, sym = _canon_check(poly, size, bx, by, mats, period, keys, tmp)
                     if ok:
                         free[size] += 1
-                        hh = size >= hole_min and _has_hole(poly, size, bx, by, roots, nbr, period, gbuf, stack)
+                        hh = size >= hole_min and _has_hole(poly, size, bx, by, roots, nbr, period, gbuf, stack,
+                                                            restype)
                         if hh:
                             holey[size] += 1
                         if mode == 2:
@@ -837,7 +1149,7 @@ def _redelmeier(nb, bx, by, n, prefix, plen, maxsize, mats, period, roots, nbr, 
 
 def _tables(grid: Grid):
     return (grid.group.astype(np.int64), np.int64(grid.period), grid.roots.astype(np.int64),
-            grid.neighbours.astype(np.int64), np.int64(7 if grid.period == 2 else 3))
+            grid.neighbours.astype(np.int64), np.int64(grid.hole_min))
 
 
 def count_fixed(grid: Grid, n: int, *, free: bool = False, prefix=(), root: int | None = None,
@@ -878,7 +1190,8 @@ def prefixes(grid: Grid, n: int, depth: int, root: int) -> list[list[int]]:
 
 def enumerate_free(grid: Grid, n: int, prefix=(), root: int = 0, maxsize: int | None = None,
                    with_holes: bool = False, with_symmetry: bool = False):
-    """The free polyforms (canonical representatives, as centres) in one subtree, with counts.
+    """The free polyforms (canonical representatives, as centres) in one subtree of the tree
+    rooted at cell type ``root``, with counts (all types: :func:`free_polyforms`).
 
     Returns (polyforms, counts), or with ``with_holes`` (polyforms, has-hole flags, counts),
     or with ``with_symmetry`` (polyforms, has-hole flags, symmetry bitmasks, counts). The
@@ -903,6 +1216,27 @@ def enumerate_free(grid: Grid, n: int, prefix=(), root: int = 0, maxsize: int | 
     return polys, counts
 
 
+def free_polyforms(grid: Grid, n: int, *, with_holes: bool = False):
+    """Every free polyform of 1..n cells on ``grid``: :func:`enumerate_free` from each cell
+    type (a form comes from the type of the least cell of its canonical image, once).
+
+    Returns (polyforms, free counts (n + 1,)), or with ``with_holes`` (polyforms, has-hole
+    flags, free counts). On a grid with several cell types, ``enumerate_free(grid, n)``
+    alone walks only type 0's tree and misses the rest.
+    """
+    polys: list[np.ndarray] = []
+    flags: list[np.ndarray] = []
+    free = np.zeros(n + 1, np.int64)
+    for r in range(len(grid.roots)):
+        p, f, c = enumerate_free(grid, n, root=r, with_holes=True)
+        polys += p
+        flags.append(f)
+        free += c["free"]
+    if with_holes:
+        return polys, np.concatenate(flags), free
+    return polys, free
+
+
 def symmetry_from_mask(grid: Grid, mask: int) -> str:
     """symmetry_name of the group elements in a bitmask (as enumerate_free reports them)."""
     return symmetry_name(grid, [g for g in range(len(grid.group)) if mask >> g & 1])
@@ -912,7 +1246,9 @@ def symmetry_from_mask(grid: Grid, mask: int) -> str:
 
 def encode(grid: Grid, cells: np.ndarray, *, is_canonical: bool = False) -> str:
     """Text code of the canonical free form: rows top to bottom, 'x' a cell, '.' none (square);
-    'x,y;x,y...' of fine centres for the other grids (``is_canonical`` skips the minimisation)."""
+    ``GRID:x,y;x,y;...`` for the other grids, the grid's name and the fine centres of the
+    canonical cells in (y, x) order, e.g. ``kite:1,1;5,2`` (``is_canonical`` skips the
+    minimisation). :func:`decode` reads both forms back."""
     c = np.asarray(cells, dtype=np.int64) if is_canonical else canonical(grid, cells, "free")
     if grid is SQUARE:
         q = (c - 1) // 2
@@ -922,7 +1258,7 @@ def encode(grid: Grid, cells: np.ndarray, *, is_canonical: bool = False) -> str:
         board[:, :w] = ord(".")
         board[h - 1 - q[:, 1], q[:, 0]] = ord("x")
         return board.tobytes()[:-1].decode("ascii")
-    return ";".join(f"{x},{y}" for x, y in c.tolist())
+    return f"{grid.name}:" + ";".join(f"{x},{y}" for x, y in c.tolist())
 
 
 #: Largest |coordinate| of a cell in a code: fine coordinates (2x + 1 on the square grid)
@@ -944,17 +1280,37 @@ def decode(grid: Grid, code: str) -> np.ndarray:
         if not pts:
             raise GeometryError(f"polyomino code {code!r} has no cells (the cell set is empty)")
         return np.array(pts, dtype=np.int64)
+    if ":" in text:
+        head, _, text = text.partition(":")
+        if get_grid(head.strip()) is not grid:
+            raise ParseError(f"polyform code {str(code)[:60]!r} is for the {head.strip()} grid, not the {grid.name} grid")
     try:
         pts = [tuple(int(v) for v in part.split(",")) for part in text.split(";") if part.strip()]
         if any(len(p) != 2 for p in pts):
             raise ValueError
     except ValueError:
-        hint = "rows of 'x' and '.' joined by '/', e.g. 'xx/x.'" if grid is SQUARE else "'x,y;x,y;...' of cell centres"
+        hint = ("rows of 'x' and '.' joined by '/', e.g. 'xx/x.'" if grid is SQUARE
+                else f"'{grid.name}:x,y;x,y;...' of cell centres")
         raise ParseError(f"malformed {grid.name} polyform code {code!r}: expected {hint}") from None
     if any(abs(v) > MAX_CODE_COORDINATE for p in pts for v in p):
         raise ParseError(f"{grid.name} polyform code {str(code)[:60]!r}: a coordinate is outside "
                          f"±{MAX_CODE_COORDINATE:,} (cells are packed into 21-bit fields)")
+    if not pts:
+        raise GeometryError(f"{grid.name} polyform code {code!r} has no cells (the cell set is empty)")
+    if len(pts) > MAX_CODE_CELLS:
+        raise ParseError(f"{grid.name} polyform code has {len(pts):,} cells, over the limit of {MAX_CODE_CELLS:,}")
     return np.array(pts, dtype=np.int64).reshape(-1, 2)
+
+
+#: Most cells a polyform code may name (a polyform search stores at most a few dozen).
+MAX_CODE_CELLS = 10_000
+
+
+def parse_polyform(grid: Grid | str, code: str) -> np.ndarray:
+    """The validated cells of a code: cells of the grid, distinct and edge-connected; the
+    error (ParseError / GeometryError, one line) names the cell that is wrong."""
+    g = get_grid(grid)
+    return as_cells(g, decode(g, code))
 
 
 def square_cells(pairs) -> np.ndarray:

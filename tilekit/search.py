@@ -91,7 +91,9 @@ def _coerce(search: Search, name: str, typ: type, value: Any) -> Any:
 def _in_range(search: Search, p: Any, value: Any) -> None:
     where = f"search {search.name!r}: parameter {p.name!r}"
     if p.choices is not None and value not in p.choices:
-        close = NotFoundError(f"{p.name} value", str(value), list(p.choices))
+        close = str(NotFoundError(f"{p.name} value", str(value), list(p.choices)))
+        if "valid:" not in close and len(p.choices) <= 20:
+            close += "; valid: " + ", ".join(map(str, p.choices))
         raise ParameterError(f"search {search.name!r}: {close}")
     if isinstance(value, int | float) and not isinstance(value, bool):
         low, high = p.min, p.max

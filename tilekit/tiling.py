@@ -22,7 +22,7 @@ from shapely.geometry.base import BaseGeometry
 from tilekit import export
 from tilekit.colouring import Colouring
 from tilekit.errors import GeometryError, ParameterError, ParseError
-from tilekit.geometry import AREA_TOL, EPS, Affine, as_region, snap_noise
+from tilekit.geometry import AREA_TOL, EPS, POINT_TOL, Affine, as_region, snap_noise
 from tilekit.limits import (
     GENERATION_BYTES_PER_TILE,
     PERIODIC_BYTES_PER_TILE,
@@ -322,6 +322,21 @@ class Patch:
             c = centroid(self.prototiles[p].outline)
             out[idx] = Affine.apply(self.transform[idx], c[None, :])[:, 0, :]
         return out
+
+    def weld_tolerance(self) -> float:
+        """Distance within which outline points are one point (adjacency, cut lines):
+        POINT_TOL scaled by the median tile diameter, at least 1."""
+        if not len(self):
+            return POINT_TOL
+        diam = np.array([float(np.ptp(p.outline, axis=0).max()) for p in self.prototiles])
+        scale = np.sqrt(np.abs(np.linalg.det(self.transform[:, :2, :2])))
+        return POINT_TOL * max(1.0, float(np.median(diam[self.prototile] * scale)))
+
+    def orientations(self) -> tuple[np.ndarray, np.ndarray]:
+        """Each tile's turn in degrees in [0, 360) and whether it is reflected (tile tables)."""
+        lin = self.transform[:, :2, :2]
+        angle = np.round(np.degrees(np.arctan2(lin[:, 1, 0], lin[:, 0, 0])), 9) % 360.0
+        return angle, lin[:, 0, 0] * lin[:, 1, 1] - lin[:, 0, 1] * lin[:, 1, 0] < 0
 
     def clip(self, region: Any, mode: str = "intersects") -> Patch:
         """The tiles that meet ``region`` (mode 'intersects') or lie inside it ('within')."""

@@ -70,7 +70,7 @@ def parse_filter(expr: str | Filter) -> Filter:
         return expr
     m = _FILTER_RE.match(str(expr))
     if not m:
-        raise ParseError(f"filter {expr!r} is not of the form {FILTER_FORMS}")
+        raise ParseError(f"filter {expr!r} is not of the form {FILTER_FORMS}{_shell_hint(str(expr))}")
     key = m.group(1).replace("-", "_").lower()
     op = m.group(2)
     raw = m.group(3).strip()
@@ -85,6 +85,19 @@ def parse_filter(expr: str | Filter) -> Filter:
     if op in (">", "<", ">=", "<=") and (isinstance(value, bool) or not isinstance(value, int | float)):
         raise ParseError(f"filter {expr!r}: {op} needs a number, got {raw!r}")
     return Filter(key, op, value, raw)
+
+
+_BARE_KEY = re.compile(r"^\s*[A-Za-z_][A-Za-z0-9_\-]*\s*$")
+
+
+def _shell_hint(text: str) -> str:
+    """A hint for a filter a shell has mangled: unquoted, ``heesch>=2`` reaches tilekit as the
+    bare key ``heesch`` (the shell takes ``>=2`` as a redirection to a file named ``=2``)."""
+    if not _BARE_KEY.match(text):
+        return ""
+    key = text.strip()
+    return (f"; a shell leaves only the key of an unquoted {key}>=2 (it reads >=2 as a redirection "
+            f"to a file '=2'): quote the filter, e.g. --where '{key}>=2'")
 
 
 class Params(dict):

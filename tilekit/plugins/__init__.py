@@ -30,6 +30,7 @@ DEFAULT_PLUGINS: tuple[str, ...] = (
     "tilekit.plugins.polyomino",
     "tilekit.plugins.kuniform",
     "tilekit.plugins.quasiperiodic",
+    "tilekit.plugins.curved",
 )
 
 
@@ -206,7 +207,8 @@ def make_plugin_manager(extra_plugins: Iterable[object] = ()) -> pluggy.PluginMa
             if ep.name in wanted and pm.get_plugin(ep.name) is None:
                 pm.register(ep.load(), name=ep.name)
     for plugin in extra_plugins:
-        pm.register(plugin)
+        if not pm.is_registered(plugin):  # e.g. an installed plugin, already loaded by its entry point
+            pm.register(plugin)
     return pm
 
 

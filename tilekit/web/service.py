@@ -16,9 +16,10 @@ from typing import Any
 
 from tilekit.cli import parse_region as cli_parse_region
 from tilekit.errors import ParameterError, ParseError
-from tilekit.geometry import Affine, as_region
+from tilekit.geometry import as_region
 from tilekit.plugins.isohedral.engine import IsohedralTiling, shape_classes
-from tilekit.plugins.isohedral.shapes import EdgeShape, parse_edge_option
+from tilekit.plugins.isohedral.metamorphosis import metamorphosis
+from tilekit.plugins.isohedral.shapes import parse_edge_option
 from tilekit.render import PALETTE, parse_palette, patch_to_svg
 from tilekit.schema import finite_number
 from tilekit.web.limits import DEFAULT_MAX_TILES, RenderTooLarge, check_render_size
@@ -255,6 +256,7 @@ def parquet_tiles(renderer: Renderer, name: str, edges: list[str], columns: int 
     strip. An edge shared by two tiles has one midpoint and so one shape: the strip is a true
     tiling whose tiles change from column to column. The transforms of the tiles do not
     depend on the edge shapes (the tiling vertices are fixed), so they come from one patch.
+    Built by the isohedral family's general :func:`~tilekit.plugins.isohedral.metamorphosis.metamorphosis`.
     """
     import numpy as np
 
@@ -266,41 +268,6 @@ def parquet_tiles(renderer: Renderer, name: str, edges: list[str], columns: int 
                              "vertices (TV35: IH55, IH61, IH62, IH71, IH73, IH76)")
     shapes = dict(parse_edge_option(e) for e in edges)
     keyframe = base.configure(edges=list(shapes.items()))  # validates the right-hand keyframe
-
-    def at(t: float) -> IsohedralTiling:
-        scaled = {k: EdgeShape(np.column_stack([v.points[:, 0], t * v.points[:, 1]]), v.smooth)
-                  for k, v in keyframe.edge_shapes.items()}
-        return IsohedralTiling(base.template.ih, [], scaled, base.colouring, check=False)
-
-    verts = base.tiling_vertices()
-    side = float(np.linalg.norm(verts[1] - verts[0]))
-    width, height = columns * side, rows * side
-    patch = base.patch((-side, -side, width + side, height + side))  # tiles poking into the strip too
-    corners = list(base.prototile.corners)
-    cache: dict[int, list[np.ndarray]] = {}
-
-    def edge_paths(t: float) -> list[np.ndarray]:
-        q = int(round(max(0.0, min(1.0, t)) * 1000))
-        if q not in cache:
-            proto = at(q / 1000).prototile
-            outline, cs = proto.outline, list(proto.corners)
-            paths = []
-            for e, c in enumerate(cs):
-                stop = cs[e + 1] if e + 1 < len(cs) else len(outline)
-                idx = list(range(c, stop + 1))
-                paths.append(outline[[i % len(outline) for i in idx]])
-            cache[q] = paths
-        return cache[q]
-
-    straight = base.prototile.outline[corners]  # the tiling vertices in the prototile's frame
-    tiles = []
-    for k in range(len(patch)):
-        m = patch.transform[k]
-        ends = Affine.apply(m, straight)
-        pts = []
-        for e in range(len(corners)):
-            mid = (ends[e] + ends[(e + 1) % len(corners)]) / 2
-            path = Affine.apply(m, edge_paths(mid[0] / width)[e])
-            pts.append(path[:-1])
-        tiles.append((int(patch.colour[k]), np.vstack(pts)))
+    patch, (_, _, width, height) = metamorphosis(base, keyframe, columns, rows)
+    tiles = [(int(patch.colour[k]), np.asarray(p.outline)) for k, p in enumerate(patch.prototiles)]
     return tiles, width, height

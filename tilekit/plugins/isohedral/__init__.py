@@ -104,9 +104,10 @@ def tilekit_claim_file(path: str) -> str | None:
 def tilekit_cli_commands(cli: Any) -> None:
     # measured start-up cost: cli.py loads only click, the core's cheap cli_types and the
     # import-free escher limits (a few ms); its command imports NumPy/scipy when it runs
-    from tilekit.plugins.isohedral.cli import escherize_command
+    from tilekit.plugins.isohedral.cli import escherize_command, metamorphosis_command
 
     cli.add_command(escherize_command)
+    cli.add_command(metamorphosis_command)
 
 
 @hookimpl

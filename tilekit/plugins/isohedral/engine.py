@@ -568,6 +568,8 @@ SPEC = Field("table", fields={
     "params": Field("list", items=Field("number"), length=(0, 16)),
     "edges": Field("table", values=Field("str")),
     "colouring": Field("str"),
+    "split": Field("table", values=Field("any"),  # its fields are checked by split.checked_split
+                   error='split {value!r} is not an object like {{"ends": [0.5, 3.5], "path": "0,0:0.5,0.1:1,0"}}'),
 })
 
 

@@ -562,8 +562,27 @@ def _project(model: TypeModel, p: np.ndarray, bank: GoalBank, steps: int, ridge:
     return d, c
 
 
+class TypeFit:
+    """What every fitted tile of a type has: its name and the isohedral spec of its
+    parameters and edges (results of one goal, two pieces, or Heaven and Hell add to it)."""
+
+    ih: int
+    params: list[float]
+    edges: dict[str, str]
+
+    @property
+    def name(self) -> str:
+        return f"IH{self.ih}"
+
+    def base_spec(self) -> dict[str, Any]:
+        out: dict[str, Any] = {"ih": self.ih, "params": list(self.params)}
+        if self.edges:
+            out["edges"] = dict(self.edges)
+        return out
+
+
 @dataclass
-class EscherResult:
+class EscherResult(TypeFit):
     """The best tile of one type for a goal."""
 
     ih: int
@@ -577,16 +596,9 @@ class EscherResult:
     mirrored: bool = False
     note: str = ""
 
-    @property
-    def name(self) -> str:
-        return f"IH{self.ih}"
-
     def spec(self) -> dict[str, Any]:
         """The isohedral family's spec (``tiling_from_spec`` / ``IsohedralTiling.from_spec``)."""
-        out: dict[str, Any] = {"ih": self.ih, "params": list(self.params)}
-        if self.edges:
-            out["edges"] = dict(self.edges)
-        return out
+        return self.base_spec()
 
     def tiling(self) -> IsohedralTiling:
         return IsohedralTiling.from_spec(self.spec())
@@ -603,6 +615,8 @@ class EscherResult:
 
 @dataclass(frozen=True)
 class Settings:
+    """The search's sizes (samples, starts, edge points), reflection and seed (checked by ``check``)."""
+
     samples: int = DEFAULT_SAMPLES
     starts: int = DEFAULT_STARTS
     edge_points: int = DEFAULT_EDGE_POINTS
@@ -782,36 +796,81 @@ def escherize(goal: Any, types: Iterable[int] | None = None, *, settings: Settin
             raise ParameterError(f"IH{ih} is a marked type; escherization takes the 81 unmarked types")
     if not (isinstance(workers, int) and 1 <= workers <= MAX_WORKERS):
         raise ParameterError(f"workers {workers!r} must be an integer from 1 to {MAX_WORKERS}")
-    jobs = [(goal, ih, settings) for ih in todo]
-    if workers == 1 or len(jobs) == 1:
-        outs = []
-        for job in jobs:
-            outs.append(_run_one(job))
-            if progress:
-                progress(outs[-1])
-    else:
-        from concurrent.futures import ProcessPoolExecutor
-
-        with ProcessPoolExecutor(max_workers=min(workers, len(jobs))) as pool:
-            outs = []
-            for out in pool.map(_run_one, jobs, chunksize=1):
-                outs.append(out)
-                if progress:
-                    progress(out)
+    outs = run_jobs(_run_one, [(goal, ih, settings) for ih in todo], workers, progress)
     good = sorted((o for o in outs if isinstance(o, EscherResult)), key=lambda r: (r.distance, r.ih))
     failed = [o for o in outs if not isinstance(o, EscherResult)]
     return good, failed
+
+
+def run_jobs(run_one: Callable[[Any], Any], jobs: Sequence[Any], workers: int,
+             progress: Callable[[Any], None] | None = None) -> list[Any]:
+    """``run_one`` over ``jobs`` in order, in ``workers`` processes when more than one
+    (``concurrent.futures.ProcessPoolExecutor``), calling ``progress`` with each outcome."""
+    outs: list[Any] = []
+    if workers == 1 or len(jobs) == 1:
+        for job in jobs:
+            outs.append(run_one(job))
+            if progress:
+                progress(outs[-1])
+        return outs
+    from concurrent.futures import ProcessPoolExecutor
+
+    with ProcessPoolExecutor(max_workers=min(workers, len(jobs))) as pool:
+        for out in pool.map(run_one, jobs, chunksize=1):
+            outs.append(out)
+            if progress:
+                progress(out)
+    return outs
+
+
+def one_blas_thread(fit: Callable[..., Any]) -> Callable[..., Any]:
+    """``fit`` run with one BLAS thread (threadpoolctl): its matrices are tiny, and on a loaded
+    2-core machine OpenBLAS's spinning threads made fits 10-20x slower."""
+
+    @functools.wraps(fit)
+    def run(*args: Any, **kwargs: Any) -> Any:
+        from threadpoolctl import threadpool_limits  # start-up cost: loaded only for a search
+
+        with threadpool_limits(limits=1, user_api="blas"):
+            return fit(*args, **kwargs)
+
+    return run
+
+
+def best_valid(candidates: Iterable[tuple[Any, ...]], make: Callable[..., Any], name: str,
+               score: Callable[[Any], float] | None = None) -> Any:
+    """The result of smallest ``score`` (default: its ``distance``) among ``make(*candidate)``
+    that the engine accepts (``make`` raises GeometryError for a candidate with no valid
+    tiling), or GeometryError."""
+    score = score or (lambda r: r.distance)
+    result = None
+    for cand in candidates:
+        try:
+            r = make(*cand)
+        except GeometryError:
+            continue
+        if result is None or score(r) < score(result):
+            result = r
+    if result is None:
+        raise GeometryError(f"{name}: no valid tiling found near the fit")
+    return result
 
 
 def aligned_goal(result: EscherResult, goal: np.ndarray, samples: int = DEFAULT_SAMPLES) -> np.ndarray:
     """The goal polygon moved by the similarity that best fits it onto the result's tile
     (mirrored first when the fit matched the mirror image), for drawing the two together:
     the metric's alignment, with the goal's starting offset refined continuously."""
+    return align_onto(np.asarray(result.tiling().prototile.outline, dtype=float), goal, result.mirrored, samples)
+
+
+def align_onto(outline: np.ndarray, goal: np.ndarray, mirrored: bool, samples: int = DEFAULT_SAMPLES) -> np.ndarray:
+    """The goal (mirrored first if ``mirrored``) moved by the similarity that best fits it onto
+    the closed ``outline`` ((k, 2)), the starting offset refined continuously."""
     from scipy.optimize import minimize_scalar  # start-up cost: scipy (~0.3 s), only here
 
-    tile = _complex(np.asarray(result.tiling().prototile.outline, dtype=float))
+    tile = _complex(np.asarray(outline, dtype=float))
     g = _complex(check_goal(goal))
-    src = np.conj(g)[::-1] if result.mirrored else g
+    src = np.conj(g)[::-1] if mirrored else g
     zs = resample(tile, samples)
     zc = zs - zs.mean()
     bank = GoalBank.build(np.column_stack([src.real, src.imag]), samples, reflection=False)
@@ -871,11 +930,17 @@ def render_options(result: EscherResult) -> list[str]:
 def write_outputs(results: Sequence[EscherResult], goal: np.ndarray, out_dir: str | os.PathLike) -> list[Path]:
     """For each result, ``NN-IHn.isohedral.json`` (spec), ``NN-IHn-tile.svg`` (tile and aligned
     goal) and ``NN-IHn-tiling.svg``; and ``ranking.json``. Returns the files written."""
+    return write_ranked(results, out_dir, (".isohedral.json", "-tile.svg"), spec_file, lambda r: outline_svg(r, goal))
+
+
+def write_ranked(results: Sequence[Any], out_dir: str | os.PathLike, ends: tuple[str, str],
+                 spec_of: Callable[[Any], dict[str, Any]], picture: Callable[[Any], str]) -> list[Path]:
+    """The ranked results' files: per result ``NN-IHn{ends[0]}`` (its spec file), ``NN-IHn{ends[1]}``
+    (its picture) and ``NN-IHn-tiling.svg``, then ``ranking.json``; every path checked first."""
     from tilekit.render import write_svg  # start-up cost: the renderer loads shapely (~0.1 s)
 
     out = Path(out_dir)
-    names = [f"{rank:02d}-{r.name}{end}" for rank, r in enumerate(results, 1)
-             for end in (".isohedral.json", "-tile.svg", "-tiling.svg")]
+    names = [f"{rank:02d}-{r.name}{end}" for rank, r in enumerate(results, 1) for end in (*ends, "-tiling.svg")]
     for name in [*names, "ranking.json"]:
         check_output(out / name)  # a FIFO among them would block the writer
     try:
@@ -885,11 +950,11 @@ def write_outputs(results: Sequence[EscherResult], goal: np.ndarray, out_dir: st
     written = []
     for rank, r in enumerate(results, 1):
         stem = f"{rank:02d}-{r.name}"
-        p = out / f"{stem}.isohedral.json"
-        p.write_text(json.dumps(spec_file(r), indent=1) + "\n")
+        p = out / f"{stem}{ends[0]}"
+        p.write_text(json.dumps(spec_of(r), indent=1) + "\n")
         written.append(p)
-        p = out / f"{stem}-tile.svg"
-        p.write_text(outline_svg(r, goal))
+        p = out / f"{stem}{ends[1]}"
+        p.write_text(picture(r))
         written.append(p)
         tiling = r.tiling()
         patch = tiling.patch(tiling.default_region())

@@ -20,3 +20,9 @@ DEFAULT_TOP = 5
 MAX_TOP = 81
 #: Worker processes (``--workers``) at most.
 MAX_WORKERS = 64
+#: Interior points of the splitting path of dihedral Escherization (``--path-points``).
+DEFAULT_PATH_POINTS = 4
+MAX_PATH_POINTS = 24
+#: Two goals whose areas differ by more than this factor are refused (dihedral Escherization
+#: matches the two pieces of one tile at the goals' relative size).
+MAX_GOAL_AREA_RATIO = 25.0

@@ -10,6 +10,7 @@ from urllib.parse import quote
 from tilekit.errors import ParameterError, ParseError
 from tilekit.plugins.isohedral.engine import _spec_ih, unmarked_from_spec
 from tilekit.plugins.isohedral.marked import marked_tiling
+from tilekit.plugins.isohedral.split import split_from_spec
 from tilekit.plugins.isohedral.templates import get_template
 from tilekit.schema import finite_number
 from tilekit.tiling import PeriodicTiling
@@ -20,11 +21,15 @@ _QUERY_SAFE = ",:=()"
 
 
 def tiling_from_spec(spec: Mapping[str, Any]) -> PeriodicTiling:
-    """Rebuild an isohedral tiling from ``{"ih": 16, "params": [...], "edges": {...}}``."""
+    """Rebuild an isohedral tiling from ``{"ih": 16, "params": [...], "edges": {...}}``; with a
+    ``"split"`` table, the dihedral tiling of that tile split in two (:mod:`.split`)."""
     t = get_template(_spec_ih(spec))
     if t.marked:
         return marked_tiling(t.ih)
-    return unmarked_from_spec(spec)
+    base = unmarked_from_spec(spec)
+    if spec.get("split") is not None:
+        return split_from_spec(spec, base)
+    return base
 
 
 def _number(value: Any) -> str:

@@ -2,7 +2,8 @@
 
 Modules: ``model`` (Polyomino, the usual names, PolyominoTiling), ``isohedral`` (boundary
 factorisations after Langerman and Winslow, tilings proved exact), ``search`` (the
-``polyominoes`` search: Redelmeier chunks, rows, counting mode), ``tables`` (the result
+``polyominoes`` search: Redelmeier chunks, rows, counting mode), ``polyforms`` (the same
+enumeration on any grid of ``tilekit.lattice``), ``tables`` (the result
 table) and ``migrations/`` (its Alembic branch ``polyomino``). The lattice machinery
 (square, hexagonal, triangular grids) is ``tilekit.lattice``.
 """
@@ -22,9 +23,22 @@ FAMILY = "polyomino"
 def _from_spec(spec: Mapping[str, Any]) -> Any:
     # measured start-up cost: the model and the lattice load numba (~0.25 s), which every
     # `tilekit` command would pay when the plugins are loaded; they load when a polyomino is built
+    code = spec.get("code") if isinstance(spec, Mapping) else None
+    classified = isinstance(spec, Mapping) and (spec.get("classified") or any(k in spec for k in _CLASSIFIED))
+    if isinstance(code, str) and ":" in code and not classified:
+        # a polyform on another grid ("kite:1,1;5,2") that no classification has touched
+        from tilekit.plugins.polyomino.polyform import from_spec as polyform_spec
+
+        return polyform_spec(spec)
     from tilekit.plugins.polyomino.model import from_spec
 
+    if isinstance(spec, Mapping) and "classified" in spec:
+        spec = {k: v for k, v in spec.items() if k != "classified"}
     return from_spec(spec)
+
+
+#: Spec keys that only the classified forms' model reads (its tilings and witnesses).
+_CLASSIFIED = ("witness", "view", "tiling")
 
 
 @hookimpl
@@ -71,9 +85,10 @@ def tilekit_catalogue_records():
 def tilekit_searches():
     # measured start-up cost: numba, as in _from_spec
     from tilekit.plugins.polyomino.classify_search import SEARCH as CLASSIFY
+    from tilekit.plugins.polyomino.polyforms import SEARCH as POLYFORMS
     from tilekit.plugins.polyomino.search import SEARCH
 
-    return [SEARCH, CLASSIFY]
+    return [SEARCH, CLASSIFY, POLYFORMS]
 
 
 @hookimpl

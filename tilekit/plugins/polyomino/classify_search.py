@@ -1,41 +1,90 @@
-"""The ``polyomino-classify`` search: :func:`classify.classify` over every free polyomino,
-chunked like the enumeration (Redelmeier prefixes), rows into the polyominoes table."""
+"""The ``polyomino-classify`` search: :func:`classify.classify` over every free polyform of one
+grid (``--grid square|hex|iamond``), chunked like the enumeration (Redelmeier prefixes), rows
+into the polyominoes table with their ``grid``."""
 
 from __future__ import annotations
 
 import time
 from typing import Any
 
+import numpy as np
+
 from tilekit.errors import ParameterError
-from tilekit.lattice import SQUARE, encode, enumerate_free, holes, symmetry_from_mask
+from tilekit.lattice import (
+    SQUARE,
+    Grid,
+    count_fixed,
+    encode,
+    enumerate_free,
+    holes,
+    symmetry_from_mask,
+)
 from tilekit.plugins import ChunkResult, Search, SearchParam
 from tilekit.plugins.polyomino.classify import (
+    CLASSIFIED_GRIDS,
     CLASSIFY_SOLVER,
     DEFAULT_TORUS_TILES,
     MAX_TORUS_TILES,
     check_bounds,
+    check_grid,
     classify,
 )
 from tilekit.plugins.polyomino.heesch import MAX_LEVEL_LIMIT
 from tilekit.plugins.polyomino.isohedral import analyse_many
-from tilekit.plugins.polyomino.model import make_row
+from tilekit.plugins.polyomino.model import grid_of, make_row
 from tilekit.plugins.polyomino.search import prefix_chunks, prefix_depth
 from tilekit.sat import SAT_SOLVERS
 
 #: The classification stores rows up to this size (the enumeration's own limit).
 MAX_CLASSIFY = 14
+#: Other grids' largest size (Kaplan's tables go to 24-iamonds); the estimate of the forms
+#: (:func:`check_size`) is what stops most grids well before it.
+MAX_CLASSIFY_OTHER = 24
+#: Sizes counted exactly by the estimate of a run's forms (beyond, the last ratio extrapolates).
+_COUNTED = 8
+
+
+def estimated_forms(grid: Grid, n: int) -> int:
+    """Free forms of sizes 1..n on ``grid``: counted to 8 cells (Redelmeier, under a second),
+    beyond that extrapolated with the growth of the last counted size (an underestimate: the
+    ratio still grows)."""
+    k = min(n, _COUNTED)
+    free = count_fixed(grid, k, free=True)["free"]
+    total = float(free[1:k + 1].sum())
+    last, growth = float(free[k]), float(free[k]) / max(1.0, float(free[k - 1])) if k > 1 else 1.0
+    for _ in range(k, n):
+        last *= growth
+        total += last
+    return int(total)
+
+
+def check_size(grid: Grid, n: int) -> None:
+    """Refuse a run that would take on more forms than the square grid's largest (MAX_CLASSIFY
+    cells), with the estimate, before the run is created."""
+    if grid.name == SQUARE.name:
+        return
+    mine, limit = estimated_forms(grid, n), estimated_forms(SQUARE, MAX_CLASSIFY)
+    if mine > limit:
+        raise ParameterError(f"--max-cells {n} on the {grid.name} grid means about {mine:,} free forms (estimated), "
+                             f"over the classification's limit of {limit:,} (the square grid's {MAX_CLASSIFY} cells); "
+                             f"ask for fewer cells")
 
 
 def check_params(params: dict[str, Any]) -> None:
     n = params.get("max_cells")
     if not isinstance(n, int) or n < 1:
         raise ParameterError(f"--max-cells must be a positive integer, got {n!r}")
-    if n > MAX_CLASSIFY:
-        raise ParameterError(f"--max-cells {n} is beyond the classification's limit of {MAX_CLASSIFY} cells")
+    grid = grid_of(params.get("grid") or "square")
+    check_grid(grid)
+    most = MAX_CLASSIFY if grid.name == SQUARE.name else MAX_CLASSIFY_OTHER
+    if n > most:
+        raise ParameterError(f"parameter 'max_cells' (--max-cells) {n} is beyond the classification's limit of "
+                             f"{most} cells on the {grid.name} grid")
     lo = int(params.get("min_cells") or 1)
     if not 1 <= lo <= n:
         raise ParameterError(f"--min-cells must be between 1 and --max-cells ({n}), got {lo}")
     check_bounds(**_bounds(params))
+    check_size(grid, n)
 
 
 def chunks(params: dict[str, Any]) -> list[dict[str, Any]]:
@@ -44,15 +93,17 @@ def chunks(params: dict[str, Any]) -> list[dict[str, Any]]:
     check_params(params)
     n = int(params["max_cells"])
     # deeper than the enumeration's: a classification chunk should be seconds of SAT work
-    return prefix_chunks(n, prefix_depth(n, int(params.get("prefix_depth") or 0), spare=4, most=8))
+    return prefix_chunks(n, prefix_depth(n, int(params.get("prefix_depth") or 0), spare=4, most=8),
+                         grid_of(params.get("grid") or "square"))
 
 
 def run_chunk(params: dict[str, Any], chunk: dict[str, Any]):
-    """Classify every free polyomino of the chunk; rows for the polyominoes table, counts."""
+    """Classify every free polyform of the chunk; rows for the polyominoes table, counts."""
+    grid = grid_of(params.get("grid") or "square")
     n = int(params["max_cells"])
     lo = int(params.get("min_cells") or 1)
     maxsize = int(chunk["below"]) - 1 if "below" in chunk else n
-    polys, hole_flags, masks, _ = enumerate_free(SQUARE, n, prefix=list(chunk.get("prefix") or []),
+    polys, hole_flags, masks, _ = enumerate_free(grid, n, prefix=list(chunk.get("prefix") or []),
                                                  root=int(chunk.get("root", 0)), maxsize=maxsize,
                                                  with_symmetry=True)
     rows: list[dict] = []
@@ -65,7 +116,7 @@ def run_chunk(params: dict[str, Any], chunk: dict[str, Any]):
     # the boundary-word test of the whole chunk in one compiled call (isohedral.analyse_many)
     t0 = time.monotonic()
     plain = [polys[i] for i in keep if not hole_flags[i]]
-    analysed = iter(analyse_many(SQUARE, plain))
+    analysed = iter(analyse_many(grid, plain))
     bulk = (time.monotonic() - t0) / max(1, len(keep))
     bounds = _bounds(params)
     for i in keep:
@@ -73,12 +124,15 @@ def run_chunk(params: dict[str, Any], chunk: dict[str, Any]):
         size = len(cells)
         t0 = time.monotonic() - bulk
         analysis = None if holey else next(analysed)
-        c = classify(SQUARE, cells, analysis, has_holes=bool(holey), **bounds,
+        c = classify(grid, cells, analysis, has_holes=bool(holey), **bounds,
                      time_limit=float(params.get("time_limit") or 0) or None,
                      solver=str(params.get("solver") or CLASSIFY_SOLVER))
-        hc = len(holes(SQUARE, cells)) if holey else 0
-        row = make_row(cells, bool(holey), hc, analysis, code=encode(SQUARE, cells, is_canonical=True),
-                       symmetry=symmetry_from_mask(SQUARE, mask))
+        hc = len(holes(grid, cells)) if holey else 0
+        # the enumeration's cells are canonical but in search-tree order: other grids' codes list
+        # them in (y, x) order (as Polyomino.code does), so a code names one form
+        cells = cells[np.lexsort((cells[:, 0], cells[:, 1]))]
+        row = make_row(cells, bool(holey), hc, analysis, code=encode(grid, cells, is_canonical=True),
+                       symmetry=symmetry_from_mask(grid, mask), grid=grid)
         rows.append(row | c.columns())
         bump(f"free_{size}")
         bump(f"tiles_{size}" if c.tiles == "true" else f"nontilers_{size}" if c.tiles == "false" else f"undecided_{size}")
@@ -98,7 +152,8 @@ def run_chunk(params: dict[str, Any], chunk: dict[str, Any]):
 def summarize(params: dict[str, Any], results: list[dict[str, Any]]) -> dict[str, Any]:
     """The bounds of the run (the per-size tallies are the summed counts)."""
     b = _bounds(params)
-    return {"max_cells": int(params["max_cells"]), "max_level": b["max_level"], "torus_tiles": b["torus_tiles"]}
+    return {"max_cells": int(params["max_cells"]), "max_level": b["max_level"], "torus_tiles": b["torus_tiles"],
+            "grid": str(params.get("grid") or "square")}
 
 
 def _bounds(params: dict[str, Any]) -> dict[str, int]:
@@ -111,13 +166,17 @@ def _bounds(params: dict[str, Any]) -> dict[str, int]:
 def _search() -> Search:
     return Search(
         "polyomino-classify",
-        "classify every free polyomino: isohedral, anisohedral (least k found on tori), or a "
+        "classify every free polyform of a grid: isohedral, anisohedral (least k found on tori), or a "
         "non-tiler with its Heesch numbers (Kaplan 2022, by SAT)",
         "polyomino",
         [
-            SearchParam("max_cells", int, 10, f"largest size (at most {MAX_CLASSIFY})", min=1, max=MAX_CLASSIFY),
+            SearchParam("grid", str, "square", "the cell grid: square (polyominoes), hex (polyhexes), iamond "
+                        "(polyiamonds), kite (polykites)", choices=list(CLASSIFIED_GRIDS)),
+            SearchParam("max_cells", int, 10, f"largest size (at most {MAX_CLASSIFY} on the square grid, "
+                        f"{MAX_CLASSIFY_OTHER} on the others, and no more free forms than the square grid's "
+                        f"{MAX_CLASSIFY} cells: refused with the estimate)", min=1, max=MAX_CLASSIFY_OTHER),
             SearchParam("min_cells", int, 1, "smallest size classified (smaller ones are skipped)", min=1,
-                        max=MAX_CLASSIFY),
+                        max=MAX_CLASSIFY_OTHER),
             SearchParam("probe", int, 2, "coronas tried before the torus search", min=1, max=MAX_LEVEL_LIMIT),
             SearchParam("max_level", int, 5, "most coronas tried before 'undecided'", min=1, max=MAX_LEVEL_LIMIT),
             SearchParam("torus_tiles", int, DEFAULT_TORUS_TILES, "most tiles per translational unit tried on tori", min=2,

@@ -31,9 +31,13 @@ from tilekit.lattice import SQUARE, Grid, _edge_tables, _trace, boundary_word, o
 from tilekit.resources import catalogue_dir
 from tilekit.tiling import PeriodicTiling
 
-# kinds of factor pairing
-T, C, Q, G = 0, 1, 2, 3
-KIND_LETTER = {T: "T", C: "C", Q: "C4", G: "G"}
+# kinds of factor pairing: translation, half-turn, quarter-turn, glide reflection, and the
+# third- and sixth-turns of the hexagonal and triangular grids (R3, R6)
+T, C, Q, G, R3, R6 = 0, 1, 2, 3, 4, 5
+KIND_LETTER = {T: "T", C: "C", Q: "C4", G: "G", R3: "C3", R6: "C6"}
+#: The turn of each rotation kind as a fraction of a whole turn (its candidates are the grid's
+#: rotations by plus or minus that angle; a grid without them cannot use the kind's templates).
+KIND_TURN = {C: 2, Q: 4, R3: 3, R6: 6}
 
 #: (name, factorisation family, partner of each factor, kind of each factor, glide rule):
 #: glide rule 1 = all glide pairs share one reflection (parallel axes, pg), 2 = the second
@@ -46,6 +50,13 @@ TEMPLATES: tuple[tuple[str, str, tuple[int, ...], tuple[int, ...], int], ...] = 
     ("reflection-2", "reflection", (3, 5, 4, 0, 2, 1), (T, G, G, T, G, G), 1),
     ("halfturn-reflection-1", "reflection", (3, 1, 2, 0, 5, 4), (T, C, C, T, G, G), 0),
     ("halfturn-reflection-2", "reflection", (0, 4, 2, 5, 1, 3), (C, G, C, G, G, G), 2),
+    # the rotational types of the hexagonal point group (Heesch types C3C3C3C3C3C3 and
+    # CC3C3C6C6, with their degenerate forms C3C3C3C3, CC3C3, CC6C6, C3C3C6C6): each pair of
+    # adjacent factors is related by a turn about their common vertex. The boundary is read
+    # counter-clockwise only, so CC3C3C6C6 needs both cyclic orders (a tile and its mirror image)
+    ("threefold", "threefold", (1, 0, 3, 2, 5, 4), (R3, R3, R3, R3, R3, R3), 0),
+    ("sixfold-1", "sixfold", (0, 2, 1, 4, 3), (C, R3, R3, R6, R6), 0),
+    ("sixfold-2", "sixfold", (0, 2, 1, 4, 3), (C, R6, R6, R3, R3), 0),
 )
 
 
@@ -450,10 +461,15 @@ class Factorisation:
 
 @lru_cache(maxsize=8)
 def _cands(grid: Grid) -> tuple[np.ndarray, np.ndarray]:
+    """Per kind, the point-group elements a factor pair of that kind may use (the rotations
+    by the kind's turn either way, every reflection for a glide), from the grid's own group:
+    a grid's turn set decides which templates apply to it."""
     r = grid.rotation_order
-    kinds = {T: [0], C: [r // 2], Q: [r // 4, 3 * r // 4] if r % 4 == 0 else [], G: list(range(r, 2 * r))}
-    cands = np.zeros((4, 2 * r), np.int64)
-    ncand = np.zeros(4, np.int64)
+    kinds: dict[int, list[int]] = {T: [0], G: list(range(r, 2 * r))}
+    for kd, q in KIND_TURN.items():
+        kinds[kd] = sorted({r // q, r - r // q}) if r % q == 0 else []
+    cands = np.zeros((len(KIND_LETTER), 2 * r), np.int64)
+    ncand = np.zeros(len(KIND_LETTER), np.int64)
     for kd, lst in kinds.items():
         cands[kd, :len(lst)] = lst
         ncand[kd] = len(lst)
@@ -530,7 +546,7 @@ def analyse_many(grid: Grid, polys: list[np.ndarray], maxout: int = 256) -> list
     kept matches per polyform into the verdict and its JSON-ready factorisations.
     """
     tabs = _template_arrays(grid)
-    if tabs is None or not polys or any(t[0] not in SOUND for t in tabs[5]):
+    if tabs is None or not polys or any(t[0] not in sound(grid) for t in tabs[5]):
         return [analyse(grid, p, construct=False) for p in polys]
     partners, kinds, ks, glides, smaxdiv, usable = tabs
     cands, ncand = _cands(grid)
@@ -562,7 +578,7 @@ def analyse_many(grid: Grid, polys: list[np.ndarray], maxout: int = 256) -> list
         if m <= 0:
             out.append(analyse(grid, p, construct=False))
             continue
-        fams = {fam: False for fam in ("translation", "halfturn", "quarterturn", "reflection")}
+        fams = dict.fromkeys(FAMILIES, False)
         found: list[dict] = []
         done: set[tuple] = set()
         for r in rl[starts[i]:starts[i + 1]]:
@@ -802,7 +818,6 @@ def build(grid: Grid, cells: np.ndarray, verts: np.ndarray, f: Factorisation) ->
         return None
     a, b, d = basis
     area = a * d
-    cell_area = grid.period * grid.period // len(grid.roots)
     lat = np.array([[a, b], [0, d]], dtype=np.int64)
     seen: set[tuple[int, int]] = set()
     tiles: set[tuple] = set()
@@ -823,21 +838,40 @@ def build(grid: Grid, cells: np.ndarray, verts: np.ndarray, f: Factorisation) ->
                 return None
             seen.add(c)
         unit.append((G[m].copy(), t))
-    if len(unit) * len(cells) * cell_area != area:
+    # a fundamental domain of the grid's translations (area period^2) holds one cell per type
+    if len(unit) * len(cells) * grid.period * grid.period != area * len(grid.roots):
         return None
     return BuiltTiling(f, ih_type(f), unit, lat)
+
+
+#: The family flags of an analysis (``quarterturn`` on the square grid; ``threefold`` and
+#: ``sixfold`` on the hexagonal and triangular ones).
+FAMILIES = ("translation", "halfturn", "quarterturn", "reflection", "threefold", "sixfold")
 
 
 def _family(template_family: str, letters: str) -> str:
     """The family flag a match sets. A halfturn-reflection-1 match whose glide factors are
     both empty has Heesch letters without G: it is a half-turn tiling (the same Heesch type as
-    a match of the half-turn template), not one with reflections, so it sets ``halfturn``."""
-    return "halfturn" if template_family == "reflection" and "G" not in letters else template_family
+    a match of the half-turn template), not one with reflections, so it sets ``halfturn``; a
+    sixfold match without C6 letters has only three-fold centres (CC3C3), so ``threefold``."""
+    if template_family == "reflection" and "G" not in letters:
+        return "halfturn"
+    if template_family == "sixfold" and "C6" not in letters:
+        return "threefold"
+    return template_family
 
 
-#: Templates whose every match tiles: Langerman-Winslow's theorem for their forms, and the
-#: tests build every match of every polyomino up to 8 cells and prove each tiling exact.
-SOUND = frozenset(t[0] for t in TEMPLATES)
+#: Templates whose every match tiles on the square grid: Langerman-Winslow's theorem for
+#: their forms, and the tests build every match of every polyomino up to 8 cells and prove each
+#: tiling exact.
+SOUND = frozenset(t[0] for t in TEMPLATES if t[1] not in ("threefold", "sixfold"))
+
+
+def sound(grid: Grid) -> frozenset[str]:
+    """The templates whose matches are taken as tilings without building them: Langerman and
+    Winslow's theorem is for polyominoes, so on every other grid each match is built and proved
+    exact (:func:`build`) before it counts."""
+    return SOUND if grid.name == SQUARE.name else frozenset()
 
 
 def analyse(grid: Grid, cells: np.ndarray, *, construct: bool = True, build_all: bool = False) -> dict:
@@ -848,8 +882,10 @@ def analyse(grid: Grid, cells: np.ndarray, *, construct: bool = True, build_all:
     type is built and proved exact (``build_all``: every match).
     """
     verts, letters = boundary_word(grid, cells)
-    facts = factorisations(grid, letters, dedupe=not build_all)
-    fams = {fam: False for fam in ("translation", "halfturn", "quarterturn", "reflection")}
+    trusted = sound(grid)
+    # where matches are built, a match that fails to build must not hide another of its pattern
+    facts = factorisations(grid, letters, dedupe=not build_all and bool(trusted))
+    fams = dict.fromkeys(FAMILIES, False)
     tilings: list[BuiltTiling] = []
     found: list[dict] = []
     sigs_done: set[tuple] = set()
@@ -857,7 +893,7 @@ def analyse(grid: Grid, cells: np.ndarray, *, construct: bool = True, build_all:
         sig = _canon_sig_cached(tuple(f.signature()))
         if sig in sigs_done and not build_all:
             continue
-        if construct or f.template not in SOUND:
+        if construct or f.template not in trusted:
             bt = build(grid, cells, verts, f)
             if bt is None:
                 continue

@@ -1,8 +1,10 @@
-"""Polyominoes as objects: parse a code or a usual name, analyse, and build their isohedral tilings.
+"""Polyforms as objects: parse a code or a usual name, analyse, and build their isohedral tilings.
 
 ``tilekit.polyomino("pentomino-F")`` (or a code such as ``".xx/xx./.x."``) returns a
 :class:`Polyomino`; ``.is_isohedral()`` runs the boundary-word test and ``.tilings()`` gives one
-:class:`PolyominoTiling` (a ``PeriodicTiling``) per Heesch type found.
+:class:`PolyominoTiling` (a ``PeriodicTiling``) per Heesch type found. The same class holds a
+polyform of any grid of :mod:`tilekit.lattice`: a code ``hex:0,0;3,0`` (the grid's name, a
+colon, then the fine cell centres) is a dihex, ``iamond:1,1;2,2`` a diamond.
 """
 
 from __future__ import annotations
@@ -18,11 +20,13 @@ import shapely
 from tilekit.errors import GeometryError, NotFoundError, ParameterError, ParseError
 from tilekit.lattice import (
     SQUARE,
+    Grid,
     as_cells,
     boundary_word,
     canonical,
     decode,
     encode,
+    get_grid,
     holes,
     outline,
     symmetry_elements,
@@ -30,7 +34,7 @@ from tilekit.lattice import (
     word_text,
 )
 from tilekit.plugins.polyomino.classify import MAX_INTERACTIVE, classify, corona_patch, torus_tiling
-from tilekit.plugins.polyomino.isohedral import analyse, periodic_tiling
+from tilekit.plugins.polyomino.isohedral import FAMILIES, analyse, periodic_tiling
 from tilekit.schema import Field, check, parse_json, shown
 from tilekit.tiling import Patch, PeriodicTiling, Tiling
 
@@ -62,6 +66,12 @@ USUAL = {
 }
 
 
+def grid_of(name: str | Grid) -> Grid:
+    """A grid by name (``square``, ``hex``, ``iamond``, ``kite``, ... or an alias); an unknown
+    one is a one-line NotFoundError listing the grids (:func:`tilekit.lattice.get_grid`)."""
+    return get_grid(name)
+
+
 def _name_index() -> dict[str, str]:
     return {encode(SQUARE, decode(SQUARE, c)): name for name, c in USUAL.items()}
 
@@ -77,20 +87,28 @@ def usual_name(code: str) -> str | None:
 
 
 class Polyomino:
-    """A free polyomino on the square grid (cells validated: non-empty, distinct, connected)."""
+    """A free polyform (a polyomino by default; any grid of :mod:`tilekit.lattice`), its cells
+    validated: non-empty, distinct, cell centres of the grid, edge-connected."""
 
-    def __init__(self, cells, name: str | None = None) -> None:
-        self.grid = SQUARE
-        c = as_cells(SQUARE, cells)
-        self.cells = canonical(SQUARE, c, "free")
-        self.code = encode(SQUARE, self.cells)
-        self.name = name or usual_name(self.code)
+    def __init__(self, cells, name: str | None = None, grid: str | Grid = SQUARE) -> None:
+        self.grid = grid_of(grid)
+        c = as_cells(self.grid, cells)
+        self.cells = canonical(self.grid, c, "free")
+        self.code = encode(self.grid, self.cells)
+        self.name = name or (usual_name(self.code) if self.grid.name == SQUARE.name else None)
 
     @classmethod
     def parse(cls, text: str) -> Polyomino:
-        """A usual name (``pentomino-F``, ``T-tetromino``), a code (``.xx/xx./.x.``) or cells
-        ``x,y;x,y`` of (column, row) pairs."""
+        """A usual name (``pentomino-F``, ``T-tetromino``), a code (``.xx/xx./.x.``), cells
+        ``x,y;x,y`` of (column, row) pairs, or ``grid:x,y;x,y`` of another grid's fine centres
+        (``hex:0,0;3,0``)."""
         t = str(text).strip()
+        head, sep, rest = t.partition(":")
+        if sep and head.strip() and not set(head) <= set("x./"):
+            grid = grid_of(head)
+            if grid.name != SQUARE.name:
+                return cls(decode(grid, t), grid=grid)
+            t = rest.strip()
         if t in USUAL:
             return cls(decode(SQUARE, USUAL[t]), name=t)
         lowered = {k.lower(): k for k in USUAL}
@@ -113,7 +131,7 @@ class Polyomino:
 
     @cached_property
     def hole_list(self) -> list[np.ndarray]:
-        return holes(SQUARE, self.cells)
+        return holes(self.grid, self.cells)
 
     @property
     def has_holes(self) -> bool:
@@ -121,33 +139,36 @@ class Polyomino:
 
     @cached_property
     def symmetry(self) -> str:
-        return symmetry_name(SQUARE, symmetry_elements(SQUARE, self.cells))
+        return symmetry_name(self.grid, symmetry_elements(self.grid, self.cells))
 
     @cached_property
     def boundary(self) -> str:
-        return word_text(boundary_word(SQUARE, self.cells)[1])
+        return word_text(boundary_word(self.grid, self.cells)[1])
 
     def cell_pairs(self) -> list[list[int]]:
+        """(column, row) pairs on the square grid; fine cell centres on the others."""
+        if self.grid.name != SQUARE.name:
+            return sorted(self.cells.tolist(), key=lambda p: (p[1], p[0]))
         q = (self.cells - 1) // 2
         q = q - q.min(axis=0)
         return sorted(q.tolist(), key=lambda p: (p[1], p[0]))
 
     def prototile(self):
-        return outline(SQUARE, self.cells, name=self.name or self.code)
+        return outline(self.grid, self.cells, name=self.name or self.code)
 
     @cached_property
     def analysis(self) -> dict:
         """The isohedral analysis (boundary factorisations and the tilings built from them);
         refused past MAX_ANALYSIS_BOUNDARY boundary steps, as its cost grows with the cube of
         the boundary (a 128-cell bar, 258 steps: 1.3 s; 200 cells: 4.6 s; 400: a minute)."""
-        steps = len(boundary_word(SQUARE, self.cells)[1]) if not self.has_holes else 0
+        steps = len(boundary_word(self.grid, self.cells)[1]) if not self.has_holes else 0
         if steps > MAX_ANALYSIS_BOUNDARY:
             raise ParameterError(f"the isohedral analysis of a polyomino with a boundary of {steps} steps is refused "
                                  f"(limit {MAX_ANALYSIS_BOUNDARY}: its cost grows with the cube of the boundary)")
         if self.has_holes:
-            return {"translation": False, "halfturn": False, "quarterturn": False, "reflection": False,
-                    "isohedral": False, "ih_types": [], "factorisations": [], "tilings": []}
-        return analyse(SQUARE, self.cells, construct=True)
+            return dict.fromkeys(FAMILIES, False) | {"isohedral": False, "ih_types": [], "factorisations": [],
+                                                     "tilings": []}
+        return analyse(self.grid, self.cells, construct=True)
 
     def is_isohedral(self) -> bool:
         return bool(self.analysis["isohedral"])
@@ -171,36 +192,43 @@ class Polyomino:
         cache = self.__dict__.setdefault("_classifications", {})
         if key not in cache:
             analysis = None if self.has_holes else self.analysis
-            cache[key] = classify(SQUARE, self.cells, analysis, has_holes=self.has_holes, **bounds)
+            cache[key] = classify(self.grid, self.cells, analysis, has_holes=self.has_holes, **bounds)
         return cache[key]
 
     def row(self) -> dict[str, Any]:
         """The polyominoes table row of this polyomino."""
-        return make_row(self.cells, self.has_holes, len(self.hole_list), self.analysis, name=self.name)
+        return make_row(self.cells, self.has_holes, len(self.hole_list), self.analysis, name=self.name,
+                        grid=self.grid)
 
     def __repr__(self) -> str:
         return f"<Polyomino {self.name or self.code} n={self.n}>"
 
 
 def make_row(cells: np.ndarray, has_holes: bool, hole_count: int, analysis: dict | None,
-             name: str | None = None, code: str | None = None, symmetry: str | None = None) -> dict[str, Any]:
-    """One row of the polyominoes table from canonical cells and an analysis (None for a holey one)."""
+             name: str | None = None, code: str | None = None, symmetry: str | None = None,
+             grid: Grid = SQUARE) -> dict[str, Any]:
+    """One row of the polyominoes table from canonical cells and an analysis (None for a holey
+    one). ``cell_list`` is (column, row) pairs on the square grid, fine centres elsewhere."""
 
-    code = code or encode(SQUARE, cells)
-    q = (cells - 1) // 2
-    q = q - q.min(axis=0)
+    square = grid.name == SQUARE.name
+    code = code or encode(grid, cells)
+    if square:
+        q = (cells - 1) // 2
+        q = q - q.min(axis=0)
+    else:
+        q = np.asarray(cells)
     a = analysis or {}
     iso = bool(a.get("isohedral", False))
     row = {
         "code": code,
-        "name": name if name is not None else usual_name(code),
-        "grid": "square",
+        "name": name if name is not None else (usual_name(code) if square else None),
+        "grid": grid.name,
         "cells": int(len(cells)),
         "cell_list": json.dumps(q.tolist()),
         "holes": bool(has_holes),
         "hole_count": int(hole_count),
-        "symmetry": symmetry or symmetry_name(SQUARE, symmetry_elements(SQUARE, cells)),
-        "boundary": word_text(a["boundary"]) if "boundary" in a else word_text(boundary_word(SQUARE, cells)[1]),
+        "symmetry": symmetry or symmetry_name(grid, symmetry_elements(grid, cells)),
+        "boundary": word_text(a["boundary"]) if "boundary" in a else word_text(boundary_word(grid, cells)[1]),
         "translation": bool(a.get("translation", False)),
         "halfturn": bool(a.get("halfturn", False)),
         "quarterturn": bool(a.get("quarterturn", False)),
@@ -233,7 +261,7 @@ class PolyominoTiling(PeriodicTiling):
         self.poly = poly
         self.index = index
         self.built = built[index]
-        base = periodic_tiling(SQUARE, poly.cells, self.built, name=poly.name or poly.code, family=FAMILY)
+        base = periodic_tiling(poly.grid, poly.cells, self.built, name=poly.name or poly.code, family=FAMILY)
         super().__init__(base.prototiles, base.unit_prototile, base.unit_transform, base.v1, base.v2,
                          unit_aspect=np.arange(len(base.unit_prototile)), family=FAMILY,
                          name=poly.name or poly.code)
@@ -299,7 +327,7 @@ class PolyominoShape(Tiling):
 
     def describe(self) -> str:
         why = "it has a hole" if self.poly.has_holes else "no boundary factorisation exists"
-        return f"{self.poly.n}-omino with no isohedral tiling ({why}); the render shows the tile"
+        return f"{self.poly.n}-{self.poly.grid.cell_name} with no isohedral tiling ({why}); the render shows the tile"
 
     def configure(self, **options: Any) -> Tiling:
         return _configure(self.poly, options)
@@ -315,7 +343,7 @@ class CoronaPatch(Tiling):
         self.which = which
         self.family = FAMILY
         self.name = poly.name or poly.code
-        self._patch = corona_patch(SQUARE, poly.cells, self.corona, name=self.name)
+        self._patch = corona_patch(poly.grid, poly.cells, self.corona, name=self.name)
 
     @property
     def prototiles(self):
@@ -341,7 +369,7 @@ class CoronaPatch(Tiling):
     def describe(self) -> str:
         k = int(self.corona.get("k", 0))
         holes = "with a hole in the outermost corona" if self.corona.get("holes") else "hole-free"
-        return f"{self.poly.n}-omino surrounded by {k} corona(s), {holes}: {len(self._patch)} tiles, coloured by corona"
+        return f"{self.poly.n}-{self.poly.grid.cell_name} surrounded by {k} corona(s), {holes}: {len(self._patch)} tiles, coloured by corona"
 
     def configure(self, **options: Any) -> Tiling:
         return _configure(self.poly, options)
@@ -354,7 +382,7 @@ class AnisohedralTiling(PeriodicTiling):
     def __init__(self, poly: Polyomino, witness: dict) -> None:
         self.poly = poly
         self.witness = dict(witness)
-        base = torus_tiling(SQUARE, poly.cells, self.witness, name=poly.name or poly.code)
+        base = torus_tiling(poly.grid, poly.cells, self.witness, name=poly.name or poly.code)
         super().__init__(base.prototiles, base.unit_prototile, base.unit_transform, base.v1, base.v2,
                          base.colouring, unit_aspect=base.unit_aspect, family=FAMILY, name=poly.name or poly.code)
 

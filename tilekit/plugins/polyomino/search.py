@@ -58,14 +58,16 @@ def check_params(params: Mapping[str, Any]) -> None:
         )
 
 
-def prefix_chunks(n: int, depth: int) -> list[dict[str, Any]]:
+def prefix_chunks(n: int, depth: int, grid=SQUARE) -> list[dict[str, Any]]:
     """The top chunk (every node of size < depth) and one chunk per node of size ``depth``
     of Redelmeier's tree for sizes up to n (see the module docstring: a partition)."""
     out: list[dict[str, Any]] = []
-    if depth > 1:
-        out.append({"root": 0, "prefix": [], "below": depth})
-    for p in prefixes(SQUARE, n, depth, 0):
-        out.append({"root": 0, "prefix": p})
+    # one tree per cell type: a canonical form starts at a cell of any type (kites: six)
+    for r in range(len(grid.roots)):
+        if depth > 1:
+            out.append({"root": r, "prefix": [], "below": depth})
+        for p in prefixes(grid, n, depth, r):
+            out.append({"root": r, "prefix": p})
     return out
 
 

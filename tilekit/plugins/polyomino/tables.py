@@ -17,7 +17,7 @@ metadata = sa.MetaData()
 TABLE = sa.Table(
     "polyominoes",
     metadata,
-    sa.Column("code", sa.Text, primary_key=True),  # canonical free code (rows of x/. joined by /)
+    sa.Column("code", sa.Text, primary_key=True),  # canonical free code: x/. rows (square), GRID:x,y;... others
     sa.Column("name", sa.Text, nullable=True, index=True),  # e.g. pentomino-F
     sa.Column("grid", sa.Text, nullable=False, default="square", index=True),
     sa.Column("cells", sa.Integer, nullable=False, index=True),
@@ -26,11 +26,11 @@ TABLE = sa.Table(
     sa.Column("hole_count", sa.Integer, nullable=False, default=0),
     sa.Column("symmetry", sa.Text, nullable=False, index=True),  # C1 C2 C4 D1 D2 D4
     sa.Column("boundary", sa.Text, nullable=False),  # letters 0-3 = E N W S, counter-clockwise
-    sa.Column("translation", sa.Boolean, nullable=False, index=True),
-    sa.Column("halfturn", sa.Boolean, nullable=False, index=True),
-    sa.Column("quarterturn", sa.Boolean, nullable=False, index=True),
-    sa.Column("reflection", sa.Boolean, nullable=False, index=True),
-    sa.Column("isohedral", sa.Boolean, nullable=False, index=True),
+    sa.Column("translation", sa.Boolean, nullable=True, index=True),  # NULL: not tested (polyforms on other grids)
+    sa.Column("halfturn", sa.Boolean, nullable=True, index=True),
+    sa.Column("quarterturn", sa.Boolean, nullable=True, index=True),
+    sa.Column("reflection", sa.Boolean, nullable=True, index=True),
+    sa.Column("isohedral", sa.Boolean, nullable=True, index=True),
     sa.Column("ih_types", sa.Text, nullable=False, default=""),  # e.g. IH41,IH46
     sa.Column("factorisations", sa.Text, nullable=False, default="[]"),  # JSON
     # part 2 of the issue (nullable until its searches fill them)
@@ -51,17 +51,24 @@ def row_spec(row: Mapping[str, Any]) -> dict:
     """A result row -> the spec the polyomino family's ``from_spec`` reads (show / render):
     a stored classification witness (coronas, or an anisohedral tiling) comes along."""
     spec = {"code": row["code"], "name": row.get("name") or row["code"]}
-    if row.get("witness") and not row.get("isohedral"):
+    if row.get("witness"):  # a non-tiler's coronas, or a torus tiling (k classes; k = 1 off the boundary test)
         spec["witness"] = json.loads(row["witness"])
+    if row.get("tiles") is not None and (row.get("grid") or "square") != "square":
+        # classified on another grid: drawn with its tilings and witnesses (model), not cell by cell
+        spec["classified"] = True
     return spec
 
 
 def row_title(row: Mapping[str, Any]) -> str:
     if row.get("verdict") and row.get("tiles") is not None:
         kind = row["verdict"]
+    elif row.get("isohedral") is None and row.get("grid", "square") != "square":
+        kind = "with holes" if row.get("holes") else "not classified"
     else:
         kind = "isohedral" if row.get("isohedral") else ("with holes" if row.get("holes") else "not isohedral")
-    return f"{row.get('name') or row['code']}: {row['cells']}-omino, {row.get('symmetry', '')}, {kind}"
+    grid = row.get("grid") or "square"
+    cell = "omino" if grid == "square" else grid
+    return f"{row.get('name') or row['code']}: {row['cells']}-{cell}, {row.get('symmetry', '')}, {kind}"
 
 
 def result_table():

@@ -1,0 +1,282 @@
+"""Polyforms on the hexagonal and triangular grids: the isohedral test and the classification
+against Myers' and Kaplan's published counts.
+
+Oracles (OEIS, offset 1; Joseph Myers' polyform tiling data):
+A075214 polyhexes that tile isohedrally, A075215 anisohedral polyhexes, A070766 polyhexes that
+tile, A070768 hole-free polyhexes that do not tile; A075223 / A075224 / A071332 / A071334 the
+same for polyiamonds.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from tilekit.lattice import HEXAGONAL, SQUARE, TRIANGULAR, encode, enumerate_free
+from tilekit.plugins.polyomino.isohedral import _template_arrays, analyse, periodic_tiling
+
+# n = 1.. ; the sequences' first terms
+A075214 = [1, 1, 3, 7, 22, 76, 290, 1018, 3715]  # isohedral polyhexes
+A075223 = [1, 1, 1, 3, 4, 12, 23, 66, 133, 316, 514, 1987, 2398]  # isohedral polyiamonds
+A070766 = [1, 1, 3, 7, 22, 77, 294, 1054, 3788]  # polyhexes that tile
+A075215 = [0, 0, 0, 0, 0, 1, 4, 36, 73]  # anisohedral polyhexes
+A070768 = [0, 0, 0, 0, 0, 4, 37, 381, 2717]  # hole-free polyhexes that do not tile
+A038144 = [0, 0, 0, 0, 0, 1, 2, 13, 67]  # polyhexes with holes
+A071332 = [1, 1, 1, 3, 4, 12, 23, 66, 139, 341, 567, 2034, 2495]  # polyiamonds that tile
+A075224 = [0, 0, 0, 0, 0, 0, 0, 0, 6, 25, 53, 47, 97]  # anisohedral polyiamonds
+A071334 = [0, 0, 0, 0, 0, 0, 1, 0, 20, 103, 594, 1192, 6290]  # hole-free polyiamonds that do not tile
+
+
+def _hole_free(grid, n):
+    polys, holes, _ = enumerate_free(grid, n, maxsize=n, with_holes=True)
+    return [p for p, h in zip(polys, holes) if len(p) == n and not h]
+
+
+def _isohedral_count(grid, n):
+    return sum(analyse(grid, p, construct=False)["isohedral"] for p in _hole_free(grid, n))
+
+
+@pytest.mark.parametrize("n", range(1, 8))
+def test_isohedral_polyhexes_equal_a075214(n):
+    assert _isohedral_count(HEXAGONAL, n) == A075214[n - 1]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("n", [8, 9])
+def test_isohedral_polyhexes_equal_a075214_slow(n):
+    assert _isohedral_count(HEXAGONAL, n) == A075214[n - 1]
+
+
+@pytest.mark.parametrize("n", range(1, 11))
+def test_isohedral_polyiamonds_equal_a075223(n):
+    assert _isohedral_count(TRIANGULAR, n) == A075223[n - 1]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("n", [11, 12, 13])
+def test_isohedral_polyiamonds_equal_a075223_slow(n):
+    assert _isohedral_count(TRIANGULAR, n) == A075223[n - 1]
+
+
+def test_templates_follow_the_grid_turns():
+    """The quarter-turn template needs 90-degree turns (absent from the hexagonal point group);
+    the third- and sixth-turn templates need 60/120-degree ones (absent from the square grid)."""
+    usable = {g.name: {t[0] for t in _template_arrays(g)[5]} for g in (SQUARE, HEXAGONAL, TRIANGULAR)}
+    assert "quarterturn" in usable["square"] and not usable["square"] & {"threefold", "sixfold-1", "sixfold-2"}
+    for name in ("hex", "iamond"):
+        assert "quarterturn" not in usable[name]
+        assert {"threefold", "sixfold-1", "sixfold-2"} <= usable[name]
+
+
+def test_sixfold_iamonds_need_both_orders():
+    """Seven 9-iamonds tile isohedrally only with type CC3C3C6C6 (IH21, p6, six tiles a unit).
+    Five of them read C C6 C6 C3 C3 counter-clockwise, the mirror order of the other two: with
+    one order only, the count was 128, not A075223(9) = 133."""
+    orders = []
+    for p in _hole_free(TRIANGULAR, 9):
+        a = analyse(TRIANGULAR, p, construct=True)
+        if a["isohedral"] and not any(a[k] for k in ("translation", "halfturn", "reflection", "threefold")):
+            assert a["ih_types"] == [21]
+            orders.append(sorted({t.factorisation.template for t in a["tilings"]}))
+    assert sorted(orders) == [["sixfold-1"]] * 2 + [["sixfold-2"]] * 5
+
+
+@pytest.mark.parametrize("grid,n", [(HEXAGONAL, 6), (TRIANGULAR, 9)])
+def test_every_built_tiling_is_a_tiling(grid, n):
+    """Independent check of the integer proof in ``build``: every tiling built for the
+    hole-free n-forms, drawn in the plane, has no gap and no overlap (Patch.validate)."""
+    import shapely
+
+    for p in _hole_free(grid, n):
+        a = analyse(grid, p, construct=True)
+        for bt in a["tilings"][:1]:
+            t = periodic_tiling(grid, p, bt)
+            region = shapely.box(-6, -6, 6, 6)
+            assert t.patch(region).validate(region)
+
+
+def _classified(grid, n, **bounds):
+    """Counts of the classification of every free n-form, each verdict checked independently:
+    a torus tiling drawn in the plane has no gap and no overlap (Patch.validate), and a
+    non-tiler's corona witness has no overlap."""
+    import shapely
+
+    from tilekit.plugins.polyomino.classify import classify, corona_patch, torus_tiling
+
+    polys, holes, _ = enumerate_free(grid, n, maxsize=n, with_holes=True)
+    counts = dict.fromkeys(("tiles", "isohedral", "anisohedral", "holefree_nontilers", "holey", "undecided"), 0)
+    for p, h in zip(polys, holes):
+        if len(p) != n:
+            continue
+        a = None if h else analyse(grid, p, construct=False)
+        c = classify(grid, p, a, has_holes=bool(h), **bounds)
+        if c.tiles == "true":
+            counts["tiles"] += 1
+            counts["isohedral" if c.isohedral else "anisohedral"] += 1
+            if c.witness is not None:  # a torus tiling: check it geometrically
+                t = torus_tiling(grid, p, c.witness)
+                x0, y0, x1, y1 = shapely.MultiPoint(np.vstack([t.v1, t.v2, -t.v1, -t.v2])).bounds
+                region = shapely.box(x0, y0, x1, y1)
+                assert t.patch(region).validate(region), p.tolist()
+        elif c.tiles == "false":
+            counts["holey" if h else "holefree_nontilers"] += 1
+            if not h:
+                assert c.witness["hc"] is None or corona_patch(grid, p, c.witness["hc"]).validate()
+        else:
+            counts["undecided"] += 1
+    return counts
+
+
+def _expected(n, tiles, iso, aniso, nontilers, holey):
+    return {"tiles": tiles[n - 1], "isohedral": iso[n - 1], "anisohedral": aniso[n - 1],
+            "holefree_nontilers": nontilers[n - 1], "holey": holey[n - 1], "undecided": 0}
+
+
+@pytest.mark.parametrize("n", [5, 6])
+def test_polyhexes_classified_as_myers(n):
+    """Tilers, isohedral, anisohedral, hole-free non-tilers and holey n-hexes equal A070766,
+    A075214, A075215, A070768 and A038144."""
+    assert _classified(HEXAGONAL, n) == _expected(n, A070766, A075214, A075215, A070768, A038144)
+
+
+@pytest.mark.parametrize("n", [7, 8])
+def test_polyiamonds_classified_as_myers(n):
+    """The V-heptiamond is the one hole-free non-tiler to n = 8 (A071334; Gardner)."""
+    holey = [0] * 13
+    assert _classified(TRIANGULAR, n) == _expected(n, A071332, A075223, A075224, A071334, holey)
+
+
+@pytest.mark.slow
+def test_polyiamonds_9_classified_as_myers():
+    """139 of the 160 9-iamonds tile, 6 only anisohedrally; 20 hole-free ones do not tile, and
+    one has a hole (A000577(9) = 160; A071332, A075224, A071334)."""
+    holey = [0] * 8 + [1]
+    assert _classified(TRIANGULAR, 9) == _expected(9, A071332, A075223, A075224, A071334, holey)
+
+
+#: The hat (Smith, Myers, Kaplan and Goodman-Strauss, "An aperiodic monotile", 2023) as eight
+#: cells of the kite grid: the cells whose union is the outline of tilekit's hat data
+#: (catalogue/substitution hat, [tile] outline) scaled onto the grid.
+HAT = "kite:1,1;-1,2;-5,4;1,4;-4,5;-1,5;-2,7;-1,8"
+
+
+def test_the_hat_is_eight_kites_of_the_grid():
+    from tilekit.lattice import KITE, outline, parse_polyform
+
+    cells = parse_polyform(KITE, HAT)
+    proto = outline(KITE, cells)
+    assert len(proto.outline) == 13  # the hat's 13 corners (its 14th vertex is on a straight side)
+    kite = KITE.cell_polygons(KITE.roots[:1])[0]
+    x, y = kite[:, 0], kite[:, 1]
+    kite_area = 0.5 * abs(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+    assert abs(abs(proto.area) - 8 * kite_area) < 1e-9
+    # it is one of the 873 free 8-kites (A057786), found by the enumeration from its cell types
+    found = {encode(KITE, p)
+             for r in range(len(KITE.roots)) for p in enumerate_free(KITE, 8, root=r, maxsize=8)[0] if len(p) == 8}
+    assert len(found) == 873 and HAT in found
+
+
+def test_the_hat_is_undecided_never_a_non_tiler():
+    """The hat tiles, only aperiodically: surrounded to the level limit, and no torus up to 12
+    tiles per translational unit has a cover, so the classification must stop at 'undecided'
+    with those bounds, never 'false' and never a periodic tiling. The corona witness is checked
+    for overlaps and has the hat at its centre."""
+    from tilekit.lattice import KITE, parse_polyform
+    from tilekit.plugins.polyomino.classify import classify, corona_patch
+
+    cells = parse_polyform(KITE, HAT)
+    a = analyse(KITE, cells, construct=False)
+    assert not a["isohedral"]
+    c = classify(KITE, cells, a, probe=2, max_level=3, torus_tiles=12, time_limit=300)
+    assert c.tiles == "undecided"
+    assert c.verdict.startswith("undecided up to 3 coronas and 12 tiles per translational unit")
+    hc = c.witness["hc"]
+    assert hc["k"] == 3 and not hc["holes"]
+    patch = corona_patch(KITE, cells, hc)
+    assert patch.validate()
+
+
+def test_bad_grid_inputs_are_one_line_errors():
+    from tilekit.errors import GeometryError, NotFoundError, ParameterError
+    from tilekit.plugins.polyomino.classify_search import check_params
+    from tilekit.plugins.polyomino.model import Polyomino
+
+    with pytest.raises(NotFoundError, match="grids: square, hex, iamond, kite"):
+        check_params({"max_cells": 5, "grid": "pentagonal"})
+    # past the square grid's 14 cells in free forms: refused with the estimate, before any run
+    with pytest.raises(ParameterError, match=r"13 on the hex grid means about [\d,]+ free forms \(estimated\)"):
+        check_params({"max_cells": 13, "grid": "hex"})
+    with pytest.raises(ParameterError, match="max_cells.*beyond the classification.s limit of 14 cells on the square grid"):
+        check_params({"max_cells": 15, "grid": "square"})
+    check_params({"max_cells": 16, "grid": "iamond"})  # polyiamonds to 16: about 10^5 forms
+    # grids with cells of several shapes: refused, not answered (the 4.8.8 domino of an octagon
+    # and a square tiles, and their corona search called it a non-tiler)
+    with pytest.raises(ParameterError, match="runs on the square, hex, iamond, kite grids, not octasquare"):
+        check_params({"max_cells": 4, "grid": "octasquare"})
+    with pytest.raises(GeometryError, match="disconnected"):
+        Polyomino.parse("hex:0,0;9,0")
+    with pytest.raises(GeometryError, match="not a cell"):
+        Polyomino.parse("iamond:1,1;3,3")
+
+
+@pytest.mark.parametrize("code", ["hex:0,0;3,0;6,0", "iamond:1,1;2,2;4,1", "kite:1,1;4,1;1,4"])
+def test_a_one_class_torus_tiling_is_isohedral(code):
+    """Without the boundary-word test (an empty analysis) the torus search alone must find
+    these isohedral tilers' one-class tilings and call them isohedral, not 'anisohedral with
+    1 class' (what the 9-iamonds got before): the exact one-class torus test."""
+    import shapely
+
+    from tilekit.lattice import get_grid, parse_polyform
+    from tilekit.plugins.polyomino.classify import classify, torus_tiling
+
+    grid = get_grid(code.split(":")[0])
+    cells = parse_polyform(grid, code)
+    c = classify(grid, cells, {}, probe=1, max_level=2)
+    assert c.tiles == "true" and c.isohedral and c.anisohedral_k is None
+    assert c.verdict.startswith("tiles isohedrally: a torus tiling with one transitivity class")
+    assert c.witness["k"] == 1
+    t = torus_tiling(grid, cells, c.witness)
+    region = shapely.box(-2, -2, 2, 2)
+    assert t.patch(region).validate(region)
+
+
+def test_hex_rows_list_show_render_and_web(catalogue_cli, tmp_path):
+    """The classification search on the hex grid stores rows with grid=hex that `list`,
+    `show`, `render` and the web pages read as for polyominoes (A070768(6) = 4 hole-free
+    non-tilers to 6 cells, one with Heesch number 2; A075215(6) = 1 anisohedral)."""
+    import json
+    from urllib.parse import quote
+
+    from starlette.testclient import TestClient
+
+    from tilekit.web import create_app
+
+    run = catalogue_cli.run
+    res = run("search", "polyomino-classify", "--grid", "hex", "--max-cells", "6")
+    assert res.exit_code == 0, res.output
+
+    def count(*where):
+        return catalogue_cli.count("polyomino", "grid=hex", *where)
+
+    assert count() == 1 + 1 + 3 + 7 + 22 + 82  # A000228
+    assert count("tiles=false", "holes=false") == 4
+    assert count("tiles=true", "isohedral=false") == 1
+    assert count("heesch=2") == 1
+    assert catalogue_cli.count("polyomino", "grid=square") == 0
+    r = run("list", "--family", "polyomino", "--where", "grid=hex", "--where", "heesch=2", "--format", "json")
+    code = json.loads(r.output)[0]["code"]
+    assert code == "hex:0,0;3,0;6,0;-3,3;6,3;-6,6"
+    res = run("show", code)
+    assert res.exit_code == 0 and "6-hex" in res.output and "Heesch number 2" in res.output
+    for view, name in ((None, "h2.svg"), ("holes", "hh.png")):
+        out = tmp_path / name
+        res = run("render", code, *(("--set", f"view={view}") if view else ()), "-o", str(out))
+        assert res.exit_code == 0 and out.stat().st_size > 0, res.output
+    r = run("list", "--family", "polyomino", "--where", "grid=hex", "--where", "isohedral=false",
+            "--where", "tiles=true", "--format", "json")
+    aniso = json.loads(r.output)[0]["code"]
+    res = run("render", aniso, "-o", str(tmp_path / "aniso.svg"))
+    assert res.exit_code == 0, res.output
+    with TestClient(create_app(catalogue_cli.url)) as client:
+        for url in (f"/tiling/{quote(code, safe='')}", f"/thumb/{quote(aniso, safe='')}.svg"):
+            assert client.get(url).status_code == 200, url
