@@ -314,11 +314,14 @@ def test_family_filter_ordering_and_paging(reading):
     assert by_degree[0] == "3^6"
     degrees = [len(vertex_types()[n]) for n in by_degree]
     assert degrees == sorted(degrees, reverse=True)
+    from tilekit.catalogue.filters import natural_key
+
     ordered = [e.name for e in reading.query()]
-    assert ordered == sorted(ALL)
+    assert ordered == sorted(ALL, key=natural_key)  # natural order: 3.4.6.4 before 3.12^2
+    assert ordered.index("3.4.6.4") < ordered.index("3.12^2")
     pages = [e.name for off in range(0, 11, 4) for e in reading.query(limit=4, offset=off)]
     assert pages == ordered
-    assert [e.name for e in reading.query(order_by="-name", limit=2)] == sorted(ALL, reverse=True)[:2]
+    assert [e.name for e in reading.query(order_by="-name", limit=2)] == sorted(ALL, key=natural_key, reverse=True)[:2]
     assert reading.count_matching(where=["polygons=4"]) == len(reading.query(where=["polygons=4"]))
     with pytest.raises(NotFoundError, match="vertex_degree"):
         reading.query(order_by="vertex_degre")
@@ -329,13 +332,16 @@ def test_family_filter_ordering_and_paging(reading):
 def test_entry_properties_keep_their_types(cat):
     entry = cat.get("3.4.6.4")
     assert entry.family == "testgrid" and entry.title == "rhombitrihexagonal tiling"
-    assert entry.properties["polygons"] == [3, 4, 6]
-    assert all(type(v) is int for v in entry.properties["polygons"])
+    assert entry.properties["sides"] == [3, 4, 6]
+    assert all(type(v) is int for v in entry.properties["sides"])
     assert entry.properties["periodic"] is True and entry.properties["chiral"] is False
     assert entry.properties["vertex_type"] == "3.4.6.4"
     area = cat.get("6^3").properties["polygon_area"]
     assert type(area) is float and math.isclose(area, 3 * math.sqrt(3) / 2)
-    assert list(entry.properties) == list(testkit.records()[6].properties)  # record order kept
+    from tilekit.catalogue.vocabulary import normalise_properties
+
+    # record order kept, under the shared names (polygons -> sides; periodic implies aperiodic=false)
+    assert list(entry.properties) == list(normalise_properties(testkit.records()[6].properties))
 
 
 def test_every_property_is_stored_as_typed_rows(cat):
@@ -346,8 +352,8 @@ def test_every_property_is_stored_as_typed_rows(cat):
         rows = conn.execute(sa.select(p.c.key, p.c.position, p.c.kind, p.c.value_num)
                             .join(t, t.c.id == p.c.tiling_id).where(t.c.name == "4.6.12")).all()
     keys = {r.key for r in rows}
-    assert {"periodic", "k_hedral", "symmetry_group", "polygons", "vertex_degree"} <= keys
-    polygon_rows = sorted((r.position, r.value_num) for r in rows if r.key == "polygons")
+    assert {"periodic", "k_hedral", "symmetry_group", "sides", "vertex_degree"} <= keys
+    polygon_rows = sorted((r.position, r.value_num) for r in rows if r.key == "sides")
     assert polygon_rows == [(0, 4.0), (1, 6.0), (2, 12.0)]
 
 
@@ -465,7 +471,7 @@ def test_export_json_and_csv(cat, tmp_path):
     data = json.loads(out.read_text())
     by_name = {d["name"]: d for d in data}
     assert set(by_name) == ALL
-    assert by_name["4.8^2"]["properties"]["polygons"] == [4, 8]
+    assert by_name["4.8^2"]["properties"]["sides"] == [4, 8]
     assert by_name["4^4"]["aliases"] == ["4.4.4.4", "(4^4)"]
     assert by_name["4^4"]["spec"] == {"vertex_type": "4^4"}
 
@@ -473,7 +479,7 @@ def test_export_json_and_csv(cat, tmp_path):
     assert cat.export(stream, format="csv", where=["regular=true"]) == 3
     rows = list(csv.DictReader(io.StringIO(stream.getvalue())))
     assert [r["name"] for r in rows] == ["3^6", "4^4", "6^3"]
-    assert json.loads(rows[2]["polygons"]) == [6] and rows[0]["periodic"] == "true"
+    assert json.loads(rows[2]["sides"]) == [6] and rows[0]["periodic"] == "true"
     assert json.loads(rows[1]["spec"]) == {"vertex_type": "4^4"}
     with pytest.raises(ParameterError, match="json, csv"):
         cat.export(stream, format="xml")
@@ -702,3 +708,18 @@ def test_changed_plugins_refresh_shipped_records_keeping_search_results(url, mon
     assert cat.get("new-in-upgrade").name == "new-in-upgrade"
     assert cat.get("search-result").name == "search-result"  # never dropped
     assert cat.refresh_shipped() is None
+
+
+def test_a_resumed_run_is_not_finished_until_it_finishes_again(cat):
+    """Issue 26: ``runs show`` of a resumed run showed the finished_at of its interruption."""
+    run_id = cat.create_run("demo", {"n": 1}, [{"i": 0}])
+    owner = cat.start_worker(run_id, "first")
+    cat.finish_worker(owner)
+    cat.finish_run(run_id, "interrupted")
+    stopped = cat.run(run_id).finished_at
+    assert cat.run(run_id).status == "interrupted" and stopped is not None
+    owner = cat.start_worker(run_id, "resumed")
+    assert cat.run(run_id).status == "running" and cat.run(run_id).finished_at is None
+    cat.finish_worker(owner)
+    cat.finish_run(run_id, "done")
+    assert cat.run(run_id).finished_at >= stopped

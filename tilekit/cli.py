@@ -523,7 +523,7 @@ def _vectors(tiling: Any, region: tuple[float, float, float, float]) -> tuple[An
 @click.option("--dpi", type=FiniteFloat(2400, min=10), default=96.0, show_default=True,
               help="PNG resolution: pixels are scaled by DPI/96.")
 @click.option("--stroke", default="#222", show_default=True, metavar="COLOUR", help="Outline colour (CSS name or #rrggbb).")
-@click.option("--stroke-width", type=FiniteFloat(1e3, min=0.0), help="Outline width in pixels (default 1.2).")
+@click.option("--stroke-width", type=FiniteFloat(1e3, min=0.0), help="Outline width in pixels (default: 1.2 for tiles 14 px across or more, thinner for smaller tiles, none under 2.5 px).")
 @click.option("--layers", type=click.Choice(["one", "colour"]), default=None,
               help=".cut.svg / .dxf: one layer of every edge (default), or a layer per colour.")
 @click.option("--mm-per-unit", type=FiniteFloat(1e6, min=1e-6), default=None,
@@ -1139,12 +1139,13 @@ def serve(state: State, host: str, port: int, writable: bool, max_tiles: int) ->
 
     Example: tilekit serve --port 8000, then open http://127.0.0.1:8000/
     """
-    try:
-        import uvicorn
+    from tilekit.errors import optional
 
-        from tilekit.web import create_app
-    except ImportError as exc:
-        raise TilekitError(f"tilekit serve needs the web extra ({exc.name} is missing): pip install 'tilekit[web]'") from None
+    for module in ("starlette", "uvicorn"):  # the web extra, checked before anything starts
+        optional(module, "web", "tilekit serve")
+    import uvicorn
+
+    from tilekit.web import create_app
     state.catalogue()  # open (and migrate) before binding: a bad catalogue is one line, exit 2
     sock = _listening_socket(host, port)  # a bad --host or a taken port: one line, exit 2
     app = create_app(state.url, writable=writable, max_tiles=max_tiles, catalogue=state.catalogue())
@@ -1188,6 +1189,12 @@ def _listening_socket(host: str, port: int) -> Any:
         sock.close()
         raise ParameterError(f"cannot serve on {host}:{port}: {exc.strerror or exc}") from None
     return sock
+
+
+# commands kept in their own module (keys, prototile), registered here
+from tilekit import cli_extra  # noqa: E402  (it reads this module's helpers when it runs)
+
+cli_extra.register(cli)
 
 
 if __name__ == "__main__":  # pragma: no cover

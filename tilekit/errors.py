@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import difflib
+import importlib
 from collections.abc import Iterable
+from typing import Any
 
 
 class TilekitError(Exception):
@@ -55,3 +57,20 @@ class SearchError(TilekitError):
 
 class SolverLimit(TilekitError):
     """A bounded search stopped at its node or time limit without an answer."""
+
+
+class MissingDependency(TilekitError, ImportError):
+    """An optional library is not installed; the message names the extra that installs it."""
+
+
+def optional(module: str, extra: str, what: str) -> Any:
+    """``import module``, or MissingDependency naming the extra: one line, no traceback. A guard
+    imports every module its feature will import later (``scipy.optimize``, not just the
+    feature's own module), so a missing one is found before the work starts."""
+    try:
+        return importlib.import_module(module)
+    except ImportError as exc:
+        missing = (getattr(exc, "name", None) or module).split(".")[0]
+        raise MissingDependency(
+            f"{what} needs {missing}, which is not installed; install it with: pip install 'tilekit[{extra}]'"
+        ) from None

@@ -25,7 +25,7 @@ import numpy as np
 import shapely
 
 from tilekit import limits
-from tilekit.errors import ParameterError, TilekitError
+from tilekit.errors import MissingDependency, ParameterError, TilekitError, optional  # noqa: F401  (re-exported)
 from tilekit.geometry import snap_noise
 from tilekit.limits import (
     ADJACENCY_BYTES_PER_VERTEX,
@@ -72,19 +72,7 @@ _CHUNK = 4096
 _SPLIT_CHUNK = 1 << 16
 
 
-class MissingDependency(TilekitError, ImportError):
-    """An optional library is not installed; the message names the extra that installs it."""
-
-
-def optional(module: str, extra: str, what: str) -> Any:
-    """``import module``, or MissingDependency naming the extra: one line, no traceback."""
-    try:
-        return importlib.import_module(module)
-    except ImportError:
-        raise MissingDependency(
-            f"{what} needs {module.split('.')[0]}, which is not installed; "
-            f"install it with: pip install 'tilekit[{extra}]'"
-        ) from None
+# MissingDependency and optional live in tilekit.errors (the CLI's guards use them too)
 
 
 def output_format(path: str | Path) -> str:

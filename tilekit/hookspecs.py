@@ -105,3 +105,19 @@ def tilekit_extra_properties(record):
     re-seeding, a changed fingerprint). A key the record already has is kept; among plugins, the first
     answer for a key wins. Values follow the rules of ``CatalogueRecord.properties``.
     """
+
+
+@hookspec(firstresult=True)
+def tilekit_normalise(key, value):
+    """Return ``(key, value)``, the stored form of a text value someone typed, or None.
+
+    Called by :func:`tilekit.plugins.normalise` for each ``KEY=VALUE`` / ``KEY!=VALUE`` filter
+    with a text value (``key`` under its shared name, see tilekit.catalogue.vocabulary) and,
+    with ``key="name"``, for a name :meth:`tilekit.catalogue.Catalogue.get` (``tilekit show``,
+    ``render``) did not find as written. A plugin that reads the value returns what to look for
+    instead: an equivalent incidence symbol as its ``canonical_symbol``, a vertex type in its
+    canonical rotation (``4.3.4.6`` -> ``3.4.6.4``), a polyomino code in its canonical
+    orientation, a D-symbol canonically numbered. Return None at once for keys the plugin does
+    not know (import its parsers only then); raise a TilekitError only for a value that is its
+    own and ambiguous. The first non-None answer wins.
+    """

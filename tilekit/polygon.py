@@ -93,6 +93,21 @@ def interior_angles(points: np.ndarray) -> np.ndarray:
     return np.mod(np.arctan2(cross, dot), TWO_PI)
 
 
+def corner_count(points: np.ndarray, corners: Sequence[int] | None = None, tol: float = 1e-9) -> int:
+    """How many sides an outline has as a polygon: its vertices where the boundary turns (a
+    point on a straight run between two others is not a corner), or ``len(corners)`` when the
+    outline names its tiling vertices (a shaped or curved edge is one side)."""
+    if corners is not None:
+        return len(corners)
+    p = np.asarray(points, dtype=float)
+    nxt = np.roll(p, -1, axis=0) - p
+    prv = p - np.roll(p, 1, axis=0)
+    cross = prv[:, 0] * nxt[:, 1] - prv[:, 1] * nxt[:, 0]
+    scale = np.linalg.norm(prv, axis=1) * np.linalg.norm(nxt, axis=1)
+    dot = (prv * nxt).sum(axis=1)
+    return int(np.count_nonzero((np.abs(cross) > tol * scale) | (dot < 0)))
+
+
 def ear_clip(pts: np.ndarray) -> list[np.ndarray]:
     """Triangulate a simple counter-clockwise polygon (non-convex prototiles are split into
     convex pieces this way); the last piece may be the remaining triangle."""

@@ -8,6 +8,7 @@ The y axis points up, as in the book's figures.
 from __future__ import annotations
 
 import html
+import itertools
 from collections.abc import Iterable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
@@ -17,6 +18,7 @@ import numpy as np
 from tilekit.errors import ParameterError, ParseError, TilekitError
 from tilekit.geometry import Affine, as_region
 from tilekit.limits import MAX_PNG_PIXELS, refuse_over
+from tilekit.polygon import signed_area
 
 #: The default palette: soft, distinguishable fills (colour 0 first).
 PALETTE: tuple[str, ...] = (
@@ -92,6 +94,30 @@ def _path_data(pts: np.ndarray, closed: bool = True) -> list[str]:
     fmt = "M" + " L".join(["%.5g %.5g"] * k) + ("Z" if closed else "")
     flat = pts.reshape(m, 2 * k)
     return [fmt % tuple(row) for row in flat.tolist()]
+
+
+#: The outline width in pixels of tiles at least STROKE_FULL_PX across; smaller tiles get
+#: proportionally thinner outlines, and tiles under STROKE_MIN_PX none (their colours show the
+#: tiling; a 1.2 px outline on every 3 px tile would paint the picture the stroke colour).
+STROKE_PX = 1.2
+STROKE_FULL_PX = 14.0
+STROKE_MIN_PX = 2.5
+
+
+def stroke_px_for(tile_px: float) -> float:
+    """The default outline width (pixels) for tiles ``tile_px`` pixels across."""
+    if tile_px < STROKE_MIN_PX:
+        return 0.0
+    return min(STROKE_PX, STROKE_PX * tile_px / STROKE_FULL_PX)
+
+
+def tile_size(patch: Any) -> float:
+    """A patch's typical tile size: the square root of its tiles' mean area (prototile areas
+    times the transforms' determinants, so scaled tiles count as drawn)."""
+    areas = np.abs(np.asarray([signed_area(p.outline) for p in patch.prototiles], dtype=float))
+    t = patch.transform
+    det = np.abs(t[:, 0, 0] * t[:, 1, 1] - t[:, 0, 1] * t[:, 1, 0])
+    return float(np.sqrt(np.mean(areas[patch.prototile] * det)))
 
 
 def patch_to_svg(
@@ -171,7 +197,17 @@ def svg_lines(
         scale = height / vb[3]
     else:
         scale = size / max(vb[2], vb[3])
-    sw = stroke_width if stroke_width is not None else (1.2 if stroke_width_px is None else stroke_width_px) / scale
+    patches = iter(patches)
+    first = next(patches, None)
+    if first is not None:
+        patches = itertools.chain([first], patches)
+    line = (STROKE_PX if stroke_width_px is None else stroke_width_px) / scale  # frame and vectors
+    if stroke_width is not None:
+        sw = stroke_width
+    elif stroke_width_px is not None or first is None or not len(first):
+        sw = line
+    else:  # outlines as wide as the tiles allow: thinner for small tiles, none for tiny ones
+        sw = stroke_px_for(tile_size(first) * scale) / scale
     width_px = round(vb[2] * scale)
     height_px = round(vb[3] * scale)
     refuse_over("pixels", width_px * height_px, MAX_PNG_PIXELS, hint=f"a {width_px} x {height_px} image; "
@@ -199,13 +235,13 @@ def svg_lines(
             raise ParseError(f"overlay colour {colour[:40]!r} is not a CSS colour name or #rgb / #rrggbb")
         segs = np.asarray(segments, dtype=float).reshape(-1, 2, 2) - shift
         if len(segs):
-            yield (f'<path fill="none" stroke="{html.escape(colour)}" stroke-width="{factor * sw:.4g}" '
+            yield (f'<path fill="none" stroke="{html.escape(colour)}" stroke-width="{factor * max(sw, line / 2):.4g}" '
                    f'stroke-linecap="round" d="{" ".join(_path_data(segs, closed=False))}"/>')
     if clip and tiles:
         # a frame on the region's border: tiles cut by the clip end on a line, not in stubs
         # (drawn at twice the width, half of it inside the clip)
         yield (f'<rect x="{x0:.6g}" y="{y0:.6g}" width="{w:.6g}" height="{h:.6g}" fill="none" '
-               f'stroke-width="{2 * sw:.4g}"/>')
+               f'stroke-width="{2 * max(sw, line / 2):.4g}"/>')
     if vectors is not None:
         o, v1, v2 = (np.asarray(v, dtype=float) for v in vectors)
         o = o - shift
@@ -214,7 +250,7 @@ def svg_lines(
         for v in (v1, v2):
             e = o + v
             yield (f'<line x1="{o[0]:.6g}" y1="{o[1]:.6g}" x2="{e[0]:.6g}" y2="{e[1]:.6g}" '
-                   f'stroke="#c00" stroke-width="{2 * sw:.4g}" marker-end="url(#arrow)"/>')
+                   f'stroke="#c00" stroke-width="{2 * line:.4g}" marker-end="url(#arrow)"/>')
     yield "</g>"
     if label_items:
         fs = 0.15 * (max(w, h) / max(1.0, np.sqrt(tiles))) if tiles else 0.1

@@ -933,6 +933,12 @@ class Tiling(ABC):
         return export.tiling_mimebundle(self).get("image/svg+xml")
 
 
+#: A periodic tiling's default picture: about this many translational units ...
+DEFAULT_UNITS = 9
+#: ... and at least this many tiles' area.
+DEFAULT_MIN_TILES = 30
+
+
 class PeriodicTiling(Tiling):
     """A tiling given by a translational unit (placed tiles) and two translation vectors.
 
@@ -1156,9 +1162,14 @@ class PeriodicTiling(Tiling):
         return patch
 
     def default_region(self) -> BaseGeometry:
-        ub = self.unit_tile_bounds()
-        size = max(ub[:, 2].max() - ub[:, 0].min(), ub[:, 3].max() - ub[:, 1].min())
-        half = 2.5 * size
+        """A square of about DEFAULT_UNITS translational units (and DEFAULT_MIN_TILES tiles),
+        at least three tile diameters wide: a few units, whatever the lattice's shape (a box
+        round the unit's tiles would hold thousands of tiles for a long, thin period cell)."""
+        cell = abs(float(np.linalg.det(self.basis)))
+        tiles = max(1, len(self.unit_prototile))
+        area = max(DEFAULT_UNITS * cell, DEFAULT_MIN_TILES * cell / tiles)
+        diameter = max(float(np.ptp(p.outline, axis=0).max()) for p in self._prototiles)
+        half = max(math.sqrt(area), 3 * diameter) / 2
         return shapely.box(-half, -half, half, half)
 
     def properties(self) -> dict[str, Any]:

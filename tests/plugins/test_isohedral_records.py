@@ -164,7 +164,7 @@ def test_marked_types_match_the_published_list(ih):
     props = type_properties(ih)
     assert props["marked"] is True
     assert props["wallpaper_group"] == group
-    assert props["edges"] == POLYGON_EDGES[polygon]
+    assert props["sides"] == POLYGON_EDGES[polygon]
     # the stored value is the computed one, not a copy of the list
     from tilekit.plugins.isohedral.records import computed_properties
 

@@ -327,9 +327,10 @@ def test_wang_family_and_records():
     recs = {r.name: r for r in (record_for(ts) for ts in builtin_sets().values())}
     assert set(recs) == set(builtin_sets())
     jr = recs["jeandel-rao-11"].properties
-    assert jr["tiles"] == 11 and jr["known_aperiodic"] and "1506.06492" in jr["aperiodic_source"]
+    assert jr["tiles"] == 11 and jr["aperiodic"] is True and "1506.06492" in jr["aperiodic_source"]
     assert jr["periodic"] is False and jr["periodic_unit"] is None and jr["wang_outcome"] == "no_answer"
     assert recs["cycle-3"].properties["periodic_unit"] == 3 and recs["cycle-3"].properties["periodic"] is True
+    assert recs["cycle-3"].properties["aperiodic"] is False and recs["counter-4"].properties["aperiodic"] is False
     assert recs["checkerboard-2"].properties["periodic_unit"] == 2
     assert recs["counter-4"].properties["does_not_tile_beyond"] == 4
     assert recs["mismatch-1"].properties["does_not_tile_beyond"] == 1

@@ -15,6 +15,7 @@ from sqlalchemy.engine import Connection
 
 from tilekit.catalogue.entry import SHARED_COLUMNS
 from tilekit.catalogue.tables import ALIASES, BATCH, PROPS, TILINGS
+from tilekit.catalogue.vocabulary import normalise_properties
 from tilekit.errors import CatalogueError
 from tilekit.models import utcnow
 from tilekit.plugins import CatalogueRecord
@@ -141,7 +142,7 @@ def upsert(conn: Connection, records: list[CatalogueRecord], *, replace: bool) -
         if not isinstance(rec.spec, dict):
             raise CatalogueError(f"record {rec.name!r}: spec is a {type(rec.spec).__name__}, not a JSON object")
         json_ok(f"record {rec.name!r}", "spec", rec.spec)
-        props = dict(rec.properties or {})
+        props = normalise_properties(rec.properties or {})
         row = {
             "family": rec.family,
             "name": rec.name,

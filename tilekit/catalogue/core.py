@@ -50,6 +50,7 @@ from tilekit.plugins import (
     families,
     get_plugin_manager,
     migration_locations,
+    normalise,
 )
 from tilekit.resources import migrations_dir
 
@@ -389,10 +390,31 @@ class Catalogue(RunsMixin, ResultsMixin, TilingReader):
         return [*names, *aliases]
 
     def get(self, name: str) -> Entry:
-        """The tiling called ``name`` or having it as an alias (exact, then case-insensitive).
+        """The tiling called ``name`` or having it as an alias (exact, then case-insensitive),
+        or, failing those, the one a plugin reads ``name`` as (``tilekit_normalise``: an
+        equivalent incidence symbol, vertex type, polyomino code or D-symbol).
 
         Raises NotFoundError suggesting the closest names.
         """
+        found = self._get(name)
+        if found is not None:
+            return found
+        key, value = normalise("name", name, self.pm)
+        if (key, value) != ("name", name):
+            if key == "name":
+                found = self._get(value)
+            else:
+                matches = self.query(where=[Filter(key, "=", value, value)], limit=2)
+                if len(matches) > 1:
+                    raise ParameterError(f"{name!r} names several tilings ({matches[0].name}, {matches[1].name} ...): "
+                                         f"tilekit list --where '{key}={value}' lists them")
+                found = matches[0] if matches else None
+            if found is not None:
+                return found
+        raise NotFoundError("tiling", name, self.names())
+
+    def _get(self, name: str) -> Entry | None:
+        """The tiling called ``name`` or having it as an alias, or a result-table row, or None."""
         t, a = TILINGS, ALIASES
         cols = (t.c.id, t.c.name, t.c.family, t.c.title, t.c.spec)
         attempts = [
@@ -406,10 +428,7 @@ class Catalogue(RunsMixin, ResultsMixin, TilingReader):
                 rows = conn.execute(stmt.order_by(t.c.id)).all()
                 if len(rows) >= 1:
                     return load_entries(_runner(conn), rows[:1])[0]
-        found = self._result_lookup(name)
-        if found is not None:
-            return found
-        raise NotFoundError("tiling", name, self.names())
+        return self._result_lookup(name)
 
     def tiling(self, name: str) -> Any:
         """The :class:`tilekit.Tiling` called ``name``, rebuilt by its family's ``from_spec``."""
@@ -555,6 +574,19 @@ def _sqlite_pragmas(dbapi_connection: Any, _record: Any) -> None:
         cursor.close()
 
 
+def missing_driver(sa_url: sa.URL, exc: ImportError) -> str:
+    """What to install when a URL's database driver is missing: PostgreSQL through the
+    ``postgresql`` extra (psycopg 3, so a ``postgresql+psycopg://`` URL), others by name."""
+    module = (getattr(exc, "name", None) or str(exc)).split(".")[0]
+    if sa_url.get_backend_name() == "postgresql":
+        if sa_url.get_driver_name() == "psycopg":
+            return (f"the PostgreSQL driver {module} is not installed; install it with: "
+                    "pip install 'tilekit[postgresql]'")
+        return (f"the PostgreSQL driver {module} ({sa_url.get_driver_name()}) is not installed; install the "
+                "postgresql extra (pip install 'tilekit[postgresql]') and write the URL as postgresql+psycopg://...")
+    return f"the database driver {module} is not installed ({sa_url.get_backend_name()} URLs need it)"
+
+
 def _read_only_engine(sa_url: sa.URL, path: Path) -> Engine:
     """A SQLite engine that only reads (immutable: no lock, no -wal or -shm file is made)."""
     import sqlite3
@@ -600,7 +632,9 @@ def open_catalogue(
             engine = _read_only_engine(sa_url, path)
         else:
             engine = (engine_factory or sa.create_engine)(sa_url)
-    except (ArgumentError, ImportError, SQLAlchemyError) as exc:
+    except ImportError as exc:
+        raise CatalogueError(f"cannot open catalogue {display(sa_url)}: {missing_driver(sa_url, exc)}") from None
+    except (ArgumentError, SQLAlchemyError) as exc:
         raise CatalogueError(f"cannot open catalogue {display(sa_url)}: {one_line(exc)}") from None
     if sa_url.get_backend_name() == "sqlite" and not read_only:
         event.listen(engine, "connect", _sqlite_pragmas)

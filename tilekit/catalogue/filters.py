@@ -128,6 +128,16 @@ def parse_order(order_by: str | None) -> tuple[str, bool]:
     return text.lstrip("-").replace("-", "_").lower(), text.startswith("-")
 
 
+_DIGITS = re.compile(r"(\d+)")
+
+
+def natural_key(text: str) -> tuple[tuple[int, int, str], ...]:
+    """A sort key reading runs of digits as numbers: IH2 before IH10, multigrid-5 before
+    multigrid-10 (text compared case-insensitively)."""
+    return tuple((0, int(part), "") if part.isdigit() else (1, 0, part.lower())
+                 for part in _DIGITS.split(text) if part)
+
+
 def quote(name: str) -> str:
     """An SQL identifier, double-quoted (the same on SQLite and PostgreSQL)."""
     return '"' + name.replace('"', '""') + '"'

@@ -39,13 +39,21 @@ from tilekit.catalogue.filters import (
     Params,
     condition,
     like_contains,
+    natural_key,
     parse_filter,
     parse_order,
     quote,
 )
 from tilekit.catalogue.urls import resolve_url
+from tilekit.catalogue.vocabulary import (
+    KEY_ALIASES,
+    KeyInfo,
+    canonical_key,
+    key_infos,
+    shared_filter,
+)
 from tilekit.errors import CatalogueError, NotFoundError, ParameterError
-from tilekit.plugins import families, get_plugin_manager, migration_locations
+from tilekit.plugins import families, get_plugin_manager, migration_locations, normalise
 from tilekit.resources import catalogue_dir, migrations_dir
 
 #: A function running one SQL text with its named parameters, returning the rows as tuples.
@@ -185,6 +193,61 @@ class TilingReader(ABC):
         with self._reading("reading property keys") as run:
             return sorted(row[0] for row in run(sql, params))
 
+    def key_families(self) -> dict[str, set[str]]:
+        """Every property key present in the catalogue, with the families whose tilings have it."""
+        sql = ("SELECT DISTINCT tiling_properties.key, tilings.family FROM tiling_properties"
+               " JOIN tilings ON tilings.id = tiling_properties.tiling_id")
+        out: dict[str, set[str]] = {}
+        with self._reading("reading property keys") as run:
+            for key, family in run(sql, {}):
+                out.setdefault(key, set()).add(family)
+        return out
+
+    def key_table(self, family: str | None = None) -> list[KeyInfo]:
+        """What ``tilekit keys [FAMILY]`` prints: every queryable key of the tilings (of one
+        family) with its type, the families that have it and an example value, shared keys
+        first (see :mod:`tilekit.catalogue.vocabulary`)."""
+        params = Params()
+        source = " FROM tiling_properties JOIN tilings ON tilings.id = tiling_properties.tiling_id"
+        if family is not None:
+            source += f" WHERE tilings.family = {params.bind(family)}"
+        with self._reading("reading property keys") as run:
+            rows = run("SELECT tiling_properties.key, tiling_properties.kind, tilings.family,"
+                       " max(tiling_properties.position), min(tiling_properties.value_text),"
+                       " min(tiling_properties.value_num)" + source
+                       + " GROUP BY tiling_properties.key, tiling_properties.kind, tilings.family", params)
+            counts = run("SELECT tiling_properties.key, tilings.family, count(DISTINCT tilings.id)" + source
+                         + " GROUP BY tiling_properties.key, tilings.family", params)
+        return key_infos(rows, counts)
+
+    def _normalised(self, f: Filter) -> Filter:
+        """A text ``=``/``!=`` filter on a property, with its value as stored: a plugin's
+        ``tilekit_normalise`` reads equivalent spellings (incidence symbols, vertex types,
+        polyomino codes, D-symbols); other filters unchanged."""
+        if f.op not in ("=", "!=") or not isinstance(f.value, str) or f.key in TEXT_COLUMNS:
+            return f
+        key, value = normalise(f.key, f.value, self.pm)
+        return f if (key, value) == (f.key, f.value) else Filter(key, f.op, value, value)
+
+    def _check_keys(self, family: str | None, keys: Sequence[str]) -> None:
+        """A key no tiling has is a NotFoundError suggesting the closest keys; a key the
+        catalogue has, but not in ``family`` (which has tilings), is a ParameterError naming
+        the families that have it."""
+        if not keys:
+            return
+        owners = self.key_families()
+        for key in keys:
+            found = owners.get(key)
+            if not found:
+                if key in SHARED_COLUMNS:
+                    continue
+                raise NotFoundError("property", key, [*TEXT_COLUMNS, *SHARED_COLUMNS, *sorted(owners),
+                                                      *KEY_ALIASES])
+            if family is not None and family not in found and self.count(family) > 0:
+                raise ParameterError(
+                    f"family {family!r} has no property {key!r}; {', '.join(sorted(found))} "
+                    f"{'has' if len(found) == 1 else 'have'} it (tilekit keys {family} lists {family}'s keys)")
+
     def count(self, family: str | None = None) -> int:
         """Number of tilings (of one family)."""
         params = Params()
@@ -207,13 +270,8 @@ class TilingReader(ABC):
         conditions = []
         if family is not None:
             conditions.append(f"tilings.family = {params.bind(family)}")
-        filters = [parse_filter(w) for w in where]
-        unknown = [f.key for f in filters if f.key not in TEXT_COLUMNS and f.key not in SHARED_COLUMNS]
-        if unknown:
-            known = set(self.property_keys())
-            for key in unknown:
-                if key not in known:
-                    raise NotFoundError("property", key, [*TEXT_COLUMNS, *SHARED_COLUMNS, *sorted(known)])
+        filters = [self._normalised(shared_filter(parse_filter(w))) for w in where]
+        self._check_keys(family, [f.key for f in filters if f.key not in TEXT_COLUMNS])
         conditions += [condition(params, f) for f in filters]
         if text:
             alias = like_contains(params, "tiling_aliases.alias", text)
@@ -229,6 +287,7 @@ class TilingReader(ABC):
         """The ORDER BY clause: a column or a property (its least numeric, then least text
         value), ``-key`` descending, missing values last, then name and id."""
         key, descending = parse_order(order_by)
+        key = canonical_key(key)
         columns = {*TEXT_COLUMNS, *SHARED_COLUMNS, "id", "created_at", "updated_at"}
         if key in columns:
             exprs = ["tilings." + quote(key)]
@@ -262,6 +321,10 @@ class TilingReader(ABC):
             raise ParameterError(f"limit must be >= 0, got {limit}")
         if offset < 0:
             raise ParameterError(f"offset must be >= 0, got {offset}")
+        key, descending = parse_order(order_by)
+        if key == "name":
+            yield from self._iter_by_name(family, where, text, descending, limit, offset)
+            return
         params = Params()
         select = ("SELECT tilings.id, tilings.name, tilings.family, tilings.title, tilings.spec FROM tilings"
                   + self._where(params, family, where, text) + self._order(params, order_by))
@@ -279,6 +342,28 @@ class TilingReader(ABC):
             position += len(rows)
             if remaining is not None:
                 remaining -= len(rows)
+
+    def _iter_by_name(self, family: str | None, where: Iterable[str | Filter], text: str | None,
+                      descending: bool, limit: int | None, offset: int) -> Iterator[Entry]:
+        """The matching tilings in natural name order (IH2 before IH10; filters.natural_key),
+        which SQL does not have: the ids and names of every match are sorted here (a few MB
+        for a million tilings; plugins' large results live in result tables), then the entries
+        are read a batch at a time."""
+        params = Params()
+        sql = "SELECT tilings.id, tilings.name FROM tilings" + self._where(params, family, where, text)
+        with self._reading("querying") as run:
+            rows = run(sql, params)
+        ordered = sorted(rows, key=lambda r: (natural_key(r[1]), r[1], r[0]), reverse=descending)
+        ordered = ordered[offset:] if limit is None else ordered[offset : offset + limit]
+        for start in range(0, len(ordered), BATCH):
+            ids = [r[0] for r in ordered[start : start + BATCH]]
+            batch = Params()
+            with self._reading("querying") as run:
+                found = run("SELECT tilings.id, tilings.name, tilings.family, tilings.title, tilings.spec FROM tilings"
+                            f" WHERE tilings.id IN {batch.many(ids)}", batch)
+                by_id = {r[0]: r for r in found}
+                entries = load_entries(run, [by_id[i] for i in ids if i in by_id])
+            yield from entries
 
     def count_tilings(self, family: str | None = None, where: Iterable[str | Filter] = (),
                       text: str | None = None) -> int:

@@ -13,10 +13,17 @@ from sqlalchemy.engine import Connection
 
 from tilekit.catalogue.codec import json_ok
 from tilekit.catalogue.entry import Entry
-from tilekit.catalogue.filters import Params, column_condition, parse_filter, parse_order, quote
+from tilekit.catalogue.filters import (
+    Filter,
+    Params,
+    column_condition,
+    parse_filter,
+    parse_order,
+    quote,
+)
 from tilekit.errors import CatalogueError, NotFoundError, ParameterError
 from tilekit.models import is_json
-from tilekit.plugins import ResultTable, result_tables
+from tilekit.plugins import ResultTable, normalise, result_tables
 
 #: Bound parameters per statement on SQLite (its limit is 32,766).
 _MAX_PARAMS = 30_000
@@ -152,6 +159,10 @@ class ResultsMixin:
         params = Params()
         conditions = []
         for f in (parse_filter(w) for w in where):
+            if f.op in ("=", "!=") and isinstance(f.value, str) and f.key in t.c:
+                key, value = normalise(f.key, f.value, self.pm)  # a code in any orientation ...
+                if key == f.key and value != f.value:
+                    f = Filter(key, f.op, value, value)
             if f.key not in t.c:
                 raise NotFoundError("column", f.key, [c.name for c in t.c])
             column = t.c[f.key]

@@ -284,7 +284,7 @@ class RunsMixin:
             if status not in FINAL:
                 conn.execute(
                     sa.update(RUNS).where(RUNS.c.id == run_id)
-                    .values(status="running", error=None,
+                    .values(status="running", error=None, finished_at=None,  # a resumed run is not finished
                             started_at=sa.func.coalesce(RUNS.c.started_at, utcnow()))
                 )
         return owner

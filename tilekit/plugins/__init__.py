@@ -288,6 +288,18 @@ def family_for_file(path: str, pm: pluggy.PluginManager | None = None) -> str | 
     return pm.hook.tilekit_claim_file(path=str(path))
 
 
+def normalise(key: str, value: str, pm: pluggy.PluginManager | None = None) -> tuple[str, str]:
+    """``(key, value)`` as stored: what a plugin's ``tilekit_normalise`` makes of a typed
+    value (an equivalent symbol, vertex type, code ...), or the pair unchanged."""
+    pm = pm or get_plugin_manager()
+    found = pm.hook.tilekit_normalise(key=key, value=value)
+    if found is None:
+        return key, value
+    if not (isinstance(found, tuple) and len(found) == 2 and all(isinstance(v, str) for v in found)):
+        raise PluginError(f"tilekit_normalise({key!r}, {value[:40]!r}) returned {found!r}, not (key, value)")
+    return found
+
+
 @dataclass(frozen=True)
 class PluginInfo:
     """One loaded plugin: its registered name, where it came from, the hooks it implements."""

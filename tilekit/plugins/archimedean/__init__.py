@@ -8,11 +8,16 @@ Modules: ``notation`` (vertex types: parse, print, canonical form, species, enum
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
+from tilekit.errors import ParseError
 from tilekit.hookspecs import hookimpl
 from tilekit.lazy import lazy_exports
 from tilekit.plugins import Family
+from tilekit.plugins.archimedean.notation import (
+    VertexType,  # standard library only: cheap at start-up
+)
 
 __all__ = ["VertexType", "archimedean_tiling", "laves_prototile", "laves_tiling", "parse_vertex_type"]
 
@@ -98,3 +103,25 @@ def tilekit_result_tables():
 def tilekit_migration_locations():
     # the folder next to tables.py (which loads SQLAlchemy: a read without it asks this too)
     return [str(Path(__file__).parent / "migrations")]
+
+
+_WRAPPED = re.compile(r"^\s*([(\[]?)([^()\[\]]+?)([)\]]?)([lr]?)\s*$")
+
+
+@hookimpl
+def tilekit_normalise(key: str, value: str) -> tuple[str, str] | None:
+    """Vertex types in any rotation, reflection or spelling (``4.3.4.6``, ``3.3.3.3.6``,
+    ``3⁴.6``) as stored (``3.4.6.4``, ``3^4.6``): in ``vertex_type`` filters, and as names
+    (``(4.3.4.6)`` an Archimedean tiling, ``[4.3.4.6]`` its Laves dual, a trailing l/r the hand)."""
+    if key not in ("vertex_type", "name"):
+        return None
+    m = _WRAPPED.match(value)
+    if m is None or m.group(1) + m.group(3) not in ("", "()", "[]"):
+        return None
+    try:
+        vt = VertexType.parse(m.group(2))
+    except ParseError:
+        return None
+    if key == "vertex_type":
+        return key, str(vt)
+    return "name", f"{m.group(1)}{vt}{m.group(3)}{m.group(4)}"

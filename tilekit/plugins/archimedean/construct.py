@@ -530,7 +530,7 @@ def archimedean_properties(t: ArchimedeanTiling) -> dict[str, Any]:
     return {
         "vertex_type": str(vt),
         "species": vt.species_name,
-        "polygons": list(vt.sizes),
+        "sides": sorted(set(vt.sizes)),
         "chiral": bool(t.hand),
         "chirality": t.hand or "achiral",
         "dual": f"[{vt}]" + t.hand,
@@ -550,7 +550,7 @@ def laves_properties(t: LavesTiling) -> dict[str, Any]:
         "dual": f"{vt}" + t.hand,
         "edge_to_edge": True,
         "k_hedral": 1,
-        "tile_vertices": len(vt.polygons),
+        "sides": [len(vt.polygons)],
     }
 
 

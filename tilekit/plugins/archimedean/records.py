@@ -73,6 +73,19 @@ def common_aliases(names: list[str], suffix: str = "") -> list[str]:
     return list(dict.fromkeys(out))
 
 
+def handed_aliases(names: list[str], hand: str) -> list[str]:
+    """The common names of one hand of a chiral tiling: 'snub hexagonal left', 'left snub
+    hexagonal', 'snub-hexagonal-l' ... (the unhanded name stays with the left hand)."""
+    if not hand:
+        return []
+    word = {"l": "left", "r": "right"}[hand]
+    out = []
+    for n in names:
+        out += [f"{n} {word}", f"{word} {n}", f"{n} {hand}", f"{n} ({word})", f"{n}-{hand}".replace(" ", "-"),
+                f"{word}-{n}".replace(" ", "-")]
+    return out
+
+
 def _hand_word(hand: str) -> str:
     return {"l": ", left-handed", "r": ", right-handed"}.get(hand, "")
 
@@ -94,6 +107,7 @@ def archimedean_record(vt: VertexType, hand: str, extra: Mapping[str, Any] | Non
         aliases.append(f"({vt}){hand}")
     if hand != "r":
         aliases += common_aliases(COMMON_NAMES.get(str(vt), []))
+    aliases += handed_aliases(COMMON_NAMES.get(str(vt), []), hand)
     return CatalogueRecord(
         family="archimedean",
         name=t.name,
@@ -116,6 +130,7 @@ def laves_record(vt: VertexType, hand: str) -> CatalogueRecord:
         aliases.append(f"[{vt.dotted}]")
     if hand != "r":
         aliases += common_aliases(LAVES_NAMES.get(str(vt), []))
+    aliases += handed_aliases(LAVES_NAMES.get(str(vt), []), hand)
     return CatalogueRecord(
         family="laves",
         name=t.name,

@@ -235,6 +235,7 @@ class RegularTiling(Tiling):
             "edge_to_edge": True,
             "geometry": self.kind,
             "schlafli": f"{{{self.p},{self.q}}}",
+            "sides": [self.p],  # regular p-gons (the shared vocabulary, docs/catalogue.md)
             "p": self.p,
             "q": self.q,
             "vertex_configuration": self.vertex_configuration(),

@@ -116,3 +116,14 @@ def tilekit_catalogue_records():
     from tilekit.plugins.isohedral.records import records
 
     return records()
+
+
+@hookimpl
+def tilekit_normalise(key: str, value: str) -> tuple[str, str] | None:
+    """Incidence symbols in any equivalent form (filters on them, and ``show SYMBOL``)."""
+    if key not in ("incidence_symbol", "canonical_symbol", "name") or "[" not in value or ";" not in value:
+        return None
+    # measured start-up cost: lookup reads the templates (data files); only for a symbol
+    from tilekit.plugins.isohedral.lookup import normalised
+
+    return normalised(key, value)

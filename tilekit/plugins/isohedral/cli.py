@@ -10,7 +10,7 @@ from __future__ import annotations
 import click
 
 from tilekit.cli_types import OUTPUT, BoundedInt
-from tilekit.errors import TilekitError
+from tilekit.errors import TilekitError, optional
 from tilekit.plugins.isohedral import escher_limits as lim
 
 
@@ -70,14 +70,10 @@ def escherize_command(goals: tuple[str, ...], out: str, types: str | None, all_t
                            + " ".join(goals[:4]))
     # measured start-up cost: the fit loads NumPy, shapely, scipy and the engine (~1 s), so
     # it is imported when the command runs, not when `tilekit --help` lists it
-    try:
-        from tilekit.plugins.isohedral import escher
-    except ModuleNotFoundError as exc:
-        if exc.name in ("scipy", "threadpoolctl"):
-            raise TilekitError(
-                f"tilekit escherize needs the escher extra ({exc.name} is missing): pip install 'tilekit[escher]'"
-            ) from None
-        raise
+    # every optional module the fit imports later, checked before any work: one line naming the extra
+    for module in ("scipy.optimize", "threadpoolctl"):
+        optional(module, "escher", "tilekit escherize")
+    from tilekit.plugins.isohedral import escher
 
     if types is not None and all_types:
         raise TilekitError("give --types or --all, not both")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from functools import lru_cache
 
-from tilekit.errors import NotFoundError, ParseError
+from tilekit.errors import NotFoundError, ParameterError, ParseError
 from tilekit.plugins.isohedral.symbols import IncidenceSymbol
 from tilekit.plugins.isohedral.templates import load_templates, topology_valences
 
@@ -46,3 +46,36 @@ def lookup(topology: str, symbol: str | IncidenceSymbol) -> int:
             "isohedral type with topology and symbol", f"{topology} {sym}",
             [f"{t.topology} {t.symbol}" for t in load_templates().values() if t.topology == topology and t.symbol],
         ) from None
+
+
+def normalised(key: str, value: str) -> tuple[str, str] | None:
+    """The ``tilekit_normalise`` answer of the isohedral family: an incidence symbol filter
+    becomes its canonical form (``canonical_symbol``), and a name that is an incidence symbol,
+    optionally after its topology (``3^6 [a+b+c+c-b-a-; a-c+b+]``), becomes the IH name of the
+    one type it describes; a bare symbol shared by types of several topologies (exercise 5.6)
+    is a ParameterError naming them."""
+    text = value.strip()
+    if "[" not in text or ";" not in text:
+        return None
+    topology, _, rest = text.partition("[")
+    try:
+        sym = IncidenceSymbol.parse("[" + rest)
+    except ParseError:
+        return None
+    canonical = str(sym.canonical())
+    if key in ("incidence_symbol", "canonical_symbol"):
+        return "canonical_symbol", canonical
+    if key != "name":
+        return None
+    if topology.strip():
+        try:
+            return "name", f"IH{lookup(topology.strip(), sym)}"
+        except (ParseError, NotFoundError):
+            return None
+    matches = sorted(ih for (_, form), ih in canonical_index().items() if form == canonical)
+    if len(matches) > 1:
+        templates = load_templates()
+        raise ParameterError(
+            f"incidence symbol {sym} describes {', '.join(f'IH{ih} ({templates[ih].topology})' for ih in matches)}; "
+            f"give the topology too, e.g. '{templates[matches[0]].topology} {sym}'")
+    return ("name", f"IH{matches[0]}") if matches else None

@@ -51,7 +51,7 @@ def type_properties(ih: int) -> dict[str, Any]:
         "periodic": True,
         "k_hedral": 1,
         "k_isohedral": 1,
-        "edges": n,
+        "sides": n,  # a list of one in the catalogue (vocabulary.normalise_properties)
     }
     if t.symbol is not None:
         kinds = t.symbol.edge_kinds()

@@ -82,10 +82,11 @@ class KUniformTiling(PeriodicTiling):
             "vertex_types": len(set(types)),
             "vertex_type": sorted({format_sequence(t) for t in types}),
             "orbit_types": types_text(types),
-            "polygons": sorted(set(self.symbol.face)),
+            "sides": sorted(set(self.symbol.face)),
             "k_hedral": len(set(self.symbol.face)),
             "edge_to_edge": True,
             "chambers": self.symbol.size,
+            "dsymbol": self.symbol.encode(),
             "unit_tiles": len(self.unit_prototile),
         })
         return props

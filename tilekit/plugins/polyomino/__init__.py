@@ -64,6 +64,7 @@ def tilekit_catalogue_records():
             "periodic": bool(a["isohedral"]),
             "k_hedral": 1,
             "cells": poly.n,
+            "sides": [len(poly.prototile().outline)],
             "code": poly.code,
             "symmetry": poly.symmetry,
             "holes": poly.has_holes,
@@ -106,3 +107,20 @@ def tilekit_result_tables():
 
     rt = result_table()
     return [rt] if rt is not None else []
+
+
+@hookimpl
+def tilekit_normalise(key: str, value: str) -> tuple[str, str] | None:
+    """A polyomino code in any orientation or position (``x../xxx``) as its canonical code, in
+    ``code`` filters and as a name (each polyomino's record has its code as an alias)."""
+    text = value.strip()
+    if key not in ("code", "name") or not text or not set(text) <= set("x./") or "x" not in text:
+        return None
+    # measured start-up cost: the model loads NumPy and the lattice code; only for a code
+    from tilekit.errors import TilekitError
+    from tilekit.plugins.polyomino.model import Polyomino
+
+    try:
+        return key, Polyomino.parse(text).code
+    except TilekitError:
+        return None

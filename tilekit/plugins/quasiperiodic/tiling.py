@@ -230,6 +230,8 @@ class QuasiperiodicTiling(Tiling):
             "gamma_sum": round(float(math.fsum(self.gamma)), 12),
             "periodic": self.n in (4, 6),
             "k_hedral": st.kinds,
+            "sides": [4],  # rhombs
+            "aperiodic": False,  # each rhomb alone tiles periodically: no matching rules here
             "edge_to_edge": True,
             "method": "de Bruijn multigrid",
         }

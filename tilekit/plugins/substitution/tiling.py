@@ -44,7 +44,7 @@ from tilekit.plugins.substitution.shapes import (
     parse_edge_shape,
 )
 from tilekit.plugins.substitution.system import SubstitutionSystem, load_data
-from tilekit.polygon import inscribed_disc
+from tilekit.polygon import corner_count, inscribed_disc
 from tilekit.render import patch_to_svg
 from tilekit.schema import Field, check, shown
 from tilekit.tiling import Patch, Prototile, Tiling, region_tile_estimate
@@ -464,6 +464,7 @@ def system_properties(system: SubstitutionSystem, generations: int = 6) -> dict[
         "tiles_per_generation": tile_counts(generations) if tile_counts else [int(sum(c)) for c in counts],
         "kind": system.kind,
         "k_hedral": len({_shape_key(p) for p in system.tiles}),
+        "sides": sorted({corner_count(p.outline, p.corners) for p in system.tiles}),
     }
     rep = system.rep_tile()
     if rep is not None:

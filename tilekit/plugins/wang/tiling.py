@@ -263,7 +263,8 @@ def _facts(ts: WangTileSet, procedure: WangProcedureResult | None) -> dict[str, 
         "complete": ts.complete,
         "stochastic": ts.stochastic,
         "random_access": supports_random_access(ts),
-        "known_aperiodic": ts.known_aperiodic,
+        "aperiodic": True if ts.known_aperiodic else None,  # false once a periodic tiling is found
+        "sides": [4],
         "aperiodic_source": ts.source if ts.known_aperiodic else None,
         "source": ts.source or None,
         "periodic_unit": None,
@@ -278,10 +279,12 @@ def _facts(ts: WangTileSet, procedure: WangProcedureResult | None) -> dict[str, 
         if procedure.outcome == "periodic":
             props["periodic_unit"] = procedure.m
             props["periodic"] = True
+            props["aperiodic"] = False
             props["tiles_plane"] = True
         elif procedure.outcome == "does_not_tile":
             props["does_not_tile_beyond"] = (procedure.m or 1) - 1
             props["periodic"] = False
+            props["aperiodic"] = False  # tiles nothing, so not an aperiodic set
             props["tiles_plane"] = False
     return props
 

@@ -1,0 +1,158 @@
+"""Commands about the catalogue's vocabulary and single shapes, kept out of cli.py so that they
+merge cleanly: ``tilekit keys [FAMILY]`` (every queryable key with its type, families and an
+example) and ``tilekit prototile NAME`` (one prototile of any tiling as SVG, DXF or GeoJSON).
+cli.py registers them on the ``tilekit`` group."""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+import click
+
+from tilekit.cli_types import OUTPUT, BoundedInt
+from tilekit.errors import ParameterError
+
+
+def _cli() -> Any:
+    """tilekit.cli, which registers these commands (a module-level import would be a cycle)."""
+    from tilekit import cli  # cycle: cli imports this module to register its commands
+
+    return cli
+
+
+def _result_table_keys(cat: Any, rt: Any, family: str) -> list[Any]:
+    """KeyInfos for the columns of a result table (what ``--where`` filters on for its family)."""
+    from tilekit.catalogue.results import column_kind
+    from tilekit.catalogue.vocabulary import KeyInfo
+
+    rows = cat.count_result_rows(rt)
+    examples = {"bool": "{}=true", "int": "{}>=1", "float": "{}>=0.5", "json": "{}~TEXT", "text": "{}=TEXT"}
+    out = []
+    for column in rt.table.c:
+        kind = column_kind(column.type)
+        out.append(KeyInfo(key=column.name, type=kind, families=(family,), tilings=rows,
+                           example=examples.get(kind, "{}=VALUE").format(column.name)))
+    return out
+
+
+@click.command(name="keys")
+@click.argument("family", required=False)
+@click.option("--format", "fmt", type=click.Choice(["table", "json"]), default="table", show_default=True)
+@click.pass_obj
+def keys_command(state: Any, family: str | None, fmt: str) -> None:
+    """List every key `tilekit list --where` takes: its type, the families whose tilings have it,
+    how many tilings do, an example filter and its older names (aliases). The shared vocabulary
+    (sides, aperiodic, periodic, wallpaper_group ...) comes first; docs/catalogue.md explains it.
+
+    \b
+    Examples:
+      tilekit keys
+      tilekit keys isohedral
+      tilekit keys --format json
+    """
+    from tilekit.catalogue.entry import TEXT_COLUMNS
+    from tilekit.catalogue.vocabulary import KeyInfo
+
+    cat = state.reader(family)
+    cat.check_family(family)
+    rt = cat.family_table(family)
+    if rt is not None:
+        infos = _result_table_keys(cat, rt, family or "")
+    else:
+        infos = cat.key_table(family)
+        everyone = tuple(sorted({f for info in infos for f in info.families}))
+        total = cat.count(family)
+        first = cat.query(family=family, limit=1)
+        if first:
+            shown = {"name": first[0].name, "family": first[0].family,
+                     "title": (first[0].title.split() or ["a"])[0].lower()}
+            infos = [KeyInfo(key=c, type="text", families=everyone, tilings=total,
+                             example=f"{c}{'~' if c == 'title' else '='}{shown[c]}")
+                     for c in TEXT_COLUMNS] + infos
+    if fmt == "json":
+        click.echo(json.dumps([i.to_dict() for i in infos], indent=2, ensure_ascii=False))
+        return
+    if not infos:
+        click.echo("no keys: the catalogue has no tilings" + (f" of family {family!r}" if family else ""), err=True)
+        return
+    rows = [[i.key, i.type, ", ".join(i.families), str(i.tilings), i.example, ", ".join(i.aliases)] for i in infos]
+    click.echo(_cli()._table(["key", "type", "families", "tilings", "example", "aliases"], rows, {2: 48}))
+
+
+def prototile_patch(tiling: Any, index: int) -> Any:
+    """A patch of one tile: prototile ``index`` of ``tiling`` at the origin, unmoved (its
+    outline with any shaped edges, its marking), or a ParameterError naming the valid range."""
+    import numpy as np
+
+    from tilekit.tiling import Patch
+
+    protos = tiling.prototiles
+    if not 0 <= index < len(protos):
+        names = ", ".join(f"{i}: {p.name or '-'}" for i, p in enumerate(protos[:12]))
+        raise ParameterError(f"--index {index}: {tiling.name or 'the tiling'} has {len(protos)} prototile"
+                             f"{'s' if len(protos) != 1 else ''} (--index 0..{len(protos) - 1}; {names})")
+    return Patch([protos[index]], np.zeros(1, dtype=np.int64), np.eye(3)[None])
+
+
+@click.command(name="prototile")
+@click.argument("name")
+@click.option("--index", type=BoundedInt(0, 10_000), default=0, show_default=True,
+              help="Which prototile (0-based; the message names how many there are).")
+@click.option("-o", "--output", "out", required=True, type=OUTPUT,
+              help="Output file: .svg or .png (the shape drawn), .geojson or .json (its polygon), .dxf or "
+                   ".cut.svg (its outline as a cut path); see docs/exports.md.")
+@click.option("--param", "params", multiple=True, metavar="X[,X...]", help="Tiling parameters, as for render.")
+@click.option("--edge", "edges", multiple=True, metavar="SPEC", help="Edge shape 'name=x,y:x,y:...', as for render.")
+@click.option("--set", "settings", multiple=True, metavar="KEY=VALUE", help="A family-specific option, as for render.")
+@click.option("--tiling", "which", metavar="WHICH", help="Which of the tile's tilings, as for render.")
+@click.option("--mm-per-unit", type=click.FloatRange(1e-6, 1e6), default=10.0, show_default=True,
+              help=".dxf / .cut.svg: millimetres per tiling unit.")
+@click.pass_obj
+def prototile_command(state: Any, name: str, index: int, out: str, params: tuple[str, ...], edges: tuple[str, ...],
+                      settings: tuple[str, ...], which: str | None, mm_per_unit: float) -> None:
+    """Export one prototile of any tiling (an isohedral tile with its edge shapes, a Laves
+    tile, a polyomino, the hat ...) as a picture, GeoJSON or a cut file, at the origin in the
+    tiling's units.
+
+    \b
+    Examples:
+      tilekit prototile IH16 --edge 'a=0,0:0.3,0.2:1,0' -o ih16-tile.svg
+      tilekit prototile cairo -o cairo-tile.dxf
+      tilekit prototile penrose-p3 --index 1 -o thin.geojson
+    """
+    from tilekit.export import output_format, write_patch
+    from tilekit.render import write_image
+
+    cli = _cli()
+    fmt = output_format(out)  # an unknown suffix fails before any work
+    if fmt == ".csv":
+        raise ParameterError("a prototile has no tile table: write .svg, .png, .geojson, .json, .dxf or .cut.svg")
+    tiling = state.catalogue().tiling(name)
+    options: dict[str, Any] = {}
+    if params:
+        options["params"] = [v for p in params for v in cli._floats(p, "--param", cli.MAX_PARAM)]
+    if edges:
+        options["edges"] = list(edges)
+    options.update(cli.parse_settings(settings))
+    if which is not None:
+        options["tiling"] = which
+    if options:
+        tiling = tiling.configure(**options)
+    patch = prototile_patch(tiling, index)
+    proto = patch.prototiles[0]
+    if fmt in (".svg", ".png"):
+        write_image(patch, out)
+    else:
+        write_patch(patch, out, mm_per_unit=mm_per_unit)
+    from tilekit.polygon import area, corner_count
+
+    click.echo(f"wrote {out} (prototile {index} of {len(tiling.prototiles)}"
+               f"{': ' + proto.name if proto.name else ''}; {corner_count(proto.outline, proto.corners)} sides, "
+               f"area {float(area(proto.outline)):.6g})")
+
+
+def register(group: click.Group) -> None:
+    """Add this module's commands to the ``tilekit`` group."""
+    group.add_command(keys_command)
+    group.add_command(prototile_command)
