@@ -34,6 +34,7 @@ child does not teach the parent's incremental solver its learned clauses.
 
 from __future__ import annotations
 
+import collections
 import contextlib
 import gc
 import multiprocessing
@@ -45,11 +46,15 @@ from typing import Any
 
 from tilekit.errors import ParameterError, SolverLimit
 
-#: python-sat solver names we accept.
-SAT_SOLVERS = ("cadical195", "cadical153", "glucose4", "glucose42", "minisat22", "maplechrono", "lingeling")
-#: Solvers python-sat can interrupt in process; the others run in a forked child under a
-#: time limit, killed when it expires.
-INTERRUPTIBLE = ("glucose4", "glucose42", "minisat22", "maplechrono")
+#: Solver names we accept: python-sat's, and CryptoMiniSat 5 through pycryptosat (the optional
+#: ``cms`` extra), the solver of Kaplan's heesch-sat.
+SAT_SOLVERS = ("cadical195", "cadical153", "glucose4", "glucose42", "minisat22", "maplechrono", "lingeling",
+               "cryptominisat5")
+#: Solvers stopped in process at a time limit (python-sat's interrupt, CryptoMiniSat's own
+#: limit); the others run in a forked child under a time limit, killed when it expires.
+INTERRUPTIBLE = ("glucose4", "glucose42", "minisat22", "maplechrono", "cryptominisat5")
+#: Taken through pycryptosat, not python-sat.
+CMS = "cryptominisat5"
 DEFAULT_SAT_SOLVER = "cadical195"
 #: pysat.card encodings by name (``CNF.at_most(..., encoding="totalizer")``).
 CARD_ENCODINGS = ("seqcounter", "totalizer", "kmtotalizer", "sortnetwrk", "cardnetwrk", "mtotalizer", "ladder", "pairwise")
@@ -75,10 +80,81 @@ def gc_paused() -> Iterator[None]:
 
 
 def check_solver(solver: str) -> str:
-    """``solver`` itself, or a ParameterError naming the supported ones."""
+    """``solver`` itself, or a ParameterError naming the supported ones (or saying how to
+    install pycryptosat for ``cryptominisat5``)."""
     if solver not in SAT_SOLVERS:
         raise ParameterError(f"SAT solver {solver!r} is not supported; choose one of {', '.join(SAT_SOLVERS)}")
+    if solver == CMS and not have_cms():
+        raise ParameterError("SAT solver 'cryptominisat5' needs pycryptosat: pip install 'tilekit[cms]' "
+                             "(or choose one of " + ", ".join(x for x in SAT_SOLVERS if x != CMS) + ")")
     return solver
+
+
+def have_cms() -> bool:
+    """Whether pycryptosat (CryptoMiniSat 5) can be imported."""
+    import importlib.util
+
+    return importlib.util.find_spec("pycryptosat") is not None
+
+
+def _flat(block: Any) -> Any:
+    """A 2-D clause block as CryptoMiniSat's flat buffer: each row followed by a 0."""
+    import numpy as np
+
+    out = np.zeros((block.shape[0], block.shape[1] + 1), dtype=np.int64)
+    out[:, :-1] = block
+    return out.ravel()
+
+
+class _Cms:
+    """pycryptosat behind the few calls :func:`_run` and :class:`IncrementalSolver` make.
+
+    Clause blocks go to the solver as flat int64 buffers (no Python list per clause), the
+    list clauses in one call; a time limit is CryptoMiniSat's own (in process)."""
+
+    def __init__(self) -> None:
+        import pycryptosat
+
+        self._s = pycryptosat.Solver(threads=1)
+        self._model: Any = None
+
+    def append(self, cnf: Any) -> None:
+        if isinstance(cnf, CNF):
+            if cnf.clauses:
+                self._s.add_clauses(cnf.clauses)
+            for block in cnf.blocks:
+                self._s.add_clauses(_flat(block))
+        else:
+            rows = [list(map(int, c)) for c in cnf]
+            if rows:
+                self._s.add_clauses(rows)
+
+    def add_clause(self, clause: list[int]) -> None:
+        self._s.add_clause(clause)
+
+    def solve(self, assumptions: list[int], time_limit: float | None) -> bool | None:
+        import numpy as np
+
+        kw = {} if time_limit is None else {"time_limit": float(time_limit)}
+        # CryptoMiniSat refuses assumptions on variables no clause has mentioned; such a
+        # variable is unconstrained, so the assumption holds in any model: leave it out
+        top = self._s.nb_vars()
+        sat, values = self._s.solve([v for v in assumptions if abs(v) <= top], **kw)
+        if sat and values is not None:
+            truth = np.array(values[1:], dtype=bool)
+            idx = np.arange(1, len(truth) + 1, dtype=np.int64)
+            self._model = np.where(truth, idx, -idx)
+        else:
+            self._model = None
+        if sat is None:  # the time limit
+            return None
+        return bool(sat)
+
+    def get_model(self) -> Any:
+        return self._model
+
+    def delete(self) -> None:
+        self._s = None
 
 
 #: Clauses turned into Python lists at a time when a block is handed to a solver.
@@ -233,6 +309,9 @@ def _stats(s: Any) -> dict[str, int]:
 
 def _run(s: Any, assumptions: list[int], time_limit: float | None) -> tuple[bool | None, list[int] | None, dict[str, int]]:
     """Solve on the live pysat solver ``s`` (interrupting by a timer when a limit is given)."""
+    if isinstance(s, _Cms):
+        answer = s.solve(assumptions, time_limit)
+        return answer, (s.get_model() if answer else None), {}
     if time_limit is None:
         answer = s.solve(assumptions=assumptions)
     else:
@@ -295,6 +374,10 @@ def solve(
     here = time_limit is None or solver in INTERRUPTIBLE
 
     def job() -> tuple[bool | None, list[int] | None, dict[str, int]]:
+        if solver == CMS:
+            c = _Cms()
+            c.append(cnf if isinstance(cnf, CNF) else clauses)
+            return _run(c, assumptions, None if time_limit is None else float(time_limit))
         with gc_paused():
             s = Solver(name=solver, bootstrap_with=clauses)
         with s:
@@ -313,8 +396,13 @@ class IncrementalSolver:
         from pysat.solvers import Solver  # measured start-up cost: ~45 ms, only when solving
 
         self.solver = check_solver(solver)
-        with gc_paused():
-            self._s = Solver(name=solver, bootstrap_with=_clauses_of(cnf))
+        if solver == CMS:
+            self._s = _Cms()
+            self._s.append(cnf)
+        else:
+            with gc_paused():
+                self._s = Solver(name=solver)
+            self.extend(cnf)
         self.calls = 0
 
     def __enter__(self) -> IncrementalSolver:
@@ -334,9 +422,18 @@ class IncrementalSolver:
         self._s.add_clause([int(v) for v in clause])
 
     def extend(self, clauses: Iterable[Sequence[int]]) -> None:
-        """Add many clauses (a :class:`CNF` or rows of literals)."""
+        """Add many clauses (a :class:`CNF` or rows of literals).
+
+        The rows go to the solver object's own ``add_clause`` through ``map`` (measured: the
+        per-clause loop of python-sat's ``append_formula`` cost more than the solver itself
+        for the 10^4-10^5 short clauses of a corona formula); CryptoMiniSat takes a
+        :class:`CNF`'s blocks as flat buffers."""
+        if isinstance(self._s, _Cms):
+            self._s.append(clauses)
+            return
+        add = self._s.solver.add_clause  # python-sat's solver object, one wrapper less
         with gc_paused():
-            self._s.append_formula(_clauses_of(clauses))
+            collections.deque(map(add, _clauses_of(clauses)), maxlen=0)
 
     def solve(self, assumptions: Sequence[int] = (), time_limit: float | None = None) -> SatAnswer:
         """Answer the formula so far under ``assumptions``; ``None`` when ``time_limit`` expires."""
