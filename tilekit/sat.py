@@ -49,12 +49,20 @@ from tilekit.errors import ParameterError, SolverLimit
 #: Solver names we accept: python-sat's, and CryptoMiniSat 5 through pycryptosat (the optional
 #: ``cms`` extra), the solver of Kaplan's heesch-sat.
 SAT_SOLVERS = ("cadical195", "cadical153", "glucose4", "glucose42", "minisat22", "maplechrono", "lingeling",
-               "cryptominisat5")
+               "gluecard4", "minicard", "cryptominisat5")
 #: Solvers stopped in process at a time limit (python-sat's interrupt, CryptoMiniSat's own
 #: limit); the others run in a forked child under a time limit, killed when it expires.
-INTERRUPTIBLE = ("glucose4", "glucose42", "minisat22", "maplechrono", "cryptominisat5")
+INTERRUPTIBLE = ("glucose4", "glucose42", "minisat22", "maplechrono", "gluecard4", "minicard", "cryptominisat5")
+#: Solvers with native at-most-k constraints (:meth:`CNF.add_atmost`): Glucose and MiniSat
+#: with cardinality propagation (Gluecard, Minicard)
+NATIVE_ATMOST = ("gluecard4", "minicard")
 #: Taken through pycryptosat, not python-sat.
 CMS = "cryptominisat5"
+#: python-sat's C entry points for adding a clause: solver name -> (handle attribute, function)
+_C_ADD = {"glucose4": ("glucose", "glucose41_add_cl"), "glucose42": ("glucose", "glucose421_add_cl"),
+          "cadical195": ("cadical", "cadical195_add_cl"), "cadical153": ("cadical", "cadical153_add_cl"),
+          "minisat22": ("minisat", "minisat22_add_cl"), "maplechrono": ("maplesat", "maplechrono_add_cl"),
+          "gluecard4": ("gluecard", "gluecard41_add_cl"), "minicard": ("minicard", "minicard_add_cl")}
 DEFAULT_SAT_SOLVER = "cadical195"
 #: pysat.card encodings by name (``CNF.at_most(..., encoding="totalizer")``).
 CARD_ENCODINGS = ("seqcounter", "totalizer", "kmtotalizer", "sortnetwrk", "cardnetwrk", "mtotalizer", "ladder", "pairwise")
@@ -174,10 +182,21 @@ class CNF:
     def __init__(self, clauses: Iterable[Sequence[int]] = (), top: int = 0) -> None:
         self.clauses: list[list[int]] = [list(map(int, c)) for c in clauses]
         self.blocks: list[Any] = []
+        #: native at-most-k constraints ``(literals, k)`` for solvers in :data:`NATIVE_ATMOST`
+        self.atmosts: list[tuple[list[int], int]] = []
         self.top = max([top, *(abs(v) for c in self.clauses for v in c)])
 
     def __len__(self) -> int:
-        return len(self.clauses) + sum(len(b) for b in self.blocks)
+        return len(self.clauses) + sum(len(b) for b in self.blocks) + len(self.atmosts)
+
+    def add_atmost(self, lits: Sequence[int], k: int) -> None:
+        """At most ``k`` of ``lits``, kept as one native constraint: only a solver in
+        :data:`NATIVE_ATMOST` takes it (a Gluecard constraint is one object, where a clausal
+        encoding of at-most-one over g literals is about 3g clauses)."""
+        lits = [int(v) for v in lits]
+        if lits:
+            self.top = max(self.top, max(abs(v) for v in lits))
+            self.atmosts.append((lits, int(k)))
 
     def literals(self) -> int:
         """How many literals the clauses hold (a solver's memory grows with them)."""
@@ -368,6 +387,9 @@ def solve(
 
     check_solver(solver)
     clauses = _clauses_of(cnf)
+    atmosts = cnf.atmosts if isinstance(cnf, CNF) else []
+    if atmosts and solver not in NATIVE_ATMOST:
+        raise ParameterError(f"native at-most constraints need one of {', '.join(NATIVE_ATMOST)}, not {solver}")
     assumptions = [int(v) for v in assumptions]
     start = time.perf_counter()
 
@@ -380,6 +402,8 @@ def solve(
             return _run(c, assumptions, None if time_limit is None else float(time_limit))
         with gc_paused():
             s = Solver(name=solver, bootstrap_with=clauses)
+            for lits, k in atmosts:
+                s.add_atmost(lits, k)
         with s:
             # in a child the parent kills at the limit; here a timer interrupts
             return _run(s, assumptions, float(time_limit) if here and time_limit is not None else None)
@@ -428,12 +452,33 @@ class IncrementalSolver:
         per-clause loop of python-sat's ``append_formula`` cost more than the solver itself
         for the 10^4-10^5 short clauses of a corona formula); CryptoMiniSat takes a
         :class:`CNF`'s blocks as flat buffers."""
+        atmosts = clauses.atmosts if isinstance(clauses, CNF) else []
+        if atmosts and self.solver not in NATIVE_ATMOST:
+            raise ParameterError(f"native at-most constraints need one of {', '.join(NATIVE_ATMOST)}, not {self.solver}")
         if isinstance(self._s, _Cms):
             self._s.append(clauses)
             return
-        add = self._s.solver.add_clause  # python-sat's solver object, one wrapper less
         with gc_paused():
-            collections.deque(map(add, _clauses_of(clauses)), maxlen=0)
+            collections.deque(map(self._adder(), _clauses_of(clauses)), maxlen=0)
+            for lits, k in atmosts:
+                self._s.add_atmost(lits, k)
+
+    def _adder(self) -> Any:
+        """The cheapest call adding one clause: python-sat's C function bound to this
+        solver's handle where its name is known (the return value only repeats what the next
+        solve says), else the solver object's ``add_clause``."""
+        inner = self._s.solver
+        known = _C_ADD.get(self.solver)
+        if known is not None:
+            import functools
+
+            import pysolvers
+
+            handle, name = known
+            fn = getattr(pysolvers, name, None)
+            if fn is not None and getattr(inner, handle, None) is not None:
+                return functools.partial(fn, getattr(inner, handle))
+        return inner.add_clause
 
     def solve(self, assumptions: Sequence[int] = (), time_limit: float | None = None) -> SatAnswer:
         """Answer the formula so far under ``assumptions``; ``None`` when ``time_limit`` expires."""

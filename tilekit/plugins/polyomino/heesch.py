@@ -44,10 +44,14 @@ from tilekit.errors import ParameterError
 from tilekit.jit import njit
 from tilekit.lattice import Grid, _empty_components, halo_of, holes_of, pack, unique_keys, unpack
 from tilekit.plugins.polyomino.placements import Forms
-from tilekit.sat import CNF, DEFAULT_SAT_SOLVER, IncrementalSolver, gc_paused
+from tilekit.sat import CNF, DEFAULT_SAT_SOLVER, NATIVE_ATMOST, IncrementalSolver, gc_paused
 
 #: The most coronas a search will build (Kaplan's sat tool stops at 7 by default).
 MAX_LEVEL_LIMIT = 12
+#: The Hc-only search's solver: Glucose with native at-most-one constraints (Gluecard), which
+#: spares the per-cell clausal ladders (measured on the non-tiling 10-ominoes: half the time of
+#: Glucose with ladders, docs/benchmarks.md).
+HC_SOLVER = "gluecard4"
 
 
 @dataclass
@@ -465,6 +469,7 @@ class CoronaLadder:
         self.pending = CNF()
         self.pending.add([-self.false])
         self.empty = False  # a clause with no literal was met: no k-corona for any k >= self.k
+        self.native = hs.solver in NATIVE_ATMOST  # at-most-one as native constraints
         self.pairs: list[tuple[np.ndarray, np.ndarray]] = [(np.zeros(0, dtype=np.int64),) * 2]
         grid = hs.grid
         #: per cell type, the offsets of the cells sharing a vertex with it
@@ -521,22 +526,33 @@ class CoronaLadder:
         self.halos.append(halos)
         self.y.append(y)
         cnf, F = self.pending, self.false
-        # lev[h, i] <-> some copy of corona i covers h, at most one of them: a ladder s_1..s_g
-        # over the group's copies l_1..l_g (l_t -> s_t, s_t -> s_t+1, s_t -> not l_t+1) whose
-        # last prefix s_g is lev[h, i] (so every l_t -> lev), and lev -> OR l
         keys, st, yy = _groups(cells.ravel(), np.repeat(y, n))
-        s = self._vars(len(yy))
         size = np.diff(np.r_[st, len(yy)])
-        last = st + size - 1
-        lev = s[last]
-        self.lev.append((keys, lev))
-        if len(keys):
-            nxt = np.ones(len(yy), dtype=bool)
-            nxt[last] = False
-            t = np.flatnonzero(nxt)
-            cnf.add_block(np.concatenate([np.column_stack([-yy, s]), np.column_stack([-s[t], s[t + 1]]),
-                                          np.column_stack([-s[t], -yy[t + 1]])]))
-            cnf.add_block(_padded(-lev, st, yy, F))
+        if self.native:
+            # lev[h, i] = the number of copies of corona i covering h: at most one of the
+            # group and not-lev (one native constraint), and lev -> OR of the group
+            lev = self._vars(len(keys))
+            self.lev.append((keys, lev))
+            if len(keys):
+                for g, lits in zip(np.split(yy, st[1:]), (-lev).tolist()):
+                    cnf.add_atmost([*g.tolist(), lits], 1)
+                cnf.add_block(_padded(-lev, st, yy, F))
+        else:
+            # lev[h, i] <-> some copy of corona i covers h, at most one of them: a ladder
+            # s_1..s_g over the group's copies l_1..l_g (l_t -> s_t, s_t -> s_t+1,
+            # s_t -> not l_t+1) whose last prefix s_g is lev[h, i] (so every l_t -> lev),
+            # and lev -> OR l
+            s = self._vars(len(yy))
+            last = st + size - 1
+            lev = s[last]
+            self.lev.append((keys, lev))
+            if len(keys):
+                nxt = np.ones(len(yy), dtype=bool)
+                nxt[last] = False
+                t = np.flatnonzero(nxt)
+                cnf.add_block(np.concatenate([np.column_stack([-yy, s]), np.column_stack([-s[t], s[t + 1]]),
+                                              np.column_stack([-s[t], -yy[t + 1]])]))
+                cnf.add_block(_padded(-lev, st, yy, F))
         # at most one level covers a cell
         for j in range(1, i):
             other = self._lev(j, keys)
@@ -637,7 +653,7 @@ class CoronaLadder:
             assume = [int(sel)]
 
 
-def hole_free_heesch(grid: Grid, cells: np.ndarray, *, max_level: int = 6, solver: str = DEFAULT_SAT_SOLVER,
+def hole_free_heesch(grid: Grid, cells: np.ndarray, *, max_level: int = 6, solver: str = HC_SOLVER,
                      time_limit: float | None = None) -> HeeschResult:
     """Kaplan's hole-free Heesch number Hc alone (heesch-sat's default mode, without ``-hh``):
     coronas k = 1, 2, ... until a level with no hole-free k-corona patch, in one incremental
