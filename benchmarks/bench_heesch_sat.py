@@ -223,6 +223,7 @@ def main() -> None:
     ap.add_argument("--cache", help="cache folder (default: the user cache, tilekit/heesch-sat)")
     ap.add_argument("--runs", type=int, default=3, help="rounds; per shape the minimum is kept")
     ap.add_argument("--limit", type=int, default=0, help="only the first N shapes (a quick look)")
+    ap.add_argument("--every", type=int, default=1, help="every K-th shape only (a sample spread over the set)")
     ap.add_argument("--solver", default=HC_SOLVER, help="tilekit's SAT solver")
     ap.add_argument("--jobs", type=int, default=2, help="heesch-sat processes at a time (CPU time is per process)")
     ap.add_argument("--max-level", type=int, default=7, help="both tools stop after this many coronas (heesch-sat's default 7)")
@@ -234,6 +235,7 @@ def main() -> None:
             raise SystemExit(f"no heesch-sat binary in {cache}: run with --build first")
         build(cache, args.source)
     shapes = nontilers_10(cache)
+    shapes = shapes[::max(1, args.every)]
     if args.limit:
         shapes = shapes[:args.limit]
     print(f"load before: {os.getloadavg()}; {len(shapes)} hole-free non-tiling 10-ominoes; "
