@@ -22,7 +22,7 @@ import pytest
 from test_polyomino_classify import KAPLAN_HC, check_coronas
 
 from tilekit.errors import ParameterError
-from tilekit.lattice import HEXAGONAL, SQUARE, TRIANGULAR, enumerate_free
+from tilekit.lattice import HEXAGONAL, SQUARE, TRIANGULAR, enumerate_free, square_cells
 from tilekit.plugins.polyomino.classify import corona_patch
 from tilekit.plugins.polyomino.heesch import (
     CoronaLadder,
@@ -67,15 +67,25 @@ def test_hc_counts_equal_kaplans_table_1_to_n10(n):
     assert tally[None] == A075206[n]
 
 
-@pytest.mark.parametrize("grid, n, step", [(SQUARE, 9, 5), (HEXAGONAL, 7, 1), (TRIANGULAR, 9, 1)])
-def test_the_ladder_agrees_with_the_level_by_level_encoding(grid, n, step):
+@pytest.mark.parametrize("grid, n", [
+    (SQUARE, 9),
+    # over 20 s each on the shared machine (the level-by-level reference surrounds the tilers twice)
+    pytest.param(HEXAGONAL, 7, marks=pytest.mark.slow),
+    pytest.param(TRIANGULAR, 9, marks=pytest.mark.slow),
+])
+def test_the_ladder_agrees_with_the_level_by_level_encoding(grid, n):
     """On every grid (the triangular one has two cell types), the incremental formula gives
     the Hc of the level-by-level formula of :func:`heesch` (Kaplan's number, found before the
-    proof), shape by shape, where that one stops below its limit."""
+    proof), shape by shape, where that one stops below its limit: the first 12 such shapes in
+    enumeration order (on the square grid, among those the boundary-word test leaves)."""
     polys, flags, _ = enumerate_free(grid, n, with_holes=True)
     compared = 0
-    for cells, holey in list(zip(polys, flags))[::step]:
+    for cells, holey in zip(polys, flags):
+        if compared == 12:
+            break
         if len(cells) != n or holey:
+            continue
+        if grid is SQUARE and analyse(SQUARE, cells, construct=False)["isohedral"]:
             continue
         ref = heesch(grid, cells, max_level=2)
         if ref.hc is None:  # surrounded twice (a tiler, or Hc >= 2): nothing to compare
@@ -83,24 +93,18 @@ def test_the_ladder_agrees_with_the_level_by_level_encoding(grid, n, step):
         got = hole_free_heesch(grid, cells, max_level=3)
         assert got.hc == ref.hc, (grid.name, cells.tolist())
         compared += 1
-    assert compared >= 10
+    assert compared == 12
 
 
 def test_a_halo_cell_no_copy_can_cover_ends_at_hc_0_without_a_solver():
-    """Some hole-free non-isohedral octomino has a kernel halo cell that no copy of corona 1
-    can cover once the unfillable pairs are left out: the search ends with Hc = 0 and no SAT
-    call, and the full search (Hc and Hh, with the proof) agrees on every such octomino."""
-    polys, flags, _ = enumerate_free(SQUARE, 8, with_holes=True)
-    found = 0
-    for cells, holey in zip(polys, flags):
-        if len(cells) != 8 or holey or analyse(SQUARE, cells, construct=False)["isohedral"]:
-            continue
-        r = hole_free_heesch(SQUARE, cells, max_level=3)
-        if r.sat_calls == 0:
-            found += 1
-            assert r.hc == 0
-            assert heesch(SQUARE, cells, max_level=3).hc == 0
-    assert found >= 1
+    """A non-tiling 10-omino (Hc = Hh = 0 by the full search) whose kernel halo has a cell
+    that no copy of corona 1 can cover once the unfillable pairs are left out: the Hc-only
+    search ends with Hc = 0 and no SAT call, and the full search with its proof agrees."""
+    cells = square_cells([(0, 0), (1, 0), (0, 1), (2, 0), (0, 2), (3, 0), (2, 1), (0, 3), (1, 3), (2, 3)])
+    r = hole_free_heesch(SQUARE, cells, max_level=3)
+    assert (r.hc, r.sat_calls) == (0, 0)
+    full = heesch(SQUARE, cells, max_level=3)
+    assert full.decided and full.hc == 0
 
 
 def test_unfillable_pairs_are_pairs_with_a_small_hole():
