@@ -216,7 +216,7 @@ def run_tilekit(shapes: list, runs: int, max_level: int, solver: str) -> tuple[n
     return per.min(axis=0), per.sum(axis=1).tolist(), answers
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--build", action="store_true", help="build heesch-sat's sat into the cache folder")
     ap.add_argument("--source", help="a local clone or bare git directory of heesch-sat (default: clone from GitHub)")
@@ -227,7 +227,11 @@ def main() -> None:
     ap.add_argument("--solver", default=HC_SOLVER, help="tilekit's SAT solver")
     ap.add_argument("--jobs", type=int, default=2, help="heesch-sat processes at a time (CPU time is per process)")
     ap.add_argument("--max-level", type=int, default=7, help="both tools stop after this many coronas (heesch-sat's default 7)")
-    args = ap.parse_args()
+    return ap
+
+
+def main() -> None:
+    args = build_parser().parse_args()
     cache = cache_dir(args.cache)
     sat = cache / "sat"
     if args.build or not sat.exists():
