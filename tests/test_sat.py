@@ -114,3 +114,38 @@ def test_gc_paused_restores_the_collector_and_nests():
         assert not gc.isenabled()  # a collector that was off stays off
     finally:
         gc.enable()
+
+
+def test_cryptominisat_takes_blocks_and_answers_like_the_others():
+    """CryptoMiniSat 5 (pycryptosat, the ``cms`` extra) gets a CNF's blocks as flat buffers:
+    the pigeonhole formula (4 into 3) is unsatisfiable, the 3-into-3 one has exactly the 3! =
+    6 permutation models, and an incremental solver keeps its clauses."""
+    pytest.importorskip("pycryptosat")
+    import numpy as np
+
+    def pigeons(m, n):
+        cnf = CNF()
+        p = np.arange(1, m * n + 1).reshape(m, n)
+        cnf.reserve(m * n)
+        cnf.add_block(p)  # each pigeon in some hole, as one block
+        pairs = np.array([(-p[i, h], -p[j, h]) for h in range(n) for i, j in itertools.combinations(range(m), 2)])
+        cnf.add_block(pairs)
+        return cnf, p
+
+    cnf, _ = pigeons(4, 3)
+    assert solve(cnf, solver="cryptominisat5").satisfiable is False
+    cnf, p = pigeons(3, 3)
+    cnf.add_block(np.array([[-p[i, h], -p[i, g]] for i in range(3) for h, g in itertools.combinations(range(3), 2)]))
+    models = 0
+    with IncrementalSolver(cnf, solver="cryptominisat5") as s:
+        while True:
+            ans = s.solve()
+            if not ans.satisfiable:
+                break
+            truth = ans.values(p.ravel())
+            assert truth.reshape(3, 3).sum(axis=0).tolist() == [1, 1, 1]  # a permutation
+            models += 1
+            s.add([-int(v) for v in p.ravel()[truth]])
+        # an assumption on a variable no clause mentions is no obstacle
+        assert s.solve(assumptions=[1000]).satisfiable is False
+    assert models == 6

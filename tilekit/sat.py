@@ -34,6 +34,7 @@ child does not teach the parent's incremental solver its learned clauses.
 
 from __future__ import annotations
 
+import collections
 import contextlib
 import gc
 import multiprocessing
@@ -45,11 +46,23 @@ from typing import Any
 
 from tilekit.errors import ParameterError, SolverLimit
 
-#: python-sat solver names we accept.
-SAT_SOLVERS = ("cadical195", "cadical153", "glucose4", "glucose42", "minisat22", "maplechrono", "lingeling")
-#: Solvers python-sat can interrupt in process; the others run in a forked child under a
-#: time limit, killed when it expires.
-INTERRUPTIBLE = ("glucose4", "glucose42", "minisat22", "maplechrono")
+#: Solver names we accept: python-sat's, and CryptoMiniSat 5 through pycryptosat (the optional
+#: ``cms`` extra), the solver of Kaplan's heesch-sat.
+SAT_SOLVERS = ("cadical195", "cadical153", "glucose4", "glucose42", "minisat22", "maplechrono", "lingeling",
+               "gluecard4", "minicard", "cryptominisat5")
+#: Solvers stopped in process at a time limit (python-sat's interrupt, CryptoMiniSat's own
+#: limit); the others run in a forked child under a time limit, killed when it expires.
+INTERRUPTIBLE = ("glucose4", "glucose42", "minisat22", "maplechrono", "gluecard4", "minicard", "cryptominisat5")
+#: Solvers with native at-most-k constraints (:meth:`CNF.add_atmost`): Glucose and MiniSat
+#: with cardinality propagation (Gluecard, Minicard)
+NATIVE_ATMOST = ("gluecard4", "minicard")
+#: Taken through pycryptosat, not python-sat.
+CMS = "cryptominisat5"
+#: python-sat's C entry points for adding a clause: solver name -> (handle attribute, function)
+_C_ADD = {"glucose4": ("glucose", "glucose41_add_cl"), "glucose42": ("glucose", "glucose421_add_cl"),
+          "cadical195": ("cadical", "cadical195_add_cl"), "cadical153": ("cadical", "cadical153_add_cl"),
+          "minisat22": ("minisat", "minisat22_add_cl"), "maplechrono": ("maplesat", "maplechrono_add_cl"),
+          "gluecard4": ("gluecard", "gluecard41_add_cl"), "minicard": ("minicard", "minicard_add_cl")}
 DEFAULT_SAT_SOLVER = "cadical195"
 #: pysat.card encodings by name (``CNF.at_most(..., encoding="totalizer")``).
 CARD_ENCODINGS = ("seqcounter", "totalizer", "kmtotalizer", "sortnetwrk", "cardnetwrk", "mtotalizer", "ladder", "pairwise")
@@ -75,10 +88,81 @@ def gc_paused() -> Iterator[None]:
 
 
 def check_solver(solver: str) -> str:
-    """``solver`` itself, or a ParameterError naming the supported ones."""
+    """``solver`` itself, or a ParameterError naming the supported ones (or saying how to
+    install pycryptosat for ``cryptominisat5``)."""
     if solver not in SAT_SOLVERS:
         raise ParameterError(f"SAT solver {solver!r} is not supported; choose one of {', '.join(SAT_SOLVERS)}")
+    if solver == CMS and not have_cms():
+        raise ParameterError("SAT solver 'cryptominisat5' needs pycryptosat: pip install 'tilekit[cms]' "
+                             "(or choose one of " + ", ".join(x for x in SAT_SOLVERS if x != CMS) + ")")
     return solver
+
+
+def have_cms() -> bool:
+    """Whether pycryptosat (CryptoMiniSat 5) can be imported."""
+    import importlib.util
+
+    return importlib.util.find_spec("pycryptosat") is not None
+
+
+def _flat(block: Any) -> Any:
+    """A 2-D clause block as CryptoMiniSat's flat buffer: each row followed by a 0."""
+    import numpy as np
+
+    out = np.zeros((block.shape[0], block.shape[1] + 1), dtype=np.int64)
+    out[:, :-1] = block
+    return out.ravel()
+
+
+class _Cms:
+    """pycryptosat behind the few calls :func:`_run` and :class:`IncrementalSolver` make.
+
+    Clause blocks go to the solver as flat int64 buffers (no Python list per clause), the
+    list clauses in one call; a time limit is CryptoMiniSat's own (in process)."""
+
+    def __init__(self) -> None:
+        import pycryptosat
+
+        self._s = pycryptosat.Solver(threads=1)
+        self._model: Any = None
+
+    def append(self, cnf: Any) -> None:
+        if isinstance(cnf, CNF):
+            if cnf.clauses:
+                self._s.add_clauses(cnf.clauses)
+            for block in cnf.blocks:
+                self._s.add_clauses(_flat(block))
+        else:
+            rows = [list(map(int, c)) for c in cnf]
+            if rows:
+                self._s.add_clauses(rows)
+
+    def add_clause(self, clause: list[int]) -> None:
+        self._s.add_clause(clause)
+
+    def solve(self, assumptions: list[int], time_limit: float | None) -> bool | None:
+        import numpy as np
+
+        kw = {} if time_limit is None else {"time_limit": float(time_limit)}
+        # CryptoMiniSat refuses assumptions on variables no clause has mentioned; such a
+        # variable is unconstrained, so the assumption holds in any model: leave it out
+        top = self._s.nb_vars()
+        sat, values = self._s.solve([v for v in assumptions if abs(v) <= top], **kw)
+        if sat and values is not None:
+            truth = np.array(values[1:], dtype=bool)
+            idx = np.arange(1, len(truth) + 1, dtype=np.int64)
+            self._model = np.where(truth, idx, -idx)
+        else:
+            self._model = None
+        if sat is None:  # the time limit
+            return None
+        return bool(sat)
+
+    def get_model(self) -> Any:
+        return self._model
+
+    def delete(self) -> None:
+        self._s = None
 
 
 #: Clauses turned into Python lists at a time when a block is handed to a solver.
@@ -98,10 +182,21 @@ class CNF:
     def __init__(self, clauses: Iterable[Sequence[int]] = (), top: int = 0) -> None:
         self.clauses: list[list[int]] = [list(map(int, c)) for c in clauses]
         self.blocks: list[Any] = []
+        #: native at-most-k constraints ``(literals, k)`` for solvers in :data:`NATIVE_ATMOST`
+        self.atmosts: list[tuple[list[int], int]] = []
         self.top = max([top, *(abs(v) for c in self.clauses for v in c)])
 
     def __len__(self) -> int:
-        return len(self.clauses) + sum(len(b) for b in self.blocks)
+        return len(self.clauses) + sum(len(b) for b in self.blocks) + len(self.atmosts)
+
+    def add_atmost(self, lits: Sequence[int], k: int) -> None:
+        """At most ``k`` of ``lits``, kept as one native constraint: only a solver in
+        :data:`NATIVE_ATMOST` takes it (a Gluecard constraint is one object, where a clausal
+        encoding of at-most-one over g literals is about 3g clauses)."""
+        lits = [int(v) for v in lits]
+        if lits:
+            self.top = max(self.top, max(abs(v) for v in lits))
+            self.atmosts.append((lits, int(k)))
 
     def literals(self) -> int:
         """How many literals the clauses hold (a solver's memory grows with them)."""
@@ -233,6 +328,9 @@ def _stats(s: Any) -> dict[str, int]:
 
 def _run(s: Any, assumptions: list[int], time_limit: float | None) -> tuple[bool | None, list[int] | None, dict[str, int]]:
     """Solve on the live pysat solver ``s`` (interrupting by a timer when a limit is given)."""
+    if isinstance(s, _Cms):
+        answer = s.solve(assumptions, time_limit)
+        return answer, (s.get_model() if answer else None), {}
     if time_limit is None:
         answer = s.solve(assumptions=assumptions)
     else:
@@ -289,14 +387,23 @@ def solve(
 
     check_solver(solver)
     clauses = _clauses_of(cnf)
+    atmosts = cnf.atmosts if isinstance(cnf, CNF) else []
+    if atmosts and solver not in NATIVE_ATMOST:
+        raise ParameterError(f"native at-most constraints need one of {', '.join(NATIVE_ATMOST)}, not {solver}")
     assumptions = [int(v) for v in assumptions]
     start = time.perf_counter()
 
     here = time_limit is None or solver in INTERRUPTIBLE
 
     def job() -> tuple[bool | None, list[int] | None, dict[str, int]]:
+        if solver == CMS:
+            c = _Cms()
+            c.append(cnf if isinstance(cnf, CNF) else clauses)
+            return _run(c, assumptions, None if time_limit is None else float(time_limit))
         with gc_paused():
             s = Solver(name=solver, bootstrap_with=clauses)
+            for lits, k in atmosts:
+                s.add_atmost(lits, k)
         with s:
             # in a child the parent kills at the limit; here a timer interrupts
             return _run(s, assumptions, float(time_limit) if here and time_limit is not None else None)
@@ -313,8 +420,13 @@ class IncrementalSolver:
         from pysat.solvers import Solver  # measured start-up cost: ~45 ms, only when solving
 
         self.solver = check_solver(solver)
-        with gc_paused():
-            self._s = Solver(name=solver, bootstrap_with=_clauses_of(cnf))
+        if solver == CMS:
+            self._s = _Cms()
+            self._s.append(cnf)
+        else:
+            with gc_paused():
+                self._s = Solver(name=solver)
+            self.extend(cnf)
         self.calls = 0
 
     def __enter__(self) -> IncrementalSolver:
@@ -334,9 +446,39 @@ class IncrementalSolver:
         self._s.add_clause([int(v) for v in clause])
 
     def extend(self, clauses: Iterable[Sequence[int]]) -> None:
-        """Add many clauses (a :class:`CNF` or rows of literals)."""
+        """Add many clauses (a :class:`CNF` or rows of literals).
+
+        The rows go to the solver object's own ``add_clause`` through ``map`` (measured: the
+        per-clause loop of python-sat's ``append_formula`` cost more than the solver itself
+        for the 10^4-10^5 short clauses of a corona formula); CryptoMiniSat takes a
+        :class:`CNF`'s blocks as flat buffers."""
+        atmosts = clauses.atmosts if isinstance(clauses, CNF) else []
+        if atmosts and self.solver not in NATIVE_ATMOST:
+            raise ParameterError(f"native at-most constraints need one of {', '.join(NATIVE_ATMOST)}, not {self.solver}")
+        if isinstance(self._s, _Cms):
+            self._s.append(clauses)
+            return
         with gc_paused():
-            self._s.append_formula(_clauses_of(clauses))
+            collections.deque(map(self._adder(), _clauses_of(clauses)), maxlen=0)
+            for lits, k in atmosts:
+                self._s.add_atmost(lits, k)
+
+    def _adder(self) -> Any:
+        """The cheapest call adding one clause: python-sat's C function bound to this
+        solver's handle where its name is known (the return value only repeats what the next
+        solve says), else the solver object's ``add_clause``."""
+        inner = self._s.solver
+        known = _C_ADD.get(self.solver)
+        if known is not None:
+            import functools
+
+            import pysolvers
+
+            handle, name = known
+            fn = getattr(pysolvers, name, None)
+            if fn is not None and getattr(inner, handle, None) is not None:
+                return functools.partial(fn, getattr(inner, handle))
+        return inner.add_clause
 
     def solve(self, assumptions: Sequence[int] = (), time_limit: float | None = None) -> SatAnswer:
         """Answer the formula so far under ``assumptions``; ``None`` when ``time_limit`` expires."""

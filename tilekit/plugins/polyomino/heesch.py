@@ -41,12 +41,17 @@ import numpy as np
 
 from tilekit import limits
 from tilekit.errors import ParameterError
-from tilekit.lattice import Grid, holes_of, pack, unique_keys, unpack
+from tilekit.jit import njit
+from tilekit.lattice import Grid, _empty_components, halo_of, holes_of, pack, unique_keys, unpack
 from tilekit.plugins.polyomino.placements import Forms
-from tilekit.sat import DEFAULT_SAT_SOLVER, IncrementalSolver, gc_paused
+from tilekit.sat import CNF, DEFAULT_SAT_SOLVER, NATIVE_ATMOST, IncrementalSolver, gc_paused
 
 #: The most coronas a search will build (Kaplan's sat tool stops at 7 by default).
 MAX_LEVEL_LIMIT = 12
+#: The Hc-only search's solver: Glucose with native at-most-one constraints (Gluecard), which
+#: spares the per-cell clausal ladders (measured on the non-tiling 10-ominoes: half the time of
+#: Glucose with ladders, docs/benchmarks.md).
+HC_SOLVER = "gluecard4"
 
 
 @dataclass
@@ -81,6 +86,37 @@ class HeeschResult:
     seconds: float = 0.0
 
 
+@njit(cache=True)
+def _least_holes(pairs, roots, nbr, period):  # pragma: no cover - compiled
+    """Per row of ``pairs`` (cells of two copies), the size of its smallest hole (0: none)."""
+    out = np.zeros(pairs.shape[0], np.int64)
+    for i in range(pairs.shape[0]):
+        lab, x0, y0, w, comps = _empty_components(pairs[i], roots, nbr, period)
+        if comps <= 1:
+            continue
+        size = np.zeros(comps, np.int64)
+        for v in range(lab.shape[0]):
+            if lab[v] > 0:
+                size[lab[v]] += 1
+        out[i] = size[1:].min()
+    return out
+
+
+def unfillable_pairs(grid: Grid, forms: Forms, j: int = 0) -> np.ndarray:
+    """Which rows of ``forms.adjacent[j]`` make, with ``forms[j]``, a hole of fewer cells than
+    the polyform: no copy fits in it (a copy covering a cell of the hole lies inside it), so a
+    hole-free patch never uses the two copies together. Kaplan's heesch-sat drops every pair
+    whose union is not simply connected; this keeps the pairs whose hole a copy could fill."""
+    adj = forms.adjacent[j]
+    if not len(adj):
+        return np.zeros(0, dtype=bool)
+    cells = np.concatenate([np.broadcast_to(forms.forms[j], (len(adj), forms.n, 2)),
+                            forms.forms[adj[:, 0]] + adj[:, None, 1:3]], axis=1)
+    least = _least_holes(np.ascontiguousarray(cells), grid.roots.astype(np.int64), grid.neighbours.astype(np.int64),
+                         np.int64(grid.period))
+    return (least > 0) & (least < forms.n)
+
+
 class HeeschSolver:
     """Coronas of one polyform, level by level (see the module docstring)."""
 
@@ -95,6 +131,21 @@ class HeeschSolver:
         self.solve_seconds = 0.0  # inside the solver (the rest is building the formulas)
         #: (Hc, Hh, hole-free witness, holey witness) once Kaplan's loop has stopped
         self.kaplan: tuple[int, int, Corona, Corona] | None = None
+
+    def drop_enclosing(self) -> int:
+        """For hole-free questions only: leave out of corona 1 the copies that make an
+        unfillable hole with the kernel (:func:`unfillable_pairs`); corona 2 on is grown from
+        what is left. Call before any level is grown; returns how many were left out."""
+        if len(self.levels) > 1:
+            raise ParameterError("drop_enclosing() must come before the coronas are grown")
+        self._grow()
+        bad = unfillable_pairs(self.grid, self.forms, 0)
+        rows = self.levels[1]
+        if bad.any():
+            # corona 1 is adjacent[0] less the copies overlapping the kernel: match by key
+            drop = np.isin(self._row_keys(rows), self._row_keys(self.forms.adjacent[0][bad]))
+            self.levels[1] = rows[~drop]
+        return int(len(rows) - len(self.levels[1]))
 
     # -- placements per level -------------------------------------------------------------
     def _row_keys(self, rows: np.ndarray) -> np.ndarray:
@@ -355,3 +406,287 @@ def heesch(grid: Grid, cells: np.ndarray, *, max_level: int = 6, solver: str = D
                              f"(not a proof that it cannot tile)", max_level)
     return result(False, f"surrounded by {max_level} coronas", max_level)
 
+
+
+# --------------------------------------------------------------------------- one solver, all levels
+
+def _groups(keys: np.ndarray, ids: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Sort ``ids`` by ``keys``: (distinct keys, group starts, ids in key order)."""
+    o = np.argsort(keys, kind="stable")
+    k, v = keys[o], ids[o]
+    st = np.flatnonzero(np.r_[True, k[1:] != k[:-1]]) if len(k) else np.zeros(0, dtype=np.int64)
+    return k[st], st, v
+
+
+def _padded(first: np.ndarray, starts: np.ndarray, members: np.ndarray, pad: int) -> np.ndarray:
+    """Rows ``[first[g], members of group g..., pad, ...]``: variable-length clauses as one
+    rectangular block, short rows filled with the always-false literal ``pad``."""
+    sizes = np.diff(np.r_[starts, len(members)])
+    out = np.full((len(starts), 1 + int(sizes.max(initial=0))), pad, dtype=np.int64)
+    out[:, 0] = first
+    col = np.arange(len(members)) - np.repeat(starts, sizes)
+    out[np.repeat(np.arange(len(starts)), sizes), 1 + col] = members
+    return out
+
+
+class CoronaLadder:
+    """The corona formulas of :class:`HeeschSolver` for k = 1, 2, ... in one incremental solver.
+
+    Level i's variables and clauses never depend on how many levels are asked for, except for
+    the halo clauses, which hold for inner coronas only: they are added for level i - 1 when
+    level i is added, so the solver holding levels 1..k is exactly the k-corona formula
+    (holes allowed). The clauses are the module docstring's, regrouped by level so that none
+    has to be taken back:
+
+    - ``lev[h, i]`` <-> some copy of corona i covers cell h (with at most one such copy: a
+      ladder per cell and level), and at most one level covers a cell (pairwise);
+    - halo of a copy p of corona i < k: each halo cell h is the kernel's or has
+      ``lev[h, i-1] or lev[h, i] or lev[h, i+1]`` (a copy covering h touches p, so by the
+      touching clauses its level is i - 1, i or i + 1);
+    - the kernel's halo: ``lev[h, 1]`` for each halo cell h (a cell that no copy of corona 1
+      can cover ends the search with Hc = Hh = 0 before any solver is made);
+    - touching: ``y[p, i] -> OR lev[h, i-1]`` over p's halo, and ``y[p, i] -> not lev[h, j]``
+      for j <= i - 2.
+
+    Copies of levels two or more apart cannot overlap (an overlapping copy covers a halo cell),
+    so the per-level ladders and the pairwise level exclusion forbid every overlap. Hole
+    clauses found at level k are guarded by a selector assumed only for the hole-free question
+    at level k. Variable-length clauses are padded with an always-false literal so that every
+    group of clauses is one integer array (:meth:`tilekit.sat.CNF.add_block`).
+    """
+
+    def __init__(self, hs: HeeschSolver) -> None:
+        self.hs = hs
+        self.k = 0
+        self.top = 1
+        self.false = 1  # variable 1 is always false
+        self.rows: list[np.ndarray] = [hs.levels[0]]
+        self.cells: list[np.ndarray] = [hs.kernel_keys[None, :]]
+        self.halos: list[np.ndarray] = [hs.kernel_halo[None, :]]
+        self.y: list[np.ndarray] = [np.zeros(1, dtype=np.int64)]
+        self.lev: list[tuple[np.ndarray, np.ndarray]] = [(hs.kernel_keys, np.zeros(len(hs.kernel_keys), dtype=np.int64))]
+        self.solver: IncrementalSolver | None = None
+        self.pending = CNF()
+        self.pending.add([-self.false])
+        self.empty = False  # a clause with no literal was met: no k-corona for any k >= self.k
+        self.native = hs.solver in NATIVE_ATMOST  # at-most-one as native constraints
+        self.pairs: list[tuple[np.ndarray, np.ndarray]] = [(np.zeros(0, dtype=np.int64),) * 2]
+        grid = hs.grid
+        #: per cell type, the offsets of the cells sharing a vertex with it
+        self.around = [halo_of(grid, r[None, :]) - r for r in grid.roots]
+
+    def _vertex_pairs(self, keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(c, d) for every cell c of ``keys`` and every cell d sharing a vertex with it,
+        d not a kernel cell (a kernel cell is covered)."""
+        cells = unpack(keys)
+        types = self.hs.grid.cell_type(cells) if len(self.around) > 1 else np.zeros(len(cells), dtype=np.int64)
+        cs, ds = [], []
+        for r, off in enumerate(self.around):
+            at = cells[types == r]
+            cs.append(np.repeat(pack(at), len(off)))
+            ds.append(pack(at[:, None, :] + off[None, :, :]).ravel())
+        c, d = np.concatenate(cs), np.concatenate(ds)
+        keep = ~np.isin(d, self.hs.kernel_keys)
+        return c[keep], d[keep]
+
+    def close(self) -> None:
+        if self.solver is not None:
+            self.solver.close()
+            self.solver = None
+
+    def _vars(self, m: int) -> np.ndarray:
+        out = np.arange(self.top + 1, self.top + 1 + m, dtype=np.int64)
+        self.top += m
+        return out
+
+    def _lev(self, i: int, keys: np.ndarray) -> np.ndarray:
+        """``lev[keys, i]``, or the false literal where corona i covers no such cell."""
+        lk, lv = self.lev[i]
+        if not len(lk):
+            return np.full(keys.shape, self.false, dtype=np.int64)
+        pos = np.minimum(np.searchsorted(lk, keys), len(lk) - 1)
+        return np.where(lk[pos] == keys, lv[pos], self.false)
+
+    def add_level(self) -> None:
+        """Add corona ``k + 1`` (and make corona k inner)."""
+        hs = self.hs
+        i = self.k + 1
+        while len(hs.levels) <= i:
+            hs._grow()
+        rows = hs.levels[i]
+        m, n = len(rows), hs.forms.n
+        hint = "ask for fewer coronas (--max-level)"
+        limits.refuse_over(f"SAT variables for {i} coronas", (self.top + m * (n + 2)), limits.MAX_SAT_VARIABLES, hint=hint)
+        limits.refuse_over_memory(f"clauses for {i} coronas", m * (4 * n + hs.forms.halos.shape[1]), 24, hint=hint)
+        cells = hs.forms.placement_cells(rows)
+        halos = hs.forms.placement_halos(rows)
+        y = self._vars(m)
+        self.rows.append(rows)
+        self.cells.append(cells)
+        self.halos.append(halos)
+        self.y.append(y)
+        cnf, F = self.pending, self.false
+        keys, st, yy = _groups(cells.ravel(), np.repeat(y, n))
+        size = np.diff(np.r_[st, len(yy)])
+        if self.native:
+            # lev[h, i] = the number of copies of corona i covering h: at most one of the
+            # group and not-lev (one native constraint), and lev -> OR of the group
+            lev = self._vars(len(keys))
+            self.lev.append((keys, lev))
+            if len(keys):
+                for g, lits in zip(np.split(yy, st[1:]), (-lev).tolist()):
+                    cnf.add_atmost([*g.tolist(), lits], 1)
+                cnf.add_block(_padded(-lev, st, yy, F))
+        else:
+            # lev[h, i] <-> some copy of corona i covers h, at most one of them: a ladder
+            # s_1..s_g over the group's copies l_1..l_g (l_t -> s_t, s_t -> s_t+1,
+            # s_t -> not l_t+1) whose last prefix s_g is lev[h, i] (so every l_t -> lev),
+            # and lev -> OR l
+            s = self._vars(len(yy))
+            last = st + size - 1
+            lev = s[last]
+            self.lev.append((keys, lev))
+            if len(keys):
+                nxt = np.ones(len(yy), dtype=bool)
+                nxt[last] = False
+                t = np.flatnonzero(nxt)
+                cnf.add_block(np.concatenate([np.column_stack([-yy, s]), np.column_stack([-s[t], s[t + 1]]),
+                                              np.column_stack([-s[t], -yy[t + 1]])]))
+                cnf.add_block(_padded(-lev, st, yy, F))
+        # at most one level covers a cell
+        for j in range(1, i):
+            other = self._lev(j, keys)
+            both = other != F
+            if both.any():
+                cnf.add_block(np.column_stack([-lev[both], -other[both]]))
+        # cell pairs sharing a vertex: (cell of corona i, its vertex neighbour)
+        ck, dk = self._vertex_pairs(keys)
+        if i == 1:  # the kernel's halo is covered by corona 1
+            need = self._lev(1, hs.kernel_halo)
+            if (need == F).any():
+                self.empty = True
+            cnf.add_block(need[:, None])
+        else:
+            # touching corona i - 1 ...
+            cnf.add_block(np.column_stack([-y, self._lev(i - 1, halos)]))
+            # ... and none below it: no cell of corona i shares a vertex with one of corona j
+            for j in range(1, i - 1):
+                lits = self._lev(j, dk)
+                hit = lits != F
+                if hit.any():
+                    cnf.add_block(np.column_stack([-self._lev(i, ck[hit]), -lits[hit]]))
+            # corona i - 1 is inner now: every cell sharing a vertex with one of its cells is
+            # covered (by corona i - 2, i - 1 or i: a copy covering it touches corona i - 1)
+            pk, qk = self.pairs[i - 1]
+            lits = np.column_stack([-self._lev(i - 1, pk), self._lev(i - 2, qk) if i >= 3 else np.full(len(qk), F),
+                                    self._lev(i - 1, qk), self._lev(i, qk)])
+            cnf.add_block(lits)
+        self.pairs.append((ck, dk))
+        self.k = i
+
+    def _flush(self) -> IncrementalSolver:
+        with gc_paused():
+            if self.solver is None:
+                self.solver = IncrementalSolver(self.pending, solver=self.hs.solver)
+            else:
+                self.solver.extend(self.pending)
+        self.pending = CNF()
+        return self.solver
+
+    def solve(self, assumptions: list[int], time_limit: float | None):
+        s = self._flush()
+        ans = s.solve(assumptions=assumptions, time_limit=time_limit)
+        self.hs.sat_calls += 1
+        self.hs.solve_seconds += ans.seconds
+        return ans
+
+    def model(self, ans) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """(rows, levels, cells, y) of the copies a model uses, the kernel first."""
+        rows, lv, cells, ys = [self.rows[0]], [np.zeros(1, dtype=np.int64)], [self.cells[0]], [self.y[0]]
+        for i in range(1, self.k + 1):
+            used = ans.values(self.y[i])
+            rows.append(self.rows[i][used])
+            lv.append(np.full(int(used.sum()), i, dtype=np.int64))
+            cells.append(self.cells[i][used])
+            ys.append(self.y[i][used])
+        return np.concatenate(rows), np.concatenate(lv), np.concatenate(cells), np.concatenate(ys)
+
+    def hole_clauses(self, cells: np.ndarray, ys: np.ndarray) -> list[list[int]]:
+        """As :meth:`HeeschSolver._holes`, over the copies of every level (the kernel, y = 0,
+        is always there and left out of the clauses)."""
+        grid = self.hs.grid
+        out = []
+        for hole in holes_of(grid, cells.ravel()):
+            hx = unpack(hole)
+            ring = pack(hx[:, None, :] + grid.neighbours[grid.cell_type(hx)]).ravel()
+            around = ys[np.isin(cells, ring).any(axis=1) & (ys != 0)]
+            inside = np.concatenate([self.y[i][np.isin(self.cells[i], hole).any(axis=1)] for i in range(1, self.k + 1)])
+            out.append([*(-around).tolist(), *inside.tolist()])
+        return out
+
+    def corona(self, hole_free_only: bool, time_limit: float | None) -> tuple[Corona | None, Corona | None, bool | None]:
+        """(hole-free patch, patch with holes, decided) for the current ``k`` (see
+        :meth:`HeeschSolver.corona`); with ``hole_free_only`` the holey patch is not kept apart
+        (the hole clauses are asserted for this level from the first model on)."""
+        if self.empty:
+            return None, None, True
+        sel = self._vars(1)[0]
+        deadline = None if time_limit is None else time.monotonic() + time_limit
+        with_holes: Corona | None = None
+        assume: list[int] = [int(sel)] if hole_free_only else []
+        while True:
+            left = None if deadline is None else max(0.01, deadline - time.monotonic())
+            ans = self.solve(assume, left)
+            if ans.satisfiable is None:
+                return None, with_holes, None
+            if not ans.satisfiable:
+                return None, with_holes, True
+            rows, lv, cells, ys = self.model(ans)
+            found = self.hole_clauses(cells, ys)
+            if not found:
+                c = Corona(rows, lv, False)
+                return c, with_holes or c, True
+            for clause in found:
+                self.pending.add([-int(sel), *clause])
+            if with_holes is None:
+                with_holes = Corona(rows, lv, True)
+            assume = [int(sel)]
+
+
+def hole_free_heesch(grid: Grid, cells: np.ndarray, *, max_level: int = 6, solver: str = HC_SOLVER,
+                     time_limit: float | None = None) -> HeeschResult:
+    """Kaplan's hole-free Heesch number Hc alone (heesch-sat's default mode, without ``-hh``):
+    coronas k = 1, 2, ... until a level with no hole-free k-corona patch, in one incremental
+    solver (:class:`CoronaLadder`). ``hh`` is None (not asked) and ``decided`` stays False:
+    Hc alone is no proof that the polyform cannot tile (:func:`heesch` gives the proof)."""
+    if not 0 <= max_level <= MAX_LEVEL_LIMIT:
+        raise ParameterError(f"max_level must be between 0 and {MAX_LEVEL_LIMIT}, got {max_level}")
+    t0 = time.monotonic()
+    hs = HeeschSolver(grid, cells, solver=solver)
+    best = Corona(hs.levels[0].copy(), np.zeros(1, dtype=np.int64), False)
+    hs.drop_enclosing()
+    ladder = CoronaLadder(hs)
+    try:
+        for k in range(1, max_level + 1):
+            left = None if time_limit is None else time_limit - (time.monotonic() - t0)
+            if left is not None and left <= 0:
+                return HeeschResult(None, None, best, None, k - 1, False, f"time limit after {k - 1} coronas",
+                                    hs.sat_calls, time.monotonic() - t0)
+            try:
+                ladder.add_level()
+            except limits.LimitError as exc:
+                return HeeschResult(None, None, best, None, k - 1, False, f"{k} coronas: {exc}", hs.sat_calls,
+                                    time.monotonic() - t0)
+            free, _, done = ladder.corona(True, left)
+            if done is None:
+                return HeeschResult(None, None, best, None, k - 1, False, f"time limit while looking for {k} coronas",
+                                    hs.sat_calls, time.monotonic() - t0)
+            if free is None:
+                return HeeschResult(k - 1, None, best, None, k - 1, False,
+                                    f"no hole-free {k}-corona patch (Hc only: not a proof that it cannot tile)",
+                                    hs.sat_calls, time.monotonic() - t0)
+            best = free
+    finally:
+        ladder.close()
+    return HeeschResult(None, None, best, None, max_level, False, f"surrounded by {max_level} hole-free coronas",
+                        hs.sat_calls, time.monotonic() - t0)

@@ -73,23 +73,29 @@ class Forms:
 
     @cached_property
     def adjacent(self) -> list[np.ndarray]:
-        """Per orientation j, rows ``(k, tx, ty)``: ``forms[k] + t`` touches ``forms[j]``."""
-        p = self.grid.period
-        out = []
-        for j in range(self.J):
-            own = np.sort(self.keys[j])
-            halo = self.halos[j]
-            rows = []
-            for k in range(self.J):
-                t = (halo[:, None, :] - self.forms[k][None, :, :]).reshape(-1, 2)
-                t = t[(t % p == 0).all(axis=1)]
-                t = unpack(unique_keys(pack(t)))
-                moved = pack(self.forms[k][None, :, :] + t[:, None, :])  # (T, n)
-                clash = np.isin(moved, own).any(axis=1)
-                t = t[~clash]
-                rows.append(np.column_stack([np.full(len(t), k), t]))
-            out.append(np.concatenate(rows).astype(np.int64))
-        return out
+        """Per orientation j, rows ``(k, tx, ty)``: ``forms[k] + t`` touches ``forms[j]``
+        (sorted by k, then by the packed translation). One array pass over every (j, k) pair:
+        the translations taking a cell of ``forms[k]`` onto a halo cell of ``forms[j]``."""
+        p, J = self.grid.period, self.J
+        t = self.halos[:, None, :, None, :] - self.forms[None, :, None, :, :]  # (J, J, H, n, 2)
+        jj = np.broadcast_to(np.arange(J)[:, None, None, None], t.shape[:-1]).ravel()
+        kk = np.broadcast_to(np.arange(J)[None, :, None, None], t.shape[:-1]).ravel()
+        t = t.reshape(-1, 2)
+        ok = (t % p == 0).all(axis=1)
+        # distinct (j, k, t) as one sorted int64 key (packed translations are < 2^42)
+        key = unique_keys(((jj[ok] * J + kk[ok]) << 42) | pack(t[ok]))
+        jk = key >> 42
+        jj, kk = jk // J, jk % J
+        tt = unpack(key & ((np.int64(1) << 42) - 1))
+        moved = pack(self.forms[kk] + tt[:, None, :])  # (R, n)
+        # a copy overlapping forms[j] does not touch it: (j, cell) pairs as one sorted key
+        own = np.sort(((np.arange(J)[:, None] << 42) | self.keys).ravel())
+        probe = (jj[:, None] << 42) | moved
+        pos = np.minimum(np.searchsorted(own, probe), len(own) - 1)
+        clash = (own[pos] == probe).any(axis=1)
+        rows = np.column_stack([kk, tt]).astype(np.int64)[~clash]
+        cut = np.searchsorted(jj[~clash], np.arange(1, J))
+        return np.split(rows, cut)
 
     def placement_cells(self, rows: np.ndarray) -> np.ndarray:
         """(m, n) packed cell keys of placements ``rows`` = (j, tx, ty)."""
