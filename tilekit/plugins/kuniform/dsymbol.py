@@ -223,6 +223,18 @@ class DSymbol:
                 return new
             cls = new
 
+    def minimal_image(self) -> DSymbol:
+        """The symbol divided by :meth:`minimal_classes`: the D-symbol of the tiling's full
+        symmetry group (a symbol of a subgroup, e.g. modulo translations, maps onto it)."""
+        cls = self.minimal_classes()
+        n = max(cls) + 1
+        rep = [-1] * n
+        for c in range(self.size):
+            if rep[cls[c]] < 0:
+                rep[cls[c]] = c
+        return DSymbol(*(tuple(cls[s[rep[i]]] for i in range(n)) for s in (self.s0, self.s1, self.s2)),
+                       tuple(self.face[rep[i]] for i in range(n)), tuple(self.degree[rep[i]] for i in range(n)))
+
     def canonical_form(self) -> tuple:
         """The least breadth-first relabelling over every start chamber: equal for
         isomorphic symbols (the symbol must be connected)."""
