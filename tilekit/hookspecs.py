@@ -105,3 +105,15 @@ def tilekit_extra_properties(record):
     re-seeding, a changed fingerprint). A key the record already has is kept; among plugins, the first
     answer for a key wins. Values follow the rules of ``CatalogueRecord.properties``.
     """
+
+
+@hookspec
+def tilekit_resolve_name(name):
+    """Return ``--where`` filters (``KEY=VALUE`` strings) that find the tiling ``name`` denotes
+    in a notation the plugin reads (e.g. a GomJau-Hogg string or a D-symbol), or None.
+
+    Called by :meth:`tilekit.catalogue.Catalogue.get` (``tilekit show``, ``render``) only
+    when no tiling, alias or result row is called ``name``; the first answer whose filters
+    match a tiling wins. Raise a :class:`tilekit.errors.TilekitError` for text that is the
+    plugin's notation but malformed, naming what is wrong.
+    """

@@ -409,6 +409,12 @@ class Catalogue(RunsMixin, ResultsMixin, TilingReader):
         found = self._result_lookup(name)
         if found is not None:
             return found
+        for filters in self.pm.hook.tilekit_resolve_name(name=name):
+            if filters:
+                hits = self.query(where=list(filters), order_by="name", limit=1)
+                if hits:
+                    return hits[0]
+                raise NotFoundError("tiling", f"{name} ({', '.join(filters)})", self.names())
         raise NotFoundError("tiling", name, self.names())
 
     def tiling(self, name: str) -> Any:

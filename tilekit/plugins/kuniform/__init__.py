@@ -46,3 +46,24 @@ def tilekit_searches():
     from tilekit.plugins.kuniform.search import SEARCH
 
     return [SEARCH]
+
+
+@hookimpl
+def tilekit_resolve_name(name):
+    # measured start-up cost: the notations load NumPy (only when the name is one)
+    from tilekit.plugins.kuniform.names import GOMJAU
+
+    if not (name.lstrip().startswith("<") or GOMJAU.match(name)):
+        return None
+    from tilekit.plugins.kuniform.names import resolve
+
+    return resolve(name)
+
+
+@hookimpl
+def tilekit_extra_properties(record):
+    if getattr(record, "family", None) != "archimedean":
+        return None
+    from tilekit.plugins.kuniform.names import archimedean_properties
+
+    return archimedean_properties(record)

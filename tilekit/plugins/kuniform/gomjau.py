@@ -905,15 +905,12 @@ def _write_placed(unit: list[_Shape], v1: np.ndarray, v2: np.ndarray, seed: int,
     if not tiling.has(np.array(first.centre), seed, _orient_of(first)):
         return None
     fig.add(first, "the seed")
-    orbit_keys = set(tiling.keys)
-    covered = {tiling._key(np.array(first.centre), seed, _orient_of(first))}
     phases: list[list[int]] = []
     tail = first.segments()
     for _ in range(max_phases):
-        if covered >= orbit_keys:
-            text = _add_transforms(tiling, fig, seed, phases)
-            if text is not None:
-                return text
+        text = _add_transforms(tiling, fig, seed, phases)
+        if text is not None:
+            return text
         order = sorted(tail, key=cmp_to_key(_seg_cmp))
         group: list = []
         phase: list[int] = []
@@ -923,7 +920,6 @@ def _write_placed(unit: list[_Shape], v1: np.ndarray, v2: np.ndarray, seed: int,
             p = tiling.across(seg)
             shape = _on_segment(seg, p)
             fig.add(shape, "", check=False)
-            covered.add(tiling._key(np.array(shape.centre), p, _orient_of(shape)))
             group += shape.segments()
             phase.append(p)
         if not phase:
@@ -1006,9 +1002,10 @@ def _hermite(vecs: Sequence[tuple[int, int]]) -> tuple[int, int, int]:
 
 
 def _add_transforms(tiling: _Placed, fig0: _Figure, seed: int, phases: list[list[int]]) -> str | None:
-    """Choose transforms for a seed that holds a whole unit: the largest centre transform that
-    is a symmetry, then half-turns and mirrors at points of the figure, each kept when it
-    makes the generated translations finer, until they are the tiling's lattice."""
+    """Choose transforms for a seed: the largest centre transform that is a symmetry, then
+    half-turns and mirrors at points of the figure, each kept when it is not yet in the group
+    generated, until that group holds every translation; None unless the seed's orbit under
+    it then meets every polygon orbit."""
     head = "-".join([str(seed), *(",".join(map(str, ph)) for ph in phases)])
     fig = _Figure("")
     for s in fig0.shapes:
@@ -1052,5 +1049,16 @@ def _add_transforms(tiling: _Placed, fig0: _Figure, seed: int, phases: list[list
         if not improved:
             return None
     if group.index > 1:
+        return None
+    # the seed's images under the group (modulo the lattice it now holds) must meet every
+    # orbit of polygons, else the seed is too small
+    seen = set()
+    for r in group.reps.values():
+        s_, k = _linear_code(r, "")
+        for sh in fig0.shapes:
+            o = _orient_of(sh)
+            c = r[:2, :2] @ np.asarray(sh.centre) + r[:2, 2]
+            seen.add(tiling._key(c, sh.p, (o + k) if s_ > 0 else (k - o)))
+    if not seen >= tiling.keys:
         return None
     return "/".join([head, *chosen])
