@@ -414,7 +414,10 @@ class Catalogue(RunsMixin, ResultsMixin, TilingReader):
                 hits = self.query(where=list(filters), order_by="name", limit=1)
                 if hits:
                     return hits[0]
-                raise NotFoundError("tiling", f"{name} ({', '.join(filters)})", self.names())
+                exc = NotFoundError("tiling", name)
+                exc.args = (f"no tiling in the catalogue is the one {name!r} denotes ({', '.join(filters)}); "
+                            "a search may add it (tilekit searches)",)
+                raise exc
         raise NotFoundError("tiling", name, self.names())
 
     def tiling(self, name: str) -> Any:

@@ -453,6 +453,7 @@ def run_transforms(fig: _Figure, transforms: Sequence[Transform]) -> list[np.nda
     gens = []
     for t in transforms:
         for m in transform_maps(fig, t):
+            _linear_code(m, f"GomJau-Hogg notation {fig.text!r}: the transform {t.text}")
             gens.append(m)
             for s in list(fig.shapes):
                 fig.add(s.mapped(m), f"the transform {t.text}")
