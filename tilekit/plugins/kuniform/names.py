@@ -1,5 +1,5 @@
-"""Tilings named in other people's notations: a GomJau-Hogg string (:mod:`.gomjau`) or a
-Gavrog D-symbol (``<1.1:...>``) read to a minimal D-symbol, and the catalogue filter that
+"""Tilings named in other people's notations: a GomJau-Hogg string (:mod:`.gomjau`), a
+Gavrog D-symbol (``<1.1:...>``) or a tes-catalog file (:mod:`.tes`) read to a minimal D-symbol, and the catalogue filter that
 finds its record; the two notations of the eleven Archimedean tilings, added to the
 archimedean family's records from a shipped table that :func:`archimedean_table` rebuilds.
 """
@@ -34,6 +34,10 @@ def symbol_of(text: str) -> DSymbol | None:
         from tilekit.plugins.kuniform.gomjau import parse
 
         return parse(t).symbol
+    if t.lower().endswith(".tes"):
+        from tilekit.plugins.kuniform.tes import read_tes
+
+        return read_tes(t)[1]
     return None
 
 
@@ -81,3 +85,12 @@ def _table() -> dict[str, dict[str, Any]]:
 
 if __name__ == "__main__":  # pragma: no cover - regenerates the shipped table
     ARCHIMEDEAN_TABLE.write_text(json.dumps(archimedean_table(), indent=1) + "\n")
+
+
+def tiling_from_file(path: str) -> Any:
+    """The k-uniform tiling a .tes file describes (``tilekit render --system FILE.tes``)."""
+    from tilekit.plugins.kuniform.search import tiling_of
+    from tilekit.plugins.kuniform.tes import read_tes
+
+    name, sym = read_tes(path)
+    return tiling_of(sym, name=name)
