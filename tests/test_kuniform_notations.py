@@ -16,6 +16,7 @@ from __future__ import annotations
 import itertools
 import json
 import math
+import re
 import subprocess
 import sys
 
@@ -292,3 +293,71 @@ def test_a_notation_for_a_tiling_not_yet_searched_says_so(catalogue_cli):
     assert types_text([parsed.symbol.vertex_type(o[0]) for o in parsed.symbol.vertex_orbits()]) == \
         "[3^6; (3^2.4.3.4)^2]"
     assert geometric_types(parsed) == {(3, 3, 3, 3, 3, 3), canonical("3^2.4.3.4")}
+
+
+# --------------------------------------------------------------------------- .tes files
+# Fixtures written here from the format's description (hyperrogue/tessellations/sample/README.md):
+# the tiles are the polygons up to symmetry, the gluings say which edge meets which.
+
+TES_HEAD = "## {name}\ne2.\nangleunit(deg)\n"
+TES_FIXTURES = {
+    # a square glued to its translates across opposite edges
+    "4^4": "unittile(90,90,90,90)\nconway(\"(0 2)(1 3)\")\n",
+    # a square whose single edge label is mirrored onto itself: the mirror group *442
+    "4^4 mirrored": "unittile(90,90,90,90)\nrepeat(0,4)\nconway(\"[0]\")\n",
+    # octagon (labels 0, 1 four times) and square (label 0 four times): octagon-square and
+    # octagon-octagon (a half-turn) edges
+    "4.8^2": ("unittile(135,135,135,135,135,135,135,135)\nunittile(90,90,90,90)\nrepeat(0,4)\nrepeat(1,4)\n"
+              "conway(\"(0 0')(1)\")\n"),
+    # snub hexagonal: a 3-fold triangle, a 6-fold hexagon and a plain triangle
+    "3^4.6": ("unittile(60,60,60)\nunittile(120,120,120,120,120,120)\nunittile(60,60,60)\nrepeat(0,3)\nrepeat(1,6)\n"
+              "conway(\"(0 1'')(0' 0'')(2'')\")\n"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(TES_FIXTURES))
+def test_tes_files_read_to_the_archimedean_symbols(tmp_path, name):
+    from tilekit.plugins.kuniform.tes import read_tes
+
+    path = tmp_path / "t.tes"
+    path.write_text(TES_HEAD.format(name=name) + TES_FIXTURES[name])
+    title, sym = read_tes(path)
+    vt = name.split()[0]
+    (expected,) = tilings_with_types([canonical(vt)])
+    assert title == name and sym.canonical_form() == expected.canonical_form()
+
+
+@pytest.mark.parametrize("body, needle", [
+    ("h2.\nangleunit(deg)\nunittile(90,90,90,90)\nconway(\"(0 2)(1 3)\")", "only Euclidean"),
+    ("e2.\nangleunit(deg)\nunittile(90,90,100,90)\nconway(\"(0 2)(1 3)\")", "not a regular 4-gon"),
+    ("e2.\nangleunit(deg)\nunittile(90,90,90,90)\nconway(\"(0 2)\")", "edge 1 of tile 0 is glued to nothing"),
+    ("e2.\nangleunit(deg)\nunittile(180-90,90,90,90)\nconway(\"(0 2)(1 3)\")", "not a plain number"),
+    ("e2.\nangleunit(deg)\nunittile(108,108,108,108,108)\nrepeat(0,5)\nconway(\"(0)\")", "not 360°"),
+    ("e2.\nangleunit(deg)\nunittile(90,90,90,90)\nconway(\"(0 2)(1 3\")", "line 4: in the conway text"),
+    ("e2.\nangleunit(deg)\nunittile(90,90,90,90)\nconway(\"(0 2)(1 7)\")", "no such edge label"),
+    ("e2.\nangleunit(deg)\nbogus(1)", "line 3: bogus(...) is not read here"),
+])
+def test_bad_tes_files_are_refused_in_one_line(tmp_path, body, needle):
+    from tilekit.plugins.kuniform.tes import read_tes
+
+    path = tmp_path / "bad.tes"
+    path.write_text(body)
+    with pytest.raises(ParseError, match=re.escape(needle)) as info:
+        read_tes(path)
+    assert "\n" not in str(info.value)
+
+
+def test_show_and_render_a_tes_file(catalogue_cli, tmp_path):
+    path = tmp_path / "octagons.tes"
+    path.write_text(TES_HEAD.format(name="4.8^2") + TES_FIXTURES["4.8^2"])
+    r = catalogue_cli.run("show", str(path))
+    assert r.exit_code == 0 and "name: 4.8^2" in r.output, r.output
+    out = tmp_path / "octagons.svg"
+    r = catalogue_cli.run("render", "--system", str(path), "-o", str(out))
+    assert r.exit_code == 0 and out.read_text().count("<path") >= 2, r.output
+    from tilekit.plugins.kuniform.names import tiling_from_file
+
+    tiling = tiling_from_file(str(path))
+    assert tiling.patch((-5, -5, 5, 5)).validate(region=(-4, -4, 4, 4))
+    res = _cli(catalogue_cli, "show", str(tmp_path / "missing.tes"))
+    assert res.returncode == 2 and "does not exist" in res.stderr and res.stderr.strip().count("\n") == 0

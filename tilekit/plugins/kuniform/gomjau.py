@@ -795,6 +795,11 @@ class _Placed:
             s, k = _linear_code(m, "")
         except GeometryError:
             return False
+        # g(P + t) = g(P) + A t: the linear part must keep the lattice, then the unit decides
+        for v in (self.v1, self.v2):
+            f = self.inv @ (m[:2, :2] @ v)
+            if np.abs(f - np.round(f)).max() > 1e-6:
+                return False
         c2 = self.unit.centre @ m[:2, :2].T + m[:2, 2]
         for i in range(len(self.unit.size)):
             p = int(self.unit.size[i])
