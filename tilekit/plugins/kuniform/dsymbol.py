@@ -31,10 +31,11 @@ from __future__ import annotations
 
 import itertools
 import re
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import cache
+from typing import TypeVar
 
 from tilekit.plugins.archimedean.notation import (
     VertexType,
@@ -44,6 +45,7 @@ from tilekit.plugins.archimedean.notation import (
 )
 
 Perm = tuple[int, ...]
+T = TypeVar("T")
 #: The largest D-symbol text accepted: 12 chambers per vertex orbit, k <= 6.
 MAX_CHAMBERS = 72
 
@@ -72,17 +74,22 @@ def _compose(a: Perm, b: Perm) -> Perm:
     return tuple(a[x] for x in b)
 
 
-def _closure(gens: Sequence[Perm], n: int) -> frozenset[Perm]:
-    group = {tuple(range(n))}
-    frontier = list(group)
+def closure(identity: T, gens: Sequence[T], compose: Callable[[T, T], T]) -> frozenset[T]:
+    """The finite group the generators generate, as the set of its elements."""
+    group = {identity}
+    frontier = [identity]
     while frontier:
         g = frontier.pop()
         for h in gens:
-            x = _compose(h, g)
+            x = compose(h, g)
             if x not in group:
                 group.add(x)
                 frontier.append(x)
     return frozenset(group)
+
+
+def _closure(gens: Sequence[Perm], n: int) -> frozenset[Perm]:
+    return closure(tuple(range(n)), gens, _compose)
 
 
 @cache

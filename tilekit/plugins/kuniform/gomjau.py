@@ -51,7 +51,7 @@ from functools import cmp_to_key
 import numpy as np
 
 from tilekit.errors import GeometryError, ParseError
-from tilekit.plugins.kuniform.dsymbol import DSymbol
+from tilekit.plugins.kuniform.dsymbol import DSymbol, closure
 from tilekit.polygon import regular_polygon
 from tilekit.tiling import Patch, Prototile
 
@@ -492,16 +492,7 @@ def check_point_group(gens: Sequence[np.ndarray], text: str) -> None:
     """Refuse transforms whose rotations are not 2-, 3-, 4- or 6-fold (crystallographic
     restriction: a pattern with two independent translations has no others)."""
     codes = [_linear_code(g, f"GomJau-Hogg notation {text!r}: a transform") for g in gens]
-    group = {(1, 0)}
-    frontier = [(1, 0)]
-    while frontier:
-        x = frontier.pop()
-        for c in codes:
-            y = _compose_linear(c, x)
-            if y not in group:
-                group.add(y)
-                frontier.append(y)
-    for s, k in group:
+    for s, k in closure((1, 0), codes, _compose_linear):
         if s > 0 and k % 8 and k % 12:
             raise GeometryError(f"GomJau-Hogg notation {text!r}: the transforms generate a rotation by {k * STEP:g}°; "
                                 "a pattern repeating in two directions has only 2-, 3-, 4- and 6-fold rotations")
