@@ -1020,6 +1020,7 @@ def _add_transforms(tiling: _Placed, fig0: _Figure, seed: int, phases: list[list
                     fig.add(s.mapped(m), "", check=False)
             break
     group = _Group(maps, tiling.inv)
+    reach = max(math.hypot(*v) for s in fig0.shapes for v in s.verts) + 1e-6
     for _round in range(8):
         if group.index <= 1:
             break
@@ -1027,6 +1028,8 @@ def _add_transforms(tiling: _Placed, fig0: _Figure, seed: int, phases: list[list
         counts = {"c": 0, "h": 0, "v": 0}
         for kind, x, y, a in nodes(fig):
             counts[kind] += 1
+            if math.hypot(x, y) > reach:
+                continue  # points far out make the figure, and the disc a parse needs, large
             for action in ("r", "m"):
                 if action == "r":
                     m = _rotation(math.pi, x, y)
