@@ -121,3 +121,15 @@ def tilekit_normalise(key, value):
     not know (import its parsers only then); raise a TilekitError only for a value that is its
     own and ambiguous. The first non-None answer wins.
     """
+
+
+@hookspec
+def tilekit_resolve_name(name):
+    """Return ``--where`` filters (``KEY=VALUE`` strings) that find the tiling ``name`` denotes
+    in a notation the plugin reads (e.g. a GomJau-Hogg string or a D-symbol), or None.
+
+    Called by :meth:`tilekit.catalogue.Catalogue.get` (``tilekit show``, ``render``) only
+    when no tiling, alias or result row is called ``name``; the first answer whose filters
+    match a tiling wins. Raise a :class:`tilekit.errors.TilekitError` for text that is the
+    plugin's notation but malformed, naming what is wrong.
+    """

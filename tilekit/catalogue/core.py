@@ -411,6 +411,15 @@ class Catalogue(RunsMixin, ResultsMixin, TilingReader):
                 found = matches[0] if matches else None
             if found is not None:
                 return found
+        for filters in self.pm.hook.tilekit_resolve_name(name=name):
+            if filters:
+                hits = self.query(where=list(filters), order_by="name", limit=1)
+                if hits:
+                    return hits[0]
+                exc = NotFoundError("tiling", name)
+                exc.args = (f"no tiling in the catalogue is the one {name!r} denotes ({', '.join(filters)}); "
+                            "a search may add it (tilekit searches)",)
+                raise exc
         raise NotFoundError("tiling", name, self.names())
 
     def _get(self, name: str) -> Entry | None:

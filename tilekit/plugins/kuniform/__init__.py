@@ -22,6 +22,13 @@ def _from_spec(spec):
     return from_spec(spec)
 
 
+def _from_file(path):
+    # measured start-up cost: as in _from_spec
+    from tilekit.plugins.kuniform.names import tiling_from_file
+
+    return tiling_from_file(path)
+
+
 FAMILIES = [
     Family(
         name=FAMILY,
@@ -29,8 +36,10 @@ FAMILIES = [
         from_spec=_from_spec,
         description=(
             "Found by `tilekit search k-uniform --k K` from their Delaney-Dress symbols (20 for k = 2, "
-            "61 for k = 3); named by their orbit types, e.g. [3^6; 3^4.6] p6, with #i when several share a name."
+            "61 for k = 3); named by their orbit types, e.g. [3^6; 3^4.6] p6, with #i when several share a name. "
+            "`tilekit show` also takes a GomJau-Hogg string, a Gavrog <1.1:...> D-symbol or a tes-catalog .tes file."
         ),
+        from_file=_from_file,
     )
 ]
 
@@ -61,3 +70,29 @@ def tilekit_normalise(key: str, value: str) -> tuple[str, str] | None:
         return "dsymbol", DSymbol.decode(value).encode()
     except (ValueError, IndexError):
         return None
+
+
+@hookimpl
+def tilekit_resolve_name(name):
+    # measured start-up cost: the notations load NumPy (only when the name is one)
+    from tilekit.plugins.kuniform.names import GOMJAU
+
+    if not (name.lstrip().startswith("<") or GOMJAU.match(name) or name.lower().endswith(".tes")):
+        return None
+    from tilekit.plugins.kuniform.names import resolve
+
+    return resolve(name)
+
+
+@hookimpl
+def tilekit_extra_properties(record):
+    if getattr(record, "family", None) != "archimedean":
+        return None
+    from tilekit.plugins.kuniform.names import archimedean_properties
+
+    return archimedean_properties(record)
+
+
+@hookimpl
+def tilekit_claim_file(path):
+    return FAMILY if str(path).lower().endswith(".tes") else None

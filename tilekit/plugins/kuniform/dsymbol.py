@@ -30,10 +30,12 @@ symbols are merged by :func:`canonical_form`.
 from __future__ import annotations
 
 import itertools
-from collections.abc import Iterator, Sequence
+import re
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import cache
+from typing import TypeVar
 
 from tilekit.plugins.archimedean.notation import (
     VertexType,
@@ -43,6 +45,7 @@ from tilekit.plugins.archimedean.notation import (
 )
 
 Perm = tuple[int, ...]
+T = TypeVar("T")
 #: The largest D-symbol text accepted: 12 chambers per vertex orbit, k <= 6.
 MAX_CHAMBERS = 72
 
@@ -71,17 +74,22 @@ def _compose(a: Perm, b: Perm) -> Perm:
     return tuple(a[x] for x in b)
 
 
-def _closure(gens: Sequence[Perm], n: int) -> frozenset[Perm]:
-    group = {tuple(range(n))}
-    frontier = list(group)
+def closure(identity: T, gens: Sequence[T], compose: Callable[[T, T], T]) -> frozenset[T]:
+    """The finite group the generators generate, as the set of its elements."""
+    group = {identity}
+    frontier = [identity]
     while frontier:
         g = frontier.pop()
         for h in gens:
-            x = _compose(h, g)
+            x = compose(h, g)
             if x not in group:
                 group.add(x)
                 frontier.append(x)
     return frozenset(group)
+
+
+def _closure(gens: Sequence[Perm], n: int) -> frozenset[Perm]:
+    return closure(tuple(range(n)), gens, _compose)
 
 
 @cache
@@ -222,6 +230,18 @@ class DSymbol:
             if len(index) == len(set(cls)):
                 return new
             cls = new
+
+    def minimal_image(self) -> DSymbol:
+        """The symbol divided by :meth:`minimal_classes`: the D-symbol of the tiling's full
+        symmetry group (a symbol of a subgroup, e.g. modulo translations, maps onto it)."""
+        cls = self.minimal_classes()
+        n = max(cls) + 1
+        rep = [-1] * n
+        for c in range(self.size):
+            if rep[cls[c]] < 0:
+                rep[cls[c]] = c
+        return DSymbol(*(tuple(cls[s[rep[i]]] for i in range(n)) for s in (self.s0, self.s1, self.s2)),
+                       tuple(self.face[rep[i]] for i in range(n)), tuple(self.degree[rep[i]] for i in range(n)))
 
     def canonical_form(self) -> tuple:
         """The least breadth-first relabelling over every start chamber: equal for
@@ -500,3 +520,104 @@ def symbols(combo: Sequence[Star], *, symmetry_breaking: bool = True) -> dict[tu
             key = sym.canonical_form()
             out.setdefault(key, sym)
     return out
+
+
+# --------------------------------------------------------------------------- Gavrog text
+
+#: ``<1.1:size[ dim]:σ0 list,σ1 list,σ2 list:m01 list,m12 list>`` as 3dt, Systre and Gavrog
+#: write D-symbols (Delgado-Friedrichs; chambers numbered from 1).
+_GAVROG = re.compile(r"^<\s*(?:\d+\.\d+\s*:)?\s*(\d+)(?:\s+(\d+))?\s*:([\d\s,]*):([\d\s,]*)>$")
+
+
+def to_gavrog(sym: DSymbol) -> str:
+    """The symbol in Gavrog's text form, chambers in canonical order: for each σi the image
+    of every chamber D with σi(D) >= D, then m01 and m12 once per orbit, each list in order
+    of the orbits' first chambers."""
+    form = sym.canonical_form()
+    s = [[row[i] for row in form] for i in range(3)]
+    m = ([row[3] for row in form], [row[4] for row in form])
+    n = len(form)
+    ops = ",".join(" ".join(str(s[i][d] + 1) for d in range(n) if s[i][d] >= d) for i in range(3))
+    mdefs = []
+    for i, values in ((0, m[0]), (1, m[1])):
+        seen = [False] * n
+        out = []
+        for d in range(n):
+            if seen[d]:
+                continue
+            e = d
+            while True:
+                e = s[i][e]
+                seen[e] = True
+                e = s[i + 1][e]
+                seen[e] = True
+                if e == d:
+                    break
+            out.append(str(values[d]))
+        mdefs.append(" ".join(out))
+    return f"<1.1:{n}:{ops}:{','.join(mdefs)}>"
+
+
+def from_gavrog(text: str) -> DSymbol:
+    """Read a 2-dimensional D-symbol in Gavrog's text form; ValueError naming what is wrong.
+    The result is checked as :meth:`DSymbol.decode` checks its own text (involutions, σ0σ2 =
+    σ2σ0, connected, curvature 0)."""
+    t = text.strip()
+    if len(t) > 40 * MAX_CHAMBERS:
+        raise ValueError(f"a D-symbol text may be at most {40 * MAX_CHAMBERS} characters")
+    m = _GAVROG.match(t)
+    if not m:
+        raise ValueError("a Gavrog D-symbol reads <1.1:SIZE:σ0 images,σ1 images,σ2 images:m01 values,m12 values>")
+    n = int(m.group(1))
+    if m.group(2) is not None and int(m.group(2)) != 2:
+        raise ValueError(f"only 2-dimensional D-symbols (tilings of the plane) are read here, not dimension {m.group(2)}")
+    if not 1 <= n <= MAX_CHAMBERS:
+        raise ValueError(f"a D-symbol here has 1 to {MAX_CHAMBERS} chambers (12 per vertex orbit, k <= 6), not {n}")
+    ops = m.group(3).split(",")
+    mvals = m.group(4).split(",")
+    if len(ops) != 3 or len(mvals) != 2:
+        raise ValueError(f"a 2-dimensional Gavrog D-symbol has 3 ','-separated σ lists and 2 m lists, "
+                         f"got {len(ops)} and {len(mvals)}")
+    s: list[list[int]] = []
+    for i, part in enumerate(ops):
+        images = [int(x) for x in part.split()]
+        si = [0] * (n + 1)
+        k = 0
+        for d in range(1, n + 1):
+            if si[d]:
+                continue
+            if k >= len(images):
+                raise ValueError(f"the σ{i} list is too short: chamber {d} has no image")
+            e = images[k]
+            k += 1
+            if not d <= e <= n or (si[e] and si[e] != d):
+                raise ValueError(f"σ{i} sends chamber {d} to {e}, which is not a free chamber in {d}..{n}")
+            si[d], si[e] = e, d
+        if k != len(images):
+            raise ValueError(f"the σ{i} list has {len(images) - k} more entries than chambers to pair")
+        s.append([x - 1 for x in si[1:]])
+    face = [0] * n
+    degree = [0] * n
+    for i, (part, target) in enumerate(zip(mvals, (face, degree))):
+        values = [int(x) for x in part.split()]
+        k = 0
+        for d in range(n):
+            if target[d]:
+                continue
+            if k >= len(values):
+                raise ValueError(f"the m{i}{i + 1} list is too short")
+            orbit, e = [], d
+            while True:
+                e = s[i][e]
+                orbit.append(e)
+                e = s[i + 1][e]
+                orbit.append(e)
+                if e == d:
+                    break
+            for x in orbit:
+                target[x] = values[k]
+            k += 1
+        if k != len(values):
+            raise ValueError(f"the m{i}{i + 1} list has {len(values) - k} more entries than orbits")
+    enc = "/".join(",".join(map(str, col)) for col in (face, degree, s[0], s[1], s[2]))
+    return DSymbol.decode(enc)

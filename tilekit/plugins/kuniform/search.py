@@ -24,8 +24,10 @@ from tilekit.plugins.kuniform.dsymbol import (
     Star,
     stabilizer_classes,
     symbols,
+    to_gavrog,
     vertex_types,
 )
+from tilekit.plugins.kuniform.names import notation_properties
 from tilekit.plugins.kuniform.realize import periodic_tiling
 from tilekit.symmetry import ORBIFOLD, wallpaper_group
 from tilekit.tiling import PeriodicTiling
@@ -70,7 +72,8 @@ class KUniformTiling(PeriodicTiling):
         return (
             f"{len(self.orbit_types)}-uniform: vertex orbits {types_text(self.orbit_types)}.\n"
             f"{unit_text(self, tuple(sorted(set(self.symbol.face))))}\n"
-            f"D-symbol ({self.symbol.size} chambers): {self.symbol.encode()}"
+            f"D-symbol ({self.symbol.size} chambers): {self.symbol.encode()}\n"
+            f"Gavrog D-symbol: {to_gavrog(self.symbol)}"
         )
 
     def properties(self) -> dict[str, Any]:
@@ -174,6 +177,7 @@ def record_of(tiling: KUniformTiling, name: str, iuc: str) -> CatalogueRecord:
     """The catalogue record of a laid-out tiling whose wallpaper group is ``iuc``."""
     props = tiling.properties()
     props.update({"wallpaper_group": iuc, "orbifold": ORBIFOLD[iuc], "symmetry_group": ORBIFOLD[iuc]})
+    props.update(notation_properties(tiling.symbol))
     spec = tiling.spec()
     spec["name"] = name
     return CatalogueRecord(FAMILY, name, spec, title=f"{props['k']}-uniform tiling {props['orbit_types']}, {iuc}",
