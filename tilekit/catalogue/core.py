@@ -72,6 +72,12 @@ _MAX_NAMES = 20_000
 _PG_LOCK = 0x7415_E417
 
 
+#: Properties whose canonical value determines a tiling up to similarity: records sharing one
+#: are one tiling seen by two families (an Archimedean tiling is also the 1-uniform tiling with
+#: its D-symbol), so a name read as such a value finds the first, not an ambiguity.
+_IDENTITY_KEYS = ("dsymbol",)
+
+
 class Catalogue(RunsMixin, ResultsMixin, TilingReader):
     """An open catalogue database. Build one with :func:`open_catalogue`."""
 
@@ -405,7 +411,7 @@ class Catalogue(RunsMixin, ResultsMixin, TilingReader):
                 found = self._get(value)
             else:
                 matches = self.query(where=[Filter(key, "=", value, value)], limit=2)
-                if len(matches) > 1:
+                if len(matches) > 1 and key not in _IDENTITY_KEYS:
                     raise ParameterError(f"{name!r} names several tilings ({matches[0].name}, {matches[1].name} ...): "
                                          f"tilekit list --where '{key}={value}' lists them")
                 found = matches[0] if matches else None
