@@ -10,6 +10,10 @@ from setuptools import find_packages, setup
 packages = find_packages(include=["tilekit", "tilekit.*"])
 #: each built-in plugin's own Alembic branch (migrations/ beside its modules, not a package)
 plugin_migrations = {p: ["migrations/*.py"] for p in packages if p.count(".") == 2 and p.startswith("tilekit.plugins.")}
+#: data files a module reads from its own folder (e.g. the k-uniform plugin's notation table)
+module_data = {p: ["*.json", "*.toml", "*.csv", "*.txt"] for p in packages}
+for p, globs in plugin_migrations.items():
+    module_data[p] = module_data[p] + globs
 packages += ["tilekit._catalogue", "tilekit._migrations"]
 
 setup(
@@ -18,9 +22,9 @@ setup(
     package_data={
         "tilekit._catalogue": ["**/*"],
         "tilekit._migrations": ["*.py", "*.mako", "*.ini", "versions/*.py"],
-        "tilekit": ["py.typed"],
-        "tilekit.web": ["static/*"],
-        **plugin_migrations,
+        **module_data,
+        "tilekit": ["py.typed", *module_data["tilekit"]],
+        "tilekit.web": ["static/*", *module_data["tilekit.web"]],
     },
     include_package_data=False,
 )
