@@ -81,6 +81,7 @@ CASES = [
     ("sampling", "PIL", ["sample", "--density", "{dir}/grey.png", "--method", "penrose", "-n", "50",
                          "-o", "{dir}/p.csv"]),
     ("texture", "PIL", ["wang", "texture", "{dir}/grey.png", "--tile", "8", "-o", "{dir}/tiles.png"]),
+    ("cms", "pycryptosat", ["search", "polyomino-classify", "--max-cells", "3", "--solver", "cryptominisat5"]),
     ("dask", "dask,distributed", ["search", "wang-periodicity", "--max-m", "1", "--executor", "dask"]),
 ]
 

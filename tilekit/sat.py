@@ -100,9 +100,11 @@ def check_solver(solver: str) -> str:
 
 def have_cms() -> bool:
     """Whether pycryptosat (CryptoMiniSat 5) can be imported."""
-    import importlib.util
-
-    return importlib.util.find_spec("pycryptosat") is not None
+    try:
+        import pycryptosat  # noqa: F401  (optional: the cms extra)
+    except ImportError:
+        return False
+    return True
 
 
 def _flat(block: Any) -> Any:

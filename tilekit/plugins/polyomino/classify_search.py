@@ -33,7 +33,7 @@ from tilekit.plugins.polyomino.heesch import MAX_LEVEL_LIMIT
 from tilekit.plugins.polyomino.isohedral import analyse_many
 from tilekit.plugins.polyomino.model import grid_of, make_row
 from tilekit.plugins.polyomino.search import prefix_chunks, prefix_depth
-from tilekit.sat import SAT_SOLVERS
+from tilekit.sat import SAT_SOLVERS, check_solver
 
 #: The classification stores rows up to this size (the enumeration's own limit).
 MAX_CLASSIFY = 14
@@ -85,6 +85,7 @@ def check_params(params: dict[str, Any]) -> None:
         raise ParameterError(f"--min-cells must be between 1 and --max-cells ({n}), got {lo}")
     check_bounds(**_bounds(params))
     check_size(grid, n)
+    check_solver(str(params.get("solver") or CLASSIFY_SOLVER))  # a missing pycryptosat: before the run
 
 
 def chunks(params: dict[str, Any]) -> list[dict[str, Any]]:
