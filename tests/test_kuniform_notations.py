@@ -16,6 +16,7 @@ from __future__ import annotations
 import itertools
 import json
 import math
+import os
 import re
 import subprocess
 import sys
@@ -148,8 +149,14 @@ def test_written_notations_parse_back_to_the_same_tiling(k):
         assert parse(text).symbol.canonical_form() == sym.canonical_form(), text
 
 
+#: k = 4 writes and parses 151 strings (several seconds each, over 10 minutes on the 2-core CI
+#: machine): run with TILEKIT_EXHAUSTIVE=1; CI runs k = 2, 3.
+EXHAUSTIVE = os.environ.get("TILEKIT_EXHAUSTIVE") == "1"
+
+
 @pytest.mark.slow
-@pytest.mark.parametrize("k", [2, 3, 4])
+@pytest.mark.parametrize("k", [2, 3, pytest.param(4, marks=pytest.mark.skipif(
+    not EXHAUSTIVE, reason="k = 4 round trip: set TILEKIT_EXHAUSTIVE=1 (over 10 minutes)"))])
 def test_written_notations_parse_back_to_the_same_tiling_to_k4(k):
     """Every k-uniform tiling with k = 2, 3, 4 (20 + 61 + 151) but three 4-uniform ones."""
     missing = []
