@@ -79,6 +79,7 @@ def tilekit_resolve_name(name):
 
     if not (name.lstrip().startswith("<") or GOMJAU.match(name) or name.lower().endswith(".tes")):
         return None
+    # start-up cost: the notation and search modules (NumPy, shapely) load only when used
     from tilekit.plugins.kuniform.names import resolve
 
     return resolve(name)
@@ -88,6 +89,7 @@ def tilekit_resolve_name(name):
 def tilekit_extra_properties(record):
     if getattr(record, "family", None) != "archimedean":
         return None
+    # start-up cost: the notation and search modules (NumPy, shapely) load only when used
     from tilekit.plugins.kuniform.names import archimedean_properties
 
     return archimedean_properties(record)

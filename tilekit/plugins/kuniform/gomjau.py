@@ -815,6 +815,7 @@ def _polygons_of(shapes: Sequence[_Shape]) -> Polygons:
 
 def _unit_of(symbol: DSymbol) -> tuple[list[_Shape], np.ndarray, np.ndarray]:
     """The tiling of ``symbol`` laid out (realize.py): its unit's polygons and lattice."""
+    # start-up cost: the notation and search modules (NumPy, shapely) load only when used
     from tilekit.plugins.kuniform.realize import faces, layout
 
     flags, v1, v2 = layout(symbol)

@@ -31,10 +31,12 @@ def symbol_of(text: str) -> DSymbol | None:
         except ValueError as exc:
             raise ParseError(f"Gavrog D-symbol {t[:60]!r}: {exc}") from None
     if GOMJAU.match(t):
+        # start-up cost: the notation and search modules (NumPy, shapely) load only when used
         from tilekit.plugins.kuniform.gomjau import parse
 
         return parse(t).symbol
     if t.lower().endswith(".tes"):
+        # start-up cost: the notation and search modules (NumPy, shapely) load only when used
         from tilekit.plugins.kuniform.tes import read_tes
 
         return read_tes(t)[1]
@@ -49,6 +51,7 @@ def resolve(name: str) -> list[str] | None:
 
 def notation_properties(sym: DSymbol) -> dict[str, Any]:
     """``dsymbol`` (this plugin's text), ``gavrog`` and, where the tiling has one, ``gomjau``."""
+    # start-up cost: the notation and search modules (NumPy, shapely) load only when used
     from tilekit.plugins.kuniform.gomjau import write
 
     props: dict[str, Any] = {"dsymbol": sym.encode(), "gavrog": to_gavrog(sym)}
@@ -60,6 +63,7 @@ def notation_properties(sym: DSymbol) -> dict[str, Any]:
 
 def archimedean_table() -> dict[str, dict[str, Any]]:
     """For each Archimedean vertex type: the notations of its tiling (its 1-uniform symbol)."""
+    # start-up cost: the notation and search modules (NumPy, shapely) load only when used
     from tilekit.plugins.archimedean.notation import format_sequence
     from tilekit.plugins.kuniform.dsymbol import vertex_types
     from tilekit.plugins.kuniform.search import tilings_with_types
@@ -89,6 +93,7 @@ if __name__ == "__main__":  # pragma: no cover - regenerates the shipped table
 
 def tiling_from_file(path: str) -> Any:
     """The k-uniform tiling a .tes file describes (``tilekit render --system FILE.tes``)."""
+    # start-up cost: the notation and search modules (NumPy, shapely) load only when used
     from tilekit.plugins.kuniform.search import tiling_of
     from tilekit.plugins.kuniform.tes import read_tes
 
