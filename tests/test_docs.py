@@ -12,6 +12,7 @@ import sysconfig
 from pathlib import Path
 
 import pytest
+from conftest import postgres_server
 from docrunner import (
     DOCS,
     POSTGRES_SERVER,
@@ -49,7 +50,7 @@ def _state(block: Block, factory: pytest.TempPathFactory) -> DocState:
 
 
 @pytest.mark.parametrize("block", [pytest.param(b, id=b.id, marks=_marks(b)) for b in BLOCKS])
-def test_documented_example_runs(block: Block, tmp_path_factory) -> None:
+def test_documented_example_runs(block: Block, tmp_path_factory, request) -> None:
     if block.tag == "ci":
         # README's set-up commands: .ci/run takes them from README by these markers and runs them.
         ci = (ROOT / ".ci" / "run").read_text()
@@ -61,9 +62,12 @@ def test_documented_example_runs(block: Block, tmp_path_factory) -> None:
         check_benchmark_block(block)  # minutes to hours: checked, not run
         return
     if block.tag == "postgres":
-        server = os.environ.get(POSTGRES_SERVER)
+        # the same server as the catalogue's PostgreSQL tests (conftest): part of the suite, so
+        # without one the block fails rather than passing unrun
+        server = postgres_server(request.config)
         if not server:
-            pytest.skip(f"needs a PostgreSQL server: set {POSTGRES_SERVER}")
+            pytest.fail(f"{block.id} needs a PostgreSQL server: set {POSTGRES_SERVER} or --postgres "
+                        "(README's test command starts one)")
         state = _state(block, tmp_path_factory)
         with postgres_database(state, server):
             run_block(block, state)
