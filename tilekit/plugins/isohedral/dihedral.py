@@ -499,14 +499,6 @@ def _valid_result(model: SplitModel, p: np.ndarray, x: np.ndarray, u: float, v: 
 # ------------------------------------------------------------------------ all types
 
 
-def _run_one(args: tuple[np.ndarray, np.ndarray, int, DihedralSettings]) -> DihedralResult | tuple[int, str]:
-    a, b, ih, settings = args
-    try:
-        return escherize_dihedral_type(a, b, ih, settings)
-    except (ParameterError, GeometryError) as exc:
-        return ih, str(exc)
-
-
 def escherize_dihedral(goal_a: Any, goal_b: Any, types: Iterable[int] | None = None, *,
                        settings: DihedralSettings = DihedralSettings(), workers: int = 1,
                        progress: Callable[[DihedralResult | tuple[int, str]], None] | None = None
@@ -521,7 +513,8 @@ def escherize_dihedral(goal_a: Any, goal_b: Any, types: Iterable[int] | None = N
             raise ParameterError(f"IH{ih} is a marked type; escherization takes the 81 unmarked types")
     if not (isinstance(workers, int) and 1 <= workers <= MAX_WORKERS):
         raise ParameterError(f"workers {workers!r} must be an integer from 1 to {MAX_WORKERS}")
-    outs = escher.run_jobs(_run_one, [(a, b, ih, settings) for ih in todo], workers, progress)
+    outs = escher.run_jobs(escher.run_guarded, [(escherize_dihedral_type, ih, (a, b, ih, settings)) for ih in todo],
+                           workers, progress)
     good = sorted((o for o in outs if isinstance(o, DihedralResult)), key=lambda r: (r.distance, r.ih))
     failed = [o for o in outs if not isinstance(o, DihedralResult)]
     return good, failed
@@ -543,15 +536,7 @@ def pieces_svg(result: DihedralResult, goals: Sequence[np.ndarray], size: int = 
 def overlay_svg(title: str, shapes: Sequence[np.ndarray], goals: Sequence[np.ndarray], size: int = 400) -> str:
     """SVG of filled shapes (first light, second dark) and aligned goals (dashed, red then
     blue) in one frame, with a title."""
-    pts = np.vstack([*shapes, *goals])
-    lo, hi = pts.min(axis=0), pts.max(axis=0)
-    span = float(max(hi - lo)) * 1.08 or 1.0
-    mid = (lo + hi) / 2
-
-    def path(q: np.ndarray) -> str:
-        xy = (q - mid) / span * size + size / 2
-        xy[:, 1] = size - xy[:, 1]
-        return "M" + " L".join(f"{x:.2f},{y:.2f}" for x, y in xy) + " Z"
+    path = escher.framed_path([*shapes, *goals], size)
 
     fills, strokes = ("#f4c27a", "#7fb0d6"), ("#c0392b", "#1f4e79")
     body = "".join(f'<path d="{path(q)}" fill="{fills[i % 2]}" fill-opacity="0.85" stroke="#222" stroke-width="1.5"/>'

@@ -774,11 +774,14 @@ def _valid_result(model: TypeModel, p: np.ndarray, c: np.ndarray, goal: np.ndarr
 # ------------------------------------------------------------------------ all types
 
 
-def _run_one(args: tuple[np.ndarray, int, Settings]) -> EscherResult | tuple[int, str]:
-    goal, ih, settings = args
+def run_guarded(job: tuple[Callable[..., Any], int, tuple[Any, ...]]) -> Any:
+    """One type's fit ``fit(*args)`` from a ``(fit, ih, args)`` job, or ``(ih, reason)`` when
+    the type has no valid tile near the goal(s) (the job form :func:`run_jobs` takes for the
+    monohedral, dihedral and Heaven-and-Hell searches alike)."""
+    fit, ih, args = job
     try:
-        return escherize_type(goal, ih, settings)
-    except (ParameterError, GeometryError) as exc:  # a type with no valid tile near the goal
+        return fit(*args)
+    except (ParameterError, GeometryError) as exc:
         return ih, str(exc)
 
 
@@ -796,7 +799,7 @@ def escherize(goal: Any, types: Iterable[int] | None = None, *, settings: Settin
             raise ParameterError(f"IH{ih} is a marked type; escherization takes the 81 unmarked types")
     if not (isinstance(workers, int) and 1 <= workers <= MAX_WORKERS):
         raise ParameterError(f"workers {workers!r} must be an integer from 1 to {MAX_WORKERS}")
-    outs = run_jobs(_run_one, [(goal, ih, settings) for ih in todo], workers, progress)
+    outs = run_jobs(run_guarded, [(escherize_type, ih, (goal, ih, settings)) for ih in todo], workers, progress)
     good = sorted((o for o in outs if isinstance(o, EscherResult)), key=lambda r: (r.distance, r.ih))
     failed = [o for o in outs if not isinstance(o, EscherResult)]
     return good, failed
@@ -890,19 +893,27 @@ def align_onto(outline: np.ndarray, goal: np.ndarray, mirrored: bool, samples: i
     return np.column_stack([moved.real, moved.imag])
 
 
-def outline_svg(result: EscherResult, goal: np.ndarray, size: int = 400) -> str:
-    """SVG of the tile (filled) with the aligned goal (dashed outline)."""
-    tile = np.asarray(result.tiling().prototile.outline, dtype=float)
-    g = aligned_goal(result, goal)
-    pts = np.vstack([tile, g])
+def framed_path(shapes: Sequence[np.ndarray], size: int) -> Callable[[np.ndarray], str]:
+    """An SVG path writer for outlines framed together: all of ``shapes`` fit a ``size``
+    square with a 4 % margin, y up."""
+    pts = np.vstack(list(shapes))
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     span = float(max(hi - lo)) * 1.08 or 1.0
     mid = (lo + hi) / 2
 
     def path(q: np.ndarray) -> str:
-        xy = (q - mid) / span * size + size / 2
+        xy = (np.asarray(q, dtype=float) - mid) / span * size + size / 2
         xy[:, 1] = size - xy[:, 1]
         return "M" + " L".join(f"{x:.2f},{y:.2f}" for x, y in xy) + " Z"
+
+    return path
+
+
+def outline_svg(result: EscherResult, goal: np.ndarray, size: int = 400) -> str:
+    """SVG of the tile (filled) with the aligned goal (dashed outline)."""
+    tile = np.asarray(result.tiling().prototile.outline, dtype=float)
+    g = aligned_goal(result, goal)
+    path = framed_path([tile, g], size)
 
     return (f'<svg xmlns="http://www.w3.org/2000/svg" width="{size}" height="{size}" viewBox="0 0 {size} {size}">'
             f'<rect width="{size}" height="{size}" fill="white"/>'

@@ -243,14 +243,6 @@ def heaven_hell_types() -> list[int]:
     return list(_types())
 
 
-def _run_one(args: tuple[np.ndarray, np.ndarray, int, DihedralSettings]) -> HeavenResult | tuple[int, str]:
-    a, b, ih, settings = args
-    try:
-        return heaven_hell_type(a, b, ih, settings)
-    except (ParameterError, GeometryError) as exc:
-        return ih, str(exc)
-
-
 def heaven_hell(goal_a: Any, goal_b: Any, types: Iterable[int] | None = None, *,
                 settings: DihedralSettings = DEFAULT_SETTINGS, workers: int = 1
                 ) -> tuple[list[HeavenResult], list[tuple[int, str]]]:
@@ -264,6 +256,6 @@ def heaven_hell(goal_a: Any, goal_b: Any, types: Iterable[int] | None = None, *,
             raise ParameterError(f"IH{ih} is a marked type; escherization takes the 81 unmarked types")
     if not (isinstance(workers, int) and 1 <= workers <= MAX_WORKERS):
         raise ParameterError(f"workers {workers!r} must be an integer from 1 to {MAX_WORKERS}")
-    outs = escher.run_jobs(_run_one, [(a, b, ih, settings) for ih in todo], workers)
+    outs = escher.run_jobs(escher.run_guarded, [(heaven_hell_type, ih, (a, b, ih, settings)) for ih in todo], workers)
     good = sorted((o for o in outs if isinstance(o, HeavenResult)), key=lambda r: (r.distance, r.ih))
     return good, [o for o in outs if not isinstance(o, HeavenResult)]
