@@ -16,12 +16,11 @@ import warnings
 import numpy as np
 import pytest
 import shapely
-from click.testing import CliRunner
 from cliutil import assert_one_line_error
+from family_cli import family_cli
 
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.plugins import curved as plugin
-from tilekit.plugins import make_plugin_manager
 from tilekit.plugins.curved import layers, model
 from tilekit.plugins.curved.patch import ModelPatch, vertex_angle_sums
 from tilekit.plugins.curved.render import arc_commands
@@ -342,18 +341,7 @@ def test_a_sphere_cannot_be_grown_by_the_disc_automaton():
 
 @pytest.fixture
 def cli(tmp_path, monkeypatch):
-    import tilekit.cli
-
-    monkeypatch.setenv("TILEKIT_PLUGINS", "curved")
-    pm = make_plugin_manager()
-    monkeypatch.setattr(tilekit.cli, "plugin_manager", lambda: pm)
-    url = f"sqlite:///{tmp_path / 'cat.sqlite'}"
-    monkeypatch.chdir(tmp_path)
-
-    def run(*args):
-        return CliRunner().invoke(tilekit.cli.cli, ["--catalogue", url, *args], catch_exceptions=False)
-
-    return run
+    return family_cli(tmp_path, monkeypatch, "curved")
 
 
 def test_cli_list_show_render(cli, tmp_path):

@@ -18,14 +18,13 @@ import math
 import numpy as np
 import pytest
 import shapely
-from click.testing import CliRunner
 from cliutil import assert_one_line_error
+from family_cli import family_cli
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from tilekit.errors import ParameterError, ParseError, TilekitError
 from tilekit.limits import LimitError
-from tilekit.plugins import make_plugin_manager
 from tilekit.plugins import quasiperiodic as plugin
 from tilekit.plugins.quasiperiodic import project
 from tilekit.plugins.quasiperiodic.multigrid import SingularGrid, rhombs
@@ -469,18 +468,7 @@ def test_records_and_family_name():
 
 @pytest.fixture
 def cli(tmp_path, monkeypatch):
-    import tilekit.cli
-
-    monkeypatch.setenv("TILEKIT_PLUGINS", "quasiperiodic")
-    pm = make_plugin_manager()
-    monkeypatch.setattr(tilekit.cli, "plugin_manager", lambda: pm)
-    url = f"sqlite:///{tmp_path / 'cat.sqlite'}"
-    monkeypatch.chdir(tmp_path)
-
-    def run(*args):
-        return CliRunner().invoke(tilekit.cli.cli, ["--catalogue", url, *args], catch_exceptions=False)
-
-    return run
+    return family_cli(tmp_path, monkeypatch, "quasiperiodic")
 
 
 def test_cli_list_show_render(cli, tmp_path):
