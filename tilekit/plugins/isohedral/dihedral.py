@@ -421,13 +421,7 @@ def _polish(model: SplitModel, p: np.ndarray, x: np.ndarray, u: float, v: float,
         # the pieces' relative size, as in the search (a hinge: zero within AREA_SLACK)
         out.append([AREA_PENALTY * _area_excess(pieces, log_ratio)])
         for i, piece in enumerate(pieces):
-            zc = resample(piece, n)
-            zc = zc - zc.mean()
-            w = resample(srcs[i], n, bases[i] + z[-2 + i])
-            w = w - w.mean()
-            zn = np.vdot(zc, zc).real
-            a = np.vdot(zc, w) / zn if zn > 0 else 0j
-            r = (a * zc - w) / math.sqrt(np.vdot(w, w).real)
+            r = escher.similarity_residual(resample(piece, n), resample(srcs[i], n, bases[i] + z[-2 + i]))
             out += [r.real, r.imag]
         out.append(ridge * (z[npar : npar + model.nc] - c0))
         out.append([10.0 * short])

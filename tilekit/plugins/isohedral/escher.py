@@ -726,15 +726,7 @@ def _polish(model: TypeModel, p: np.ndarray, c: np.ndarray, goal: np.ndarray, ba
     ridge = math.sqrt(POLISH_RIDGE)
 
     def resid(x: np.ndarray) -> np.ndarray:
-        z = model.outline(x[:npar], x[npar:-1])
-        zc = resample(z, n)
-        zc = zc - zc.mean()
-        w = resample(src, n, base + x[-1])
-        w = w - w.mean()
-        wn = math.sqrt(np.vdot(w, w).real)
-        zn = np.vdot(zc, zc).real
-        a = np.vdot(zc, w) / zn if zn > 0 else 0j
-        r = (a * zc - w) / wn
+        r = similarity_residual(resample(model.outline(x[:npar], x[npar:-1]), n), resample(src, n, base + x[-1]))
         return np.concatenate([r.real, r.imag, ridge * (x[npar:-1] - model.c0)])
 
     x0 = np.concatenate([p, c, [0.0]])
@@ -772,6 +764,17 @@ def _valid_result(model: TypeModel, p: np.ndarray, c: np.ndarray, goal: np.ndarr
 
 
 # ------------------------------------------------------------------------ all types
+
+
+def similarity_residual(z: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """``(a z - w) / |w|`` for the complex samples ``z`` (the tile) and ``w`` (the goal), both
+    centred first, with the best complex scale-rotation ``a``: the least-squares residual whose
+    squared norm is the Procrustes distance the fits minimise."""
+    zc = z - z.mean()
+    wc = w - w.mean()
+    zn = np.vdot(zc, zc).real
+    a = np.vdot(zc, wc) / zn if zn > 0 else 0j
+    return (a * zc - wc) / math.sqrt(np.vdot(wc, wc).real)
 
 
 def run_guarded(job: tuple[Callable[..., Any], int, tuple[Any, ...]]) -> Any:

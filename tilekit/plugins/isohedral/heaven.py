@@ -181,14 +181,9 @@ def heaven_hell_type(goal_a: Any, goal_b: Any, ih: int, settings: DihedralSettin
 
     def resid(z: np.ndarray) -> np.ndarray:
         zc = resample(model.tile.outline(z[:npar], z[npar:-2]), n)
-        zc = zc - zc.mean()
         out = []
         for i in range(2):
-            w = resample(srcs[i], n, bases[i] + z[-2 + i])
-            w = w - w.mean()
-            zn = np.vdot(zc, zc).real
-            a = np.vdot(zc, w) / zn if zn > 0 else 0j
-            r = (a * zc - w) / math.sqrt(np.vdot(w, w).real)
+            r = escher.similarity_residual(zc, resample(srcs[i], n, bases[i] + z[-2 + i]))
             out += [r.real, r.imag]
         return np.concatenate(out)
 
