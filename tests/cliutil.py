@@ -1,6 +1,12 @@
-"""Assertions the CLI tests share (tests/ is on sys.path through its conftest.py)."""
+"""Helpers the tests share by import (tests/ is on sys.path through its conftest.py): a
+module of its own, because ``from conftest import ...`` finds whichever conftest.py was
+loaded last (tests/web has one too)."""
 
 from __future__ import annotations
+
+import os
+
+ENV = "TILEKIT_TEST_POSTGRES"
 
 
 def assert_one_line_error(result, fragment: str = "") -> None:
@@ -11,3 +17,30 @@ def assert_one_line_error(result, fragment: str = "") -> None:
     assert len(lines) == 1 and lines[0].startswith("error: "), result.stderr
     assert "Traceback" not in result.output
     assert fragment in lines[0], lines[0]
+
+
+def postgres_server(config) -> str | None:
+    return config.getoption("--postgres") or os.environ.get(ENV) or None
+
+
+class CatalogueCLI:
+    """The command line on one fresh SQLite catalogue: ``run(*args)`` invokes it in-process,
+    ``count(family, *where)`` is ``tilekit list --family F --count --where ...`` as an int."""
+
+    def __init__(self, url: str) -> None:
+        self.url = url
+
+    def run(self, *args: str):
+        from click.testing import CliRunner
+
+        from tilekit.cli import cli
+
+        return CliRunner().invoke(cli, ["--catalogue", self.url, *args], catch_exceptions=False)
+
+    def count(self, family: str, *where: str) -> int:
+        args = ["list", "--family", family, "--count"]
+        for w in where:
+            args += ["--where", w]
+        r = self.run(*args)
+        assert r.exit_code == 0, r.output
+        return int(r.output.split()[-1])

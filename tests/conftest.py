@@ -9,12 +9,10 @@ a server the PostgreSQL cases fail: they are part of the suite, not optional.
 
 from __future__ import annotations
 
-import os
 import uuid
 
 import pytest
-
-ENV = "TILEKIT_TEST_POSTGRES"
+from cliutil import ENV, CatalogueCLI, postgres_server
 
 
 def pytest_addoption(parser):
@@ -22,8 +20,6 @@ def pytest_addoption(parser):
                      help=f"PostgreSQL server URL for the catalogue tests (default: ${ENV})")
 
 
-def postgres_server(config) -> str | None:
-    return config.getoption("--postgres") or os.environ.get(ENV) or None
 
 
 @pytest.fixture
@@ -91,29 +87,6 @@ def _sigint_not_left_ignored(request):
     if _sigint_ignored():
         signal.signal(signal.SIGINT, signal.default_int_handler)
         warnings.warn(f"{request.node.nodeid} left SIGINT ignored; restored", stacklevel=1)
-
-
-class CatalogueCLI:
-    """The command line on one fresh SQLite catalogue: ``run(*args)`` invokes it in-process,
-    ``count(family, *where)`` is ``tilekit list --family F --count --where ...`` as an int."""
-
-    def __init__(self, url: str) -> None:
-        self.url = url
-
-    def run(self, *args: str):
-        from click.testing import CliRunner
-
-        from tilekit.cli import cli
-
-        return CliRunner().invoke(cli, ["--catalogue", self.url, *args], catch_exceptions=False)
-
-    def count(self, family: str, *where: str) -> int:
-        args = ["list", "--family", family, "--count"]
-        for w in where:
-            args += ["--where", w]
-        r = self.run(*args)
-        assert r.exit_code == 0, r.output
-        return int(r.output.split()[-1])
 
 
 @pytest.fixture

@@ -47,6 +47,7 @@ from __future__ import annotations
 import ast
 import contextlib
 import doctest
+import importlib
 import io
 import math
 import os
@@ -132,6 +133,7 @@ class DocState:
     namespace: dict[str, Any] = field(default_factory=dict)
     done: set[int] = field(default_factory=set)
     extra_env: dict[str, str] = field(default_factory=dict)
+    paths: list[str] = field(default_factory=list)  # what the document's blocks put on sys.path
 
     @classmethod
     def create(cls, doc: Path, folder: Path) -> DocState:
@@ -251,7 +253,8 @@ def _run_python(block: Block, state: DocState) -> None:
     old_cwd = os.getcwd()
     os.environ.update(state.env())
     os.chdir(state.folder)
-    sys.path.insert(0, str(state.site))
+    saved_path = list(sys.path)
+    sys.path[:0] = [str(state.site), *state.paths]
     try:
         for stmt in tree.body:
             where = f"{block.doc.relative_to(ROOT)}:{block.line + stmt.lineno}"
@@ -270,7 +273,18 @@ def _run_python(block: Block, state: DocState) -> None:
             except Exception as e:  # noqa: BLE001 - reported with the line that raised
                 raise DocError(f"{where}: {type(e).__name__}: {e}") from e
     finally:
-        sys.path.remove(str(state.site))
+        # a block may add to sys.path (docs/plugins.md puts a package's source on it): the
+        # addition lasts for the document's later blocks, never for the tests that run after it
+        added = [p for p in sys.path if p not in saved_path and p != str(state.site)]
+        state.paths.extend(str((state.folder / p).resolve()) for p in added if p not in state.paths)
+        sys.path[:] = saved_path
+        # modules the block imported from the document's venv or from a path it added leave
+        # with it, so a package a document installed is not importable after the document
+        roots = (str(state.site), str(state.folder), *state.paths)
+        for name, module in list(sys.modules.items()):
+            if (getattr(module, "__file__", None) or "").startswith(roots):
+                del sys.modules[name]
+        importlib.invalidate_caches()
         os.chdir(old_cwd)
         os.environ.clear()
         os.environ.update(old_env)

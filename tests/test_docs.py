@@ -12,7 +12,7 @@ import sysconfig
 from pathlib import Path
 
 import pytest
-from conftest import postgres_server
+from cliutil import postgres_server
 from docrunner import (
     DOCS,
     POSTGRES_SERVER,

@@ -14,7 +14,7 @@ from cliutil import assert_one_line_error
 
 @pytest.fixture(scope="module")
 def cli(tmp_path_factory):
-    from conftest import CatalogueCLI
+    from cliutil import CatalogueCLI
 
     return CatalogueCLI(f"sqlite:///{tmp_path_factory.mktemp('prototile') / 'cli.sqlite'}")
 

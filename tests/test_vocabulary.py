@@ -23,7 +23,7 @@ from tilekit.plugins import catalogue_records, get_plugin_manager
 
 @pytest.fixture(scope="module")
 def cli(tmp_path_factory):
-    from conftest import CatalogueCLI
+    from cliutil import CatalogueCLI
 
     return CatalogueCLI(f"sqlite:///{tmp_path_factory.mktemp('vocab') / 'cli.sqlite'}")
 

@@ -50,7 +50,9 @@ def test_serve_runs_on_loopback(web_catalogue):
                 r = httpx.get(f"http://127.0.0.1:{port}/api/families", timeout=5)
                 break
             except httpx.TransportError:
-                assert proc.poll() is None and time.monotonic() < deadline, "tilekit serve did not start"
+                if proc.poll() is not None or time.monotonic() > deadline:
+                    proc.kill()
+                    pytest.fail(f"tilekit serve did not start: {proc.communicate()[1][-2000:]}")
                 time.sleep(0.2)
         assert r.status_code == 200 and "isohedral" in {f["name"] for f in r.json()["families"]}
         r = httpx.post(f"http://127.0.0.1:{port}/api/runs/{web_catalogue.web_test_run}/cancel", timeout=5)
