@@ -9,7 +9,7 @@ could not be read from this workspace, so the numbers below are Kaplan's by thre
 - the 6-hexes' Hc: the report printed in heesch-sat's README (Kaplan's program; 4 non-tilers,
   3 with Hc = 1 and 1 with Hc = 2; its Hh lines repeat Hc there, as ``-hh`` was off);
 - every row: Kaplan's program itself (github.com/isohedral/heesch-sat at 008e733, ``sat -hh``),
-  run here on the same shapes (``benchmarks/bench_heesch_sat.py --grid hex --cells 7 --hh``),
+  run here on the same shapes (``benchmarks/bench_heesch_sat.py --grid hex --cells 7 --mode hc --hh``),
   with the same Hc and Hh shape by shape; the same program reproduces Tables 1-2 for the
   7- and 8-ominoes (Hc 1 / 2 and 6 / 14; Hh 3 and 19 / 1), the rows tests/test_polyomino_classify.py
   checks tilekit against;
