@@ -107,7 +107,7 @@ def tilekit_catalogue_records() -> list[CatalogueRecord]:
     # measured start-up cost: as in from_spec (records are built only when seeding)
     from tilekit.plugins.substitution.continuum import members
     from tilekit.plugins.substitution.hat import HatSystem
-    from tilekit.plugins.substitution.tiling import continuum_records, system_properties
+    from tilekit.plugins.substitution.tiling import continuum_records, make_tiling
 
     records = []
     for name, system in builtin_systems().items():
@@ -121,7 +121,7 @@ def tilekit_catalogue_records() -> list[CatalogueRecord]:
                 name=name,
                 spec={"system": name},
                 title=system.title,
-                properties=system_properties(system),
+                properties=make_tiling(system).properties(),
                 aliases=aliases,
             )
         )
