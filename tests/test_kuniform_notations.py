@@ -16,7 +16,6 @@ from __future__ import annotations
 import itertools
 import json
 import math
-import os
 import re
 import subprocess
 import sys
@@ -150,13 +149,11 @@ def test_written_notations_parse_back_to_the_same_tiling(k):
 
 
 #: k = 4 writes and parses 151 strings (several seconds each, over 10 minutes on the 2-core CI
-#: machine): run with TILEKIT_EXHAUSTIVE=1; CI runs k = 2, 3.
-EXHAUSTIVE = os.environ.get("TILEKIT_EXHAUSTIVE") == "1"
+#: machine): marked exhaustive (TILEKIT_EXHAUSTIVE=1); CI runs k = 2, 3.
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("k", [2, 3, pytest.param(4, marks=pytest.mark.skipif(
-    not EXHAUSTIVE, reason="k = 4 round trip: set TILEKIT_EXHAUSTIVE=1 (over 10 minutes)"))])
+@pytest.mark.parametrize("k", [2, 3, pytest.param(4, marks=pytest.mark.exhaustive)])
 def test_written_notations_parse_back_to_the_same_tiling_to_k4(k):
     """Every k-uniform tiling with k = 2, 3, 4 (20 + 61 + 151) but three 4-uniform ones."""
     missing = []
