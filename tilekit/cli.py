@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import io
 import json
-import math
 import os
 import sys
 from collections.abc import Sequence
@@ -20,7 +19,10 @@ import pluggy
 
 from tilekit import limits
 from tilekit.cli_types import COUNT, INT64_MAX, OUTPUT, POSITIVE, RUN_ID, BoundedInt, FiniteFloat
-from tilekit.errors import NotFoundError, ParameterError, ParseError, TilekitError
+from tilekit.errors import NotFoundError, ParameterError, TilekitError
+from tilekit.text import configure_options, parse_region
+from tilekit.text import format_value as _format_value
+from tilekit.text import text_table as _table
 
 __all__ = ["cli", "main", "plugin_manager"]
 
@@ -223,39 +225,6 @@ def main(argv: Sequence[str] | None = None) -> None:
 # --------------------------------------------------------------------------- output helpers
 
 
-def _format_value(value: Any) -> str:
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if value is None:
-        return "-"
-    if isinstance(value, float):
-        return f"{value:.6g}"
-    if isinstance(value, list) and any(isinstance(v, list | dict) for v in value):
-        return json.dumps(value, ensure_ascii=False)
-    if isinstance(value, list):
-        return ", ".join(_format_value(v) for v in value) if value else "[]"
-    if isinstance(value, dict):
-        return json.dumps(value, ensure_ascii=False)
-    return str(value)
-
-
-def _table(headers: Sequence[str], rows: Sequence[Sequence[Any]], widths: dict[int, int] | None = None) -> str:
-    """A plain fixed-width table (column i clipped to ``widths[i]`` characters)."""
-    widths = widths or {}
-    cells = [[_format_value(c) if not isinstance(c, str) else c for c in row] for row in rows]
-    for row in cells:
-        for i, limit in widths.items():
-            if len(row[i]) > limit:
-                row[i] = row[i][: limit - 1] + "…"
-    sizes = [len(h) for h in headers]
-    for row in cells:
-        sizes = [max(s, len(c)) for s, c in zip(sizes, row)]
-    lines = ["  ".join(h.upper().ljust(s) for h, s in zip(headers, sizes)).rstrip()]
-    for row in cells:
-        lines.append("  ".join(c.ljust(s) for c, s in zip(row, sizes)).rstrip())
-    return "\n".join(lines)
-
-
 FORMAT = click.Choice(["table", "json", "csv"])
 
 
@@ -433,52 +402,6 @@ def _show_family(cat: Any, fam: Any) -> None:
 # --------------------------------------------------------------------------- render
 
 
-#: Largest |value| of a tiling parameter (--param): shapes are unit-sized, so beyond this a
-#: value is a typo and would only overflow the geometry.
-MAX_PARAM = 1e6
-
-
-def _floats(text: str, what: str, bound: float = limits.MAX_COORDINATE) -> list[float]:
-    out: list[float] = []
-    for part in text.split(","):
-        part = part.strip()
-        if not part:
-            continue
-        try:
-            value = float(part)
-        except ValueError:
-            raise ParseError(f"{what} {text!r}: {part!r} is not a number") from None
-        if not math.isfinite(value):
-            raise ParseError(f"{what} {text!r}: {part!r} is not a finite number")
-        if abs(value) > bound:
-            raise ParseError(f"{what} {text!r}: {part!r} is outside ±{bound:g}")
-        out.append(value)
-    return out
-
-
-def parse_region(text: str) -> tuple[float, float, float, float]:
-    """``x0,y0,x1,y1`` -> a box with x0 < x1 and y0 < y1."""
-    values = _floats(text, "--region")
-    if len(values) != 4:
-        raise ParseError(f"--region {text!r} needs four numbers x0,y0,x1,y1")
-    x0, y0, x1, y1 = values
-    if not (x0 < x1 and y0 < y1):
-        raise ParseError(f"--region {text!r} needs x0 < x1 and y0 < y1")
-    return x0, y0, x1, y1
-
-
-def parse_settings(items: Sequence[str]) -> dict[str, str]:
-    """``KEY=VALUE`` strings -> a dict (values stay text; the family parses them)."""
-    out: dict[str, str] = {}
-    for item in items:
-        key, sep, value = item.partition("=")
-        key = key.strip()
-        if not sep or not key:
-            raise ParseError(f"--set {item!r} is not KEY=VALUE")
-        out[key] = value.strip()
-    return out
-
-
 #: Renders estimated above this many tiles say what they are doing on a terminal.
 PROGRESS_TILES = 50_000
 
@@ -593,16 +516,7 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
             raise ParameterError("--family only goes with --system FILE")
         tiling = state.catalogue().tiling(name)
 
-    options: dict[str, Any] = {}
-    if params:
-        options["params"] = [v for p in params for v in _floats(p, "--param", MAX_PARAM)]
-    if edges:
-        options["edges"] = list(edges)
-    if depth is not None:
-        options["depth"] = depth
-    options.update(parse_settings(settings))
-    if which is not None:
-        options["tiling"] = which
+    options = configure_options(params, edges, settings, which, depth)
     if options:
         tiling = tiling.configure(**options)
 
