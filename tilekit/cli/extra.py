@@ -1,7 +1,7 @@
-"""Commands about the catalogue's vocabulary and single shapes, kept out of cli.py so that they
-merge cleanly: ``tilekit keys [FAMILY]`` (every queryable key with its type, families and an
-example) and ``tilekit prototile NAME`` (one prototile of any tiling as SVG, DXF or GeoJSON).
-cli.py registers them on the ``tilekit`` group."""
+"""Commands about the catalogue's vocabulary and single shapes: ``tilekit keys [FAMILY]`` (every
+queryable key with its type, families and an example) and ``tilekit prototile NAME`` (one
+prototile of any tiling as SVG, DXF or GeoJSON). The package's __init__ registers them on the
+``tilekit`` group."""
 
 from __future__ import annotations
 
