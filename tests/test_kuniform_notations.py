@@ -25,11 +25,16 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from tilekit.errors import GeometryError, ParseError
-from tilekit.plugins.archimedean.notation import VertexType, parse_sequence
 from tilekit.plugins.kuniform.dsymbol import DSymbol, from_gavrog, to_gavrog, vertex_types
 from tilekit.plugins.kuniform.gomjau import parse, parse_text, patch_of, write
-from tilekit.plugins.kuniform.names import ARCHIMEDEAN_TABLE, archimedean_table
-from tilekit.plugins.kuniform.search import tiling_of, tilings_with_types, types_text
+from tilekit.plugins.kuniform.names import ARCHIMEDEAN_TABLE
+from tilekit.plugins.kuniform.search import (
+    archimedean_table,
+    tiling_of,
+    tilings_with_types,
+    types_text,
+)
+from tilekit.regular.notation import VertexType, parse_sequence
 from tilekit.symmetry import wallpaper_group
 
 #: Antwerp v3 library: vertex type -> GomJau-Hogg notation (the 11 Archimedean tilings).
@@ -360,7 +365,7 @@ def test_show_and_render_a_tes_file(catalogue_cli, tmp_path):
     out = tmp_path / "octagons.svg"
     r = catalogue_cli.run("render", "--system", str(path), "-o", str(out))
     assert r.exit_code == 0 and out.read_text().count("<path") >= 2, r.output
-    from tilekit.plugins.kuniform.names import tiling_from_file
+    from tilekit.plugins.kuniform.search import tiling_from_file
 
     tiling = tiling_from_file(str(path))
     assert tiling.patch((-5, -5, 5, 5)).validate(region=(-4, -4, 4, 4))

@@ -33,8 +33,9 @@ from tilekit.limits import (  # MAX_DEPTH: the depth range; the tile estimate is
     check_chunk_tiles,
     refuse_over_memory,
 )
-from tilekit.plugins.substitution import builtin_systems, continuum, engine, shapes
+from tilekit.plugins.substitution import continuum, engine, shapes
 from tilekit.plugins.substitution import quasivertex as qv
+from tilekit.plugins.substitution.builtin import builtin_systems
 from tilekit.plugins.substitution.expr import evaluate
 from tilekit.plugins.substitution.hat import HatSystem
 from tilekit.plugins.substitution.shapes import (
