@@ -120,6 +120,8 @@ class ResultTable:
     looks names up, and ``spec(row)`` turns a row into the spec the family's ``from_spec``
     rebuilds (for show and render); ``tiling_family`` names that family when it is not
     ``family`` itself (e.g. rows listed as ``vertex-species`` rebuilt as ``archimedean``).
+    ``aliases`` are further family names that read the same table (``--family polyform`` for
+    the polyomino family's rows on every grid).
     """
 
     table: Any  # sqlalchemy.Table
@@ -129,6 +131,7 @@ class ResultTable:
     spec: Callable[[Mapping[str, Any]], dict[str, Any]] | None = None
     title: Callable[[Mapping[str, Any]], str] | None = None
     tiling_family: str | None = None
+    aliases: tuple[str, ...] = ()
 
     @property
     def name(self) -> str:
