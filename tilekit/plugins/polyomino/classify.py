@@ -30,7 +30,7 @@ import numpy as np
 
 from tilekit.colouring import Colouring
 from tilekit.errors import ParameterError, ParseError
-from tilekit.lattice import Grid, outline
+from tilekit.lattice import GRIDS, Grid, outline
 from tilekit.plugins.polyomino.heesch import MAX_LEVEL_LIMIT, Corona, HeeschSolver, heesch
 from tilekit.plugins.polyomino.placements import Forms
 from tilekit.plugins.polyomino.torus import TorusSearch, TorusTiling
@@ -38,12 +38,11 @@ from tilekit.schema import Field, check
 from tilekit.symmetry import wallpaper_group
 from tilekit.tiling import Patch, PeriodicTiling
 
-#: The grids the classification runs on: their results are checked against published counts
-#: (square: Myers and Kaplan; hex and iamond: Myers) or, for the kite grid, against the hat. On
-#: the grids with cells of several shapes (octasquare, trihex, bevelhex, ...) the corona and
-#: torus searches give wrong answers (the 4.8.8 octagon-and-square domino comes out a non-tiler),
-#: so they are refused rather than answered.
-CLASSIFIED_GRIDS = ("square", "hex", "iamond", "kite")
+#: The grids the classification runs on: all ten. A polyform's copies are its images under the
+#: grid's symmetries (a point-group element and a grid translation, :meth:`Grid.is_translation`),
+#: so on the grids with cells of several shapes a copy puts octagons on octagons and squares on
+#: squares; "tiles" means tiles with such copies, the question Kaplan's heesch-sat answers.
+CLASSIFIED_GRIDS = tuple(GRIDS)
 #: Most tiles per translational unit the torus search tries.
 MAX_TORUS_TILES = 12
 #: Tiles per translational unit tried by default: 8 decides every polyomino to n = 10, but one
@@ -86,11 +85,9 @@ def check_bounds(probe: int, max_level: int, torus_tiles: int) -> None:
 
 
 def check_grid(grid: Grid) -> None:
-    """A one-line ParameterError for a grid the classification is not validated on."""
+    """A one-line ParameterError for a grid the classification does not know."""
     if grid.name not in CLASSIFIED_GRIDS:
-        raise ParameterError(f"the classification runs on the {', '.join(CLASSIFIED_GRIDS)} grids, not {grid.name} "
-                             f"(its corona and torus searches are not validated on grids with cells of several "
-                             f"shapes)")
+        raise ParameterError(f"the classification runs on the {', '.join(CLASSIFIED_GRIDS)} grids, not {grid.name}")
 
 
 def _corona_json(c: Corona | None, hc: int | None) -> dict | None:

@@ -1,0 +1,143 @@
+"""tilekit's classification against Kaplan's heesch-sat on grids with cells of several shapes.
+
+For every free polyform of 1..n cells on the octasquare (4.8.8) or trihex (3.6.3.6) grid,
+tilekit's full classification (:func:`tilekit.plugins.polyomino.classify.classify`) and
+heesch-sat's ``sat -isohedral -hh`` (Kaplan, github.com/isohedral/heesch-sat; the binary that
+``bench_heesch_sat.py --build`` puts in the cache folder) answer on the same shapes, and the
+verdicts are compared shape by shape:
+
+- heesch-sat ``I`` (isohedral) against tilekit's isohedral tilers;
+- heesch-sat ``~ Hc Hh`` (non-tiler) against tilekit's proved non-tilers, Hc and Hh equal;
+- heesch-sat ``!`` (inconclusive: it cannot recognise anisohedral tilers) against tilekit's
+  anisohedral tilers and undecided forms;
+- heesch-sat ``O`` (a hole) against tilekit's forms with holes.
+
+heesch-sat's cells are integer pairs in its own coordinates; :data:`TO_FINE` maps them onto
+tilekit's fine coordinates by an integer similarity (checked: every cell lands on a cell of the
+same shape, and the forms are distinct and equal in number to tilekit's enumeration).
+
+    python benchmarks/heesch_sat_grids.py --grid octasquare --max-cells 5
+"""
+
+from __future__ import annotations
+
+import argparse
+import collections
+import os
+import resource
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from tilekit.lattice import canonical, free_polyforms, get_grid  # noqa: E402
+from tilekit.plugins.polyomino.classify import classify  # noqa: E402
+from tilekit.plugins.polyomino.isohedral import analyse  # noqa: E402
+
+#: heesch-sat's grid letter and the map of its cell (x, y) to tilekit's fine coordinates:
+#: fine = A @ (x, y) + b. octasquare: heesch-sat's squares are the cells with x + y even, its
+#: octagons the others, on the square lattice turned by 45 degrees (octasquaregrid.h);
+#: trihex: its hexagons are the cells with x - y = 0 mod 3 in the 60-degree basis, turned by
+#: 30 degrees and scaled by sqrt(3) here (trihexgrid.h).
+TO_FINE = {
+    "octasquare": ("o", np.array([[2, 2], [-2, 2]]), np.array([2, 2])),
+    "trihex": ("T", np.array([[2, -2], [2, 4]]), np.array([0, 0])),
+}
+
+
+def to_peer(grid_name: str, cells: np.ndarray) -> str:
+    """A form as heesch-sat's input record (unclassified)."""
+    letter, A, b = TO_FINE[grid_name]
+    xy = np.linalg.solve(A, (cells - b).T).T
+    q = np.round(xy).astype(np.int64)
+    if not np.array_equal(q @ A.T + b, cells):
+        raise ValueError(f"{cells.tolist()} is not on heesch-sat's lattice")
+    return letter + "?" + "".join(f" {x} {y}" for x, y in q.tolist()) + "\n"
+
+
+def parse_records(text: str) -> list[tuple]:
+    """heesch-sat's output as (kind, hc, hh) per record: kind in I, ~, !, O, ?."""
+    lines = text.splitlines()
+    out = []
+    i = 0
+    while i < len(lines):
+        head = lines[i + 1].split() if i + 1 < len(lines) else ["?"]
+        kind = head[0]
+        if kind == "~":
+            out.append(("~", int(head[1]), int(head[2])))
+        else:
+            out.append((kind, None, None))
+        patches = int(head[-1]) if head[-1].isdigit() and kind != "?" else 0
+        i += 2
+        for _ in range(patches):
+            i += 1 + int(lines[i])
+    return out
+
+
+def ours(grid, cells: np.ndarray, holey: bool, time_limit: float) -> tuple:
+    a = None if holey else analyse(grid, cells, construct=False)
+    r = classify(grid, cells, a, has_holes=holey, time_limit=time_limit)
+    if holey:
+        return ("O", None, None), r
+    if r.tiles == "true":
+        return ("I", None, None) if r.isohedral else ("#", r.anisohedral_k, None), r
+    if r.tiles == "false":
+        return ("~", r.heesch, r.heesch_holes), r
+    return ("!", None, None), r
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--grid", choices=sorted(TO_FINE), default="octasquare")
+    ap.add_argument("--max-cells", type=int, default=5, help="largest size (forms of 1..N cells)")
+    ap.add_argument("--sat", help="heesch-sat's sat binary (default: the user cache, tilekit/heesch-sat/sat)")
+    ap.add_argument("--time-limit", type=float, default=120.0, help="tilekit's seconds per form")
+    args = ap.parse_args()
+    if args.sat:
+        sat = Path(args.sat)
+    else:
+        from platformdirs import user_cache_dir
+
+        sat = Path(user_cache_dir("tilekit")) / "heesch-sat" / "sat"
+    if not sat.exists():
+        raise SystemExit(f"no heesch-sat binary at {sat}: run benchmarks/bench_heesch_sat.py --build first")
+    grid = get_grid(args.grid)
+    polys, holes, counts = free_polyforms(grid, args.max_cells, with_holes=True)
+    print(f"{grid.name}: free forms per size {counts[1:].tolist()}; load {os.getloadavg()}", flush=True)
+    keys = {tuple(map(tuple, canonical(grid, p).tolist())) for p in polys}
+    assert len(keys) == len(polys), "the forms are not distinct"
+    text = "".join(to_peer(grid.name, p) for p in polys)
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    out = subprocess.run([str(sat), "-isohedral", "-hh"], input=text, capture_output=True, text=True, check=True)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    peer_cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
+    peer = parse_records(out.stdout)
+    if len(peer) != len(polys):
+        raise SystemExit(f"heesch-sat answered {len(peer)} records for {len(polys)} forms")
+    t0 = time.process_time()
+    table: dict[int, collections.Counter] = collections.defaultdict(collections.Counter)
+    disagree = []
+    for cells, holey, theirs in zip(polys, holes, peer):
+        mine, r = ours(grid, cells, bool(holey), args.time_limit)
+        table[len(cells)][(mine[0], theirs[0])] += 1
+        # heesch-sat cannot recognise anisohedral tilers ("!"); given a form with a hole it
+        # computes its (zero) Heesch number, where tilekit stops at the hole: both non-tilers
+        same = mine == theirs or (theirs[0] == "!" and mine[0] in "#!") or (mine[0] == "O" and theirs[0] == "~")
+        if not same:
+            disagree.append((cells, mine, theirs, r.verdict))
+    mine_cpu = time.process_time() - t0
+    for n in sorted(table):
+        row = ", ".join(f"tilekit {a} / heesch-sat {b}: {c}" for (a, b), c in sorted(table[n].items()))
+        print(f"n = {n}: {row}")
+    print(f"agree on {len(polys) - len(disagree)} of {len(polys)} forms; tilekit CPU {mine_cpu:.1f} s "
+          f"(classification), heesch-sat CPU {peer_cpu:.1f} s (its process)")
+    for cells, mine, theirs, verdict in disagree:
+        print(f"  differs: {to_peer(grid.name, cells).strip()} tilekit {mine} heesch-sat {theirs}: {verdict}")
+
+
+if __name__ == "__main__":
+    main()
