@@ -130,6 +130,11 @@ def main() -> None:
         if not same:
             disagree.append((cells, mine, theirs, r.verdict))
     mine_cpu = time.process_time() - t0
+    dist: dict[int, collections.Counter] = collections.defaultdict(collections.Counter)
+    for cells, theirs in zip(polys, peer):
+        dist[len(cells)][theirs[0] if theirs[0] != "~" else f"Hc{theirs[1]}Hh{theirs[2]}"] += 1
+    for n in sorted(dist):
+        print(f"heesch-sat n = {n}: " + ", ".join(f"{k} {v}" for k, v in sorted(dist[n].items())))
     for n in sorted(table):
         row = ", ".join(f"tilekit {a} / heesch-sat {b}: {c}" for (a, b), c in sorted(table[n].items()))
         print(f"n = {n}: {row}")
