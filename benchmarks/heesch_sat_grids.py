@@ -28,6 +28,7 @@ import resource
 import subprocess
 import sys
 import time
+from functools import cache
 from pathlib import Path
 
 import numpy as np
@@ -49,8 +50,79 @@ TO_FINE = {
 }
 
 
+def _abolo_vertices(x: int, y: int) -> list | None:
+    t = {(0, 0): 0, (1, 0): 1, (1, 1): 2, (0, 1): 3}[(x % 2, y % 2)]
+    vs = [[(1, 1), (1, -3), (-3, 1)], [(-1, 1), (3, 1), (-1, -3)], [(-1, -1), (-1, 3), (3, -1)],
+          [(1, -1), (-3, -1), (1, 3)]][t]
+    return [(2 * x + a, 2 * y + b) for a, b in vs]
+
+
+_DRAFTER_TYPES = {(2, 1): 0, (1, 2): 1, (6, 3): 2, (5, 3): 3, (4, 2): 4, (4, 1): 5, (5, 6): 6, (6, 5): 7,
+                  (1, 4): 8, (2, 4): 9, (3, 5): 10, (3, 6): 11}
+_DRAFTER_VERTS = [[(6, 0), (4, 4)], [(4, 4), (0, 6)], [(0, 6), (-4, 8)], [(-4, 8), (-6, 6)], [(-6, 6), (-8, 4)],
+                  [(-8, 4), (-6, 0)], [(-6, 0), (-4, -4)], [(-4, -4), (0, -6)], [(0, -6), (4, -8)],
+                  [(4, -8), (6, -6)], [(6, -6), (8, -4)], [(8, -4), (6, 0)]]
+
+
+_DRAFTER_LOS = [(-2, -1), (-1, -2), (1, -3), (2, -3), (3, -2), (3, -1), (2, 1), (1, 2), (-1, 3), (-2, 3), (-3, 2),
+                (-3, 1)]
+
+
+def _drafter_vertices(x: int, y: int) -> list | None:
+    o = (x % 7, y % 7)
+    if o not in _DRAFTER_TYPES:
+        return None
+    t = _DRAFTER_TYPES[o]
+    lx, ly = _DRAFTER_LOS[t]
+    hx, hy = (x + lx) // 7 * 12, (y + ly) // 7 * 12  # its corner at the hub: (p + lo) * 12 / 7
+    return [(hx, hy)] + [(hx + a, hy + b) for a, b in _DRAFTER_VERTS[t]]
+
+
+#: Grids matched through their cells' vertices: heesch-sat's vertices of its cell (x, y) (from
+#: its *grid.h tables) and the map of tilekit's fine vertex u to heesch-sat's vertex
+#: ``(F u) / D + b``. abolo: heesch-sat's tetrakis squares are turned by 45 degrees, centred on
+#: (1, 1) + 4 Z^2 (abologrid.h); drafter: the same 60-degree basis, hexagons of apothem 6
+#: around hubs 12 Z^2 (draftergrid.h).
+BY_VERTICES = {
+    "abolo": ("A", np.array([[2, 2], [-2, 2]]), 3, np.array([1, 1]), _abolo_vertices),
+    "drafter": ("D", np.array([[2, 0], [0, 2]]), 3, np.array([0, 0]), _drafter_vertices),
+}
+
+
+@cache
+def _peer_cells(grid_name: str, reach: int) -> dict:
+    """heesch-sat's cells with |x|, |y| <= reach, by their vertex sets."""
+    cell_vertices = BY_VERTICES[grid_name][4]
+    out = {}
+    for x in range(-reach, reach + 1):
+        for y in range(-reach, reach + 1):
+            vs = cell_vertices(x, y)
+            if vs is not None:
+                out[frozenset(vs)] = (x, y)
+    return out
+
+
+def _by_vertices(grid_name: str, cells: np.ndarray) -> str:
+    letter, F, D, b, _ = BY_VERTICES[grid_name]
+    grid = get_grid(grid_name)
+    table = _peer_cells(grid_name, 80)
+    out = []
+    for c in cells:
+        t = int(grid.cell_type(c[None])[0])
+        num = (c + grid.vertices[t][: grid.degrees[t]]) @ F.T
+        if (num % D).any():
+            raise ValueError(f"{c.tolist()}: a vertex is not on heesch-sat's lattice")
+        key = frozenset(map(tuple, (num // D + b).tolist()))
+        if key not in table:
+            raise ValueError(f"{c.tolist()} matches no heesch-sat cell")
+        out.append(table[key])
+    return letter + "?" + "".join(f" {x} {y}" for x, y in out) + "\n"
+
+
 def to_peer(grid_name: str, cells: np.ndarray) -> str:
     """A form as heesch-sat's input record (unclassified)."""
+    if grid_name in BY_VERTICES:
+        return _by_vertices(grid_name, cells)
     letter, A, b = TO_FINE[grid_name]
     xy = np.linalg.solve(A, (cells - b).T).T
     q = np.round(xy).astype(np.int64)
@@ -92,10 +164,12 @@ def ours(grid, cells: np.ndarray, holey: bool, time_limit: float) -> tuple:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--grid", choices=sorted(TO_FINE), default="octasquare")
+    ap.add_argument("--grid", choices=sorted([*TO_FINE, *BY_VERTICES]), default="octasquare")
     ap.add_argument("--max-cells", type=int, default=5, help="largest size (forms of 1..N cells)")
     ap.add_argument("--sat", help="heesch-sat's sat binary (default: the user cache, tilekit/heesch-sat/sat)")
     ap.add_argument("--time-limit", type=float, default=120.0, help="tilekit's seconds per form")
+    ap.add_argument("--max-level", type=int, default=7,
+                    help="heesch-sat's -maxlevel (coronas before 'inconclusive'; its default 7)")
     args = ap.parse_args()
     if args.sat:
         sat = Path(args.sat)
@@ -112,7 +186,7 @@ def main() -> None:
     assert len(keys) == len(polys), "the forms are not distinct"
     text = "".join(to_peer(grid.name, p) for p in polys)
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    out = subprocess.run([str(sat), "-isohedral", "-hh"], input=text, capture_output=True, text=True, check=True)
+    out = subprocess.run([str(sat), "-isohedral", "-hh", "-maxlevel", str(args.max_level)], input=text, capture_output=True, text=True, check=True)
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     peer_cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
     peer = parse_records(out.stdout)
