@@ -162,7 +162,7 @@ def ours(grid, cells: np.ndarray, holey: bool, time_limit: float) -> tuple:
     return ("!", None, None), r
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--grid", choices=sorted([*TO_FINE, *BY_VERTICES]), default="octasquare")
     ap.add_argument("--max-cells", type=int, default=5, help="largest size (forms of 1..N cells)")
@@ -170,6 +170,11 @@ def main() -> None:
     ap.add_argument("--time-limit", type=float, default=120.0, help="tilekit's seconds per form")
     ap.add_argument("--max-level", type=int, default=7,
                     help="heesch-sat's -maxlevel (coronas before 'inconclusive'; its default 7)")
+    return ap
+
+
+def main() -> None:
+    ap = build_parser()
     args = ap.parse_args()
     if args.sat:
         sat = Path(args.sat)
