@@ -25,6 +25,7 @@ import argparse
 import collections
 import os
 import resource
+import statistics
 import subprocess
 import sys
 import time
@@ -78,14 +79,40 @@ def _drafter_vertices(x: int, y: int) -> list | None:
     return [(hx, hy)] + [(hx + a, hy + b) for a, b in _DRAFTER_VERTS[t]]
 
 
+def _cdiv(a: int, b: int) -> int:
+    """C's integer division (truncation toward zero)."""
+    q = abs(a) // abs(b)
+    return q if (a >= 0) == (b > 0) else -q
+
+
+_HC_TYPES = [None, 0, 4, 2, 1, 3, 6, 7, 5]  # by (y mod 3) * 3 + (x mod 3): E, W, N, NE, NW, S, SE, SW
+_HC_OFFS = [(2, -1), (2, 1), (1, 2), (-1, 2), (-2, 1), (-2, -1), (-1, -2), (1, -2)]
+_HC_CORNERS = [(2, 2), (-2, 2), (-2, -2), (2, -2)]
+
+
+def _halfcairo_vertices(x: int, y: int) -> list | None:
+    t = _HC_TYPES[(y % 3) * 3 + x % 3]
+    if t is None:
+        return None
+    hx = _cdiv(x + 1, 3) * 4 if x >= 0 else _cdiv(x - 1, 3) * 4
+    hy = _cdiv(y + 1, 3) * 4 if y >= 0 else _cdiv(y - 1, 3) * 4
+    out = [(hx, hy), (hx + _HC_OFFS[t][0], hy + _HC_OFFS[t][1])]
+    if t % 2:
+        out.append((hx + _HC_CORNERS[t // 2][0], hy + _HC_CORNERS[t // 2][1]))
+    out.append((hx + _HC_OFFS[(t + 1) % 8][0], hy + _HC_OFFS[(t + 1) % 8][1]))
+    return out
+
+
 #: Grids matched through their cells' vertices: heesch-sat's vertices of its cell (x, y) (from
 #: its *grid.h tables) and the map of tilekit's fine vertex u to heesch-sat's vertex
 #: ``(F u) / D + b``. abolo: heesch-sat's tetrakis squares are turned by 45 degrees, centred on
 #: (1, 1) + 4 Z^2 (abologrid.h); drafter: the same 60-degree basis, hexagons of apothem 6
-#: around hubs 12 Z^2 (draftergrid.h).
+#: around hubs 12 Z^2 (draftergrid.h); halfcairo: squares of side 4 around hubs 4 Z^2
+#: (halfcairogrid.h).
 BY_VERTICES = {
     "abolo": ("A", np.array([[2, 2], [-2, 2]]), 3, np.array([1, 1]), _abolo_vertices),
     "drafter": ("D", np.array([[2, 0], [0, 2]]), 3, np.array([0, 0]), _drafter_vertices),
+    "halfcairo": ("h", np.array([[1, 0], [0, 1]]), 3, np.array([0, 0]), _halfcairo_vertices),
 }
 
 
@@ -168,6 +195,7 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--max-cells", type=int, default=5, help="largest size (forms of 1..N cells)")
     ap.add_argument("--sat", help="heesch-sat's sat binary (default: the user cache, tilekit/heesch-sat/sat)")
     ap.add_argument("--time-limit", type=float, default=120.0, help="tilekit's seconds per form")
+    ap.add_argument("--runs", type=int, default=3, help="rounds of both tools (CPU time: min and median)")
     ap.add_argument("--max-level", type=int, default=7,
                     help="heesch-sat's -maxlevel (coronas before 'inconclusive'; its default 7)")
     return ap
@@ -190,25 +218,28 @@ def main() -> None:
     keys = {tuple(map(tuple, canonical(grid, p).tolist())) for p in polys}
     assert len(keys) == len(polys), "the forms are not distinct"
     text = "".join(to_peer(grid.name, p) for p in polys)
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    out = subprocess.run([str(sat), "-isohedral", "-hh", "-maxlevel", str(args.max_level)], input=text, capture_output=True, text=True, check=True)
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    peer_cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
+    peer_cpu, mine_cpu = [], []
+    for _ in range(args.runs):
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        out = subprocess.run([str(sat), "-isohedral", "-hh", "-maxlevel", str(args.max_level)], input=text,
+                             capture_output=True, text=True, check=True)
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        peer_cpu.append((after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime))
+        t0 = time.process_time()
+        answers = [ours(grid, cells, bool(holey), args.time_limit) for cells, holey in zip(polys, holes)]
+        mine_cpu.append(time.process_time() - t0)
     peer = parse_records(out.stdout)
     if len(peer) != len(polys):
         raise SystemExit(f"heesch-sat answered {len(peer)} records for {len(polys)} forms")
-    t0 = time.process_time()
     table: dict[int, collections.Counter] = collections.defaultdict(collections.Counter)
     disagree = []
-    for cells, holey, theirs in zip(polys, holes, peer):
-        mine, r = ours(grid, cells, bool(holey), args.time_limit)
+    for cells, theirs, (mine, r) in zip(polys, peer, answers):
         table[len(cells)][(mine[0], theirs[0])] += 1
         # heesch-sat cannot recognise anisohedral tilers ("!"); given a form with a hole it
         # computes its (zero) Heesch number, where tilekit stops at the hole: both non-tilers
         same = mine == theirs or (theirs[0] == "!" and mine[0] in "#!") or (mine[0] == "O" and theirs[0] == "~")
         if not same:
             disagree.append((cells, mine, theirs, r.verdict))
-    mine_cpu = time.process_time() - t0
     dist: dict[int, collections.Counter] = collections.defaultdict(collections.Counter)
     for cells, theirs in zip(polys, peer):
         dist[len(cells)][theirs[0] if theirs[0] != "~" else f"Hc{theirs[1]}Hh{theirs[2]}"] += 1
@@ -217,8 +248,11 @@ def main() -> None:
     for n in sorted(table):
         row = ", ".join(f"tilekit {a} / heesch-sat {b}: {c}" for (a, b), c in sorted(table[n].items()))
         print(f"n = {n}: {row}")
-    print(f"agree on {len(polys) - len(disagree)} of {len(polys)} forms; tilekit CPU {mine_cpu:.1f} s "
-          f"(classification), heesch-sat CPU {peer_cpu:.1f} s (its process)")
+    print(f"agree on {len(polys) - len(disagree)} of {len(polys)} forms")
+    print(f"CPU s over {args.runs} runs (min / median): tilekit's classification {min(mine_cpu):.2f} / "
+          f"{statistics.median(mine_cpu):.2f}, heesch-sat -isohedral -hh {min(peer_cpu):.2f} / "
+          f"{statistics.median(peer_cpu):.2f}; heesch-sat / tilekit {min(peer_cpu) / min(mine_cpu):.2f} (min); "
+          f"load {os.getloadavg()}")
     for cells, mine, theirs, verdict in disagree:
         print(f"  differs: {to_peer(grid.name, cells).strip()} tilekit {mine} heesch-sat {theirs}: {verdict}")
 
