@@ -255,3 +255,26 @@ def test_copies_are_grid_symmetries():
     tri = [c for cells, _, _, c in _classified("halfcairo", SMALL["halfcairo"])
            if len(cells) == 1 and hc.shapes[hc.cell_type(cells)[0]] == "triangle"]
     assert len(tri) == 1 and tri[0].tiles == "false" and tri[0].heesch == 0
+
+
+@pytest.mark.parametrize("name", ["square", "hex", "iamond", "kite", *SMALL])
+def test_the_period_is_the_least_translation(name):
+    """Grid.is_translation assumes the grid's translations are exactly period * Z^2: no shift
+    by a vector with a coordinate in 1..period-1 maps the cells (with their vertices) onto
+    cells (so x -> g x + t is a grid symmetry exactly when t is in period * Z^2)."""
+    grid = get_grid(name)
+    p = grid.period
+    cells = np.concatenate([grid.roots + p * np.array(o) for o in [(0, 0), (1, 0), (0, 1), (1, 1)]])
+    shapes = {tuple(c): frozenset(map(tuple, (c + grid.vertices[t][: grid.degrees[t]]).tolist()))
+              for c, t in zip(cells.tolist(), grid.cell_type(cells))}
+    for tx in range(p):
+        for ty in range(p):
+            if (tx, ty) == (0, 0):
+                continue
+            moved = cells + (tx, ty)
+            ok = grid.is_cell(moved)
+            same = ok.all() and all(
+                frozenset(map(tuple, (m + grid.vertices[t][: grid.degrees[t]]).tolist()))
+                == frozenset((x + tx, y + ty) for x, y in shapes[tuple(c)])
+                for c, m, t in zip(cells.tolist(), moved, grid.cell_type(moved)))
+            assert not same, (tx, ty)
