@@ -1,20 +1,22 @@
 """tilekit's classification against Kaplan's heesch-sat on grids with cells of several shapes.
 
-For every free polyform of 1..n cells on the octasquare (4.8.8) or trihex (3.6.3.6) grid,
-tilekit's full classification (:func:`tilekit.plugins.polyomino.classify.classify`) and
-heesch-sat's ``sat -isohedral -hh`` (Kaplan, github.com/isohedral/heesch-sat; the binary that
-``bench_heesch_sat.py --build`` puts in the cache folder) answer on the same shapes, and the
-verdicts are compared shape by shape:
+For every free polyform of 1..n cells on a grid with cells of several shapes (octasquare,
+trihex, abolo, drafter, halfcairo, bevelhex), tilekit's full classification
+(:func:`tilekit.plugins.polyomino.classify.classify`) and heesch-sat's ``sat -isohedral -hh``
+(Kaplan, github.com/isohedral/heesch-sat; the binary that ``bench_heesch_sat.py --build`` puts in
+the cache folder) answer on the same shapes, and the verdicts are compared shape by shape:
 
 - heesch-sat ``I`` (isohedral) against tilekit's isohedral tilers;
-- heesch-sat ``~ Hc Hh`` (non-tiler) against tilekit's proved non-tilers, Hc and Hh equal;
+- heesch-sat ``~ Hc Hh`` (non-tiler) against tilekit's proved non-tilers, Hc and Hh equal, and
+  against tilekit's forms with holes (heesch-sat gives them Hc = Hh = 0; tilekit stops at the
+  hole);
 - heesch-sat ``!`` (inconclusive: it cannot recognise anisohedral tilers) against tilekit's
-  anisohedral tilers and undecided forms;
-- heesch-sat ``O`` (a hole) against tilekit's forms with holes.
+  anisohedral tilers and undecided forms.
 
-heesch-sat's cells are integer pairs in its own coordinates; :data:`TO_FINE` maps them onto
-tilekit's fine coordinates by an integer similarity (checked: every cell lands on a cell of the
-same shape, and the forms are distinct and equal in number to tilekit's enumeration).
+heesch-sat's cells are integer pairs in its own coordinates: :data:`TO_FINE` maps them onto
+tilekit's fine coordinates by an integer similarity, :data:`BY_VERTICES` matches the cells by
+their vertex sets (heesch-sat's tables transcribed). Both tools get the same number of forms
+(tilekit's enumeration, checked distinct); the timing is CPU time, ``--runs`` rounds of each.
 
     python benchmarks/heesch_sat_grids.py --grid octasquare --max-cells 5
 """
@@ -44,10 +46,11 @@ from tilekit.plugins.polyomino.isohedral import analyse  # noqa: E402
 #: fine = A @ (x, y) + b. octasquare: heesch-sat's squares are the cells with x + y even, its
 #: octagons the others, on the square lattice turned by 45 degrees (octasquaregrid.h);
 #: trihex: its hexagons are the cells with x - y = 0 mod 3 in the 60-degree basis, turned by
-#: 30 degrees and scaled by sqrt(3) here (trihexgrid.h).
+#: 30 degrees and scaled by sqrt(3) here (trihexgrid.h); bevelhex: tilekit's table is heesch-sat's.
 TO_FINE = {
     "octasquare": ("o", np.array([[2, 2], [-2, 2]]), np.array([2, 2])),
     "trihex": ("T", np.array([[2, -2], [2, 4]]), np.array([0, 0])),
+    "bevelhex": ("B", np.eye(2, dtype=np.int64), np.array([0, 0])),  # the same coordinates (bevelhexgrid.h)
 }
 
 

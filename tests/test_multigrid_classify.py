@@ -9,8 +9,7 @@ abolo, half-Cairo, bevelhex), checked two ways:
 - against Kaplan's heesch-sat (github.com/isohedral/heesch-sat at 008e733, ``sat -isohedral
   -hh``, run on the same forms by benchmarks/heesch_sat_grids.py): its counts of isohedral
   tilers, of inconclusive forms ("!", which tilekit finds to tile anisohedrally) and of
-  non-tilers by (Hc, Hh) per size, on the octasquare, trihex, abolo, drafter and half-Cairo
-  grids (no published tiling counts for these grids were found; heesch-sat is the field's
+  non-tilers by (Hc, Hh) per size, on all six grids (no published tiling counts for these grids were found; heesch-sat is the field's
   tool, and its isohedral test is exact, unlike its "!"). heesch-sat gives a form with a hole
   Hc = Hh = 0; tilekit calls it a non-tiler for the hole (no copy fits in it), so those are
   counted apart here. Free form counts: octasquare A343577 (tests/test_grids.py).
@@ -83,6 +82,13 @@ HEESCH_SAT = {
         5: {"hole": 1, (0, 0): 37},
         6: {"!": 11, "hole": 4, (0, 0): 89, (1, 1): 1},
     },
+    "bevelhex": {  # no tilers below 6 cells (a translational unit: a dodecagon, 2 hexagons, 3 squares)
+        1: {(0, 0): 3},
+        2: {(0, 0): 3},
+        3: {(0, 0): 13, (1, 1): 1},
+        4: {"hole": 1, (0, 0): 44, (1, 1): 5},
+        5: {"hole": 6, (0, 0): 239, (0, 1): 5, (1, 1): 10, (1, 2): 1},
+    },
 }
 
 
@@ -127,7 +133,7 @@ def test_verdicts_equal_heesch_sat(name, n):
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name,n", [("octasquare", 6), ("octasquare", 7), ("trihex", 7), ("trihex", 8), ("abolo", 7),
-                                    ("drafter", 6), ("halfcairo", 6)])
+                                    ("drafter", 6), ("halfcairo", 6), ("bevelhex", 5)])
 def test_verdicts_equal_heesch_sat_slow(name, n):
     assert _table(name, n) == HEESCH_SAT[name][n]
 
