@@ -97,23 +97,29 @@ def curved_svg(tiling: Any, patch: Any, palette: Any = None, stroke: str = "#222
         out.append(f'<circle cx="0" cy="0" r="1" fill="#eef2f6" stroke="{stroke}" stroke-width="{sw:.6g}"/>')
     if len(patch):
         if hyper:
-            verts = patch.projected(corners=True)
-            paths = _polygon_paths(verts, arcs=proto is None or proto.plane == "poincare")
+            paths = np.empty(len(patch), dtype=object)
+            for _, idx, pr in patch.parts():
+                verts = patch.projected(idx, corners=True)
+                paths[idx] = _polygon_paths(verts, arcs=pr.plane == "poincare")
             for c in np.unique(patch.colour):
                 sel = patch.colour == c
                 out.append(f'<path fill="{pal[int(c) % len(pal)]}" stroke="{stroke}" stroke-width="{sw:.6g}" '
                            f'stroke-linejoin="round" d="{" ".join(paths[sel].tolist())}"/>')
         else:
-            pts = patch.model_points() @ proto.view.T            # (n, k, 3) in view space
+            parts = patch.parts()
             for front in (False, True):
                 # each face's part on this side of the sphere: points on the other side are
                 # pushed out radially onto the rim, so the outline follows the rim there
-                side = pts[..., 2] >= 0 if front else pts[..., 2] <= 0
-                sel_side = side.any(axis=1)
-                flat = pts[..., :2].copy()
-                rim = flat / np.maximum(np.hypot(flat[..., :1], flat[..., 1:]), 1e-12)
-                flat = np.where(side[..., None], flat, rim)
-                paths = _polygon_paths(flat, arcs=False)
+                paths = np.empty(len(patch), dtype=object)
+                sel_side = np.zeros(len(patch), dtype=bool)
+                for _, idx, pr in parts:
+                    pts = patch.model_points(idx) @ pr.view.T            # (n, k, 3) in view space
+                    side = pts[..., 2] >= 0 if front else pts[..., 2] <= 0
+                    sel_side[idx] = side.any(axis=1)
+                    flat = pts[..., :2].copy()
+                    rim = flat / np.maximum(np.hypot(flat[..., :1], flat[..., 1:]), 1e-12)
+                    flat = np.where(side[..., None], flat, rim)
+                    paths[idx] = _polygon_paths(flat, arcs=False)
                 opacity = "1" if front else "0.2"
                 for c in np.unique(patch.colour[sel_side]):
                     sel = sel_side & (patch.colour == c)
