@@ -127,32 +127,41 @@ def curved_records() -> list[CatalogueRecord]:
     return out
 
 
-def uniform_records() -> list[CatalogueRecord]:
-    """The uniform tilings' records (catalogue/curved/uniform.toml): every vertex
-    configuration the [enumerate] bounds give, less the regular ones (records of the
-    spherical and hyperbolic families), named where [[named]] names them."""
-    # measured start-up cost: NumPy and the construction (records are built only when seeding)
-    from tilekit.plugins.curved import notation, wythoff
-    from tilekit.plugins.curved.uniform import UniformTiling
+def _uniform_data() -> dict[str, Any]:
+    """catalogue/curved/uniform.toml, checked (one-line errors naming the file and the field)."""
+    from tilekit.plugins.curved import wythoff
     from tilekit.resources import catalogue_dir, read_toml
     from tilekit.schema import Field, check
 
     path = catalogue_dir() / "curved" / UNIFORM_FILE
-    where = f"curved records {UNIFORM_FILE}"
     bound = Field("int", required=True, range=(2, wythoff.MAX_ORDER))
     named = Field("table", fields={"name": Field("str", required=True), "title": Field("str", default=""),
                                    "configuration": Field("str", required=True)})
-    data = check(Field("table", fields={
+    return check(Field("table", fields={
         "enumerate": Field("table", required=True, fields={
             "max_order": bound, "max_prism": bound, "species_max_order": bound,
             "species_max_sides": bound, "species_max_valence": bound}),
         "named": Field("list", items=named, default=[]),
-    }), read_toml(path, "curved records"), where)
+    }), read_toml(path, "curved records"), f"curved records {UNIFORM_FILE}")
+
+
+def uniform_records() -> list[CatalogueRecord]:
+    """The uniform tilings' records (catalogue/curved/uniform.toml): every vertex
+    configuration the [enumerate] bounds give, less the regular ones that regular.toml ships
+    (records of the spherical and hyperbolic families), named where [[named]] names them."""
+    # measured start-up cost: NumPy and the construction (records are built only when seeding)
+    from tilekit.plugins.curved import notation, wythoff
+    from tilekit.plugins.curved.uniform import UniformTiling
+    from tilekit.resources import catalogue_dir, read_toml
+
+    data = _uniform_data()
     names = {notation.canonical(notation.parse(n["configuration"])): n for n in data["named"]}
     out = []
-    for cfg, sym in wythoff.enumerate_configurations(**data["enumerate"]).items():
-        if len(set(cfg)) == 1 and sym.form == "vertex" and 2 in sym.orders[1:]:
-            continue  # {p,q}: the spherical / hyperbolic families' record
+    regular = {(t["p"],) * t["q"] for t in read_toml(catalogue_dir() / "curved" / RECORDS_FILE, "curved records")
+               .get("tiling", []) if isinstance(t, dict) and isinstance(t.get("p"), int) and isinstance(t.get("q"), int)}
+    for cfg in wythoff.enumerate_configurations(**data["enumerate"]):
+        if cfg in regular:
+            continue  # {p,q} shipped as a record of the spherical / hyperbolic family
         rec = names.get(cfg, {})
         t = UniformTiling(notation.dotted(cfg), name=rec.get("name", ""), title=rec.get("title", ""))
         title = t.title or f"{t.configuration}: uniform tiling of the {'sphere' if not t.hyperbolic else 'hyperbolic plane'}"
@@ -194,3 +203,31 @@ def tilekit_families() -> list[Family]:
 @tilekit.hookimpl
 def tilekit_catalogue_records() -> list[CatalogueRecord]:
     return curved_records() + uniform_records()
+
+
+@tilekit.hookimpl
+def tilekit_resolve_name(name: str) -> list[str] | None:
+    """A spherical or hyperbolic vertex configuration in any rotation or spelling
+    (``4.3.4.4``, ``3.4^3``): the uniform tiling with it (``vertex_configuration`` filter);
+    one that no Wythoff symbol gives is a one-line error naming it."""
+    # measured start-up cost: the notation parser (no NumPy) only for a name not found
+    from tilekit.errors import ParseError
+    from tilekit.plugins.curved import notation
+
+    try:
+        cfg = notation.parse(name)
+    except ParseError:
+        return None
+    if notation.geometry_of(cfg) == "euclidean":
+        return None
+    from tilekit.errors import ParameterError
+    from tilekit.plugins.curved import wythoff
+
+    sym = wythoff.symbol_for(cfg)  # raises when no uniform tiling has this configuration
+    dotted = notation.dotted(notation.canonical(cfg))
+    bounds = _uniform_data()["enumerate"]
+    if not any(wythoff.recorded(s, **bounds) for s in wythoff.symbols_for(cfg)):
+        raise ParameterError(f"{dotted} is the uniform tiling {sym}, which has no catalogue record (records: orders "
+                             f"up to {bounds['max_order']}); draw it from any curved record: tilekit render 3.14.14 "
+                             f"--set configuration={dotted}")
+    return [f"vertex_configuration={dotted}"]

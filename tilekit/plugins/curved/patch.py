@@ -241,7 +241,8 @@ class ModelPatch(Patch):
 def sphere_report(patch: ModelPatch, tolerance: float = AREA_TOL) -> ValidationReport:
     """A spherical patch checked on the sphere: faces are convex spherical polygons, so two
     have disjoint interiors when a great circle through an edge of one leaves every vertex
-    of the other on its far side (or on it); the uncovered area is 4π minus the faces' areas
+    of the other on its far side (or on it), or a great circle through a vertex of each
+    leaves them on opposite sides; the uncovered area is 4π minus the faces' areas
     (Girard: angle sum minus (p − 2)π, from the actual vertices)."""
     faces = patch.vertex_lists()  # (k, 3) each
     n = len(faces)
@@ -261,6 +262,19 @@ def sphere_report(patch: ModelPatch, tolerance: float = AREA_TOL) -> ValidationR
     separated = ((side <= slack).all(axis=3) & real[:, :, None]).any(axis=1)  # some edge of i separates j
     separated |= separated.T
     np.fill_diagonal(separated, True)
+    # faces far apart (nearly antipodal) straddle every great circle through an edge of the
+    # other: as in the separating-axis theorem for two convex cones, try the planes through
+    # a vertex of each as well
+    for i, j in zip(*np.nonzero(~separated)):
+        if i < j:
+            a, b = faces[i], faces[j]
+            nrm = np.cross(a[:, None, :], b[None, :, :]).reshape(-1, 3)
+            nrm = nrm[np.linalg.norm(nrm, axis=1) > 1e-12]
+            sa, sb = a @ nrm.T, b @ nrm.T  # (k, m): each plane's side of every vertex
+            ok = ((sa >= -slack).all(axis=0) & (sb <= slack).all(axis=0)) | \
+                 ((sa <= slack).all(axis=0) & (sb >= -slack).all(axis=0))
+            if ok.any():
+                separated[i, j] = separated[j, i] = True
     areas = np.array([_spherical_area(f) for f in faces])
     report.overlaps = [(int(i), int(j), float("nan")) for i, j in zip(*np.nonzero(~separated)) if i < j]
     report.region_area = 4 * math.pi

@@ -276,6 +276,15 @@ class RegularTiling(Tiling):
         ])
 
     def configure(self, **options: Any) -> RegularTiling:
+        if "geometry" in options:  # the --geometry check (uniform.check_geometry's spellings)
+            from tilekit.plugins.curved.uniform import check_geometry
+
+            want = check_geometry(options.pop("geometry"))
+            if want != self.kind:
+                raise ParameterError(f"{self.name} ({self.vertex_configuration()}) is {self.kind}, not {want}: "
+                                     "a vertex configuration closes on one surface only")
+            if not options:
+                return self
         unknown = set(options) - set(_OPTIONS)
         if unknown:
             raise ParameterError(f"{self.name} does not take option(s) {', '.join(sorted(unknown))}; "

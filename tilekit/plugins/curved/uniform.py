@@ -6,8 +6,9 @@ size; and the plane's Wythoffian tilings as :class:`tilekit.PeriodicTiling` s
 
 The vertex configuration decides the geometry (its Euclidean angles sum to less than, exactly
 or more than a full turn); ``geometry`` is a check on it. A spherical tiling is all its faces;
-a hyperbolic patch is every face whose centre lies within ``radius`` of the disc's centre
-(default: the radius of about DEFAULT_FACES faces). Faces are coloured by their kind.
+a hyperbolic patch is every face whose centre lies within ``radius`` plus the face's
+circumradius of the disc's centre, so it covers the disc of that radius (default: the
+radius of about DEFAULT_FACES faces). Faces are coloured by their kind.
 """
 
 from __future__ import annotations
@@ -188,16 +189,17 @@ class UniformTiling(Tiling):
         if self.radius is not None:
             return self.radius
         # the disc whose area holds about DEFAULT_FACES faces
-        return float(min(MAX_RADIUS, math.acosh(1 + DEFAULT_FACES / (2 * math.pi * self.construction.faces_per_area()))))
+        r = math.acosh(1 + DEFAULT_FACES / (2 * math.pi * self.construction.faces_per_area()))
+        return float(min(MAX_RADIUS, max(0.0, r - max(f.circumradius for f in self.construction.face_types))))
 
     def estimate_tiles(self, region: Any = None) -> float:
         """The sphere's face count (the group's order over each face's stabiliser); in the
         hyperbolic plane, faces per area (per triangle of the group) times the disc's area,
-        the disc grown by the largest face's circumradius."""
+        the disc grown by twice the largest face's circumradius."""
         if not self.hyperbolic:
             return float(sum(self.face_counts().values()))
         c = self.construction
-        r = self._radius() + max(f.circumradius for f in c.face_types)
+        r = self._radius() + 2 * max(f.circumradius for f in c.face_types)
         return 1.0 + c.faces_per_area() * 2 * math.pi * (math.cosh(r) - 1)
 
     def _check_size(self, estimate: float) -> None:
@@ -207,8 +209,8 @@ class UniformTiling(Tiling):
         refuse_over_memory(what, estimate, self.bytes_per_tile, hint)
 
     def patch(self, region: Any = None) -> ModelPatch:
-        """Every face (sphere) or every face whose centre is within the radius (hyperbolic),
-        less those whose projected outline misses ``region``; colour: the face's kind."""
+        """Every face (sphere) or every face whose centre is within the radius plus its
+        circumradius (hyperbolic: the disc of the radius is covered), less those whose projected outline misses ``region``; colour: the face's kind."""
         self._check_size(self.estimate_tiles(region))
         mats, kinds = self.construction.faces(self._radius() if self.hyperbolic else None)
         patch = ModelPatch(self._protos, kinds, mats, colour=kinds.copy())
@@ -262,7 +264,7 @@ class UniformTiling(Tiling):
         return "\n".join([
             "--set configuration=C       the vertex configuration, e.g. 3.4.4.4 or 3.14^2",
             "--set symbol=S              instead: the Wythoff symbol, e.g. '2 3 | 7', '| 2 4 5'",
-            f"--set radius=R              hyperbolic: every face whose centre is within distance R (0..{MAX_RADIUS:g}; "
+            f"--set radius=R              hyperbolic: the faces covering the disc of radius R (0..{MAX_RADIUS:g}; "
             f"default: about {DEFAULT_FACES} faces)",
             "--set geometry=G            sphere, plane or hyperbolic: a check on the configuration's geometry",
             f"--set samples=N             points per edge of exported outlines (1..{MAX_SAMPLES}, default "

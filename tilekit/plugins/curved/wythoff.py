@@ -166,7 +166,8 @@ def triangle_area(orders: tuple[int, int, int]) -> float:
 
 def symbols_for(config: tuple[int, ...]) -> list[Symbol]:
     """Every Wythoff symbol whose vertex configuration is ``config`` (any rotation or
-    reflection), largest group first (smallest triangle), then vertex, edge, omni, snub.
+    reflection), largest group first (smallest triangle; in the plane the largest corner
+    order), then vertex, edge, omni, snub.
 
     The candidates come from the polygon sizes: an order is 2, a size, or half an even size.
     """
@@ -189,7 +190,7 @@ def _symbols_for(want: tuple[int, ...]) -> tuple[Symbol, ...]:
             if sorted(sym.sequence) == multiset and sym.configuration == want:
                 key = (form, _orbit_key(form, orders))
                 found.setdefault(key, sym)
-    return tuple(sorted(found.values(), key=lambda s: (triangle_area(s.orders), FORMS.index(s.form), s.orders)))
+    return tuple(sorted(found.values(), key=lambda s: (triangle_area(s.orders), -max(s.orders), FORMS.index(s.form), s.orders)))
 
 
 def _orbit_key(form: str, orders: tuple[int, int, int]) -> tuple[int, int, int]:
@@ -440,7 +441,7 @@ class Construction:
 
     def _corner_orbit(self, i: int) -> np.ndarray:
         """Images of the generator round corner i (dihedral group; cyclic for a snub), distinct."""
-        sp, g, n = self.space, self.generator, self.orders[i]
+        g, n = self.generator, self.orders[i]
         pts = []
         m = np.eye(3)
         for _ in range(n):
@@ -449,8 +450,9 @@ class Construction:
                 pts.append(m @ self.reflections[(i + 1) % 3] @ g)
             m = self.rotations[i] @ m
         out: list[np.ndarray] = []
-        for pt in pts:
-            if all(sp.distance(pt, o) > 1e-7 for o in out):
+        scale = 1e-9 * max(1.0, float(np.abs(g).max()))
+        for pt in pts:  # coordinates, not arccos/arccosh, which lose half the digits near 0
+            if all(np.abs(pt - o).max() > scale for o in out):
                 out.append(pt)
         return np.array(out)
 
@@ -464,6 +466,9 @@ class Construction:
                 out.append(FaceType(len(orbit), rho, sp.frame(self.corners[i], g), self.corners[i], i))
         if self.symbol.form == "snub":
             out.append(self._snub_triangle())
+        if [(f.corner, f.sides) for f in out] != self.symbol.face_sizes():
+            raise GeometryError(f"{self.symbol}: the faces found ({[f.sides for f in out]}) are not the symbol's "
+                                f"({[k for _, k in self.symbol.face_sizes()]})")
         return out
 
     def _snub_triangle(self) -> FaceType:
@@ -565,10 +570,12 @@ class Construction:
 
     def faces(self, radius: float | None = None) -> tuple[np.ndarray, np.ndarray]:
         """(transforms (n, 3, 3), face type (n,)): every face whose centre lies within
-        ``radius`` of the pole (all of them on the sphere)."""
+        ``radius`` plus its circumradius of the pole, so every face meeting the disc of that
+        radius (all of them on the sphere)."""
         c = self.cell_corner
         n = self.orders[c]
-        reach = None if radius is None else radius + self.face_reach
+        grow = max(f.circumradius for f in self.face_types)
+        reach = None if radius is None else radius + grow + self.face_reach
         cells = self.cells(reach)
         rots = np.array([np.linalg.matrix_power(self.rotations[c], k) for k in range(n)])
         pole = self.corners[0]
@@ -584,7 +591,7 @@ class Construction:
             else:  # snub triangles: one per element of the rotation group, no two alike
                 m = np.matmul(np.matmul(cells[:, None], rots[None]), face.frame).reshape(-1, 3, 3)
             if radius is not None:
-                m = m[self.space.distance(m[:, :, 2], pole) <= radius]
+                m = m[self.space.distance(m[:, :, 2], pole) <= radius + face.circumradius]
             mats.append(m)
             kinds.append(np.full(len(m), t, dtype=np.int64))
         return np.concatenate(mats), np.concatenate(kinds)
@@ -626,13 +633,22 @@ def enumerate_configurations(max_order: int, max_prism: int, species_max_order: 
             cfg = sym.configuration
             if cfg is None or cfg in found:
                 continue
-            small = max(orders) <= max_order
-            species = len(cfg) <= species_max_valence and max(cfg) <= species_max_sides
-            prism = orders.count(2) >= 2 and max(cfg) <= max_prism
-            if small or species or prism:
+            if recorded(sym, max_order, max_prism, species_max_order, species_max_sides, species_max_valence):
                 found[cfg] = sym
     # the preferred symbol of each (largest group first), as symbol_for gives it
     return {cfg: symbols_for(cfg)[0] for cfg in sorted(found)}
+
+
+def recorded(sym: Symbol, max_order: int, max_prism: int, species_max_order: int, species_max_sides: int,
+             species_max_valence: int) -> bool:
+    """Whether the bounds of :func:`enumerate_configurations` take this symbol."""
+    cfg = sym.configuration
+    if cfg is None or sym.geometry == EUCLIDEAN:
+        return False
+    top = max(sym.orders)
+    species = top <= species_max_order and len(cfg) <= species_max_valence and max(cfg) <= species_max_sides
+    prism = sym.orders.count(2) >= 2 and max(cfg) <= max_prism
+    return top <= max_order or species or prism
 
 
 def uniform_configuration(symbol: Symbol) -> str:
