@@ -231,3 +231,12 @@ def tilekit_resolve_name(name: str) -> list[str] | None:
                              f"up to {bounds['max_order']}); draw it from any curved record: tilekit render 3.14.14 "
                              f"--set configuration={dotted}")
     return [f"vertex_configuration={dotted}"]
+
+
+@tilekit.hookimpl
+def tilekit_cli_commands(cli: Any) -> None:
+    # curved/cli.py imports only click and the core's cli_types at its top (the mesh code
+    # imports NumPy when the command runs); measured start-up cost: a few milliseconds
+    from tilekit.plugins.curved.cli import sphere_mesh_command
+
+    cli.add_command(sphere_mesh_command)

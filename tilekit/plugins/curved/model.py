@@ -205,6 +205,36 @@ def from_poincare(xy: np.ndarray) -> np.ndarray:
     return np.concatenate([2 * xy, 1 + r2], axis=-1) / (1 - r2)
 
 
+def halfplane(points: np.ndarray) -> np.ndarray:
+    """Hyperboloid points (..., 3) to the upper half-plane (..., 2) by the Cayley map
+    w = i(1 + z)/(1 − z) of their Poincaré point z: the disc's centre goes to i, the rim to
+    the real axis, geodesics to half-circles centred on it (or vertical lines)."""
+    z = poincare(points)
+    x, y = z[..., 0], z[..., 1]
+    d = (1 - x) ** 2 + y * y
+    return np.stack([-2 * y / d, (1 - x * x - y * y) / d], axis=-1)
+
+
+def halfplane_to_poincare(uv: np.ndarray) -> np.ndarray:
+    """Upper half-plane points (..., 2), v > 0, back to the Poincaré disc: z = (w − i)/(w + i)."""
+    u, v = uv[..., 0], uv[..., 1]
+    d = u * u + (v + 1) ** 2
+    return np.stack([(u * u + v * v - 1) / d, -2 * u / d], axis=-1)
+
+
+#: The hyperbolic drawing planes and their default views (x0, y0, x1, y1).
+PLANE_VIEWS = {"poincare": (-1.0, -1.0, 1.0, 1.0), "klein": (-1.0, -1.0, 1.0, 1.0), "halfplane": (-3.0, 0.0, 3.0, 3.0)}
+
+
+def project(points: np.ndarray, plane: str) -> np.ndarray:
+    """Hyperboloid points (..., 3) to a drawing plane: 'poincare', 'klein' or 'halfplane'."""
+    if plane == "klein":
+        return klein(points)
+    if plane == "halfplane":
+        return halfplane(points)
+    return poincare(points)
+
+
 def poincare_to_klein(xy: np.ndarray) -> np.ndarray:
     r2 = np.sum(xy * xy, axis=-1, keepdims=True)
     return 2 * xy / (1 + r2)

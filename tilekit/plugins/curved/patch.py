@@ -33,8 +33,8 @@ class ModelPrototile(Prototile):
     """A prototile whose ``outline`` is the projected central tile and ``points`` the same
     boundary on the model (k, 3); ``corners`` are the polygon's vertices among them;
     ``sign`` is +1 for the sphere, −1 for the hyperbolic plane; ``plane`` the hyperbolic
-    drawing plane, 'poincare' (conformal, geodesics are arcs) or 'klein' (geodesics are
-    chords); ``view`` the sphere's viewing rotation."""
+    drawing plane, 'poincare' (conformal, geodesics are arcs), 'klein' (geodesics are
+    chords) or 'halfplane' (the upper half-plane, conformal, geodesics are half-circles); ``view`` the sphere's viewing rotation."""
 
     points: np.ndarray | None = None
     sign: int = -1
@@ -44,7 +44,7 @@ class ModelPrototile(Prototile):
     def project(self, pts: np.ndarray) -> np.ndarray:
         """Model points (..., 3) to the drawing plane (..., 2)."""
         if self.sign < 0:
-            return model.klein(pts) if self.plane == "klein" else model.poincare(pts)
+            return model.project(pts, self.plane)
         return model.orthographic(pts @ self.view.T if self.view is not None else pts)
 
 
@@ -226,6 +226,11 @@ class ModelPatch(Patch):
             if not isinstance(poly, shapely.Polygon):
                 poly = poly.convex_hull
             ring = np.asarray(shapely.segmentize(poly, 0.01).exterior.coords)
+            if self.prototiles[0].plane == "halfplane":
+                if (ring[:, 1] <= 0).any():
+                    raise GeometryError("a hyperbolic patch's region must lie in the upper half-plane (y > 0)")
+                ring = model.halfplane_to_poincare(ring)
+                poly = shapely.Polygon(ring)
             if (np.hypot(ring[:, 0], ring[:, 1]) >= 1).any():
                 raise GeometryError("a hyperbolic patch's region must lie inside the unit disc")
             reg = poly if self.prototiles[0].plane == "klein" else shapely.Polygon(model.poincare_to_klein(ring))

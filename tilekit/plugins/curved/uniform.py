@@ -46,7 +46,7 @@ GEOMETRIES = {"sphere": wythoff.SPHERE, "spherical": wythoff.SPHERE, "hyperbolic
               "plane": wythoff.EUCLIDEAN, "euclidean": wythoff.EUCLIDEAN}
 _OPTIONS = ("configuration", "symbol", "radius", "samples", "plane", "geometry")
 _SPEC_KEYS = set(_OPTIONS) | {"name", "title"}
-PLANES = ("poincare", "klein")
+PLANES = ("poincare", "klein", "halfplane")
 
 
 def _number(name: str, value: Any, lo: float, hi: float, integer: bool) -> float:
@@ -167,8 +167,7 @@ class UniformTiling(Tiling):
         out = []
         for face in self.construction.face_types:
             pts = _outline(sp, face.sides, face.circumradius, self.samples)
-            flat = ((model.klein(pts) if self.plane == "klein" else model.poincare(pts)) if sp.sign < 0
-                    else model.orthographic(pts @ view.T))
+            flat = model.project(pts, self.plane) if sp.sign < 0 else model.orthographic(pts @ view.T)
             out.append(ModelPrototile(flat, name=_polygon(face.sides), points=pts, sign=sp.sign, view=view,
                                       plane=self.plane, corners=tuple(range(0, len(pts), self.samples))))
         return out
@@ -183,7 +182,7 @@ class UniformTiling(Tiling):
         return self.kind == wythoff.HYPERBOLIC
 
     def default_region(self) -> BaseGeometry:
-        return shapely.box(-1.0, -1.0, 1.0, 1.0)
+        return shapely.box(*model.PLANE_VIEWS[self.plane])
 
     def _radius(self) -> float:
         if self.radius is not None:
@@ -269,7 +268,7 @@ class UniformTiling(Tiling):
             "--set geometry=G            sphere, plane or hyperbolic: a check on the configuration's geometry",
             f"--set samples=N             points per edge of exported outlines (1..{MAX_SAMPLES}, default "
             f"{DEFAULT_SAMPLES}); SVG draws true arcs",
-            "--set plane=P               the hyperbolic drawing plane: poincare (default) or klein",
+            "--set plane=P               the hyperbolic drawing plane: poincare (default), klein or halfplane",
         ])
 
     def configure(self, **options: Any) -> UniformTiling:
