@@ -386,3 +386,80 @@ def test_cli_names_by_vertex_configuration(cli):
 ])
 def test_cli_bad_input_is_one_line(cli, args, needle):
     assert_one_line_error(cli("render", *args, "-o", "x.svg"), needle)
+
+
+# ------------------------------------------------------------------ output: meshes and the half-plane
+
+
+@pytest.mark.parametrize("config", ["5.6.6", "3.3.3.3.4", "4.4.7"])
+def test_sphere_mesh_is_closed_and_a_slicer_reads_it(tmp_path, config):
+    """Our own check (every edge in exactly two triangles, Euler characteristic 2, outward
+    normals) and trimesh's (PyPI, the test oracle: watertight, consistent winding, the
+    volume of the ball within the polygonal approximation's error)."""
+    from tilekit.plugins.curved.mesh import sphere_mesh, write_mesh
+
+    t = UniformTiling(config)
+    v, tri, owner = sphere_mesh(t.patch(), rings=4)
+    edges = np.sort(np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]]), axis=1)
+    _, counts = np.unique(edges, axis=0, return_counts=True)
+    assert (counts == 2).all()
+    assert len(v) - len(counts) + len(tri) == 2
+    normal = np.cross(v[tri[:, 1]] - v[tri[:, 0]], v[tri[:, 2]] - v[tri[:, 0]])
+    assert ((normal * v[tri].mean(axis=1)).sum(axis=1) > 0).all()
+    assert set(owner.tolist()) == set(range(len(t.patch())))
+    trimesh = pytest.importorskip("trimesh")
+    write_mesh(t, tmp_path / "ball.stl", size_mm=60.0)
+    m = trimesh.load(tmp_path / "ball.stl")
+    assert m.is_watertight and m.is_winding_consistent
+    assert m.volume == pytest.approx(4 / 3 * math.pi * 30.0 ** 3, rel=0.02)
+    write_mesh(t, tmp_path / "ball.obj", size_mm=60.0)
+    assert (tmp_path / "ball.mtl").exists()
+    o = trimesh.load(tmp_path / "ball.obj", force="mesh")
+    o = trimesh.Trimesh(o.vertices, o.faces)  # trimesh splits vertices per material; weld them again
+    o.merge_vertices()
+    assert o.is_watertight and o.volume == pytest.approx(m.volume, rel=1e-4)
+
+
+def test_sphere_mesh_cli_and_errors(cli):
+    r = cli("sphere-mesh", "truncated-icosahedron", "-o", "ball.stl", "--size-mm", "80")
+    assert r.exit_code == 0 and "(32 tiles," in r.output, r.output
+    r = cli("sphere-mesh", "icosahedron", "-o", "ico.obj", "--rings", "2")
+    assert r.exit_code == 0 and "(20 tiles," in r.output, r.output
+    assert_one_line_error(cli("sphere-mesh", "3.14.14", "-o", "x.stl"), "is not a tiling of the sphere")
+    assert_one_line_error(cli("sphere-mesh", "cube", "-o", "x.ply"), "written as .stl or .obj")
+    assert_one_line_error(cli("sphere-mesh", "cube", "-o", "x.stl", "--rings", "99"), "99")
+
+
+def test_mesh_module_and_cli_agree_on_rings():
+    from tilekit.plugins.curved import cli as curved_cli
+    from tilekit.plugins.curved import mesh
+
+    assert (curved_cli.DEFAULT_RINGS, curved_cli.MAX_RINGS) == (mesh.DEFAULT_RINGS, mesh.MAX_RINGS)
+
+
+def test_halfplane_is_the_cayley_image_and_draws_half_circles():
+    from tilekit.plugins.curved.render import halfplane_arc_commands
+
+    t = UniformTiling("3.14.14", radius=2.0, plane="halfplane")
+    patch = t.patch()
+    pts = patch.model_vertices(patch.prototile == 0)
+    uv = model.halfplane(pts)
+    assert (uv[..., 1] > 0).all()
+    z = model.poincare(pts)
+    zc = z[..., 0] + 1j * z[..., 1]
+    w = 1j * (1 + zc) / (1 - zc)
+    assert np.allclose(uv[..., 0], w.real) and np.allclose(uv[..., 1], w.imag)
+    assert np.allclose(model.halfplane_to_poincare(uv), z)
+    # each edge's arc: a circle centred on the real axis through both ends (a geodesic)
+    a, b = uv.reshape(-1, 2), np.roll(uv, -1, axis=1).reshape(-1, 2)
+    for cmd, p, q in zip(halfplane_arc_commands(a, b)[:50], a, b):
+        if cmd.startswith("L"):
+            assert abs(p[0] - q[0]) < 1e-9
+            continue
+        r = float(cmd[1:].split()[0])
+        cx = (p @ p - q @ q) / (2 * (p[0] - q[0]))
+        assert math.hypot(p[0] - cx, p[1]) == pytest.approx(r, rel=1e-6)
+        assert math.hypot(q[0] - cx, q[1]) == pytest.approx(r, rel=1e-6)
+    assert t.patch().validate(shapely.box(-0.5, 0.5, 0.5, 1.5)).ok
+    svg = t.render_svg(patch)
+    assert svg.count(" A") > 100 and "<line" in svg
