@@ -463,3 +463,18 @@ def test_halfplane_is_the_cayley_image_and_draws_half_circles():
     assert t.patch().validate(shapely.box(-0.5, 0.5, 0.5, 1.5)).ok
     svg = t.render_svg(patch)
     assert svg.count(" A") > 100 and "<line" in svg
+
+
+def test_bytes_per_tile_bounds_the_peak():
+    import tracemalloc
+
+    for config, radius in (("3.14.14", 6.5), ("5.8.8", 5.0), ("3.3.3.3.7", 5.0)):
+        t = UniformTiling(config, radius=radius)
+        tracemalloc.start()
+        try:
+            patch = t.patch()
+            peak = tracemalloc.get_traced_memory()[1]
+        finally:
+            tracemalloc.stop()
+        assert peak <= t.bytes_per_tile * len(patch), (config, peak / len(patch))
+        assert len(patch) <= t.estimate_tiles()
