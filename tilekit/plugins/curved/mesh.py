@@ -11,7 +11,6 @@ vertex), so the mesh is closed and every edge has exactly two triangles.
 
 from __future__ import annotations
 
-import itertools
 from pathlib import Path
 from typing import Any
 
@@ -19,6 +18,7 @@ import numpy as np
 
 from tilekit.errors import GeometryError, ParameterError, TilekitError
 from tilekit.plugins.curved import model
+from tilekit.plugins.curved.wythoff import weld
 
 DEFAULT_RINGS = 4
 MAX_RINGS = 32
@@ -26,28 +26,6 @@ MAX_RINGS = 32
 #: never needs more than a few 10^4).
 MAX_TRIANGLES = 2_000_000
 MESH_FORMATS = (".stl", ".obj")
-
-
-def weld(points: np.ndarray, sep: float) -> np.ndarray:
-    """For each point (n, 3) the index of its vertex: points closer than sep/2 are one vertex
-    (distinct ones are at least ``sep`` apart). A grid of cells sep/4 wide: a cell holds one
-    cluster, and a cluster spread over neighbouring cells takes the lowest-numbered one."""
-    h = sep / 4.0
-    cell = np.floor(points / h).astype(np.int64)
-    lo = cell.min(axis=0) - 1
-    span = cell.max(axis=0) - lo + 2
-    weights = np.cumprod(np.concatenate([[1], span[:-1]])).astype(np.int64)
-    key = ((cell - lo) * weights).sum(axis=1)
-    ukey, rep, inv = np.unique(key, return_index=True, return_inverse=True)
-    target = rep.copy()
-    for off in itertools.product((-1, 0, 1), repeat=3):
-        if not any(off):
-            continue
-        nk = ukey + int(np.dot(off, weights))
-        pos = np.minimum(np.searchsorted(ukey, nk), len(ukey) - 1)
-        close = (ukey[pos] == nk) & (np.linalg.norm(points[rep[pos]] - points[rep], axis=1) < sep / 2)
-        target = np.where(close & (rep[pos] < target), rep[pos], target)
-    return target[inv.reshape(-1)]
 
 
 def sphere_mesh(patch: Any, rings: int = DEFAULT_RINGS) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

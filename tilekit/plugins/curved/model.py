@@ -156,21 +156,8 @@ class RegularPolygon:
         return self.geometry.point(self.circumradius, self.vertex_angles())
 
     def outline(self, per_edge: int = 1) -> np.ndarray:
-        """(p * per_edge, 3) points along the boundary: per edge, its start and per_edge − 1
-        points along the geodesic (spaced evenly in the model's parameter, symmetric about the
-        midpoint, so neighbours sample a shared edge at the same points)."""
-        v = self.vertices()
-        if per_edge <= 1:
-            return v
-        g = self.geometry
-        a, b = v, np.roll(v, -1, axis=0)
-        d = self.edge_length
-        s = np.linspace(0.0, 1.0, per_edge, endpoint=False)
-        # slerp on the sphere / along the hyperbola: sin((1-s)d)/sin d a + sin(sd)/sin d b
-        w0 = g.sin((1 - s) * d) / g.sin(d)
-        w1 = g.sin(s * d) / g.sin(d)
-        pts = w0[None, :, None] * a[:, None, :] + w1[None, :, None] * b[:, None, :]
-        return pts.reshape(-1, 3)
+        """(p * per_edge, 3) points along the boundary (:func:`sample_edges`)."""
+        return sample_edges(self.geometry, self.vertices(), self.edge_length, per_edge)
 
     def half_turns(self) -> np.ndarray:
         """(p, 3, 3): H[j] turns the central tile by π about the midpoint of its edge j; the
@@ -184,6 +171,21 @@ class RegularPolygon:
             r, r_inv = g.rotation(phi), g.rotation(-phi)
             out[j] = r @ t @ flip @ t_inv @ r_inv
         return out
+
+
+def sample_edges(g: Geometry, v: np.ndarray, d: float, per_edge: int) -> np.ndarray:
+    """(k * per_edge, 3): the closed polygon v (k, 3) with edges of length d, per edge its
+    start and per_edge − 1 points along the geodesic (spaced evenly in the model's parameter,
+    symmetric about the midpoint, so neighbours sample a shared edge at the same points)."""
+    if per_edge <= 1:
+        return v
+    a, b = v, np.roll(v, -1, axis=0)
+    s = np.linspace(0.0, 1.0, per_edge, endpoint=False)
+    # slerp on the sphere / along the hyperbola: sin((1-s)d)/sin d a + sin(sd)/sin d b
+    w0 = g.sin((1 - s) * d) / g.sin(d)
+    w1 = g.sin(s * d) / g.sin(d)
+    pts = w0[None, :, None] * a[:, None, :] + w1[None, :, None] * b[:, None, :]
+    return pts.reshape(-1, 3)
 
 
 # --------------------------------------------------------------------------- projections

@@ -28,6 +28,7 @@ from tilekit.limits import MAX_TILES, refuse_over, refuse_over_memory
 from tilekit.plugins.curved import model, notation, wythoff
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
 from tilekit.plugins.curved.render import curved_svg
+from tilekit.plugins.curved.tiling import _number
 from tilekit.tiling import Patch, PeriodicTiling, Prototile, Tiling
 
 #: Faces of a hyperbolic patch when no radius is given (the radius is chosen to give about this many).
@@ -49,19 +50,6 @@ GEOMETRIES = {"sphere": wythoff.SPHERE, "spherical": wythoff.SPHERE, "hyperbolic
 _OPTIONS = ("configuration", "symbol", "radius", "samples", "plane", "geometry")
 _SPEC_KEYS = set(_OPTIONS) | {"name", "title"}
 PLANES = ("poincare", "klein", "halfplane")
-
-
-def _number(name: str, value: Any, lo: float, hi: float, integer: bool) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
-        raise ParameterError(f"{name} must be a number {lo:g}..{hi:g}, got {type(value).__name__}")
-    try:
-        f = float(value)
-    except (ValueError, OverflowError):
-        raise ParameterError(f"{name} must be a number {lo:g}..{hi:g}, got {str(value)[:40]!r}") from None
-    if not math.isfinite(f) or not lo <= f <= hi or (integer and f != int(f)):
-        kind = "an integer" if integer else "a number"
-        raise ParameterError(f"{name} must be {kind} {lo:g}..{hi:g}, got {str(value)[:40]}")
-    return int(f) if integer else f
 
 
 def check_geometry(geometry: Any) -> str | None:
@@ -103,18 +91,9 @@ def resolve(configuration: str | None = None, symbol: str | None = None,
 
 
 def _outline(space: wythoff.Space, sides: int, rho: float, per_edge: int) -> np.ndarray:
-    """(sides * per_edge, 3): the regular polygon at the pole and per_edge − 1 points along each
-    edge's geodesic (evenly in the model's parameter, symmetric about the midpoint)."""
+    """(sides * per_edge, 3): the regular polygon at the pole, its edges sampled on the geodesics."""
     v = wythoff.regular_polygon(space, sides, rho)
-    if per_edge <= 1:
-        return v
-    g = model.Geometry(space.sign)
-    a, b = v, np.roll(v, -1, axis=0)
-    d = float(space.distance(a[0], b[0]))
-    s = np.linspace(0.0, 1.0, per_edge, endpoint=False)
-    w0 = g.sin((1 - s) * d) / g.sin(d)
-    w1 = g.sin(s * d) / g.sin(d)
-    return (w0[None, :, None] * a[:, None, :] + w1[None, :, None] * b[:, None, :]).reshape(-1, 3)
+    return model.sample_edges(model.Geometry(space.sign), v, float(space.distance(v[0], v[1])), per_edge)
 
 
 _POLYGON_NAMES = {3: "triangle", 4: "square", 5: "pentagon", 6: "hexagon", 7: "heptagon", 8: "octagon",

@@ -323,15 +323,13 @@ class FaceType:
     corner: int
 
 
-def dedup(points: np.ndarray, sep: float, first: int = 0) -> np.ndarray:
-    """Indices (sorted) of one point per cluster among ``points`` (n, D), keeping each
-    cluster's lowest index; points closer than sep/2 are one cluster, and distinct points
-    are assumed at least ``sep`` apart. Points below index ``first`` are known ones: the
-    answer lists only new points (clusters with no index below ``first``).
+def weld(points: np.ndarray, sep: float) -> np.ndarray:
+    """For each point (n, D) the index of its cluster's lowest-numbered point: points closer
+    than sep/2 are one cluster, and distinct points are assumed at least ``sep`` apart.
 
     A grid of cells sep/4 wide holds at most one cluster per cell (its diagonal is under
-    sep/2); a cluster spread by float error over neighbouring cells is one cluster because
-    the cells are neighbours and their representatives close: the cell of lowest index wins."""
+    sep/2 for D <= 3); a cluster spread by float error over neighbouring cells is one cluster
+    because the cells are neighbours and their representatives close: the lowest index wins."""
     n, dim = points.shape
     if n == 0:
         return np.zeros(0, dtype=np.int64)
@@ -343,20 +341,24 @@ def dedup(points: np.ndarray, sep: float, first: int = 0) -> np.ndarray:
         raise GeometryError("the construction's points are spread too far for the grid (radius too large)")
     weights = np.cumprod(np.concatenate([[1], span[:-1]])).astype(np.int64)
     key = ((cell - lo) * weights).sum(axis=1)
-    ukey, rep = np.unique(key, return_index=True)  # rep: the lowest index in each cell
-    rep_pts = points[rep]
-    drop = np.zeros(len(ukey), dtype=bool)
+    ukey, rep, inv = np.unique(key, return_index=True, return_inverse=True)  # rep: lowest index per cell
+    target = rep.copy()
     for off in itertools.product((-1, 0, 1), repeat=dim):
         if not any(off):
             continue
         nk = ukey + int(np.dot(off, weights))
-        pos = np.searchsorted(ukey, nk)
-        pos = np.minimum(pos, len(ukey) - 1)
-        hit = ukey[pos] == nk
-        close = hit & (np.linalg.norm(rep_pts[pos] - rep_pts, axis=1) < sep / 2)
-        drop |= close & (rep[pos] < rep)
-    keep = rep[~drop]
-    return np.sort(keep[keep >= first])
+        pos = np.minimum(np.searchsorted(ukey, nk), len(ukey) - 1)
+        close = (ukey[pos] == nk) & (np.linalg.norm(points[rep[pos]] - points[rep], axis=1) < sep / 2)
+        target = np.where(close & (rep[pos] < target), rep[pos], target)
+    return target[inv.reshape(-1)]
+
+
+def dedup(points: np.ndarray, sep: float, first: int = 0) -> np.ndarray:
+    """Indices (sorted) of one point per cluster (:func:`weld`), the lowest-numbered; points
+    below index ``first`` are known ones: the answer lists only clusters with none of them."""
+    cluster = weld(points, sep)
+    keep = np.flatnonzero(cluster == np.arange(len(points)))
+    return keep[keep >= first]
 
 
 class Construction:
