@@ -52,6 +52,7 @@ def _vectors(tiling: Any, region: tuple[float, float, float, float]) -> tuple[An
 @click.option("--edge", "edges", multiple=True, metavar="SPEC", help="Edge shape 'name=x,y:x,y:...' (repeatable).")
 @click.option("--depth", type=BoundedInt(0, limits.MAX_DEPTH), help="Substitution depth.")
 @click.option("--set", "settings", multiple=True, metavar="KEY=VALUE", help="A family-specific option (repeatable).")
+@click.option("--geometry", type=click.Choice(["sphere", "plane", "hyperbolic"]), help="Curved tilings: the surface a vertex configuration closes on, checked (same as --set geometry=G).")
 @click.option("--tiling", "which", metavar="WHICH", help="Which of the tile's tilings (e.g. an IH type or a 1-based index; same as --set tiling=WHICH).")
 @click.option("--region", metavar="x0,y0,x1,y1", help="The region to cover (default: the tiling's own).")
 @click.option("--colours", "--colors", "colours", metavar="c1,c2,...", help="Fill colours, CSS names or #rrggbb.")
@@ -76,7 +77,7 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
            depth: int | None, settings: tuple[str, ...], which: str | None, region: str | None, colours: str | None,
            labels: bool, vectors: bool, system: str | None, family: str | None, max_tiles: int,
            width: int | None, height: int | None, dpi: float, stroke: str, stroke_width: float | None,
-           layers: str | None, mm_per_unit: float | None) -> None:
+           layers: str | None, mm_per_unit: float | None, geometry: str | None) -> None:
     """Render a catalogue tiling (or a --system file) to SVG or PNG, or export it (.geojson,
     .json, .cut.svg, .dxf; the output suffix chooses).
 
@@ -137,6 +138,8 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
         tiling = state.catalogue().tiling(name)
 
     options = configure_options(params, edges, settings, which, depth)
+    if geometry:
+        options["geometry"] = geometry
     if options:
         tiling = tiling.configure(**options)
 
