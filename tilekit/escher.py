@@ -28,7 +28,7 @@ import xml.etree.ElementTree as ET
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -461,6 +461,28 @@ def framed_path(shapes: Sequence[np.ndarray], size: int) -> Callable[[np.ndarray
     return path
 
 
+
+
+
+@dataclass(frozen=True)
+class FitSettings:
+    """A fit's sizes (samples, starts, edge points), reflection and seed; a family sets the
+    defaults and the bounds ``max_starts`` / ``max_edge_points`` (checked by ``check``)."""
+
+    samples: int = DEFAULT_SAMPLES
+    starts: int = 4
+    edge_points: int = 4
+    reflection: bool = True
+    seed: int = 0
+    max_starts: ClassVar[int] = 64
+    max_edge_points: ClassVar[int] = 24
+
+    def check(self) -> None:
+        check_samples(self.samples)
+        if not (isinstance(self.starts, int) and 1 <= self.starts <= self.max_starts):
+            raise ParameterError(f"starts {self.starts!r} must be an integer from 1 to {self.max_starts}")
+        if not (isinstance(self.edge_points, int) and 1 <= self.edge_points <= self.max_edge_points):
+            raise ParameterError(f"edge points {self.edge_points!r} must be an integer from 1 to {self.max_edge_points}")
 
 
 # ------------------------------------------------------------------------ linear projection

@@ -25,13 +25,14 @@ import time
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
 from tilekit.errors import GeometryError, ParameterError
 from tilekit.escher import (  # noqa: F401 - the metric's names, re-exported for the dihedral and Heaven-and-Hell fits
     SUBSHIFTS,
+    FitSettings,
     GoalBank,
     _complex,
     _distance,
@@ -335,21 +336,13 @@ class EscherResult(TypeFit):
 
 
 @dataclass(frozen=True)
-class Settings:
+class Settings(FitSettings):
     """The search's sizes (samples, starts, edge points), reflection and seed (checked by ``check``)."""
 
-    samples: int = DEFAULT_SAMPLES
     starts: int = DEFAULT_STARTS
     edge_points: int = DEFAULT_EDGE_POINTS
-    reflection: bool = True
-    seed: int = 0
-
-    def check(self) -> None:
-        check_samples(self.samples)
-        if not (isinstance(self.starts, int) and 1 <= self.starts <= MAX_STARTS):
-            raise ParameterError(f"starts {self.starts!r} must be an integer from 1 to {MAX_STARTS}")
-        if not (isinstance(self.edge_points, int) and 1 <= self.edge_points <= MAX_EDGE_POINTS):
-            raise ParameterError(f"edge points {self.edge_points!r} must be an integer from 1 to {MAX_EDGE_POINTS}")
+    max_starts: ClassVar[int] = MAX_STARTS
+    max_edge_points: ClassVar[int] = MAX_EDGE_POINTS
 
 
 def escherize_type(goal: np.ndarray, ih: int, settings: Settings = Settings()) -> EscherResult:

@@ -178,3 +178,12 @@ def tilekit_samplers() -> list[Sampler]:
                 "V. Ostromoukhov, Sampling with polyominoes, SIGGRAPH 2007 (here with the chair rep-tile)",
                 finish=_polyomino_finish),
     ]
+
+
+@tilekit.hookimpl
+def tilekit_cli_commands(cli: Any) -> None:
+    # measured start-up cost: cli.py loads only click, the core's cli_types and limits and the
+    # import-free penrose_limits (a few ms); its command imports NumPy/scipy when it runs
+    from tilekit.plugins.substitution.cli import escherize_penrose_command
+
+    cli.add_command(escherize_penrose_command)
