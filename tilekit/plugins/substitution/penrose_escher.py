@@ -376,15 +376,15 @@ def _valid_result(model: PenroseModel, qvec: np.ndarray, x: np.ndarray, goals: S
 
 
 def tiles_svg(result: PenroseResult, goals: Sequence[np.ndarray], size: int = 400) -> str:
-    """The thick and thin rhombs side by side, each with its goal aligned onto it (dashed)."""
+    """The thin and thick rhombs side by side (light and dark, the patch's colours), each with
+    its goal aligned onto it (dashed)."""
     tiles = {t.name: np.asarray(t.outline, dtype=float) for t in result.tiling().prototiles}
-    shapes = [tiles["thick"], tiles["thin"]]
-    gap = float(np.ptp(shapes[0][:, 0])) * 0.6 + float(shapes[0][:, 0].max() - shapes[1][:, 0].min())
-    shapes[1] = shapes[1] + [gap, 0.0]
-    pair = goals if len(goals) == 2 else [goals[0], goals[0]]
-    aligned = [escher.align_onto(s, g, m) for s, g, m in zip(shapes, pair, result.mirrored)]
-    title = (f"{result.system}  d = {result.distance:.4f} (thick {result.distances[0]:.4f}, "
-             f"thin {result.distances[1]:.4f})")
+    shapes = [tiles["thin"], tiles["thick"]]
+    shapes[1] = shapes[1] + [float(shapes[0][:, 0].max() - shapes[1][:, 0].min()) + 0.3, 0.0]
+    pair = [goals[-1], goals[0]]  # thin: goal B (or the one goal); thick: goal A
+    aligned = [escher.align_onto(s, g, m) for s, g, m in zip(shapes, pair, result.mirrored[::-1])]
+    title = (f"{result.system}  d = {result.distance:.4f} (thin {result.distances[1]:.4f}, "
+             f"thick {result.distances[0]:.4f})")
     return escher.overlay_svg(title, shapes, aligned, size)
 
 
