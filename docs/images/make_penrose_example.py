@@ -11,26 +11,17 @@ Run: python docs/images/make_penrose_example.py [--starts N]
 from __future__ import annotations
 
 import argparse
-import re
 from pathlib import Path
 
 import cairosvg
 import shapely
+from make_escher_example import PANEL, inner  # the panel layout of the other Escherization pictures
 
 from tilekit.escher import read_goal
 from tilekit.plugins.substitution import penrose_escher as pe
 
 HERE = Path(__file__).resolve().parent
 DATA = HERE.parent.parent / "tests" / "data" / "escher"
-PANEL = 360
-
-
-def inner(svg: str, x: int) -> str:
-    """An SVG document as a nested <svg> panel at (x, 0), PANEL x PANEL pixels."""
-    svg = re.sub(r"<\?xml[^>]*\?>", "", svg).strip()
-    svg = re.sub(r'\swidth="[^"]*"', "", svg, count=1)
-    svg = re.sub(r'\sheight="[^"]*"', "", svg, count=1)
-    return svg.replace("<svg", f'<svg x="{x}" y="0" width="{PANEL}" height="{PANEL}"', 1)
 
 
 def build_parser() -> argparse.ArgumentParser:
