@@ -160,7 +160,8 @@ def test_help_states_the_budget() -> None:
     assert res.exit_code == 0
     text = " ".join(res.output.split())
     assert f"at most {penrose_limits.START_EVALUATIONS} evaluations" in text
-    assert f"at most {penrose_limits.POLISH_EVALUATIONS} evaluations" in text
+    assert f"at most {penrose_limits.POLISH_ROUNDS} rounds of a least-squares polish of at most " \
+           f"{penrose_limits.POLISH_EVALUATIONS} evaluations each" in text
 
 
 @pytest.mark.parametrize("args, expect", [

@@ -45,8 +45,8 @@ def escherize_penrose_command(goals: tuple[str, ...], out: str, which: str, samp
     matching rules on every shared edge) and written to -o DIR.
 
     Budget: --starts Nelder-Mead runs of at most 200 evaluations each (every evaluation
-    projects the edge shapes in 6 linear steps), then a least-squares polish of at most 60
-    evaluations; about 10-60 s on one core.
+    projects the edge shapes in 6 linear steps), then at most 4 rounds of a least-squares
+    polish of at most 60 evaluations each; about 5-15 s of CPU.
 
     \b
     Examples:

@@ -42,6 +42,7 @@ from tilekit.plugins.substitution.penrose_limits import (
     MAX_EDGE_POINTS,
     MAX_STARTS,
     POLISH_EVALUATIONS,
+    POLISH_ROUNDS,
     START_EVALUATIONS,
 )
 
@@ -290,10 +291,20 @@ def _fit(goals: list[np.ndarray], system: str, settings: PenroseSettings) -> Pen
             best_q, best_f, best_ridge = np.asarray(res.x, dtype=float), float(res.fun), ridge
     _, _, x = project(model, best_q, banks, FINAL_STEPS, best_ridge, model.c0)
     candidates = [(best_q, x)]
-    polished = _polish(model, best_q, x, goals, banks)
-    if polished is not None:
-        candidates.insert(0, polished[:2])
-        evaluations += polished[2]
+    # the polish minimises a weighted sum of the two squared distances; the score is the larger
+    # one, so later rounds weight each rhomb by its share of the larger distance (damped: full
+    # reweighting oscillated between the rhombs on the fish), keeping the best round
+    weights, q, xx = [1.0, 1.0], best_q, x
+    for _ in range(POLISH_ROUNDS):
+        polished = _polish(model, q, xx, goals, banks, weights)
+        if polished is None:
+            break
+        q, xx, ds, nfev = polished
+        evaluations += nfev
+        candidates.insert(0, (q, xx))
+        if max(ds) <= 0:  # an exact fit
+            break
+        weights = [0.5 * (w + d / max(ds)) for w, d in zip(weights, ds)]
     result = escher.best_valid(candidates, lambda q, xx: _valid_result(model, q, xx, goals, system, settings),
                                f"{system} Escherization")
     result.evaluations = evaluations
@@ -302,9 +313,12 @@ def _fit(goals: list[np.ndarray], system: str, settings: PenroseSettings) -> Pen
 
 
 def _polish(model: PenroseModel, qvec: np.ndarray, x: np.ndarray, goals: Sequence[np.ndarray],
-            banks: Sequence[escher.GoalBank]) -> tuple[np.ndarray, np.ndarray, int] | None:
+            banks: Sequence[escher.GoalBank], weights: Sequence[float] = (1.0, 1.0)
+            ) -> tuple[np.ndarray, np.ndarray, list[float], int] | None:
     """q, x and both goals' continuous starting offsets refined jointly by scipy's
-    least_squares on the two rhombs' stacked metric residuals. None if it does not improve."""
+    least_squares on the two rhombs' stacked metric residuals (rhomb i's scaled by
+    ``weights[i]``): (q, x, both distances, evaluations), or None if the larger distance does
+    not improve."""
     from scipy.optimize import least_squares  # start-up cost: scipy (~0.3 s), only for a search
 
     n = banks[0].samples
@@ -316,7 +330,7 @@ def _polish(model: PenroseModel, qvec: np.ndarray, x: np.ndarray, goals: Sequenc
         out = []
         for i, outline in enumerate(model.outlines(z[:4], z[4 : 4 + nx])):
             r = escher.similarity_residual(escher.resample(outline, n), escher.resample(srcs[i], n, bases[i] + z[-2 + i]))
-            out += [r.real, r.imag]
+            out += [weights[i] * r.real, weights[i] * r.imag]
         out.append(ridge * (z[4 : 4 + nx] - model.c0))
         return np.concatenate(out)
 
@@ -329,10 +343,10 @@ def _polish(model: PenroseModel, qvec: np.ndarray, x: np.ndarray, goals: Sequenc
     if not np.all(np.isfinite(z)) or qv._bad_tiles(_params(z[:4])):
         return None
     r = res.fun
-    d = max(math.sqrt(float(np.sum(r[: 2 * n] ** 2))), math.sqrt(float(np.sum(r[2 * n : 4 * n] ** 2))))
-    if d >= d0:
+    ds = [math.sqrt(float(np.sum(r[2 * n * i : 2 * n * (i + 1)] ** 2))) / weights[i] for i in range(2)]
+    if max(ds) >= d0:
         return None
-    return z[:4], z[4 : 4 + nx], int(res.nfev)
+    return z[:4], z[4 : 4 + nx], ds, int(res.nfev)
 
 
 def _valid_result(model: PenroseModel, qvec: np.ndarray, x: np.ndarray, goals: Sequence[np.ndarray], system: str,

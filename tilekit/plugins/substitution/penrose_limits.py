@@ -8,6 +8,7 @@ MAX_STARTS = 32
 DEFAULT_EDGE_POINTS = 3
 MAX_EDGE_POINTS = 12
 #: Nelder-Mead evaluations per start (40 per simplex vertex of the four parameters, as the
-#: isohedral fit) and of the least-squares polish: the search's budget.
+#: isohedral fit) and of each round of the least-squares polish, and its rounds: the budget.
 START_EVALUATIONS = 40 * 5
 POLISH_EVALUATIONS = 60
+POLISH_ROUNDS = 4
