@@ -188,3 +188,12 @@ def tilekit_web_static() -> list[tuple[str, Any]]:
     from tilekit.plugins.substitution.web import STATIC, STATIC_DIR
 
     return [(STATIC, STATIC_DIR)]
+
+
+@tilekit.hookimpl
+def tilekit_cli_commands(cli: Any) -> None:
+    # measured start-up cost: cli.py loads only click, the core's cli_types and limits and the
+    # import-free penrose_limits (a few ms); its command imports NumPy/scipy when it runs
+    from tilekit.plugins.substitution.cli import escherize_penrose_command
+
+    cli.add_command(escherize_penrose_command)
