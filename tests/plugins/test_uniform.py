@@ -271,7 +271,7 @@ def test_symbol_parsing_and_configurations():
 
 
 def _types(max_sides, valences):
-    from tilekit.plugins.archimedean.notation import bounded_species, types_of_species
+    from tilekit.regular.notation import bounded_species, types_of_species
 
     for k in valences:
         for species in bounded_species(max_sides, k, k):

@@ -65,9 +65,9 @@ def test_tiling_and_unknown_name(client):
     assert body["properties"]["topology"] == "3^6" and body["spec"]["ih"] == 16
     assert "incidence symbol" in body["describe"].lower() or "[a+b+c+c-b-a-; a-c+b+]" in body["describe"]
     assert re.fullmatch(r"[0-9a-f]{16}", body["spec_hash"])
-    r = client.get("/api/tiling/4.4.4.5")
+    r = client.get("/api/tiling/4.4.4.4x")  # (4.4.4.5 is a name now: the hyperbolic 4 5 | 2)
     assert r.status_code == 404
-    assert r.json()["error"].startswith("unknown tiling '4.4.4.5'; did you mean '4.4.4.4'")
+    assert r.json()["error"].startswith("unknown tiling '4.4.4.4x'; did you mean '4.4.4.4'")
     assert client.get("/api/nothing").status_code == 404
     assert client.get("/api/nothing").json()["status"] == 404
 

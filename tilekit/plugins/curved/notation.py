@@ -1,18 +1,20 @@
 """Vertex configurations p1.p2...pk for the curved family: parse, canonical form, print.
 
-The regular-polygon vertex-type notation lives in the archimedean family today
-(``tilekit.plugins.archimedean.notation``) and is moving to a core module; a family never
-imports another family, so this module holds the little the curved family needs, and is the
-one place to replace by an import from the core module once it exists.
+The canonical form, the exponent form and the geometry a configuration closes on are the
+core's (``tilekit.regular.notation``, shared with the archimedean and k-uniform families); this
+module adds the reading the curved family needs (up to 60 polygons at a vertex, as hyperbolic
+{3,q} tilings have) and the plain dotted form.
 """
 
 from __future__ import annotations
 
-import itertools
 import re
-from fractions import Fraction
 
 from tilekit.errors import ParseError
+from tilekit.regular.notation import canonical, geometry_of
+from tilekit.regular.notation import format_sequence as exponent
+
+__all__ = ["canonical", "dotted", "exponent", "geometry_of", "parse"]
 
 _PART = re.compile(r"^(\d+)(?:\^(\d+))?$")
 _SUPERSCRIPT = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹", "0123456789")
@@ -23,26 +25,9 @@ MAX_SIDES = 1000
 MAX_VALENCE = 60
 
 
-def canonical(seq: tuple[int, ...] | list[int]) -> tuple[int, ...]:
-    """The least sequence among the cyclic shifts and reversals of ``seq``."""
-    s = tuple(seq)
-    if not s:
-        return s
-    return min(base[i:] + base[:i] for base in (s, s[::-1]) for i in range(len(base)))
-
-
 def dotted(seq: tuple[int, ...]) -> str:
     """``(3, 4, 4, 4)`` -> ``3.4.4.4``."""
     return ".".join(map(str, seq))
-
-
-def exponent(seq: tuple[int, ...]) -> str:
-    """``(3, 4, 4, 4)`` -> ``3.4^3`` (runs as exponents, in the given order)."""
-    parts = []
-    for p, run in itertools.groupby(seq):
-        n = len(list(run))
-        parts.append(f"{p}^{n}" if n > 1 else str(p))
-    return ".".join(parts)
 
 
 def parse(text: str) -> tuple[int, ...]:
@@ -70,15 +55,3 @@ def parse(text: str) -> tuple[int, ...]:
         raise ParseError(f"vertex configuration {text[:60]!r}: 3..{MAX_VALENCE} polygons meet at a vertex, "
                          f"got {len(out)}")
     return tuple(out)
-
-
-def angle_excess(seq: tuple[int, ...]) -> Fraction:
-    """The interior angles of Euclidean regular polygons summed, less a full turn, in turns:
-    below 0 the configuration closes on the sphere, 0 in the plane, above 0 hyperbolic."""
-    return sum((Fraction(n - 2, 2 * n) for n in seq), Fraction(0)) - 1
-
-
-def geometry_of(seq: tuple[int, ...]) -> str:
-    """'spherical', 'euclidean' or 'hyperbolic' (the sign of :func:`angle_excess`)."""
-    e = angle_excess(seq)
-    return "spherical" if e < 0 else "euclidean" if e == 0 else "hyperbolic"
