@@ -87,7 +87,7 @@ def test_a_family_adds_a_public_name_to_the_tilekit_package():
     assert tilekit.polyomino("pentomino-F").name == "pentomino-F"
     pm = make_plugin_manager()
     assert public_name("polyomino", pm)(".xx/xx./.x.").name == "pentomino-F"
-    with pytest.raises(AttributeError, match="no attribute 'no_such_name'"):
+    with pytest.raises(PluginError, match=r"no loaded plugin offers tilekit\.no_such_name"):
         public_name("no_such_name", pm)
 
     class Twin:

@@ -15,7 +15,3 @@ from tilekit.cli.base import State, cli, main, pass_state, plugin_manager
 extra.register(cli)
 
 __all__ = ["State", "cli", "main", "pass_state", "plugin_manager"]
-
-
-if __name__ == "__main__":  # pragma: no cover
-    main()

@@ -287,13 +287,14 @@ def catalogue_records(pm: pluggy.PluginManager | None = None) -> list[CatalogueR
 
 def public_name(name: str, pm: pluggy.PluginManager | None = None) -> Any:
     """The object a plugin adds to the ``tilekit`` package as ``name`` (``tilekit_public_names``),
-    PluginError when two plugins offer it, AttributeError when none does."""
+    PluginError when two plugins offer it or none does."""
     pm = pm or get_plugin_manager()
     offers = [names[name] for names in pm.hook.tilekit_public_names() if names and name in names]
     if len(offers) > 1:
         raise PluginError(f"two plugins define the public name tilekit.{name}")
     if not offers:
-        raise AttributeError(f"module 'tilekit' has no attribute {name!r}")
+        raise PluginError(f"no loaded plugin offers tilekit.{name} (is the plugin that provides it installed, "
+                          "and not left out by TILEKIT_PLUGINS?)")
     return offers[0]
 
 
