@@ -19,11 +19,14 @@ from tilekit.geometry import as_region
 from tilekit.render import parse_palette, patch_to_svg
 from tilekit.schema import finite_number
 from tilekit.text import parse_region as text_region
+from tilekit.text import parse_settings
 from tilekit.web.limits import DEFAULT_MAX_TILES, RenderTooLarge, check_render_size
 
 #: Options a render request may carry besides the tiling's name.
 RENDER_KEYS = ("params", "edges", "depth", "region", "colours", "colouring", "size", "r1", "theta1", "r2",
-               "theta2", "seed", "labels")
+               "theta2", "seed", "labels", "set")
+#: ``set=KEY=VALUE`` options (the command line's ``--set``: a family's own options) per request.
+MAX_SETTINGS = 16
 MAX_SIZE = 2000
 MAX_EDGES = 32
 MAX_POINTS = 64
@@ -68,6 +71,8 @@ def query_options(items: Iterable[tuple[str, str]]) -> dict[str, Any]:
         elif key in ("param", "params"):
             params.append(value)
             raw["params"] = ",".join(params)
+        elif key == "set":
+            raw.setdefault("set", []).append(value)
         else:
             raw[key] = value
     return raw
@@ -103,6 +108,20 @@ def normalise_options(raw: Mapping[str, Any]) -> dict[str, Any]:
     for key in ("colouring", "seed"):
         if raw.get(key) not in (None, ""):
             out[key] = str(raw[key])[:200]
+    settings = raw.get("set")
+    if settings not in (None, "", []):
+        if isinstance(settings, Mapping):
+            settings = [f"{k}={v}" for k, v in settings.items()]
+        if isinstance(settings, str):
+            settings = [settings]
+        if not isinstance(settings, list | tuple) or not all(isinstance(s, str) for s in settings):
+            raise ParseError("set must be 'KEY=VALUE' strings (a family's own options, as --set on the command line)")
+        if len(settings) > MAX_SETTINGS or any(len(s) > 1000 for s in settings):
+            raise ParameterError(f"at most {MAX_SETTINGS} set=KEY=VALUE options of 1000 characters each")
+        reserved = sorted(set(parse_settings(settings)) & set(RENDER_KEYS))
+        if reserved:
+            raise ParameterError(f"set={reserved[0]}=...: give {reserved[0]} as its own option, not through set")
+        out["settings"] = parse_settings(settings)
     return out
 
 
@@ -135,6 +154,7 @@ class Renderer:
         tiling = self.base_tiling(name)
         conf = {k: v for k, v in options.items() if k in ("params", "edges", "depth", "r1", "theta1", "r2",
                                                            "theta2", "colouring", "seed")}
+        conf.update(options.get("settings", {}))  # the family checks its own options
         if conf:
             tiling = tiling.configure(**conf)
         return tiling
