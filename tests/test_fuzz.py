@@ -49,10 +49,8 @@ def parses_or_tilekit_error(fn: Callable[..., Any], *args: Any) -> None:
 
 def _parsers() -> dict[str, tuple[Callable[[str], Any], str]]:
     from tilekit.catalogue import parse_filter
-    from tilekit.cli import _floats, parse_region, parse_settings
     from tilekit.colouring import Colouring
     from tilekit.geometry import as_region
-    from tilekit.plugins.archimedean.notation import VertexType, parse_sequence
     from tilekit.plugins.isohedral.shapes import EdgeShape, parse_edge_option
     from tilekit.plugins.isohedral.symbols import IncidenceSymbol
     from tilekit.plugins.isohedral.templates import parse_ih_name, parse_zero_based_colouring
@@ -60,7 +58,10 @@ def _parsers() -> dict[str, tuple[Callable[[str], Any], str]]:
     from tilekit.plugins.substitution.shapes import parse_edge_shape
     from tilekit.plugins.wang.cli import _fixed
     from tilekit.plugins.wang.tileset import parse_tileset
+    from tilekit.regular.notation import VertexType, parse_sequence
     from tilekit.render import parse_palette
+    from tilekit.text import parse_floats as _floats
+    from tilekit.text import parse_region, parse_settings
 
     # (parser, the characters its inputs are drawn from, besides arbitrary text)
     return {
