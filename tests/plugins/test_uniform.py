@@ -478,3 +478,15 @@ def test_bytes_per_tile_bounds_the_peak():
             tracemalloc.stop()
         assert peak <= t.bytes_per_tile * len(patch), (config, peak / len(patch))
         assert len(patch) <= t.estimate_tiles()
+
+
+def test_geometry_option_for_other_families():
+    from tilekit.cli_types import geometry_option
+
+    class Flat:
+        name = "3.4.6.4"
+
+    assert geometry_option(Flat(), None) == {} and geometry_option(Flat(), "plane") == {}
+    with pytest.raises(ParameterError, match="tiles the Euclidean plane, not spherical"):
+        geometry_option(Flat(), "sphere")
+    assert geometry_option(UniformTiling("3.4.4.4"), "sphere") == {"geometry": "sphere"}
