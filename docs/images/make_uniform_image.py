@@ -13,15 +13,15 @@ from pathlib import Path
 
 import cairosvg
 
-from tilekit.plugins.curved import uniform
+from tilekit.plugins.curved import uniform_tiling
 
 HERE = Path(__file__).resolve().parent
 PANEL = 360
 
 
 def main() -> None:
-    panels = [uniform("3.14.14", radius=4.0), uniform("3.3.3.3.4", samples=24),
-              uniform("3.3.4.3.5", radius=3.5, plane="halfplane")]
+    panels = [uniform_tiling("3.14.14", radius=4.0), uniform_tiling("3.3.3.3.4", samples=24),
+              uniform_tiling("3.3.4.3.5", radius=3.5, plane="halfplane")]
     parts = []
     x = 0
     for t in panels:
