@@ -129,6 +129,7 @@ def curved_records() -> list[CatalogueRecord]:
 
 def _uniform_data() -> dict[str, Any]:
     """catalogue/curved/uniform.toml, checked (one-line errors naming the file and the field)."""
+    # start-up cost: the construction loads NumPy; records are read only when seeding
     from tilekit.plugins.curved import wythoff
     from tilekit.resources import catalogue_dir, read_toml
     from tilekit.schema import Field, check
@@ -220,6 +221,7 @@ def tilekit_resolve_name(name: str) -> list[str] | None:
         return None
     if notation.geometry_of(cfg) == "euclidean":
         return None
+    # start-up cost: the construction loads NumPy, only for a name that is a curved configuration
     from tilekit.errors import ParameterError
     from tilekit.plugins.curved import wythoff
 

@@ -36,6 +36,7 @@ def sphere_mesh_command(ctx: click.Context, name: str, out: str, size_mm: float,
       tilekit sphere-mesh truncated-icosahedron -o ball.stl --size-mm 80
       tilekit sphere-mesh 3.4.4.4 -o rhombicuboctahedron.obj
     """
+    # start-up cost: the mesh writer loads NumPy, only when the command runs
     from tilekit.plugins.curved.mesh import write_mesh
     from tilekit.text import parse_settings
 

@@ -115,6 +115,7 @@ def write_mesh(tiling: Any, path: str | Path, size_mm: float = 60.0, rings: int 
                palette: list[str] | None = None) -> tuple[int, int]:
     """Write a spherical tiling as a printable sphere of diameter ``size_mm`` (.stl or .obj by
     the suffix); returns (tiles, triangles)."""
+    # start-up cost: the SVG writer's module, only for its palette
     from tilekit.plugins.curved.render import DEFAULT_PALETTE
 
     suffix = Path(path).suffix.lower()

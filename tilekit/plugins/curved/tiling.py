@@ -275,8 +275,9 @@ class RegularTiling(Tiling):
         ])
 
     def configure(self, **options: Any) -> RegularTiling:
-        if "geometry" in options:  # the --geometry check (uniform.check_geometry's spellings)
-            from tilekit.plugins.curved.uniform import check_geometry
+        if "geometry" in options:  # the --geometry check (wythoff.check_geometry's spellings)
+            # start-up cost: the construction module, only when a geometry is given
+            from tilekit.plugins.curved.wythoff import check_geometry
 
             want = check_geometry(options.pop("geometry"))
             if want != self.kind:

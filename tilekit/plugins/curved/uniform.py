@@ -29,6 +29,7 @@ from tilekit.plugins.curved import model, notation, wythoff
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
 from tilekit.plugins.curved.render import curved_svg
 from tilekit.plugins.curved.tiling import _number
+from tilekit.plugins.curved.wythoff import GEOMETRIES, check_geometry  # noqa: F401 - the spellings, re-exported
 from tilekit.tiling import Patch, PeriodicTiling, Prototile, Tiling
 
 #: Faces of a hyperbolic patch when no radius is given (the radius is chosen to give about this many).
@@ -45,20 +46,9 @@ MAX_SAMPLES = 64
 UNIFORM_BYTES_PER_TILE = 2000
 
 #: Spellings of the geometry hint.
-GEOMETRIES = {"sphere": wythoff.SPHERE, "spherical": wythoff.SPHERE, "hyperbolic": wythoff.HYPERBOLIC,
-              "plane": wythoff.EUCLIDEAN, "euclidean": wythoff.EUCLIDEAN}
 _OPTIONS = ("configuration", "symbol", "radius", "samples", "plane", "geometry")
 _SPEC_KEYS = set(_OPTIONS) | {"name", "title"}
 PLANES = ("poincare", "klein", "halfplane")
-
-
-def check_geometry(geometry: Any) -> str | None:
-    """The geometry hint as 'spherical', 'euclidean' or 'hyperbolic' (None: no hint)."""
-    if geometry is None:
-        return None
-    if not isinstance(geometry, str) or geometry.lower() not in GEOMETRIES:
-        raise ParameterError(f"geometry must be one of sphere, plane, hyperbolic, got {str(geometry)[:40]}")
-    return GEOMETRIES[geometry.lower()]
 
 
 def resolve(configuration: str | None = None, symbol: str | None = None,

@@ -31,6 +31,7 @@ import itertools
 import math
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
+from typing import Any
 
 import numpy as np
 
@@ -38,6 +39,17 @@ from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.plugins.curved import notation
 
 SPHERE, EUCLIDEAN, HYPERBOLIC = "spherical", "euclidean", "hyperbolic"
+GEOMETRIES = {"sphere": SPHERE, "spherical": SPHERE, "hyperbolic": HYPERBOLIC,
+              "plane": EUCLIDEAN, "euclidean": EUCLIDEAN}
+
+
+def check_geometry(geometry: Any) -> str | None:
+    """The geometry hint as 'spherical', 'euclidean' or 'hyperbolic' (None: no hint)."""
+    if geometry is None:
+        return None
+    if not isinstance(geometry, str) or geometry.lower() not in GEOMETRIES:
+        raise ParameterError(f"geometry must be one of sphere, plane, hyperbolic, got {str(geometry)[:40]}")
+    return GEOMETRIES[geometry.lower()]
 
 #: Largest order p, q, r accepted in a Wythoff symbol (the corner angle π/60).
 MAX_ORDER = 60
