@@ -342,7 +342,7 @@ def test_spec_round_trip():
     ({"configuration": "3.4.5"}, "no uniform tiling by Wythoff's construction"),
     ({"configuration": "3.4.6.4"}, "tiles the Euclidean plane"),
     ({"configuration": "3.4.4.4", "geometry": "hyperbolic"}, "is spherical, not hyperbolic"),
-    ({"configuration": "3.x.4"}, "is not a polygon size"),
+    ({"configuration": "3.x.4"}, "cannot read"),
     ({"symbol": "2 3 | 99"}, "r must be an integer 2..60"),
     ({"symbol": "2 2 | 2"}, "fewer than three faces"),
     ({"configuration": "3.14.14", "radius": 13}, "radius must be a number 0..12"),
@@ -478,3 +478,15 @@ def test_bytes_per_tile_bounds_the_peak():
             tracemalloc.stop()
         assert peak <= t.bytes_per_tile * len(patch), (config, peak / len(patch))
         assert len(patch) <= t.estimate_tiles()
+
+
+def test_geometry_option_for_other_families():
+    from tilekit.cli_types import geometry_option
+
+    class Flat:
+        name = "3.4.6.4"
+
+    assert geometry_option(Flat(), None) == {} and geometry_option(Flat(), "plane") == {}
+    with pytest.raises(ParameterError, match="tiles the Euclidean plane, not spherical"):
+        geometry_option(Flat(), "sphere")
+    assert geometry_option(UniformTiling("3.4.4.4"), "sphere") == {"geometry": "sphere"}

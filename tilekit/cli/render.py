@@ -15,7 +15,7 @@ from tilekit.cli.base import (
     cli,
     pass_state,
 )
-from tilekit.cli_types import OUTPUT, POSITIVE, BoundedInt, FiniteFloat
+from tilekit.cli_types import OUTPUT, POSITIVE, BoundedInt, FiniteFloat, geometry_option
 from tilekit.errors import ParameterError, TilekitError
 from tilekit.text import configure_options, parse_region
 
@@ -138,8 +138,7 @@ def render(state: State, name: str | None, out: str, params: tuple[str, ...], ed
         tiling = state.catalogue().tiling(name)
 
     options = configure_options(params, edges, settings, which, depth)
-    if geometry:
-        options["geometry"] = geometry
+    options.update(geometry_option(tiling, geometry))
     if options:
         tiling = tiling.configure(**options)
 

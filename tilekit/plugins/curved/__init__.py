@@ -51,7 +51,7 @@ __getattr__, __dir__ = lazy_exports(__name__, _LAZY)
 
 __all__ = ["CURVED", "HYPERBOLIC", "SPHERICAL", "ModelPatch", "ModelPrototile", "RegularPolygon", "RegularTiling",
            "UniformTiling", "curved_records", "euclidean_tiling", "hyperbolic_layers", "layer_counts", "regular",
-           "uniform", "uniform_records"]
+           "uniform_records", "uniform_tiling"]
 
 #: The records' data file (one [[tiling]] table each: name, title, p, q, aliases, oeis).
 RECORDS_FILE = "regular.toml"
@@ -67,7 +67,7 @@ def regular(p: int, q: int, **options: Any) -> RegularTiling:
     return RegularTiling(p, q, **options)
 
 
-def uniform(configuration: str | None = None, **options: Any) -> UniformTiling:
+def uniform_tiling(configuration: str | None = None, **options: Any) -> UniformTiling:
     """The uniform tiling with this vertex configuration (or ``symbol='2 3 | 7'``; options:
     radius, samples, plane, geometry)."""
     # measured start-up cost: as in regular()
