@@ -212,7 +212,7 @@ def test_parquet_deformation_is_a_tiling(client, app):
     """Exercise 5.13: the strip's tiles evolve from squares to the keyframe, edge-to-edge."""
     import shapely
 
-    from tilekit.web.service import parquet_tiles
+    from tilekit.plugins.isohedral.web import parquet_tiles
 
     state = app.app.state.tilekit
     tiles, width, height = parquet_tiles(state.renderer, "IH61", ["a=0,0:0.3,0.3:0.7,-0.2:1,0"], 8, 3)

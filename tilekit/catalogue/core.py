@@ -327,7 +327,8 @@ class Catalogue(RunsMixin, ResultsMixin, TilingReader):
         """Record which families a result table holds, for the installation with this
         fingerprint: :func:`tilekit.catalogue.reading.open_reader` reads the others without
         SQLAlchemy, and needs to know these without building the plugins' tables."""
-        value = result_families_value(fingerprint, (rt.family for rt in self.result_tables.values() if rt.family))
+        value = result_families_value(fingerprint, (name for rt in self.result_tables.values() if rt.family
+                                                    for name in (rt.family, *rt.aliases)))
         conn.execute(sa.delete(META).where(META.c.key == RESULT_FAMILIES_KEY))
         if value is not None:
             conn.execute(sa.insert(META).values(key=RESULT_FAMILIES_KEY, value=value))

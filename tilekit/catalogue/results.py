@@ -62,7 +62,7 @@ class ResultsMixin:
         if family is None:
             return None
         for rt in self.result_tables.values():
-            if rt.family == family:
+            if rt.family == family or family in rt.aliases:
                 return rt
         return None
 

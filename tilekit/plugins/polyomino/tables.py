@@ -1,7 +1,9 @@
 """The polyomino family's result table, on the plugin's own metadata (created by its Alembic branch).
 
-One row per free polyomino: the canonical code is the natural key; ``result_table()`` is the
-``tilekit.plugins.ResultTable`` the ``tilekit_result_tables`` hook returns.
+One row per free polyform of any grid (``grid`` column; a polyomino is the square grid's
+polyform): the canonical code is the natural key; ``result_table()`` is the
+``tilekit.plugins.ResultTable`` the ``tilekit_result_tables`` hook returns. The rows are listed
+as family ``polyomino`` (the family's name since part 1) or, the same rows, ``polyform``.
 """
 
 from __future__ import annotations
@@ -79,4 +81,4 @@ def result_table():
     if cls is None:  # pragma: no cover - an older run layer
         return None
     return cls(table=TABLE, key=KEY, family="polyomino", name_column=NAME_COLUMN, spec=row_spec,
-               title=row_title)
+               title=row_title, aliases=("polyform",))

@@ -1,0 +1,102 @@
+"""Heesch numbers of polyhexes and polyiamonds against Kaplan's, and the ``polyform`` family name.
+
+Published figures: C. S. Kaplan, "Heesch numbers of unmarked polyforms", Contributions to
+Discrete Mathematics 17(2), 2022 (arXiv:2105.09438), Tables 3-4 (polyhexes, Hc and Hh) and 5-6
+(polyiamonds): how many hole-free non-tiling n-forms have each Heesch number. The printed tables
+could not be read from this workspace, so the numbers below are Kaplan's by three other routes
+(docs/families/polyform-grids.md, "Heesch numbers against Kaplan's"):
+
+- the 6-hexes' Hc: the report printed in heesch-sat's README (Kaplan's program; 4 non-tilers,
+  3 with Hc = 1 and 1 with Hc = 2; its Hh lines repeat Hc there, as ``-hh`` was off);
+- every row: Kaplan's program itself (github.com/isohedral/heesch-sat at 008e733, ``sat -hh``),
+  run here on the same shapes (``benchmarks/bench_heesch_sat.py --grid hex --cells 7 --mode hc --hh``),
+  with the same Hc and Hh shape by shape; the same program reproduces Tables 1-2 for the
+  7- and 8-ominoes (Hc 1 / 2 and 6 / 14; Hh 3 and 19 / 1), the rows tests/test_polyomino_classify.py
+  checks tilekit against;
+- the twenty 9-iamonds: the Hc / Hh labels of a public corpus of Kaplan's census shapes
+  (Layr-Labs/heesch-challenge, tests/corpus/iamond9-nontiler-*-hcXhhY.txt): 7 with (0, 0),
+  4 with (0, 1), 9 with (1, 1).
+
+Every row sums to Myers' count of hole-free non-tilers (A070768 polyhexes: 4, 37 for n = 6, 7;
+A071334 polyiamonds: 1, 0, 20, 103 for n = 7..10), and the shapes surrounded to the level limit
+are exactly the anisohedral tilers (A075215: 1, 4; A075224: 0, 0, 6, 25).
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+
+import pytest
+
+from tilekit.lattice import HEXAGONAL, TRIANGULAR, enumerate_free
+from tilekit.plugins.polyomino.heesch import heesch, hole_free_heesch
+from tilekit.plugins.polyomino.isohedral import analyse
+
+#: (grid, n) -> (Hc counts, Hh counts, anisohedral tilers); Kaplan's Tables 3-6 (module docstring)
+KAPLAN = {
+    ("hex", 6): ({1: 3, 2: 1}, {1: 3, 2: 1}, 1),
+    ("iamond", 7): ({1: 1}, {1: 1}, 0),
+    ("iamond", 8): ({}, {}, 0),
+    ("iamond", 9): ({0: 11, 1: 9}, {0: 7, 1: 13}, 6),
+}
+GRIDS = {"hex": HEXAGONAL, "iamond": TRIANGULAR}
+
+
+def heesch_tally(grid, n: int, max_level: int) -> tuple[Counter, Counter, int]:
+    """Hc and Hh of every hole-free n-form that the boundary-word test does not tile, and how
+    many are surrounded by ``max_level`` hole-free coronas (the anisohedral tilers). Hc comes from
+    the Hc-only ladder; each non-tiler's Hh from :func:`heesch`, which must also prove it a
+    non-tiler (a level with no patch even with holes) with the same Hc."""
+    hc_tally: Counter = Counter()
+    hh_tally: Counter = Counter()
+    surrounded = 0
+    polys, flags, _ = enumerate_free(grid, n, maxsize=n, with_holes=True)
+    for cells, holey in zip(polys, flags):
+        if len(cells) != n or holey or analyse(grid, cells, construct=False)["isohedral"]:
+            continue
+        r = hole_free_heesch(grid, cells, max_level=max_level)
+        if r.hc is None:
+            surrounded += 1
+            continue
+        proof = heesch(grid, cells, max_level=r.hc + 2)
+        assert proof.decided and proof.hc == r.hc, (cells.tolist(), r.hc, proof.hc, proof.reason)
+        assert proof.hh in (r.hc, r.hc + 1)
+        hc_tally[r.hc] += 1
+        hh_tally[proof.hh] += 1
+    return hc_tally, hh_tally, surrounded
+
+
+def _check(grid_name: str, n: int, max_level: int) -> None:
+    hc, hh, aniso = KAPLAN[grid_name, n]
+    got_hc, got_hh, got_aniso = heesch_tally(GRIDS[grid_name], n, max_level)
+    assert (dict(got_hc), dict(got_hh), got_aniso) == (hc, hh, aniso)
+
+
+@pytest.mark.parametrize("grid_name, n", [("hex", 6), ("iamond", 7), ("iamond", 8), ("iamond", 9)])
+def test_heesch_numbers_equal_kaplans_tables(grid_name, n):
+    """Tables 3-4 (6-hexes) and 5-6 (7- to 9-iamonds)."""
+    _check(grid_name, n, max_level=3)
+
+
+def test_the_polyform_family_name_reads_every_grid(catalogue_cli):
+    """``--family polyform`` reads the classification's rows on every grid; ``polyomino`` (the
+    family's name since part 1) reads the same rows. The 46 free polyiamonds to 7 cells
+    (A000577: 1, 1, 1, 3, 4, 12, 24) include one hole-free non-tiler, the V-heptiamond, with
+    Heesch number 1 (A071334(7) = 1; Table 5 above)."""
+    import json
+
+    res = catalogue_cli.run("search", "polyomino-classify", "--grid", "iamond", "--max-cells", "7")
+    assert res.exit_code == 0, res.output
+    assert catalogue_cli.count("polyform", "grid=iamond") == 46
+    assert catalogue_cli.count("polyomino", "grid=iamond") == 46
+    assert catalogue_cli.count("polyform", "grid=iamond", "heesch=1") == 1
+    assert catalogue_cli.count("polyform", "grid=iamond", "tiles=false", "holes=false") == 1
+    assert catalogue_cli.count("polyform", "grid=hex") == 0
+    r = catalogue_cli.run("list", "--family", "polyform", "--where", "grid=iamond", "--where", "heesch=1",
+                          "--format", "json")
+    rows = json.loads(r.output)
+    assert [row["name"] for row in rows] == ["iamond:1,1;4,1;-1,2;2,2;-2,4;-1,5;-2,7"]
+    r = catalogue_cli.run("keys", "polyform")
+    assert r.exit_code == 0 and "heesch_holes" in r.output, r.output
+    r = catalogue_cli.run("list", "--family", "polyfrom")
+    assert r.exit_code == 2 and "unknown family 'polyfrom'" in r.output
