@@ -37,6 +37,9 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # bench_heesch_sat, its neighbour
+
+from bench_heesch_sat import cache_dir, parse_verdicts  # noqa: E402
 
 from tilekit.lattice import canonical, free_polyforms, get_grid  # noqa: E402
 from tilekit.plugins.polyomino.classify import classify  # noqa: E402
@@ -162,22 +165,8 @@ def to_peer(grid_name: str, cells: np.ndarray) -> str:
 
 
 def parse_records(text: str) -> list[tuple]:
-    """heesch-sat's output as (kind, hc, hh) per record: kind in I, ~, !, O, ?."""
-    lines = text.splitlines()
-    out = []
-    i = 0
-    while i < len(lines):
-        head = lines[i + 1].split() if i + 1 < len(lines) else ["?"]
-        kind = head[0]
-        if kind == "~":
-            out.append(("~", int(head[1]), int(head[2])))
-        else:
-            out.append((kind, None, None))
-        patches = int(head[-1]) if head[-1].isdigit() and kind != "?" else 0
-        i += 2
-        for _ in range(patches):
-            i += 1 + int(lines[i])
-    return out
+    """heesch-sat's output as (kind, hc, hh) per record (:func:`bench_heesch_sat.parse_verdicts`)."""
+    return [(*v, None, None)[:3] for v in parse_verdicts(text)]
 
 
 def ours(grid, cells: np.ndarray, holey: bool, time_limit: float) -> tuple:
@@ -207,12 +196,7 @@ def build_parser() -> argparse.ArgumentParser:
 def main() -> None:
     ap = build_parser()
     args = ap.parse_args()
-    if args.sat:
-        sat = Path(args.sat)
-    else:
-        from platformdirs import user_cache_dir
-
-        sat = Path(user_cache_dir("tilekit")) / "heesch-sat" / "sat"
+    sat = Path(args.sat) if args.sat else cache_dir(None) / "sat"
     if not sat.exists():
         raise SystemExit(f"no heesch-sat binary at {sat}: run benchmarks/bench_heesch_sat.py --build first")
     grid = get_grid(args.grid)
