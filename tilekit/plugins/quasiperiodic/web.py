@@ -36,7 +36,7 @@ at a point (a singular multigrid) are refused with the reason.</p>
 <label>extent <input type="range" id="extent" min="2" max="12" step="0.5" value="5"><output id="extent-out">5</output></label>
 <p><a id="export-svg" href="#" download="multigrid.svg">export SVG</a></p>
 <p class="error" id="error" role="alert"></p></div><div class="view" id="view"></div></div>"""
-    return web.page("Multigrid offsets", body, scripts=[f"plugins/{STATIC}/multigrid.js"])
+    return web.page("Multigrid offsets", body, scripts=["live.js", f"plugins/{STATIC}/multigrid.js"])
 
 
 ROUTES = (WebRoute("/multigrid", multigrid_page),)

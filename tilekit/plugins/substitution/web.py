@@ -31,7 +31,7 @@ on a substituted patch covering the square of half-width <i>extent</i> (the dept
 <p><a id="export-svg" href="#" download="penrose.svg">export SVG</a>
 <a id="export-spec" href="#" download="penrose.json">export spec</a></p>
 <p class="error" id="error" role="alert"></p></div><div class="view" id="view"></div></div>"""
-    return web.page("Penrose editor", body, scripts=[f"plugins/{STATIC}/penrose.js"])
+    return web.page("Penrose editor", body, scripts=["live.js", f"plugins/{STATIC}/penrose.js"])
 
 
 ROUTES = (WebRoute("/penrose", penrose_page),)

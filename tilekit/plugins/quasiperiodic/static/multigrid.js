@@ -9,7 +9,7 @@
   const errorBox = document.getElementById("error");
   const offsets = document.getElementById("offsets");
   const select = document.getElementById("tiling");
-  let timer = null, seq = 0;
+  let timer = null;
 
   function gammas() {
     return Array.from(offsets.querySelectorAll("input")).map(function (i) { return i.value; });
@@ -24,25 +24,12 @@
     return q;
   }
 
+  const live = window.tilekitLive(root, view, errorBox);
+
   function render() {
-    const mine = ++seq, name = select.value;
+    const name = select.value;
     root.dataset.gamma = gammas().join(",");
-    fetch("/api/render/" + encodeURIComponent(name) + "?" + query({ format: "json", size: 720 }))
-      .then(function (r) { return r.json().then(function (b) { return { ok: r.ok, body: b }; }); })
-      .then(function (res) {
-        if (mine !== seq) return;
-        if (!res.ok) {
-          errorBox.textContent = res.body.error || "render failed";
-          root.dataset.state = "refused";
-          return;
-        }
-        errorBox.textContent = "";
-        view.innerHTML = res.body.svg;
-        const svg = view.querySelector("svg");
-        if (svg) { svg.removeAttribute("width"); svg.removeAttribute("height"); }
-        root.dataset.state = "ok";
-        root.dataset.renders = String(Number(root.dataset.renders || 0) + 1);
-      });
+    live("/api/render/" + encodeURIComponent(name) + "?" + query({ format: "json", size: 720 }));
     document.getElementById("export-svg").href =
       "/api/render/" + encodeURIComponent(name) + "?" + query({ format: "svg", size: 800, download: 1 });
   }
