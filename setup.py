@@ -9,7 +9,9 @@ from setuptools import find_packages, setup
 
 packages = find_packages(include=["tilekit", "tilekit.*"])
 #: each built-in plugin's own Alembic branch (migrations/ beside its modules, not a package)
-plugin_migrations = {p: ["migrations/*.py"] for p in packages if p.count(".") == 2 and p.startswith("tilekit.plugins.")}
+#: and the files of its web pages (static/, served at /static/plugins/<name>/)
+plugin_migrations = {p: ["migrations/*.py", "static/*"] for p in packages
+                     if p.count(".") == 2 and p.startswith("tilekit.plugins.")}
 #: data files a module reads from its own folder (e.g. the k-uniform plugin's notation table)
 module_data = {p: ["*.json", "*.toml", "*.csv", "*.txt"] for p in packages}
 for p, globs in plugin_migrations.items():

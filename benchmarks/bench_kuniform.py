@@ -18,9 +18,9 @@ import argparse
 import os
 import time
 
-from tilekit.plugins.archimedean.notation import VertexType
 from tilekit.plugins.kuniform.dsymbol import Star, stabilizer_classes, symbols, vertex_types
 from tilekit.plugins.kuniform.search import chunks, star_choices, tiling_of
+from tilekit.regular.notation import VertexType
 
 
 def enumerate_k(k: int, symmetry_breaking: bool) -> tuple[dict, float]:

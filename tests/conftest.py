@@ -75,6 +75,19 @@ def pytest_configure(config):
         signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
+def pytest_collection_modifyitems(config, items):
+    """``@pytest.mark.exhaustive``: minutes each on the 2-core CI machine, beyond the ``slow``
+    tests CI runs; they run with ``TILEKIT_EXHAUSTIVE=1`` (docs/benchmarks.md names them)."""
+    import os
+
+    if os.environ.get("TILEKIT_EXHAUSTIVE") == "1":
+        return
+    skip = pytest.mark.skip(reason="exhaustive: set TILEKIT_EXHAUSTIVE=1")
+    for item in items:
+        if "exhaustive" in item.keywords:
+            item.add_marker(skip)
+
+
 @pytest.fixture(autouse=True)
 def _sigint_not_left_ignored(request):
     """A test (or a library it drives) that leaves SIGINT ignored would make every later

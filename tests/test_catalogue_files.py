@@ -70,9 +70,9 @@ def read_only_dir(tmp_path):
 
 def test_a_catalogue_on_a_read_only_file_system_is_read_and_says_so_when_asked_to_write(read_only_dir, pm,
                                                                                           monkeypatch):
-    import tilekit.cli
+    import tilekit.cli.base
 
-    monkeypatch.setattr(tilekit.cli, "plugin_manager", lambda: pm)
+    monkeypatch.setattr(tilekit.cli.base, "plugin_manager", lambda: pm)
     path = read_only_dir / "cat.sqlite"
     open_catalogue(f"sqlite:///{path}", pm=pm).close()
     assert subprocess.run(["mount", "-o", "remount,ro", str(read_only_dir)]).returncode == 0

@@ -29,7 +29,7 @@ from tilekit.cli import cli  # noqa: E402
 @pytest.fixture
 def pm(monkeypatch):
     pm = testkit.isolated_pm(monkeypatch, testkit.GridPlugin(), test_search.RectPlugin())
-    monkeypatch.setattr(cli_module, "plugin_manager", lambda: pm)
+    monkeypatch.setattr(cli_module.base, "plugin_manager", lambda: pm)
     return pm
 
 

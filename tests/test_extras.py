@@ -71,6 +71,8 @@ def _png(folder: Path) -> Path:
 CASES = [
     ("escher", "scipy", ["escherize", "{dir}/goal.json", "--types", "IH1", "-o", "{dir}/esc"]),
     ("escher", "threadpoolctl", ["escherize", "{dir}/goal.json", "--types", "IH1", "-o", "{dir}/esc"]),
+    ("escher", "scipy", ["escherize-penrose", "{dir}/goal.json", "-o", "{dir}/pen"]),
+    ("escher", "threadpoolctl", ["escherize-penrose", "{dir}/goal.json", "-o", "{dir}/pen"]),
     ("web", "starlette", ["serve", "--port", "0"]),
     ("web", "uvicorn", ["serve", "--port", "0"]),
     ("postgresql", "psycopg", ["--catalogue", "{pg}", "list", "--count"]),

@@ -49,10 +49,8 @@ def parses_or_tilekit_error(fn: Callable[..., Any], *args: Any) -> None:
 
 def _parsers() -> dict[str, tuple[Callable[[str], Any], str]]:
     from tilekit.catalogue import parse_filter
-    from tilekit.cli import _floats, parse_region, parse_settings
     from tilekit.colouring import Colouring
     from tilekit.geometry import as_region
-    from tilekit.plugins.archimedean.notation import VertexType, parse_sequence
     from tilekit.plugins.isohedral.shapes import EdgeShape, parse_edge_option
     from tilekit.plugins.isohedral.symbols import IncidenceSymbol
     from tilekit.plugins.isohedral.templates import parse_ih_name, parse_zero_based_colouring
@@ -60,7 +58,10 @@ def _parsers() -> dict[str, tuple[Callable[[str], Any], str]]:
     from tilekit.plugins.substitution.shapes import parse_edge_shape
     from tilekit.plugins.wang.cli import _fixed
     from tilekit.plugins.wang.tileset import parse_tileset
+    from tilekit.regular.notation import VertexType, parse_sequence
     from tilekit.render import parse_palette
+    from tilekit.text import parse_floats as _floats
+    from tilekit.text import parse_region, parse_settings
 
     # (parser, the characters its inputs are drawn from, besides arbitrary text)
     return {
@@ -451,6 +452,8 @@ def _spec_bases() -> dict[str, list[dict]]:
         "k-uniform": [{"kind": "k-uniform", "dsymbol": "3,12,12/3,3,3/0,1,2/0,2,1/1,0,2", "name": "[3.12^2] p6m"}],
         "spherical": [{"p": 5, "q": 3}, {"p": 3, "q": 4, "samples": 3, "name": "octahedron"}],
         "hyperbolic": [{"p": 7, "q": 3, "depth": 3}, {"p": 5, "q": 4, "radius": 2.5, "samples": 2}],
+        "curved": [{"configuration": "3.4.4.4"}, {"symbol": "2 3 | 7", "radius": 1.5, "samples": 2},
+                   {"configuration": "3.3.4.3.5", "plane": "halfplane", "radius": 1.0, "geometry": "hyperbolic"}],
         "quasiperiodic": [{"n": 5}, {"n": 8, "gamma": [0.1, 0.2, 0.3, 0.4], "singular": "perturb"}],
     }
 

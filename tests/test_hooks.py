@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 
+import pytest
 from click.testing import CliRunner
 
 import tilekit
@@ -75,3 +76,24 @@ def test_tilekit_plugins_lists_plugins_hooks_and_sources():
     assert "tilekit.plugins.isohedral" in names
     table = CliRunner().invoke(cli, ["plugins"])
     assert table.exit_code == 0 and "claim_file" in table.output
+
+
+def test_a_family_adds_a_public_name_to_the_tilekit_package():
+    """tilekit.polyomino is the polyomino family's (tilekit_public_names): the core names no family."""
+    import tilekit
+    from tilekit.errors import PluginError
+    from tilekit.plugins import public_name
+
+    assert tilekit.polyomino("pentomino-F").name == "pentomino-F"
+    pm = make_plugin_manager()
+    assert public_name("polyomino", pm)(".xx/xx./.x.").name == "pentomino-F"
+    with pytest.raises(PluginError, match=r"no loaded plugin offers tilekit\.no_such_name"):
+        public_name("no_such_name", pm)
+
+    class Twin:
+        @tilekit.hookimpl
+        def tilekit_public_names(self):
+            return {"polyomino": len}
+
+    with pytest.raises(PluginError, match="two plugins define the public name tilekit.polyomino"):
+        public_name("polyomino", make_plugin_manager(extra_plugins=[Twin()]))

@@ -20,7 +20,6 @@ import numpy as np
 import pytest
 
 from tilekit.errors import ParseError
-from tilekit.plugins.archimedean.notation import VertexType
 from tilekit.plugins.kuniform.dsymbol import DSymbol, Star, stars, symbols, vertex_types
 from tilekit.plugins.kuniform.search import (
     chunks,
@@ -32,6 +31,7 @@ from tilekit.plugins.kuniform.search import (
     tilings_with_types,
     types_text,
 )
+from tilekit.regular.notation import VertexType
 from tilekit.symmetry import vertex_orbits, wallpaper_group
 
 A068599 = [11, 20, 61, 151, 332, 673]

@@ -16,7 +16,6 @@ from __future__ import annotations
 import itertools
 import json
 import math
-import os
 import re
 import subprocess
 import sys
@@ -26,11 +25,16 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from tilekit.errors import GeometryError, ParseError
-from tilekit.plugins.archimedean.notation import VertexType, parse_sequence
 from tilekit.plugins.kuniform.dsymbol import DSymbol, from_gavrog, to_gavrog, vertex_types
 from tilekit.plugins.kuniform.gomjau import parse, parse_text, patch_of, write
-from tilekit.plugins.kuniform.names import ARCHIMEDEAN_TABLE, archimedean_table
-from tilekit.plugins.kuniform.search import tiling_of, tilings_with_types, types_text
+from tilekit.plugins.kuniform.names import ARCHIMEDEAN_TABLE
+from tilekit.plugins.kuniform.search import (
+    archimedean_table,
+    tiling_of,
+    tilings_with_types,
+    types_text,
+)
+from tilekit.regular.notation import VertexType, parse_sequence
 from tilekit.symmetry import wallpaper_group
 
 #: Antwerp v3 library: vertex type -> GomJau-Hogg notation (the 11 Archimedean tilings).
@@ -150,13 +154,11 @@ def test_written_notations_parse_back_to_the_same_tiling(k):
 
 
 #: k = 4 writes and parses 151 strings (several seconds each, over 10 minutes on the 2-core CI
-#: machine): run with TILEKIT_EXHAUSTIVE=1; CI runs k = 2, 3.
-EXHAUSTIVE = os.environ.get("TILEKIT_EXHAUSTIVE") == "1"
+#: machine): marked exhaustive (TILEKIT_EXHAUSTIVE=1); CI runs k = 2, 3.
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("k", [2, 3, pytest.param(4, marks=pytest.mark.skipif(
-    not EXHAUSTIVE, reason="k = 4 round trip: set TILEKIT_EXHAUSTIVE=1 (over 10 minutes)"))])
+@pytest.mark.parametrize("k", [2, 3, pytest.param(4, marks=pytest.mark.exhaustive)])
 def test_written_notations_parse_back_to_the_same_tiling_to_k4(k):
     """Every k-uniform tiling with k = 2, 3, 4 (20 + 61 + 151) but three 4-uniform ones."""
     missing = []
@@ -363,7 +365,7 @@ def test_show_and_render_a_tes_file(catalogue_cli, tmp_path):
     out = tmp_path / "octagons.svg"
     r = catalogue_cli.run("render", "--system", str(path), "-o", str(out))
     assert r.exit_code == 0 and out.read_text().count("<path") >= 2, r.output
-    from tilekit.plugins.kuniform.names import tiling_from_file
+    from tilekit.plugins.kuniform.search import tiling_from_file
 
     tiling = tiling_from_file(str(path))
     assert tiling.patch((-5, -5, 5, 5)).validate(region=(-4, -4, 4, 4))

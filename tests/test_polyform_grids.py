@@ -209,10 +209,8 @@ def test_bad_grid_inputs_are_one_line_errors():
     with pytest.raises(ParameterError, match="max_cells.*beyond the classification.s limit of 14 cells on the square grid"):
         check_params({"max_cells": 15, "grid": "square"})
     check_params({"max_cells": 16, "grid": "iamond"})  # polyiamonds to 16: about 10^5 forms
-    # grids with cells of several shapes: refused, not answered (the 4.8.8 domino of an octagon
-    # and a square tiles, and their corona search called it a non-tiler)
-    with pytest.raises(ParameterError, match="runs on the square, hex, iamond, kite grids, not octasquare"):
-        check_params({"max_cells": 4, "grid": "octasquare"})
+    # the grids with cells of several shapes are classified too (tests/test_multigrid_classify.py)
+    check_params({"max_cells": 4, "grid": "octasquare"})
     with pytest.raises(GeometryError, match="disconnected"):
         Polyomino.parse("hex:0,0;9,0")
     with pytest.raises(GeometryError, match="not a cell"):

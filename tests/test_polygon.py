@@ -96,3 +96,50 @@ def test_codes_do_not_change_under_isometries():
     inv = np.linalg.inv(Affine.translation(17.25, -3.5) @ Affine.rotation(0.7) @ np.diag([1.0, -1.0, 1.0]))
     b = _codes(moved, 1.9, lambda p: np.abs(Affine.apply(inv, p[None])[0]).max() < 5)
     assert a == b and None not in a[0]
+
+
+# -- edge to edge (§4.1) ---------------------------------------------------------------------
+
+def _meets_edge_to_edge(tiling) -> bool:
+    patch = tiling.patch(tiling.default_region())
+    return tilekit.polygon.edge_to_edge(pts for _, _, pts in patch.groups())
+
+
+ARCHIMEDEAN = ["3^6", "4^4", "6^3", "3^4.6", "3^3.4^2", "3^2.4.3.4", "3.4.6.4", "3.6.3.6", "3.12^2",
+               "4.6.12", "4.8^2"]
+
+
+@pytest.mark.parametrize("vertex_type", ARCHIMEDEAN)
+def test_archimedean_and_laves_tilings_are_edge_to_edge(vertex_type):
+    """§4.1: the eleven Archimedean tilings are edge-to-edge tilings by regular polygons, and
+    their duals, the Laves tilings, are "monohedral, edge-to-edge" tilings."""
+    from tilekit.plugins.archimedean import archimedean_tiling, laves_tiling
+
+    assert _meets_edge_to_edge(archimedean_tiling(vertex_type))
+    assert _meets_edge_to_edge(laves_tiling(vertex_type))
+
+
+@pytest.mark.parametrize(("system", "expected"), [
+    ("penrose-p2", True), ("penrose-p3", True), ("ammann-beenker", True),
+    ("chair", False), ("pinwheel", False)])
+def test_substitution_tilings_edge_to_edge_or_not(system, expected):
+    """Penrose's kites and darts and rhombs and the Ammann-Beenker rhombs and squares meet edge
+    to edge (Grünbaum & Shephard §10.3; Baake & Grimm, Aperiodic Order vol. 1, §6.1); a chair's
+    corner sits at the middle of a neighbour's long side (G&S §10.1) and the pinwheel's
+    triangles meet vertex to side (Radin, Ann. Math. 139, 1994)."""
+    from tilekit.plugins.substitution import tiling
+
+    assert _meets_edge_to_edge(tiling(system)) is expected
+    assert tiling(system).properties()["edge_to_edge"] is expected
+
+
+def test_a_shifted_row_breaks_edge_to_edge():
+    """Fig. 4.1's situation: shifting one row of a square grid by half a side puts corners on
+    sides; shifting it by a whole side does not."""
+    sq = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+    for shift, expected in ((0.5, False), (1.0, True), (0.25, False)):
+        tiles = np.stack([sq + [i + shift * (j == 1), j] for i in range(4) for j in range(3)])
+        assert tilekit.polygon.edge_to_edge([tiles]) is expected
+    # a straight angle is not a corner: squares whose outline repeats the midpoint of a side
+    with_mid = np.array([[0.0, 0.0], [0.5, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+    assert tilekit.polygon.edge_to_edge([np.stack([with_mid + [i, j] for i in range(3) for j in range(3)])])

@@ -96,7 +96,7 @@ def test_small_counts_are_hit_within_one_by_the_substitution_methods(method, spe
 
 
 def test_the_command_line_limit_is_the_library_limit():
-    from tilekit import cli as cli_module
+    from tilekit.cli import sample as cli_module
     from tilekit.sampling import MAX_SAMPLES
 
     assert cli_module._MAX_SAMPLES == MAX_SAMPLES

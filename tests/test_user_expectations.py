@@ -201,11 +201,11 @@ def test_long_render_shows_progress_on_a_terminal(cat, tmp_path, monkeypatch):
     # tilekit render penrose-p3 --depth 7 on a terminal: what it makes, then what it draws
     import tilekit.cli as cli_module
 
-    monkeypatch.setattr(cli_module, "PROGRESS_TILES", 1000)
+    monkeypatch.setattr(cli_module.render, "PROGRESS_TILES", 1000)
     out = tmp_path / "p.svg"
     quiet = run(cat, "render", "penrose-p3", "--depth", "6", "-o", str(out))
     assert quiet.exit_code == 0 and quiet.stderr == ""  # not a terminal: no progress lines
-    monkeypatch.setattr(cli_module, "on_terminal", lambda: True)
+    monkeypatch.setattr(cli_module.render, "on_terminal", lambda: True)
     loud = run(cat, "render", "penrose-p3", "--depth", "6", "-o", str(out))
     assert loud.exit_code == 0
     assert "making about" in loud.stderr and "drawing 1,925 tiles" in loud.stderr

@@ -55,11 +55,14 @@ def open_catalogue(url: str | None = None, **kwargs):
 
 
 def polyomino(spec):
-    """A polyomino from a usual name (``pentomino-F``), a code (``.xx/xx./.x.``) or (column, row) cells."""
-    # start-up cost: the polyomino family loads numba and NumPy
-    from tilekit.plugins.polyomino.model import polyomino as _polyomino
+    """A polyomino from a usual name (``pentomino-F``), a code (``.xx/xx./.x.``) or (column, row) cells.
 
-    return _polyomino(spec)
+    The polyomino family's, reached through the plugin manager (``tilekit_public_names``): the
+    core imports no family."""
+    # start-up cost: the plugin manager loads the plugins, the polyomino family numba and NumPy
+    from tilekit.plugins import public_name
+
+    return public_name("polyomino")(spec)
 
 
 __all__ = [

@@ -14,7 +14,7 @@ from typing import Any
 
 import click
 
-from tilekit.errors import TilekitError
+from tilekit.errors import ParameterError, TilekitError
 from tilekit.files import check_output
 
 #: The largest integer any option accepts by default (SQLite's and NumPy's int64).
@@ -104,3 +104,22 @@ POSITIVE = BoundedInt(1)
 RUN_ID = BoundedInt(1)
 #: A file a command writes.
 OUTPUT = OutputPath()
+
+#: ``--geometry`` values and the curved families' names for them.
+GEOMETRY_CHOICES = {"sphere": "spherical", "plane": "euclidean", "hyperbolic": "hyperbolic"}
+
+
+def geometry_option(tiling: Any, geometry: str | None) -> dict[str, str]:
+    """``render --geometry G`` as tiling options: a curved tiling (one whose ``kind`` is
+    'spherical' or 'hyperbolic') checks it itself (``geometry=G``); any other tiling is
+    Euclidean, so 'plane' needs no option and anything else is a one-line error."""
+    if geometry is None:
+        return {}
+    kind = getattr(tiling, "kind", None)
+    if kind in ("spherical", "hyperbolic"):
+        return {"geometry": geometry}
+    if GEOMETRY_CHOICES.get(geometry) == "euclidean":
+        return {}
+    name = getattr(tiling, "name", "") or "this tiling"
+    raise ParameterError(f"{name} tiles the Euclidean plane, not {GEOMETRY_CHOICES.get(geometry, geometry)}: "
+                         "--geometry sphere / hyperbolic applies to the curved families")

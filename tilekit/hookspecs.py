@@ -133,3 +133,61 @@ def tilekit_resolve_name(name):
     match a tiling wins. Raise a :class:`tilekit.errors.TilekitError` for text that is the
     plugin's notation but malformed, naming what is wrong.
     """
+
+
+@hookspec
+def tilekit_public_names():
+    """Return a dict of names a family adds to the ``tilekit`` package, name -> object
+    (``{"polyomino": polyomino}`` makes ``tilekit.polyomino(...)``), or None.
+
+    Called by :func:`tilekit.plugins.public_name` when code asks ``tilekit`` for a name its
+    own module does not define; two plugins offering one name are a PluginError. Offer cheap objects: import heavy modules inside the function you return.
+    """
+
+
+# --------------------------------------------------------------------------- the web app (tilekit serve)
+# In the manner of Datasette's register_routes, menu_links, table_actions and render_cell: a
+# family's editors and pages arrive with the plugin, and tilekit/web names no family. ``web`` is
+# the app's state (tilekit.web.app.State): ``web.catalogue``, ``web.renderer`` (build and render
+# a catalogue tiling within the app's tile limit), ``web.writable``, ``web.page(title, body,
+# scripts=...)`` (a page in the site's layout) and ``web.render_options(request)`` (the render
+# API's query syntax, parsed). Import starlette and your page code inside the hook.
+
+
+@hookspec
+def tilekit_web_routes(web):
+    """Return a list of :class:`tilekit.plugins.WebRoute` (path, view, methods): pages and
+    ``/api/`` endpoints the plugin adds to ``tilekit serve``.
+
+    Called once when the app is created. A view is ``view(request, web)``, run in a worker
+    thread; it returns a str (an HTML page, see ``web.page``), a dict or list (JSON), or a
+    starlette Response. A TilekitError it raises becomes the site's error page (or, under
+    ``/api/``, the API's JSON error) with the error's status. Paths the app serves itself win.
+    """
+
+
+@hookspec
+def tilekit_web_menu_links(web):
+    """Return ``(href, label)`` pairs for the navigation bar of every page (an editor's entry
+    page, say). Called once when the app is created."""
+
+
+@hookspec
+def tilekit_web_tiling_links(web, name, tiling):
+    """Return ``(href, label)`` pairs shown on the page of the catalogue tiling ``name``
+    (``tiling``, built, of any family): an editor that opens it, a page about it. Return None
+    or [] for tilings that are not yours. Called each time a tiling page is drawn."""
+
+
+@hookspec(firstresult=True)
+def tilekit_web_render_cell(table, column, value, row):
+    """Return the HTML of one cell of a run's results page, or None for the default (the
+    value as escaped text). ``table`` is the result table's name (None for JSON results),
+    ``row`` the whole row as a dict. The first non-None answer wins; escape what you show."""
+
+
+@hookspec
+def tilekit_web_static():
+    """Return ``(name, directory)`` pairs: the directory's files are served at
+    ``/static/plugins/<name>/`` (a page's scripts: ``web.page(..., scripts=["plugins/<name>/x.js"])``).
+    Called once when the app is created."""

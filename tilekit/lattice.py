@@ -110,6 +110,17 @@ class Grid:
     def is_cell(self, c: np.ndarray) -> np.ndarray:
         return self.cell_type(c) >= 0
 
+    def is_translation(self, t: np.ndarray) -> np.ndarray:
+        """Whether each vector ``(..., 2)`` is a translation of the grid (in ``period * Z^2``).
+
+        The grid's symmetries are exactly ``x -> g x + t`` with g in ``group`` and t such a
+        vector (each g maps the grid onto itself about the origin, and ``period`` is the least
+        period): they map every cell onto a cell of the same shape, and on the grids drawn
+        through ``vertex_shift`` they are the only maps of fine coordinates that are isometries.
+        A polyform's copies on the grid are its images under these maps.
+        """
+        return (np.mod(np.asarray(t, dtype=np.int64), self.period) == 0).all(axis=-1)
+
     def neighbours_of(self, c: tuple[int, int]) -> np.ndarray:
         t = int(self.cell_type(np.array([c]))[0])
         if t < 0:

@@ -123,6 +123,18 @@ MAX_FILE_BYTES = 16 << 20
 #: parse_toml): the deepest shipped data nests 5 levels; Python's parsers recurse per level.
 MAX_NESTING = 32
 
+# ---- Escherization goals and the shape metric (tilekit.escher; every family's fits)
+#: Goal polygons have at least 3 and at most this many vertices (after dropping repeats).
+MAX_GOAL_POINTS = 20_000
+#: A goal file larger than this is refused before it is read (bytes).
+MAX_GOAL_BYTES = 5_000_000
+#: Resampled points per outline (``--samples``): default and bounds; one evaluation costs
+#: O(n log n) for the alignment and O(n k^2) for the projection of k control coordinates.
+DEFAULT_SAMPLES = 128
+MIN_SAMPLES, MAX_SAMPLES = 16, 2048
+#: Worker processes of an Escherization run (``--workers``) at most.
+MAX_FIT_WORKERS = 64
+
 
 class LimitError(TilekitError, ValueError):
     """An object would exceed a size limit; the message names estimate, limit and option."""

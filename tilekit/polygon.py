@@ -23,7 +23,7 @@ and answer per polygon. No tilekit import but the errors, so every layer may use
 from __future__ import annotations
 
 import math
-from collections.abc import Hashable, Sequence
+from collections.abc import Hashable, Iterable, Sequence
 
 import numpy as np
 import shapely
@@ -40,9 +40,12 @@ __all__ = [
     "canonical_cycle",
     "centroid",
     "congruences",
+    "corner_count",
+    "corner_mask",
     "cyclic_equal",
     "ear_clip",
     "edge_signature",
+    "edge_to_edge",
     "inscribed_disc",
     "interior_angles",
     "regular_polygon",
@@ -93,19 +96,74 @@ def interior_angles(points: np.ndarray) -> np.ndarray:
     return np.mod(np.arctan2(cross, dot), TWO_PI)
 
 
-def corner_count(points: np.ndarray, corners: Sequence[int] | None = None, tol: float = 1e-9) -> int:
-    """How many sides an outline has as a polygon: its vertices where the boundary turns (a
-    point on a straight run between two others is not a corner), or ``len(corners)`` when the
-    outline names its tiling vertices (a shaped or curved edge is one side)."""
-    if corners is not None:
-        return len(corners)
+def corner_mask(points: np.ndarray, tol: float = 1e-9) -> np.ndarray:
+    """Which vertices of an outline are corners, where the boundary turns: a point on a
+    straight run between two others is not (the book's *shape vertices*, §4.1)."""
     p = np.asarray(points, dtype=float)
     nxt = np.roll(p, -1, axis=0) - p
     prv = p - np.roll(p, 1, axis=0)
     cross = prv[:, 0] * nxt[:, 1] - prv[:, 1] * nxt[:, 0]
     scale = np.linalg.norm(prv, axis=1) * np.linalg.norm(nxt, axis=1)
     dot = (prv * nxt).sum(axis=1)
-    return int(np.count_nonzero((np.abs(cross) > tol * scale) | (dot < 0)))
+    return (np.abs(cross) > tol * scale) | (dot < 0)
+
+
+def corner_count(points: np.ndarray, corners: Sequence[int] | None = None, tol: float = 1e-9) -> int:
+    """How many sides an outline has as a polygon: its vertices where the boundary turns (a
+    point on a straight run between two others is not a corner), or ``len(corners)`` when the
+    outline names its tiling vertices (a shaped or curved edge is one side)."""
+    if corners is not None:
+        return len(corners)
+    return int(np.count_nonzero(corner_mask(points, tol)))
+
+
+def edge_to_edge(batches: Iterable[np.ndarray], tol: float = 1e-7) -> bool:
+    """Whether placed polygons meet edge to edge: every shape vertex (a corner, see
+    :func:`corner_mask`) of every tile is a shape vertex of each tile whose boundary it touches,
+    i.e. no corner lies inside another tile's side. That is the book's definition (§4.1: the
+    tiling vertices and the shape vertices coincide), since a tiling vertex that is not a corner
+    of some tile lies inside that tile's side and is a corner of a tile meeting it there.
+
+    ``batches`` are stacks ``(m, k, 2)`` of congruent outlines (``Patch.groups``); ``tol`` is
+    relative to the median side. Vectorised: one shapely STRtree over all sides, one query.
+
+    >>> sq = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+    >>> grid = np.stack([sq + [i, j] for i in range(3) for j in range(3)])
+    >>> bricks = np.stack([sq + [i + 0.5 * (j % 2), j] for i in range(3) for j in range(3)])
+    >>> edge_to_edge([grid]), edge_to_edge([bricks])
+    (True, False)
+    """
+    points, starts, ends, owner_p, owner_s = [], [], [], [], []
+    tiles = 0
+    for pts in batches:
+        pts = np.asarray(pts, dtype=float)
+        if pts.ndim == 2:
+            pts = pts[None]
+        if not len(pts):
+            continue
+        c = pts[:, corner_mask(pts[0], 1e-9)]  # congruent copies turn at the same vertices
+        m, k = c.shape[:2]
+        ids = np.arange(tiles, tiles + m)
+        tiles += m
+        points.append(c.reshape(-1, 2))
+        owner_p.append(np.repeat(ids, k))
+        starts.append(c.reshape(-1, 2))
+        ends.append(np.roll(c, -1, axis=1).reshape(-1, 2))
+        owner_s.append(np.repeat(ids, k))
+    if tiles < 2:
+        return True
+    pts_all, a, b = np.concatenate(points), np.concatenate(starts), np.concatenate(ends)
+    owner_pt, owner_seg = np.concatenate(owner_p), np.concatenate(owner_s)
+    side = b - a
+    length = np.linalg.norm(side, axis=1)
+    eps = tol * float(np.median(length))
+    tree = shapely.STRtree(shapely.linestrings(np.stack([a, b], axis=1)))
+    pi, si = tree.query(shapely.points(pts_all), predicate="dwithin", distance=eps)
+    other = owner_pt[pi] != owner_seg[si]
+    pi, si = pi[other], si[other]
+    t = ((pts_all[pi] - a[si]) * side[si]).sum(axis=1) / length[si] ** 2
+    inside = (t * length[si] > eps) & ((1 - t) * length[si] > eps)
+    return not bool(inside.any())
 
 
 def ear_clip(pts: np.ndarray) -> list[np.ndarray]:

@@ -26,7 +26,7 @@ from typing import Any
 
 import pluggy
 
-from tilekit.catalogue import Catalogue, auto_type, lease_seconds
+from tilekit.catalogue import Catalogue, auto_type, lease_seconds, open_catalogue
 from tilekit.errors import NotFoundError, ParameterError, SearchError, TilekitError
 from tilekit.limits import refuse_over_memory
 from tilekit.plugins import ChunkResult, Search, get_plugin_manager, get_search
@@ -290,7 +290,6 @@ def _child_main(url: str, run_id: int, session: str, search: Search, params: Map
                 os._exit(1)
 
     threading.Thread(target=watch, daemon=True).start()
-    from tilekit.catalogue import open_catalogue
 
     try:
         catalogue = _patiently(open_catalogue, url, seed=False, migrate=False, pm=pm)
@@ -380,8 +379,6 @@ def _run_process(catalogue: Catalogue, run_id: int, search: Search, params: Mapp
 
 def _dask_worker(url: str, run_id: int, session: str, name: str, params: Mapping[str, Any]) -> int:
     """A dask task: open the catalogue on the worker and work on the run through leases."""
-    from tilekit.catalogue import open_catalogue
-
     catalogue = open_catalogue(url, seed=False, migrate=False)
     try:
         return work(catalogue, run_id, get_search(name, catalogue.pm), params, session)

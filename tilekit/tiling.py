@@ -8,18 +8,19 @@ as many rings as the translational unit's extent requires (§3.5).
 
 from __future__ import annotations
 
+import importlib
 import json
 import math
 from abc import ABC, abstractmethod
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from types import ModuleType
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import shapely
 from shapely.geometry.base import BaseGeometry
 
-from tilekit import export
 from tilekit.colouring import Colouring
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.geometry import AREA_TOL, EPS, POINT_TOL, Affine, as_region, snap_noise
@@ -31,6 +32,21 @@ from tilekit.limits import (
 )
 from tilekit.polygon import centroid, ear_clip, interior_angles, signed_area
 from tilekit.render import patch_to_svg
+
+if TYPE_CHECKING:  # annotations only; the export layer stands above this module
+    from tilekit.export import Adjacency, TileTable
+
+#: The export layer Patch's and Tiling's output methods (``plot``, ``adjacency``, ``to_geojson``,
+#: Jupyter's pictures ...) call, named rather than imported, in the manner of pandas'
+#: ``plotting.backend``: it is a layer above this module (it reads Patch), imported on the first
+#: call (so ``import tilekit.tiling`` does not load it, and it may import this module freely).
+EXPORT_BACKEND = "tilekit.export"
+
+
+def _export() -> ModuleType:
+    """The export layer (:data:`EXPORT_BACKEND`), imported on first use and then cached by Python."""
+    return importlib.import_module(EXPORT_BACKEND)
+
 
 #: Refuse to rasterize more lattice cells than this in one patch (a typo guard, not a limit
 #: of the method: 20 million cells is already hundreds of millions of tiles).
@@ -499,27 +515,27 @@ class Patch:
 
     def _repr_svg_(self) -> str | None:
         """Jupyter's picture of the patch; None (text only) over limits.MAX_REPR_TILES."""
-        return export.patch_svg_or_none(self)
+        return _export().patch_svg_or_none(self)
 
     def _repr_mimebundle_(self, include: Any = None, exclude: Any = None) -> dict[str, str]:
         """The picture and a text line; over MAX_REPR_TILES a line saying why there is no picture."""
-        return export.patch_mimebundle(self)
+        return _export().patch_mimebundle(self)
 
     def plot(self, ax: Any = None, colours: str | Sequence[str] | None = None, edges: str | None = "#222",
              **options: Any) -> Any:
         """Draw on a matplotlib Axes as one PolyCollection (the ``plot`` extra); returns the Axes.
         See :func:`tilekit.export.plot_patch`."""
-        return export.plot_patch(self, ax, colours=colours, edges=edges, **options)
+        return _export().plot_patch(self, ax, colours=colours, edges=edges, **options)
 
-    def adjacency(self, tol: float | None = None) -> export.Adjacency:
+    def adjacency(self, tol: float | None = None) -> Adjacency:
         """Tiles sharing an edge (``.edge``), only a vertex (``.vertex``) or any point
         (``.touching``) as (k, 2) index pairs i < j, exact for non-edge-to-edge patches too."""
-        return export.adjacency(self, tol)
+        return _export().adjacency(self, tol)
 
     def to_geojson(self, classes: np.ndarray | None = None) -> str:
         """GeoJSON FeatureCollection text, a Polygon feature per tile (prototile, name, colour,
         aspect, and ``transitivity_class`` when ``classes`` is given)."""
-        return "".join(export.iter_geojson(self, classes))
+        return "".join(_export().iter_geojson(self, classes))
 
     @property
     def __geo_interface__(self) -> dict[str, Any]:
@@ -528,28 +544,28 @@ class Patch:
 
     def to_shapely(self) -> np.ndarray:
         """Every tile as a shapely Polygon (object array, tile order, float noise snapped)."""
-        return export.to_shapely(self)
+        return _export().to_shapely(self)
 
-    def tile_table(self, labels: Sequence[str] | np.ndarray | None = None) -> export.TileTable:
+    def tile_table(self, labels: Sequence[str] | np.ndarray | None = None) -> TileTable:
         """A row per tile: centre, angle, reflected, prototile, colour, ``labels`` (a name per
         tile, when given) and edge neighbours (``tilekit render -o tiles.csv``; docs/exports.md)."""
-        return export.tile_table(self, labels)
+        return _export().tile_table(self, labels)
 
     def to_geopandas(self, classes: np.ndarray | None = None) -> Any:
         """A GeoDataFrame with a row per tile (the ``geo`` extra)."""
-        return export.to_geopandas(self, classes)
+        return _export().to_geopandas(self, classes)
 
     def to_networkx(self, kind: str = "edge") -> Any:
         """A networkx Graph of the tiles, edges between ``kind`` neighbours (the ``graph`` extra)."""
-        return export.to_networkx(self, kind)
+        return _export().to_networkx(self, kind)
 
     def to_cut_svg(self, layers: str = "one", **options: Any) -> str:
         """A layered SVG of the edges with each shared edge once, for cutters and plotters."""
-        return "".join(export.iter_cut_svg(self, layers, **options))
+        return "".join(_export().iter_cut_svg(self, layers, **options))
 
     def to_dxf(self, path: Any, layers: str = "one", **options: Any) -> int:
         """Write the edges (each shared edge once) as a DXF file (the ``dxf`` extra); returns the lines."""
-        return export.write_dxf(self, path, layers, **options)
+        return _export().write_dxf(self, path, layers, **options)
 
 
 def region_tile_estimate(region: BaseGeometry, prototiles: Sequence[Prototile]) -> float:
@@ -926,11 +942,11 @@ class Tiling(ABC):
     def _repr_mimebundle_(self, include: Any = None, exclude: Any = None) -> dict[str, str]:
         """Jupyter draws a patch of the default region (estimated first; over
         limits.MAX_REPR_TILES a line of text instead)."""
-        return export.tiling_mimebundle(self)
+        return _export().tiling_mimebundle(self)
 
     def _repr_svg_(self) -> str | None:
         """The picture of :meth:`_repr_mimebundle_`, or None over limits.MAX_REPR_TILES."""
-        return export.tiling_mimebundle(self).get("image/svg+xml")
+        return _export().tiling_mimebundle(self).get("image/svg+xml")
 
 
 #: A periodic tiling's default picture: about this many translational units ...

@@ -17,9 +17,9 @@ from pathlib import Path
 import cairosvg
 import numpy as np
 
-from tilekit.plugins.archimedean.notation import VertexType
 from tilekit.plugins.kuniform.dsymbol import DSymbol
 from tilekit.plugins.kuniform.search import chunks, records_for, tiling_of
+from tilekit.regular.notation import VertexType
 from tilekit.render import patch_to_svg
 from tilekit.symmetry import vertex_orbits
 

@@ -17,7 +17,7 @@ def family_cli(tmp_path, monkeypatch, plugin: str) -> Callable[..., Result]:
 
     monkeypatch.setenv("TILEKIT_PLUGINS", plugin)
     pm = make_plugin_manager()
-    monkeypatch.setattr(tilekit.cli, "plugin_manager", lambda: pm)
+    monkeypatch.setattr(tilekit.cli.base, "plugin_manager", lambda: pm)
     url = f"sqlite:///{tmp_path / 'cat.sqlite'}"
     monkeypatch.chdir(tmp_path)
 

@@ -20,7 +20,7 @@ from tilekit.plugins.archimedean.construct import (
     transitivity,
     vertex_types_in,
 )
-from tilekit.plugins.archimedean.notation import VertexType, canonical, parse_vertex_type
+from tilekit.regular.notation import VertexType, canonical, parse_vertex_type
 from tilekit.symmetry import wallpaper_group
 
 #: The 11 Archimedean tilings (Kaplan §4.1, Figure 4.2; Grünbaum & Shephard, Tilings and

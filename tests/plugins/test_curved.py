@@ -365,7 +365,7 @@ def test_cli_list_show_render(cli, tmp_path):
     (["{7,3}", "--set", "p=4", "--set", "q=4"], "Euclidean plane"),
     (["{7,3}", "--set", "q=two"], "q must be an integer 3..60"),
     (["{7,3}", "--set", "colour=red"], "valid: p, q, depth, radius, samples, plane"),
-    (["{7,3}", "--set", "plane=halfplane"], "plane must be one of poincare, klein"),
+    (["{7,3}", "--set", "plane=upper"], "plane must be one of poincare, klein, halfplane"),
     (["cube", "--set", "plane=klein"], "plane applies to hyperbolic tilings"),
     (["cube", "--depth", "3"], "drawn whole"),
     (["cube", "--set", "p=7"], "is hyperbolic, not spherical"),

@@ -447,8 +447,8 @@ def test_a_stream_on_a_terminal_shows_progress(render, tmp_path, monkeypatch) ->
     import tilekit.cli as cli_module
 
     little_memory(monkeypatch)
-    monkeypatch.setattr(cli_module, "on_terminal", lambda: True)
-    monkeypatch.setattr(cli_module, "PROGRESS_TILES", 1000)
+    monkeypatch.setattr(cli_module.render, "on_terminal", lambda: True)
+    monkeypatch.setattr(cli_module.render, "PROGRESS_TILES", 1000)
     result = render("penrose-p3", "--depth", "8", "-o", str(tmp_path / "p.geojson"))
     assert result.exit_code == 0
     assert "streaming" in result.stderr

@@ -11,17 +11,17 @@ from tilekit.errors import ParameterError
 from tilekit.plugins import get_search
 from tilekit.plugins.archimedean import archimedean_tiling
 from tilekit.plugins.archimedean.construct import vertex_types_in
-from tilekit.plugins.archimedean.notation import (
-    VertexType,
-    euclidean_species,
-    parse_vertex_type,
-    types_of_species,
-)
 from tilekit.plugins.archimedean.species import (
     SOLIDS,
     classify_sequence,
     spherical_solid,
     spherical_vertices,
+)
+from tilekit.regular.notation import (
+    VertexType,
+    euclidean_species,
+    parse_vertex_type,
+    types_of_species,
 )
 
 ARCHIMEDEAN = {"3^6", "4^4", "6^3", "3^4.6", "3^3.4^2", "3^2.4.3.4", "3.4.6.4", "3.6.3.6",

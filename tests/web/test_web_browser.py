@@ -118,6 +118,29 @@ def test_penrose_editor_refuses_self_intersection(page):
     assert "self-intersect" in page.inner_text("#error")
 
 
+def test_multigrid_offsets_slide_the_grids(page):
+    """The quasiperiodic plugin's page (through tilekit_web_routes): a slider per offset of the
+    chosen record (five for the pentagrid, four for the 4-grid of n = 8); moving one re-forms
+    the rhombs; offsets whose lines meet three at a point are refused with the reason."""
+    page.goto("/multigrid?name=multigrid-5")
+    page.wait_for_selector("#multigrid[data-state=ok]", timeout=20000)
+    assert page.locator("#offsets input").count() == 5
+    before = outline(page)
+    n = renders(page, "#multigrid")
+    page.locator("#gamma0").fill("0.5")
+    wait_render(page, n, "#multigrid")
+    assert outline(page) != before and page.get_attribute("#multigrid", "data-gamma").startswith("0.5,")
+    for j in range(5):
+        page.locator(f"#gamma{j}").fill("0")
+    page.wait_for_selector("#multigrid[data-state=refused]", timeout=20000)
+    assert "singular" in page.inner_text("#error")
+    n = renders(page, "#multigrid")
+    page.select_option("#tiling", "multigrid-8")
+    wait_render(page, n, "#multigrid")
+    assert page.locator("#offsets input").count() == 4
+    assert not page.js_errors
+
+
 def test_hostile_query_string_is_shown_escaped(page):
     dialogs = []
     page.on("dialog", lambda d: (dialogs.append(d.message), d.dismiss()))

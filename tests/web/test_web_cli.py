@@ -108,3 +108,7 @@ def test_wheel_ships_the_static_files(tmp_path):
     names = set(zipfile.ZipFile(wheel).namelist())
     static = {f"tilekit/web/static/{p.name}" for p in (ROOT / "tilekit" / "web" / "static").iterdir()}
     assert static and static <= names
+    # the plugins' page scripts (tilekit_web_static) ship beside their modules
+    plugin_static = {str(p.relative_to(ROOT)) for p in (ROOT / "tilekit" / "plugins").glob("*/static/*")}
+    assert {"tilekit/plugins/isohedral/static/editor.js", "tilekit/plugins/substitution/static/penrose.js"} <= plugin_static
+    assert plugin_static <= names

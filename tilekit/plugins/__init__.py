@@ -285,6 +285,19 @@ def catalogue_records(pm: pluggy.PluginManager | None = None) -> list[CatalogueR
     return records
 
 
+def public_name(name: str, pm: pluggy.PluginManager | None = None) -> Any:
+    """The object a plugin adds to the ``tilekit`` package as ``name`` (``tilekit_public_names``),
+    PluginError when two plugins offer it or none does."""
+    pm = pm or get_plugin_manager()
+    offers = [names[name] for names in pm.hook.tilekit_public_names() if names and name in names]
+    if len(offers) > 1:
+        raise PluginError(f"two plugins define the public name tilekit.{name}")
+    if not offers:
+        raise PluginError(f"no loaded plugin offers tilekit.{name} (is the plugin that provides it installed, "
+                          "and not left out by TILEKIT_PLUGINS?)")
+    return offers[0]
+
+
 def family_for_file(path: str, pm: pluggy.PluginManager | None = None) -> str | None:
     """The family that claims the data file ``path`` (``tilekit_claim_file``), or None."""
     pm = pm or get_plugin_manager()
@@ -301,6 +314,18 @@ def normalise(key: str, value: str, pm: pluggy.PluginManager | None = None) -> t
     if not (isinstance(found, tuple) and len(found) == 2 and all(isinstance(v, str) for v in found)):
         raise PluginError(f"tilekit_normalise({key!r}, {value[:40]!r}) returned {found!r}, not (key, value)")
     return found
+
+
+@dataclass(frozen=True)
+class WebRoute:
+    """A page or endpoint a plugin adds to the web app (``tilekit_web_routes``): a Starlette
+    path (``/editor/{name:str}``), ``view(request, web)``, the HTTP methods it answers and, for
+    an ``/api/`` endpoint, a line for the API's own page (``/api``)."""
+
+    path: str
+    view: Callable[..., Any]
+    methods: tuple[str, ...] = ("GET",)
+    doc: str = ""
 
 
 @dataclass(frozen=True)

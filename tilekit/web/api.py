@@ -29,16 +29,9 @@ from tilekit.errors import (
     TilekitError,
 )
 from tilekit.plugins import families as fams
-from tilekit.render import parse_palette
 from tilekit.schema import parse_json
 from tilekit.web.limits import RenderTooLarge
-from tilekit.web.service import (
-    MAX_EDGES,
-    editor_info,
-    normalise_options,
-    parquet_svg,
-    query_options,
-)
+from tilekit.web.service import normalise_options, query_options
 
 MAX_PAGE = 200
 MAX_BODY = 64 * 1024
@@ -253,24 +246,6 @@ def routes(state: Any) -> list[Route]:
         return JSONResponse(json.loads(json.dumps(data, default=str)), headers=_download(request, name, "json"))
 
     @endpoint
-    def editor(request: Request) -> Response:
-        name = request.path_params["name"]
-        tiling = state.renderer.build(name, normalise_options(render_options(request, None)))
-        return JSONResponse(editor_info(tiling))
-
-    @endpoint
-    def parquet(request: Request) -> Response:
-        q = request.query_params
-        edges = q.getlist("edge")
-        if len(edges) > MAX_EDGES:
-            raise ParameterError(f"at most {MAX_EDGES} edges")
-        name = request.path_params["name"]
-        svg = parquet_svg(state.renderer, name, edges, _int(request, "columns", 12, 2, 40),
-                          _int(request, "rows", 4, 1, 20), parse_palette(q.get("colours")) if q.get("colours") else None)
-        headers = {"Content-Disposition": f'attachment; filename="{name}-parquet.svg"'} if q.get("download") else {}
-        return Response(svg, media_type="image/svg+xml", headers=headers)
-
-    @endpoint
     def runs(request: Request) -> Response:
         return JSONResponse({"runs": [run_json(i) for i in cat().runs()]})
 
@@ -326,11 +301,9 @@ def routes(state: Any) -> list[Route]:
         Route("/api/query", query),
         Route("/api/tiling/{name:str}", tiling),
         Route("/api/tiling/{name:str}/spec", spec),
-        Route("/api/tiling/{name:str}/editor", editor),
         Route("/api/render/{name:str}", render_get, methods=["GET"]),
         Route("/api/render", render_get, methods=["GET"]),
         Route("/api/render", render_post, methods=["POST"]),
-        Route("/api/parquet/{name:str}", parquet),
         Route("/api/runs", runs),
         Route("/api/runs/{run_id:str}", run),
         Route("/api/runs/{run_id:str}/results", run_results),

@@ -3,6 +3,8 @@
 ``create_app(catalogue_url=None, *, writable=False, max_tiles=20_000)``; ``tilekit serve``
 runs it with uvicorn. One catalogue is opened per app and shared by the worker threads
 (SQLAlchemy's pool); renders are cached by spec hash (:class:`tilekit.web.service.Renderer`).
+The plugins bring their own pages, menu links, tiling-page links, result cells and static
+files through the ``tilekit_web_*`` hooks (tilekit/hookspecs.py): this module names no family.
 """
 
 from __future__ import annotations
@@ -11,6 +13,7 @@ import contextlib
 import html
 import json
 import threading
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -22,13 +25,11 @@ from starlette.routing import Mount, Route
 from starlette.staticfiles import StaticFiles
 
 from tilekit.catalogue import open_catalogue, run_json
-from tilekit.errors import NotFoundError, ParameterError, TilekitError
-from tilekit.plugins import families
-from tilekit.plugins.isohedral.engine import IsohedralTiling
-from tilekit.plugins.isohedral.templates import get_template
+from tilekit.errors import NotFoundError, TilekitError
+from tilekit.plugins import WebRoute, families, get_plugin_manager
 from tilekit.web import api, pages
 from tilekit.web.limits import DEFAULT_MAX_TILES
-from tilekit.web.service import Renderer, editor_info, normalise_options
+from tilekit.web.service import Renderer, normalise_options
 
 STATIC = Path(__file__).with_name("static")
 MAX_QUERY = 8 * 1024
@@ -40,8 +41,10 @@ CSP = ("default-src 'self'; script-src 'self'; style-src 'self'; img-src 'self' 
 class State:
     """What the routes share: the catalogue (opened on first use), the renderer, the mode."""
 
-    def __init__(self, url: str | None, writable: bool, max_tiles: int, catalogue: Any = None) -> None:
+    def __init__(self, url: str | None, writable: bool, max_tiles: int, catalogue: Any = None,
+                 pm: Any = None) -> None:
         self.url = url
+        self.pm = pm
         self.writable = writable
         self.max_tiles = max_tiles
         self._catalogue = catalogue
@@ -54,8 +57,7 @@ class State:
     def catalogue(self) -> Any:
         with self._lock:
             if self._catalogue is None:
-
-                self._catalogue = open_catalogue(self.url)
+                self._catalogue = open_catalogue(self.url, pm=self.pm)
             return self._catalogue
 
     @property
@@ -69,6 +71,24 @@ class State:
     def close(self) -> None:
         if self._catalogue is not None:
             self._catalogue.close()
+
+    # what a plugin's view uses (tilekit_web_routes) -------------------------------------
+    def page(self, title: str, body: str, *, scripts: Any = ()) -> str:
+        """A page in the site's layout (navigation, style sheet, ``scripts`` under /static/)."""
+        return pages.layout(title, body, scripts=scripts, writable=self.writable)
+
+    def render_options(self, request: Request) -> dict[str, Any]:
+        """The render API's options from the request's query string, typed and checked."""
+        return normalise_options(api.render_options(request, None))
+
+    def query_int(self, request: Request, key: str, default: int, lo: int, hi: int) -> int:
+        """A whole-number query parameter in [lo, hi] (ParseError / ParameterError otherwise)."""
+        return api._int(request, key, default, lo, hi)
+
+    @staticmethod
+    def one_line(exc: BaseException) -> str:
+        """An error as the one line the API and the command line show."""
+        return api.one_line(exc)
 
 
 class Limits:
@@ -114,34 +134,64 @@ def _headers(send: Any) -> Any:
     return wrapped
 
 
-def _html(text: str, status: int = 200) -> HTMLResponse:
-    return HTMLResponse(text, status_code=status)
+def _nav(links: Any) -> str:
+    return "".join(f'<a href="{html.escape(str(href))}">{html.escape(str(label))}</a>' for href, label in links)
 
 
-def page(fn: Any) -> Any:
+def plugin_view(route: WebRoute, state: State, html_page: Callable[..., HTMLResponse]) -> Any:
+    """A plugin's ``view(request, web)`` as a Starlette endpoint: run in the thread pool; a str
+    is a page, a dict or list JSON, a Response itself; a TilekitError the site's error page
+    (under /api/ the API's JSON error)."""
+    is_api = route.path.startswith("/api/")
+
     async def handler(request: Request) -> Response:
         try:
-            return await run_in_threadpool(fn, request)
+            out = await run_in_threadpool(route.view, request, state)
         except TilekitError as exc:
+            if is_api:
+                return api.error_response(exc)
             code = api.status_of(exc)
-            return _html(pages.error_page(api.one_line(exc), code), code)
+            return html_page(pages.error_page(api.one_line(exc), code), code)
+        except (ValueError, TypeError) as exc:
+            if not is_api:
+                raise
+            return api.error_response(f"bad request: {api.one_line(exc)}", 400)
+        if isinstance(out, Response):
+            return out
+        if isinstance(out, dict | list):
+            return JSONResponse(out)
+        return html_page(str(out))
 
-    handler.__name__ = fn.__name__
+    handler.__name__ = getattr(route.view, "__name__", "plugin_view")
     return handler
 
 
 def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_tiles: int = DEFAULT_MAX_TILES,
                catalogue: Any = None) -> Any:
     """The ASGI app for one catalogue (``catalogue`` may be an open Catalogue, for tests)."""
-    state = State(catalogue_url, writable, max_tiles, catalogue)
+    pm = catalogue.pm if catalogue is not None else get_plugin_manager()
+    state = State(catalogue_url, writable, max_tiles, catalogue, pm)
+    hook = pm.hook
+    plugin_routes = [r for rs in hook.tilekit_web_routes(web=state) for r in (rs or [])]
+    nav = _nav([link for links in reversed(hook.tilekit_web_menu_links(web=state)) for link in (links or [])])
+    statics = [item for items in hook.tilekit_web_static() for item in (items or [])]
 
-    def isohedral_types() -> list[tuple[str, str]]:
-        out = []
-        for i in range(1, 94):
-            t = get_template(i)
-            if not t.marked:
-                out.append((t.name, f"{t.name} ({getattr(t, 'topology', '')})"))
-        return out
+    def _html(text: str, status: int = 200) -> HTMLResponse:
+        return HTMLResponse(text.replace(pages.NAV_SLOT, nav), status_code=status)
+
+    def page(fn: Any) -> Any:
+        async def handler(request: Request) -> Response:
+            try:
+                return await run_in_threadpool(fn, request)
+            except TilekitError as exc:
+                code = api.status_of(exc)
+                return _html(pages.error_page(api.one_line(exc), code), code)
+
+        handler.__name__ = fn.__name__
+        return handler
+
+    def cell(table: str | None, column: str, value: Any, row: Any) -> str | None:
+        return hook.tilekit_web_render_cell(table=table, column=column, value=value, row=row)
 
     @page
     def search(request: Request) -> Response:
@@ -167,19 +217,16 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
     def tiling(request: Request) -> Response:
         entry = state.catalogue.get(request.path_params["name"])
         svg = describe = problem = None
-        editable = None
+        links: list[tuple[str, str]] = []
         try:
             t = state.renderer.base_tiling(entry.name)
             describe = t.describe()
             _, svg, _ = state.renderer.render(entry.name, {"size": 640})
-
-            if isinstance(t, IsohedralTiling):
-                editable = "isohedral"
-            elif entry.name == "penrose-p3":
-                editable = "penrose"
+            for offered in reversed(hook.tilekit_web_tiling_links(web=state, name=entry.name, tiling=t)):
+                links.extend(offered or [])
         except TilekitError as exc:
             problem = api.one_line(exc)
-        return _html(pages.tiling_page(entry, svg, describe, problem, editable))
+        return _html(pages.tiling_page(entry, svg, describe, problem, links))
 
     @page
     def thumb(request: Request) -> Response:
@@ -225,35 +272,12 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
         run_id = api._run_id(request)
         info = run_json(state.catalogue.run(run_id))
         page_data = api.results_page(state, run_id, request)
-        return _html(pages.run_page(info, page_data, state.writable))
+        return _html(pages.run_page(info, page_data, state.writable, cell))
 
-    @page
-    def editor_pick(request: Request) -> Response:
-        return _html(pages.editor_pick_page(isohedral_types()))
-
-    @page
-    def editor(request: Request) -> Response:
-        name = request.path_params["name"]
-        t = state.renderer.base_tiling(name)
-        if not isinstance(t, IsohedralTiling):
-
-            raise ParameterError(f"{name} is not an unmarked isohedral type; the editor takes IH1..IH93")
-        # /editor/IHn?params=..&edge=..&colouring=..: the JSON API's query syntax and parser; a
-        # query the API would refuse is shown as its one line over the type's defaults
-        problem = None
-        if request.query_params:
-            try:
-                t = state.renderer.build(name, normalise_options(api.render_options(request, None)))
-            except (TilekitError, ValueError, TypeError) as exc:
-                problem = api.one_line(exc)
-        return _html(pages.editor_page(editor_info(t), [n for n, _ in isohedral_types()], problem))
-
-    @page
-    def penrose(request: Request) -> Response:
-        return _html(pages.penrose_page())
+    api_lines = [(",".join(r.methods), r.path, r.doc) for r in plugin_routes if r.path.startswith("/api/") and r.doc]
 
     async def api_doc(request: Request) -> Response:
-        return _html(pages.api_page())
+        return _html(pages.api_page(api_lines))
 
     async def not_found(request: Request, exc: Exception) -> Response:
         code = getattr(exc, "status_code", 404)
@@ -270,12 +294,12 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
         Route("/family/{name:str}", family),
         Route("/runs", runs),
         Route("/runs/{run_id:str}", run),
-        Route("/editor", editor_pick),
-        Route("/editor/{name:str}", editor),
-        Route("/penrose", penrose),
         Route("/api", api_doc),
         *api.routes(state),
         Route("/favicon.ico", lambda r: Response(status_code=204)),
+        # the plugins' pages after the app's own (an app path wins), their files before /static
+        *(Route(r.path, plugin_view(r, state, _html), methods=list(r.methods)) for r in plugin_routes),
+        *(Mount(f"/static/plugins/{name}", app=StaticFiles(directory=str(folder))) for name, folder in statics),
         Mount("/static", app=StaticFiles(directory=str(STATIC)), name="static"),
     ]
     @contextlib.asynccontextmanager

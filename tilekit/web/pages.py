@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import html
 import json
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from typing import Any
 from urllib.parse import quote, urlencode
 
@@ -45,6 +45,10 @@ def fmt_value(value: Any) -> str:
     return str(value)
 
 
+#: Where the app puts the plugins' menu links (tilekit_web_menu_links) in every page.
+NAV_SLOT = "<!--plugin-nav-->"
+
+
 def layout(title: str, body: str, *, scripts: Sequence[str] = (), writable: bool = False) -> str:
     js = "".join(f'<script src="/static/{esc(s)}" defer></script>' for s in scripts)
     mode = "writable" if writable else "read-only"
@@ -56,7 +60,7 @@ def layout(title: str, body: str, *, scripts: Sequence[str] = (), writable: bool
 </head><body>
 <header><a class="brand" href="/">tilekit</a>
 <nav><a href="/">search</a><a href="/families">families</a><a href="/runs">runs</a>
-<a href="/editor">isohedral editor</a><a href="/penrose">Penrose editor</a><a href="/api">API</a></nav>
+{NAV_SLOT}<a href="/api">API</a></nav>
 <span class="mode">catalogue {esc(mode)}</span></header>
 <main>{body}</main>
 </body></html>"""
@@ -131,7 +135,8 @@ def property_table(props: Mapping[str, Any]) -> str:
 
 
 def tiling_page(entry: Any, svg: str | None, describe: str | None, problem: str | None,
-                editable: str | None) -> str:
+                links: Sequence[tuple[str, str]] = ()) -> str:
+    """A tiling's page; ``links`` are the (href, label) pairs plugins offer for it (an editor)."""
     n = esc(name_path(entry.name))
     head = f"<h1>{esc(entry.name)}</h1>"
     if entry.title:
@@ -141,10 +146,8 @@ def tiling_page(entry: Any, svg: str | None, describe: str | None, problem: str 
     downloads = (f'<p class="downloads">download <a id="dl-svg" href="/api/render/{n}?download=1">SVG</a> '
                  f'<a id="dl-png" href="/api/render/{n}?format=png&amp;download=1">PNG</a> '
                  f'<a id="dl-json" href="/api/tiling/{n}/spec?download=1">JSON spec</a>')
-    if editable == "isohedral":
-        downloads += f' · <a id="edit" href="/editor/{n}">open in the isohedral editor</a>'
-    elif editable == "penrose":
-        downloads += ' · <a id="edit" href="/penrose">open in the Penrose quasivertex editor</a>'
+    for i, (href, label) in enumerate(links):
+        downloads += f' · <a id="{"edit" if i == 0 else f"edit-{i}"}" href="{esc(href)}">{esc(label)}</a>'
     downloads += "</p>"
     figure = (f'<figure class="large" id="figure">{svg}</figure>' if svg
               else f'<p class="error" id="no-geometry">no geometry: {esc(problem)}</p>')
@@ -181,7 +184,10 @@ def runs_page(runs: Sequence[Mapping[str, Any]]) -> str:
                   f"<th>status</th><th>chunks</th><th>rows</th><th>seconds</th></tr>{rows}</table>")
 
 
-def run_page(info: Mapping[str, Any], page: Mapping[str, Any], writable: bool) -> str:
+def run_page(info: Mapping[str, Any], page: Mapping[str, Any], writable: bool,
+             cell: Callable[[str | None, str, Any, Any], str | None] | None = None) -> str:
+    """A run's page; ``cell(table, column, value, row)`` draws a result cell (a plugin's
+    tilekit_web_render_cell, HTML) or returns None for the escaped value."""
     rid = esc(info["id"])
     total = max(1, int(info["chunks_total"] or 0))
     pct = 100.0 * int(info["chunks_done"] or 0) / total
@@ -200,87 +206,36 @@ def run_page(info: Mapping[str, Any], page: Mapping[str, Any], writable: bool) -
         body += '<p><button id="cancel" type="button">cancel run</button></p>'
     cols = list(page["columns"])
     head = "".join(f"<th>{esc(c)}</th>" for c in cols)
-    rows = "".join("<tr>" + "".join(f"<td>{esc(fmt_value(r.get(c)) if isinstance(r, dict) else '')}</td>"
-                                    for c in cols) + "</tr>" for r in page["rows"])
+    table = page.get("table")
+
+    def td(r: Any, c: str) -> str:
+        if not isinstance(r, dict):
+            return "<td></td>"
+        drawn = cell(table, c, r.get(c), r) if cell is not None else None
+        return f"<td>{drawn if drawn is not None else esc(fmt_value(r.get(c)))}</td>"
+
+    rows = "".join("<tr>" + "".join(td(r, c) for c in cols) + "</tr>" for r in page["rows"])
     where = f' from result table <code>{esc(page["table"])}</code>' if page.get("table") else ""
     body += f"<h2>Results{where}</h2>" + pager(f"/runs/{info['id']}", {}, page["total"], page["offset"], page["limit"])
     body += f'<table class="list" id="results"><tr>{head}</tr>{rows}</table>'
     return layout(f"run {info['id']}", body, scripts=["run.js"], writable=writable)
 
 
-def editor_pick_page(types: Sequence[tuple[str, str]]) -> str:
-    links = "".join(f'<a class="ih" href="/editor/{esc(n)}" title="{esc(t)}">{esc(n)}</a>' for n, t in types)
-    return layout("isohedral editor", "<h1>Isohedral editor</h1><p>Pick an isohedral type (exercise 5.12); "
-                  f'the 12 marked types are not editable.</p><div class="types" id="types">{links}</div>')
-
-
-def editor_page(info: Mapping[str, Any], types: Sequence[str], problem: str | None = None) -> str:
-    """The isohedral editor on ``info`` (:func:`tilekit.web.service.editor_info` of the tiling
-    the URL configures); ``problem`` is the one line of a refused URL configuration."""
-    data = esc(json.dumps(info))
-    notice = f' data-notice="{esc(problem)}"' if problem else ""
-    pick = options([(t, t) for t in types], info["name"])
-    body = f"""<h1>Isohedral editor: {esc(info["name"])}</h1>
-<div class="editor" id="editor" data-info="{data}"{notice}>
-<div class="controls">
-<label>type <select id="type">{pick}</select></label>
-<p class="kinds">edges <code>{esc(info["kinds"])}</code>; tiling vertex parameterization {esc(info["parameterization"])}</p>
-<h2>Tiling vertex parameters</h2><div id="params"></div>
-<h2>Edge shapes</h2><p class="hint">Drag the handles; J edges are free, U edges mirror about their
-midpoint's perpendicular, S edges turn half a turn about their midpoint, I edges stay straight
-(§5.4). Double-click a segment to add a point, a handle to remove it.</p><div id="edges"></div>
-<h2>View</h2>
-<label>zoom <input type="range" id="zoom" min="0.3" max="3" step="0.05" value="1"></label>
-<label>rotate <input type="range" id="rotate" min="-180" max="180" step="1" value="0"></label>
-<label>colours <select id="palette"><option value="">default</option>
-<option value="#f4c27a,#7fb3d5,#e88a8a,#9ccc8f">warm</option>
-<option value="#264653,#2a9d8f,#e9c46a,#f4a261,#e76f51">sea</option>
-<option value="#ffffff,#dddddd,#bbbbbb,#999999">greys</option>
-<option value="#ffffff">plain</option></select></label>
-<label>colouring <input id="colouring" value="{esc(info["colouring"])}" size="22"></label>
-<p><button type="button" id="reset">reset</button>
-<a id="export-svg" href="#" download="tiling.svg">export SVG</a>
-<a id="export-spec" href="#" download="tiling.json">export spec</a>
-<a id="permalink" href="/editor/{esc(name_path(info["name"]))}" title="this tiling's editor URL (params, edges, colouring)">link</a>
-<a id="export-parquet" href="#" download="parquet.svg" hidden>parquet deformation SVG</a></p>
-<p class="error" id="error" role="alert">{esc(problem)}</p>
-</div>
-<div class="view" id="view"></div>
-</div>"""
-    return layout(f"editor {info['name']}", body, scripts=["editor.js"])
-
-
-def penrose_page() -> str:
-    rows = "".join(
-        f'<label>{esc(k)} <input type="range" id="{esc(k)}" min="{lo}" max="{hi}" step="{st}" value="{v}">'
-        f'<output id="{esc(k)}-out">{v}</output></label>'
-        for k, lo, hi, st, v in (("r1", 0, 0.5, 0.005, 0.15), ("theta1", -90, 90, 1, 20),
-                                 ("r2", 0, 0.5, 0.005, 0.1), ("theta2", -90, 90, 1, -15), ("extent", 2, 8, 0.5, 4)))
-    body = f"""<h1>Penrose quasivertex editor</h1>
-<p>The P3 rhombs with the quasivertex parameters (r1, θ1, r2, θ2) of §6.3 (Figure 6.13), drawn
-on a substituted patch covering the square of half-width <i>extent</i> (the depth follows). Shapes that would self-intersect are refused with the reason.</p>
-<div class="editor" id="penrose"><div class="controls">{rows}
-<p><a id="export-svg" href="#" download="penrose.svg">export SVG</a>
-<a id="export-spec" href="#" download="penrose.json">export spec</a></p>
-<p class="error" id="error" role="alert"></p></div><div class="view" id="view"></div></div>"""
-    return layout("Penrose editor", body, scripts=["penrose.js"])
-
-
-def api_page() -> str:
+def api_page(extra: Sequence[tuple[str, str, str]] = ()) -> str:
+    """The API's endpoints, the app's own and ``extra`` (method, path, what) from the plugins."""
     rows = [
         ("GET", "/api/families", "installed families with their tiling counts"),
         ("GET", "/api/query?family=&where=&text=&order=&limit=&offset=", "typed filters (repeat where), paged (limit ≤ 200)"),
         ("GET", "/api/tiling/NAME", "entry, spec, description, spec hash"),
         ("GET", "/api/tiling/NAME/spec?params=&edges=", "the (configured) tiling's JSON spec"),
-        ("GET", "/api/tiling/NAME/editor", "parameters and edge shape classes of an isohedral tiling"),
         ("GET", "/api/render/NAME?params=&edges=&depth=&region=&colours=&size=&format=svg|png|json", "a bounded render"),
         ("POST", "/api/render", "the same as a JSON body {name, params, edges, ...}"),
-        ("GET", "/api/parquet/IHn?edge=&columns=12&rows=4", "a parquet deformation SVG (4^4 types with fixed square vertices)"),
         ("GET", "/api/runs", "every run"),
         ("GET", "/api/runs/ID", "one run with its counts"),
         ("GET", "/api/runs/ID/results?limit=&offset=", "a page of its results (its result table's rows)"),
         ("GET", "/api/runs/ID/events", "server-sent progress events until the run ends"),
         ("POST", "/api/runs/ID/cancel", "cancel (only with --writable)"),
+        *extra,
     ]
     trs = "".join(f"<tr><td>{esc(m)}</td><td><code>{esc(p)}</code></td><td>{esc(d)}</td></tr>" for m, p, d in rows)
     return layout("API", '<h1>JSON API</h1><p>Errors are <code>{"error": "one line", "status": N}</code> '

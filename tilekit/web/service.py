@@ -14,19 +14,19 @@ from collections import OrderedDict
 from collections.abc import Iterable, Mapping
 from typing import Any
 
-from tilekit.cli import parse_region as cli_parse_region
 from tilekit.errors import ParameterError, ParseError
 from tilekit.geometry import as_region
-from tilekit.plugins.isohedral.engine import IsohedralTiling, shape_classes
-from tilekit.plugins.isohedral.metamorphosis import metamorphosis
-from tilekit.plugins.isohedral.shapes import parse_edge_option
-from tilekit.render import PALETTE, parse_palette, patch_to_svg
+from tilekit.render import parse_palette, patch_to_svg
 from tilekit.schema import finite_number
+from tilekit.text import parse_region as text_region
+from tilekit.text import parse_settings
 from tilekit.web.limits import DEFAULT_MAX_TILES, RenderTooLarge, check_render_size
 
 #: Options a render request may carry besides the tiling's name.
 RENDER_KEYS = ("params", "edges", "depth", "region", "colours", "colouring", "size", "r1", "theta1", "r2",
-               "theta2", "seed", "labels")
+               "theta2", "seed", "labels", "set")
+#: ``set=KEY=VALUE`` options (the command line's ``--set``: a family's own options) per request.
+MAX_SETTINGS = 16
 MAX_SIZE = 2000
 MAX_EDGES = 32
 MAX_POINTS = 64
@@ -51,7 +51,7 @@ def parse_region(value: Any) -> tuple[float, float, float, float] | None:
         return None
     if not isinstance(value, str):
         value = ",".join(str(finite_number(v, "region")) for v in (value if isinstance(value, list | tuple) else [value]))
-    return cli_parse_region(value)
+    return text_region(value)
 
 
 def query_options(items: Iterable[tuple[str, str]]) -> dict[str, Any]:
@@ -71,6 +71,8 @@ def query_options(items: Iterable[tuple[str, str]]) -> dict[str, Any]:
         elif key in ("param", "params"):
             params.append(value)
             raw["params"] = ",".join(params)
+        elif key == "set":
+            raw.setdefault("set", []).append(value)
         else:
             raw[key] = value
     return raw
@@ -106,6 +108,20 @@ def normalise_options(raw: Mapping[str, Any]) -> dict[str, Any]:
     for key in ("colouring", "seed"):
         if raw.get(key) not in (None, ""):
             out[key] = str(raw[key])[:200]
+    settings = raw.get("set")
+    if settings not in (None, "", []):
+        if isinstance(settings, Mapping):
+            settings = [f"{k}={v}" for k, v in settings.items()]
+        if isinstance(settings, str):
+            settings = [settings]
+        if not isinstance(settings, list | tuple) or not all(isinstance(s, str) for s in settings):
+            raise ParseError("set must be 'KEY=VALUE' strings (a family's own options, as --set on the command line)")
+        if len(settings) > MAX_SETTINGS or any(len(s) > 1000 for s in settings):
+            raise ParameterError(f"at most {MAX_SETTINGS} set=KEY=VALUE options of 1000 characters each")
+        reserved = sorted(set(parse_settings(settings)) & set(RENDER_KEYS))
+        if reserved:
+            raise ParameterError(f"set={reserved[0]}=...: give {reserved[0]} as its own option, not through set")
+        out["settings"] = parse_settings(settings)
     return out
 
 
@@ -138,6 +154,7 @@ class Renderer:
         tiling = self.base_tiling(name)
         conf = {k: v for k, v in options.items() if k in ("params", "edges", "depth", "r1", "theta1", "r2",
                                                            "theta2", "colouring", "seed")}
+        conf.update(options.get("settings", {}))  # the family checks its own options
         if conf:
             tiling = tiling.configure(**conf)
         return tiling
@@ -183,91 +200,3 @@ class Renderer:
         blob = json.dumps({"family": tiling.family, "name": tiling.name, "spec": tiling.spec()},
                           sort_keys=True, default=str)
         return hashlib.sha256(blob.encode()).hexdigest()[:16]
-
-
-def editor_info(tiling: Any) -> dict[str, Any]:
-    """What the isohedral editor needs: parameters, edge shape classes with their kinds."""
-
-    if not isinstance(tiling, IsohedralTiling):
-        raise ParameterError(f"{tiling.name} is not an isohedral tiling; the editor takes IH1..IH93")
-    t = tiling.template
-    tv = tiling.parameterization
-    edges = []
-    for label in shape_classes(t.symbol):
-        kind = t.symbol.label_kind(label)
-        shape = tiling.edge_shapes.get(label)
-        edges.append({
-            "label": label,
-            "kind": kind,
-            "points": shape.points.tolist() if shape is not None else [[0.0, 0.0], [1.0, 0.0]],
-            "smooth": bool(shape.smooth) if shape is not None else False,
-        })
-    return {
-        "name": tiling.name,
-        "ih": t.ih,
-        "topology": t.topology,
-        "parameterization": t.parameterization,
-        "params": list(tiling.params),
-        "default": list(tv.default),
-        "edges": edges,
-        "kinds": t.symbol.edge_kinds(),
-        "colouring": str(tiling.colouring),
-        "default_colouring": str(t.colouring),
-        "spec": tiling.spec(),
-        "region": list(tiling.default_region().bounds),
-        "parquet": t.topology == "4^4" and tv.parameters == 0,
-    }
-
-
-def parquet_svg(renderer: Renderer, name: str, edges: list[str], columns: int = 12, rows: int = 4,
-                palette: Any = None, size: int = 1200) -> str:
-    """SVG of :func:`parquet_tiles` clipped to the strip."""
-    import html as _html
-
-
-    tiles, width, height = parquet_tiles(renderer, name, edges, columns, rows)
-    palette = tuple(palette) if palette else PALETTE
-    by_colour: dict[int, list[str]] = {}
-    for colour, poly in tiles:
-        d = "M" + " L".join(f"{x:.5g} {y:.5g}" for x, y in poly.tolist()) + "Z"
-        by_colour.setdefault(colour, []).append(d)
-    pad = 0.02 * width
-    scale = size / (width + 2 * pad)
-    out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{size}" height="{round((height + 2 * pad) * scale)}" '
-           f'viewBox="{-pad:.6g} {-(height + pad):.6g} {width + 2 * pad:.6g} {height + 2 * pad:.6g}">',
-           f'<rect x="{-pad:.6g}" y="{-(height + pad):.6g}" width="{width + 2 * pad:.6g}" '
-           f'height="{height + 2 * pad:.6g}" fill="#ffffff"/>',
-           f'<clipPath id="strip"><rect x="0" y="0" width="{width:.6g}" height="{height:.6g}"/></clipPath>',
-           f'<g transform="scale(1,-1)" clip-path="url(#strip)" stroke="#222" stroke-width="{1.2 / scale:.4g}" '
-           'stroke-linejoin="round">']
-    for c in sorted(by_colour):
-        out.append(f'<path fill="{_html.escape(palette[c % len(palette)])}" d="{" ".join(by_colour[c])}"/>')
-    out.append("</g></svg>")
-    return "\n".join(out)
-
-
-def parquet_tiles(renderer: Renderer, name: str, edges: list[str], columns: int = 12,
-                  rows: int = 4) -> tuple[list[tuple[int, Any]], float, float]:
-    """A parquet deformation (exercise 5.13) of a 4^4 type with fixed square tiling vertices.
-
-    The keyframes are the square (left) and the tile with ``edges`` (right). Every edge of
-    every tile takes the shape ``t * shape`` (the keyframe's control points with their offsets
-    from the straight edge scaled by t), where t is the x of the edge's midpoint across the
-    strip. An edge shared by two tiles has one midpoint and so one shape: the strip is a true
-    tiling whose tiles change from column to column. The transforms of the tiles do not
-    depend on the edge shapes (the tiling vertices are fixed), so they come from one patch.
-    Built by the isohedral family's general :func:`~tilekit.plugins.isohedral.metamorphosis.metamorphosis`.
-    """
-    import numpy as np
-
-    if not (2 <= columns <= 40 and 1 <= rows <= 20):
-        raise ParameterError(f"a parquet deformation takes 2..40 columns and 1..20 rows, not {columns} x {rows}")
-    base = renderer.base_tiling(name)
-    if not isinstance(base, IsohedralTiling) or base.template.topology != "4^4" or base.params:
-        raise ParameterError(f"{name}: parquet deformations take the 4^4 types with fixed square tiling "
-                             "vertices (TV35: IH55, IH61, IH62, IH71, IH73, IH76)")
-    shapes = dict(parse_edge_option(e) for e in edges)
-    keyframe = base.configure(edges=list(shapes.items()))  # validates the right-hand keyframe
-    patch, (_, _, width, height) = metamorphosis(base, keyframe, columns, rows)
-    tiles = [(int(patch.colour[k]), np.asarray(p.outline)) for k, p in enumerate(patch.prototiles)]
-    return tiles, width, height

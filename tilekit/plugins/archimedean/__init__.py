@@ -15,7 +15,7 @@ from tilekit.errors import ParseError
 from tilekit.hookspecs import hookimpl
 from tilekit.lazy import lazy_exports
 from tilekit.plugins import Family
-from tilekit.plugins.archimedean.notation import (
+from tilekit.regular.notation import (
     VertexType,  # standard library only: cheap at start-up
 )
 
@@ -28,8 +28,8 @@ _LAZY = {
     "archimedean_tiling": "tilekit.plugins.archimedean.construct",
     "laves_prototile": "tilekit.plugins.archimedean.construct",
     "laves_tiling": "tilekit.plugins.archimedean.construct",
-    "VertexType": "tilekit.plugins.archimedean.notation",
-    "parse_vertex_type": "tilekit.plugins.archimedean.notation",
+    "VertexType": "tilekit.regular.notation",
+    "parse_vertex_type": "tilekit.regular.notation",
 }
 __getattr__, __dir__ = lazy_exports(__name__, _LAZY)
 

@@ -28,44 +28,23 @@ from tilekit.colouring import Colouring
 from tilekit.errors import GeometryError, ParseError
 from tilekit.geometry import Affine, snap_noise
 from tilekit.limits import DEFAULT_SOLVER_SECONDS
-from tilekit.plugins.archimedean.notation import (
+from tilekit.polygon import vertex_stars
+from tilekit.regular.notation import (
     VertexType,
     arrangements,
     canonical,
     parse_vertex_type,
 )
-from tilekit.polygon import regular_polygon, vertex_stars
+from tilekit.regular.tiles import (
+    format_vector,
+    polygon_angle,
+    regular_prototiles,
+    size_colour,
+    unit_text,
+)
 from tilekit.resources import catalogue_dir
 from tilekit.symmetry import canonical_basis, symmetries
 from tilekit.tiling import Patch, PeriodicTiling, Prototile
-
-#: Colour of a polygon by its number of sides (the same colour in every tiling).
-SIZE_COLOURS = (3, 4, 6, 8, 12)
-
-
-def _fmt_vec(v: np.ndarray) -> str:
-    return "(" + ", ".join(f"{float(x):.6g}" for x in np.asarray(v).ravel()) + ")"
-
-
-def polygon_angle(p: int) -> float:
-    return math.pi * (p - 2) / p
-
-
-def unit_text(tiling: PeriodicTiling, sizes: tuple[int, ...]) -> str:
-    """``Translational unit: 2 3-gons, 1 6-gon; v1 = (...), v2 = (...).`` for a tiling of
-    regular polygons whose prototile i has ``sizes[i]`` sides."""
-    counts = np.bincount(tiling.unit_prototile, minlength=len(sizes))
-    per_unit = ", ".join(f"{c} {n}-gon{'s' if c > 1 else ''}" for n, c in zip(sizes, counts.tolist()))
-    return f"Translational unit: {per_unit}; v1 = {_fmt_vec(tiling.v1)}, v2 = {_fmt_vec(tiling.v2)}."
-
-
-def size_colour(p: int) -> int:
-    return SIZE_COLOURS.index(p) if p in SIZE_COLOURS else len(SIZE_COLOURS) + p
-
-
-def regular_prototiles(sizes: tuple[int, ...]) -> list[Prototile]:
-    """Unit-edge regular polygons, one per size, named by their number of sides."""
-    return [Prototile(regular_polygon(p), name=f"{p}-gon") for p in sizes]
 
 
 class VertexTypeRule:
@@ -416,7 +395,7 @@ class LavesTiling(PeriodicTiling):
         return (
             f"Topological type [{self.vertex_type}]: each tile has {len(self.vertex_type.polygons)} corners, "
             f"where {corners} tiles meet.\n"
-            f"Prototile corners: {', '.join(_fmt_vec(p) for p in self.prototiles[0].outline)}.\n"
+            f"Prototile corners: {', '.join(format_vector(p) for p in self.prototiles[0].outline)}.\n"
             f"{len(self.unit_prototile)} tiles per translational unit; dual of ({self.vertex_type}){self.hand}."
         )
 

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from tilekit.plugins.archimedean import construct
-from tilekit.plugins.archimedean.notation import (
+from tilekit.regular.notation import (
     VertexType,
     euclidean_species,
     parse_sequence,

@@ -13,7 +13,7 @@ from typing import Any
 from tilekit.errors import ParameterError, ParseError
 from tilekit.plugins import CatalogueRecord
 from tilekit.plugins.archimedean import construct
-from tilekit.plugins.archimedean.notation import VertexType, format_sequence, parse_sequence
+from tilekit.regular.notation import VertexType, format_sequence, parse_sequence
 from tilekit.schema import Field, check, shown
 from tilekit.symmetry import ORBIFOLD
 from tilekit.tiling import Tiling

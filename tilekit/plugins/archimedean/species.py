@@ -27,14 +27,14 @@ from tilekit.errors import ParameterError
 from tilekit.plugins import CatalogueRecord, ChunkResult, Search, SearchParam
 from tilekit.plugins.archimedean import construct
 from tilekit.plugins.archimedean import records as rec
-from tilekit.plugins.archimedean.notation import (
+from tilekit.plugins.archimedean.tables import row_of
+from tilekit.regular.notation import (
     VertexType,
     bounded_species,
     euclidean_species,
     geometry_of,
     types_of_species,
 )
-from tilekit.plugins.archimedean.tables import row_of
 
 #: Vertex types of the Platonic and Archimedean solids (Cromwell, *Polyhedra*, 1997, ch. 2
 #: and 5; Grünbaum & Shephard, *Tilings and Patterns*, §2.1) with their published vertex

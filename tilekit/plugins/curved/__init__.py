@@ -8,6 +8,11 @@ automaton, the sphere's breadth-first faces), ``kernels`` (the automaton's compi
 validation in the Klein model and on the sphere), ``tiling`` (RegularTiling), ``render``
 (the Poincaré disc with true arcs; the sphere in orthographic view). The records are
 ``catalogue/curved/regular.toml``.
+
+The third family, ``curved``, holds the uniform tilings of the sphere and the hyperbolic
+plane by Wythoff's construction: ``wythoff`` (the triangle group, the generator, the faces),
+``uniform`` (UniformTiling, named by vertex configuration or Wythoff symbol), ``notation``
+(vertex configurations), records from ``catalogue/curved/uniform.toml``.
 """
 
 from __future__ import annotations
@@ -21,16 +26,21 @@ from tilekit.plugins import CatalogueRecord, Family
 
 if TYPE_CHECKING:  # pragma: no cover
     from tilekit.plugins.curved.tiling import RegularTiling
+    from tilekit.plugins.curved.uniform import UniformTiling
 
 #: The families' names (tilekit.plugins.curved.model.SPHERE / HYPERBOLIC, which a test keeps
 #: equal): spelled here so that loading the plugin does not import NumPy.
 SPHERICAL, HYPERBOLIC = "spherical", "hyperbolic"
+#: The uniform tilings' family.
+CURVED = "curved"
 
 #: Public names, imported on first use (PEP 562): measured start-up cost, the modules load
 #: NumPy and shapely (about 0.3 s), which every `tilekit` command would pay when pluggy loads
 #: this plugin.
 _LAZY = {
     "RegularTiling": "tilekit.plugins.curved.tiling",
+    "UniformTiling": "tilekit.plugins.curved.uniform",
+    "euclidean_tiling": "tilekit.plugins.curved.uniform",
     "ModelPatch": "tilekit.plugins.curved.patch",
     "ModelPrototile": "tilekit.plugins.curved.patch",
     "RegularPolygon": "tilekit.plugins.curved.model",
@@ -39,11 +49,14 @@ _LAZY = {
 }
 __getattr__, __dir__ = lazy_exports(__name__, _LAZY)
 
-__all__ = ["HYPERBOLIC", "SPHERICAL", "ModelPatch", "ModelPrototile", "RegularPolygon", "RegularTiling",
-           "curved_records", "hyperbolic_layers", "layer_counts", "regular"]
+__all__ = ["CURVED", "HYPERBOLIC", "SPHERICAL", "ModelPatch", "ModelPrototile", "RegularPolygon", "RegularTiling",
+           "UniformTiling", "curved_records", "euclidean_tiling", "hyperbolic_layers", "layer_counts", "regular",
+           "uniform_records", "uniform_tiling"]
 
 #: The records' data file (one [[tiling]] table each: name, title, p, q, aliases, oeis).
 RECORDS_FILE = "regular.toml"
+#: The uniform tilings' data file ([enumerate] bounds, [[named]] tilings).
+UNIFORM_FILE = "uniform.toml"
 
 
 def regular(p: int, q: int, **options: Any) -> RegularTiling:
@@ -52,6 +65,22 @@ def regular(p: int, q: int, **options: Any) -> RegularTiling:
     from tilekit.plugins.curved.tiling import RegularTiling
 
     return RegularTiling(p, q, **options)
+
+
+def uniform_tiling(configuration: str | None = None, **options: Any) -> UniformTiling:
+    """The uniform tiling with this vertex configuration (or ``symbol='2 3 | 7'``; options:
+    radius, samples, plane, geometry)."""
+    # measured start-up cost: as in regular()
+    from tilekit.plugins.curved.uniform import UniformTiling
+
+    return UniformTiling(configuration, **options)
+
+
+def _uniform_from_spec(spec: Mapping[str, Any]) -> UniformTiling:
+    # measured start-up cost: as in regular()
+    from tilekit.plugins.curved.uniform import UniformTiling
+
+    return UniformTiling.from_spec(spec)
 
 
 def _from_spec(want: str) -> Any:
@@ -90,8 +119,56 @@ def curved_records() -> list[CatalogueRecord]:
         props = t.properties()
         if rec.get("oeis"):
             props["oeis"] = rec["oeis"]
+        # the vertex configuration as a name too (3.3.3.3.3.3.3 and 3^7 for {3,7})
+        cfg = (rec["p"],) * rec["q"]
+        aliases = [*rec["aliases"], ".".join(map(str, cfg)), f"{rec['p']}^{rec['q']}"]
         out.append(CatalogueRecord(family=t.family, name=t.name, spec=t.spec(), title=t.title,
-                                   properties=props, aliases=list(rec["aliases"])))
+                                   properties=props, aliases=aliases))
+    return out
+
+
+def _uniform_data() -> dict[str, Any]:
+    """catalogue/curved/uniform.toml, checked (one-line errors naming the file and the field)."""
+    # start-up cost: the construction loads NumPy; records are read only when seeding
+    from tilekit.plugins.curved import wythoff
+    from tilekit.resources import catalogue_dir, read_toml
+    from tilekit.schema import Field, check
+
+    path = catalogue_dir() / "curved" / UNIFORM_FILE
+    bound = Field("int", required=True, range=(2, wythoff.MAX_ORDER))
+    named = Field("table", fields={"name": Field("str", required=True), "title": Field("str", default=""),
+                                   "configuration": Field("str", required=True)})
+    return check(Field("table", fields={
+        "enumerate": Field("table", required=True, fields={
+            "max_order": bound, "max_prism": bound, "species_max_order": bound,
+            "species_max_sides": bound, "species_max_valence": bound}),
+        "named": Field("list", items=named, default=[]),
+    }), read_toml(path, "curved records"), f"curved records {UNIFORM_FILE}")
+
+
+def uniform_records() -> list[CatalogueRecord]:
+    """The uniform tilings' records (catalogue/curved/uniform.toml): every vertex
+    configuration the [enumerate] bounds give, less the regular ones that regular.toml ships
+    (records of the spherical and hyperbolic families), named where [[named]] names them."""
+    # measured start-up cost: NumPy and the construction (records are built only when seeding)
+    from tilekit.plugins.curved import notation, wythoff
+    from tilekit.plugins.curved.uniform import UniformTiling
+    from tilekit.resources import catalogue_dir, read_toml
+
+    data = _uniform_data()
+    names = {notation.canonical(notation.parse(n["configuration"])): n for n in data["named"]}
+    out = []
+    regular = {(t["p"],) * t["q"] for t in read_toml(catalogue_dir() / "curved" / RECORDS_FILE, "curved records")
+               .get("tiling", []) if isinstance(t, dict) and isinstance(t.get("p"), int) and isinstance(t.get("q"), int)}
+    for cfg in wythoff.enumerate_configurations(**data["enumerate"]):
+        if cfg in regular:
+            continue  # {p,q} shipped as a record of the spherical / hyperbolic family
+        rec = names.get(cfg, {})
+        t = UniformTiling(notation.dotted(cfg), name=rec.get("name", ""), title=rec.get("title", ""))
+        title = t.title or f"{t.configuration}: uniform tiling of the {'sphere' if not t.hyperbolic else 'hyperbolic plane'}"
+        aliases = sorted({notation.dotted(cfg), notation.exponent(cfg)} - {t.name})
+        out.append(CatalogueRecord(family=CURVED, name=t.name, spec=t.spec(), title=title,
+                                   properties=t.properties(), aliases=aliases))
     return out
 
 
@@ -113,9 +190,55 @@ def tilekit_families() -> list[Family]:
                          "(no tile twice, none lost), or every tile within a radius; edges drawn as true "
                          "arcs. Options: p, q, depth, radius, samples."),
         ),
+        Family(
+            name=CURVED,
+            summary="Uniform tilings of the sphere and the hyperbolic plane by Wythoff's construction (§3.6.2)",
+            from_spec=_uniform_from_spec,
+            description=("Named by vertex configuration (3.4.4.4, 3.14.14) or Wythoff symbol (p|q r, p q|r, p q r|, "
+                         "|p q r): the Archimedean solids, prisms and antiprisms, truncations and snubs of {p,q} in "
+                         "the hyperbolic plane. Options: configuration, symbol, radius, samples, plane, geometry."),
+        ),
     ]
 
 
 @tilekit.hookimpl
 def tilekit_catalogue_records() -> list[CatalogueRecord]:
-    return curved_records()
+    return curved_records() + uniform_records()
+
+
+@tilekit.hookimpl
+def tilekit_resolve_name(name: str) -> list[str] | None:
+    """A spherical or hyperbolic vertex configuration in any rotation or spelling
+    (``4.3.4.4``, ``3.4^3``): the uniform tiling with it (``vertex_configuration`` filter);
+    one that no Wythoff symbol gives is a one-line error naming it."""
+    # measured start-up cost: the notation parser (no NumPy) only for a name not found
+    from tilekit.errors import ParseError
+    from tilekit.plugins.curved import notation
+
+    try:
+        cfg = notation.parse(name)
+    except ParseError:
+        return None
+    if notation.geometry_of(cfg) == "euclidean":
+        return None
+    # start-up cost: the construction loads NumPy, only for a name that is a curved configuration
+    from tilekit.errors import ParameterError
+    from tilekit.plugins.curved import wythoff
+
+    sym = wythoff.symbol_for(cfg)  # raises when no uniform tiling has this configuration
+    dotted = notation.dotted(notation.canonical(cfg))
+    bounds = _uniform_data()["enumerate"]
+    if not any(wythoff.recorded(s, **bounds) for s in wythoff.symbols_for(cfg)):
+        raise ParameterError(f"{dotted} is the uniform tiling {sym}, which has no catalogue record (records: orders "
+                             f"up to {bounds['max_order']}); draw it from any curved record: tilekit render 3.14.14 "
+                             f"--set configuration={dotted}")
+    return [f"vertex_configuration={dotted}"]
+
+
+@tilekit.hookimpl
+def tilekit_cli_commands(cli: Any) -> None:
+    # curved/cli.py imports only click and the core's cli_types at its top (the mesh code
+    # imports NumPy when the command runs); measured start-up cost: a few milliseconds
+    from tilekit.plugins.curved.cli import sphere_mesh_command
+
+    cli.add_command(sphere_mesh_command)

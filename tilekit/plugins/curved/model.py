@@ -156,21 +156,8 @@ class RegularPolygon:
         return self.geometry.point(self.circumradius, self.vertex_angles())
 
     def outline(self, per_edge: int = 1) -> np.ndarray:
-        """(p * per_edge, 3) points along the boundary: per edge, its start and per_edge − 1
-        points along the geodesic (spaced evenly in the model's parameter, symmetric about the
-        midpoint, so neighbours sample a shared edge at the same points)."""
-        v = self.vertices()
-        if per_edge <= 1:
-            return v
-        g = self.geometry
-        a, b = v, np.roll(v, -1, axis=0)
-        d = self.edge_length
-        s = np.linspace(0.0, 1.0, per_edge, endpoint=False)
-        # slerp on the sphere / along the hyperbola: sin((1-s)d)/sin d a + sin(sd)/sin d b
-        w0 = g.sin((1 - s) * d) / g.sin(d)
-        w1 = g.sin(s * d) / g.sin(d)
-        pts = w0[None, :, None] * a[:, None, :] + w1[None, :, None] * b[:, None, :]
-        return pts.reshape(-1, 3)
+        """(p * per_edge, 3) points along the boundary (:func:`sample_edges`)."""
+        return sample_edges(self.geometry, self.vertices(), self.edge_length, per_edge)
 
     def half_turns(self) -> np.ndarray:
         """(p, 3, 3): H[j] turns the central tile by π about the midpoint of its edge j; the
@@ -184,6 +171,21 @@ class RegularPolygon:
             r, r_inv = g.rotation(phi), g.rotation(-phi)
             out[j] = r @ t @ flip @ t_inv @ r_inv
         return out
+
+
+def sample_edges(g: Geometry, v: np.ndarray, d: float, per_edge: int) -> np.ndarray:
+    """(k * per_edge, 3): the closed polygon v (k, 3) with edges of length d, per edge its
+    start and per_edge − 1 points along the geodesic (spaced evenly in the model's parameter,
+    symmetric about the midpoint, so neighbours sample a shared edge at the same points)."""
+    if per_edge <= 1:
+        return v
+    a, b = v, np.roll(v, -1, axis=0)
+    s = np.linspace(0.0, 1.0, per_edge, endpoint=False)
+    # slerp on the sphere / along the hyperbola: sin((1-s)d)/sin d a + sin(sd)/sin d b
+    w0 = g.sin((1 - s) * d) / g.sin(d)
+    w1 = g.sin(s * d) / g.sin(d)
+    pts = w0[None, :, None] * a[:, None, :] + w1[None, :, None] * b[:, None, :]
+    return pts.reshape(-1, 3)
 
 
 # --------------------------------------------------------------------------- projections
@@ -203,6 +205,36 @@ def from_poincare(xy: np.ndarray) -> np.ndarray:
     """Poincaré disc points (..., 2), |z| < 1, back to the hyperboloid (..., 3)."""
     r2 = np.sum(xy * xy, axis=-1, keepdims=True)
     return np.concatenate([2 * xy, 1 + r2], axis=-1) / (1 - r2)
+
+
+def halfplane(points: np.ndarray) -> np.ndarray:
+    """Hyperboloid points (..., 3) to the upper half-plane (..., 2) by the Cayley map
+    w = i(1 + z)/(1 − z) of their Poincaré point z: the disc's centre goes to i, the rim to
+    the real axis, geodesics to half-circles centred on it (or vertical lines)."""
+    z = poincare(points)
+    x, y = z[..., 0], z[..., 1]
+    d = (1 - x) ** 2 + y * y
+    return np.stack([-2 * y / d, (1 - x * x - y * y) / d], axis=-1)
+
+
+def halfplane_to_poincare(uv: np.ndarray) -> np.ndarray:
+    """Upper half-plane points (..., 2), v > 0, back to the Poincaré disc: z = (w − i)/(w + i)."""
+    u, v = uv[..., 0], uv[..., 1]
+    d = u * u + (v + 1) ** 2
+    return np.stack([(u * u + v * v - 1) / d, -2 * u / d], axis=-1)
+
+
+#: The hyperbolic drawing planes and their default views (x0, y0, x1, y1).
+PLANE_VIEWS = {"poincare": (-1.0, -1.0, 1.0, 1.0), "klein": (-1.0, -1.0, 1.0, 1.0), "halfplane": (-3.0, 0.0, 3.0, 3.0)}
+
+
+def project(points: np.ndarray, plane: str) -> np.ndarray:
+    """Hyperboloid points (..., 3) to a drawing plane: 'poincare', 'klein' or 'halfplane'."""
+    if plane == "klein":
+        return klein(points)
+    if plane == "halfplane":
+        return halfplane(points)
+    return poincare(points)
 
 
 def poincare_to_klein(xy: np.ndarray) -> np.ndarray:

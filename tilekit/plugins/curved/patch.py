@@ -33,8 +33,8 @@ class ModelPrototile(Prototile):
     """A prototile whose ``outline`` is the projected central tile and ``points`` the same
     boundary on the model (k, 3); ``corners`` are the polygon's vertices among them;
     ``sign`` is +1 for the sphere, −1 for the hyperbolic plane; ``plane`` the hyperbolic
-    drawing plane, 'poincare' (conformal, geodesics are arcs) or 'klein' (geodesics are
-    chords); ``view`` the sphere's viewing rotation."""
+    drawing plane, 'poincare' (conformal, geodesics are arcs), 'klein' (geodesics are
+    chords) or 'halfplane' (the upper half-plane, conformal, geodesics are half-circles); ``view`` the sphere's viewing rotation."""
 
     points: np.ndarray | None = None
     sign: int = -1
@@ -44,7 +44,7 @@ class ModelPrototile(Prototile):
     def project(self, pts: np.ndarray) -> np.ndarray:
         """Model points (..., 3) to the drawing plane (..., 2)."""
         if self.sign < 0:
-            return model.klein(pts) if self.plane == "klein" else model.poincare(pts)
+            return model.project(pts, self.plane)
         return model.orthographic(pts @ self.view.T if self.view is not None else pts)
 
 
@@ -62,7 +62,8 @@ _COMPILED = 20_000
 
 class ModelPatch(Patch):
     """Tiles of a spherical or hyperbolic tiling: columns as in :class:`Patch`, transforms on
-    the model, geometry projected (see the module)."""
+    the model, geometry projected (see the module). Tiles of several prototiles (a uniform
+    tiling's faces) are handled prototile by prototile (:meth:`parts`)."""
 
     __slots__ = ()
 
@@ -70,26 +71,58 @@ class ModelPatch(Patch):
     def proto(self) -> ModelPrototile:
         return _proto(self)
 
+    def parts(self, index: np.ndarray | None = None) -> list[tuple[np.ndarray, np.ndarray, ModelPrototile]]:
+        """Per prototile present: (positions among the selected tiles, their tile indices,
+        the prototile); ``index`` selects tiles (None: all)."""
+        tiles = np.arange(len(self)) if index is None else np.arange(len(self))[index]
+        if len(self.prototiles) == 1:
+            return [(np.arange(len(tiles)), tiles, self.proto)]
+        kinds = self.prototile[tiles]
+        out = []
+        for j, proto in enumerate(self.prototiles):
+            pos = np.flatnonzero(kinds == j)
+            if len(pos):
+                if not isinstance(proto, ModelPrototile) or proto.points is None:
+                    raise GeometryError("a ModelPatch needs ModelPrototiles with model points")
+                out.append((pos, tiles[pos], proto))
+        return out
+
+    def _one_part(self, index: Any) -> tuple[np.ndarray, ModelPrototile]:
+        parts = self.parts(index)
+        if len(parts) > 1 and len({len(pr.points) for _, _, pr in parts}) > 1:
+            raise GeometryError("these tiles have different outlines: take them prototile by prototile (parts)")
+        if not parts:
+            t = self.transform[:0]
+            return t, self.proto
+        if len(parts) == 1:
+            return self.transform[parts[0][1]], parts[0][2]
+        # same point count, different prototiles: apply each its own points
+        raise GeometryError("tiles of several prototiles: take them prototile by prototile (parts)")
+
     def model_points(self, index: np.ndarray | slice | None = None) -> np.ndarray:
-        """(n, k, 3) boundary points of the tiles on the model."""
-        t = self.transform if index is None else self.transform[index]
-        return model.apply(t, self.proto.points)
+        """(n, k, 3) boundary points of the tiles on the model (tiles of one outline)."""
+        t, proto = self._one_part(index)
+        return model.apply(t, proto.points)
 
     def model_vertices(self, index: np.ndarray | slice | None = None) -> np.ndarray:
-        """(n, p, 3) polygon vertices on the model."""
-        proto = self.proto
-        t = self.transform if index is None else self.transform[index]
+        """(n, p, 3) polygon vertices on the model (tiles of one outline)."""
+        t, proto = self._one_part(index)
         return model.apply(t, proto.points[list(proto.corners or range(len(proto.points)))])
+
+    def vertex_lists(self) -> list[np.ndarray]:
+        """Every tile's polygon vertices on the model, (k, 3) each, in tile order."""
+        out: list[np.ndarray] = [np.zeros((0, 3))] * len(self)
+        for _, idx, proto in self.parts():
+            v = model.apply(self.transform[idx], proto.points[list(proto.corners or range(len(proto.points)))])
+            for i, t in enumerate(idx):
+                out[t] = v[i]
+        return out
 
     def model_centres(self) -> np.ndarray:
         """(n, 3) tile centres on the model (the images of the pole)."""
         return self.transform[:, :, 2].copy()
 
-    def projected(self, index: np.ndarray | slice | None = None, corners: bool = False) -> np.ndarray:
-        """(n, k, 2) outlines in the drawing plane (``corners``: the polygon's vertices only);
-        a large hyperbolic patch through one compiled pass (kernels.poincare_points)."""
-        proto = self.proto
-        t = self.transform if index is None else self.transform[index]
+    def _project(self, t: np.ndarray, proto: ModelPrototile, corners: bool) -> np.ndarray:
         pts = proto.points[list(proto.corners or ())] if corners else proto.points
         if proto.sign < 0 and proto.plane == "poincare" and len(t) >= _COMPILED:
             # measured start-up cost: numba's import (~0.3 s) only for large patches
@@ -98,24 +131,32 @@ class ModelPatch(Patch):
             return poincare_points(np.ascontiguousarray(t), np.ascontiguousarray(pts))
         return proto.project(model.apply(t, pts))
 
+    def projected(self, index: np.ndarray | slice | None = None, corners: bool = False) -> np.ndarray:
+        """(n, k, 2) outlines in the drawing plane (``corners``: the polygon's vertices only),
+        for tiles of one outline; a large hyperbolic patch through one compiled pass
+        (kernels.poincare_points)."""
+        t, proto = self._one_part(index)
+        return self._project(t, proto, corners)
+
     # the core's geometry, projected ------------------------------------------------
     def groups(self):  # type: ignore[override]
-        if len(self):
-            yield 0, np.arange(len(self)), self.projected()
+        for _, idx, proto in self.parts():
+            yield int(self.prototile[idx[0]]), idx, self._project(self.transform[idx], proto, False)
 
     def tile_bounds(self) -> np.ndarray:
-        if not len(self):
-            return np.zeros((0, 4))
-        pts = self.projected()
-        return np.concatenate([pts.min(axis=1), pts.max(axis=1)], axis=1)
+        out = np.zeros((len(self), 4))
+        for _, idx, pts in self.groups():
+            out[idx] = np.concatenate([pts.min(axis=1), pts.max(axis=1)], axis=1)
+        return out
 
     def centres(self) -> np.ndarray:
-        return self.proto.project(self.model_centres())
+        return self.prototiles[0].project(self.model_centres())
 
     def _geometries_at(self, index: np.ndarray) -> np.ndarray:
-        if not len(index):
-            return np.empty(0, dtype=object)
-        return shapely.polygons(self.projected(index))
+        out = np.empty(len(index), dtype=object)
+        for pos, idx, proto in self.parts(np.asarray(index)):
+            out[pos] = shapely.polygons(self._project(self.transform[idx], proto, False))
+        return out
 
     def weld_tolerance(self) -> float:
         """1e-9 of the disc's radius: the core's default scales with the matrices' linear
@@ -124,13 +165,14 @@ class ModelPatch(Patch):
 
     def orientations(self) -> tuple[np.ndarray, np.ndarray]:
         """Each tile's turn in the drawing plane (the direction from its centre to its first
-        vertex, less the central tile's) and reflected (never: the tiles are placed by
-        products of half-turns)."""
-        proto = self.proto
-        v0 = self.projected(corners=True)[:, 0]
+        vertex, less its prototile's) and reflected (never: the tiles are placed by
+        motions of determinant 1)."""
+        angle = np.zeros(len(self))
         c = self.centres()
-        ref = proto.project(proto.points[0])
-        angle = np.degrees(np.arctan2(v0[:, 1] - c[:, 1], v0[:, 0] - c[:, 0]) - np.arctan2(ref[1], ref[0]))
+        for _, idx, proto in self.parts():
+            v0 = self._project(self.transform[idx], proto, True)[:, 0]
+            ref = proto.project(proto.points[0])
+            angle[idx] = np.degrees(np.arctan2(v0[:, 1] - c[idx, 1], v0[:, 0] - c[idx, 0]) - np.arctan2(ref[1], ref[0]))
         return np.round(angle, 9) % 360.0, np.zeros(len(self), dtype=bool)
 
     def subset(self, index: Any) -> ModelPatch:
@@ -143,32 +185,39 @@ class ModelPatch(Patch):
 
     # validation where the geometry is exact ---------------------------------------
     def klein_triangles(self) -> Patch:
-        """The hyperbolic tiles in the Klein model as a Euclidean :class:`Patch` of p
+        """The hyperbolic tiles in the Klein model as a Euclidean :class:`Patch` of k
         triangles each (centre, vertex i, vertex i + 1), each placed by the affine map that
         is exact on its three corners; ``colour`` holds the tile index."""
-        if self.proto.sign > 0:
+        if self.prototiles[0].sign > 0:
             raise GeometryError("the Klein model is for hyperbolic patches")
-        v = model.klein(self.model_vertices())            # (n, p, 2)
-        c = model.klein(self.model_centres())[:, None, :]  # (n, 1, 2)
-        n, p = v.shape[:2]
-        a = np.broadcast_to(c, v.shape).reshape(-1, 2)
-        b = v.reshape(-1, 2)
-        d = np.roll(v, -1, axis=1).reshape(-1, 2)
-        # the reference triangle (0,0), (1,0), (0,1) mapped to (a, b, d)
-        m = np.zeros((n * p, 3, 3))
-        m[:, :2, 0] = b - a
-        m[:, :2, 1] = d - a
-        m[:, :2, 2] = a
-        m[:, 2, 2] = 1.0
+        mats, owners = [], []
+        for _, idx, proto in self.parts():
+            corners = proto.points[list(proto.corners or range(len(proto.points)))]
+            v = model.klein(model.apply(self.transform[idx], corners))   # (n, p, 2)
+            c = model.klein(self.transform[idx][:, :, 2])[:, None, :]     # (n, 1, 2)
+            n, p = v.shape[:2]
+            a = np.broadcast_to(c, v.shape).reshape(-1, 2)
+            b = v.reshape(-1, 2)
+            d = np.roll(v, -1, axis=1).reshape(-1, 2)
+            # the reference triangle (0,0), (1,0), (0,1) mapped to (a, b, d)
+            m = np.zeros((n * p, 3, 3))
+            m[:, :2, 0] = b - a
+            m[:, :2, 1] = d - a
+            m[:, :2, 2] = a
+            m[:, 2, 2] = 1.0
+            mats.append(m)
+            owners.append(np.repeat(idx, p))
+        m = np.concatenate(mats) if mats else np.zeros((0, 3, 3))
         ref = Prototile(np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]), name="fan")
-        return Patch([ref], np.zeros(n * p, dtype=np.int64), m, colour=np.repeat(np.arange(n), p))
+        return Patch([ref], np.zeros(len(m), dtype=np.int64), m,
+                     colour=np.concatenate(owners) if owners else np.zeros(0, dtype=np.int64))
 
     def validate(self, region: Any = None, tolerance: float = AREA_TOL) -> ValidationReport:
         """No overlap, and ``region`` (in the drawing plane's disc) covered: for a
         hyperbolic patch the core's check on :meth:`klein_triangles`, a Poincaré region carried
         to the Klein model point by point along its densified boundary; for a spherical one
         :func:`sphere_report` (``region`` None: the whole sphere)."""
-        if self.proto.sign > 0:
+        if self.prototiles[0].sign > 0:
             return sphere_report(self, tolerance)
         tri = self.klein_triangles()
         reg = None
@@ -177,14 +226,19 @@ class ModelPatch(Patch):
             if not isinstance(poly, shapely.Polygon):
                 poly = poly.convex_hull
             ring = np.asarray(shapely.segmentize(poly, 0.01).exterior.coords)
+            if self.prototiles[0].plane == "halfplane":
+                if (ring[:, 1] <= 0).any():
+                    raise GeometryError("a hyperbolic patch's region must lie in the upper half-plane (y > 0)")
+                ring = model.halfplane_to_poincare(ring)
+                poly = shapely.Polygon(ring)
             if (np.hypot(ring[:, 0], ring[:, 1]) >= 1).any():
                 raise GeometryError("a hyperbolic patch's region must lie inside the unit disc")
-            reg = poly if self.proto.plane == "klein" else shapely.Polygon(model.poincare_to_klein(ring))
+            reg = poly if self.prototiles[0].plane == "klein" else shapely.Polygon(model.poincare_to_klein(ring))
         report = tri.validate(reg, tolerance)
-        p = len(self.proto.corners or ())
+        owner = tri.colour
         fan = report.overlaps
-        report.overlaps = sorted({(i // p, j // p, a) for i, j, a in fan})
-        report.invalid_tiles = sorted({i // p for i in report.invalid_tiles})
+        report.overlaps = sorted({(int(owner[i]), int(owner[j]), a) for i, j, a in fan if owner[i] != owner[j]})
+        report.invalid_tiles = sorted({int(owner[i]) for i in report.invalid_tiles})
         report.tiles = len(self)
         return report
 
@@ -192,21 +246,41 @@ class ModelPatch(Patch):
 def sphere_report(patch: ModelPatch, tolerance: float = AREA_TOL) -> ValidationReport:
     """A spherical patch checked on the sphere: faces are convex spherical polygons, so two
     have disjoint interiors when a great circle through an edge of one leaves every vertex
-    of the other on its far side (or on it); the uncovered area is 4π minus the faces' areas
+    of the other on its far side (or on it), or a great circle through a vertex of each
+    leaves them on opposite sides; the uncovered area is 4π minus the faces' areas
     (Girard: angle sum minus (p − 2)π, from the actual vertices)."""
-    v = patch.model_vertices()  # (n, p, 3)
-    n, p = v.shape[:2]
+    faces = patch.vertex_lists()  # (k, 3) each
+    n = len(faces)
+    big = max((len(f) for f in faces), default=3)
     report = ValidationReport(tiles=n)
-    nxt = np.roll(v, -1, axis=1)
-    normal = np.cross(v, nxt)  # inward normals of the CCW faces' edge planes
-    normal /= np.linalg.norm(normal, axis=-1, keepdims=True)
+    # faces padded to the largest: extra vertices repeat vertex 0 (no change to "all on the
+    # far side"), extra edges are marked and never separate
+    v = np.array([np.concatenate([f, np.repeat(f[:1], big - len(f), axis=0)]) for f in faces]).reshape(n, big, 3)
+    real = np.arange(big)[None, :] < np.array([len(f) for f in faces])[:, None]
+    normal = np.zeros((n, big, 3))
+    for i, f in enumerate(faces):
+        e = np.cross(f, np.roll(f, -1, axis=0))  # inward normals of the CCW face's edge planes
+        normal[i, :len(f)] = e / np.linalg.norm(e, axis=-1, keepdims=True)
     slack = 1e-9
     # side[i, e, j, k] = normal of face i, edge e, dotted with vertex k of face j
     side = np.einsum("iec,jkc->iejk", normal, v)
-    separated = (side <= slack).all(axis=3).any(axis=1)  # (i, j): some edge of i separates j
+    separated = ((side <= slack).all(axis=3) & real[:, :, None]).any(axis=1)  # some edge of i separates j
     separated |= separated.T
     np.fill_diagonal(separated, True)
-    areas = np.array([_spherical_area(v[i]) for i in range(n)])
+    # faces far apart (nearly antipodal) straddle every great circle through an edge of the
+    # other: as in the separating-axis theorem for two convex cones, try the planes through
+    # a vertex of each as well
+    for i, j in zip(*np.nonzero(~separated)):
+        if i < j:
+            a, b = faces[i], faces[j]
+            nrm = np.cross(a[:, None, :], b[None, :, :]).reshape(-1, 3)
+            nrm = nrm[np.linalg.norm(nrm, axis=1) > 1e-12]
+            sa, sb = a @ nrm.T, b @ nrm.T  # (k, m): each plane's side of every vertex
+            ok = ((sa >= -slack).all(axis=0) & (sb <= slack).all(axis=0)) | \
+                 ((sa <= slack).all(axis=0) & (sb >= -slack).all(axis=0))
+            if ok.any():
+                separated[i, j] = separated[j, i] = True
+    areas = np.array([_spherical_area(f) for f in faces])
     report.overlaps = [(int(i), int(j), float("nan")) for i, j in zip(*np.nonzero(~separated)) if i < j]
     report.region_area = 4 * math.pi
     report.area_tolerance = tolerance * float(np.median(areas))
@@ -230,17 +304,20 @@ def vertex_angle_sums(patch: ModelPatch, decimals: int = 9) -> tuple[np.ndarray,
     """For the patch's vertices (welded by their rounded model coordinates): the sum of the
     tiles' interior angles at each and how many tiles meet there, measured from the
     actual vertex coordinates (the angle between the tangent directions of the two edges)."""
-    g = model.geometry_of(3, 7) if patch.proto.sign < 0 else model.geometry_of(3, 3)
-    v = patch.model_vertices()
-    a, c = np.roll(v, 1, axis=1), np.roll(v, -1, axis=1)
-    ab, cb = g.inner(a, v)[..., None], g.inner(c, v)[..., None]
-    s = float(g.sign)
-    # tangent at b towards a: a − s<a,b> b (the component orthogonal to b in the model's form)
-    t1 = a - s * ab * v
-    t2 = c - s * cb * v
-    cos = g.inner(t1, t2) / np.sqrt(g.inner(t1, t1) * g.inner(t2, t2))
-    angles = np.arccos(np.clip(cos, -1, 1)).reshape(-1)
-    keys = np.round(v.reshape(-1, 3), decimals)
+    g = model.geometry_of(3, 7) if patch.prototiles[0].sign < 0 else model.geometry_of(3, 3)
+    all_angles, all_keys = [], []
+    for _, idx, proto in patch.parts():
+        v = model.apply(patch.transform[idx], proto.points[list(proto.corners or range(len(proto.points)))])
+        a, c = np.roll(v, 1, axis=1), np.roll(v, -1, axis=1)
+        ab, cb = g.inner(a, v)[..., None], g.inner(c, v)[..., None]
+        s = float(g.sign)
+        # tangent at b towards a: a − s<a,b> b (the component orthogonal to b in the model's form)
+        t1 = a - s * ab * v
+        t2 = c - s * cb * v
+        cos = g.inner(t1, t2) / np.sqrt(g.inner(t1, t1) * g.inner(t2, t2))
+        all_angles.append(np.arccos(np.clip(cos, -1, 1)).reshape(-1))
+        all_keys.append(np.round(v.reshape(-1, 3), decimals))
+    angles, keys = np.concatenate(all_angles), np.concatenate(all_keys)
     _, inv, counts = np.unique(keys, axis=0, return_inverse=True, return_counts=True)
     sums = np.bincount(inv.reshape(-1), weights=angles)
     return sums, counts

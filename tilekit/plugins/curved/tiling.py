@@ -50,7 +50,7 @@ CURVED_BYTES_PER_TILE = 200
 
 _OPTIONS = ("p", "q", "depth", "radius", "samples", "plane")
 #: The hyperbolic drawing planes (``--set plane=...``).
-PLANES = ("poincare", "klein")
+PLANES = ("poincare", "klein", "halfplane")
 
 _PALETTE = ("#f4d35e", "#ee964b", "#f95738", "#0d3b66", "#5aa9e6", "#7fc8f8", "#c1e1c1", "#a3c4bc")
 
@@ -115,8 +115,7 @@ class RegularTiling(Tiling):
         sign = 1 if self.kind == model.SPHERE else -1
         view = model.view_rotation() if sign > 0 else None
         pts = self.polygon.outline(self.samples)
-        flat = ((model.klein(pts) if plane == "klein" else model.poincare(pts)) if sign < 0
-                else model.orthographic(pts @ view.T))
+        flat = model.project(pts, plane) if sign < 0 else model.orthographic(pts @ view.T)
         # the outline the core sees is the central tile in the drawing plane; the model
         # points are what the transforms act on
         self._proto = ModelPrototile(flat, name=f"{{{self.p},{self.q}}}", points=pts, sign=sign, view=view,
@@ -133,7 +132,7 @@ class RegularTiling(Tiling):
         return self.kind == model.HYPERBOLIC
 
     def default_region(self) -> BaseGeometry:
-        return shapely.box(-1.0, -1.0, 1.0, 1.0)
+        return shapely.box(*model.PLANE_VIEWS[self.plane])
 
     def _depth(self) -> int:
         return DEFAULT_DEPTH if self.depth is None else self.depth
@@ -270,12 +269,22 @@ class RegularTiling(Tiling):
             f"--set p=P --set q=Q         the Schläfli symbol {{P,Q}} (3..{model.MAX_PQ}; the family's geometry)",
             f"--set samples=N             points per edge of exported outlines (1..{MAX_SAMPLES}, default "
             f"{DEFAULT_SAMPLES}); SVG draws true arcs",
-            "--set plane=P                the hyperbolic drawing plane: poincare (default; edges are arcs) or "
-            "klein (edges are chords)",
+            "--set plane=P                the hyperbolic drawing plane: poincare (default; edges are arcs), "
+            "klein (edges are chords) or halfplane (the upper half-plane; edges are half-circles)",
             "--region x0,y0,x1,y1        the part of the disc (or the sphere's picture) to keep",
         ])
 
     def configure(self, **options: Any) -> RegularTiling:
+        if "geometry" in options:  # the --geometry check (wythoff.check_geometry's spellings)
+            # start-up cost: the construction module, only when a geometry is given
+            from tilekit.plugins.curved.wythoff import check_geometry
+
+            want = check_geometry(options.pop("geometry"))
+            if want != self.kind:
+                raise ParameterError(f"{self.name} ({self.vertex_configuration()}) is {self.kind}, not {want}: "
+                                     "a vertex configuration closes on one surface only")
+            if not options:
+                return self
         unknown = set(options) - set(_OPTIONS)
         if unknown:
             raise ParameterError(f"{self.name} does not take option(s) {', '.join(sorted(unknown))}; "

@@ -168,15 +168,15 @@ def metamorphosis_command(end: str, start: str | None, columns: int, rows: int, 
     """
     import shapely  # start-up cost: loaded when the command runs, not by `tilekit --help`
 
-    from tilekit.plugins.isohedral import _from_file  # start-up cost: as every import below
     from tilekit.plugins.isohedral.engine import IsohedralTiling  # start-up cost: the engine
     from tilekit.plugins.isohedral.metamorphosis import metamorphosis  # start-up cost: the engine
+    from tilekit.plugins.isohedral.spec import tiling_from_file  # start-up cost: the engine
     from tilekit.render import patch_to_svg, write_svg  # start-up cost: the renderer (shapely)
 
-    last = _from_file(end)
+    last = tiling_from_file(end)
     if not isinstance(last, IsohedralTiling):
         raise TilekitError(f"{end}: a metamorphosis takes an unmarked isohedral tiling without a split")
-    first = _from_file(start) if start else IsohedralTiling(last.template.ih, list(last.params))
+    first = tiling_from_file(start) if start else IsohedralTiling(last.template.ih, list(last.params))
     if not isinstance(first, IsohedralTiling):
         raise TilekitError(f"{start}: a metamorphosis takes an unmarked isohedral tiling without a split")
     patch, box = metamorphosis(first, last, columns, rows)

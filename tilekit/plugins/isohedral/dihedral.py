@@ -170,24 +170,6 @@ class SplitModel:
         return np.sort(np.concatenate([first, first + self.counts / 2.0])).astype(float)
 
 
-def _piece_system(z_rows: np.ndarray, g_rows: np.ndarray, x: np.ndarray, bank: GoalBank
-                  ) -> tuple[float, np.ndarray | None, np.ndarray | None, float]:
-    """One piece's alignment and its least-squares rows over x (weighted so the squared
-    residual is the squared distance): (distance, rows (2n, nx), right-hand side (2n,), weight)."""
-    n = bank.samples
-    z = z_rows @ x + g_rows
-    q, q1, f = escher._samples_matrix(z, n)
-    zs = (1 - f) * z[q] + f * z[q1]
-    d, row, shift, a = bank.align(zs)
-    if a == 0:
-        return d, None, None, 0.0
-    wgt = abs(a) / math.sqrt(float(bank.norms[row]))
-    target = np.roll(bank.rows[row], -shift) / a
-    ws = (1 - f)[:, None] * z_rows[q] + f[:, None] * z_rows[q1]
-    bs = (1 - f) * g_rows[q] + f * g_rows[q1]
-    return d, wgt * np.vstack([ws.real, ws.imag]), wgt * np.concatenate([(target - bs).real, (target - bs).imag]), wgt
-
-
 def project_split(model: SplitModel, p: np.ndarray, u: float, v: float, banks: Sequence[GoalBank], steps: int,
                   ridge: float = RIDGES[0], x: np.ndarray | None = None) -> tuple[float, list[float], np.ndarray]:
     """Alternate ``steps`` times: resample and align both pieces, then the joint projection
@@ -221,27 +203,15 @@ def project_pieces(model: SplitModel, p: np.ndarray, rows: Sequence[np.ndarray],
     scale2 = float(np.mean(np.abs(np.roll(verts, -1) - verts) ** 2))
     ds = [1.0, 1.0]
     for step in range(steps + 1):
-        systems = [_piece_system(fr[i], gr[i], x, banks[i]) for i in range(len(rows))]
+        systems = [escher.piece_system(fr[i], gr[i], x, banks[i]) for i in range(len(rows))]
         ds = [s[0] for s in systems]
         if step == steps or any(s[1] is None for s in systems):
             break
-        n2 = systems[0][1].shape[0]
-        big = np.zeros((len(rows) * n2, nx + 2 * len(rows)))
-        half = n2 // 2
-        for i, sysm in enumerate(systems):  # one translation (tx, ty) per piece, weighted as its rows
-            big[i * n2 : (i + 1) * n2, :nx] = sysm[1]
-            big[i * n2 : i * n2 + half, nx + 2 * i] = -sysm[3]
-            big[i * n2 + half : (i + 1) * n2, nx + 2 * i + 1] = -sysm[3]
-        rhs_vec = np.concatenate([sysm[2] for sysm in systems])
-        lhs = big.T @ big
-        rhs = big.T @ rhs_vec
-        lhs[:nc, :nc] += ridge * np.eye(nc)
-        rhs[:nc] += ridge * model.tile.c0
+        extra = None
         if pull_rows is not None:
             rq = ridge / scale2
-            lhs[:nx, :nx] += rq * (pull_rows.T @ pull_rows)
-            rhs[:nx] += rq * (pull_rows.T @ pull_rhs)
-        x = np.linalg.solve(lhs, rhs)[:nx]
+            extra = (rq * (pull_rows.T @ pull_rows), rq * (pull_rows.T @ pull_rhs))
+        x = escher.solve_pieces(systems, nx, nc, ridge, model.tile.c0, extra)
     return max(ds), ds, x
 
 
@@ -402,14 +372,7 @@ def _polish(model: SplitModel, p: np.ndarray, x: np.ndarray, u: float, v: float,
 
     n = banks[0].samples
     npar, nx = len(p), len(x)
-    srcs, bases = [], []
-    d0 = 0.0
-    for piece, goal, bank in zip(model.pieces(p, x, u, v), goals, banks):
-        d, row, shift, _ = bank.align(resample(piece, n))
-        d0 = max(d0, d)
-        g = escher._complex(goal)
-        srcs.append(np.conj(g)[::-1] if bank.mirrored[row] else g)
-        bases.append(float(bank.offsets[row]) + shift)
+    srcs, bases, d0 = escher.aligned_sources(model.pieces(p, x, u, v), goals, banks)
     ridge = math.sqrt(POLISH_RIDGE)
     c0 = model.tile.c0
     log_ratio = math.log(signed_area(goals[0]) / signed_area(goals[1]))
@@ -523,23 +486,8 @@ def pieces_svg(result: DihedralResult, goals: Sequence[np.ndarray], size: int = 
     pieces = [np.asarray(p.outline, dtype=float) for p in result.tiling().prototiles]
     title = (f"{result.name} split  d = {result.distance:.4f} (A {result.distances[0]:.4f}, "
              f"B {result.distances[1]:.4f})")
-    return overlay_svg(title, pieces, [escher.align_onto(pc, g, mir) for pc, g, mir in zip(pieces, goals, result.mirrored)],
+    return escher.overlay_svg(title, pieces, [escher.align_onto(pc, g, mir) for pc, g, mir in zip(pieces, goals, result.mirrored)],
                        size)
-
-
-def overlay_svg(title: str, shapes: Sequence[np.ndarray], goals: Sequence[np.ndarray], size: int = 400) -> str:
-    """SVG of filled shapes (first light, second dark) and aligned goals (dashed, red then
-    blue) in one frame, with a title."""
-    path = escher.framed_path([*shapes, *goals], size)
-
-    fills, strokes = ("#f4c27a", "#7fb0d6"), ("#c0392b", "#1f4e79")
-    body = "".join(f'<path d="{path(q)}" fill="{fills[i % 2]}" fill-opacity="0.85" stroke="#222" stroke-width="1.5"/>'
-                   for i, q in enumerate(shapes))
-    body += "".join(f'<path d="{path(q)}" fill="none" stroke="{strokes[i % 2]}" stroke-width="1.5" '
-                    'stroke-dasharray="5,3"/>' for i, q in enumerate(goals))
-    return (f'<svg xmlns="http://www.w3.org/2000/svg" width="{size}" height="{size}" viewBox="0 0 {size} {size}">'
-            f'<rect width="{size}" height="{size}" fill="white"/>{body}'
-            f'<text x="8" y="18" font-family="sans-serif" font-size="13">{title}</text></svg>')
 
 
 def spec_file(result: Any) -> dict[str, Any]:

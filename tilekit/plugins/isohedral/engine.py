@@ -11,6 +11,7 @@ from the centroid rule. Every type then becomes a :class:`tilekit.PeriodicTiling
 from __future__ import annotations
 
 import functools
+import json
 import math
 import numbers
 from collections.abc import Mapping, Sequence
@@ -23,7 +24,6 @@ import shapely
 from tilekit.colouring import Colouring
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.geometry import Affine, snap_noise
-from tilekit.plugins.isohedral.analysis import is_perfect_colouring
 from tilekit.plugins.isohedral.properties import type_properties
 from tilekit.plugins.isohedral.shapes import (
     FLIP,
@@ -45,6 +45,8 @@ from tilekit.plugins.isohedral.templates import (
 )
 from tilekit.polygon import signed_area
 from tilekit.schema import Field, check, shown
+from tilekit.symmetry import SymmetryGroup, absolute_tolerance, group_from_maps
+from tilekit.symmetry import is_perfect_colouring as shared_is_perfect_colouring
 from tilekit.tiling import Patch, PeriodicTiling, Prototile
 
 FAMILY = "isohedral"
@@ -605,3 +607,43 @@ def _symbol_labels(symbol: Any, outline: Any, corners: Any) -> tuple[str, ...] |
         e = max(k for k, c in enumerate(corners) if c <= i) if i >= corners[0] else len(corners) - 1
         out.append(text[e])
     return tuple(out)
+
+
+# --------------------------------------------------------------------------- the type's group
+
+
+def symmetry_cosets(tiling: IsohedralTiling) -> np.ndarray:
+    """(m*s, 3, 3): aspect transforms composed with the tile's own symmetries (mod lattice)."""
+    syms = tiling.engine.tile_symmetries()
+    return np.einsum("aij,sjk->asik", tiling.unit_transform, syms).reshape(-1, 3, 3)
+
+
+#: Groups by geometry (the spec without its colouring): recolouring a tiling, as the
+#: exercises on perfect colourings do thousands of times, keeps its group.
+_GROUPS: dict[str, SymmetryGroup] = {}
+
+
+def symmetry_group(tiling: IsohedralTiling) -> SymmetryGroup:
+    """The type's symmetry group without a search: the lattice v1, v2 and the cosets
+    {aspect transform o tile symmetry} that the template and the incidence symbol give."""
+    key = json.dumps({k: v for k, v in tiling.spec().items() if k != "colouring"}, sort_keys=True)
+    group = _GROUPS.get(key)
+    if group is None:
+        basis = np.array([tiling.v1, tiling.v2], dtype=float)
+        group = group_from_maps(symmetry_cosets(tiling), basis, absolute_tolerance(tiling))
+        if len(_GROUPS) > 4096:
+            _GROUPS.clear()
+        _GROUPS[key] = group
+    return group
+
+
+def is_perfect_colouring(tiling: IsohedralTiling, radius: int = 3) -> bool:
+    """True when every symmetry of the tiling permutes the colours (§3.6.1, §5.4.3).
+
+    The core's :func:`tilekit.symmetry.is_perfect_colouring` with the type's group as input
+    (its generators are tested on a cell of the coloured tiling that every symmetry maps onto
+    itself). ``radius`` is accepted for compatibility and no longer needed: the core's cell is
+    exact, not a window of ``radius`` units.
+    """
+    del radius
+    return shared_is_perfect_colouring(tiling, group=symmetry_group(tiling))

@@ -30,7 +30,6 @@ from tilekit.plugins.isohedral.dihedral import (
     DihedralSettings,
     SplitModel,
     check_goals,
-    overlay_svg,
     project_pieces,
 )
 from tilekit.plugins.isohedral.engine import IsohedralTiling
@@ -112,7 +111,7 @@ class HeavenResult(escher.TypeFit):
         span = float(np.ptp(tile, axis=0).max())
         shift = np.array([1.3 * span, 0.0])
         title = f"{self.name} heaven and hell  d = {self.distance:.4f} (A {self.distances[0]:.4f}, B {self.distances[1]:.4f})"
-        return overlay_svg(title, [tile, tile + shift], [aligned[0], aligned[1] + shift])
+        return escher.overlay_svg(title, [tile, tile + shift], [aligned[0], aligned[1] + shift])
 
     def to_json(self) -> dict[str, Any]:
         return {"ih": self.ih, "name": self.name, "distance": self.distance, "distances": list(self.distances),
@@ -171,13 +170,8 @@ def heaven_hell_type(goal_a: Any, goal_b: Any, ih: int, settings: DihedralSettin
 
     # the polish: parameters, control points and both goals' starting offsets jointly
     n = settings.samples
-    srcs, bases = [], []
-    zs = resample(model.tile.outline(best_p, c), n)
-    for goal, bank in zip(goals, banks):
-        _, row, shift, _ = bank.align(zs)
-        g = escher._complex(goal)
-        srcs.append(np.conj(g)[::-1] if bank.mirrored[row] else g)
-        bases.append(float(bank.offsets[row]) + shift)
+    tile = model.tile.outline(best_p, c)
+    srcs, bases, _ = escher.aligned_sources([tile, tile], goals, banks)
 
     def resid(z: np.ndarray) -> np.ndarray:
         zc = resample(model.tile.outline(z[:npar], z[npar:-2]), n)

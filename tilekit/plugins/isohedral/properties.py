@@ -15,7 +15,7 @@ from tilekit.plugins.isohedral.templates import (
 )
 
 PROPERTIES_FILE = "properties.tsv"
-_COLUMNS = ("ih", "symmetry_group", "symmetry_group_iuc", "perfect_colouring", "heesch_type")
+_COLUMNS = ("ih", "symmetry_group", "symmetry_group_iuc", "perfect_colouring", "heesch_type", "edge_to_edge")
 
 
 @lru_cache(maxsize=1)
@@ -26,7 +26,7 @@ def stored_properties() -> dict[int, dict[str, Any]]:
         if not raw.strip() or raw.startswith("#"):
             continue
         parts = raw.split("\t")
-        if len(parts) != len(_COLUMNS) or parts[3] not in ("yes", "no", "-"):
+        if len(parts) != len(_COLUMNS) or parts[3] not in ("yes", "no", "-") or parts[5] not in ("yes", "no"):
             raise ParseError(f"{PROPERTIES_FILE}, line {lineno}: expected {len(_COLUMNS)} tab-separated columns {_COLUMNS}")
         # catalogue-wide keys: symmetry_group and orbifold in orbifold notation,
         # wallpaper_group in IUC notation (as the archimedean and other families report them)
@@ -35,6 +35,7 @@ def stored_properties() -> dict[int, dict[str, Any]]:
             row["perfect_colouring"] = parts[3] == "yes"
         if parts[4] != "-":
             row["heesch_type"] = parts[4]
+        row["edge_to_edge"] = parts[5] == "yes"
         out[int(parts[0])] = row
     return out
 

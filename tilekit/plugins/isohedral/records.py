@@ -26,6 +26,7 @@ from tilekit.plugins.isohedral.properties import (
 )
 from tilekit.plugins.isohedral.spec import tiling_from_spec
 from tilekit.plugins.isohedral.templates import data_dir, load_templates
+from tilekit.polygon import edge_to_edge
 
 __all__ = ["computed_properties", "properties_table_text", "records", "stored_properties", "type_properties"]
 
@@ -36,6 +37,9 @@ def computed_properties(ih: int) -> dict[str, Any]:
     tiling = tiling_from_spec({"ih": ih})
     group = wallpaper_group(tiling)  # type: ignore[arg-type]
     out: dict[str, Any] = {"symmetry_group": group, "orbifold": group, "wallpaper_group": ORBIFOLD_TO_IUC[group]}
+    # §4.1: the default tile's corners and the tiling vertices coincide (read from a patch)
+    patch = tiling.patch(tiling.default_region())
+    out["edge_to_edge"] = edge_to_edge(pts for _, _, pts in patch.groups())
     if load_templates()[ih].marked:  # no default colouring in the book for these
         return out
     out["perfect_colouring"] = is_perfect_colouring(tiling)  # type: ignore[arg-type]
@@ -61,6 +65,7 @@ def properties_table_text() -> str:
                     p["wallpaper_group"],
                     {True: "yes", False: "no", None: "-"}[p.get("perfect_colouring")],
                     p.get("heesch_type", "-"),
+                    "yes" if p["edge_to_edge"] else "no",
                 ]
             )
         )

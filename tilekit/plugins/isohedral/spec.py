@@ -4,10 +4,12 @@ web editor's URL of an unmarked one (:func:`editor_path`)."""
 from __future__ import annotations
 
 from collections.abc import Mapping
+from pathlib import Path
 from typing import Any
 from urllib.parse import quote
 
 from tilekit.errors import ParameterError, ParseError
+from tilekit.files import read_json
 from tilekit.plugins.isohedral.engine import _spec_ih, unmarked_from_spec
 from tilekit.plugins.isohedral.marked import marked_tiling
 from tilekit.plugins.isohedral.split import split_from_spec
@@ -76,3 +78,17 @@ def editor_path(spec: Mapping[str, Any]) -> str:
         raise ParameterError(f"{t.name} is a marked type; the editor takes the 81 unmarked types")
     query = editor_query(spec)
     return f"/editor/{t.name}" + (f"?{query}" if query else "")
+
+
+def tiling_from_file(path: str) -> PeriodicTiling:
+    """A tiling from a spec file: ``{"family": "isohedral", "spec": {...}}`` (the web editor's
+    export and escherize's output) or a bare spec ``{"ih": 16, ...}``."""
+    name = Path(path).name
+    data = read_json(path, "isohedral spec file")
+    if isinstance(data, dict) and "spec" in data:
+        if data.get("family", "isohedral") != "isohedral":
+            raise ParseError(f"{name}: a {data.get('family')!r} spec, not an isohedral one")
+        data = data["spec"]
+    if not isinstance(data, dict):
+        raise ParseError(f'{name}: an isohedral spec is a JSON object like {{"ih": 16, "params": [0.3]}}')
+    return tiling_from_spec(data)

@@ -24,7 +24,7 @@ def _from_spec(spec):
 
 def _from_file(path):
     # measured start-up cost: as in _from_spec
-    from tilekit.plugins.kuniform.names import tiling_from_file
+    from tilekit.plugins.kuniform.search import tiling_from_file
 
     return tiling_from_file(path)
 

@@ -37,12 +37,8 @@ from fractions import Fraction
 from functools import cache
 from typing import TypeVar
 
-from tilekit.plugins.archimedean.notation import (
-    VertexType,
-    euclidean_species,
-    format_sequence,
-    types_of_species,
-)
+from tilekit.regular.notation import VertexType, format_sequence
+from tilekit.regular.notation import euclidean_vertex_types as vertex_types  # the 21 vertex types
 
 Perm = tuple[int, ...]
 T = TypeVar("T")
@@ -148,11 +144,6 @@ def _chambers(star: Star) -> tuple[list[int], list[int], list[int], list[int]]:
 
 
 @cache
-def vertex_types() -> tuple[VertexType, ...]:
-    """The 21 vertex types whose angles sum to 2π (§4.1, exercise 4.8)."""
-    return tuple(t for s in euclidean_species() for t in types_of_species(s))
-
-
 def stars() -> list[Star]:
     """Every (vertex type, stabilizer class) pair, in a fixed order."""
     return [Star(t.polygons, i) for t in vertex_types() for i in range(len(stabilizer_classes(t.polygons)))]

@@ -1,7 +1,8 @@
 """Tilings named in other people's notations: a GomJau-Hogg string (:mod:`.gomjau`), a
 Gavrog D-symbol (``<1.1:...>``) or a tes-catalog file (:mod:`.tes`) read to a minimal D-symbol, and the catalogue filter that
 finds its record; the two notations of the eleven Archimedean tilings, added to the
-archimedean family's records from a shipped table that :func:`archimedean_table` rebuilds.
+archimedean family's records from a shipped table that
+:func:`tilekit.plugins.kuniform.search.archimedean_table` rebuilds.
 """
 
 from __future__ import annotations
@@ -61,20 +62,6 @@ def notation_properties(sym: DSymbol) -> dict[str, Any]:
     return props
 
 
-def archimedean_table() -> dict[str, dict[str, Any]]:
-    """For each Archimedean vertex type: the notations of its tiling (its 1-uniform symbol)."""
-    # start-up cost: the notation and search modules (NumPy, shapely) load only when used
-    from tilekit.plugins.archimedean.notation import format_sequence
-    from tilekit.plugins.kuniform.dsymbol import vertex_types
-    from tilekit.plugins.kuniform.search import tilings_with_types
-
-    out = {}
-    for vt in vertex_types():
-        for sym in tilings_with_types([vt.polygons]):
-            out[format_sequence(vt.polygons)] = notation_properties(sym)
-    return dict(sorted(out.items()))
-
-
 def archimedean_properties(record: Any) -> dict[str, Any] | None:
     """The shipped notations for an archimedean-family tiling record (by its vertex type)."""
     if getattr(record, "family", None) != "archimedean" or record.properties.get("kind") != "tiling":
@@ -85,17 +72,3 @@ def archimedean_properties(record: Any) -> dict[str, Any] | None:
 @cache
 def _table() -> dict[str, dict[str, Any]]:
     return json.loads(ARCHIMEDEAN_TABLE.read_text())
-
-
-if __name__ == "__main__":  # pragma: no cover - regenerates the shipped table
-    ARCHIMEDEAN_TABLE.write_text(json.dumps(archimedean_table(), indent=1) + "\n")
-
-
-def tiling_from_file(path: str) -> Any:
-    """The k-uniform tiling a .tes file describes (``tilekit render --system FILE.tes``)."""
-    # start-up cost: the notation and search modules (NumPy, shapely) load only when used
-    from tilekit.plugins.kuniform.search import tiling_of
-    from tilekit.plugins.kuniform.tes import read_tes
-
-    name, sym = read_tes(path)
-    return tiling_of(sym, name=name)

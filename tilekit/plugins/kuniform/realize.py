@@ -26,8 +26,8 @@ import numpy as np
 from tilekit.colouring import Colouring
 from tilekit.errors import GeometryError
 from tilekit.geometry import Affine
-from tilekit.plugins.archimedean.construct import regular_prototiles, size_colour
 from tilekit.plugins.kuniform.dsymbol import DSymbol
+from tilekit.regular.tiles import regular_prototiles, size_colour
 from tilekit.tiling import PeriodicTiling
 
 #: Directions are multiples of 360° / STEPS.

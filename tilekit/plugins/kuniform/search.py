@@ -11,14 +11,13 @@ tiling belongs to exactly one chunk and no two chunks write the same record.
 from __future__ import annotations
 
 import itertools
+import json
 import time
 from collections.abc import Iterator, Mapping, Sequence
 from typing import Any
 
 from tilekit.errors import ParseError
 from tilekit.plugins import CatalogueRecord, ChunkResult, Search, SearchParam
-from tilekit.plugins.archimedean.construct import unit_text
-from tilekit.plugins.archimedean.notation import VertexType, format_sequence
 from tilekit.plugins.kuniform.dsymbol import (
     DSymbol,
     Star,
@@ -27,8 +26,11 @@ from tilekit.plugins.kuniform.dsymbol import (
     to_gavrog,
     vertex_types,
 )
-from tilekit.plugins.kuniform.names import notation_properties
+from tilekit.plugins.kuniform.names import ARCHIMEDEAN_TABLE, notation_properties
 from tilekit.plugins.kuniform.realize import periodic_tiling
+from tilekit.plugins.kuniform.tes import read_tes
+from tilekit.regular.notation import VertexType, format_sequence
+from tilekit.regular.tiles import unit_text
 from tilekit.symmetry import ORBIFOLD, wallpaper_group
 from tilekit.tiling import PeriodicTiling
 
@@ -231,3 +233,22 @@ SEARCH = Search(
     run_chunk=run_chunk,
     summarize=summarize,
 )
+
+
+def tiling_from_file(path: str) -> Any:
+    """The k-uniform tiling a .tes file describes (``tilekit render --system FILE.tes``)."""
+    name, sym = read_tes(path)
+    return tiling_of(sym, name=name)
+
+
+def archimedean_table() -> dict[str, dict[str, Any]]:
+    """For each Archimedean vertex type: the notations of its tiling (its 1-uniform symbol)."""
+    out = {}
+    for vt in vertex_types():
+        for sym in tilings_with_types([vt.polygons]):
+            out[format_sequence(vt.polygons)] = notation_properties(sym)
+    return dict(sorted(out.items()))
+
+
+if __name__ == "__main__":  # pragma: no cover - regenerates the shipped table
+    ARCHIMEDEAN_TABLE.write_text(json.dumps(archimedean_table(), indent=1) + "\n")

@@ -39,6 +39,20 @@ def _from_spec(spec: Mapping[str, Any]) -> Any:
     return from_spec(spec)
 
 
+def polyomino(spec: Any) -> Any:
+    """A polyomino from a usual name (``pentomino-F``), a code (``.xx/xx./.x.``) or (column, row)
+    cells; ``tilekit.polyomino`` (this family's public name, tilekit_public_names)."""
+    # start-up cost: numba, as in _from_spec
+    from tilekit.plugins.polyomino.model import polyomino as _polyomino
+
+    return _polyomino(spec)
+
+
+@hookimpl
+def tilekit_public_names():
+    return {"polyomino": polyomino}
+
+
 #: Spec keys that only the classified forms' model reads (its tilings and witnesses).
 _CLASSIFIED = ("witness", "view", "tiling")
 

@@ -30,7 +30,7 @@ import numpy as np
 
 from tilekit.colouring import Colouring
 from tilekit.errors import ParameterError, ParseError
-from tilekit.lattice import Grid, outline
+from tilekit.lattice import GRIDS, Grid, outline
 from tilekit.plugins.polyomino.heesch import MAX_LEVEL_LIMIT, Corona, HeeschSolver, heesch
 from tilekit.plugins.polyomino.placements import Forms
 from tilekit.plugins.polyomino.torus import TorusSearch, TorusTiling
@@ -38,17 +38,26 @@ from tilekit.schema import Field, check
 from tilekit.symmetry import wallpaper_group
 from tilekit.tiling import Patch, PeriodicTiling
 
-#: The grids the classification runs on: their results are checked against published counts
-#: (square: Myers and Kaplan; hex and iamond: Myers) or, for the kite grid, against the hat. On
-#: the grids with cells of several shapes (octasquare, trihex, bevelhex, ...) the corona and
-#: torus searches give wrong answers (the 4.8.8 octagon-and-square domino comes out a non-tiler),
-#: so they are refused rather than answered.
-CLASSIFIED_GRIDS = ("square", "hex", "iamond", "kite")
+#: The grids the classification runs on: all ten. A polyform's copies are its images under the
+#: grid's symmetries (a point-group element and a grid translation, :meth:`Grid.is_translation`),
+#: so on the grids with cells of several shapes a copy puts octagons on octagons and squares on
+#: squares; "tiles" means tiles with such copies, the question Kaplan's heesch-sat answers.
+CLASSIFIED_GRIDS = tuple(GRIDS)
+#: The grids whose boundary-word test finds every isohedral tiler: the square grid (Langerman and
+#: Winslow's theorem) and the hex and iamond grids (checked: the counts equal Myers' A075214 and
+#: A075223, tests/test_polyform_grids.py). On the others a tile may tile isohedrally only with
+#: neighbours mirrored across an edge (a single drafter: the kisrhombille tiling itself), which no
+#: template describes, so a torus tiling with two or more classes does not end the search there:
+#: the tori go on to ``torus_tiles`` tiles per unit looking for one class (an isohedral tiling has
+#: at most as many tiles per unit as the grid's point group has elements, 8 or 12).
+BOUNDARY_COMPLETE = ("square", "hex", "iamond")
 #: Most tiles per translational unit the torus search tries.
 MAX_TORUS_TILES = 12
 #: Tiles per translational unit tried by default: 8 decides every polyomino to n = 10, but one
 #: 11-omino (``..x../..xxx/xxxx./xx.x.``, pgg, k = 3) needs 12 (docs/benchmarks.md).
 DEFAULT_TORUS_TILES = 12
+#: Further covers of one torus searched for fewer transitivity classes (TorusSearch.search).
+ALTERNATIVES = 64
 #: Largest polyomino classified on request (``Polyomino.classification``, ``--set view=``).
 MAX_INTERACTIVE = 16
 #: The classification's default solver: Glucose can be interrupted in this process, so a
@@ -86,11 +95,9 @@ def check_bounds(probe: int, max_level: int, torus_tiles: int) -> None:
 
 
 def check_grid(grid: Grid) -> None:
-    """A one-line ParameterError for a grid the classification is not validated on."""
+    """A one-line ParameterError for a grid the classification does not know."""
     if grid.name not in CLASSIFIED_GRIDS:
-        raise ParameterError(f"the classification runs on the {', '.join(CLASSIFIED_GRIDS)} grids, not {grid.name} "
-                             f"(its corona and torus searches are not validated on grids with cells of several "
-                             f"shapes)")
+        raise ParameterError(f"the classification runs on the {', '.join(CLASSIFIED_GRIDS)} grids, not {grid.name}")
 
 
 def _corona_json(c: Corona | None, hc: int | None) -> dict | None:
@@ -132,6 +139,8 @@ def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes:
     if r.surrounded < level:  # the time limit
         return _undecided(r.surrounded, None, time.monotonic() - t0, r.reason, r.hc_witness)
     ts = TorusSearch(hs.forms, solver=solver)
+    complete = grid.name in BOUNDARY_COMPLETE
+    want_k = 2 if complete else 1  # with a complete boundary test, k = 2 is already the least
     # cheap first: small translational units, one more corona, larger units, more coronas
     stages = [("torus", min(4, torus_tiles)), ("coronas", min(probe + 1, max_level)),
               ("torus", torus_tiles), ("coronas", max_level)]
@@ -142,7 +151,9 @@ def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes:
             if bound <= tried_m:
                 continue
             cut = None  # where the time limit stopped the search for a tiling with fewer classes
-            for m, tt in ts.search(range(tried_m + 1, bound + 1), time_limit=left()):
+            if not complete and best is not None:
+                bound = torus_tiles  # a tiler: look for one class on every torus now
+            for m, tt in ts.search(range(tried_m + 1, bound + 1), want_k=want_k, time_limit=left()):
                 if tt is None:
                     if best is not None:  # a tiling was found: the limit only ended the search for a smaller k
                         cut = m
@@ -164,14 +175,19 @@ def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes:
                                               f"(0,{d_}), symmetry group {witness['group']})",
                                       evidence={"step": "torus", "m": best.m, "lattice": list(best.lattice),
                                                 "seconds": round(time.monotonic() - t0, 3)})
+            if best is not None and not complete and tried_m < torus_tiles and cut is None:
+                continue  # one class may need a larger unit: the next torus stage goes on
             if best is not None:
                 a_, b_, d_ = best.lattice
                 witness = best.to_json()
                 # the group's name, from the geometry (tilekit.symmetry), for the verdict
                 witness["group"] = wallpaper_group(torus_tiling(grid, cells, witness)).iuc
+                how = ("no boundary factorisation" if complete else
+                       f"no one-class tiling on the tori with up to {tried_m} tiles per unit (each torus searched "
+                       f"for up to {ALTERNATIVES} covers; the {grid.name} grid has no complete boundary-word test)")
                 verdict = (f"tiles anisohedrally: {best.m} tiles per translational unit (torus of period lattice "
                            f"({a_},{b_}),(0,{d_})), symmetry group {witness['group']}, {best.k} transitivity "
-                           f"classes; no boundary factorisation"
+                           f"classes; {how}"
                            + (f" (the search for fewer classes stopped by the time limit at {cut} tiles per unit)"
                               if cut is not None else ""))
                 return Classification("true", False, anisohedral_k=best.k, witness=witness, verdict=verdict,
@@ -179,7 +195,7 @@ def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes:
                                                 "sat_calls": ts.sat_calls + hs.sat_calls,
                                                 "seconds": round(time.monotonic() - t0, 3)})
         else:
-            if bound <= level:
+            if bound <= level or best is not None:  # no coronas for a tiler
                 continue
             r = heesch(grid, cells, max_level=bound, time_limit=left(), hs=hs, start=level + 1, best=r.hc_witness)
             if r.decided:

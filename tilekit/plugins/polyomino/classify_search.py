@@ -172,7 +172,8 @@ def _search() -> Search:
         "polyomino",
         [
             SearchParam("grid", str, "square", "the cell grid: square (polyominoes), hex (polyhexes), iamond "
-                        "(polyiamonds), kite (polykites)", choices=list(CLASSIFIED_GRIDS)),
+                        "(polyiamonds), kite (polykites), octasquare, trihex, drafter, abolo, halfcairo, "
+                        "bevelhex (copies on the grid only)", choices=list(CLASSIFIED_GRIDS)),
             SearchParam("max_cells", int, 10, f"largest size (at most {MAX_CLASSIFY} on the square grid, "
                         f"{MAX_CLASSIFY_OTHER} on the others, and no more free forms than the square grid's "
                         f"{MAX_CLASSIFY} cells: refused with the estimate)", min=1, max=MAX_CLASSIFY_OTHER),

@@ -182,6 +182,15 @@ class HeeschSolver:
             clash |= np.isin(self.forms.placement_cells(rows), self.kernel_halo).any(axis=1)
         self.levels.append(rows[~clash])
 
+    def starved(self, k: int) -> bool:
+        """Whether some corona 1..k has no candidate copy at all, so that no k-corona patch
+        exists (each corona must cover the nonempty halo of the one inside it). On grids with
+        cells of several shapes this is common: a form of bevelhex hexagons and squares has no
+        copy covering the dodecagons around it."""
+        while len(self.levels) <= k:
+            self._grow()
+        return any(not len(self.levels[i]) for i in range(1, k + 1))
+
     # -- encoding ---------------------------------------------------------------------------
     def _encode(self, k: int):
         """Clauses for k coronas; returns (clauses, var tables) — see the module docstring."""
@@ -301,6 +310,8 @@ class HeeschSolver:
     def surrounds(self, k: int, *, time_limit: float | None = None) -> bool | None:
         """Whether k coronas exist with holes allowed (no hole checks: the coronas of any
         tiling satisfy this formula); None when the time limit expires."""
+        if self.starved(k):
+            return False
         with gc_paused():
             clauses, _ = self._encode(k)
         with IncrementalSolver(clauses, solver=self.solver) as s:
@@ -315,6 +326,8 @@ class HeeschSolver:
         if k == 0:
             kern = Corona(self.levels[0].copy(), np.zeros(1, dtype=np.int64), False)
             return kern, kern, True
+        if self.starved(k):
+            return None, None, True
         with gc_paused():
             clauses, table = self._encode(k)
         hf = table["top"] + 1  # selector: the outermost corona is hole-free too

@@ -786,13 +786,18 @@ def _group_mul(grid: Grid) -> tuple[tuple[int, ...], ...]:
 
 
 def build(grid: Grid, cells: np.ndarray, verts: np.ndarray, f: Factorisation) -> BuiltTiling | None:
-    """The tiling of a factorisation, proved exact in integers, or None if it does not tile.
+    """The tiling of a factorisation, proved exact in integers, or None if it does not tile
+    with copies on the grid (every generator a symmetry of the grid, :meth:`Grid.is_translation`).
 
     Coset enumeration of the generated group modulo its translations: one representative
     per linear part; every product that lands on a known linear part gives a translation
     (Schreier generators), so the Hermite normal form of those is the translation lattice.
     """
     gens = _generators(grid, verts, f)
+    if not all(grid.is_translation(np.array(t)) for _, t in gens):
+        # a copy off the grid (e.g. a half-Cairo triangle turned about an edge's midpoint):
+        # not a tiling by copies on the grid, the question the coronas and tori answer
+        return None
     mul = _group_mul(grid)
     G = grid.group
     reps: dict[int, tuple[int, int]] = {0: (0, 0)}

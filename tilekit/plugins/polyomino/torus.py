@@ -235,8 +235,10 @@ class TorusSearch:
             if not (_in_lattice(gm @ np.array([la, lb]), lat) and _in_lattice(gm @ np.array([0, ld]), lat)):
                 continue
             moved = plane @ gm.T
-            for c in cand_cells:
-                tau = c - gm @ c0
+            # only symmetries of the grid: tau a grid translation, so each cell goes to a cell
+            # of the same shape (on the octasquare grid, tau = (2, 2) maps octagons onto squares)
+            taus = cand_cells - gm @ c0
+            for tau in taus[grid.is_translation(taus)]:
                 perm = image_tiles(moved + tau)
                 if perm is not None:
                     maps.append(perm)

@@ -124,3 +124,33 @@ def tilekit_families() -> list[Family]:
 @tilekit.hookimpl
 def tilekit_catalogue_records() -> list[CatalogueRecord]:
     return multigrid_records()
+
+
+# the web app (tilekit serve): the offsets page is this plugin's (web.py), the web layer names none
+@tilekit.hookimpl
+def tilekit_web_routes(web: Any) -> list[Any]:
+    # start-up cost: the page module loads the web layer's helpers, only when an app is created
+    from tilekit.plugins.quasiperiodic.web import ROUTES
+
+    return list(ROUTES)
+
+
+@tilekit.hookimpl
+def tilekit_web_menu_links(web: Any) -> list[tuple[str, str]]:
+    return [("/multigrid", "multigrid offsets")]
+
+
+@tilekit.hookimpl
+def tilekit_web_tiling_links(web: Any, name: str, tiling: Any) -> list[tuple[str, str]]:
+    # start-up cost: as in tilekit_web_routes
+    from tilekit.plugins.quasiperiodic.web import tiling_links
+
+    return tiling_links(name, tiling)
+
+
+@tilekit.hookimpl
+def tilekit_web_static() -> list[tuple[str, Any]]:
+    # start-up cost: as in tilekit_web_routes
+    from tilekit.plugins.quasiperiodic.web import STATIC, STATIC_DIR
+
+    return [(STATIC, STATIC_DIR)]

@@ -8,14 +8,13 @@ the monotiles); ``from_file`` loads a user's system (``tilekit render --system m
 from __future__ import annotations
 
 from collections.abc import Mapping
-from functools import lru_cache
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import tilekit
 from tilekit.lazy import lazy_exports
 from tilekit.plugins import CatalogueRecord, Family, Sampler
-from tilekit.resources import catalogue_dir
+from tilekit.plugins.substitution.builtin import builtin_systems, system_dir
 
 if TYPE_CHECKING:  # pragma: no cover
     from tilekit.plugins.substitution.system import SubstitutionSystem
@@ -28,6 +27,7 @@ __all__ = [
     "from_file",
     "from_spec",
     "load_system",
+    "system_dir",
     "tiling",
 ]
 
@@ -40,26 +40,6 @@ _LAZY = {
     "SubstitutionTiling": "tilekit.plugins.substitution.tiling",
 }
 __getattr__, __dir__ = lazy_exports(__name__, _LAZY, pinned=("tiling",))
-
-
-def system_dir() -> Path:
-    """The folder of shipped system files."""
-    return catalogue_dir() / "substitution"
-
-
-@lru_cache(maxsize=1)
-def builtin_systems() -> dict[str, Any]:
-    """Every shipped system by name (loaded and validated once per process)."""
-    # measured start-up cost: the systems load NumPy and shapely (~0.4 s), on first use
-    from tilekit.plugins.substitution.hat import hat_systems  # the hat's own data format
-    from tilekit.plugins.substitution.system import load_system  # start-up cost: as above
-
-    out: dict[str, SubstitutionSystem] = {}
-    for path in sorted(system_dir().glob("*.toml")):
-        system = load_system(path)
-        out[system.name] = system
-    out.update(hat_systems())
-    return out
 
 
 def tiling(name: str, **options: Any) -> SubstitutionTiling:
@@ -107,7 +87,7 @@ def tilekit_catalogue_records() -> list[CatalogueRecord]:
     # measured start-up cost: as in from_spec (records are built only when seeding)
     from tilekit.plugins.substitution.continuum import members
     from tilekit.plugins.substitution.hat import HatSystem
-    from tilekit.plugins.substitution.tiling import continuum_records, system_properties
+    from tilekit.plugins.substitution.tiling import continuum_records, make_tiling
 
     records = []
     for name, system in builtin_systems().items():
@@ -121,7 +101,7 @@ def tilekit_catalogue_records() -> list[CatalogueRecord]:
                 name=name,
                 spec={"system": name},
                 title=system.title,
-                properties=system_properties(system),
+                properties=make_tiling(system).properties(),
                 aliases=aliases,
             )
         )
@@ -178,3 +158,42 @@ def tilekit_samplers() -> list[Sampler]:
                 "V. Ostromoukhov, Sampling with polyominoes, SIGGRAPH 2007 (here with the chair rep-tile)",
                 finish=_polyomino_finish),
     ]
+
+
+# the web app (tilekit serve): the pages are this plugin's (web.py), the web layer names none
+@tilekit.hookimpl
+def tilekit_web_routes(web: Any) -> list[Any]:
+    # start-up cost: the pages load starlette and the engine, only when an app is created
+    from tilekit.plugins.substitution.web import ROUTES
+
+    return list(ROUTES)
+
+
+@tilekit.hookimpl
+def tilekit_web_menu_links(web: Any) -> list[tuple[str, str]]:
+    return [("/penrose", "Penrose editor")]
+
+
+@tilekit.hookimpl
+def tilekit_web_tiling_links(web: Any, name: str, tiling: Any) -> list[tuple[str, str]]:
+    # start-up cost: as in tilekit_web_routes
+    from tilekit.plugins.substitution.web import tiling_links
+
+    return tiling_links(name, tiling)
+
+
+@tilekit.hookimpl
+def tilekit_web_static() -> list[tuple[str, Any]]:
+    # start-up cost: as in tilekit_web_routes
+    from tilekit.plugins.substitution.web import STATIC, STATIC_DIR
+
+    return [(STATIC, STATIC_DIR)]
+
+
+@tilekit.hookimpl
+def tilekit_cli_commands(cli: Any) -> None:
+    # measured start-up cost: cli.py loads only click, the core's cli_types and limits and the
+    # import-free penrose_limits (a few ms); its command imports NumPy/scipy when it runs
+    from tilekit.plugins.substitution.cli import escherize_penrose_command
+
+    cli.add_command(escherize_penrose_command)

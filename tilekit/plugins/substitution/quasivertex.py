@@ -38,12 +38,13 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import shapely
 
 from tilekit.errors import GeometryError, ParameterError
-from tilekit.geometry import Affine
+from tilekit.geometry import POINT_TOL, Affine
 from tilekit.plugins.substitution.shapes import complement
 from tilekit.tiling import Prototile
 
@@ -324,3 +325,80 @@ def deformed_tiles(
             )
         out.append(Prototile(arr, edge_labels=tuple(seg_labels), name=tile.name, corners=tuple(corners)))
     return out
+
+
+@dataclass
+class MatchingReport:
+    """Figure 6.14's matching rules on a patch of deformed rhombs: every edge between two
+    consecutive quasivertices that two tiles share carries partner labels (a/g, b/e, c/d, f/h)
+    and the same drawn polyline (one tile's edge is the other's reversed)."""
+
+    edges: int  # tile edges (quasivertex to quasivertex) in the patch
+    shared: int  # edges found in two tiles
+    mislabelled: list[tuple[str, str]]  # label pairs of shared edges that are not partners
+    misfit: float  # largest gap between the two drawn copies of a shared edge
+    crowded: int  # edges drawn by more than two tiles
+    tolerance: float
+
+    @property
+    def ok(self) -> bool:
+        return not self.mislabelled and self.misfit <= self.tolerance and self.crowded == 0 and self.shared > 0
+
+    def summary(self) -> str:
+        if self.ok:
+            return f"matching rules hold on {self.shared} shared edges of {self.edges}"
+        parts = []
+        if self.mislabelled:
+            parts.append(f"{len(self.mislabelled)} shared edges with non-partner labels (e.g. {self.mislabelled[0]})")
+        if self.misfit > self.tolerance:
+            parts.append(f"shared edges drawn differently by up to {self.misfit:.3g}")
+        if self.crowded:
+            parts.append(f"{self.crowded} edges in more than two tiles")
+        if not self.shared:
+            parts.append("no shared edges")
+        return "matching rules broken: " + "; ".join(parts)
+
+
+def matching_report(patch: Any, decimals: int = 6) -> MatchingReport:
+    """Check Figure 6.14's interlocking pairs on every shared edge of a patch of quasivertex
+    tiles (prototiles with ``corners`` and per-segment ``edge_labels``, as
+    :func:`deformed_tiles` makes them). Edges are matched by their end points (rounded to
+    ``decimals``); each prototile's edges are placed for all its tiles in one batched map."""
+    keys: list[np.ndarray] = []
+    labels: list[np.ndarray] = []
+    lines: list[np.ndarray] = []
+    for p, proto in enumerate(patch.prototiles):
+        maps = patch.transform[patch.prototile == p]
+        if not len(maps) or not proto.corners:
+            continue
+        corners = list(proto.corners) + [len(proto.outline)]
+        closed = np.vstack([proto.outline, proto.outline[:1]])
+        for i in range(len(corners) - 1):
+            seg = closed[corners[i] : corners[i + 1] + 1]
+            world = Affine.apply(maps, seg) if maps.ndim == 3 else Affine.apply(maps[None], seg)
+            ends = np.round(np.concatenate([world[:, 0], world[:, -1]], axis=1), decimals)
+            forward = (ends[:, 0] < ends[:, 2]) | ((ends[:, 0] == ends[:, 2]) & (ends[:, 1] <= ends[:, 3]))
+            key = np.where(forward[:, None], ends, ends[:, [2, 3, 0, 1]])
+            keys.append(key)
+            labels.append(np.full(len(maps), proto.edge_labels[corners[i]]))
+            # every copy walked from its key's first end, so shared copies compare point by point
+            lines.extend(w if f else w[::-1] for w, f in zip(world, forward))
+    if not keys:
+        return MatchingReport(0, 0, [], 0.0, 0, POINT_TOL)
+    allkeys = np.concatenate(keys)
+    alllabels = np.concatenate(labels)
+    _, inverse, counts = np.unique(allkeys, axis=0, return_inverse=True, return_counts=True)
+    inverse = inverse.ravel()
+    order = np.argsort(inverse, kind="stable")
+    starts = np.concatenate([[0], np.cumsum(counts)])
+    mislabelled: list[tuple[str, str]] = []
+    misfit = 0.0
+    for g in np.flatnonzero(counts == 2):
+        i, j = order[starts[g]], order[starts[g] + 1]
+        la, lb = str(alllabels[i]), str(alllabels[j])
+        if PARTNER.get(la) != lb:
+            mislabelled.append((la, lb))
+        a, b = lines[i], lines[j]
+        misfit = max(misfit, float(np.abs(a - b).max()) if a.shape == b.shape else math.inf)
+    return MatchingReport(len(allkeys), int(np.sum(counts == 2)), mislabelled, misfit, int(np.sum(counts > 2)),
+                          POINT_TOL)

@@ -67,7 +67,7 @@ MAX_REFINE_LEVELS = MAX_DEPTH + 40
 def _prepared(system_name: str) -> tuple:
     """The system, each prototile's area and centroid, and each rule's farthest-first child order."""
     # start-up cost: the package's systems load NumPy and shapely; a sampler calls this when it runs
-    from tilekit.plugins.substitution import builtin_systems
+    from tilekit.plugins.substitution.builtin import builtin_systems
 
     system = builtin_systems()[system_name]
     areas = np.array([signed_area(p.outline) for p in system.prototiles])
@@ -100,9 +100,10 @@ def root_tile(method: str, seed: int) -> tuple[np.ndarray, np.ndarray]:
     the square (``seed`` fixes both)."""
     # start-up cost: as in _prepared
     from tilekit.geometry import as_region
-    from tilekit.plugins.substitution import from_spec
+    from tilekit.plugins.substitution.builtin import builtin_systems
+    from tilekit.plugins.substitution.tiling import tiling_from_spec
 
-    tiling = from_spec({"system": SYSTEMS[method]})
+    tiling = tiling_from_spec({"system": SYSTEMS[method]}, builtin_systems())
     label, t, _ = tiling.seed_placement(as_region((-0.5, -0.5, 1.5, 1.5)))
     rng = np.random.default_rng(seed)
     angle = float(rng.uniform(0, 2 * np.pi))

@@ -33,8 +33,9 @@ from tilekit.limits import (  # MAX_DEPTH: the depth range; the tile estimate is
     check_chunk_tiles,
     refuse_over_memory,
 )
-from tilekit.plugins.substitution import builtin_systems, continuum, engine, shapes
+from tilekit.plugins.substitution import continuum, engine, shapes
 from tilekit.plugins.substitution import quasivertex as qv
+from tilekit.plugins.substitution.builtin import builtin_systems
 from tilekit.plugins.substitution.expr import evaluate
 from tilekit.plugins.substitution.hat import HatSystem
 from tilekit.plugins.substitution.shapes import (
@@ -44,7 +45,7 @@ from tilekit.plugins.substitution.shapes import (
     parse_edge_shape,
 )
 from tilekit.plugins.substitution.system import SubstitutionSystem, load_data
-from tilekit.polygon import corner_count, inscribed_disc
+from tilekit.polygon import corner_count, edge_to_edge, inscribed_disc
 from tilekit.render import patch_to_svg
 from tilekit.schema import Field, check, shown
 from tilekit.tiling import Patch, Prototile, Tiling, region_tile_estimate
@@ -435,7 +436,15 @@ class SubstitutionTiling(Tiling):
 
     # ------------------------------------------------------------------ facts
     def properties(self) -> dict[str, Any]:
-        return system_properties(self.system)
+        return {**system_properties(self.system), "edge_to_edge": self.edge_to_edge()}
+
+    def edge_to_edge(self) -> bool:
+        """Whether the tiles meet edge to edge (§4.1: shape vertices and tiling vertices
+        coincide), read from a patch of the default region: P2, P3 and Ammann-Beenker do; the
+        chair, the pinwheel, the hat and the spectre (a 14-gon with one straight angle, so a
+        13-sided polygon whose long side neighbours meet at its midpoint) do not."""
+        patch = self.patch(self.default_region())
+        return edge_to_edge(pts for _, _, pts in patch.groups())
 
     def describe(self) -> str:
         s = self.system
@@ -902,7 +911,7 @@ class HatTiling(KeypointTiling):
         return out
 
     def properties(self) -> dict[str, Any]:
-        props = system_properties(self.system)
+        props = {**system_properties(self.system), "edge_to_edge": self.edge_to_edge()}
         if self.a is None or self.b is None:
             return props
         props.update({"tile": self.system.tile.name, "edge_a": self.a, "edge_b": self.b,

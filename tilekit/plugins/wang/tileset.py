@@ -36,6 +36,8 @@ import numpy as np
 from tilekit.errors import NotFoundError, ParseError
 from tilekit.files import read_text
 from tilekit.limits import MAX_WANG_TILES, refuse_over_memory
+from tilekit.resources import catalogue_dir
+from tilekit.tiling import Prototile
 
 #: Side indices into a tile's (N, E, S, W) row.
 N, E, S, W = 0, 1, 2, 3
@@ -468,8 +470,6 @@ def load_tileset(path: str | Path) -> WangTileSet:
 
 def catalogue_folder() -> Path:
     """Where the shipped ``.wang`` files live (catalogue/wang/)."""
-    from tilekit.resources import catalogue_dir
-
     return catalogue_dir() / "wang"
 
 
@@ -518,8 +518,6 @@ def tile_prototiles(tileset: WangTileSet) -> list:
     cached = tileset.__dict__.get("_prototiles")
     if cached is not None:
         return cached
-    from tilekit.tiling import Prototile
-
     diagonals = (np.array([[0.0, 0.0], [1.0, 1.0]]), np.array([[1.0, 0.0], [0.0, 1.0]]))
     protos = [
         Prototile(

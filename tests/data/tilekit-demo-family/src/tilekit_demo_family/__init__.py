@@ -137,3 +137,75 @@ def tilekit_result_tables():
 @tilekit.hookimpl
 def tilekit_migration_locations():
     return [str(Path(__file__).parent / "migrations")]
+
+
+# --------------------------------------------------------------------------- its web page
+# A page of its own in `tilekit serve` (/bricks?a=2&b=1&shift=0.5), a menu link to it, a link
+# from its tilings' pages, its result rows linking to it, and its script: the web hooks of
+# docs/plugins.md, the same way the isohedral and Penrose editors arrive.
+
+#: The wall drawn on the page covers this many bricks across and up (a bounded picture).
+PAGE_BRICKS = 8
+
+
+def wall_path(a: float, b: float, shift: float = 0.5) -> str:
+    return f"/bricks?a={a:g}&b={b:g}&shift={shift:g}"
+
+
+def bricks_page(request: Any, web: Any) -> str:
+    """``/bricks?a=2&b=1&shift=0.5``: a running-bond wall drawn in the site's layout."""
+    import html
+    import math
+
+    from tilekit.render import patch_to_svg
+
+    q = request.query_params
+    try:
+        a, b, shift = (float(q.get(k, d)) for k, d in (("a", "2"), ("b", "1"), ("shift", "0.5")))
+    except ValueError:
+        raise ParameterError("a, b and shift are numbers, e.g. /bricks?a=2&b=1&shift=0.5") from None
+    if not all(math.isfinite(v) for v in (a, b, shift)):
+        raise ParameterError(f"a={a:g}, b={b:g}, shift={shift:g}: the numbers must be finite")
+    wall = BrickWall(a, b, shift)  # ParameterError for a side <= 0 or a shift outside [0, 1)
+    if max(a, b) > 1000 * min(a, b):  # a bounded picture: the wall is PAGE_BRICKS bricks square
+        raise ParameterError(f"a={a:g}, b={b:g}: the sides may be at most 1000 times apart")
+    region = (0.0, 0.0, PAGE_BRICKS * wall.a, PAGE_BRICKS * wall.b)
+    patch = wall.patch(region)
+    svg = patch_to_svg(patch, region=region, size=480)
+    body = (f'<h1 id="bricks-title">Brick wall {a:g} x {b:g}, rows shifted by {shift:g}</h1>'
+            f'<p id="count"></p><figure id="wall" data-bricks="{len(patch)}">{svg}</figure>'
+            f"<p>{html.escape(wall.describe())}</p>")
+    return web.page("brick walls", body, scripts=["plugins/demo_bricks/bricks.js"])
+
+
+@tilekit.hookimpl
+def tilekit_web_routes(web):
+    from tilekit.plugins import WebRoute
+
+    return [WebRoute("/bricks", bricks_page)]
+
+
+@tilekit.hookimpl
+def tilekit_web_menu_links(web):
+    return [("/bricks", "brick walls")]
+
+
+@tilekit.hookimpl
+def tilekit_web_tiling_links(web, name, tiling):
+    if isinstance(tiling, BrickWall):
+        return [(wall_path(tiling.a, tiling.b, tiling.shift), "open in the brick wall page")]
+    return None
+
+
+@tilekit.hookimpl
+def tilekit_web_render_cell(table, column, value, row):
+    if table == "brick_sizes" and column == "name":
+        import html
+
+        return f'<a class="brick" href="{html.escape(wall_path(row["a"], row["b"]))}">{html.escape(str(value))}</a>'
+    return None
+
+
+@tilekit.hookimpl
+def tilekit_web_static():
+    return [("demo_bricks", Path(__file__).parent / "static")]

@@ -1,7 +1,7 @@
-"""Commands about the catalogue's vocabulary and single shapes, kept out of cli.py so that they
-merge cleanly: ``tilekit keys [FAMILY]`` (every queryable key with its type, families and an
-example) and ``tilekit prototile NAME`` (one prototile of any tiling as SVG, DXF or GeoJSON).
-cli.py registers them on the ``tilekit`` group."""
+"""Commands about the catalogue's vocabulary and single shapes: ``tilekit keys [FAMILY]`` (every
+queryable key with its type, families and an example) and ``tilekit prototile NAME`` (one
+prototile of any tiling as SVG, DXF or GeoJSON). The package's __init__ registers them on the
+``tilekit`` group."""
 
 from __future__ import annotations
 
@@ -12,13 +12,7 @@ import click
 
 from tilekit.cli_types import OUTPUT, BoundedInt
 from tilekit.errors import ParameterError
-
-
-def _cli() -> Any:
-    """tilekit.cli, which registers these commands (a module-level import would be a cycle)."""
-    from tilekit import cli  # cycle: cli imports this module to register its commands
-
-    return cli
+from tilekit.text import configure_options, text_table
 
 
 def _result_table_keys(cat: Any, rt: Any, family: str) -> list[Any]:
@@ -77,7 +71,7 @@ def keys_command(state: Any, family: str | None, fmt: str) -> None:
         click.echo("no keys: the catalogue has no tilings" + (f" of family {family!r}" if family else ""), err=True)
         return
     rows = [[i.key, i.type, ", ".join(i.families), str(i.tilings), i.example, ", ".join(i.aliases)] for i in infos]
-    click.echo(_cli()._table(["key", "type", "families", "tilings", "example", "aliases"], rows, {2: 48}))
+    click.echo(text_table(["key", "type", "families", "tilings", "example", "aliases"], rows, {2: 48}))
 
 
 def prototile_patch(tiling: Any, index: int) -> Any:
@@ -124,19 +118,11 @@ def prototile_command(state: Any, name: str, index: int, out: str, params: tuple
     from tilekit.export import output_format, write_patch
     from tilekit.render import write_image
 
-    cli = _cli()
     fmt = output_format(out)  # an unknown suffix fails before any work
     if fmt == ".csv":
         raise ParameterError("a prototile has no tile table: write .svg, .png, .geojson, .json, .dxf or .cut.svg")
     tiling = state.catalogue().tiling(name)
-    options: dict[str, Any] = {}
-    if params:
-        options["params"] = [v for p in params for v in cli._floats(p, "--param", cli.MAX_PARAM)]
-    if edges:
-        options["edges"] = list(edges)
-    options.update(cli.parse_settings(settings))
-    if which is not None:
-        options["tiling"] = which
+    options = configure_options(params, edges, settings, which)
     if options:
         tiling = tiling.configure(**options)
     patch = prototile_patch(tiling, index)

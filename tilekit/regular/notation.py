@@ -1,4 +1,5 @@
-"""Vertex-type notation (§4.1): parse, print, canonical form, species, angle sums, enumeration.
+"""Vertex-type notation (§4.1): parse, print, canonical form, species, angle sums, enumeration,
+the 21 Euclidean vertex types.
 
 A vertex type p1.p2...pk lists the regular polygons met in a loop round a vertex. Types are
 equal under cyclic shift and reversal; the canonical form is the lexicographically least
@@ -242,3 +243,9 @@ def bounded_species(max_sides: int, min_k: int = 3, max_k: int = 6) -> list[tupl
     for k in range(min_k, max_k + 1):
         out.extend(itertools.combinations_with_replacement(range(3, max_sides + 1), k))
     return out
+
+
+def euclidean_vertex_types() -> tuple[VertexType, ...]:
+    """The 21 vertex types whose angles sum to 2π (§4.1, exercise 4.8): the types of the 17
+    Euclidean species, in species order."""
+    return tuple(t for s in euclidean_species() for t in types_of_species(s))

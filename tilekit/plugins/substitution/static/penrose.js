@@ -7,7 +7,7 @@
   const view = document.getElementById("view");
   const errorBox = document.getElementById("error");
   const keys = ["r1", "theta1", "r2", "theta2"];
-  let timer = null, seq = 0;
+  let timer = null;
 
   function query(extra) {
     const q = new URLSearchParams();
@@ -18,24 +18,10 @@
     return q;
   }
 
+  const live = window.tilekitLive(root, view, errorBox);
+
   function render() {
-    const mine = ++seq;
-    fetch("/api/render/penrose-p3?" + query({ format: "json", size: 720 }))
-      .then(function (r) { return r.json().then(function (b) { return { ok: r.ok, body: b }; }); })
-      .then(function (res) {
-        if (mine !== seq) return;
-        if (!res.ok) {
-          errorBox.textContent = res.body.error || "render failed";
-          root.dataset.state = "refused";
-          return;
-        }
-        errorBox.textContent = "";
-        view.innerHTML = res.body.svg;
-        const svg = view.querySelector("svg");
-        if (svg) { svg.removeAttribute("width"); svg.removeAttribute("height"); }
-        root.dataset.state = "ok";
-        root.dataset.renders = String(Number(root.dataset.renders || 0) + 1);
-      });
+    live("/api/render/penrose-p3?" + query({ format: "json", size: 720 }));
     document.getElementById("export-svg").href = "/api/render/penrose-p3?" + query({ format: "svg", size: 800, download: 1 });
     const spec = query({ download: 1 });
     document.getElementById("export-spec").href = "/api/tiling/penrose-p3/spec?" + spec;

@@ -1,0 +1,49 @@
+"""The curved family's command: ``tilekit sphere-mesh``, a printable sphere (STL, or OBJ with
+coloured tiles) from a catalogue tiling of the sphere.
+
+Only click and the core's cheap cli_types are loaded at the top, so ``tilekit --help``, which
+adds this command, does not import NumPy.
+"""
+
+from __future__ import annotations
+
+import click
+
+from tilekit.cli_types import OUTPUT, BoundedInt, FiniteFloat
+
+#: as tilekit.plugins.curved.mesh (kept here so that --help imports no NumPy; a test keeps them equal)
+DEFAULT_RINGS, MAX_RINGS = 4, 32
+
+
+@click.command(name="sphere-mesh")
+@click.argument("name")
+@click.option("-o", "--output", "out", required=True, type=OUTPUT,
+              help="Output file: .stl (binary, millimetres) or .obj (with a .mtl beside it: a colour per kind of tile).")
+@click.option("--size-mm", type=FiniteFloat(10_000.0, min=1.0), default=60.0, show_default=True,
+              help="The sphere's diameter in millimetres.")
+@click.option("--rings", type=BoundedInt(1, MAX_RINGS), default=DEFAULT_RINGS, show_default=True,
+              help="Rings of triangles from each tile's centre to its outline (how closely the mesh follows the sphere).")
+@click.option("--set", "settings", multiple=True, metavar="KEY=VALUE",
+              help="A tiling option, e.g. samples=16 (points per edge of the outline).")
+@click.pass_context
+def sphere_mesh_command(ctx: click.Context, name: str, out: str, size_mm: float, rings: int,
+                        settings: tuple[str, ...]) -> None:
+    """Write a tiling of the sphere as a printable mesh: one closed surface of triangles (every
+    edge in two), the tiles' boundaries on it; .obj colours the tiles by kind.
+
+    \b
+    Examples:
+      tilekit sphere-mesh truncated-icosahedron -o ball.stl --size-mm 80
+      tilekit sphere-mesh 3.4.4.4 -o rhombicuboctahedron.obj
+    """
+    # start-up cost: the mesh writer loads NumPy, only when the command runs
+    from tilekit.plugins.curved.mesh import write_mesh
+    from tilekit.text import parse_settings
+
+    state = ctx.find_root().obj
+    tiling = state.catalogue().tiling(name)
+    options = parse_settings(settings)
+    if options:
+        tiling = tiling.configure(**options)
+    tiles, triangles = write_mesh(tiling, out, size_mm=size_mm, rings=rings)
+    click.echo(f"wrote {out} ({tiles} tiles, {triangles} triangles)")
