@@ -27,7 +27,6 @@ are exactly the anisohedral tilers (A075215: 1, 4; A075224: 0, 0, 6, 25).
 
 from __future__ import annotations
 
-import os
 from collections import Counter
 
 import pytest
@@ -45,8 +44,7 @@ KAPLAN = {
     ("hex", 7): ({0: 5, 1: 25, 2: 6, 3: 1}, {0: 4, 1: 19, 2: 12, 3: 2}, 4),
 }
 #: The 7-hexes take about 6 CPU minutes (one 7-hex has Hc = 3, and proving the Hh of the
-#: Hc = 2 ones needs four coronas): run with TILEKIT_EXHAUSTIVE=1.
-EXHAUSTIVE = os.environ.get("TILEKIT_EXHAUSTIVE") == "1"
+#: Hc = 2 ones needs four coronas): marked exhaustive (TILEKIT_EXHAUSTIVE=1).
 GRIDS = {"hex": HEXAGONAL, "iamond": TRIANGULAR}
 
 
@@ -87,7 +85,7 @@ def test_heesch_numbers_equal_kaplans_tables(grid_name, n):
 
 
 @pytest.mark.slow
-@pytest.mark.skipif(not EXHAUSTIVE, reason="the 7-hexes: set TILEKIT_EXHAUSTIVE=1 (about 6 CPU minutes)")
+@pytest.mark.exhaustive
 def test_heesch_numbers_of_the_7_hexes_equal_kaplans_tables():
     """Tables 3-4, n = 7: 37 hole-free non-tilers (A070768(7)), one of them with Hc = 3; the four
     forms surrounded to the limit are the anisohedral 7-hexes (A075215(7) = 4)."""
