@@ -328,6 +328,39 @@ class WebRoute:
     doc: str = ""
 
 
+def web_pages(module: str, menu: Sequence[tuple[str, str]] = ()) -> tuple[Callable[..., Any], ...]:
+    """The four web hooks of a plugin whose pages live in ``module`` (a module with ``ROUTES``,
+    ``tiling_links(name, tiling)``, ``STATIC`` and ``STATIC_DIR``), in the order
+    (tilekit_web_routes, tilekit_web_menu_links, tilekit_web_tiling_links, tilekit_web_static).
+    The page module (Starlette, the family's engine) is imported only when a web app is made,
+    not when the plugin loads; ``menu`` are the plugin's (path, label) navigation links::
+
+        (tilekit_web_routes, tilekit_web_menu_links, tilekit_web_tiling_links,
+         tilekit_web_static) = web_pages("my_family.web", [("/mine", "my page")])
+    """
+
+    def pages() -> Any:
+        return importlib.import_module(module)
+
+    @hookspecs.hookimpl
+    def tilekit_web_routes(web: Any) -> list[Any]:
+        return list(pages().ROUTES)
+
+    @hookspecs.hookimpl
+    def tilekit_web_menu_links(web: Any) -> list[tuple[str, str]]:
+        return list(menu)
+
+    @hookspecs.hookimpl
+    def tilekit_web_tiling_links(web: Any, name: str, tiling: Any) -> list[tuple[str, str]]:
+        return pages().tiling_links(name, tiling)
+
+    @hookspecs.hookimpl
+    def tilekit_web_static() -> list[tuple[str, Any]]:
+        return [(pages().STATIC, pages().STATIC_DIR)]
+
+    return tilekit_web_routes, tilekit_web_menu_links, tilekit_web_tiling_links, tilekit_web_static
+
+
 @dataclass(frozen=True)
 class PluginInfo:
     """One loaded plugin: its registered name, where it came from, the hooks it implements."""

@@ -68,6 +68,17 @@ def _number(name: str, value: Any, lo: float, hi: float, integer: bool) -> float
     return int(f) if integer else f
 
 
+def drawing_options(plane: Any, samples: Any, spherical: bool) -> tuple[str, int]:
+    """``plane`` and ``samples`` checked (the regular and the uniform tilings take both): a
+    hyperbolic drawing plane of :data:`PLANES` (the sphere has its orthographic view only) and
+    1..MAX_SAMPLES points per edge; one-line ParameterErrors."""
+    if not isinstance(plane, str) or plane not in PLANES:
+        raise ParameterError(f"plane must be one of {', '.join(PLANES)}, got {str(plane)[:40]}")
+    if plane != "poincare" and spherical:
+        raise ParameterError("plane applies to hyperbolic tilings; a sphere is drawn in orthographic view")
+    return plane, int(_number("samples", samples, 1, MAX_SAMPLES, True))
+
+
 @lru_cache(maxsize=256)
 def _exact_counts(p: int, q: int, depth: int) -> tuple[int, ...]:
     """Layer counts 0..depth, stopping after the first layer over 10^4 tiles (cheap: the NumPy
@@ -96,11 +107,7 @@ class RegularTiling(Tiling):
     def __init__(self, p: int = 7, q: int = 3, *, depth: int | None = None, radius: float | None = None,
                  samples: int = DEFAULT_SAMPLES, plane: str = "poincare", name: str = "", title: str = "",
                  want: str | None = None) -> None:
-        if not isinstance(plane, str) or plane not in PLANES:
-            raise ParameterError(f"plane must be one of {', '.join(PLANES)}, got {str(plane)[:40]}")
-        self.plane = plane
-        if plane != "poincare" and model.kind_of(*model.check_pq(p, q)) == model.SPHERE:
-            raise ParameterError("plane applies to hyperbolic tilings; a sphere is drawn in orthographic view")
+        self.plane, self.samples = drawing_options(plane, samples, model.kind_of(*model.check_pq(p, q)) == model.SPHERE)
         self.p, self.q = model.check_pq(p, q, want)
         self.kind = model.kind_of(self.p, self.q)
         self.family = self.kind
@@ -108,7 +115,6 @@ class RegularTiling(Tiling):
             raise ParameterError("give depth or radius, not both")
         self.depth = None if depth is None else int(_number("depth", depth, 0, MAX_DEPTH, True))
         self.radius = None if radius is None else float(_number("radius", radius, 0, MAX_RADIUS, False))
-        self.samples = int(_number("samples", samples, 1, MAX_SAMPLES, True))
         self.polygon = model.RegularPolygon(self.p, self.q)
         self.name = name or f"{self.kind}-{self.p}-{self.q}"
         self.title = title

@@ -28,7 +28,12 @@ from tilekit.limits import MAX_TILES, refuse_over, refuse_over_memory
 from tilekit.plugins.curved import model, notation, wythoff
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
 from tilekit.plugins.curved.render import curved_svg
-from tilekit.plugins.curved.tiling import _number
+from tilekit.plugins.curved.tiling import (
+    DEFAULT_SAMPLES,
+    MAX_SAMPLES,
+    _number,
+    drawing_options,
+)
 from tilekit.plugins.curved.wythoff import GEOMETRIES, check_geometry  # noqa: F401 - the spellings, re-exported
 from tilekit.tiling import Patch, PeriodicTiling, Prototile, Tiling
 
@@ -37,18 +42,14 @@ DEFAULT_FACES = 800
 #: Largest radius: past it the face estimate is far over any limit, and the construction's
 #: coordinates (about e^R) leave too few digits to tell faces apart.
 MAX_RADIUS = 12.0
-DEFAULT_SAMPLES = 8
-MAX_SAMPLES = 64
 #: Peak bytes per face while a patch is made: the Patch's columns, the cells and the
 #: candidate centres of the faces round the other corners; measured with tracemalloc at
 #: 380-1500 for 3.3.3.3.7, 4.6.14, 3.14.14 and 5.8.8 patches of 2·10^3 to 3·10^4 faces
 #: (tests/plugins/test_uniform.py keeps it a bound).
 UNIFORM_BYTES_PER_TILE = 2000
 
-#: Spellings of the geometry hint.
 _OPTIONS = ("configuration", "symbol", "radius", "samples", "plane", "geometry")
 _SPEC_KEYS = set(_OPTIONS) | {"name", "title"}
-PLANES = ("poincare", "klein", "halfplane")
 
 
 def resolve(configuration: str | None = None, symbol: str | None = None,
@@ -113,15 +114,10 @@ class UniformTiling(Tiling):
                                  "and the hyperbolic plane")
         self.kind = kind
         self.family = "curved"
-        if not isinstance(plane, str) or plane not in PLANES:
-            raise ParameterError(f"plane must be one of {', '.join(PLANES)}, got {str(plane)[:40]}")
-        if plane != "poincare" and kind == wythoff.SPHERE:
-            raise ParameterError("plane applies to hyperbolic tilings; a sphere is drawn in orthographic view")
-        self.plane = plane
+        self.plane, self.samples = drawing_options(plane, samples, kind == wythoff.SPHERE)
         if radius is not None and kind == wythoff.SPHERE:
             raise ParameterError("radius applies to hyperbolic tilings; a tiling of the sphere is drawn whole")
         self.radius = None if radius is None else float(_number("radius", radius, 0, MAX_RADIUS, False))
-        self.samples = int(_number("samples", samples, 1, MAX_SAMPLES, True))
         self.configuration = wythoff.uniform_configuration(self.symbol)
         self.name = name or notation.exponent(self.symbol.configuration or ())
         self.title = title

@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Any
 
 from tilekit.hookspecs import hookimpl
 from tilekit.lazy import lazy_exports
-from tilekit.plugins import Family
+from tilekit.plugins import Family, web_pages
 
 if TYPE_CHECKING:  # pragma: no cover
     from tilekit.plugins.isohedral.engine import IsohedralTiling
@@ -121,30 +121,5 @@ def tilekit_normalise(key: str, value: str) -> tuple[str, str] | None:
 
 
 # the web app (tilekit serve): the pages are this plugin's (web.py), the web layer names none
-@hookimpl
-def tilekit_web_routes(web: Any) -> list[Any]:
-    # start-up cost: the pages load starlette and the engine, only when an app is created
-    from tilekit.plugins.isohedral.web import ROUTES
-
-    return list(ROUTES)
-
-
-@hookimpl
-def tilekit_web_menu_links(web: Any) -> list[tuple[str, str]]:
-    return [("/editor", "isohedral editor")]
-
-
-@hookimpl
-def tilekit_web_tiling_links(web: Any, name: str, tiling: Any) -> list[tuple[str, str]]:
-    # start-up cost: as in tilekit_web_routes
-    from tilekit.plugins.isohedral.web import tiling_links
-
-    return tiling_links(name, tiling)
-
-
-@hookimpl
-def tilekit_web_static() -> list[tuple[str, Any]]:
-    # start-up cost: as in tilekit_web_routes
-    from tilekit.plugins.isohedral.web import STATIC, STATIC_DIR
-
-    return [(STATIC, STATIC_DIR)]
+(tilekit_web_routes, tilekit_web_menu_links, tilekit_web_tiling_links,
+ tilekit_web_static) = web_pages("tilekit.plugins.isohedral.web", [("/editor", "isohedral editor")])

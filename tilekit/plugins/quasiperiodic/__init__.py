@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any
 
 import tilekit
 from tilekit.lazy import lazy_exports
-from tilekit.plugins import CatalogueRecord, Family
+from tilekit.plugins import CatalogueRecord, Family, web_pages
 
 if TYPE_CHECKING:  # pragma: no cover
     from tilekit.plugins.quasiperiodic.tiling import QuasiperiodicTiling
@@ -126,31 +126,6 @@ def tilekit_catalogue_records() -> list[CatalogueRecord]:
     return multigrid_records()
 
 
-# the web app (tilekit serve): the offsets page is this plugin's (web.py), the web layer names none
-@tilekit.hookimpl
-def tilekit_web_routes(web: Any) -> list[Any]:
-    # start-up cost: the page module loads the web layer's helpers, only when an app is created
-    from tilekit.plugins.quasiperiodic.web import ROUTES
-
-    return list(ROUTES)
-
-
-@tilekit.hookimpl
-def tilekit_web_menu_links(web: Any) -> list[tuple[str, str]]:
-    return [("/multigrid", "multigrid offsets")]
-
-
-@tilekit.hookimpl
-def tilekit_web_tiling_links(web: Any, name: str, tiling: Any) -> list[tuple[str, str]]:
-    # start-up cost: as in tilekit_web_routes
-    from tilekit.plugins.quasiperiodic.web import tiling_links
-
-    return tiling_links(name, tiling)
-
-
-@tilekit.hookimpl
-def tilekit_web_static() -> list[tuple[str, Any]]:
-    # start-up cost: as in tilekit_web_routes
-    from tilekit.plugins.quasiperiodic.web import STATIC, STATIC_DIR
-
-    return [(STATIC, STATIC_DIR)]
+# the web app (tilekit serve): the pages are this plugin's (web.py), the web layer names none
+(tilekit_web_routes, tilekit_web_menu_links, tilekit_web_tiling_links,
+ tilekit_web_static) = web_pages("tilekit.plugins.quasiperiodic.web", [("/multigrid", "multigrid offsets")])

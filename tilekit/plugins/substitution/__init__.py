@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any
 
 import tilekit
 from tilekit.lazy import lazy_exports
-from tilekit.plugins import CatalogueRecord, Family, Sampler
+from tilekit.plugins import CatalogueRecord, Family, Sampler, web_pages
 from tilekit.plugins.substitution.builtin import builtin_systems, system_dir
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -161,33 +161,8 @@ def tilekit_samplers() -> list[Sampler]:
 
 
 # the web app (tilekit serve): the pages are this plugin's (web.py), the web layer names none
-@tilekit.hookimpl
-def tilekit_web_routes(web: Any) -> list[Any]:
-    # start-up cost: the pages load starlette and the engine, only when an app is created
-    from tilekit.plugins.substitution.web import ROUTES
-
-    return list(ROUTES)
-
-
-@tilekit.hookimpl
-def tilekit_web_menu_links(web: Any) -> list[tuple[str, str]]:
-    return [("/penrose", "Penrose editor")]
-
-
-@tilekit.hookimpl
-def tilekit_web_tiling_links(web: Any, name: str, tiling: Any) -> list[tuple[str, str]]:
-    # start-up cost: as in tilekit_web_routes
-    from tilekit.plugins.substitution.web import tiling_links
-
-    return tiling_links(name, tiling)
-
-
-@tilekit.hookimpl
-def tilekit_web_static() -> list[tuple[str, Any]]:
-    # start-up cost: as in tilekit_web_routes
-    from tilekit.plugins.substitution.web import STATIC, STATIC_DIR
-
-    return [(STATIC, STATIC_DIR)]
+(tilekit_web_routes, tilekit_web_menu_links, tilekit_web_tiling_links,
+ tilekit_web_static) = web_pages("tilekit.plugins.substitution.web", [("/penrose", "Penrose editor")])
 
 
 @tilekit.hookimpl
