@@ -25,3 +25,15 @@ window.tilekitLive = function (root, view, errorBox) {
       });
   };
 };
+
+// A render query: the page's own options (``fill(q)``), the square of half-width #extent as
+// the region, then ``extra`` (format, size, download).
+window.tilekitQuery = function (fill, extra) {
+  "use strict";
+  const q = new URLSearchParams();
+  fill(q);
+  const e = Number(document.getElementById("extent").value);
+  q.set("region", [-e, -e, e, e].join(","));
+  Object.keys(extra || {}).forEach(function (k) { q.set(k, extra[k]); });
+  return q;
+};

@@ -16,12 +16,7 @@
   }
 
   function query(extra) {
-    const q = new URLSearchParams();
-    q.set("set", "gamma=" + gammas().join(","));
-    const e = Number(document.getElementById("extent").value);
-    q.set("region", [-e, -e, e, e].join(","));
-    Object.keys(extra || {}).forEach(function (k) { q.set(k, extra[k]); });
-    return q;
+    return window.tilekitQuery(function (q) { q.set("set", "gamma=" + gammas().join(",")); }, extra);
   }
 
   const live = window.tilekitLive(root, view, errorBox);

@@ -10,12 +10,9 @@
   let timer = null;
 
   function query(extra) {
-    const q = new URLSearchParams();
-    keys.forEach(function (k) { q.set(k, document.getElementById(k).value); });
-    const e = Number(document.getElementById("extent").value);
-    q.set("region", [-e, -e, e, e].join(","));
-    Object.keys(extra || {}).forEach(function (k) { q.set(k, extra[k]); });
-    return q;
+    return window.tilekitQuery(function (q) {
+      keys.forEach(function (k) { q.set(k, document.getElementById(k).value); });
+    }, extra);
   }
 
   const live = window.tilekitLive(root, view, errorBox);
