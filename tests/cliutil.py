@@ -4,7 +4,13 @@ loaded last (tests/web has one too)."""
 
 from __future__ import annotations
 
+import contextlib
 import os
+import socket
+import threading
+import time
+
+import pytest
 
 ENV = "TILEKIT_TEST_POSTGRES"
 
@@ -44,3 +50,30 @@ class CatalogueCLI:
         r = self.run(*args)
         assert r.exit_code == 0, r.output
         return int(r.output.split()[-1])
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@contextlib.contextmanager
+def serving(app):
+    """uvicorn on 127.0.0.1 with a free port, in a thread; yields the base URL."""
+    import uvicorn
+
+    port = free_port()
+    server = uvicorn.Server(uvicorn.Config(app, host="127.0.0.1", port=port, log_level="warning"))
+    thread = threading.Thread(target=server.run, daemon=True)
+    thread.start()
+    deadline = time.monotonic() + 20
+    while not server.started:
+        if time.monotonic() > deadline or not thread.is_alive():
+            pytest.fail("uvicorn did not start within 20 s")
+        time.sleep(0.05)
+    try:
+        yield f"http://127.0.0.1:{port}"
+    finally:
+        server.should_exit = True
+        thread.join(10)

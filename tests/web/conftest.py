@@ -3,11 +3,9 @@
 from __future__ import annotations
 
 import os
-import socket
-import threading
-import time
 
 import pytest
+from cliutil import serving
 
 pytest.importorskip("starlette")
 
@@ -57,29 +55,11 @@ def client(app):
         yield c
 
 
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
 @pytest.fixture(scope="session")
 def live_server(app):
-    """uvicorn on 127.0.0.1 with a free port, in a thread; yields the base URL."""
-    import uvicorn
-
-    port = free_port()
-    server = uvicorn.Server(uvicorn.Config(app, host="127.0.0.1", port=port, log_level="warning"))
-    thread = threading.Thread(target=server.run, daemon=True)
-    thread.start()
-    deadline = time.monotonic() + 20
-    while not server.started:
-        if time.monotonic() > deadline or not thread.is_alive():
-            pytest.fail("uvicorn did not start within 20 s")
-        time.sleep(0.05)
-    yield f"http://127.0.0.1:{port}"
-    server.should_exit = True
-    thread.join(10)
+    """The session's app served (see :func:`serving`)."""
+    with serving(app) as url:
+        yield url
 
 
 CHROMIUM = "/usr/bin/chromium"

@@ -6,10 +6,7 @@ no family. The built-in editors arrive the same way (test_web_api, test_web_brow
 from __future__ import annotations
 
 import re
-import socket
 import sys
-import threading
-import time
 from pathlib import Path
 
 import pytest
@@ -55,22 +52,10 @@ def demo_client(demo_app):
 
 @pytest.fixture(scope="module")
 def demo_server(demo_app):
-    import uvicorn
+    from cliutil import serving
 
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port = s.getsockname()[1]
-    server = uvicorn.Server(uvicorn.Config(demo_app, host="127.0.0.1", port=port, log_level="warning"))
-    thread = threading.Thread(target=server.run, daemon=True)
-    thread.start()
-    deadline = time.monotonic() + 20
-    while not server.started:
-        if time.monotonic() > deadline or not thread.is_alive():
-            pytest.fail("uvicorn did not start within 20 s")
-        time.sleep(0.05)
-    yield f"http://127.0.0.1:{port}"
-    server.should_exit = True
-    thread.join(10)
+    with serving(demo_app) as url:
+        yield url
 
 
 def test_the_plugin_page_draws_a_valid_wall(demo_client):
