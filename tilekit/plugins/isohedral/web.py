@@ -19,6 +19,7 @@ from tilekit.plugins import WebRoute
 from tilekit.plugins.isohedral.engine import IsohedralTiling, shape_classes
 from tilekit.plugins.isohedral.metamorphosis import metamorphosis
 from tilekit.plugins.isohedral.shapes import parse_edge_option
+from tilekit.plugins.isohedral.split import SplitTiling
 from tilekit.plugins.isohedral.templates import get_template
 from tilekit.render import PALETTE, parse_palette
 from tilekit.web.pages import esc, name_path, options
@@ -40,8 +41,14 @@ def isohedral_types() -> list[tuple[str, str]]:
 
 
 def editor_info(tiling: Any) -> dict[str, Any]:
-    """What the isohedral editor needs: parameters, edge shape classes with their kinds."""
+    """What the isohedral editor needs: parameters, edge shape classes with their kinds, the
+    tile's outline with the number of outline segments of each tiling edge (where a split's
+    boundary positions lie, :mod:`.split`) and the split of a split tiling (else None)."""
 
+    split = None
+    if isinstance(tiling, SplitTiling):
+        split = {"ends": list(tiling.ends), "points": tiling.path.points.tolist(), "smooth": bool(tiling.path.smooth)}
+        tiling = tiling.base
     if not isinstance(tiling, IsohedralTiling):
         raise ParameterError(f"{tiling.name} is not an isohedral tiling; the editor takes IH1..IH93")
     t = tiling.template
@@ -70,6 +77,10 @@ def editor_info(tiling: Any) -> dict[str, Any]:
         "spec": tiling.spec(),
         "region": list(tiling.default_region().bounds),
         "parquet": t.topology == "4^4" and tv.parameters == 0,
+        "tile": {"outline": np.asarray(tiling.prototile.outline, dtype=float).tolist(),
+                 "counts": [len(p) - 1 for p in tiling.edge_paths]},
+        "split": split,
+        "piece_colours": list(PALETTE[:2]),
     }
 
 
@@ -147,6 +158,14 @@ def editor_page(web: Any, info: Mapping[str, Any], types: Sequence[str], problem
 <h2>Edge shapes</h2><p class="hint">Drag the handles; J edges are free, U edges mirror about their
 midpoint's perpendicular, S edges turn half a turn about their midpoint, I edges stay straight
 (§5.4). Double-click a segment to add a point, a handle to remove it.</p><div id="edges"></div>
+<h2>Split</h2><p class="hint">A splitting path between two boundary points divides every tile
+in two (a dihedral tiling, as <code>tilekit escherize GOAL_A GOAL_B</code> writes): drag the ends
+along the boundary and the path's points; double-click a point to remove it.</p>
+<div id="split"><svg id="split-svg" class="split-svg" hidden><g transform="scale(1,-1)"></g></svg>
+<p><button type="button" id="split-add">split the tile</button>
+<button type="button" id="split-point" hidden>add path point</button>
+<button type="button" id="split-remove" hidden>remove the split</button></p>
+<p class="hint"><code id="split-text"></code></p></div>
 <h2>View</h2>
 <label>zoom <input type="range" id="zoom" min="0.3" max="3" step="0.05" value="1"></label>
 <label>rotate <input type="range" id="rotate" min="-180" max="180" step="1" value="0"></label>
@@ -178,7 +197,7 @@ def editor_pick(request: Any, web: Any) -> str:
 def editor(request: Any, web: Any) -> str:
     name = request.path_params["name"]
     t = web.renderer.base_tiling(name)
-    if not isinstance(t, IsohedralTiling):
+    if not isinstance(t, IsohedralTiling | SplitTiling):
         raise ParameterError(f"{name} is not an unmarked isohedral type; the editor takes IH1..IH93")
     # /editor/IHn?params=..&edge=..&colouring=..: the JSON API's query syntax and parser; a
     # query the API would refuse is shown as its one line over the type's defaults
