@@ -136,11 +136,44 @@ def parquet_tiles(renderer: Any, name: str, edges: list[str], columns: int = 12,
 # --------------------------------------------------------------------------- pages
 
 
-def editor_pick_page(web: Any, types: Sequence[tuple[str, str]]) -> str:
-    """The editor's entry page: a link per unmarked type."""
-    links = "".join(f'<a class="ih" href="/editor/{esc(n)}" title="{esc(t)}">{esc(n)}</a>' for n, t in types)
-    return web.page("isohedral editor", "<h1>Isohedral editor</h1><p>Pick an isohedral type (exercise 5.12); "
-                  f'the 12 marked types are not editable.</p><div class="types" id="types">{links}</div>')
+#: Names of polygons by their number of corners (the tile of a topology [3^6] has six).
+POLYGONS = {3: "triangles", 4: "quadrilaterals", 5: "pentagons", 6: "hexagons"}
+
+
+def topology_corners(topology: str) -> int:
+    """The number of tiling vertices of a tile of Laves topology ``3^4.6`` (4 + 1 = 5)."""
+    return sum(int(part.split("^")[1]) if "^" in part else 1 for part in topology.split("."))
+
+
+def topology_groups() -> list[tuple[str, list[int]]]:
+    """The unmarked types grouped by topological type (the Laves tiling of their tiling
+    vertices, as Tactile's demos group them): (topology, [ih, ...]) in the order of
+    Grünbaum and Shephard's numbering."""
+    groups: dict[str, list[int]] = {}
+    for i in range(1, 94):
+        t = get_template(i)
+        if not t.marked:
+            groups.setdefault(t.topology, []).append(i)
+    return list(groups.items())  # in the order of their first type (IH1: [3^6], ... IH83: [6^3])
+
+
+def editor_pick_page(web: Any, groups: Sequence[tuple[str, Sequence[int]]]) -> str:
+    """The editor's entry page: each type's picture (its catalogue thumbnail) and name, grouped
+    by topology."""
+    sections = []
+    for topology, ihs in groups:
+        corners = topology_corners(topology)
+        cards = "".join(
+            f'<a class="ih-card" href="/editor/IH{i}" title="IH{i}: {esc(get_template(i).symbol)}">'
+            f'<img loading="lazy" alt="IH{i}" width="96" height="96" src="/thumb/IH{i}.svg"><span>IH{i}</span></a>'
+            for i in ihs)
+        sections.append(f'<section class="topology" data-topology="{esc(topology)}"><h2>[{esc(topology)}] '
+                        f'{esc(POLYGONS.get(corners, f"{corners}-gons"))} <small>({len(ihs)} type'
+                        f'{"s" if len(ihs) != 1 else ""})</small></h2><div class="ih-cards">{cards}</div></section>')
+    return web.page("isohedral editor", "<h1>Isohedral editor</h1><p>Pick an isohedral type (exercise 5.12), "
+                    "grouped by topological type: the Laves tiling its tiling vertices form, named by the "
+                    "valences of a tile's corners (§5.3). The 12 marked types are not editable.</p>"
+                    f'<div class="types" id="types">{"".join(sections)}</div>')
 
 
 def editor_page(web: Any, info: Mapping[str, Any], types: Sequence[str], problem: str | None = None) -> str:
@@ -191,7 +224,7 @@ along the boundary and the path's points; double-click a point to remove it.</p>
 
 
 def editor_pick(request: Any, web: Any) -> str:
-    return editor_pick_page(web, isohedral_types())
+    return editor_pick_page(web, topology_groups())
 
 
 def editor(request: Any, web: Any) -> str:
