@@ -98,8 +98,9 @@ def test_the_api_reads_a_split_and_refuses_a_path_outside_the_tile(client):
 # --------------------------------------------------------------------------- the browser
 
 
-def drag(page, selector: str, dx: float, dy: float) -> None:
-    page.locator("#split-svg").scroll_into_view_if_needed()
+def drag(page, selector: str, dx: float, dy: float, panel: str = "#split-svg") -> None:
+    """Drag the handle ``selector`` by (dx, dy) pixels, its panel scrolled into view first."""
+    page.locator(panel).scroll_into_view_if_needed()
     box = page.locator(selector).bounding_box()
     x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
     page.mouse.move(x, y)
@@ -228,13 +229,8 @@ def test_editor_on_an_escherize_heaven_and_hell_spec(page, escherized, tmp_path)
     spec = escherized["hh"]
     open_spec(page, spec)
     assert page.input_value("#colouring") == spec["colouring"]
-    page.locator("#edge-a").scroll_into_view_if_needed()
-    box = page.locator("#edge-a .handle").first.bounding_box()
     n = renders(page)
-    page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
-    page.mouse.down()
-    page.mouse.move(box["x"] + 8, box["y"] - 6, steps=4)
-    page.mouse.up()
+    drag(page, "#edge-a .handle >> nth=0", 8, -6, panel="#edge-a")
     wait_render(page, n)
     edited = export_and_reopen(page, tmp_path)
     # the two-colouring stays (escherize writes it out; a spec leaves out the type's default)

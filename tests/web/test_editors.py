@@ -11,6 +11,7 @@ import re
 from urllib.parse import parse_qsl, urlsplit
 
 import pytest
+from test_editor_split import drag
 from test_web_browser import renders, wait_render
 
 from tilekit.errors import ParameterError
@@ -101,12 +102,8 @@ def test_dragged_values_reach_the_url_with_fixed_decimals(page):
     page.mouse.click(box["x"] + 0.37 * box["width"], box["y"] + box["height"] / 2)
     wait_render(page, n)
     page.click(".edge .add-point")
-    handle = page.locator("#edge-b .handle").first.bounding_box()
     n = renders(page)
-    page.mouse.move(handle["x"] + handle["width"] / 2, handle["y"] + handle["height"] / 2)
-    page.mouse.down()
-    page.mouse.move(handle["x"] + 7.3, handle["y"] - 5.1, steps=3)
-    page.mouse.up()
+    drag(page, "#edge-b .handle >> nth=0", 7.3, -5.1, panel="#edge-b")
     wait_render(page, n)
     query = dict(parse_qsl(urlsplit(page.evaluate("location.href")).query))
     numbers = re.findall(r"-?\d+(?:\.\d+)?", query["params"] + " " + query["edge"].split("=", 1)[1])

@@ -12,7 +12,7 @@ from tilekit.errors import ParameterError, ParseError
 from tilekit.files import read_json
 from tilekit.plugins.isohedral.engine import _spec_ih, unmarked_from_spec
 from tilekit.plugins.isohedral.marked import marked_tiling
-from tilekit.plugins.isohedral.split import parse_split, split_from_spec, split_text
+from tilekit.plugins.isohedral.split import number_text, parse_split, split_from_spec, split_text
 from tilekit.plugins.isohedral.templates import get_template
 from tilekit.schema import finite_number
 from tilekit.tiling import PeriodicTiling
@@ -36,9 +36,8 @@ def tiling_from_spec(spec: Mapping[str, Any]) -> PeriodicTiling:
 
 
 def _number(value: Any) -> str:
-    """The shortest text that float() reads back as exactly ``value`` (repr, without ``.0``)."""
-    text = repr(finite_number(value, "isohedral spec parameter"))
-    return text[:-2] if text.endswith(".0") else text
+    """The shortest text that float() reads back as exactly ``value`` (:func:`.split.number_text`)."""
+    return number_text(finite_number(value, "isohedral spec parameter"))
 
 
 def editor_query(spec: Mapping[str, Any]) -> str:

@@ -34,7 +34,7 @@ from tilekit.geometry import snap_noise
 from tilekit.plugins.isohedral.engine import IsohedralTiling
 from tilekit.plugins.isohedral.shapes import EdgeShape
 from tilekit.polygon import signed_area
-from tilekit.schema import Field, check
+from tilekit.schema import Field, check, finite_number
 from tilekit.tiling import Patch, PeriodicTiling, Prototile
 
 #: The spec's ``split`` table.
@@ -89,14 +89,16 @@ def parse_split(value: Any) -> dict[str, Any] | None:
     return out
 
 
+def number_text(value: float) -> str:
+    """The shortest text that float() reads back as exactly ``value`` (repr, without ``.0``)."""
+    text = repr(float(value))
+    return text[:-2] if text.endswith(".0") else text
+
+
 def split_text(split: Mapping[str, Any]) -> str:
     """The option text of a spec's split table (the inverse of :func:`parse_split`; numbers as
     their shortest round-trip text, the path as given)."""
-    def num(v: Any) -> str:
-        text = repr(float(v))
-        return text[:-2] if text.endswith(".0") else text
-
-    ends = ",".join(num(v) for v in split["ends"])
+    ends = ",".join(number_text(finite_number(v, "split end")) for v in split["ends"])
     path = split.get("path")
     return f"{ends};{path}" if path else ends
 
