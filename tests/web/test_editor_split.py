@@ -14,6 +14,8 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 from cliutil import assert_one_line_error
+from hypothesis import given
+from hypothesis import strategies as st
 from test_web_browser import renders, wait_render
 
 from tilekit.cli import cli
@@ -32,6 +34,12 @@ pytest.importorskip("playwright")
 
 #: A split IH1 tile (tests/data/escher/ih1-split.json: the escherize tests' known split).
 KNOWN = json.loads((Path(__file__).resolve().parent.parent / "data" / "escher" / "ih1-split.json").read_text())
+
+
+@pytest.fixture(scope="module")
+def cat_url(tmp_path_factory) -> str:
+    """One SQLite catalogue for this module's command lines (seeded once, then only read)."""
+    return f"sqlite:///{tmp_path_factory.mktemp('cat') / 'c.sqlite'}"
 
 
 def same_tiling(a, b) -> None:
@@ -65,6 +73,19 @@ def test_split_option_text_round_trips_and_configures_the_tiling():
     assert editor_query(KNOWN).endswith("&set=split=0.4,3.6;0,0:0.3,0.15:0.7,-0.1:1,0")
 
 
+FINITE = st.floats(allow_nan=False, allow_infinity=False, width=64)
+
+
+@given(st.tuples(FINITE, FINITE), st.lists(st.tuples(FINITE, FINITE), max_size=5))
+def test_split_text_reads_back_as_the_same_numbers(ends, points):
+    """split_text -> parse_split is the identity on the numbers (shortest round-trip text)."""
+    path = ":".join(f"{x!r},{y!r}" for x, y in [(0.0, 0.0), *points, (1.0, 0.0)])
+    table = {"ends": list(ends), "path": path}
+    back = parse_split(split_text(table))
+    assert back == {"ends": [float(v) for v in ends], "path": path}
+    assert parse_split(split_text({"ends": list(ends)})) == {"ends": [float(v) for v in ends]}
+
+
 @pytest.mark.parametrize(
     ("split", "error", "fragment"),
     [
@@ -74,11 +95,11 @@ def test_split_option_text_round_trips_and_configures_the_tiling():
         ("0.4,0.6", GeometryError, "fewer than 3 distinct vertices"),  # both ends on one straight run
     ],
 )
-def test_bad_split_options_are_one_line_errors(split, error, fragment, tmp_path):
+def test_bad_split_options_are_one_line_errors(split, error, fragment, tmp_path, cat_url):
     base = tiling_from_spec({k: v for k, v in KNOWN.items() if k != "split"})
     with pytest.raises(error, match=re.escape(fragment)):
         base.configure(split=split)
-    result = CliRunner().invoke(cli, ["--catalogue", f"sqlite:///{tmp_path / 'c.db'}", "render", "IH1",
+    result = CliRunner().invoke(cli, ["--catalogue", cat_url, "render", "IH1",
                                       "--set", f"split={split}", "-o", str(tmp_path / "x.svg")])
     assert_one_line_error(result, fragment)
 
@@ -115,7 +136,7 @@ def open_spec(page, spec: dict) -> None:
     assert json.loads(page.get_attribute("#editor", "data-spec")) == tiling_from_spec(spec).spec()
 
 
-def export_and_reopen(page, tmp_path: Path) -> dict:
+def export_and_reopen(page, tmp_path: Path, cat_url: str) -> dict:
     """The exported spec file, reopened by ``render --system``: the same tiling as the editor's."""
     with page.expect_download() as dl:
         page.click("#export-spec")
@@ -125,13 +146,13 @@ def export_and_reopen(page, tmp_path: Path) -> dict:
     shown = json.loads(page.get_attribute("#editor", "data-spec"))
     assert data["spec"] == shown
     same_tiling(tiling_from_file(str(path)), tiling_from_spec(shown))
-    result = CliRunner().invoke(cli, ["--catalogue", f"sqlite:///{tmp_path / 'c.db'}", "render", "--system",
+    result = CliRunner().invoke(cli, ["--catalogue", cat_url, "render", "--system",
                                       str(path), "-o", str(tmp_path / "reopened.svg")])
     assert result.exit_code == 0, result.output
     return data["spec"]
 
 
-def check_split_editing(page, spec: dict, tmp_path: Path) -> None:
+def check_split_editing(page, spec: dict, tmp_path: Path, cat_url: str) -> None:
     open_spec(page, spec)
     # the two pieces in two colours, in the panel and in the tiling
     fills = page.eval_on_selector_all("#split-svg .piece", "els => els.map(e => e.getAttribute('fill'))")
@@ -164,12 +185,12 @@ def check_split_editing(page, spec: dict, tmp_path: Path) -> None:
     wait_render(page, n)
     assert page.get_attribute("#editor", "data-state") == "refused"
     assert "split" in page.inner_text("#error") and "last tiling drawn" in page.inner_text("#error")
-    assert export_and_reopen(page, tmp_path) == last
+    assert export_and_reopen(page, tmp_path, cat_url) == last
     assert not page.js_errors
 
 
-def test_editor_edits_a_split_spec_and_its_export_reopens_identically(page, tmp_path):
-    check_split_editing(page, KNOWN, tmp_path)
+def test_editor_edits_a_split_spec_and_its_export_reopens_identically(page, tmp_path, cat_url):
+    check_split_editing(page, KNOWN, tmp_path, cat_url)
 
 
 def test_editor_adds_and_removes_a_split(page):
@@ -217,13 +238,13 @@ def escherized(tmp_path_factory):
 
 
 @pytest.mark.slow
-def test_editor_on_an_escherize_dihedral_spec(page, escherized, tmp_path):
+def test_editor_on_an_escherize_dihedral_spec(page, escherized, tmp_path, cat_url):
     assert "split" in escherized["split"]
-    check_split_editing(page, escherized["split"], tmp_path)
+    check_split_editing(page, escherized["split"], tmp_path, cat_url)
 
 
 @pytest.mark.slow
-def test_editor_on_an_escherize_heaven_and_hell_spec(page, escherized, tmp_path):
+def test_editor_on_an_escherize_heaven_and_hell_spec(page, escherized, tmp_path, cat_url):
     """The Heaven-and-Hell tile opens with its two-colouring (neighbours differ); an edge
     handle dragged gives a spec that reopens identically, colouring kept."""
     spec = escherized["hh"]
@@ -232,7 +253,7 @@ def test_editor_on_an_escherize_heaven_and_hell_spec(page, escherized, tmp_path)
     n = renders(page)
     drag(page, "#edge-a .handle >> nth=0", 8, -6, panel="#edge-a")
     wait_render(page, n)
-    edited = export_and_reopen(page, tmp_path)
+    edited = export_and_reopen(page, tmp_path, cat_url)
     # the two-colouring stays (escherize writes it out; a spec leaves out the type's default)
     assert str(tiling_from_spec(edited).colouring) == spec["colouring"] and edited["edges"] != spec["edges"]
     assert not page.js_errors
