@@ -10,12 +10,15 @@ import json
 import re
 from urllib.parse import parse_qsl, urlsplit
 
+import numpy as np
 import pytest
 from test_editor_split import drag
 from test_web_browser import renders, wait_render
 
 from tilekit.errors import ParameterError
+from tilekit.plugins.isohedral.engine import IsohedralTiling
 from tilekit.plugins.isohedral.templates import get_template
+from tilekit.plugins.isohedral.web import picture_edges
 from tilekit.plugins.substitution import quasivertex as qv
 
 #: Grünbaum and Shephard number the isohedral types by topological type (Tilings and Patterns,
@@ -37,11 +40,28 @@ def test_editor_picker_shows_each_types_picture_grouped_by_topology(client):
         ihs = [int(i) for i in re.findall(r'href="/editor/IH(\d+)"', body)]
         assert ihs == [i for i in range(lo, hi + 1) if i not in MARKED]
         assert all(get_template(i).topology == topology for i in ihs)
-        assert re.findall(r'src="/thumb/IH(\d+)\.svg"', body) == [str(i) for i in ihs]
+        assert re.findall(r'src="/editor/picture/IH(\d+)\.svg"', body) == [str(i) for i in ihs]
     assert len(re.findall(r'class="ih-card"', html)) == 81
     for ih in (1, 21, 41, 93):  # a picture of each of a few groups is served
-        r = client.get(f"/thumb/IH{ih}.svg")
+        r = client.get(f"/editor/picture/IH{ih}.svg")
         assert r.status_code == 200 and r.headers["content-type"].startswith("image/svg+xml") and "<path" in r.text
+    assert client.get("/editor/picture/IH19.svg").status_code == 400  # a marked type: no template
+
+
+def test_every_types_picture_is_a_valid_tiling_showing_its_edge_kinds():
+    """The picker's shape on every J, U and S edge gives each of the 81 unmarked types a valid
+    tiling (Patch.validate) whose tile differs from the straight one exactly when the type has
+    a non-I edge (IH types with only I edges keep the Laves tile)."""
+    for ih in range(1, 94):
+        if ih in MARKED:
+            continue
+        base = IsohedralTiling(ih)
+        edges = picture_edges(base)
+        tiling = base.configure(edges=edges)
+        region = tiling.default_region()
+        assert tiling.patch(region).validate(region).ok, ih
+        straight = len(np.asarray(base.prototile.outline))
+        assert (len(np.asarray(tiling.prototile.outline)) > straight) == bool(edges), ih
 
 
 # --------------------------------------------------------------------------- Penrose r ranges

@@ -136,6 +136,18 @@ def parquet_tiles(renderer: Any, name: str, edges: list[str], columns: int = 12,
 # --------------------------------------------------------------------------- pages
 
 
+#: The picker's edge shape, on every J, U and S shape class: a J edge shows it whole, a U edge
+#: its half mirrored, an S edge its half turned, so each type's picture shows its edge kinds
+#: (all 81 unmarked types tile validly with it at their default parameters; a test checks).
+PICTURE_SHAPE = "0,0:0.3,0.12:0.7,-0.06:1,0"
+
+
+def picture_edges(tiling: IsohedralTiling) -> list[str]:
+    """``LABEL=PICTURE_SHAPE`` for each shape class of the tiling's type that is not I."""
+    symbol = tiling.template.symbol
+    return [f"{label}={PICTURE_SHAPE}" for label in shape_classes(symbol) if symbol.label_kind(label) != "I"]
+
+
 #: Names of polygons by their number of corners (the tile of a topology [3^6] has six).
 POLYGONS = {3: "triangles", 4: "quadrilaterals", 5: "pentagons", 6: "hexagons"}
 
@@ -158,14 +170,14 @@ def topology_groups() -> list[tuple[str, list[int]]]:
 
 
 def editor_pick_page(web: Any, groups: Sequence[tuple[str, Sequence[int]]]) -> str:
-    """The editor's entry page: each type's picture (its catalogue thumbnail) and name, grouped
-    by topology."""
+    """The editor's entry page: each type's picture (``/editor/picture/IHn.svg``: its tiling
+    with :data:`PICTURE_SHAPE` on every shaped edge) and name, grouped by topology."""
     sections = []
     for topology, ihs in groups:
         corners = topology_corners(topology)
         cards = "".join(
             f'<a class="ih-card" href="/editor/IH{i}" title="IH{i}: {esc(get_template(i).symbol)}">'
-            f'<img loading="lazy" alt="IH{i}" width="96" height="96" src="/thumb/IH{i}.svg"><span>IH{i}</span></a>'
+            f'<img loading="lazy" alt="IH{i}" width="96" height="96" src="/editor/picture/IH{i}.svg"><span>IH{i}</span></a>'
             for i in ihs)
         sections.append(f'<section class="topology" data-topology="{esc(topology)}"><h2>[{esc(topology)}] '
                         f'{esc(POLYGONS.get(corners, f"{corners}-gons"))} <small>({len(ihs)} type'
@@ -243,6 +255,19 @@ def editor(request: Any, web: Any) -> str:
     return editor_page(web, editor_info(t), [n for n, _ in isohedral_types()], problem)
 
 
+def picture(request: Any, web: Any) -> Any:
+    """A type's picture for the picker: its tiling with the picker's shape on every J, U and S
+    edge (a thumbnail through the renderer's cache)."""
+    from starlette.responses import Response
+
+    name = request.path_params["name"]
+    base = web.renderer.base_tiling(name)
+    if not isinstance(base, IsohedralTiling):
+        raise ParameterError(f"{name} is not an unmarked isohedral type; pictures are of IH1..IH93's 81 unmarked types")
+    _, svg, _ = web.renderer.render(name, {"size": 160, "edges": picture_edges(base)}, thumbnail=True)
+    return Response(svg, media_type="image/svg+xml", headers={"Cache-Control": "public, max-age=3600"})
+
+
 def editor_api(request: Any, web: Any) -> dict[str, Any]:
     tiling = web.renderer.build(request.path_params["name"], web.render_options(request))
     return editor_info(tiling)
@@ -266,6 +291,7 @@ def parquet(request: Any, web: Any) -> Any:
 ROUTES = (
     WebRoute("/editor", editor_pick),
     WebRoute("/editor/{name:str}", editor),
+    WebRoute("/editor/picture/{name:str}.svg", picture),
     WebRoute("/api/tiling/{name:str}/editor", editor_api,
              doc="parameters and edge shape classes of an isohedral tiling"),
     WebRoute("/api/parquet/{name:str}", parquet,
