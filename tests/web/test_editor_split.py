@@ -201,6 +201,7 @@ def test_editor_adds_and_removes_a_split(page):
     wait_render(page, n)
     spec = json.loads(page.get_attribute("#editor", "data-spec"))
     assert spec["split"]["ends"] == [0.5, 2.5]
+    assert page.is_disabled("#colouring")  # coloured by piece while split
     assert "set=split=0.5,2.5;0,0:1,0" in page.evaluate("location.search")
     n = renders(page)
     page.click("#split-point")
@@ -210,6 +211,7 @@ def test_editor_adds_and_removes_a_split(page):
     page.click("#split-remove")
     wait_render(page, n)
     assert "split" not in json.loads(page.get_attribute("#editor", "data-spec"))
+    assert not page.is_disabled("#colouring")
     assert not page.js_errors
 
 

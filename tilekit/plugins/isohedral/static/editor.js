@@ -459,6 +459,10 @@
     document.getElementById("split-remove").hidden = !on;
     document.getElementById("split-point").hidden = !on;
     splitSvg.hidden = !on;
+    // a split tiling is coloured by piece (0 and 1), not by the type's colouring
+    const colouring = document.getElementById("colouring");
+    colouring.disabled = on;
+    colouring.title = on ? "a split tiling is coloured by piece" : "";
     document.getElementById("split-text").textContent = on ? "split=" + splitText() : "";
     splitG.textContent = "";
     if (!on || !info.tile) return;
