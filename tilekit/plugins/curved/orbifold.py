@@ -149,9 +149,47 @@ def _star(c: wythoff.Construction, local: np.ndarray) -> tuple[np.ndarray, np.nd
     return np.concatenate(frames), np.array(sides)
 
 
+def star_symmetries(sequence: tuple[int, ...]) -> int:
+    """How many isometries fixing a vertex map its star onto itself: the rotations and
+    reflections of the cyclic sequence of its faces' sizes that keep it (the faces are regular
+    with one edge length, so the sizes fix the star)."""
+    k = len(sequence)
+    turns = [sequence[i:] + sequence[:i] for i in range(k)]
+    back = tuple(reversed(sequence))
+    return sum(t == sequence for t in turns) + sum(t == back for t in turns)
+
+
+def construction_stabiliser(symbol: wythoff.Symbol) -> int:
+    """The order of the generator's stabiliser in the construction's group: the dihedral
+    group of its corner (p | q r: 2p), the mirror it lies on (p q | r: 2), none (omni, snub)."""
+    return {"vertex": 2 * symbol.orders[0], "edge": 2, "omni": 1, "snub": 1}[symbol.form]
+
+
+def _construction_group(symbol: wythoff.Symbol, orders: tuple[int, int, int]) -> OrbifoldGroup:
+    ones = tuple(n for n in orders if n >= 2)
+    return OrbifoldGroup((), ones, True) if symbol.form != "snub" else OrbifoldGroup(ones, (), False)
+
+
+def symbol_symmetry(symbol: wythoff.Symbol) -> UniformSymmetry | None:
+    """The group when the symbol alone decides it (the vertex star has no symmetry beyond the
+    generator's stabiliser in the construction's group, so neither has the full group's
+    vertex stabiliser): the construction's group; None when the construction must be asked."""
+    own = construction_stabiliser(symbol)
+    if star_symmetries(symbol.sequence) == own:
+        return UniformSymmetry(_construction_group(symbol, symbol.orders), own, 1)
+    return None
+
+
 def uniform_symmetry(construction: wythoff.Construction) -> UniformSymmetry:
-    """The full symmetry group of the construction's tiling (see the module)."""
+    """The full symmetry group of the construction's tiling (see the module). When the vertex
+    star has no more symmetry than the generator's stabiliser in the construction's group,
+    the full group's vertex stabiliser can be no larger, so the group is the construction's
+    (most tilings: nothing else is computed)."""
     c = construction
+    own = construction_stabiliser(c.symbol)
+    quick = symbol_symmetry(c.symbol)
+    if quick is not None:
+        return quick
     sp, v0 = c.space, c.generator
     e = c.edge_length
     local = _local_elements(c)
@@ -198,11 +236,10 @@ def uniform_symmetry(construction: wythoff.Construction) -> UniformSymmetry:
     if len(stab_m) % g_stab:
         raise GeometryError(f"{c.symbol}: the vertex stabiliser ({len(stab_m)}) is not a multiple of the "
                             f"construction's ({g_stab})")
+    if g_stab != own:
+        raise GeometryError(f"{c.symbol}: the generator's stabiliser has {g_stab} elements, not {own}")
     if len(stab_m) == g_stab:  # no symmetry beyond the construction's group: *pqr or pqr
-        p, q, r = c.orders
-        ones = tuple(n for n in (p, q, r) if n >= 2)
-        group = OrbifoldGroup((), ones, True) if c.symbol.form != "snub" else OrbifoldGroup(ones, (), False)
-        return UniformSymmetry(group, len(stab_m), 1)
+        return UniformSymmetry(_construction_group(c.symbol, c.orders), len(stab_m), 1)
     # feature points: v0, the centres of its faces, the midpoints of its edges; the elements
     # of the full group that can map one to another or fix one: L·L times the stabiliser
     points = np.array([v0] + list(frames[:, :, 2]) + [sp.normalise(v0 + n) for n in nbrs])

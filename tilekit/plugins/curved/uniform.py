@@ -26,7 +26,7 @@ from tilekit.errors import ParameterError, ParseError
 from tilekit.geometry import as_region
 from tilekit.limits import MAX_TILES, refuse_over, refuse_over_memory
 from tilekit.plugins.curved import model, notation, wythoff
-from tilekit.plugins.curved.orbifold import UniformSymmetry, uniform_symmetry
+from tilekit.plugins.curved.orbifold import UniformSymmetry, symbol_symmetry, uniform_symmetry
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
 from tilekit.plugins.curved.render import curved_svg
 from tilekit.plugins.curved.tiling import (
@@ -131,7 +131,7 @@ class UniformTiling(Tiling):
     @cached_property
     def symmetry(self) -> UniformSymmetry:
         """The tiling's full symmetry group (orbifold notation in ``.notation``)."""
-        return uniform_symmetry(self.construction)
+        return symbol_symmetry(self.symbol) or uniform_symmetry(self.construction)
 
     @cached_property
     def _protos(self) -> list[ModelPrototile]:
