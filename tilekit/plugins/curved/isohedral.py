@@ -543,9 +543,15 @@ class CurvedIsohedralTiling(Tiling):
                 options["edges"] = json.loads(options["edges"])
             except json.JSONDecodeError:
                 raise ParseError("edges must be JSON like '{\"a\": \"0.2,0.1:0.4,0.1\"}'") from None
-        if {"p", "q"} & set(options) and "pairing" not in options:
-            spec.pop("pairing", None)
-            spec.pop("edges", None)
+        if {"p", "q"} & set(options):
+            if "pairing" not in options:
+                spec.pop("pairing", None)
+                spec.pop("edges", None)
+            p, q = model.check_pq(options.get("p", self.p), options.get("q", self.q))
+            if model.kind_of(p, q) == model.SPHERE:  # a sphere is drawn whole, in its own view
+                for key in ("radius", "plane"):
+                    if key not in options:
+                        spec.pop(key, None)
         spec.update(options)
         return CurvedIsohedralTiling.from_spec(spec)
 
