@@ -67,6 +67,9 @@ DEFAULT_SAMPLES = 3
 MAX_SAMPLES = 16
 #: Hyperbolic radius when none is given (the tiles whose centres lie within it).
 DEFAULT_RADIUS = 3.0
+#: Most assignments of colours to the pairing motions tried for one quotient group (a
+#: polygon with many J pairs is coloured by the smaller quotients only).
+MAX_ASSIGNMENTS = 200_000
 #: Largest k of a colouring searched for (and accepted).
 MAX_COLOURS = 8
 #: Largest spec file read (a spec is a few hundred bytes; edge shapes are bounded anyway).
@@ -150,7 +153,12 @@ def check_pairing(pairing: Pairing, p: int, q: int) -> None:
             raise ParameterError(
                 f"pairing '{pairing}' glues corners {', '.join(str(c + 1) for c in cyc)} of the {p}-gon into one "
                 f"vertex, {len(cyc)} corners of angle 2π/{q}: it tiles {{{p},{q}}} only when each vertex cycle's "
-                f"length divides q ({q}); e.g. '{example_pairing(p, q) or 'none for this {p},{q}'}'")
+                f"length divides q ({q}); {_pairing_hint(p, q)}")
+
+
+def _pairing_hint(p: int, q: int) -> str:
+    ex = example_pairing(p, q)
+    return f"e.g. '{ex}'" if ex else f"no pairing of the {p}-gon found for {{{p},{q}}} (p up to 10 searched)"
 
 
 def orbifold_features(pairing: Pairing, q: int) -> tuple[int, list[int]]:
@@ -171,9 +179,9 @@ def orbifold(pairing: Pairing, q: int) -> str:
 
 
 def example_pairing(p: int, q: int) -> str | None:
-    """A pairing of the p-gon that tiles {p, q}: all S edges when p divides q, else the first
-    found (J pairs of edges, then S edges), or None (p up to 12 searched)."""
-    if p > 12:
+    """A pairing of the p-gon that tiles {p, q}: the first found (J pairs of neighbouring
+    edges first), or None (p up to 10 searched: 9,496 pairings)."""
+    if p > 10:
         return None
     letters = "abcdefghijkl"
 
@@ -211,7 +219,8 @@ def colouring(pairing: Pairing, q: int, k: int | None = None) -> tuple[tuple[int
     """((a, b), φ per edge's motion as a colour index x·b + y of Z_a × Z_b): a homomorphism of the group onto a finite
     abelian group A (Z_b or Z_a × Z_b, k = |A| elements; see the module), nonzero on every
     motion when one is (neighbours then differ), else any onto A; the smallest A first, or the
-    first with k elements when k is asked for. No homomorphism onto any A of QUOTIENTS: one
+    first with k elements when k is asked for; a quotient whose assignments number over
+    MAX_ASSIGNMENTS is skipped. No homomorphism onto any A of QUOTIENTS: one
     colour (k = 1, the trivial colouring, perfect too)."""
     p = len(pairing.labels)
     owners = pairing.owners()
@@ -223,8 +232,12 @@ def colouring(pairing: Pairing, q: int, k: int | None = None) -> tuple[tuple[int
     for nonzero in (True, False):
         for a, b in quotients:
             elems = [(x, y) for x in range(a) for y in range(b)]
-            choices = elems[1:] if nonzero else elems
-            for values in itertools.product(choices, repeat=len(owners)):
+            allowed = elems[1:] if nonzero else elems
+            half = [e for e in allowed if not (2 * e[0]) % a and not (2 * e[1]) % b]  # an S edge's φ: 2φ = 0
+            choices = [half if pairing.kind(i) == "S" else allowed for i in owners]
+            if math.prod(len(c) for c in choices) > MAX_ASSIGNMENTS:
+                continue  # budget: this quotient is not searched (the docstring says so)
+            for values in itertools.product(*choices):
                 phi = [(0, 0)] * p
                 for i, v in zip(owners, values):
                     phi[i] = v
@@ -342,8 +355,11 @@ class CurvedIsohedralTiling(Tiling):
                 raise ParameterError(f"{{{self.p},{self.q}}} with pairing '{self.pairing}' has no edge {str(lab)[:10]!r}; "
                                      f"its edges are {', '.join(sorted(letters))}")
             out[lab] = shape if isinstance(shape, EdgeShape) else EdgeShape.parse(str(shape))
+        # the defaults bend less where the corners are sharp (angle 2π/q), so the tile stays simple
+        scale = min(1.0, 4.0 / self.q)
         for lab, i in letters.items():
-            out.setdefault(lab, EdgeShape.parse(DEFAULT_S if self.pairing.kind(i) == "S" else DEFAULT_J))
+            base = EdgeShape.parse(DEFAULT_S if self.pairing.kind(i) == "S" else DEFAULT_J)
+            out.setdefault(lab, EdgeShape(base.points * np.array([1.0, scale])))
         return out
 
     def edge_curves(self) -> list[np.ndarray]:
