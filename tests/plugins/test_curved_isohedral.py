@@ -197,3 +197,15 @@ def test_cli_render_and_errors(cli, tmp_path) -> None:
                           "simple polygon")
     assert_one_line_error(cli("render", "--system", "t.json", "--family", "curved-isohedral", "--set",
                               "geometry=sphere", "-o", "x.svg"), "not spherical")
+
+
+@pytest.mark.parametrize("p, q, radius", [(6, 4, 4.0), (7, 3, 3.5), (5, 4, 3.5)])
+def test_tiles_are_the_regular_tilings_tiles(p: int, q: int, radius: float) -> None:
+    """The pairing group's tiles within a radius sit exactly on the regular tiling's tiles within
+    it, found by the regular family's boundary automaton (an independent generator)."""
+    from tilekit.plugins.curved.tiling import RegularTiling
+
+    ours = CurvedIsohedralTiling(p, q, radius=radius).patch().model_centres()
+    theirs = RegularTiling(p, q, radius=radius).patch().model_centres()
+    assert len(ours) == len(theirs)
+    assert (_centres_match(ours, theirs) >= 0).all()
