@@ -19,13 +19,7 @@ from functools import cache
 from pathlib import Path
 from typing import Any
 
-
-def _writable(path: Path) -> bool:
-    try:
-        path.mkdir(parents=True, exist_ok=True)
-    except OSError:
-        return False
-    return os.access(path, os.W_OK | os.X_OK)
+from tilekit.resources import writable
 
 
 @cache
@@ -42,7 +36,7 @@ def cache_dir() -> Path | None:
     uid = os.getuid() if hasattr(os, "getuid") else "user"
     candidates.append(Path(tempfile.gettempdir()) / f"tilekit-numba-{uid}")
     for path in candidates:
-        if _writable(path):
+        if writable(path):
             return path
     return None
 

@@ -18,6 +18,7 @@ import pluggy
 
 from tilekit import hookspecs
 from tilekit.errors import NotFoundError, PluginError
+from tilekit.recordcache import cached_records
 
 if TYPE_CHECKING:  # pragma: no cover
     from tilekit.tiling import Tiling
@@ -267,11 +268,23 @@ def get_family(name: str, pm: pluggy.PluginManager | None = None) -> Family:
         raise NotFoundError("family", name, fams) from None
 
 
+def _shipped_per_plugin(pm: pluggy.PluginManager) -> list[Any]:
+    """``tilekit_catalogue_records`` of each plugin, in pluggy's call order, through the
+    on-disk cache of tilekit.recordcache (a plugin module's records are computed once per
+    version of its sources and data, not once per new catalogue)."""
+    caller = pm.hook.tilekit_catalogue_records
+    impls = caller.get_hookimpls()
+    if any(getattr(impl, "hookwrapper", False) or getattr(impl, "wrapper", False) for impl in impls):
+        return caller()
+    return [cached_records(impl.plugin_name, impl.plugin, lambda f=impl.function: list(f() or ()), CatalogueRecord)
+            for impl in reversed(impls)]  # pluggy calls the last registered first
+
+
 def catalogue_records(pm: pluggy.PluginManager | None = None) -> list[CatalogueRecord]:
     """Every record the plugins ship, in registration order, with the properties that
     ``tilekit_extra_properties`` hooks add (a record's own keys are never overwritten)."""
     pm = pm or get_plugin_manager()
-    records = _flatten(pm.hook.tilekit_catalogue_records())
+    records = _flatten(_shipped_per_plugin(pm))
     if not pm.hook.tilekit_extra_properties.get_hookimpls():
         return records
     for record in records:

@@ -491,7 +491,7 @@ class IsohedralTiling(PeriodicTiling):
         """A new tiling with ``params`` (floats), ``edges`` ('b=x,y:...'), ``colours``/``colouring``;
         with ``split`` ('S,T;PATH', :mod:`.split`) the dihedral tiling of the new tile split in two."""
         if "split" in options:
-            # split.py imports this module: the split tiling is loaded when a split is asked for
+            # start-up cost: the split tiling is loaded only when a split is asked for
             from tilekit.plugins.isohedral.split import with_split
 
             split = options.pop("split")

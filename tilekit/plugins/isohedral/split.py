@@ -24,18 +24,20 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import shapely
 
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.geometry import snap_noise
-from tilekit.plugins.isohedral.engine import IsohedralTiling
 from tilekit.plugins.isohedral.shapes import EdgeShape
 from tilekit.polygon import signed_area
 from tilekit.schema import Field, check, finite_number
 from tilekit.tiling import Patch, PeriodicTiling, Prototile
+
+if TYPE_CHECKING:  # engine.py imports this module when a split is asked for
+    from tilekit.plugins.isohedral.engine import IsohedralTiling
 
 #: The spec's ``split`` table.
 SPLIT = Field("table", fields={
