@@ -15,21 +15,6 @@ from tilekit.errors import ParameterError
 from tilekit.text import configure_options, text_table
 
 
-def _result_table_keys(cat: Any, rt: Any, family: str) -> list[Any]:
-    """KeyInfos for the columns of a result table (what ``--where`` filters on for its family)."""
-    from tilekit.catalogue.results import column_kind
-    from tilekit.catalogue.vocabulary import KeyInfo
-
-    rows = cat.count_result_rows(rt)
-    examples = {"bool": "{}=true", "int": "{}>=1", "float": "{}>=0.5", "json": "{}~TEXT", "text": "{}=TEXT"}
-    out = []
-    for column in rt.table.c:
-        kind = column_kind(column.type)
-        out.append(KeyInfo(key=column.name, type=kind, families=(family,), tilings=rows,
-                           example=examples.get(kind, "{}=VALUE").format(column.name)))
-    return out
-
-
 @click.command(name="keys")
 @click.argument("family", required=False)
 @click.option("--format", "fmt", type=click.Choice(["table", "json"]), default="table", show_default=True)
@@ -45,25 +30,9 @@ def keys_command(state: Any, family: str | None, fmt: str) -> None:
       tilekit keys isohedral
       tilekit keys --format json
     """
-    from tilekit.catalogue.entry import TEXT_COLUMNS
-    from tilekit.catalogue.vocabulary import KeyInfo
+    from tilekit import api
 
-    cat = state.reader(family)
-    cat.check_family(family)
-    rt = cat.family_table(family)
-    if rt is not None:
-        infos = _result_table_keys(cat, rt, family or "")
-    else:
-        infos = cat.key_table(family)
-        everyone = tuple(sorted({f for info in infos for f in info.families}))
-        total = cat.count(family)
-        first = cat.query(family=family, limit=1)
-        if first:
-            shown = {"name": first[0].name, "family": first[0].family,
-                     "title": (first[0].title.split() or ["a"])[0].lower()}
-            infos = [KeyInfo(key=c, type="text", families=everyone, tilings=total,
-                             example=f"{c}{'~' if c == 'title' else '='}{shown[c]}")
-                     for c in TEXT_COLUMNS] + infos
+    infos = api.keys(state.reader(family), family)
     if fmt == "json":
         click.echo(json.dumps([i.to_dict() for i in infos], indent=2, ensure_ascii=False))
         return
