@@ -4,8 +4,9 @@ In the manner of sqlite-utils: the command line parses options, makes one call h
 what it returns; the web server's API and pages make the same calls. Tilings: ``resolve_tiling``
 (a catalogue name or a data file), ``configure`` (options -> ``Tiling.configure``),
 ``render_svg`` (bounded: estimate, refuse over the limit, patch, draw), ``render_file`` (a
-picture or an export written to a file, streamed when it cannot fit in memory). Records:
-``query``, ``record``, ``family_summary``, ``keys``. Runs: ``start_run``, ``run_report``.
+picture or an export written to a file, streamed when it cannot fit in memory),
+``write_prototile`` (one tile). Records: ``query``, ``record``, ``family_summary``, ``keys``.
+Runs: ``start_run``, ``run_report``, ``run_data``.
 
 Heavy libraries (NumPy, shapely, SQLAlchemy) are imported inside the calls that need them, so
 that importing this module costs a command nothing (start-up cost: tests/test_startup.py).
@@ -310,6 +311,58 @@ def _tile_classes(tiling: Any, patch: Any) -> Any:
         return patch_tile_classes(tiling, patch)
     except TilekitError:  # a unit the symmetry search cannot analyse: the classes are unknown
         return None
+
+
+def prototile_patch(tiling: Any, index: int) -> Any:
+    """A patch of one tile: prototile ``index`` of ``tiling`` at the origin, unmoved (its
+    outline with any shaped edges, its marking), or a ParameterError naming the valid range."""
+    import numpy as np  # start-up cost: NumPy
+
+    from tilekit.tiling import Patch  # start-up cost: NumPy, shapely
+
+    protos = tiling.prototiles
+    if not 0 <= index < len(protos):
+        names = ", ".join(f"{i}: {p.name or '-'}" for i, p in enumerate(protos[:12]))
+        raise ParameterError(f"--index {index}: {tiling.name or 'the tiling'} has {len(protos)} prototile"
+                             f"{'s' if len(protos) != 1 else ''} (--index 0..{len(protos) - 1}; {names})")
+    return Patch([protos[index]], np.zeros(1, dtype=np.int64), np.eye(3)[None])
+
+
+@dataclass
+class WrittenPrototile:
+    """A prototile :func:`write_prototile` wrote: the file, which of how many prototiles, its
+    name, its number of sides (tiling vertices on its outline) and its area."""
+
+    path: str
+    index: int
+    of: int
+    name: str
+    sides: int
+    area: float
+
+
+def write_prototile(catalogue: CatalogueLike, name: str, out: str, index: int = 0,
+                    options: Mapping[str, Any] | None = None, *, mm_per_unit: float = 10.0) -> WrittenPrototile:
+    """``tilekit prototile``: prototile ``index`` of the catalogue tiling ``name`` (configured by
+    ``options``, as :func:`configure`) written to ``out`` at the origin in the tiling's units: a
+    picture (.svg, .png), its polygon (.geojson, .json) or its outline for a cutter (.dxf,
+    .cut.svg, ``mm_per_unit``). The suffix is checked before any work."""
+    from tilekit.export import output_format, write_patch  # start-up cost: NumPy, shapely
+    from tilekit.polygon import area, corner_count  # start-up cost: NumPy
+    from tilekit.render import write_image  # start-up cost: NumPy
+
+    fmt = output_format(out)
+    if fmt == ".csv":
+        raise ParameterError("a prototile has no tile table: write .svg, .png, .geojson, .json, .dxf or .cut.svg")
+    tiling = configure(_opened(catalogue).tiling(name), options)
+    patch = prototile_patch(tiling, index)
+    proto = patch.prototiles[0]
+    if fmt in (".svg", ".png"):
+        write_image(patch, out)
+    else:
+        write_patch(patch, out, mm_per_unit=mm_per_unit)
+    return WrittenPrototile(out, index, len(tiling.prototiles), proto.name or "",
+                            int(corner_count(proto.outline, proto.corners)), float(area(proto.outline)))
 
 
 # --------------------------------------------------------------------------- records

@@ -11,7 +11,6 @@ from typing import Any
 import click
 
 from tilekit.cli_types import OUTPUT, BoundedInt
-from tilekit.errors import ParameterError
 from tilekit.text import configure_options, text_table
 
 
@@ -43,21 +42,6 @@ def keys_command(state: Any, family: str | None, fmt: str) -> None:
     click.echo(text_table(["key", "type", "families", "tilings", "example", "aliases"], rows, {2: 48}))
 
 
-def prototile_patch(tiling: Any, index: int) -> Any:
-    """A patch of one tile: prototile ``index`` of ``tiling`` at the origin, unmoved (its
-    outline with any shaped edges, its marking), or a ParameterError naming the valid range."""
-    import numpy as np
-
-    from tilekit.tiling import Patch
-
-    protos = tiling.prototiles
-    if not 0 <= index < len(protos):
-        names = ", ".join(f"{i}: {p.name or '-'}" for i, p in enumerate(protos[:12]))
-        raise ParameterError(f"--index {index}: {tiling.name or 'the tiling'} has {len(protos)} prototile"
-                             f"{'s' if len(protos) != 1 else ''} (--index 0..{len(protos) - 1}; {names})")
-    return Patch([protos[index]], np.zeros(1, dtype=np.int64), np.eye(3)[None])
-
-
 @click.command(name="prototile")
 @click.argument("name")
 @click.option("--index", type=BoundedInt(0, 10_000), default=0, show_default=True,
@@ -84,27 +68,12 @@ def prototile_command(state: Any, name: str, index: int, out: str, params: tuple
       tilekit prototile cairo -o cairo-tile.dxf
       tilekit prototile penrose-p3 --index 1 -o thin.geojson
     """
-    from tilekit.export import output_format, write_patch
-    from tilekit.render import write_image
+    from tilekit import api
 
-    fmt = output_format(out)  # an unknown suffix fails before any work
-    if fmt == ".csv":
-        raise ParameterError("a prototile has no tile table: write .svg, .png, .geojson, .json, .dxf or .cut.svg")
-    tiling = state.catalogue().tiling(name)
-    options = configure_options(params, edges, settings, which)
-    if options:
-        tiling = tiling.configure(**options)
-    patch = prototile_patch(tiling, index)
-    proto = patch.prototiles[0]
-    if fmt in (".svg", ".png"):
-        write_image(patch, out)
-    else:
-        write_patch(patch, out, mm_per_unit=mm_per_unit)
-    from tilekit.polygon import area, corner_count
-
-    click.echo(f"wrote {out} (prototile {index} of {len(tiling.prototiles)}"
-               f"{': ' + proto.name if proto.name else ''}; {corner_count(proto.outline, proto.corners)} sides, "
-               f"area {float(area(proto.outline)):.6g})")
+    tile = api.write_prototile(state.catalogue, name, out, index, configure_options(params, edges, settings, which),
+                               mm_per_unit=mm_per_unit)
+    click.echo(f"wrote {tile.path} (prototile {tile.index} of {tile.of}{': ' + tile.name if tile.name else ''}; "
+               f"{tile.sides} sides, area {tile.area:.6g})")
 
 
 def register(group: click.Group) -> None:
