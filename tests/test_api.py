@@ -19,13 +19,12 @@ from tilekit.limits import LimitError
 #: Lines a command function's body may take (its docstring left out).
 MAX_COMMAND_LINES = 25
 
-#: Commands that are not yet a few lines over one call, each with its reason. Both are plugin
-#: commands whose families own them; the core's commands all fit.
+#: Commands that are not yet a few lines over one call, each with its reason. The core's
+#: commands all fit.
 LONG_COMMANDS = {
-    "escherize": "the isohedral plugin's fit: goal files, settings and three outputs checked in the "
-                 "command (tilekit/plugins/isohedral/cli.py)",
-    "wang synth": "the wang plugin's texture synthesis: atlas, window and output checks in the command "
-                  "(tilekit/plugins/wang/cli.py)",
+    "escherize": "the isohedral plugin's fit: goal checks, the monohedral / dihedral choice and the "
+                 "ranking printed in the command (tilekit/plugins/isohedral/cli.py; not yet moved into "
+                 "its escher module)",
 }
 
 

@@ -7,6 +7,8 @@ rectangle/torus question with a chosen solver. SET is a shipped set name or a .w
 
 from __future__ import annotations
 
+import contextlib
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -270,50 +272,40 @@ def synth_command(tiles_path: str, out: str, width: int, height: int, method: st
       tilekit wang synth corner-tiles.png --width 512 --height 512 --x0 100000 --y0 -7 -o window.png
     """
     # measured start-up cost: NumPy and Pillow load only when the command runs
-    from tilekit.plugins.wang.quality import SeamStats, repetition
-    from tilekit.plugins.wang.synth import render_texture, write_texture
-    from tilekit.plugins.wang.texture import load_texture_tiles
+    from tilekit.plugins.wang.synth import synthesize
 
     if not out.lower().endswith(".png"):
         raise ParseError(f"output {out!r} must end in .png")
-    tex = load_texture_tiles(tiles_path)
-    measure = SeamStats(tex.tile) if stats else None
-    bar = None
-    progress = None
-    if width * height >= 1 << 26 and _on_terminal():
-        from rich.console import Console
-        from rich.progress import (
-            BarColumn,
-            MofNCompleteColumn,
-            Progress,
-            TextColumn,
-            TimeElapsedColumn,
-        )
-
-        bar = Progress(TextColumn("[bold]{task.description}"), BarColumn(), MofNCompleteColumn(),
-                       TextColumn("rows"), TimeElapsedColumn(), console=Console(stderr=True))
-        task = bar.add_task(f"writing {Path(out).name}", total=height)
-        bar.start()
-
-        def progress(rows: int) -> None:
-            bar.update(task, advance=rows)
-
-    try:
-        done = write_texture(tex, out, width, height, method=method, seed=seed, x0=x0, y0=y0, level=compress,
-                             threads=threads, progress=progress, measure=measure)
-    finally:
-        if bar is not None:
-            bar.stop()
-    click.echo(f"wrote {out} ({width} x {height}, {done['method']} fill of {tex.tileset.name}, "
+    with _rows_bar(out, height, width * height >= 1 << 26 and _on_terminal()) as progress:
+        done = synthesize(tiles_path, out, width, height, method=method, seed=seed, x0=x0, y0=y0, level=compress,
+                          threads=threads, progress=progress, stats=stats)
+    click.echo(f"wrote {out} ({width} x {height}, {done['method']} fill of {done['tileset']}, "
                f"{done['bytes']:,} bytes; estimated {done['estimate']:,})")
-    if measure is not None:
-        s = measure.result()
-        side = min(width, height, 1024)
-        rep = repetition(render_texture(tex, side, side, done["method"], seed, x0, y0), tex.tile)
+    if stats:
+        s, rep = done["seams"], done["repetition"]
         click.echo(f"seam error: {s['edge']:.4g} across tile edges, {s['inside']:.4g} inside tiles "
                    f"(ratio {s['ratio']:.3f})")
         click.echo(f"repetition: autocorrelation peak {rep['peak']:.3f} at lag {rep['lag']} "
                    f"(a {rep['side']} px crop; a periodic tiling of one tile scores 1)")
+
+
+@contextlib.contextmanager
+def _rows_bar(out: str, rows: int, shown: bool) -> Iterator[Callable[[int], None] | None]:
+    """A progress bar of the rows written on a terminal (``shown``), told each block's rows."""
+    if not shown:
+        yield None
+        return
+    from rich.console import Console
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+    bar = Progress(TextColumn("[bold]{task.description}"), BarColumn(), MofNCompleteColumn(),
+                   TextColumn("rows"), TimeElapsedColumn(), console=Console(stderr=True))
+    task = bar.add_task(f"writing {Path(out).name}", total=rows)
+    bar.start()
+    try:
+        yield lambda done: bar.update(task, advance=done)
+    finally:
+        bar.stop()
 
 
 @wang_group.command(name="scatter")
