@@ -6,7 +6,7 @@ from __future__ import annotations
 import contextlib
 import os
 import sys
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 
 import click
 
@@ -17,6 +17,7 @@ from tilekit.cli.base import (
     pass_state,
 )
 from tilekit.cli_types import OUTPUT, POSITIVE, BoundedInt, FiniteFloat
+from tilekit.progress import terminal_bar
 from tilekit.text import configure_options
 
 # --------------------------------------------------------------------------- render
@@ -104,19 +105,6 @@ class TerminalProgress:
         if tiles > PROGRESS_TILES and on_terminal():
             click.echo(f"drawing {tiles:,} tiles to {self.out} ...", err=True)
 
-    @contextlib.contextmanager
-    def streaming(self, estimate: float) -> Iterator[Callable[[int], None]]:
-        if not (estimate > PROGRESS_TILES and on_terminal()):
-            yield lambda tiles: None
-            return
-        from rich.console import Console
-        from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
-
-        bar = Progress(TextColumn("[bold]{task.description}"), BarColumn(), TextColumn("{task.completed:,} tiles"),
-                       TimeElapsedColumn(), console=Console(stderr=True))
-        task = bar.add_task(f"streaming {os.path.basename(self.out)}", total=estimate)
-        bar.start()
-        try:
-            yield lambda tiles: bar.update(task, advance=tiles)
-        finally:
-            bar.stop()
+    def streaming(self, estimate: float) -> contextlib.AbstractContextManager[Callable[[int], None]]:
+        return terminal_bar(f"streaming {os.path.basename(self.out)}", estimate, "{task.completed:,} tiles",
+                            shown=estimate > PROGRESS_TILES and on_terminal())

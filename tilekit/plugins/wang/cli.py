@@ -7,8 +7,6 @@ rectangle/torus question with a chosen solver. SET is a shipped set name or a .w
 
 from __future__ import annotations
 
-import contextlib
-from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -17,6 +15,7 @@ import click
 from tilekit import limits
 from tilekit.cli_types import OUTPUT, POSITIVE, BoundedInt, FiniteFloat
 from tilekit.errors import ParseError
+from tilekit.progress import terminal_bar
 
 if TYPE_CHECKING:  # pragma: no cover
     from tilekit.plugins.wang.tileset import WangTileSet
@@ -276,7 +275,8 @@ def synth_command(tiles_path: str, out: str, width: int, height: int, method: st
 
     if not out.lower().endswith(".png"):
         raise ParseError(f"output {out!r} must end in .png")
-    with _rows_bar(out, height, width * height >= 1 << 26 and _on_terminal()) as progress:
+    with terminal_bar(f"writing {Path(out).name}", height, "{task.completed}/{task.total} rows",
+                      shown=width * height >= 1 << 26 and _on_terminal()) as progress:
         done = synthesize(tiles_path, out, width, height, method=method, seed=seed, x0=x0, y0=y0, level=compress,
                           threads=threads, progress=progress, stats=stats)
     click.echo(f"wrote {out} ({width} x {height}, {done['method']} fill of {done['tileset']}, "
@@ -287,25 +287,6 @@ def synth_command(tiles_path: str, out: str, width: int, height: int, method: st
                    f"(ratio {s['ratio']:.3f})")
         click.echo(f"repetition: autocorrelation peak {rep['peak']:.3f} at lag {rep['lag']} "
                    f"(a {rep['side']} px crop; a periodic tiling of one tile scores 1)")
-
-
-@contextlib.contextmanager
-def _rows_bar(out: str, rows: int, shown: bool) -> Iterator[Callable[[int], None] | None]:
-    """A progress bar of the rows written on a terminal (``shown``), told each block's rows."""
-    if not shown:
-        yield None
-        return
-    from rich.console import Console
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
-
-    bar = Progress(TextColumn("[bold]{task.description}"), BarColumn(), MofNCompleteColumn(),
-                   TextColumn("rows"), TimeElapsedColumn(), console=Console(stderr=True))
-    task = bar.add_task(f"writing {Path(out).name}", total=rows)
-    bar.start()
-    try:
-        yield lambda done: bar.update(task, advance=done)
-    finally:
-        bar.stop()
 
 
 @wang_group.command(name="scatter")
