@@ -11,23 +11,7 @@ from typing import Any
 import click
 
 from tilekit.cli_types import OUTPUT, BoundedInt
-from tilekit.errors import ParameterError
 from tilekit.text import configure_options, text_table
-
-
-def _result_table_keys(cat: Any, rt: Any, family: str) -> list[Any]:
-    """KeyInfos for the columns of a result table (what ``--where`` filters on for its family)."""
-    from tilekit.catalogue.results import column_kind
-    from tilekit.catalogue.vocabulary import KeyInfo
-
-    rows = cat.count_result_rows(rt)
-    examples = {"bool": "{}=true", "int": "{}>=1", "float": "{}>=0.5", "json": "{}~TEXT", "text": "{}=TEXT"}
-    out = []
-    for column in rt.table.c:
-        kind = column_kind(column.type)
-        out.append(KeyInfo(key=column.name, type=kind, families=(family,), tilings=rows,
-                           example=examples.get(kind, "{}=VALUE").format(column.name)))
-    return out
 
 
 @click.command(name="keys")
@@ -45,25 +29,9 @@ def keys_command(state: Any, family: str | None, fmt: str) -> None:
       tilekit keys isohedral
       tilekit keys --format json
     """
-    from tilekit.catalogue.entry import TEXT_COLUMNS
-    from tilekit.catalogue.vocabulary import KeyInfo
+    from tilekit import api
 
-    cat = state.reader(family)
-    cat.check_family(family)
-    rt = cat.family_table(family)
-    if rt is not None:
-        infos = _result_table_keys(cat, rt, family or "")
-    else:
-        infos = cat.key_table(family)
-        everyone = tuple(sorted({f for info in infos for f in info.families}))
-        total = cat.count(family)
-        first = cat.query(family=family, limit=1)
-        if first:
-            shown = {"name": first[0].name, "family": first[0].family,
-                     "title": (first[0].title.split() or ["a"])[0].lower()}
-            infos = [KeyInfo(key=c, type="text", families=everyone, tilings=total,
-                             example=f"{c}{'~' if c == 'title' else '='}{shown[c]}")
-                     for c in TEXT_COLUMNS] + infos
+    infos = api.keys(state.reader(family), family)
     if fmt == "json":
         click.echo(json.dumps([i.to_dict() for i in infos], indent=2, ensure_ascii=False))
         return
@@ -72,21 +40,6 @@ def keys_command(state: Any, family: str | None, fmt: str) -> None:
         return
     rows = [[i.key, i.type, ", ".join(i.families), str(i.tilings), i.example, ", ".join(i.aliases)] for i in infos]
     click.echo(text_table(["key", "type", "families", "tilings", "example", "aliases"], rows, {2: 48}))
-
-
-def prototile_patch(tiling: Any, index: int) -> Any:
-    """A patch of one tile: prototile ``index`` of ``tiling`` at the origin, unmoved (its
-    outline with any shaped edges, its marking), or a ParameterError naming the valid range."""
-    import numpy as np
-
-    from tilekit.tiling import Patch
-
-    protos = tiling.prototiles
-    if not 0 <= index < len(protos):
-        names = ", ".join(f"{i}: {p.name or '-'}" for i, p in enumerate(protos[:12]))
-        raise ParameterError(f"--index {index}: {tiling.name or 'the tiling'} has {len(protos)} prototile"
-                             f"{'s' if len(protos) != 1 else ''} (--index 0..{len(protos) - 1}; {names})")
-    return Patch([protos[index]], np.zeros(1, dtype=np.int64), np.eye(3)[None])
 
 
 @click.command(name="prototile")
@@ -115,27 +68,12 @@ def prototile_command(state: Any, name: str, index: int, out: str, params: tuple
       tilekit prototile cairo -o cairo-tile.dxf
       tilekit prototile penrose-p3 --index 1 -o thin.geojson
     """
-    from tilekit.export import output_format, write_patch
-    from tilekit.render import write_image
+    from tilekit import api
 
-    fmt = output_format(out)  # an unknown suffix fails before any work
-    if fmt == ".csv":
-        raise ParameterError("a prototile has no tile table: write .svg, .png, .geojson, .json, .dxf or .cut.svg")
-    tiling = state.catalogue().tiling(name)
-    options = configure_options(params, edges, settings, which)
-    if options:
-        tiling = tiling.configure(**options)
-    patch = prototile_patch(tiling, index)
-    proto = patch.prototiles[0]
-    if fmt in (".svg", ".png"):
-        write_image(patch, out)
-    else:
-        write_patch(patch, out, mm_per_unit=mm_per_unit)
-    from tilekit.polygon import area, corner_count
-
-    click.echo(f"wrote {out} (prototile {index} of {len(tiling.prototiles)}"
-               f"{': ' + proto.name if proto.name else ''}; {corner_count(proto.outline, proto.corners)} sides, "
-               f"area {float(area(proto.outline)):.6g})")
+    tile = api.write_prototile(state.catalogue, name, out, index, configure_options(params, edges, settings, which),
+                               mm_per_unit=mm_per_unit)
+    click.echo(f"wrote {tile.path} (prototile {tile.index} of {tile.of}{': ' + tile.name if tile.name else ''}; "
+               f"{tile.sides} sides, area {tile.area:.6g})")
 
 
 def register(group: click.Group) -> None:

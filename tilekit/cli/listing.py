@@ -14,7 +14,6 @@ from tilekit.cli.base import (
     pass_state,
 )
 from tilekit.cli_types import COUNT
-from tilekit.errors import TilekitError
 from tilekit.text import format_value as _format_value
 from tilekit.text import text_table as _table
 
@@ -90,19 +89,20 @@ def list_(state: State, family: str | None, where: tuple[str, ...], text: str | 
       tilekit list --text penrose --limit 5 --format json
       tilekit list --family vertex-species --where status=impossible --count
     """
+    from tilekit import api
     from tilekit.catalogue.output import write_entries
 
-    cat = state.reader(family)
-    cat.check_family(family)
+    matches = api.query(state.reader(family), family, where, text, order_by, limit, offset)
     if count_only:
-        click.echo(cat.count_matching(family=family, where=list(where), text=text))
-        return
-    entries = cat.iter_query(family=family, where=list(where), text=text, order_by=order_by,
-                             limit=limit, offset=offset)
-    if fmt in ("json", "csv", "jsonl"):
-        keys = cat._export_keys(family) if fmt == "csv" and cat.family_table(family) is not None else None
-        write_entries(entries, sys.stdout, fmt, keys=keys)
-        return
+        click.echo(matches.count())
+    elif fmt in ("json", "csv", "jsonl"):
+        write_entries(iter(matches), sys.stdout, fmt, keys=matches.csv_keys() if fmt == "csv" else None)
+    else:
+        _print_entries(matches)
+
+
+def _print_entries(entries: Any) -> None:
+    """The name / family / title table, a thousand rows at a time (streamed)."""
     shown = 0
     batch: list[Any] = []
     for entry in entries:
@@ -111,11 +111,10 @@ def list_(state: State, family: str | None, where: tuple[str, ...], text: str | 
             click.echo(_table(["name", "family", "title"], batch, {2: 60}))
             shown += len(batch)
             batch = []
-    if batch or not shown:
-        if not batch:
-            click.echo("no tilings match", err=True)
-            return
+    if batch:
         click.echo(_table(["name", "family", "title"], batch, {2: 60}))
+    elif not shown:
+        click.echo("no tilings match", err=True)
 
 
 @cli.command()
@@ -130,14 +129,18 @@ def show(state: State, name: str) -> None:
       tilekit show cairo
       tilekit show penrose-p3
     """
-    from tilekit.plugins import families as all_families
+    from tilekit import api
 
-    cat = state.catalogue()
-    fams = all_families(state.pm)
-    if name in fams and not cat.query(where=[f"name={name}"]):
-        _show_family(cat, fams[name])
-        return
-    entry = cat.get(name)
+    summary = api.family_summary(state.catalogue(), name, pm=state.pm)
+    if summary is not None:
+        _print_family(summary)
+    else:
+        _print_record(api.record(state.catalogue(), name, pm=state.pm))
+
+
+def _print_record(rec: Any) -> None:
+    """``tilekit show NAME``: the record's columns and properties, then its family's description."""
+    entry = rec.entry
     click.echo(f"name: {entry.name}")
     click.echo(f"family: {entry.family}")
     if entry.title:
@@ -148,42 +151,30 @@ def show(state: State, name: str) -> None:
     width = max((len(k) for k in entry.properties), default=0)
     for key, value in entry.properties.items():
         click.echo(f"  {key.ljust(width)}  {_format_value(value)}")
-    if entry.family not in all_families(state.pm) and cat.family_table(entry.family) is None:
-        click.echo(f"(family {entry.family!r} is not installed: no geometry)", err=True)
+    if not rec.installed:
+        click.echo(f"({rec.error})", err=True)
         return
-    try:
-        tiling = cat.tiling(entry)
-    except TilekitError as exc:  # a record without geometry, e.g. a vertex type that cannot tile
-        click.echo(f"(no geometry: {exc})")
+    if rec.tiling is None:
+        click.echo(f"(no geometry: {rec.error})")
         return
-    if "wallpaper_group" not in entry.properties and "symmetry_group" not in entry.properties:
-        from tilekit.tiling import PeriodicTiling
-
-        if isinstance(tiling, PeriodicTiling):
-            from tilekit.symmetry import wallpaper_group
-
-            group = wallpaper_group(tiling)
-            click.echo(f"  {'wallpaper_group'.ljust(width)}  {group.iuc} ({group.orbifold}; computed)")
-    text = tiling.describe()
+    group = rec.computed_group()
+    if group is not None:
+        click.echo(f"  {'wallpaper_group'.ljust(width)}  {group.iuc} ({group.orbifold}; computed)")
+    text = rec.description()
     if text:
         click.echo("")
         click.echo(text.rstrip("\n"))
 
 
-def _show_family(cat: Any, fam: Any) -> None:
+def _print_family(summary: Any) -> None:
     """``tilekit show FAMILY``: its summary, description, size and the options its tilings take."""
+    fam = summary.family
     click.echo(f"family: {fam.name}")
     click.echo(f"summary: {fam.summary}")
     if getattr(fam, "description", ""):
         click.echo(f"description: {fam.description}")
-    click.echo(f"tilings: {cat.count(fam.name)} (tilekit list --family {fam.name})")
-    sample = cat.query(family=fam.name, limit=1)
-    if sample:
-        try:
-            text = cat.tiling(sample[0].name).options_help()
-        except TilekitError:
-            text = ""
-        if text:
-            click.echo(f"options of tilekit render (e.g. {sample[0].name}):")
-            for line in text.splitlines():
-                click.echo(f"  {line}")
+    click.echo(f"tilings: {summary.tilings} (tilekit list --family {fam.name})")
+    if summary.options_help:
+        click.echo(f"options of tilekit render (e.g. {summary.example}):")
+        for line in summary.options_help.splitlines():
+            click.echo(f"  {line}")

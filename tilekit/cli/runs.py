@@ -165,7 +165,7 @@ class _Reporter:
 
 def _run_search_cli(state: State, name: str, params: dict[str, Any] | None, executor: str,
                     workers: int | None, resume: int | None, scheduler: str | None = None) -> None:
-    from tilekit.search import run_search
+    from tilekit import api
     from tilekit.signals import Terminated
 
     cat = state.catalogue()
@@ -175,8 +175,8 @@ def _run_search_cli(state: State, name: str, params: dict[str, Any] | None, exec
         reporter.run_id = run_id
 
     try:
-        run_id = run_search(cat, name, params, executor=executor, workers=workers, resume_run=resume,
-                            progress=reporter, pm=state.pm, on_run=announce, scheduler=scheduler)
+        info = api.start_run(cat, name, params, executor=executor, workers=workers, resume=resume,
+                             progress=reporter, pm=state.pm, on_run=announce, scheduler=scheduler)
     except KeyboardInterrupt as exc:
         reporter.close()
         code = 143 if isinstance(exc, Terminated) else 130
@@ -188,7 +188,7 @@ def _run_search_cli(state: State, name: str, params: dict[str, Any] | None, exec
                        f"tilekit search {name} --resume {info.id}", code) from None
     finally:
         reporter.close()
-    _print_run(cat.run(run_id))
+    _print_run(info)
 
 
 def _print_run(info: Any) -> None:
@@ -231,38 +231,36 @@ def runs(state: State, words: tuple[str, ...], fmt: str) -> None:
       tilekit runs show 3 --format json
       tilekit runs cancel 3
     """
-    from tilekit.catalogue import run_json
+    from tilekit import api
 
     action, run_id = _run_words(words)
     cat = state.catalogue()
     if action == "cancel":
         info = cat.cancel_run(run_id)
         click.echo(f"run {info.id} cancelled ({info.progress} chunks recorded)")
+    elif action == "delete":
+        click.echo(f"run {run_id} deleted ({cat.delete_run(run_id)} result rows)")
+    elif fmt == "json":
+        click.echo(json.dumps(api.run_data(cat, run_id), indent=2, ensure_ascii=False, default=str))
+    elif run_id is None:
+        _print_runs(cat.runs())
+    else:
+        _print_report(api.run_report(cat, run_id))
+
+
+def _print_runs(infos: list[Any]) -> None:
+    """The table of every run."""
+    if not infos:
+        click.echo("no runs yet", err=True)
         return
-    if action == "delete":
-        rows = cat.delete_run(run_id)
-        click.echo(f"run {run_id} deleted ({rows} result rows)")
-        return
-    infos = [cat.run(run_id)] if run_id is not None else cat.runs()
-    if fmt == "json":
-        data = []
-        for info in infos:
-            item = run_json(info)
-            if run_id is not None:
-                item["results"] = cat.results(info.id)
-                item["counts"] = cat.run_counts(info.id)
-            data.append(item)
-        click.echo(json.dumps(data, indent=2, ensure_ascii=False, default=str))
-        return
-    if run_id is None:
-        if not infos:
-            click.echo("no runs yet", err=True)
-            return
-        rows = [[str(i.id), i.kind, i.status, i.progress, f"{i.seconds:.2f}", str(i.rows),
-                 json.dumps(i.summary, ensure_ascii=False) if i.summary else (i.error or "")] for i in infos]
-        click.echo(_table(["id", "kind", "status", "progress", "seconds", "rows", "summary"], rows, {6: 70}))
-        return
-    info = infos[0]
+    rows = [[str(i.id), i.kind, i.status, i.progress, f"{i.seconds:.2f}", str(i.rows),
+             json.dumps(i.summary, ensure_ascii=False) if i.summary else (i.error or "")] for i in infos]
+    click.echo(_table(["id", "kind", "status", "progress", "seconds", "rows", "summary"], rows, {6: 70}))
+
+
+def _print_report(report: Any) -> None:
+    """One run in detail (tilekit.api.RunReport)."""
+    info = report.info
     _print_run(info)
     click.echo(f"  params: {json.dumps(info.params, ensure_ascii=False)}")
     for k in ("created_at", "started_at", "finished_at"):
@@ -273,20 +271,18 @@ def runs(state: State, words: tuple[str, ...], fmt: str) -> None:
         click.echo(f"  workers alive: {info.workers_alive}, chunks leased: {info.chunks_leased}")
     if info.error:
         click.echo(f"  error: {info.error}")
-    chunks = cat.run_chunks(info.id)
-    pending = [str(c["index"]) for c in chunks if c["status"] != "done"]
+    pending = [str(i) for i in report.pending]
     if pending:
         shown = ", ".join(pending[:40]) + (f", ... ({len(pending)} in all)" if len(pending) > 40 else "")
         click.echo(f"  pending chunks: {shown}")
-    if info.chunks_done and info.seconds > 0:
-        click.echo(f"  rate: {info.chunks_done / info.seconds:.2f} chunks/s, {info.rows / info.seconds:,.0f} rows/s (wall)")
-    if info.chunks_done and info.status in ("running", "interrupted") and info.worker_seconds > 0:
-        per_chunk = info.worker_seconds / info.chunks_done
-        left = per_chunk * (info.chunks_total - info.chunks_done)
+    if report.chunk_rate is not None:
+        click.echo(f"  rate: {report.chunk_rate:.2f} chunks/s, {report.row_rate:,.0f} rows/s (wall)")
+    if report.worker_seconds_left is not None:
+        per_chunk, left = report.worker_seconds_left
         click.echo(f"  worker time per chunk: {per_chunk:.3f} s; left: about {left:.0f} worker-seconds"
                    + (f" (about {left / info.workers_alive:.0f} s with {info.workers_alive} workers)"
                       if info.workers_alive else ""))
-    click.echo(f"  results: {sum(1 for _ in cat.iter_results(info.id))}")
+    click.echo(f"  results: {report.results}")
 
 
 def _run_words(words: tuple[str, ...]) -> tuple[str, int | None]:

@@ -19,6 +19,7 @@ from starlette.requests import Request
 from starlette.responses import JSONResponse, Response, StreamingResponse
 from starlette.routing import Route
 
+import tilekit.api
 from tilekit.catalogue import run_json
 from tilekit.errors import (
     CatalogueError,
@@ -142,12 +143,9 @@ def run_query(state: Any, request: Request) -> dict[str, Any]:
     args = query_args(request)
     limit = _int(request, "limit", 24, 0, MAX_PAGE)
     offset = _int(request, "offset", 0, 0, 2**62)
-    cat = state.catalogue
-    cat.check_family(args["family"])
-    total = cat.count_matching(args["family"], args["where"], args["text"])
-    items = cat.query(limit=limit, offset=offset, **args)
-    return {"total": total, "offset": offset, "limit": limit,
-            "items": [entry_json(e) for e in items], "query": args}
+    matches = tilekit.api.query(state.catalogue, limit=limit, offset=offset, **args)
+    return {"total": matches.count(), "offset": offset, "limit": limit,
+            "items": [entry_json(e) for e in matches], "query": args}
 
 
 def render_options(request: Request, body: dict[str, Any] | None) -> dict[str, Any]:
@@ -189,17 +187,16 @@ def routes(state: Any) -> list[Route]:
 
     @endpoint
     def tiling(request: Request) -> Response:
-        name = request.path_params["name"]
-        entry = cat().get(name)
-        out = entry_json(entry)
-        out["spec"] = json.loads(json.dumps(entry.spec, default=str))
-        try:
-            t = state.renderer.base_tiling(entry.name)
-            out["describe"] = t.describe()
-            out["spec_hash"] = state.renderer.spec_hash(t)
-        except TilekitError as exc:
+        rec = tilekit.api.record(cat(), request.path_params["name"],
+                                 build=lambda entry: state.renderer.base_tiling(entry.name))
+        out = entry_json(rec.entry)
+        out["spec"] = json.loads(json.dumps(rec.entry.spec, default=str))
+        if rec.tiling is None:
             out["describe"] = None
-            out["geometry_error"] = one_line(exc)
+            out["geometry_error"] = one_line(rec.error)
+        else:
+            out["describe"] = rec.tiling.describe()
+            out["spec_hash"] = state.renderer.spec_hash(rec.tiling)
         return JSONResponse(out)
 
     def _render(request: Request, body: dict[str, Any] | None) -> Response:
@@ -247,15 +244,12 @@ def routes(state: Any) -> list[Route]:
 
     @endpoint
     def runs(request: Request) -> Response:
-        return JSONResponse({"runs": [run_json(i) for i in cat().runs()]})
+        return JSONResponse({"runs": tilekit.api.run_data(cat())})
 
     @endpoint
     def run(request: Request) -> Response:
-        run_id = _run_id(request)
-        info = cat().run(run_id)
-        out = run_json(info)
-        out["counts"] = json.loads(json.dumps(cat().run_counts(run_id), default=str))
-        return JSONResponse(out)
+        out = tilekit.api.run_data(cat(), _run_id(request), results=False)[0]
+        return JSONResponse(json.loads(json.dumps(out, default=str)))
 
     @endpoint
     def run_results(request: Request) -> Response:

@@ -24,6 +24,7 @@ from starlette.responses import HTMLResponse, JSONResponse, Response
 from starlette.routing import Mount, Route
 from starlette.staticfiles import StaticFiles
 
+import tilekit.api
 from tilekit.catalogue import open_catalogue, run_json
 from tilekit.errors import NotFoundError, TilekitError
 from tilekit.plugins import WebRoute, families, get_plugin_manager
@@ -258,14 +259,14 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
             raise NotFoundError("family", name, fams)
         limit = api._int(request, "limit", 48, 1, api.MAX_PAGE)
         offset = api._int(request, "offset", 0, 0, 2**62)
-        total = state.catalogue.count_matching(name)
-        entries = state.catalogue.query(family=name, limit=limit, offset=offset)
+        matches = tilekit.api.query(state.catalogue, name, limit=limit, offset=offset)
         fam = fams[name]
-        return _html(pages.family_page(name, fam.summary, fam.description or "", total, offset, limit, entries))
+        return _html(pages.family_page(name, fam.summary, fam.description or "", matches.count(), offset, limit,
+                                       list(matches)))
 
     @page
     def runs(request: Request) -> Response:
-        return _html(pages.runs_page([run_json(i) for i in state.catalogue.runs()]))
+        return _html(pages.runs_page(tilekit.api.run_data(state.catalogue)))
 
     @page
     def run(request: Request) -> Response:

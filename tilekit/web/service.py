@@ -1,8 +1,9 @@
-"""The service layer behind the pages and the API: options -> tiling -> bounded SVG/PNG.
+"""The service layer behind the pages and the API: request options -> tiling -> bounded SVG.
 
-It mirrors ``tilekit render``: a catalogue tiling, ``configure(**options)`` with params,
-edges, depth and the family's own settings, a region (default: the tiling's own), the
-palette; then :func:`tilekit.web.limits.check_render_size` before any patch is built.
+Request parsing (query strings, JSON bodies) and the render cache live here; the tiling is
+configured and drawn by the calls ``tilekit render`` makes (:func:`tilekit.api.configure`,
+:func:`tilekit.api.render_svg`: the estimate checked against the server's tile limit before any
+patch is built, a refusal being :class:`tilekit.web.limits.RenderTooLarge`, HTTP 413).
 """
 
 from __future__ import annotations
@@ -14,13 +15,13 @@ from collections import OrderedDict
 from collections.abc import Iterable, Mapping
 from typing import Any
 
+from tilekit import api
 from tilekit.errors import ParameterError, ParseError
-from tilekit.geometry import as_region
-from tilekit.render import parse_palette, patch_to_svg
+from tilekit.render import parse_palette
 from tilekit.schema import finite_number
 from tilekit.text import parse_region as text_region
 from tilekit.text import parse_settings
-from tilekit.web.limits import DEFAULT_MAX_TILES, RenderTooLarge, check_render_size
+from tilekit.web.limits import DEFAULT_MAX_TILES, RenderTooLarge
 
 #: Options a render request may carry besides the tiling's name.
 RENDER_KEYS = ("params", "edges", "depth", "region", "colours", "colouring", "size", "r1", "theta1", "r2",
@@ -125,6 +126,15 @@ def normalise_options(raw: Mapping[str, Any]) -> dict[str, Any]:
     return out
 
 
+def _too_large(name: str) -> Any:
+    """The web's refusal of a render over the tile limit: RenderTooLarge (HTTP 413)."""
+
+    def refuse(count: float, limit: int, what: str) -> None:
+        raise RenderTooLarge(int(count), limit, what or name)
+
+    return refuse
+
+
 class Renderer:
     """Builds and renders tilings for one catalogue, with an LRU cache keyed by spec hash."""
 
@@ -151,13 +161,8 @@ class Renderer:
         return tiling
 
     def build(self, name: str, options: Mapping[str, Any]) -> Any:
-        tiling = self.base_tiling(name)
-        conf = {k: v for k, v in options.items() if k in ("params", "edges", "depth", "r1", "theta1", "r2",
-                                                           "theta2", "colouring", "seed")}
-        conf.update(options.get("settings", {}))  # the family checks its own options
-        if conf:
-            tiling = tiling.configure(**conf)
-        return tiling
+        """The catalogue tiling ``name`` configured by typed options (:func:`normalise_options`)."""
+        return api.configure(self.base_tiling(name), options)
 
     # rendering --------------------------------------------------------------
     def render(self, name: str, raw: Mapping[str, Any], *, thumbnail: bool = False) -> tuple[Any, str, int]:
@@ -171,19 +176,15 @@ class Renderer:
         labels = str(raw.get("labels", "")).lower() in ("1", "true", "yes", "on")
         tiling = self.build(name, options)
         box = parse_region(raw.get("region"))
-        area = as_region(box) if box is not None else tiling.default_region()
         key = self.key(tiling, box, size, palette, labels, thumbnail)
         with self._lock:
             hit = self._cache.get(key)
             if hit is not None:
                 self._cache.move_to_end(key)
                 return tiling, hit, -1
-        estimate = check_render_size(tiling, area, options.get("depth"), self.max_tiles)
-        patch = tiling.patch(area)
-        if len(patch) > self.max_tiles:  # the estimate was low: refuse all the same
-
-            raise RenderTooLarge(len(patch), self.max_tiles, tiling.name or name)
-        svg = patch_to_svg(patch, palette=palette, labels=labels, region=area, size=size)
+        picture = api.render_svg(tiling, box, max_tiles=self.max_tiles, too_large=_too_large(name),
+                                 palette=palette, labels=labels, size=size)
+        svg, estimate = picture.svg, picture.estimate
         with self._lock:
             self._cache[key] = svg
             while len(self._cache) > self.cache_size:

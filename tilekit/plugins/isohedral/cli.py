@@ -7,6 +7,8 @@ Only click and the limits (a module without imports) are loaded at the top, so t
 
 from __future__ import annotations
 
+from typing import Any
+
 import click
 
 from tilekit.cli_types import OUTPUT, BoundedInt
@@ -63,16 +65,9 @@ def escherize_command(goals: tuple[str, ...], out: str, types: str | None, all_t
       tilekit escherize star.json --types IH1,IH4,IH28 --workers 2 -o star/
       tilekit escherize bird.json fish.json --types IH1,IH2 -o pair/
     """
-    if heaven_hell and len(goals) != 2:
-        raise TilekitError("--heaven-hell needs two goals (GOAL_A GOAL_B): the one tile is matched to both")
-    if len(goals) > 2:
-        raise TilekitError(f"escherize takes one goal (monohedral) or two (dihedral), got {len(goals)}: "
-                           + " ".join(goals[:4]))
+    _check_goals(goals, heaven_hell)
     # measured start-up cost: the fit loads NumPy, shapely, scipy and the engine (~1 s), so
     # it is imported when the command runs, not when `tilekit --help` lists it
-    # every optional module the fit imports later, checked before any work: one line naming the extra
-    for module in ("scipy.optimize", "threadpoolctl"):
-        optional(module, "escher", "tilekit escherize")
     from tilekit.plugins.isohedral import escher
 
     if types is not None and all_types:
@@ -82,24 +77,33 @@ def escherize_command(goals: tuple[str, ...], out: str, types: str | None, all_t
         _dihedral(goals, out, chosen, top, samples, starts, edge_points, path_points, heaven_hell, reflection,
                   workers, seed)
         return
-    goal = goals[0]
-    chosen = chosen or escher.unmarked_types()
-    target = escher.read_goal(goal)
     settings = escher.Settings(samples=samples, starts=starts, edge_points=edge_points,
                                reflection=reflection, seed=seed)
-    results, failed = escher.escherize(target, chosen, settings=settings, workers=workers)
-    if not results:
-        raise TilekitError(f"no type gave a valid tiling for {goal}: "
-                           + "; ".join(f"IH{ih}: {why}" for ih, why in failed[:3]))
-    best = results[:top]
-    written = escher.write_outputs(best, target, out)
-    click.echo(f"{len(target)}-gon goal, {len(chosen)} types, {len(results)} fitted"
-               + (f", {len(failed)} without a valid tiling" if failed else ""))
+    _print_ranking(escher.fit_goal_file(goals[0], out, chosen, top=top, settings=settings, workers=workers), out)
+
+
+def _check_goals(goals: tuple[str, ...], heaven_hell: bool) -> None:
+    """One goal or two (two with --heaven-hell), and the fit's optional modules installed:
+    checked before any work, each a line naming what is wrong (or the extra to install)."""
+    if heaven_hell and len(goals) != 2:
+        raise TilekitError("--heaven-hell needs two goals (GOAL_A GOAL_B): the one tile is matched to both")
+    if len(goals) > 2:
+        raise TilekitError(f"escherize takes one goal (monohedral) or two (dihedral), got {len(goals)}: "
+                           + " ".join(goals[:4]))
+    for module in ("scipy.optimize", "threadpoolctl"):
+        optional(module, "escher", "tilekit escherize")
+
+
+def _print_ranking(fit: Any, out: str) -> None:
+    """The monohedral fit's ranking, the files written and how to reopen them."""
+    best = fit.best
+    click.echo(f"{fit.sides}-gon goal, {len(fit.types)} types, {fit.fitted} fitted"
+               + (f", {len(fit.failed)} without a valid tiling" if fit.failed else ""))
     click.echo("rank  type   distance  note")
     for rank, r in enumerate(best, 1):
         note = "" if r.shrink == 1.0 else f"edge shapes shrunk to {r.shrink:g} to tile (fit {r.fitted_distance:.4f})"
         click.echo(f"{rank:>4}  {r.name:<5}  {r.distance:8.5f}  {note}".rstrip())
-    click.echo(f"wrote {len(written)} files to {out}")
+    click.echo(f"wrote {len(fit.written)} files to {out}")
     first = f"{out.rstrip('/')}/01-{best[0].name}.isohedral.json"
     click.echo(f"reopen: tilekit render --system {first} -o {best[0].name}.svg")
     click.echo("in the web editor (tilekit serve, then http://127.0.0.1:8000 and the path; also in ranking.json):")

@@ -29,7 +29,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from tilekit.errors import GeometryError, ParameterError
+from tilekit.errors import GeometryError, ParameterError, TilekitError
 from tilekit.escher import (  # noqa: F401 - the metric's names, re-exported for the dihedral and Heaven-and-Hell fits
     SUBSHIFTS,
     FitSettings,
@@ -498,6 +498,34 @@ def escherize(goal: Any, types: Iterable[int] | None = None, *, settings: Settin
     good = sorted((o for o in outs if isinstance(o, EscherResult)), key=lambda r: (r.distance, r.ih))
     failed = [o for o in outs if not isinstance(o, EscherResult)]
     return good, failed
+
+
+@dataclass
+class GoalFit:
+    """What :func:`fit_goal_file` did: the goal's corners, the types tried, the ``best``
+    results (ranked), how many types fitted, the types without a valid tiling, the files written."""
+
+    sides: int
+    types: list[int]
+    best: list[EscherResult]
+    fitted: int
+    failed: list[tuple[int, str]]
+    written: list[Path]
+
+
+def fit_goal_file(goal_path: str, out_dir: str, types: Sequence[int] | None = None, *, top: int = 5,
+                  settings: Settings = Settings(), workers: int = 1) -> GoalFit:
+    """``tilekit escherize GOAL``: the goal read from its file (:func:`read_goal`), every type of
+    ``types`` (default the 81 unmarked types) fitted (:func:`escherize`), the best ``top``
+    written to ``out_dir`` (:func:`write_outputs`); a TilekitError when no type tiles."""
+    chosen = list(types) if types is not None else unmarked_types()
+    target = read_goal(goal_path)
+    results, failed = escherize(target, chosen, settings=settings, workers=workers)
+    if not results:
+        raise TilekitError(f"no type gave a valid tiling for {goal_path}: "
+                           + "; ".join(f"IH{ih}: {why}" for ih, why in failed[:3]))
+    best = results[:top]
+    return GoalFit(len(target), chosen, best, len(results), failed, write_outputs(best, target, out_dir))
 
 
 def aligned_goal(result: EscherResult, goal: np.ndarray, samples: int = DEFAULT_SAMPLES) -> np.ndarray:

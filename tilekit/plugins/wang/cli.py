@@ -15,6 +15,7 @@ import click
 from tilekit import limits
 from tilekit.cli_types import OUTPUT, POSITIVE, BoundedInt, FiniteFloat
 from tilekit.errors import ParseError
+from tilekit.progress import terminal_bar
 
 if TYPE_CHECKING:  # pragma: no cover
     from tilekit.plugins.wang.tileset import WangTileSet
@@ -270,46 +271,18 @@ def synth_command(tiles_path: str, out: str, width: int, height: int, method: st
       tilekit wang synth corner-tiles.png --width 512 --height 512 --x0 100000 --y0 -7 -o window.png
     """
     # measured start-up cost: NumPy and Pillow load only when the command runs
-    from tilekit.plugins.wang.quality import SeamStats, repetition
-    from tilekit.plugins.wang.synth import render_texture, write_texture
-    from tilekit.plugins.wang.texture import load_texture_tiles
+    from tilekit.plugins.wang.synth import synthesize
 
     if not out.lower().endswith(".png"):
         raise ParseError(f"output {out!r} must end in .png")
-    tex = load_texture_tiles(tiles_path)
-    measure = SeamStats(tex.tile) if stats else None
-    bar = None
-    progress = None
-    if width * height >= 1 << 26 and _on_terminal():
-        from rich.console import Console
-        from rich.progress import (
-            BarColumn,
-            MofNCompleteColumn,
-            Progress,
-            TextColumn,
-            TimeElapsedColumn,
-        )
-
-        bar = Progress(TextColumn("[bold]{task.description}"), BarColumn(), MofNCompleteColumn(),
-                       TextColumn("rows"), TimeElapsedColumn(), console=Console(stderr=True))
-        task = bar.add_task(f"writing {Path(out).name}", total=height)
-        bar.start()
-
-        def progress(rows: int) -> None:
-            bar.update(task, advance=rows)
-
-    try:
-        done = write_texture(tex, out, width, height, method=method, seed=seed, x0=x0, y0=y0, level=compress,
-                             threads=threads, progress=progress, measure=measure)
-    finally:
-        if bar is not None:
-            bar.stop()
-    click.echo(f"wrote {out} ({width} x {height}, {done['method']} fill of {tex.tileset.name}, "
+    with terminal_bar(f"writing {Path(out).name}", height, "{task.completed}/{task.total} rows",
+                      shown=width * height >= 1 << 26 and _on_terminal()) as progress:
+        done = synthesize(tiles_path, out, width, height, method=method, seed=seed, x0=x0, y0=y0, level=compress,
+                          threads=threads, progress=progress, stats=stats)
+    click.echo(f"wrote {out} ({width} x {height}, {done['method']} fill of {done['tileset']}, "
                f"{done['bytes']:,} bytes; estimated {done['estimate']:,})")
-    if measure is not None:
-        s = measure.result()
-        side = min(width, height, 1024)
-        rep = repetition(render_texture(tex, side, side, done["method"], seed, x0, y0), tex.tile)
+    if stats:
+        s, rep = done["seams"], done["repetition"]
         click.echo(f"seam error: {s['edge']:.4g} across tile edges, {s['inside']:.4g} inside tiles "
                    f"(ratio {s['ratio']:.3f})")
         click.echo(f"repetition: autocorrelation peak {rep['peak']:.3f} at lag {rep['lag']} "

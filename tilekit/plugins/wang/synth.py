@@ -30,7 +30,8 @@ import numpy as np
 from tilekit import limits
 from tilekit.errors import ParameterError
 from tilekit.plugins.wang.fill import random_access_fill, scanline_rows, supports_random_access
-from tilekit.plugins.wang.texture import TextureTiles
+from tilekit.plugins.wang.quality import SeamStats, repetition
+from tilekit.plugins.wang.texture import TextureTiles, load_texture_tiles
 from tilekit.plugins.wang.tileset import WangTileSet
 from tilekit.pngstream import IDAT_BYTES, PngWriter, filter_rows
 
@@ -227,3 +228,23 @@ def write_texture(tex: TextureTiles, path: str | Path, width: int, height: int, 
 def _chain(first: np.ndarray, rest: Iterator[np.ndarray]) -> Iterator[np.ndarray]:
     yield first
     yield from rest
+
+
+def synthesize(tiles_path: str | Path, path: str | Path, width: int, height: int, *, method: str = "auto",
+               seed: int = 0, x0: int = 0, y0: int = 0, level: int = LEVEL, threads: int = 1,
+               progress: Callable[[int], Any] | None = None, stats: bool = False) -> dict[str, Any]:
+    """``tilekit wang synth``: the tile atlas at ``tiles_path`` (:func:`load_texture_tiles`)
+    assembled into a ``width`` x ``height`` texture streamed to the PNG ``path``
+    (:func:`write_texture`). Returns what :func:`write_texture` does plus ``tileset`` (the set's
+    name) and, with ``stats``, ``seams`` (SeamStats over every block) and ``repetition`` (the
+    autocorrelation peak of a crop of at most 1024 px a side)."""
+    tex = load_texture_tiles(tiles_path)
+    measure = SeamStats(tex.tile) if stats else None
+    done = write_texture(tex, path, width, height, method=method, seed=seed, x0=x0, y0=y0, level=level,
+                         threads=threads, progress=progress, measure=measure)
+    done["tileset"] = tex.tileset.name
+    if measure is not None:
+        side = min(width, height, 1024)
+        done["seams"] = measure.result()
+        done["repetition"] = repetition(render_texture(tex, side, side, done["method"], seed, x0, y0), tex.tile)
+    return done
