@@ -142,12 +142,12 @@ def run_query(state: Any, request: Request) -> dict[str, Any]:
     args = query_args(request)
     limit = _int(request, "limit", 24, 0, MAX_PAGE)
     offset = _int(request, "offset", 0, 0, 2**62)
-    cat = state.catalogue
-    cat.check_family(args["family"])
-    total = cat.count_matching(args["family"], args["where"], args["text"])
-    items = cat.query(limit=limit, offset=offset, **args)
-    return {"total": total, "offset": offset, "limit": limit,
-            "items": [entry_json(e) for e in items], "query": args}
+    # the pages' listing (tilekit.web.browse): result-table families included, filters on
+    # the families that have their keys, so totals agree with /families
+    listing = state.browser.listing(args["family"], args["where"], args["text"], args["order_by"], offset, limit,
+                                    facets=False)
+    return {"total": listing.total, "offset": offset, "limit": limit, "counts": listing.counts,
+            "items": [entry_json(e) for e in listing.entries], "query": args}
 
 
 def render_options(request: Request, body: dict[str, Any] | None) -> dict[str, Any]:
@@ -179,8 +179,9 @@ def routes(state: Any) -> list[Route]:
     @endpoint
     def families(request: Request) -> Response:
         data = []
+        counts = state.browser.counts()  # as /family/NAME lists them
         for name, fam in sorted(fams(cat().pm).items()):
-            data.append({"name": name, "summary": fam.summary, "tilings": cat().count(name)})
+            data.append({"name": name, "summary": fam.summary, "tilings": counts.get(name, 0)})
         return JSONResponse({"families": data})
 
     @endpoint
@@ -296,6 +297,7 @@ def routes(state: Any) -> list[Route]:
 
         return JSONResponse(run_json(info))
 
+    state.api_views = {"tiling": tiling, "spec": spec, "render": render_get}
     return [
         Route("/api/families", families),
         Route("/api/query", query),
@@ -309,6 +311,17 @@ def routes(state: Any) -> list[Route]:
         Route("/api/runs/{run_id:str}/results", run_results),
         Route("/api/runs/{run_id:str}/events", run_events),
         Route("/api/runs/{run_id:str}/cancel", cancel, methods=["POST"]),
+    ]
+
+
+def path_routes(state: Any) -> list[Route]:
+    """The tiling routes again for names holding "/" (``{name:path}``), placed after the
+    plugins' routes so that their ``/api/tiling/NAME/...`` pages still match first."""
+    views = state.api_views
+    return [
+        Route("/api/tiling/{name:path}/spec", views["spec"]),
+        Route("/api/tiling/{name:path}", views["tiling"]),
+        Route("/api/render/{name:path}", views["render"], methods=["GET"]),
     ]
 
 

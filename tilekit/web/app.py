@@ -25,9 +25,10 @@ from starlette.routing import Mount, Route
 from starlette.staticfiles import StaticFiles
 
 from tilekit.catalogue import open_catalogue, run_json
-from tilekit.errors import NotFoundError, TilekitError
+from tilekit.errors import NotFoundError, ParameterError, TilekitError
 from tilekit.plugins import WebRoute, families, get_plugin_manager
 from tilekit.web import api, pages
+from tilekit.web.browse import Browser, csv_text, listing_csv, listing_json
 from tilekit.web.limits import DEFAULT_MAX_TILES
 from tilekit.web.service import Renderer, normalise_options
 
@@ -49,6 +50,7 @@ class State:
         self.max_tiles = max_tiles
         self._catalogue = catalogue
         self._renderer: Renderer | None = None
+        self._browser: Browser | None = None
         self._lock = threading.Lock()
         self.sse_interval = 0.5
         self.sse_seconds = 600.0
@@ -67,6 +69,15 @@ class State:
             if self._renderer is None:
                 self._renderer = Renderer(cat, self.max_tiles)
             return self._renderer
+
+    @property
+    def browser(self) -> Browser:
+        """The listings of the catalogue (tilekit.web.browse): totals, facets, pages."""
+        cat = self.catalogue
+        with self._lock:
+            if self._browser is None:
+                self._browser = Browser(cat)
+            return self._browser
 
     def close(self) -> None:
         if self._catalogue is not None:
@@ -193,6 +204,36 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
     def cell(table: str | None, column: str, value: Any, row: Any) -> str | None:
         return hook.tilekit_web_render_cell(table=table, column=column, value=value, row=row)
 
+    def out_format(request: Request) -> str:
+        """html, json or csv: a ``.json`` / ``.csv`` path suffix or ``?_format=``."""
+        fmt = request.path_params.get("fmt") or request.query_params.get("_format") or "html"
+        if fmt not in ("html", "json", "csv"):
+            raise ParameterError(f"_format {fmt[:20]!r} must be html, json or csv")
+        return fmt
+
+    def view_of(request: Request) -> str:
+        view = request.query_params.get("view") or "grid"
+        if view not in ("grid", "table"):
+            raise ParameterError(f"view {view[:20]!r} must be grid or table")
+        return view
+
+    def link_query(request: Request) -> dict[str, Any]:
+        """The request's query as links keep it (offset and _format left to the links)."""
+        q = request.query_params
+        return {k: q.getlist(k) if k == "where" else q[k] for k in q if k not in ("offset", "_format")}
+
+    def listing_response(request: Request, listing: Any, name: str) -> Response | None:
+        fmt = out_format(request)
+        if fmt == "json":
+            return JSONResponse(listing_json(listing, api.entry_json))
+        if fmt == "csv":
+            return Response(listing_csv(listing), media_type="text/csv; charset=utf-8",
+                            headers={"Content-Disposition": f'inline; filename="{name}.csv"'})
+        return None
+
+    def key_rows() -> list[tuple[str, str, tuple[str, ...], str, str]]:
+        return [(k.key, k.type, k.families, k.example, k.meaning) for k in state.catalogue.key_table()]
+
     @page
     def search(request: Request) -> Response:
         q = request.query_params
@@ -201,12 +242,21 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
         form["where"] = [w for w in q.getlist("where") if w.strip()]
         fams = sorted(state.catalogue_families())
         try:
-            result = api.run_query(state, request)
-            entries = state.catalogue.query(limit=result["limit"], offset=result["offset"], **result["query"])
-            return _html(pages.search_page(form, fams, result, None, entries))
+            view = view_of(request)
+            args = api.query_args(request)
+            limit = api._int(request, "limit", 48, 1, api.MAX_PAGE)
+            offset = api._int(request, "offset", 0, 0, 2**62)
+            listing = state.browser.listing(args["family"], args["where"], args["text"], args["order_by"],
+                                            offset, limit)
+            answer = listing_response(request, listing, "tilings")
+            if answer is not None:
+                return answer
+            return _html(pages.search_page(form, fams, listing, None, view, link_query(request), key_rows()))
         except TilekitError as exc:
             code = api.status_of(exc)
-            return _html(pages.search_page(form, fams, None, api.one_line(exc), []), code)
+            if request.query_params.get("_format") in ("json", "csv"):
+                return api.error_response(exc)
+            return _html(pages.search_page(form, fams, None, api.one_line(exc), "grid", {}, key_rows()), code)
 
     def catalogue_families() -> list[str]:
         return list(families(state.catalogue.pm))
@@ -247,7 +297,15 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
 
     @page
     def families_view(request: Request) -> Response:
-        rows = [(n, f.summary, state.catalogue.count(n)) for n, f in sorted(families(state.catalogue.pm).items())]
+        counts = state.browser.counts()  # what each family's page lists
+        rows = [(n, f.summary, counts.get(n, 0)) for n, f in sorted(families(state.catalogue.pm).items())]
+        fmt = out_format(request)
+        if fmt == "json":
+            return JSONResponse({"families": [{"name": n, "summary": s, "tilings": c} for n, s, c in rows],
+                                 "total": sum(c for _, _, c in rows)})
+        if fmt == "csv":
+            return Response(csv_text(({"family": n, "summary": s, "tilings": c} for n, s, c in rows),
+                                     ["family", "summary", "tilings"]), media_type="text/csv; charset=utf-8")
         return _html(pages.families_page(rows))
 
     @page
@@ -256,12 +314,17 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
         fams = families(state.catalogue.pm)
         if name not in fams:
             raise NotFoundError("family", name, fams)
+        view = view_of(request)
         limit = api._int(request, "limit", 48, 1, api.MAX_PAGE)
         offset = api._int(request, "offset", 0, 0, 2**62)
-        total = state.catalogue.count_matching(name)
-        entries = state.catalogue.query(family=name, limit=limit, offset=offset)
+        q = request.query_params
+        listing = state.browser.listing(name, [w for w in q.getlist("where") if w.strip()], q.get("text") or None,
+                                        q.get("order") or "name", offset, limit)
+        answer = listing_response(request, listing, name)
+        if answer is not None:
+            return answer
         fam = fams[name]
-        return _html(pages.family_page(name, fam.summary, fam.description or "", total, offset, limit, entries))
+        return _html(pages.family_page(name, fam.summary, fam.description or "", listing, view, link_query(request)))
 
     @page
     def runs(request: Request) -> Response:
@@ -288,9 +351,11 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
 
     routes = [
         Route("/", search),
-        Route("/tiling/{name:str}", tiling),
-        Route("/thumb/{name:str}.svg", thumb),
+        Route("/tiling/{name:path}", tiling),  # a name may hold "/" (a polyomino's rows)
+        Route("/thumb/{name:path}.svg", thumb),
         Route("/families", families_view),
+        Route("/families.{fmt:str}", families_view),
+        Route("/family/{name:str}.{fmt:str}", family),
         Route("/family/{name:str}", family),
         Route("/runs", runs),
         Route("/runs/{run_id:str}", run),
@@ -299,6 +364,7 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
         Route("/favicon.ico", lambda r: Response(status_code=204)),
         # the plugins' pages after the app's own (an app path wins), their files before /static
         *(Route(r.path, plugin_view(r, state, _html), methods=list(r.methods)) for r in plugin_routes),
+        *api.path_routes(state),  # names with "/", after the plugins' /api/tiling/NAME/... pages
         *(Mount(f"/static/plugins/{name}", app=StaticFiles(directory=str(folder))) for name, folder in statics),
         Mount("/static", app=StaticFiles(directory=str(STATIC)), name="static"),
     ]

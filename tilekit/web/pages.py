@@ -41,7 +41,18 @@ def fmt_value(value: Any) -> str:
     if isinstance(value, list | dict):
         return json.dumps(value, ensure_ascii=False)
     if isinstance(value, float):
-        return f"{value:.10g}"
+        return f"{value:.6g}"
+    return str(value)
+
+
+def fmt_number(value: Any) -> str:
+    """A count or measure for people: thousands separated, floats to 4 significant digits."""
+    if isinstance(value, bool) or value is None:
+        return fmt_value(value) if value is not None else ""
+    if isinstance(value, int):
+        return f"{value:,}"
+    if isinstance(value, float):
+        return f"{value:,.4g}" if abs(value) < 1e15 else f"{value:.4g}"
     return str(value)
 
 
@@ -91,23 +102,175 @@ def grid(entries: Iterable[Any]) -> str:
     return f'<div class="grid" id="grid">{"".join(cards)}</div>' if cards else '<p id="none">no tilings match</p>'
 
 
+def page_numbers(page: int, pages: int, around: int = 2) -> list[int | None]:
+    """The page numbers a pager shows: first, last and ``around`` either side of ``page``,
+    None where numbers are left out (1-based)."""
+    keep = {1, pages, *range(max(1, page - around), min(pages, page + around) + 1)}
+    out: list[int | None] = []
+    for n in sorted(keep):
+        if out and out[-1] is not None and n > out[-1] + 1:
+            out.append(None)
+        out.append(n)
+    return out
+
+
 def pager(path: str, query: Mapping[str, Any], total: int, offset: int, limit: int) -> str:
+    """The count, "previous"/"next" and numbered pages (links keep ``query``)."""
     parts = [f'<span class="count" id="count">{total:,} match{"" if total == 1 else "es"}'
-             + (f"; {offset + 1}–{min(total, offset + limit)} shown" if total and limit else "") + "</span>"]
+             + (f"; {offset + 1:,}–{min(total, offset + limit):,} shown" if total and limit and offset < total else "")
+             + "</span>"]
+    if limit <= 0:
+        return f'<p class="pager">{parts[0]}</p>'
     if offset > 0:
-        parts.append(f'<a rel="prev" href="{esc(url(path, **query, offset=max(0, offset - limit)))}">previous</a>')
+        parts.append(f'<a rel="prev" href="{esc(url(path, **query, offset=max(0, offset - limit) or None))}">previous</a>')
     if offset + limit < total:
         parts.append(f'<a rel="next" href="{esc(url(path, **query, offset=offset + limit))}">next</a>')
+    pages = (total + limit - 1) // limit
+    if pages > 1:
+        page = offset // limit + 1
+        nums = []
+        for n in page_numbers(page, pages):
+            if n is None:
+                nums.append('<span class="gap">…</span>')
+            elif n == page:
+                nums.append(f'<b aria-current="page">{n:,}</b>')
+            else:
+                nums.append(f'<a href="{esc(url(path, **query, offset=(n - 1) * limit or None))}">{n:,}</a>')
+        parts.append(f'<span class="pages" id="pages">page {page:,} of {pages:,}: {" ".join(nums)}</span>')
     return f'<p class="pager">{" ".join(parts)}</p>'
 
 
-def search_page(q: Mapping[str, Any], families: Sequence[str], result: Mapping[str, Any] | None,
-                error: str | None, entries: Sequence[Any]) -> str:
+def _with(query: Mapping[str, Any], **changes: Any) -> dict[str, Any]:
+    out = {k: v for k, v in query.items() if k not in ("offset", "_format")}
+    out.update(changes)
+    return out
+
+
+def facets_block(path: str, query: Mapping[str, Any], listing: Any, family_links: bool) -> str:
+    """The facet counts beside a listing: each value a link adding its filter (or, chosen, a
+    link removing it); the family facet links to the family's own listing."""
+    from tilekit.web.browse import facet_text
+
+    where = list(listing.where)
+    blocks = []
+    for facet in listing.facets:
+        items = []
+        for value, count in facet.values:
+            text = facet_text(value)
+            if facet.key == "family":
+                if not family_links:
+                    continue
+                href = url(path, **_with(query, family=text))
+                chosen = listing.family == text
+            else:
+                expr = f"{facet.key}={text}"
+                chosen = expr in where
+                rest = [w for w in where if w != expr] if chosen else [*where, expr]
+                href = url(path, **_with(query, where=rest))
+            cls = ' class="chosen"' if chosen else ""
+            mark = " ✕" if chosen and facet.key != "family" else ""
+            items.append(f'<li{cls}><a href="{esc(href)}" data-facet="{esc(facet.key)}" data-value="{esc(text)}">'
+                         f'{esc(text)}{mark}</a> <span class="n">{count:,}</span></li>')
+        if facet.more:
+            items.append(f'<li class="more">{facet.more:,} in other values</li>')
+        if items:
+            title = f' title="{esc(facet.meaning)}"' if facet.meaning else ""
+            blocks.append(f'<section class="facet" id="facet-{esc(facet.key)}"><h3{title}>{esc(facet.key)}</h3>'
+                          f'<ul>{"".join(items)}</ul></section>')
+    return f'<aside class="facets" id="facets"><h2>Facets</h2>{"".join(blocks)}</aside>' if blocks else ""
+
+
+def sort_links(path: str, query: Mapping[str, Any], order: str, keys: Sequence[str]) -> str:
+    """Links ordering the listing by each key (the chosen one again reverses it)."""
+    links = []
+    for key in keys:
+        now = order.lstrip("-") == key
+        target = ("-" + key) if now and not order.startswith("-") else key
+        arrow = (" ▼" if order.startswith("-") else " ▲") if now else ""
+        links.append(f'<a href="{esc(url(path, **_with(query, order=None if target == "name" else target)))}"'
+                     f'{" class=chosen" if now else ""}>{esc(key)}{arrow}</a>')
+    return f'<p class="sort" id="sort">sort by {" ".join(links)}</p>'
+
+
+def entry_table(entries: Sequence[Any], columns: Sequence[str], path: str, query: Mapping[str, Any],
+                order: str) -> str:
+    """A listing as a table: thumbnail, name, family, title and property columns; the column
+    heads order the listing."""
+    def head(key: str) -> str:
+        now = order.lstrip("-") == key
+        target = ("-" + key) if now and not order.startswith("-") else key
+        arrow = (" ▼" if order.startswith("-") else " ▲") if now else ""
+        return f'<th><a href="{esc(url(path, **_with(query, order=target)))}">{esc(key)}{arrow}</a></th>'
+
+    rows = []
+    for e in entries:
+        n = esc(name_path(e.name))
+        cells = "".join(f"<td>{esc(short(e.properties.get(c)))}</td>" for c in columns)
+        rows.append(f'<tr data-name="{esc(e.name)}"><td><a href="/tiling/{n}"><img class="mini" loading="lazy" '
+                    f'alt="" width="48" height="48" src="/thumb/{n}.svg"></a></td>'
+                    f'<td><a href="/tiling/{n}">{esc(e.name)}</a></td><td>{esc(e.family)}</td>'
+                    f'<td class="title">{esc(e.title)}</td>{cells}</tr>')
+    heads = "<th></th>" + head("name") + head("family") + "<th>title</th>" + "".join(head(c) for c in columns)
+    return (f'<table class="list entries" id="table"><tr>{heads}</tr>{"".join(rows)}</table>' if rows
+            else '<p id="none">no tilings match</p>')
+
+
+def short(value: Any, most: int = 60) -> str:
+    """A value for a table cell: rounded, and cut with an ellipsis past ``most`` characters."""
+    if value is None:
+        return ""
+    text = fmt_value(value)
+    return text if len(text) <= most else text[: most - 1] + "…"
+
+
+def listing_block(path: str, query: Mapping[str, Any], listing: Any, view: str, family_links: bool = True) -> str:
+    """A listing: facets beside it, active filters, sorting, the view and format switches,
+    numbered pages and the entries as thumbnails or a table."""
+    where = list(listing.where)
+    chips = "".join(
+        f'<a class="chip" href="{esc(url(path, **_with(query, where=[x for x in where if x != w])))}">'
+        f'{esc(w)} ✕</a>' for w in where)
+    if listing.family and family_links:
+        chips = (f'<a class="chip" href="{esc(url(path, **_with(query, family=None)))}">family={esc(listing.family)} ✕</a>'
+                 + chips)
+    active = f'<p class="active" id="active">filters {chips}</p>' if chips else ""
+    keys = ["name"] + ([] if listing.family else ["family"]) + [f.key for f in listing.facets if f.key != "family"][:8]
+    other = "grid" if view == "table" else "table"
+    switches = (f'<p class="views">view <a id="view-{other}" href="{esc(url(path, **_with(query, view=None if other == "grid" else other)))}">'
+                f'{other}</a> · <a id="as-json" href="{esc(url(path, **_with(query, _format="json"), offset=listing.offset or None))}">JSON</a>'
+                f' · <a id="as-csv" href="{esc(url(path, **_with(query, _format="csv"), offset=listing.offset or None))}">CSV</a></p>')
+    keep = _with(query)
+    body = (active + sort_links(path, query, listing.order, keys) + switches
+            + pager(path, keep, listing.total, listing.offset, listing.limit))
+    if view == "table":
+        body += entry_table(listing.entries, listing.columns(), path, keep, listing.order)
+    else:
+        body += grid(listing.entries)
+    if listing.total > listing.limit:
+        body += pager(path, keep, listing.total, listing.offset, listing.limit).replace('id="count"', "").replace(
+            'id="pages"', "")
+    return f'<div class="browse">{facets_block(path, query, listing, family_links)}<div class="results">{body}</div></div>'
+
+
+def search_page(q: Mapping[str, Any], families: Sequence[str], listing: Any, error: str | None,
+                view: str = "grid", query: Mapping[str, Any] | None = None, keys: Sequence[Any] = ()) -> str:
+    """The search form over the all-families listing; ``keys`` are the vocabulary's
+    (key, type, families, example, meaning) rows offered as filter suggestions."""
     wheres = list(q.get("where") or []) + [""] * max(0, 3 - len(q.get("where") or []))
     tf = [("", "any"), ("true", "true"), ("false", "false")]
     where_inputs = "".join(
-        f'<input name="where" value="{esc(w)}" placeholder="KEY=VALUE, KEY~TEXT, KEY>=N" size="26">' for w in wheres
+        f'<input name="where" value="{esc(w)}" placeholder="KEY=VALUE, KEY~TEXT, KEY>=N" size="26" list="keys">'
+        for w in wheres
     )
+    datalist = "".join(f'<option value="{esc(k[3])}">{esc(k[0])}: {esc(k[1])}</option>' for k in keys)
+    key_rows = "".join(
+        f'<tr><td><code>{esc(k[0])}</code></td><td>{esc(k[1])}</td><td>{esc(", ".join(k[2]))}</td>'
+        f'<td><a href="{esc(url("/", where=[k[3]]))}"><code>{esc(k[3])}</code></a></td><td>{esc(k[4])}</td></tr>'
+        for k in keys)
+    vocabulary = (f'<details class="keys" id="keys"><summary>filter keys ({len(keys)})</summary>'
+                  '<table class="list"><tr><th>key</th><th>type</th><th>families</th><th>example</th>'
+                  f'<th>meaning</th></tr>{key_rows}</table></details><datalist id="keys">{datalist}</datalist>'
+                  if keys else "")
     form = f"""<form class="search" method="get" action="/" id="search">
 <label>family <select name="family">{options([("", "all")] + [(f, f) for f in families], q.get("family"))}</select></label>
 <label>text <input name="text" value="{esc(q.get("text"))}" placeholder="name, title, alias"></label>
@@ -116,16 +279,14 @@ def search_page(q: Mapping[str, Any], families: Sequence[str], result: Mapping[s
 <label>range <input name="range_key" value="{esc(q.get("range_key"))}" placeholder="property, e.g. k_hedral" size="14">
 from <input name="range_min" value="{esc(q.get("range_min"))}" size="5"> to
 <input name="range_max" value="{esc(q.get("range_max"))}" size="5"></label>
-<fieldset><legend>filters (all must hold; see docs/catalogue.md)</legend>{where_inputs}</fieldset>
+<fieldset><legend>filters (all must hold)</legend>{where_inputs}</fieldset>
 <label>order <input name="order" value="{esc(q.get("order") or "name")}" size="10"></label>
-<button type="submit">search</button></form>"""
+<button type="submit">search</button></form>{vocabulary}"""
     body = "<h1>Search the catalogue</h1>" + form
     if error:
         body += f'<p class="error" id="error">{esc(error)}</p>'
-    if result is not None:
-        keep = {k: v for k, v in q.items() if k != "offset" and v not in (None, "", [])}
-        body += pager("/", keep, result["total"], result["offset"], result["limit"])
-        body += grid(entries)
+    if listing is not None:
+        body += listing_block("/", query or {}, listing, view)
     return layout("search", body)
 
 
@@ -159,17 +320,20 @@ def tiling_page(entry: Any, svg: str | None, describe: str | None, problem: str 
 
 def families_page(rows: Sequence[tuple[str, str, int]]) -> str:
     items = "".join(f'<tr><td><a href="/family/{esc(name_path(n))}">{esc(n)}</a></td><td>{esc(s)}</td>'
-                    f"<td>{c:,}</td></tr>" for n, s, c in rows)
-    return layout("families", f'<h1>Families</h1><table class="list" id="families"><tr><th>family</th>'
-                  f"<th>summary</th><th>tilings</th></tr>{items}</table>")
+                    f'<td class="num">{c:,}</td></tr>' for n, s, c in rows)
+    total = sum(c for _, _, c in rows)
+    return layout("families", f'<h1>Families</h1><p class="views"><a href="/families.json">JSON</a> · '
+                  f'<a href="/families.csv">CSV</a></p><table class="list" id="families"><tr><th>family</th>'
+                  f'<th>summary</th><th>entries</th></tr>{items}<tr class="total"><td>all</td><td></td>'
+                  f'<td class="num"><a href="/" id="all-count">{total:,}</a></td></tr></table>')
 
 
-def family_page(name: str, summary: str, description: str, total: int, offset: int, limit: int,
-                entries: Sequence[Any]) -> str:
+def family_page(name: str, summary: str, description: str, listing: Any, view: str = "grid",
+                query: Mapping[str, Any] | None = None) -> str:
     body = f"<h1>Family {esc(name)}</h1><p>{esc(summary)}</p>"
     if description:
         body += f'<pre class="describe">{esc(description)}</pre>'
-    body += pager(f"/family/{name_path(name)}", {}, total, offset, limit) + grid(entries)
+    body += listing_block(f"/family/{name_path(name)}", query or {}, listing, view, family_links=False)
     return layout(f"family {name}", body)
 
 
