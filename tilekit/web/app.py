@@ -266,17 +266,34 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
     @page
     def tiling(request: Request) -> Response:
         entry = state.catalogue.get(request.path_params["name"])
-        svg = describe = problem = None
+        if out_format(request) != "html":
+            out = api.entry_json(entry)
+            out["spec"] = json.loads(json.dumps(entry.spec, default=str))
+            return JSONResponse(out)
+        q = request.query_params
+        chosen = {k: q[k] for k in ("region", "depth") if q.get(k, "").strip()}
+        svg = describe = problem = view_problem = None
         links: list[tuple[str, str]] = []
+        region = None
+        prototiles: list[Any] = []
         try:
             t = state.renderer.base_tiling(entry.name)
             describe = t.describe()
-            _, svg, _ = state.renderer.render(entry.name, {"size": 640})
+            region = t.default_region().bounds
+            prototiles = list(t.prototiles)[:12]
+            if chosen:
+                try:
+                    _, svg, _ = state.renderer.render(entry.name, {"size": 640, **chosen})
+                except TilekitError as exc:
+                    view_problem = api.one_line(exc)
+            if svg is None:
+                _, svg, _ = state.renderer.render(entry.name, {"size": 640})
             for offered in reversed(hook.tilekit_web_tiling_links(web=state, name=entry.name, tiling=t)):
                 links.extend(offered or [])
         except TilekitError as exc:
             problem = api.one_line(exc)
-        return _html(pages.tiling_page(entry, svg, describe, problem, links))
+        return _html(pages.tiling_page(entry, svg, describe, problem, links, chosen=chosen, region=region,
+                                       view_problem=view_problem, prototiles=prototiles))
 
     @page
     def thumb(request: Request) -> Response:
@@ -328,14 +345,39 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
 
     @page
     def runs(request: Request) -> Response:
-        return _html(pages.runs_page([run_json(i) for i in state.catalogue.runs()]))
+        items = [run_json(i) for i in state.catalogue.runs()]
+        fmt = out_format(request)
+        if fmt == "json":
+            return JSONResponse({"runs": items})
+        if fmt == "csv":
+            cols = ["id", "kind", "status", "chunks_done", "chunks_total", "rows", "seconds", "created_at", "finished_at"]
+            return Response(csv_text(items, cols), media_type="text/csv; charset=utf-8")
+        return _html(pages.runs_page(items))
 
     @page
     def run(request: Request) -> Response:
         run_id = api._run_id(request)
         info = run_json(state.catalogue.run(run_id))
         page_data = api.results_page(state, run_id, request)
-        return _html(pages.run_page(info, page_data, state.writable, cell))
+        fmt = out_format(request)
+        if fmt == "json":
+            return JSONResponse({"run": info, "results": page_data})
+        if fmt == "csv":
+            return Response(csv_text(page_data["rows"], page_data["columns"]), media_type="text/csv; charset=utf-8")
+        rt = state.catalogue.result_tables.get(page_data.get("table") or "")
+        if rt is not None and rt.family:
+            column = rt.name_column or rt.key[0]
+
+            def link(row: Any) -> str | None:
+                value = row.get(column)
+                return value if isinstance(value, str) and value else None
+        else:
+            known = set(state.catalogue.names()) if page_data["rows"] else set()
+
+            def link(row: Any) -> str | None:
+                value = row.get("name")
+                return value if isinstance(value, str) and value in known else None
+        return _html(pages.run_page(info, page_data, state.writable, cell, link))
 
     api_lines = [(",".join(r.methods), r.path, r.doc) for r in plugin_routes if r.path.startswith("/api/") and r.doc]
 

@@ -241,7 +241,7 @@ class Browser:
                              "the tiling family"))
         for k in keys:
             values = sorted(merged[k].items(), key=lambda vc: (-vc[1], _sortable(vc[0])))
-            if not values:
+            if not values or any(len(facet_text(v)) > 40 for v, _ in values):  # a blob is no facet
                 continue
             meaning = SHARED_BY_NAME[k].meaning if k in SHARED_BY_NAME else ""
             shown = sorted(values[:SHOWN_VALUES], key=lambda vc: _sortable(vc[0]))
