@@ -279,6 +279,11 @@ class ResultsMixin:
             row = conn.execute(stmt).one()
         return {c.name: (int(row[2 * i]), int(row[2 * i + 1])) for i, c in enumerate(cols)}
 
+    def result_entry(self, name: str) -> Entry | None:
+        """The result-table row named ``name`` (in a table's name column or key), or None: the
+        web's page of a listed row, which a shipped record with that alias must not shadow."""
+        return self._result_lookup(name)
+
     def _result_lookup(self, name: str) -> Entry | None:
         """A result-table row named ``name`` (in a table's name column or key)."""
         with self._errors("looking up a tiling"), self.engine.connect() as conn:

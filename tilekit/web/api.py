@@ -130,6 +130,22 @@ def query_args(request: Request) -> dict[str, Any]:
     }
 
 
+def lookup(cat: Any, name: str) -> Any:
+    """The entry a page or API path names: a result row by its own name first (what the
+    listings link to; a shipped record may hold the same text as an alias), then the
+    catalogue's lookup; an unknown name is a 404, also when a plugin's notation reader (a
+    D-symbol, a GomJau-Hogg string) refuses it as malformed."""
+    row = cat.result_entry(name)
+    if row is not None:
+        return row
+    try:
+        return cat.get(name)
+    except ParseError as exc:
+        missing = NotFoundError("tiling", name)
+        missing.args = (f"unknown tiling {name[:80]!r} ({one_line(exc)})",)
+        raise missing from None
+
+
 def entry_json(entry: Any, spec_hash: str | None = None) -> dict[str, Any]:
     out = {"name": entry.name, "family": entry.family, "title": entry.title,
            "aliases": list(entry.aliases or []), "properties": entry.properties}
@@ -191,7 +207,7 @@ def routes(state: Any) -> list[Route]:
     @endpoint
     def tiling(request: Request) -> Response:
         name = request.path_params["name"]
-        entry = cat().get(name)
+        entry = lookup(cat(), name)
         out = entry_json(entry)
         out["spec"] = json.loads(json.dumps(entry.spec, default=str))
         try:

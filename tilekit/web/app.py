@@ -195,6 +195,8 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
             try:
                 return await run_in_threadpool(fn, request)
             except TilekitError as exc:
+                if request.query_params.get("_format") in ("json", "csv") or request.path_params.get("fmt"):
+                    return api.error_response(exc)  # a JSON or CSV view answers in JSON
                 code = api.status_of(exc)
                 return _html(pages.error_page(api.one_line(exc), code), code)
 
@@ -263,9 +265,12 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
 
     state.catalogue_families = catalogue_families  # type: ignore[attr-defined]
 
+    def lookup(name: str) -> Any:
+        return api.lookup(state.catalogue, name)
+
     @page
     def tiling(request: Request) -> Response:
-        entry = state.catalogue.get(request.path_params["name"])
+        entry = lookup(request.path_params["name"])
         if out_format(request) != "html":
             out = api.entry_json(entry)
             out["spec"] = json.loads(json.dumps(entry.spec, default=str))
@@ -302,7 +307,7 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
             t, svg, _ = state.renderer.render(name, {"size": 160}, thumbnail=True)
             etag = '"' + state.renderer.spec_hash(t) + '"'
         except TilekitError as exc:
-            state.catalogue.get(name)  # an unknown name is a 404, a tiling without geometry a placeholder
+            lookup(name)  # an unknown name is a 404, a tiling without geometry a placeholder
             svg = _placeholder(api.one_line(exc))
             etag = None
         headers = {"Cache-Control": "public, max-age=3600"}

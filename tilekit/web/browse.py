@@ -24,7 +24,7 @@ from typing import Any
 
 from tilekit.catalogue.entry import SHARED_COLUMNS, TEXT_COLUMNS
 from tilekit.catalogue.filters import parse_filter, parse_order
-from tilekit.catalogue.vocabulary import SHARED_BY_NAME, SHARED_KEYS, canonical_key
+from tilekit.catalogue.vocabulary import KEY_ALIASES, SHARED_BY_NAME, SHARED_KEYS, canonical_key
 from tilekit.errors import NotFoundError, ParameterError
 from tilekit.plugins import families as installed_families
 
@@ -154,8 +154,8 @@ class Browser:
         chosen = [s for s in every if family is None or s.family == family]
         for f in filters:
             if not any(s.has(f.key) for s in chosen):
-                known = sorted({k for s in chosen for k in s.keys})
-                raise NotFoundError("property", f.key, known)
+                known = sorted({k for s in chosen for k in s.keys} - set(TEXT_COLUMNS) - set(SHARED_COLUMNS))
+                raise NotFoundError("property", f.key, [*TEXT_COLUMNS, *SHARED_COLUMNS, *known, *KEY_ALIASES])
         if okey not in _ORDER_COLUMNS and not any(s.has(okey) for s in every):
             raise NotFoundError("order key", okey, sorted({*_ORDER_COLUMNS, *(k for s in every for k in s.keys)}))
         applicable = [s for s in chosen if all(s.has(f.key) for f in filters)]
