@@ -25,8 +25,9 @@ from typing import Any
 from tilekit.catalogue.entry import SHARED_COLUMNS, TEXT_COLUMNS
 from tilekit.catalogue.filters import parse_filter, parse_order
 from tilekit.catalogue.vocabulary import KEY_ALIASES, SHARED_BY_NAME, SHARED_KEYS, canonical_key
-from tilekit.errors import NotFoundError, ParameterError
+from tilekit.errors import NotFoundError
 from tilekit.plugins import families as installed_families
+from tilekit.web.pages import facet_text
 
 #: Facets offered beside a listing: keys with at least 2 and at most this many values.
 MAX_FACET_VALUES = 24
@@ -255,21 +256,6 @@ def _sortable(value: Any) -> tuple[int, float, str]:
     if isinstance(value, int | float):
         return (1, float(value), "")
     return (2, 0.0, str(value))
-
-
-def facet_text(value: Any) -> str:
-    """A facet value as a filter writes it (``true``, ``6``, ``p6m``)."""
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, float) and value.is_integer():
-        return str(int(value))
-    return str(value)
-
-
-def check_limit(limit: int, most: int) -> int:
-    if not 1 <= limit <= most:
-        raise ParameterError(f"limit {limit} must be between 1 and {most}")
-    return limit
 
 
 # --------------------------------------------------------------------------- JSON and CSV

@@ -15,6 +15,10 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from typing import Any
 from urllib.parse import quote, urlencode
 
+import numpy as np
+
+from tilekit.render import PALETTE
+
 
 def esc(value: Any) -> str:
     return html.escape("" if value is None else str(value), quote=True)
@@ -47,6 +51,15 @@ def fmt_value(value: Any) -> str:
         return json.dumps(value, ensure_ascii=False)
     if isinstance(value, float):
         return f"{value:.6g}"
+    return str(value)
+
+
+def facet_text(value: Any) -> str:
+    """A facet value as a filter writes it (``true``, ``6``, ``p6m``)."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float) and value.is_integer():
+        return str(int(value))
     return str(value)
 
 
@@ -154,8 +167,6 @@ def _with(query: Mapping[str, Any], **changes: Any) -> dict[str, Any]:
 def facets_block(path: str, query: Mapping[str, Any], listing: Any, family_links: bool) -> str:
     """The facet counts beside a listing: each value a link adding its filter (or, chosen, a
     link removing it); the family facet links to the family's own listing."""
-    from tilekit.web.browse import facet_text
-
     where = list(listing.where)
     blocks = []
     for facet in listing.facets:
@@ -313,8 +324,6 @@ def legend(svg: str, describe: str | None) -> str:
     """What the picture's colours are: a swatch per fill in the drawing, named by its place in
     the default palette (the tiling's colour index: its colouring, aspect or class, as its
     description says)."""
-    from tilekit.render import PALETTE
-
     fills: list[str] = []
     for fill in _FILL.findall(svg):
         if fill not in fills and fill != "none":
@@ -333,9 +342,8 @@ def legend(svg: str, describe: str | None) -> str:
 
 def prototile_svgs(prototiles: Sequence[Any], size: int = 90) -> str:
     """Each prototile's outline as a small SVG (its shape; a polyform's cells' outline)."""
-    import numpy as np
-
     out = []
+    drawn: set[bytes] = set()
     for i, proto in enumerate(prototiles):
         try:
             pts = np.asarray(proto.outline, dtype=float)
@@ -344,6 +352,10 @@ def prototile_svgs(prototiles: Sequence[Any], size: int = 90) -> str:
         if pts.ndim != 2 or pts.shape[1] != 2 or len(pts) < 3 or not np.isfinite(pts).all():
             continue
         lo, hi = pts.min(axis=0), pts.max(axis=0)
+        shape = np.round(pts - lo, 6).tobytes()
+        if shape in drawn:  # one picture per distinct outline (14 Wang tiles are one square)
+            continue
+        drawn.add(shape)
         span = float(max(hi - lo)) or 1.0
         pad = 0.06 * span
         d = "M" + " L".join(f"{x:.5g},{-y:.5g}" for x, y in pts) + " Z"

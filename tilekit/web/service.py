@@ -16,7 +16,7 @@ from typing import Any
 
 from tilekit.errors import ParameterError, ParseError
 from tilekit.geometry import as_region
-from tilekit.render import parse_palette, patch_to_svg
+from tilekit.render import parse_palette
 from tilekit.schema import finite_number
 from tilekit.text import parse_region as text_region
 from tilekit.text import parse_settings
@@ -186,7 +186,8 @@ class Renderer:
         if len(patch) > self.max_tiles:  # the estimate was low: refuse all the same
 
             raise RenderTooLarge(len(patch), self.max_tiles, tiling.name or name)
-        svg = patch_to_svg(patch, palette=palette, labels=labels, region=area, size=size)
+        # the family's own picture where it has one (Wang tiles' four edge colours, true arcs)
+        svg = tiling.render_svg(patch, palette=palette, labels=labels, region=area, size=size)
         with self._lock:
             self._cache[key] = svg
             while len(self._cache) > self.cache_size:
