@@ -21,6 +21,9 @@ PAGES = [
     ("web-editor.png", "/editor/IH21", "#editor[data-state=ok]"),
     ("web-penrose.png", "/penrose", "#penrose[data-state=ok]"),
     ("web-run.png", "/runs/2?limit=12", None),
+    # a catalogue with the polyominoes classified to 8 cells (run 2): a non-tiler's record
+    ("web-polyform.png", "/tiling/.x...%2F.x...%2Fxx...%2F.xxxx", None),
+    ("web-polyominoes.png", "/family/polyomino?where=tiles%3Dfalse&view=table", None),
 ]
 
 
