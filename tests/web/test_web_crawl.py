@@ -5,7 +5,8 @@ and finds no 4xx/5xx answer (pages, their images, scripts and style sheets, and 
 SVG and PNG links), no console error (a Content-Security-Policy violation is one) and no page
 wider than the window (a long D-symbol wraps).
 
-The crawl is bounded (``TILEKIT_CRAWL_PAGES`` pages, 220 by default, and as many other links)
+The crawl is bounded (``TILEKIT_CRAWL_PAGES`` pages, 220 by default, and as many other links:
+downloads, data views and the pictures' sources, fetched on their own)
 and deduplicated; it prefers links of a kind it has seen least (a route and the query keys it
 carries), so facets, sorting, numbered pages, table views, tiling pages, their region control
 and run pages are all reached within the bound.
@@ -20,6 +21,7 @@ import pytest
 from cliutil import serving
 
 pytest.importorskip("playwright")
+from playwright.sync_api import TimeoutError as PlaywrightTimeout  # noqa: E402
 
 PAGES = int(os.environ.get("TILEKIT_CRAWL_PAGES", "220"))
 WIDTH = 1280
@@ -63,6 +65,7 @@ def test_crawl_from_the_front_page_finds_no_error(full_site, browser):
     assert [cat.count_matching("k-uniform", [f"k={k}"]) for k in (2, 3)] == [20, 61]
     context = browser.new_context(base_url=base, viewport={"width": WIDTH, "height": 900})
     page = context.new_page()
+    page.set_default_timeout(120_000)  # a page of 48 thumbnails on a loaded 2-core machine
     problems: list[str] = []
     here = {"url": "/"}
     page.on("console", lambda m: problems.append(f"console {m.type} on {here['url']}: {m.text}")
@@ -89,17 +92,22 @@ def test_crawl_from_the_front_page_finds_no_error(full_site, browser):
                 problems.append(f"{r.status} for {url}")
             continue
         here["url"] = url
-        answer = page.goto(url, wait_until="load")
+        answer = page.goto(url, wait_until="domcontentloaded")
         pages += 1
         kinds.add(kind(url)[0])
         assert answer is not None
         if answer.status >= 400:
             problems.append(f"{answer.status} for {url}")
             continue
+        try:  # the pictures in view; those still loading are fetched below as links
+            page.wait_for_load_state("load", timeout=15_000)
+        except PlaywrightTimeout:
+            pass
         wide = page.evaluate("document.documentElement.scrollWidth")
         if wide > WIDTH + 1:
             problems.append(f"{url} is {wide} px wide in a {WIDTH}-px window")
-        for href in page.eval_on_selector_all("a[href]", "els => els.map(e => e.getAttribute('href'))"):
+        for href in page.eval_on_selector_all("a[href], img[src]",
+                                              "els => els.map(e => e.getAttribute('href') || e.getAttribute('src'))"):
             full = urljoin(base + url, href)
             if not full.startswith(base + "/"):
                 continue

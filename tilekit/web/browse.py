@@ -123,14 +123,16 @@ class Browser:
 
     def counts(self) -> dict[str, int]:
         """Entries per family, as each family's page lists them."""
-        return self._count(self.sources(), [], None)
+        every = self.sources()
+        return self._count(every, [], None, every)
 
-    def _count(self, sources: Sequence[Source], where: list[str], text: str | None) -> dict[str, int]:
+    def _count(self, sources: Sequence[Source], where: list[str], text: str | None,
+               every: Sequence[Source]) -> dict[str, int]:
         cat = self.catalogue
         out: dict[str, int] = {}
         records = [s for s in sources if s.table is None]
         if records:
-            excluded = [s.family for s in self.sources() if s.table is not None]
+            excluded = [s.family for s in every if s.table is not None]
             if len(records) == 1:
                 out[records[0].family] = cat.count_matching(records[0].family, where, text)
             else:
@@ -160,7 +162,7 @@ class Browser:
         if okey not in _ORDER_COLUMNS and not any(s.has(okey) for s in every):
             raise NotFoundError("order key", okey, sorted({*_ORDER_COLUMNS, *(k for s in every for k in s.keys)}))
         applicable = [s for s in chosen if all(s.has(f.key) for f in filters)]
-        counts = self._count(applicable, where, text)
+        counts = self._count(applicable, where, text, every)
         total = sum(counts.values())
         entries: list[Any] = []
         skip, want = offset, limit
@@ -179,11 +181,11 @@ class Browser:
         listing = Listing(family, where, text, order, offset, limit, total,
                           {k: v for k, v in counts.items() if v}, entries)
         if facets:
-            listing.facets = self.facets(applicable, chosen, where, text, counts, family)
+            listing.facets = self.facets(applicable, chosen, where, text, counts, family, every)
         return listing
 
     # facets ------------------------------------------------------------------------
-    def spread(self, source: Source) -> dict[str, tuple[int, int]]:
+    def spread(self, source: Source, every: Sequence[Source]) -> dict[str, tuple[int, int]]:
         """``{key: (distinct values, entries having it)}`` of one source (cached briefly)."""
         now = time.monotonic()
         with self._lock:
@@ -194,23 +196,24 @@ class Browser:
         if source.table is not None:
             found = cat.result_spread(source.table)
         else:
-            others = [s.family for s in self.sources() if s.family != source.family]
+            others = [s.family for s in every if s.family != source.family]
             found = cat.key_spread(exclude=others)
         with self._lock:
             self._spread[source.family] = (now, found)
         return found
 
     def facets(self, applicable: Sequence[Source], chosen: Sequence[Source], where: list[str],
-               text: str | None, counts: Mapping[str, int], family: str | None) -> list[Facet]:
+               text: str | None, counts: Mapping[str, int], family: str | None,
+               every: Sequence[Source]) -> list[Facet]:
         """The facets of a listing: family (without one), then the shared vocabulary's keys, then
         the families' own keys with a few values, each with its counts among the matches."""
         spread: dict[str, list[int]] = {}
         for s in chosen:
-            for key, (distinct, held) in self.spread(s).items():
+            for key, (distinct, held) in self.spread(s, every).items():
                 item = spread.setdefault(key, [0, 0])
                 item[0] = max(item[0], distinct)
                 item[1] += held
-        size = sum(self._count(chosen, [], None).values())
+        size = sum(self._count(chosen, [], None, every).values())
         # a key with a few values; one value is a facet too when some entries lack the key
         good = {k for k, (d, held) in spread.items() if 1 <= d <= MAX_FACET_VALUES and (d >= 2 or held < size)}
         shared = [k.name for k in SHARED_KEYS if k.name in good][:SHARED_FACETS]
@@ -221,7 +224,7 @@ class Browser:
         cat = self.catalogue
         records = [s for s in applicable if s.table is None]
         if records:
-            excluded = [s.family for s in self.sources() if s.table is not None]
+            excluded = [s.family for s in every if s.table is not None]
             wanted = [k for k in keys if any(s.has(k) for s in records)]
             if wanted:
                 found = cat.facet_counts(wanted, family, where, text, exclude=excluded)
