@@ -35,11 +35,14 @@ _STATES: dict[str, DocState] = {}
 
 
 def _marks(block: Block) -> list:
+    # A document's blocks share a folder and a namespace: under pytest-xdist (README's test
+    # command runs ``--dist loadgroup``) they all go to one worker, in document order.
+    group = pytest.mark.xdist_group(block.doc.relative_to(ROOT).as_posix())
     if block.tag in ("slow", "server"):
-        return [pytest.mark.slow]
+        return [group, pytest.mark.slow]
     if block.tag == "benchmark" and os.environ.get("TILEKIT_DOC_BENCHMARKS") == "1":
-        return [pytest.mark.slow]
-    return []
+        return [group, pytest.mark.slow]
+    return [group]
 
 
 def _state(block: Block, factory: pytest.TempPathFactory) -> DocState:

@@ -19,6 +19,10 @@ PAGES = [
     ("web-tiling.png", "/tiling/IH16", None),
     ("web-family.png", "/family/isohedral", None),
     ("web-editor.png", "/editor/IH21", "#editor[data-state=ok]"),
+    ("web-editor-types.png", "/editor", None),
+    ("web-editor-split.png", "/editor/IH1?params=0.12,0.5,0.15,0.6&edge=a=0.2,0.1:0.4,0.12:0.6,-0.1:0.8,-0.05"
+     "&edge=b=0.25,-0.1:0.5,-0.1:0.6,0.1:0.8,0.05&edge=c=0.2,0.1:0.4,0.1:0.6,0.1:0.8,0.05"
+     "&set=split=0.4,3.6;0,0:0.3,0.15:0.7,-0.1:1,0", "#editor[data-state=ok]"),
     ("web-penrose.png", "/penrose", "#penrose[data-state=ok]"),
     ("web-run.png", "/runs/2?limit=12", None),
     # a catalogue with the polyominoes classified to 8 cells (run 2): a non-tiler's record
@@ -56,7 +60,8 @@ def main(base: str, only: list[str]) -> None:
                 shape_edges(page)
             page.evaluate("window.scrollTo(0, 0)")
             page.wait_for_timeout(300)
-            page.screenshot(path=str(HERE / name))
+            # the split panel is below the edge widgets: the whole page
+            page.screenshot(path=str(HERE / name), full_page=name == "web-editor-split.png")
             print("wrote", HERE / name)
         browser.close()
 

@@ -123,7 +123,7 @@ def test_chromium_opens_the_plugin_page_from_the_menu(browser, demo_server):
         assert page.evaluate("location.pathname") == "/bricks"
         assert page.text_content("#bricks-title") == "Brick wall 2 x 1, rows shifted by 0.5"
         # the plugin's own script ran (served from its package at /static/plugins/demo_bricks/)
-        page.wait_for_function("document.getElementById('count').textContent.endsWith('bricks drawn')")
+        page.wait_for_function("() => document.getElementById('count').textContent.endsWith('bricks drawn')")
         drawn = int(page.get_attribute("#wall", "data-bricks"))
         assert drawn > 0 and page.text_content("#count") == f"{drawn} bricks drawn"
         # from a tiling's page to the plugin page

@@ -33,6 +33,8 @@ if TYPE_CHECKING:  # pragma: no cover
 SPHERICAL, HYPERBOLIC = "spherical", "hyperbolic"
 #: The uniform tilings' family.
 CURVED = "curved"
+#: Deformable isohedral tiles on {p, q} (isohedral.py).
+CURVED_ISOHEDRAL = "curved-isohedral"
 
 #: Public names, imported on first use (PEP 562): measured start-up cost, the modules load
 #: NumPy and shapely (about 0.3 s), which every `tilekit` command would pay when pluggy loads
@@ -45,11 +47,12 @@ _LAZY = {
     "ModelPrototile": "tilekit.plugins.curved.patch",
     "RegularPolygon": "tilekit.plugins.curved.model",
     "layer_counts": "tilekit.plugins.curved.layers",
+    "CurvedIsohedralTiling": "tilekit.plugins.curved.isohedral",
     "hyperbolic_layers": "tilekit.plugins.curved.layers",
 }
 __getattr__, __dir__ = lazy_exports(__name__, _LAZY)
 
-__all__ = ["CURVED", "HYPERBOLIC", "SPHERICAL", "ModelPatch", "ModelPrototile", "RegularPolygon", "RegularTiling",
+__all__ = ["CURVED", "CURVED_ISOHEDRAL", "CurvedIsohedralTiling", "HYPERBOLIC", "SPHERICAL", "ModelPatch", "ModelPrototile", "RegularPolygon", "RegularTiling",
            "UniformTiling", "curved_records", "euclidean_tiling", "hyperbolic_layers", "layer_counts", "regular",
            "uniform_records", "uniform_tiling"]
 
@@ -172,6 +175,20 @@ def uniform_records() -> list[CatalogueRecord]:
     return out
 
 
+def _isohedral_from_spec(spec: Mapping[str, Any]) -> Any:
+    # measured start-up cost: as in regular()
+    from tilekit.plugins.curved.isohedral import CurvedIsohedralTiling
+
+    return CurvedIsohedralTiling.from_spec(spec)
+
+
+def _isohedral_from_file(path: str) -> Any:
+    # measured start-up cost: as in regular()
+    from tilekit.plugins.curved.isohedral import from_file
+
+    return from_file(path)
+
+
 @tilekit.hookimpl
 def tilekit_families() -> list[Family]:
     return [
@@ -197,6 +214,17 @@ def tilekit_families() -> list[Family]:
             description=("Named by vertex configuration (3.4.4.4, 3.14.14) or Wythoff symbol (p|q r, p q|r, p q r|, "
                          "|p q r): the Archimedean solids, prisms and antiprisms, truncations and snubs of {p,q} in "
                          "the hyperbolic plane. Options: configuration, symbol, radius, samples, plane, geometry."),
+        ),
+        Family(
+            name=CURVED_ISOHEDRAL,
+            summary="Escher-like isohedral tiles on the sphere and the hyperbolic plane: {p,q}'s polygon, "
+                    "edges paired by motions, J and S edges (§7.3)",
+            from_spec=_isohedral_from_spec,
+            from_file=_isohedral_from_file,
+            description=("The regular p-gon of {p,q} with its edges paired (a letter once: an S edge, half-turn; twice: "
+                         "a J pair), deformed by edge shapes; the pairings' group tiles by Poincaré's theorem; tiles "
+                         "coloured by a perfect colouring. Options: p, q, pairing, edges, radius, samples, colours, "
+                         "plane. Read from a JSON spec file: tilekit render --system x.json --family curved-isohedral."),
         ),
     ]
 

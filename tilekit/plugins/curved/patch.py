@@ -40,6 +40,9 @@ class ModelPrototile(Prototile):
     sign: int = -1
     view: np.ndarray | None = None
     plane: str = "poincare"
+    #: (t, 3) indices into ``points`` triangulating a non-convex tile (its geodesic polygon's
+    #: corners are all of ``points``); None: the tile is convex, fanned from its centre
+    triangles: np.ndarray | None = None
 
     def project(self, pts: np.ndarray) -> np.ndarray:
         """Model points (..., 3) to the drawing plane (..., 2)."""
@@ -192,13 +195,21 @@ class ModelPatch(Patch):
             raise GeometryError("the Klein model is for hyperbolic patches")
         mats, owners = [], []
         for _, idx, proto in self.parts():
-            corners = proto.points[list(proto.corners or range(len(proto.points)))]
-            v = model.klein(model.apply(self.transform[idx], corners))   # (n, p, 2)
-            c = model.klein(self.transform[idx][:, :, 2])[:, None, :]     # (n, 1, 2)
-            n, p = v.shape[:2]
-            a = np.broadcast_to(c, v.shape).reshape(-1, 2)
-            b = v.reshape(-1, 2)
-            d = np.roll(v, -1, axis=1).reshape(-1, 2)
+            if proto.triangles is not None:  # a non-convex tile: its own triangulation
+                v = model.klein(model.apply(self.transform[idx], proto.points))  # (n, k, 2)
+                tri = proto.triangles
+                n, p = len(v), len(tri)
+                a = v[:, tri[:, 0]].reshape(-1, 2)
+                b = v[:, tri[:, 1]].reshape(-1, 2)
+                d = v[:, tri[:, 2]].reshape(-1, 2)
+            else:
+                corners = proto.points[list(proto.corners or range(len(proto.points)))]
+                v = model.klein(model.apply(self.transform[idx], corners))   # (n, p, 2)
+                c = model.klein(self.transform[idx][:, :, 2])[:, None, :]     # (n, 1, 2)
+                n, p = v.shape[:2]
+                a = np.broadcast_to(c, v.shape).reshape(-1, 2)
+                b = v.reshape(-1, 2)
+                d = np.roll(v, -1, axis=1).reshape(-1, 2)
             # the reference triangle (0,0), (1,0), (0,1) mapped to (a, b, d)
             m = np.zeros((n * p, 3, 3))
             m[:, :2, 0] = b - a
@@ -218,6 +229,8 @@ class ModelPatch(Patch):
         to the Klein model point by point along its densified boundary; for a spherical one
         :func:`sphere_report` (``region`` None: the whole sphere)."""
         if self.prototiles[0].sign > 0:
+            if any(getattr(pr, "triangles", None) is not None for pr in self.prototiles):
+                return chain_report(self, tolerance)
             return sphere_report(self, tolerance)
         tri = self.klein_triangles()
         reg = None
@@ -285,6 +298,48 @@ def sphere_report(patch: ModelPatch, tolerance: float = AREA_TOL) -> ValidationR
     report.region_area = 4 * math.pi
     report.area_tolerance = tolerance * float(np.median(areas))
     report.uncovered_area = max(0.0, 4 * math.pi - float(areas.sum()))
+    return report
+
+
+def chain_report(patch: ModelPatch, tolerance: float = AREA_TOL) -> ValidationReport:
+    """A spherical patch of non-convex tiles (each a simple geodesic polygon, counter-clockwise,
+    checked when its tiling is made) checked as a 2-chain: every directed boundary segment of
+    every tile must be met by the same segment reversed in exactly one other tile (points welded
+    at 1e-9), so the tiles' boundaries cancel and the tiles cover the sphere a constant number
+    d of times; the areas (each tile's triangulation, Girard's theorem per triangle) sum to
+    d·4π, so d = 1 — every point is covered exactly once — exactly when they sum to 4π. Tiles
+    with a segment matched by no other tile, or twice, are ``invalid_tiles``."""
+    n = len(patch)
+    report = ValidationReport(tiles=n)
+    report.region_area = 4 * math.pi
+    if not n:
+        report.uncovered_area = 4 * math.pi
+        return report
+    total = 0.0
+    owners, starts, ends = [], [], []
+    for _, idx, proto in patch.parts():
+        pts = model.apply(patch.transform[idx], proto.points)        # (m, k, 3)
+        tri = proto.triangles if proto.triangles is not None else np.array(
+            [(0, i, i + 1) for i in range(1, len(proto.points) - 1)])
+        area = sum(_spherical_area(proto.points[list(t)]) for t in tri)
+        total += area * len(idx)
+        m, k = pts.shape[:2]
+        starts.append(pts.reshape(-1, 3))
+        ends.append(np.roll(pts, -1, axis=1).reshape(-1, 3))
+        owners.append(np.repeat(idx, k))
+    a, b, owner = np.concatenate(starts), np.concatenate(ends), np.concatenate(owners)
+    _, ids = np.unique(np.round(np.concatenate([a, b]), 9), axis=0, return_inverse=True)
+    ids = ids.reshape(-1)
+    ia, ib = ids[: len(a)], ids[len(a):]
+    big = int(ids.max()) + 1
+    forward = ia.astype(np.int64) * big + ib
+    backward = ib.astype(np.int64) * big + ia
+    keys, counts = np.unique(forward, return_counts=True)
+    pos = np.clip(np.searchsorted(keys, backward), 0, len(keys) - 1)
+    matched = (keys[pos] == backward) & (counts[pos] == 1) & (counts[np.searchsorted(keys, forward)] == 1)
+    report.invalid_tiles = sorted({int(t) for t in owner[~matched]})
+    report.area_tolerance = tolerance * total / n
+    report.uncovered_area = abs(4 * math.pi - total)
     return report
 
 

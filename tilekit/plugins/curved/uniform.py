@@ -26,6 +26,7 @@ from tilekit.errors import ParameterError, ParseError
 from tilekit.geometry import as_region
 from tilekit.limits import MAX_TILES, refuse_over, refuse_over_memory
 from tilekit.plugins.curved import model, notation, wythoff
+from tilekit.plugins.curved.orbifold import UniformSymmetry, symbol_symmetry, uniform_symmetry
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
 from tilekit.plugins.curved.render import curved_svg
 from tilekit.plugins.curved.tiling import (
@@ -128,6 +129,11 @@ class UniformTiling(Tiling):
         return wythoff.Construction(self.symbol)
 
     @cached_property
+    def symmetry(self) -> UniformSymmetry:
+        """The tiling's full symmetry group (orbifold notation in ``.notation``)."""
+        return symbol_symmetry(self.symbol) or uniform_symmetry(self.construction)
+
+    @cached_property
     def _protos(self) -> list[ModelPrototile]:
         sp = self.construction.space
         view = model.view_rotation() if sp.sign > 0 else None
@@ -205,6 +211,10 @@ class UniformTiling(Tiling):
             "vertex_configuration": self.configuration,
             "wythoff_symbol": str(self.symbol),
             "construction_group": self.symbol.group,
+            # the full group, computed from the construction (orbifold.py): larger than the
+            # construction's when the tiling has more symmetry (3 3 | 2 is the cuboctahedron, *432)
+            "symmetry_group": self.symmetry.notation,
+            "orbifold": self.symmetry.notation,
             "sides": sorted(set(cfg)),
             "valence": len(cfg),
         }

@@ -464,8 +464,11 @@ class Construction:
                 pts.append(m @ self.reflections[(i + 1) % 3] @ g)
             m = self.rotations[i] @ m
         out: list[np.ndarray] = []
-        scale = 1e-9 * max(1.0, float(np.abs(g).max()))
-        for pt in pts:  # coordinates, not arccos/arccosh, which lose half the digits near 0
+        # coordinates, not arccos/arccosh, which lose half the digits near 0; the tolerance
+        # scales with the orbit's coordinates (a generator at X0 whose orbit round a far
+        # corner has coordinates of cosh(2d): 8 | 3 8 found ten triangles' worth of points)
+        scale = 1e-9 * max(1.0, float(np.abs(np.array(pts)).max()))
+        for pt in pts:
             if all(np.abs(pt - o).max() > scale for o in out):
                 out.append(pt)
         return np.array(out)

@@ -483,10 +483,19 @@ class IsohedralTiling(PeriodicTiling):
             "--param X[,X...]       the type's tiling vertex parameters (tilekit show IHn lists them)",
             "--edge b=x,y:x,y:...   an edge shape for a label (end points (0,0), (1,0) optional)",
             "--set colouring=(c..)(p..)(q..)   a colouring of §5.4.3",
+            "--set split=S,T[;x,y:...:1,0]     split every tile in two by a path from boundary position S to T",
+            "                       (edge index + fraction; the path in the frame of the chord S -> T)",
         ])
 
-    def configure(self, **options: Any) -> IsohedralTiling:
-        """A new tiling with ``params`` (floats), ``edges`` ('b=x,y:...'), ``colours``/``colouring``."""
+    def configure(self, **options: Any) -> PeriodicTiling:
+        """A new tiling with ``params`` (floats), ``edges`` ('b=x,y:...'), ``colours``/``colouring``;
+        with ``split`` ('S,T;PATH', :mod:`.split`) the dihedral tiling of the new tile split in two."""
+        if "split" in options:
+            # split.py imports this module: the split tiling is loaded when a split is asked for
+            from tilekit.plugins.isohedral.split import with_split
+
+            split = options.pop("split")
+            return with_split(self.configure(**options), split)
         params = self.params
         edges = dict(self.edge_shapes)
         colouring: Colouring | None = self.colouring
@@ -515,7 +524,7 @@ class IsohedralTiling(PeriodicTiling):
                 colouring = Colouring.parse(value) if isinstance(value, str) else value
             else:
                 raise ParameterError(
-                    f"{self.name} does not take option {key!r}; valid: params, edges, colouring"
+                    f"{self.name} does not take option {key!r}; valid: params, edges, colouring, split"
                 )
         return IsohedralTiling(self.template.ih, params, edges, colouring)
 

@@ -12,14 +12,15 @@ from tilekit.errors import ParameterError, ParseError
 from tilekit.files import read_json
 from tilekit.plugins.isohedral.engine import _spec_ih, unmarked_from_spec
 from tilekit.plugins.isohedral.marked import marked_tiling
-from tilekit.plugins.isohedral.split import split_from_spec
+from tilekit.plugins.isohedral.split import number_text, parse_split, split_from_spec, split_text
 from tilekit.plugins.isohedral.templates import get_template
 from tilekit.schema import finite_number
 from tilekit.tiling import PeriodicTiling
 
-#: Characters left unescaped in a query value: the edge syntax's ``LABEL=x,y:x,y`` and a
-#: colouring's parentheses stay readable (RFC 3986 allows them in a query).
-_QUERY_SAFE = ",:=()"
+#: Characters left unescaped in a query value: the edge syntax's ``LABEL=x,y:x,y``, a
+#: colouring's parentheses and a split's ``S,T;PATH`` stay readable (RFC 3986 allows them in a
+#: query; Starlette splits a query on ``&`` only).
+_QUERY_SAFE = ",:=();"
 
 
 def tiling_from_spec(spec: Mapping[str, Any]) -> PeriodicTiling:
@@ -35,16 +36,16 @@ def tiling_from_spec(spec: Mapping[str, Any]) -> PeriodicTiling:
 
 
 def _number(value: Any) -> str:
-    """The shortest text that float() reads back as exactly ``value`` (repr, without ``.0``)."""
-    text = repr(finite_number(value, "isohedral spec parameter"))
-    return text[:-2] if text.endswith(".0") else text
+    """The shortest text that float() reads back as exactly ``value`` (:func:`.split.number_text`)."""
+    return number_text(finite_number(value, "isohedral spec parameter"))
 
 
 def editor_query(spec: Mapping[str, Any]) -> str:
     """The query string of an isohedral spec in the syntax of the JSON API and the editor.
 
     ``params=v0,v1,...`` (exact: each number's shortest round-trip text), one ``edge=LABEL=TEXT``
-    per edge shape (the spec's own ``EdgeShape`` text), ``colouring=`` when the spec has one:
+    per edge shape (the spec's own ``EdgeShape`` text), ``colouring=`` when the spec has one,
+    ``set=split=S,T;PATH`` when it has a split (:func:`~.split.split_text`):
     what ``/api/render/IHn``, ``/api/tiling/IHn/spec`` and ``/editor/IHn`` read back through
     :func:`tilekit.web.service.query_options` and ``normalise_options`` into the same tiling
     (tests/web/test_editor_url.py checks spec -> query -> the API's parse -> the same spec).
@@ -67,6 +68,11 @@ def editor_query(spec: Mapping[str, Any]) -> str:
         items.append(("edge", f"{label}={text.strip()}"))
     if spec.get("colouring"):
         items.append(("colouring", str(spec["colouring"])))
+    if spec.get("split") is not None:
+        split = parse_split(spec["split"])
+        if split is None or not isinstance(split.get("ends"), list | tuple) or len(split["ends"]) != 2:
+            raise ParseError(f"isohedral spec split {spec['split']!r} is not {{'ends': [s, t], 'path': 'x,y:...'}}")
+        items.append(("set", "split=" + split_text(split)))
     return "&".join(f"{k}={quote(v, safe=_QUERY_SAFE)}" for k, v in items)
 
 

@@ -13,6 +13,11 @@ to t (the boundary from s to t counter-clockwise, then the path back), piece 1 t
 :func:`piece_rows` describes both pieces as rows of (vertex, next vertex, fraction) over the
 tile's outline followed by the path's interior points; the tiling here and the fit
 (:mod:`.dihedral`, where the rows act on a linear model of the outline) both use it.
+
+On the command line and in the editor's URL a split is one option, ``split=S,T`` (a straight
+path) or ``split=S,T;PATH`` (``--set split=0.4,3.6;0,0:0.3,0.15:1,0``, ``set=split=...`` in a
+query): :func:`split_text` writes it, :func:`parse_split` reads it back and
+``IsohedralTiling.configure(split=...)`` builds the split tiling (``split=none`` removes it).
 """
 
 from __future__ import annotations
@@ -29,7 +34,7 @@ from tilekit.geometry import snap_noise
 from tilekit.plugins.isohedral.engine import IsohedralTiling
 from tilekit.plugins.isohedral.shapes import EdgeShape
 from tilekit.polygon import signed_area
-from tilekit.schema import Field, check
+from tilekit.schema import Field, check, finite_number
 from tilekit.tiling import Patch, PeriodicTiling, Prototile
 
 #: The spec's ``split`` table.
@@ -57,6 +62,45 @@ def checked_split(split: Any, edges: int) -> tuple[float, float, EdgeShape]:
         raise ParameterError(f"split ends {s:g} and {t:g} are the same point; give two different boundary positions")
     path = EdgeShape.parse(data["path"]) if data.get("path") else EdgeShape.straight()
     return s, t, path
+
+
+def parse_split(value: Any) -> dict[str, Any] | None:
+    """A split option as the spec's table: ``"S,T"``, ``"S,T;PATH"``, a ``{"ends", "path"}``
+    mapping, or ``"none"``/``""`` (no split: None); a ParseError naming the syntax otherwise."""
+    if value is None or isinstance(value, Mapping):
+        return None if value is None else dict(value)
+    if not isinstance(value, str):
+        raise ParseError(f"split {value!r} is not text like '0.4,3.6;0,0:0.3,0.15:1,0' (ends S,T; path)")
+    text = value.strip()
+    if text.lower() in ("", "none"):
+        return None
+    ends, _, path = text.partition(";")
+    parts = [v for v in ends.split(",")]
+    if len(parts) != 2:
+        raise ParseError(f"split {text[:80]!r}: give two ends 'S,T' (boundary positions: edge index + fraction), "
+                         "then optionally ';' and a path 'x,y:x,y:...' from 0,0 to 1,0")
+    try:
+        s, t = (float(v) for v in parts)
+    except ValueError:
+        raise ParseError(f"split ends {ends[:60]!r} are not two numbers 'S,T' (edge index + fraction)") from None
+    out: dict[str, Any] = {"ends": [s, t]}
+    if path.strip():
+        out["path"] = path.strip()
+    return out
+
+
+def number_text(value: float) -> str:
+    """The shortest text that float() reads back as exactly ``value`` (repr, without ``.0``)."""
+    text = repr(float(value))
+    return text[:-2] if text.endswith(".0") else text
+
+
+def split_text(split: Mapping[str, Any]) -> str:
+    """The option text of a spec's split table (the inverse of :func:`parse_split`; numbers as
+    their shortest round-trip text, the path as given)."""
+    ends = ",".join(number_text(finite_number(v, "split end")) for v in split["ends"])
+    path = split.get("path")
+    return f"{ends};{path}" if path else ends
 
 
 def outline_position(counts: np.ndarray, s: float) -> float:
@@ -178,6 +222,22 @@ class SplitTiling(PeriodicTiling):
         out._geoms = None
         return out
 
+    def configure(self, **options: Any) -> PeriodicTiling:
+        """The base tiling configured (params, edges, colouring), split by ``split`` if given
+        (``"none"``: unsplit) or else by this tiling's split again (so the path follows the
+        tile); the split is checked on the new tile."""
+        split = options.pop("split", self._split_table())
+        return with_split(self.base.configure(**options), split)
+
+    def options_help(self) -> str:
+        return self.base.options_help()
+
+    def default_region(self) -> Any:
+        return self.base.default_region()
+
+    def _split_table(self) -> dict[str, Any]:
+        return {"ends": list(self.ends), "path": self.path.to_text()}
+
     def spec(self) -> dict[str, Any]:
         out = self.base.spec()
         out["split"] = {"ends": list(self.ends), "path": self.path.to_text()}
@@ -195,3 +255,9 @@ def split_from_spec(spec: Mapping[str, Any], base: IsohedralTiling) -> SplitTili
     """The split tiling of ``spec["split"]`` over the isohedral tiling ``base``."""
     s, t, path = checked_split(spec["split"], len(base.edge_paths))
     return SplitTiling(base, s, t, path)
+
+
+def with_split(base: IsohedralTiling, split: Any) -> PeriodicTiling:
+    """``base`` split by a split option (:func:`parse_split`: text, a table, or none)."""
+    table = parse_split(split)
+    return base if table is None else split_from_spec({"split": table}, base)

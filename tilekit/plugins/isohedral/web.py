@@ -19,6 +19,7 @@ from tilekit.plugins import WebRoute
 from tilekit.plugins.isohedral.engine import IsohedralTiling, shape_classes
 from tilekit.plugins.isohedral.metamorphosis import metamorphosis
 from tilekit.plugins.isohedral.shapes import parse_edge_option
+from tilekit.plugins.isohedral.split import SplitTiling
 from tilekit.plugins.isohedral.templates import get_template
 from tilekit.render import PALETTE, parse_palette
 from tilekit.web.pages import esc, name_path, options
@@ -40,8 +41,14 @@ def isohedral_types() -> list[tuple[str, str]]:
 
 
 def editor_info(tiling: Any) -> dict[str, Any]:
-    """What the isohedral editor needs: parameters, edge shape classes with their kinds."""
+    """What the isohedral editor needs: parameters, edge shape classes with their kinds, the
+    tile's outline with the number of outline segments of each tiling edge (where a split's
+    boundary positions lie, :mod:`.split`) and the split of a split tiling (else None)."""
 
+    split = None
+    if isinstance(tiling, SplitTiling):
+        split = {"ends": list(tiling.ends), "points": tiling.path.points.tolist(), "smooth": bool(tiling.path.smooth)}
+        tiling = tiling.base
     if not isinstance(tiling, IsohedralTiling):
         raise ParameterError(f"{tiling.name} is not an isohedral tiling; the editor takes IH1..IH93")
     t = tiling.template
@@ -70,6 +77,10 @@ def editor_info(tiling: Any) -> dict[str, Any]:
         "spec": tiling.spec(),
         "region": list(tiling.default_region().bounds),
         "parquet": t.topology == "4^4" and tv.parameters == 0,
+        "tile": {"outline": np.asarray(tiling.prototile.outline, dtype=float).tolist(),
+                 "counts": [len(p) - 1 for p in tiling.edge_paths]},
+        "split": split,
+        "piece_colours": list(PALETTE[:2]),
     }
 
 
@@ -125,11 +136,56 @@ def parquet_tiles(renderer: Any, name: str, edges: list[str], columns: int = 12,
 # --------------------------------------------------------------------------- pages
 
 
-def editor_pick_page(web: Any, types: Sequence[tuple[str, str]]) -> str:
-    """The editor's entry page: a link per unmarked type."""
-    links = "".join(f'<a class="ih" href="/editor/{esc(n)}" title="{esc(t)}">{esc(n)}</a>' for n, t in types)
-    return web.page("isohedral editor", "<h1>Isohedral editor</h1><p>Pick an isohedral type (exercise 5.12); "
-                  f'the 12 marked types are not editable.</p><div class="types" id="types">{links}</div>')
+#: The picker's edge shape, on every J, U and S shape class: a J edge shows it whole, a U edge
+#: its half mirrored, an S edge its half turned, so each type's picture shows its edge kinds
+#: (all 81 unmarked types tile validly with it at their default parameters; a test checks).
+PICTURE_SHAPE = "0,0:0.3,0.12:0.7,-0.06:1,0"
+
+
+def picture_edges(tiling: IsohedralTiling) -> list[str]:
+    """``LABEL=PICTURE_SHAPE`` for each shape class of the tiling's type that is not I."""
+    symbol = tiling.template.symbol
+    return [f"{label}={PICTURE_SHAPE}" for label in shape_classes(symbol) if symbol.label_kind(label) != "I"]
+
+
+#: Names of polygons by their number of corners (the tile of a topology [3^6] has six).
+POLYGONS = {3: "triangles", 4: "quadrilaterals", 5: "pentagons", 6: "hexagons"}
+
+
+def topology_corners(topology: str) -> int:
+    """The number of tiling vertices of a tile of Laves topology ``3^4.6`` (4 + 1 = 5)."""
+    return sum(int(part.split("^")[1]) if "^" in part else 1 for part in topology.split("."))
+
+
+def topology_groups() -> list[tuple[str, list[int]]]:
+    """The unmarked types grouped by topological type (the Laves tiling of their tiling
+    vertices, as Tactile's demos group them): (topology, [ih, ...]) in the order of
+    Grünbaum and Shephard's numbering."""
+    groups: dict[str, list[int]] = {}
+    for i in range(1, 94):
+        t = get_template(i)
+        if not t.marked:
+            groups.setdefault(t.topology, []).append(i)
+    return list(groups.items())  # in the order of their first type (IH1: [3^6], ... IH83: [6^3])
+
+
+def editor_pick_page(web: Any, groups: Sequence[tuple[str, Sequence[int]]]) -> str:
+    """The editor's entry page: each type's picture (``/editor/picture/IHn.svg``: its tiling
+    with :data:`PICTURE_SHAPE` on every shaped edge) and name, grouped by topology."""
+    sections = []
+    for topology, ihs in groups:
+        corners = topology_corners(topology)
+        cards = "".join(
+            f'<a class="ih-card" href="/editor/IH{i}" title="IH{i}: {esc(get_template(i).symbol)}">'
+            f'<img loading="lazy" alt="IH{i}" width="96" height="96" src="/editor/picture/IH{i}.svg"><span>IH{i}</span></a>'
+            for i in ihs)
+        sections.append(f'<section class="topology" data-topology="{esc(topology)}"><h2>[{esc(topology)}] '
+                        f'{esc(POLYGONS.get(corners, f"{corners}-gons"))} <small>({len(ihs)} type'
+                        f'{"s" if len(ihs) != 1 else ""})</small></h2><div class="ih-cards">{cards}</div></section>')
+    return web.page("isohedral editor", "<h1>Isohedral editor</h1><p>Pick an isohedral type (exercise 5.12), "
+                    "grouped by topological type: the Laves tiling its tiling vertices form, named by the "
+                    "valences of a tile's corners (§5.3). The 12 marked types are not editable.</p>"
+                    f'<div class="types" id="types">{"".join(sections)}</div>')
 
 
 def editor_page(web: Any, info: Mapping[str, Any], types: Sequence[str], problem: str | None = None) -> str:
@@ -147,6 +203,14 @@ def editor_page(web: Any, info: Mapping[str, Any], types: Sequence[str], problem
 <h2>Edge shapes</h2><p class="hint">Drag the handles; J edges are free, U edges mirror about their
 midpoint's perpendicular, S edges turn half a turn about their midpoint, I edges stay straight
 (§5.4). Double-click a segment to add a point, a handle to remove it.</p><div id="edges"></div>
+<h2>Split</h2><p class="hint">A splitting path between two boundary points divides every tile
+in two (a dihedral tiling, as <code>tilekit escherize GOAL_A GOAL_B</code> writes): drag the ends
+along the boundary and the path's points; double-click a point to remove it.</p>
+<div id="split"><svg id="split-svg" class="split-svg" hidden><g transform="scale(1,-1)"></g></svg>
+<p><button type="button" id="split-add">split the tile</button>
+<button type="button" id="split-point" hidden>add path point</button>
+<button type="button" id="split-remove" hidden>remove the split</button></p>
+<p class="hint"><code id="split-text"></code></p></div>
 <h2>View</h2>
 <label>zoom <input type="range" id="zoom" min="0.3" max="3" step="0.05" value="1"></label>
 <label>rotate <input type="range" id="rotate" min="-180" max="180" step="1" value="0"></label>
@@ -172,13 +236,13 @@ midpoint's perpendicular, S edges turn half a turn about their midpoint, I edges
 
 
 def editor_pick(request: Any, web: Any) -> str:
-    return editor_pick_page(web, isohedral_types())
+    return editor_pick_page(web, topology_groups())
 
 
 def editor(request: Any, web: Any) -> str:
     name = request.path_params["name"]
     t = web.renderer.base_tiling(name)
-    if not isinstance(t, IsohedralTiling):
+    if not isinstance(t, IsohedralTiling | SplitTiling):
         raise ParameterError(f"{name} is not an unmarked isohedral type; the editor takes IH1..IH93")
     # /editor/IHn?params=..&edge=..&colouring=..: the JSON API's query syntax and parser; a
     # query the API would refuse is shown as its one line over the type's defaults
@@ -189,6 +253,19 @@ def editor(request: Any, web: Any) -> str:
         except (TilekitError, ValueError, TypeError) as exc:
             problem = web.one_line(exc)
     return editor_page(web, editor_info(t), [n for n, _ in isohedral_types()], problem)
+
+
+def picture(request: Any, web: Any) -> Any:
+    """A type's picture for the picker: its tiling with the picker's shape on every J, U and S
+    edge (a thumbnail through the renderer's cache)."""
+    from starlette.responses import Response
+
+    name = request.path_params["name"]
+    base = web.renderer.base_tiling(name)
+    if not isinstance(base, IsohedralTiling):
+        raise ParameterError(f"{name} is not an unmarked isohedral type; pictures are of IH1..IH93's 81 unmarked types")
+    _, svg, _ = web.renderer.render(name, {"size": 160, "edges": picture_edges(base)}, thumbnail=True)
+    return Response(svg, media_type="image/svg+xml", headers={"Cache-Control": "public, max-age=3600"})
 
 
 def editor_api(request: Any, web: Any) -> dict[str, Any]:
@@ -214,6 +291,7 @@ def parquet(request: Any, web: Any) -> Any:
 ROUTES = (
     WebRoute("/editor", editor_pick),
     WebRoute("/editor/{name:str}", editor),
+    WebRoute("/editor/picture/{name:str}.svg", picture),
     WebRoute("/api/tiling/{name:str}/editor", editor_api,
              doc="parameters and edge shape classes of an isohedral tiling"),
     WebRoute("/api/parquet/{name:str}", parquet,

@@ -234,6 +234,41 @@ def _valid_run(params: QuasivertexParams, name: str) -> tuple[float, float, floa
     return abs(float(values[near]) - given) / scale, float(values[lo]), float(values[hi])
 
 
+def admissible_range(params: QuasivertexParams, name: str, lo: float, hi: float, samples: int = 64,
+                     tol: float = 1e-4) -> tuple[float, float] | None:
+    """The values of parameter ``name`` in [lo, hi] that keep both rhombs simple with the other
+    three fixed: the run of such values around the given one (or the nearest run), its ends
+    found by bisection to ``tol`` and given on their valid side; None if no sampled value is
+    valid. What the Penrose editor's r sliders are limited to."""
+    if name not in PARAM_NAMES:
+        raise ParameterError(f"quasivertex parameter {name!r} is not one of {', '.join(PARAM_NAMES)}")
+
+    def valid(v: float) -> bool:
+        return not _bad_tiles(QuasivertexParams(**{**params.as_dict(), name: float(v)}))
+
+    values = np.linspace(lo, hi, samples + 1)
+    ok = np.array([valid(v) for v in values])
+    if not ok.any():
+        return None
+    idx = np.flatnonzero(ok)
+    near = int(idx[np.argmin(np.abs(values[idx] - getattr(params, name)))])
+    a = b = near
+    while a > 0 and ok[a - 1]:
+        a -= 1
+    while b < len(values) - 1 and ok[b + 1]:
+        b += 1
+
+    def edge(good: float, bad: float) -> float:
+        while abs(bad - good) > tol:
+            mid = 0.5 * (good + bad)
+            good, bad = (mid, bad) if valid(mid) else (good, mid)
+        return good
+
+    low = float(values[a]) if a == 0 else edge(float(values[a]), float(values[a - 1]))
+    high = float(values[b]) if b == len(values) - 1 else edge(float(values[b]), float(values[b + 1]))
+    return low, high
+
+
 def validate_params(params: QuasivertexParams) -> None:
     """Raise ParameterError naming a parameter when a deformed rhomb self-intersects.
 

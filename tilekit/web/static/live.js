@@ -2,6 +2,8 @@
 // request at a time wins (older answers are dropped), the SVG fills the view, a refusal shows
 // the server's one-line reason and keeps the last picture. The root element's data-state
 // (ok / refused) and data-renders (a count) are what the browser tests wait on.
+// The returned promise gives true when the picture was drawn (a page updates its export links
+// then, so they always name the last tiling drawn), false when refused, null when superseded.
 window.tilekitLive = function (root, view, errorBox) {
   "use strict";
   let seq = 0;
@@ -10,11 +12,11 @@ window.tilekitLive = function (root, view, errorBox) {
     return fetch(url)
       .then(function (r) { return r.json().then(function (b) { return { ok: r.ok, body: b }; }); })
       .then(function (res) {
-        if (mine !== seq) return;
+        if (mine !== seq) return null;
         if (!res.ok) {
           errorBox.textContent = res.body.error || "render failed";
           root.dataset.state = "refused";
-          return;
+          return false;
         }
         errorBox.textContent = "";
         view.innerHTML = res.body.svg;
@@ -22,6 +24,7 @@ window.tilekitLive = function (root, view, errorBox) {
         if (svg) { svg.removeAttribute("width"); svg.removeAttribute("height"); }
         root.dataset.state = "ok";
         root.dataset.renders = String(Number(root.dataset.renders || 0) + 1);
+        return true;
       });
   };
 };

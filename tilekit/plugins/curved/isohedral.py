@@ -1,0 +1,617 @@
+"""Isohedral tiles on the sphere and the hyperbolic plane (issue 35; §3.6.2, §7.3): the regular
+p-gon of the tiling {p, q} with its edges paired by motions, each edge shaped by the J/S rule its
+pairing allows (the planar isohedral family's edge vocabulary, :mod:`tilekit.edgeshapes`).
+
+The pairing names each edge with a letter: a letter on one edge is an **S** edge, paired with
+itself by the half-turn about its midpoint; a letter on two edges is a **J** pair, edge j carried
+onto edge i by the direct motion ``H_i = F_i · R · F_j⁻¹`` (F_k the frame at edge k's midpoint
+along the edge, R the half-turn there). By Poincaré's polygon theorem the motions generate a
+discrete group Γ with the polygon as a fundamental domain exactly when every vertex cycle (the
+corners the pairings glue together: corner c goes to corner partner(c) + 1) has a length m
+dividing q; then Γ's images of the polygon are the tiles of {p, q}, each once, and Γ acts on
+them simply transitively. The tile may therefore be deformed freely: an edge's curve lives on
+the unit segment (0,0)–(1,0) and is carried onto the surface through the edge's chart
+``F_k · exp((x − ½)L, yL)`` (the exponential map at the pole, L the edge length), which
+commutes with the half-turn, so a curve put on edge j arrives on edge i as R applied to it.
+Neighbouring tiles share their edges point for point, and the tile is the geodesic polygon
+through those points (straight in the Klein model), so the deformed tiles tile exactly as the
+polygons do; a tile whose boundary crosses itself is refused.
+
+Γ's orbifold: a cone point q/m per vertex cycle (when > 1), a cone point 2 per S edge, and
+(1 + J pairs − cycles)/2 handles. Colours: a homomorphism φ: Γ → Z_k given on the pairing
+motions (φ of a J pair's two motions opposite, 2φ = 0 on an S edge, (q/m)·Σφ = 0 round each
+vertex cycle: the relations of Γ) colours the tile γ(P) by φ(γ); its classes are the cosets of
+the kernel, a normal subgroup of index k, so the colouring is perfect, and with φ ≠ 0 on every
+motion no two neighbours share a colour. The smallest such k (at least 2) is used, or the one
+asked for; none is a one-line error.
+
+Covered: every orientation-preserving side pairing of the regular p-gon of {p, q} (orientation-
+reversing pairings and U/I edges, which need mirrors, are not). On the sphere these are the
+isohedral types of the Platonic tilings whose group acts simply transitively on the tiles, e.g.
+{3,3} with S edges (group 222, the four-colour tetrahedron), {4,4}'s analogue is not spherical,
+{3,6} is Euclidean (see the isohedral family); Grünbaum–Shephard's types with tile symmetry are
+not among them.
+"""
+
+from __future__ import annotations
+
+import itertools
+import json
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+from functools import cached_property
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import shapely
+from shapely.geometry.base import BaseGeometry
+
+from tilekit.edgeshapes import ROT, EdgeShape, apply_unit, complete
+from tilekit.errors import GeometryError, ParameterError, ParseError
+from tilekit.files import read_text
+from tilekit.geometry import as_region
+from tilekit.limits import MAX_TILES, refuse_over, refuse_over_memory
+from tilekit.plugins.curved import model, wythoff
+from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
+from tilekit.plugins.curved.render import curved_svg
+from tilekit.plugins.curved.tiling import MAX_RADIUS, PLANES, _number
+from tilekit.polygon import ear_clip, signed_area
+from tilekit.tiling import Patch, Tiling
+
+FAMILY = "curved-isohedral"
+#: Chart points per segment of an edge's curve (the curve is subdivided on the unit segment
+#: before it is carried onto the surface, so it bends smoothly there).
+DEFAULT_SAMPLES = 3
+MAX_SAMPLES = 16
+#: Hyperbolic radius when none is given (the tiles whose centres lie within it).
+DEFAULT_RADIUS = 3.0
+#: Most assignments of colours to the pairing motions tried for one quotient group (a
+#: polygon with many J pairs is coloured by the smaller quotients only).
+MAX_ASSIGNMENTS = 200_000
+#: Largest k of a colouring searched for (and accepted).
+MAX_COLOURS = 8
+#: Largest spec file read (a spec is a few hundred bytes; edge shapes are bounded anyway).
+MAX_SPEC_BYTES = 1 << 16
+#: Peak bytes per tile while a patch is made: the Patch's columns and the breadth-first
+#: layers' candidates (p per tile); bounded generously.
+BYTES_PER_TILE = 4000
+
+_OPTIONS = ("p", "q", "pairing", "edges", "radius", "samples", "colours", "plane", "geometry")
+_SPEC_KEYS = set(_OPTIONS) - {"geometry"} | {"name", "title"}
+_ROT3 = np.diag([-1.0, -1.0, 1.0])
+#: Default shapes: an S edge's half (completed by the half-turn) and a J edge's whole curve.
+DEFAULT_S = "0.18,0.16:0.34,0.14"
+DEFAULT_J = "0.25,0.16:0.55,-0.12:0.8,0.06"
+
+
+# --------------------------------------------------------------------------- the pairing
+
+
+@dataclass(frozen=True)
+class Pairing:
+    """Letters naming the p edges: ``labels[i]``; ``partner[i]`` the edge paired with edge i
+    (itself for an S edge)."""
+
+    labels: tuple[str, ...]
+    partner: tuple[int, ...]
+
+    @classmethod
+    def parse(cls, text: Any, p: int) -> Pairing:
+        """``'a b c a b c d'`` (letters a-z, spaces or commas between): one letter per edge."""
+        if not isinstance(text, str):
+            raise ParseError(f"pairing must be text like 'a b a b', got {type(text).__name__}")
+        tokens = [t for t in text.replace(",", " ").split() if t]
+        if len(tokens) != p or any(len(t) != 1 or not t.isalpha() or not t.islower() for t in tokens):
+            raise ParseError(f"pairing {text[:60]!r}: give {p} letters a-z, one per edge of the {p}-gon "
+                             "(a letter once: an S edge; twice: a J pair), e.g. " + " ".join("abcdefghijkl"[:p]))
+        where: dict[str, list[int]] = {}
+        for i, t in enumerate(tokens):
+            where.setdefault(t, []).append(i)
+        partner = list(range(p))
+        for t, idx in where.items():
+            if len(idx) > 2:
+                raise ParseError(f"pairing {text[:60]!r}: letter {t!r} names {len(idx)} edges; a letter names one "
+                                 "edge (S) or two (a J pair)")
+            if len(idx) == 2:
+                partner[idx[0]], partner[idx[1]] = idx[1], idx[0]
+        return cls(tuple(tokens), tuple(partner))
+
+    def __str__(self) -> str:
+        return " ".join(self.labels)
+
+    def kind(self, i: int) -> str:
+        return "S" if self.partner[i] == i else "J"
+
+    def cycles(self) -> list[list[int]]:
+        """The vertex cycles: corner c (vertex c of the polygon, where edge c starts) is glued to
+        corner partner(c) + 1."""
+        p = len(self.labels)
+        seen: set[int] = set()
+        out = []
+        for c in range(p):
+            if c in seen:
+                continue
+            cyc = []
+            while c not in seen:
+                seen.add(c)
+                cyc.append(c)
+                c = (self.partner[c] + 1) % p
+            out.append(cyc)
+        return out
+
+    def owners(self) -> list[int]:
+        """The edges that own a shape: each S edge and the first edge of each J pair."""
+        return [i for i in range(len(self.labels)) if self.partner[i] >= i]
+
+
+def check_pairing(pairing: Pairing, p: int, q: int) -> None:
+    """Poincaré's condition: every vertex cycle's length divides q (one-line ParameterError)."""
+    for cyc in pairing.cycles():
+        if q % len(cyc):
+            raise ParameterError(
+                f"pairing '{pairing}' glues corners {', '.join(str(c + 1) for c in cyc)} of the {p}-gon into one "
+                f"vertex, {len(cyc)} corners of angle 2π/{q}: it tiles {{{p},{q}}} only when each vertex cycle's "
+                f"length divides q ({q}); {_pairing_hint(p, q)}")
+
+
+def _pairing_hint(p: int, q: int) -> str:
+    ex = example_pairing(p, q)
+    return f"e.g. '{ex}'" if ex else f"no pairing of the {p}-gon found for {{{p},{q}}} (p up to 10 searched)"
+
+
+def orbifold_features(pairing: Pairing, q: int) -> tuple[int, list[int]]:
+    """(handles, cone orders largest first) of the group's orbifold: a cone q/m per vertex
+    cycle of m corners (when q/m > 1), a cone 2 per S edge; the quotient of the polygon has
+    V − E + F = cycles + S edges − (J pairs + S edges) + 1 = 2 − 2·handles."""
+    cyc = pairing.cycles()
+    cones = [q // len(c) for c in cyc if q // len(c) > 1] + [2] * sum(1 for i in range(len(pairing.labels))
+                                                                    if pairing.kind(i) == "S")
+    pairs = sum(1 for i in range(len(pairing.labels)) if pairing.partner[i] > i)
+    return (1 + pairs - len(cyc)) // 2, sorted(cones, reverse=True)
+
+
+def orbifold(pairing: Pairing, q: int) -> str:
+    """The group's orbifold symbol: handles (o), then cone points, largest first."""
+    handles, cones = orbifold_features(pairing, q)
+    return "o" * handles + "".join(map(str, cones))
+
+
+def example_pairing(p: int, q: int) -> str | None:
+    """A pairing of the p-gon that tiles {p, q}: the first found (J pairs of neighbouring
+    edges first), or None (p up to 10 searched: 9,496 pairings)."""
+    if p > 10:
+        return None
+    letters = "abcdefghijkl"
+
+    def matchings(free: list[int]) -> Any:
+        if not free:
+            yield {}
+            return
+        i, rest = free[0], free[1:]
+        for j in rest:
+            for m in matchings([k for k in rest if k != j]):
+                yield {i: j, j: i, **m}
+        for m in matchings(rest):
+            yield {i: i, **m}
+
+    for m in matchings(list(range(p))):
+        labels, name = [""] * p, 0
+        for i in range(p):
+            if not labels[i]:
+                labels[i] = labels[m[i]] = letters[name]
+                name += 1
+        pairing = Pairing(tuple(labels), tuple(m[i] for i in range(p)))
+        if all(q % len(c) == 0 for c in pairing.cycles()):
+            return str(pairing)
+    return None
+
+
+# --------------------------------------------------------------------------- colourings
+
+
+#: The finite abelian groups a colouring maps onto, smallest first: Z_b (a = 1) or Z_a × Z_b.
+QUOTIENTS = ((1, 2), (1, 3), (1, 4), (2, 2), (1, 5), (1, 6), (1, 7), (1, 8), (2, 4))
+
+
+def colouring(pairing: Pairing, q: int, k: int | None = None) -> tuple[tuple[int, int], tuple[int, ...]]:
+    """((a, b), φ per edge's motion as a colour index x·b + y of Z_a × Z_b): a homomorphism of the group onto a finite
+    abelian group A (Z_b or Z_a × Z_b, k = |A| elements; see the module), nonzero on every
+    motion when one is (neighbours then differ), else any onto A; the smallest A first, or the
+    first with k elements when k is asked for; a quotient whose assignments number over
+    MAX_ASSIGNMENTS is skipped. No homomorphism onto any A of QUOTIENTS: one
+    colour (k = 1, the trivial colouring, perfect too)."""
+    p = len(pairing.labels)
+    owners = pairing.owners()
+    cycles = pairing.cycles()
+    quotients = [ab for ab in QUOTIENTS if k is None or ab[0] * ab[1] == k]
+    if k is not None and not quotients:
+        raise ParameterError(f"colours must be one of {', '.join(str(a * b) for a, b in QUOTIENTS[:8])} (the "
+                             f"abelian groups searched), got {k}")
+    for nonzero in (True, False):
+        for a, b in quotients:
+            elems = [(x, y) for x in range(a) for y in range(b)]
+            allowed = elems[1:] if nonzero else elems
+            half = [e for e in allowed if not (2 * e[0]) % a and not (2 * e[1]) % b]  # an S edge's φ: 2φ = 0
+            choices = [half if pairing.kind(i) == "S" else allowed for i in owners]
+            if math.prod(len(c) for c in choices) > MAX_ASSIGNMENTS:
+                continue  # budget: this quotient is not searched (the docstring says so)
+            for values in itertools.product(*choices):
+                phi = [(0, 0)] * p
+                for i, v in zip(owners, values):
+                    phi[i] = v
+                    if pairing.partner[i] != i:
+                        phi[pairing.partner[i]] = ((-v[0]) % a, (-v[1]) % b)
+                if any(pairing.kind(i) == "S" and ((2 * phi[i][0]) % a or (2 * phi[i][1]) % b) for i in range(p)):
+                    continue
+                if any(((q // len(c)) * sum(phi[x][0] for x in c)) % a or ((q // len(c)) * sum(phi[x][1] for x in c)) % b
+                       for c in cycles):
+                    continue
+                reach = {(0, 0)}
+                for _ in range(a * b):
+                    reach |= {((r[0] + g[0]) % a, (r[1] + g[1]) % b) for r in reach for g in phi}
+                if len(reach) == a * b:
+                    return (a, b), tuple(x * b + y for x, y in phi)
+    if k is not None:
+        raise ParameterError(f"pairing '{pairing}' on {{{p},{q}}} has no perfect colouring with {k} colours (no "
+                             "homomorphism of its group onto an abelian group of that order)")
+    return (1, 1), (0,) * p
+
+
+def add_colours(c: np.ndarray, phi: np.ndarray, quotient: tuple[int, int]) -> np.ndarray:
+    """Colour indices (of Z_a × Z_b, index x·b + y) plus φ, elementwise."""
+    a, b = quotient
+    x = (c // b + phi // b) % a
+    y = (c % b + phi % b) % b
+    return x * b + y
+
+
+# --------------------------------------------------------------------------- the tiling
+
+
+def _edge_frames(poly: model.RegularPolygon) -> np.ndarray:
+    """(p, 3, 3): F_i takes the pole to edge i's midpoint, the x axis along the edge (towards
+    vertex i + 1)."""
+    g = poly.geometry
+    out = np.empty((poly.p, 3, 3))
+    for i in range(poly.p):
+        out[i] = g.rotation((2 * i + 1) * math.pi / poly.p) @ g.translation(poly.inradius) @ g.rotation(math.pi / 2)
+    return out
+
+
+def _chart(g: model.Geometry, frame: np.ndarray, length: float, uv: np.ndarray) -> np.ndarray:
+    """Unit-segment points (m, 2) onto the surface through the edge's chart (see the module)."""
+    u, v = (uv[:, 0] - 0.5) * length, uv[:, 1] * length
+    pts = g.point(np.hypot(u, v), np.arctan2(v, u))
+    return pts @ frame.T
+
+
+def _densify(curve: np.ndarray, samples: int) -> np.ndarray:
+    """The curve's segments each cut into ``samples`` pieces (end point kept)."""
+    if samples <= 1:
+        return curve
+    t = np.arange(samples) / samples
+    a, b = curve[:-1], curve[1:]
+    pts = a[:, None, :] + t[None, :, None] * (b - a)[:, None, :]
+    return np.vstack([pts.reshape(-1, 2), curve[-1:]])
+
+
+class CurvedIsohedralTiling(Tiling):
+    """Copies of one deformable tile filling the sphere or the hyperbolic plane (see the module).
+
+    ``CurvedIsohedralTiling(7, 3, pairing='a b c a b c d', edges={'a': EdgeShape(...)})``.
+    """
+
+    streams = False
+    bytes_per_tile = BYTES_PER_TILE
+    family = FAMILY
+
+    def __init__(self, p: int = 6, q: int = 4, *, pairing: str | None = None,
+                 edges: Mapping[str, EdgeShape | str] | None = None, radius: float | None = None,
+                 samples: int = DEFAULT_SAMPLES, colours: int | None = None, plane: str = "poincare",
+                 geometry: str | None = None, name: str = "", title: str = "") -> None:
+        self.p, self.q = model.check_pq(p, q)
+        self.kind = model.kind_of(self.p, self.q)
+        want = wythoff.check_geometry(geometry)
+        if want is not None and want != self.kind:
+            raise ParameterError(f"{{{self.p},{self.q}}} is {self.kind}, not {want}: (p-2)(q-2) < 4 is the sphere, "
+                                 "> 4 the hyperbolic plane")
+        if pairing is None:
+            pairing = example_pairing(self.p, self.q)
+            if pairing is None:
+                raise ParameterError(f"{{{self.p},{self.q}}}: no side pairing of the {self.p}-gon found; give one "
+                                     "(--set pairing='a b ...')")
+        self.pairing = Pairing.parse(pairing, self.p)
+        check_pairing(self.pairing, self.p, self.q)
+        if not isinstance(plane, str) or plane not in PLANES:
+            raise ParameterError(f"plane must be one of {', '.join(PLANES)}, got {str(plane)[:40]}")
+        if plane != "poincare" and self.kind == model.SPHERE:
+            raise ParameterError("plane applies to hyperbolic tilings; a sphere is drawn in orthographic view")
+        self.plane = plane
+        self.samples = int(_number("samples", samples, 1, MAX_SAMPLES, True))
+        if radius is not None and self.kind == model.SPHERE:
+            raise ParameterError("radius applies to hyperbolic tilings; a tiling of the sphere is drawn whole")
+        self.radius = None if radius is None else float(_number("radius", radius, 0, MAX_RADIUS, False))
+        self.quotient, self.phi = colouring(self.pairing, self.q,
+                                                None if colours is None else
+                                                int(_number("colours", colours, 1, MAX_COLOURS, True)))
+        self.colour_count = self.quotient[0] * self.quotient[1]
+        self.asked_colours = colours is not None
+        self.edge_shapes = self._shapes(edges or {})
+        self.polygon = model.RegularPolygon(self.p, self.q)
+        self.name = name or f"{FAMILY}-{self.p}-{self.q}"
+        self.title = title
+        self._proto = self._prototile()
+
+    # -- shapes ------------------------------------------------------------------------
+    def _shapes(self, edges: Mapping[str, Any]) -> dict[str, EdgeShape]:
+        if not isinstance(edges, Mapping):
+            raise ParameterError(f"edges must map edge letters to shapes, got {type(edges).__name__}")
+        letters = {self.pairing.labels[i]: i for i in self.pairing.owners()}
+        out: dict[str, EdgeShape] = {}
+        for lab, shape in edges.items():
+            if lab not in letters:
+                raise ParameterError(f"{{{self.p},{self.q}}} with pairing '{self.pairing}' has no edge {str(lab)[:10]!r}; "
+                                     f"its edges are {', '.join(sorted(letters))}")
+            out[lab] = shape if isinstance(shape, EdgeShape) else EdgeShape.parse(str(shape))
+        # the defaults bend less where the corners are sharp (angle 2π/q), so the tile stays simple
+        scale = min(1.0, 4.0 / self.q)
+        for lab, i in letters.items():
+            base = EdgeShape.parse(DEFAULT_S if self.pairing.kind(i) == "S" else DEFAULT_J)
+            out.setdefault(lab, EdgeShape(base.points * np.array([1.0, scale])))
+        return out
+
+    def edge_curves(self) -> list[np.ndarray]:
+        """Each edge's curve on the unit segment, (0,0) to (1,0): an S edge completed by the
+        half-turn, a J pair's second edge the half-turn image of the first's."""
+        curves: list[np.ndarray] = [np.zeros((0, 2))] * self.p
+        for i in self.pairing.owners():
+            kind = self.pairing.kind(i)
+            curve = complete(kind, self.edge_shapes[self.pairing.labels[i]])
+            curves[i] = curve
+            if kind == "J":
+                curves[self.pairing.partner[i]] = apply_unit(ROT, curve)
+        return curves
+
+    @cached_property
+    def frames(self) -> np.ndarray:
+        return _edge_frames(self.polygon)
+
+    @cached_property
+    def motions(self) -> np.ndarray:
+        """(p, 3, 3): H_i carries the tile onto its neighbour across edge i."""
+        f = self.frames
+        inv = np.linalg.inv(f)
+        return np.array([f[i] @ _ROT3 @ inv[self.pairing.partner[i]] for i in range(self.p)])
+
+    def _prototile(self) -> ModelPrototile:
+        g = self.polygon.geometry
+        length = self.polygon.edge_length
+        parts, edge_of = [], []
+        for i, curve in enumerate(self.edge_curves()):
+            pts = _chart(g, self.frames[i], length, _densify(curve, self.samples))[:-1]
+            parts.append(pts)
+            edge_of += [i] * len(pts)
+        pts = np.vstack(parts)
+        flat = model.klein(pts) if g.sign < 0 else pts[:, :2] / pts[:, 2:3]  # Klein / gnomonic: geodesics straight
+        if g.sign > 0 and (pts[:, 2] <= 1e-3).any():
+            raise ParameterError(f"the edge shapes carry the tile of {{{self.p},{self.q}}} past the hemisphere round "
+                                 "its centre; use smaller deflections")
+        ring = shapely.LinearRing(flat)
+        if not ring.is_simple or signed_area(flat) <= 0:
+            raise ParameterError(self._crossing_message(flat, np.array(edge_of)))
+        tris = ear_clip(flat)
+        index = {tuple(v): k for k, v in enumerate(flat.tolist())}
+        triangles = np.array([[index[tuple(v)] for v in t.tolist()] for t in tris], dtype=np.int64)
+        view = model.view_rotation() if g.sign > 0 else None
+        shown = model.project(pts, self.plane) if g.sign < 0 else model.orthographic(pts @ view.T)
+        return ModelPrototile(shown, name=f"{{{self.p},{self.q}}} tile", points=pts, sign=g.sign, view=view,
+                              plane=self.plane, corners=tuple(range(len(pts))), triangles=triangles)
+
+    def _crossing_message(self, flat: np.ndarray, edge_of: np.ndarray) -> str:
+        lines = []
+        for i in range(self.p):
+            sel = np.flatnonzero(edge_of == i)
+            seg = np.vstack([flat[sel], flat[(sel[-1] + 1) % len(flat)][None]])
+            lines.append(shapely.LineString(seg))
+        for i in range(self.p):
+            if not lines[i].is_simple:
+                return (f"the shape of edge {i + 1} ({self.pairing.labels[i]!r}) crosses itself: the tile must stay "
+                        "a simple polygon")
+            for j in range(i + 1, self.p):
+                inter = lines[i].intersection(lines[j])
+                adjacent = (j == i + 1) or (i == 0 and j == self.p - 1)
+                if not inter.is_empty and (not adjacent or inter.geom_type != "Point"):
+                    return (f"the shapes of edges {i + 1} ({self.pairing.labels[i]!r}) and {j + 1} "
+                            f"({self.pairing.labels[j]!r}) cross: the tile must stay a simple polygon; use smaller "
+                            "deflections")
+        return "the edge shapes turn the tile inside out: the tile must stay a simple counter-clockwise polygon"
+
+    # -- the Tiling interface ------------------------------------------------------------
+    @property
+    def prototiles(self) -> list[ModelPrototile]:
+        return [self._proto]
+
+    @property
+    def hyperbolic(self) -> bool:
+        return self.kind == model.HYPERBOLIC
+
+    def default_region(self) -> BaseGeometry:
+        return shapely.box(*model.PLANE_VIEWS[self.plane])
+
+    def _radius(self) -> float:
+        return DEFAULT_RADIUS if self.radius is None else self.radius
+
+    def estimate_tiles(self, region: Any = None) -> float:
+        """The sphere's face count; hyperbolic: the disc's area (grown by a circumradius) over a
+        tile's."""
+        if not self.hyperbolic:
+            return 4 * math.pi / self.polygon.area
+        r = self._radius() + self.polygon.circumradius
+        return 1.0 + 2 * math.pi * (math.cosh(r) - 1) / self.polygon.area
+
+    def group_elements(self) -> tuple[np.ndarray, np.ndarray]:
+        """(Γ's elements, one per tile: (n, 3, 3); their colours φ (n,)), breadth first across
+        edges; hyperbolic: the tiles whose centre lies within the radius. The colours are
+        checked to agree wherever two paths reach one tile."""
+        est = self.estimate_tiles()
+        refuse_over(f"tiles of {{{self.p},{self.q}}}", est, MAX_TILES, "--max-tiles",
+                    "ask for a smaller radius (--set radius=R)" if self.hyperbolic else "")
+        refuse_over_memory(f"tiles of {{{self.p},{self.q}}}", est, self.bytes_per_tile,
+                           "ask for a smaller radius (--set radius=R)" if self.hyperbolic else "")
+        g = self.polygon.geometry
+        sep = 2 * self.polygon.inradius
+        bound = math.inf if not self.hyperbolic else self._radius() + 2 * self.polygon.circumradius
+        motions, phi = self.motions, np.array(self.phi)
+        layers, colours = [np.eye(3)[None]], [np.zeros(1, dtype=np.int64)]
+        prev, prev_c = [np.zeros((0, 3, 3)), layers[0]], [np.zeros(0, dtype=np.int64), colours[0]]
+
+        def key(m: np.ndarray) -> np.ndarray:
+            c = m[:, :, 2]
+            return c if g.sign > 0 else c[:, :2]
+
+        while True:
+            cand = np.matmul(layers[-1][:, None], motions[None]).reshape(-1, 3, 3)
+            cc = add_colours(colours[-1][:, None], phi[None, :], self.quotient).reshape(-1)
+            if math.isfinite(bound):
+                inside = g.acos(cand[:, 2, 2]) <= bound
+                cand, cc = cand[inside], cc[inside]
+            known = np.concatenate(prev)
+            known_c = np.concatenate(prev_c)
+            allm = np.concatenate([known, cand])
+            allc = np.concatenate([known_c, cc])
+            rep = wythoff.weld(key(allm), sep)
+            if (allc != allc[rep]).any():
+                raise GeometryError(f"pairing '{self.pairing}': the colouring disagrees where two paths meet "
+                                    "(not a homomorphism)")
+            first = len(known)
+            new = np.flatnonzero(rep == np.arange(len(allm)))
+            new = new[new >= first]
+            if not len(new):
+                break
+            layers.append(allm[new])
+            colours.append(allc[new])
+            prev, prev_c = [prev[-1], layers[-1]], [prev_c[-1], colours[-1]]
+        mats, cols = np.concatenate(layers), np.concatenate(colours)
+        if self.hyperbolic:
+            keep = g.acos(mats[:, 2, 2]) <= self._radius() + 1e-12
+            mats, cols = mats[keep], cols[keep]
+        return mats, cols
+
+    def patch(self, region: Any = None) -> ModelPatch:
+        """Every tile (sphere) or every tile whose centre lies within the radius, coloured by
+        the perfect colouring (see the module), less those whose outline misses ``region``."""
+        mats, cols = self.group_elements()
+        patch = ModelPatch([self._proto], np.zeros(len(mats), dtype=np.int64), mats, colour=cols)
+        reg = None if region is None else as_region(region)
+        if reg is not None and len(patch) and not reg.covers(shapely.box(-1, -1, 1, 1)):
+            patch = patch.subset(patch.clip_index(reg))
+        return patch
+
+    def render_svg(self, patch: Patch, **options: Any) -> str:
+        return curved_svg(self, patch, **options)
+
+    # -- records, options, specs ----------------------------------------------------------
+    def properties(self) -> dict[str, Any]:
+        return {
+            "periodic": self.hyperbolic,
+            "k_isohedral": 1,
+            "k_hedral": 1,
+            "geometry": self.kind,
+            "schlafli": f"{{{self.p},{self.q}}}",
+            "pairing": str(self.pairing),
+            "edge_kinds": "".join(self.pairing.kind(i) for i in range(self.p)),
+            "symmetry_group": orbifold(self.pairing, self.q),
+            "orbifold": orbifold(self.pairing, self.q),
+            "colours": self.colour_count,
+            "colour_group": (f"Z{self.quotient[1]}" if self.quotient[0] == 1
+                             else f"Z{self.quotient[0]} x Z{self.quotient[1]}"),
+            "sides": [self.p],
+        }
+
+    def describe(self) -> str:
+        where = "the sphere" if not self.hyperbolic else "the hyperbolic plane"
+        kinds = "".join(self.pairing.kind(i) for i in range(self.p))
+        return (f"isohedral tiles of {where} on {{{self.p},{self.q}}}: edges {kinds} paired '{self.pairing}', group "
+                f"{orbifold(self.pairing, self.q)}, a perfect {self.colour_count}-colouring")
+
+    def options_help(self) -> str:
+        return "\n".join([
+            "--set p=P --set q=Q         the regular tiling {P,Q} whose polygon is deformed",
+            "--set pairing='a b a b ...' one letter per edge: once an S edge, twice a J pair",
+            "--set edges=JSON            edge shapes by letter, e.g. '{\"a\": \"0.2,0.1:0.4,0.1\"}' (EdgeShape text)",
+            f"--set radius=R              hyperbolic: the tiles whose centre is within R (default {DEFAULT_RADIUS:g})",
+            f"--set samples=N             chart points per segment of an edge curve (1..{MAX_SAMPLES}, default "
+            f"{DEFAULT_SAMPLES})",
+            f"--set colours=K             the perfect colouring's colour count (2..{MAX_COLOURS}; default the least)",
+            "--set plane=P               the hyperbolic drawing plane: poincare (default), klein or halfplane",
+        ])
+
+    def configure(self, **options: Any) -> CurvedIsohedralTiling:
+        unknown = set(options) - set(_OPTIONS)
+        if unknown:
+            raise ParameterError(f"{self.name} does not take option(s) {', '.join(sorted(unknown))}; "
+                                 f"valid: {', '.join(_OPTIONS)}")
+        spec = self.spec()
+        if "edges" in options and isinstance(options["edges"], str):
+            try:
+                options["edges"] = json.loads(options["edges"])
+            except json.JSONDecodeError:
+                raise ParseError("edges must be JSON like '{\"a\": \"0.2,0.1:0.4,0.1\"}'") from None
+        if {"p", "q"} & set(options):
+            if "pairing" not in options:
+                spec.pop("pairing", None)
+                spec.pop("edges", None)
+            p, q = model.check_pq(options.get("p", self.p), options.get("q", self.q))
+            if model.kind_of(p, q) == model.SPHERE:  # a sphere is drawn whole, in its own view
+                for key in ("radius", "plane"):
+                    if key not in options:
+                        spec.pop(key, None)
+        spec.update(options)
+        return CurvedIsohedralTiling.from_spec(spec)
+
+    def spec(self) -> dict[str, Any]:
+        out: dict[str, Any] = {"p": self.p, "q": self.q, "pairing": str(self.pairing),
+                               "edges": {k: v.to_text() for k, v in sorted(self.edge_shapes.items())}}
+        if self.radius is not None:
+            out["radius"] = self.radius
+        if self.samples != DEFAULT_SAMPLES:
+            out["samples"] = self.samples
+        if self.asked_colours:
+            out["colours"] = self.colour_count
+        if self.plane != "poincare":
+            out["plane"] = self.plane
+        if self.name != f"{FAMILY}-{self.p}-{self.q}":
+            out["name"] = self.name
+        if self.title:
+            out["title"] = self.title
+        return out
+
+    @classmethod
+    def from_spec(cls, spec: Mapping[str, Any]) -> CurvedIsohedralTiling:
+        if not isinstance(spec, Mapping):
+            raise ParseError(f"{FAMILY} spec must be a table, got {type(spec).__name__}")
+        unknown = set(spec) - _SPEC_KEYS - {"geometry"}
+        if unknown:
+            raise ParseError(f"{FAMILY} spec has unknown key(s) {', '.join(sorted(map(str, unknown)))}; "
+                             f"valid: {', '.join(sorted(_SPEC_KEYS))}")
+        return cls(spec.get("p", 6), spec.get("q", 4), pairing=spec.get("pairing"), edges=spec.get("edges"),
+                   radius=spec.get("radius"), samples=spec.get("samples", DEFAULT_SAMPLES),
+                   colours=spec.get("colours"), plane=spec.get("plane", "poincare"), geometry=spec.get("geometry"),
+                   name=str(spec.get("name", "")), title=str(spec.get("title", "")))
+
+
+def write_spec(tiling: CurvedIsohedralTiling, path: str | Path) -> None:
+    """The tiling's spec as a JSON file that :func:`from_file` reopens to the same tiling."""
+    Path(path).write_text(json.dumps(tiling.spec(), indent=2, sort_keys=True) + "\n")
+
+
+def from_file(path: str) -> CurvedIsohedralTiling:
+    """A tiling from a spec file (JSON, as :func:`write_spec` writes it; read bounded)."""
+    text = read_text(path, f"{FAMILY} spec", MAX_SPEC_BYTES)
+    try:
+        spec = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise ParseError(f"{FAMILY} spec {Path(path).name}: not JSON ({exc.msg} at line {exc.lineno})") from None
+    return CurvedIsohedralTiling.from_spec(spec)
