@@ -187,3 +187,15 @@ def test_tiling_page_view_control_legend_and_shapes(bc):
     bad = bc.get("/tiling/IH16", params={"depth": "x"}).text
     assert "depth &#x27;x&#x27; is not a whole number" in bad
     assert bc.get("/tiling/%3Cnope%3E").status_code == 404
+
+
+def test_tiling_pages_draw_the_familys_own_picture(bc):
+    """The page draws through the tiling's render_svg: Kari's 14 Wang tiles (Discrete Math. 160,
+    1996; edge colours 0..7, docs FACTS) show each side in its edge colour, 8 fills in all, not
+    one fill per tile; a hyperbolic {4,5} is drawn with true circular arcs (SVG ``A``)."""
+    html = bc.get("/tiling/kari-14").text
+    figure = re.search(r'<figure class="large" id="figure">(.*?)</figure>', html, re.S).group(1)
+    assert len(set(re.findall(r'fill="(#[0-9a-f]{6})"', figure))) == 8
+    html = bc.get("/tiling/" + quote("{4,5}", safe="")).text
+    figure = re.search(r'<figure class="large" id="figure">(.*?)</figure>', html, re.S).group(1)
+    assert re.search(r'd="[^"]* A', figure)
