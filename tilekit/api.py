@@ -434,11 +434,14 @@ class Record:
         return wallpaper_group(self.tiling)
 
 
-def record(catalogue: Any, name: str, *, pm: Any = None, build: Callable[[Any], Any] | None = None) -> Record:
+def record(catalogue: Any, name: str, *, pm: Any = None, build: Callable[[Any], Any] | None = None,
+           get: Callable[[str], Any] | None = None) -> Record:
     """The record called ``name`` (a name or an alias; NotFoundError suggesting close names),
-    with its tiling built by ``build(entry)`` (default ``catalogue.tiling``; the web server
-    passes its cache). A record without geometry is no error: :attr:`Record.error` says why."""
-    entry = catalogue.get(name)
+    found by ``get(name)`` (default ``catalogue.get``; the web server looks up result rows by
+    their own name first), with its tiling built by ``build(entry)`` (default
+    ``catalogue.tiling``; the web server passes its cache). A record without geometry is no
+    error: :attr:`Record.error` says why."""
+    entry = (get or catalogue.get)(name)
     if entry.family not in families(pm or catalogue.pm) and catalogue.family_table(entry.family) is None:
         return Record(entry, error=f"family {entry.family!r} is not installed: no geometry", installed=False)
     try:

@@ -25,6 +25,9 @@ PAGES = [
      "&set=split=0.4,3.6;0,0:0.3,0.15:0.7,-0.1:1,0", "#editor[data-state=ok]"),
     ("web-penrose.png", "/penrose", "#penrose[data-state=ok]"),
     ("web-run.png", "/runs/2?limit=12", None),
+    # a catalogue with the polyominoes classified to 8 cells (run 2): a non-tiler's record
+    ("web-polyform.png", "/tiling/.x...%2F.x...%2Fxx...%2F.xxxx", None),
+    ("web-polyominoes.png", "/family/polyomino?where=tiles%3Dfalse&view=table", None),
 ]
 
 

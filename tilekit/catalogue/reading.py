@@ -373,6 +373,46 @@ class TilingReader(ABC):
         with self._reading("counting") as run:
             return int(run(sql, params)[0][0])
 
+    def facet_counts(self, keys: Sequence[str], family: str | None = None, where: Iterable[str | Filter] = (),
+                     text: str | None = None, exclude: Sequence[str] = ()) -> dict[str, list[tuple[Any, int]]]:
+        """How many matching tilings (of families not in ``exclude``) have each value of each
+        of ``keys``: ``{key: [(value, tilings), ...]}``, most first. A list property counts a
+        tiling once under each of its distinct elements (as ``KEY=VALUE`` matches it); the
+        ``family`` key counts by family."""
+        params = Params()
+        clause = self._where(params, family, where, text)
+        if exclude:
+            clause += (" AND " if clause else " WHERE ") + f"tilings.family NOT IN {params.many(list(exclude))}"
+        out: dict[str, list[tuple[Any, int]]] = {}
+        with self._reading("counting facets") as run:
+            if "family" in keys:
+                rows = run(f"SELECT tilings.family, count(*) FROM tilings{clause} GROUP BY tilings.family", params)
+                out["family"] = [(r[0], int(r[1])) for r in rows]
+            props = [canonical_key(k) for k in keys if k not in TEXT_COLUMNS]
+            if props:
+                listed = params.many(props)
+                rows = run("SELECT p.key, p.kind, p.value_text, p.value_num, p.value_bool, count(DISTINCT p.tiling_id)"
+                           f" FROM tiling_properties p WHERE p.key IN {listed} AND p.kind NOT IN ('json', 'empty')"
+                           f" AND p.tiling_id IN (SELECT tilings.id FROM tilings{clause})"
+                           " GROUP BY p.key, p.kind, p.value_text, p.value_num, p.value_bool", params)
+                for key, kind, vtext, num, flag, count in rows:
+                    out.setdefault(key, []).append((restore_value(kind, vtext, num, flag), int(count)))
+        for values in out.values():
+            values.sort(key=lambda vc: (-vc[1], str(vc[0])))
+        return out
+
+    def key_spread(self, exclude: Sequence[str] = ()) -> dict[str, tuple[int, int]]:
+        """``{key: (distinct scalar values, tilings having it)}`` over the tilings of families
+        not in ``exclude``: what a listing can offer as facets (a key with a few values)."""
+        params = Params()
+        clause = f" AND t.family NOT IN {params.many(list(exclude))}" if exclude else ""
+        sql = ("SELECT p.key, count(DISTINCT coalesce(p.value_text, CAST(p.value_num AS TEXT),"
+               " CAST(p.value_bool AS TEXT))), count(DISTINCT p.tiling_id) FROM tiling_properties p"
+               " JOIN tilings t ON t.id = p.tiling_id WHERE p.kind NOT IN ('json', 'empty')" + clause
+               + " GROUP BY p.key")
+        with self._reading("reading property keys") as run:
+            return {r[0]: (int(r[1]), int(r[2])) for r in run(sql, params)}
+
     # the names a caller of either reader uses
 
     def query(self, family: str | None = None, where: Iterable[str | Filter] = (), text: str | None = None,

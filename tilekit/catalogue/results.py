@@ -254,6 +254,36 @@ class ResultsMixin:
         with self._errors("counting"), self.engine.connect() as conn:
             return int(conn.execute(sa.select(sa.func.count()).select_from(sub)).scalar_one())
 
+    def result_facet_counts(self, rt: ResultTable, columns: Iterable[str], where: Iterable[Any] = (),
+                            text: str | None = None) -> dict[str, list[tuple[Any, int]]]:
+        """How many matching rows have each value of each column: ``{column: [(value, rows), ...]}``,
+        most first (NULLs left out)."""
+        sub = self._result_select(rt, where, text, None).subquery()
+        out: dict[str, list[tuple[Any, int]]] = {}
+        with self._errors("counting facets"), self.engine.connect() as conn:
+            for name in columns:
+                col = sub.c[name]
+                rows = conn.execute(sa.select(col, sa.func.count()).where(col.is_not(None)).group_by(col)).all()
+                out[name] = sorted(((r[0], int(r[1])) for r in rows), key=lambda vc: (-vc[1], str(vc[0])))
+        return out
+
+    def result_spread(self, rt: ResultTable) -> dict[str, tuple[int, int]]:
+        """``{column: (distinct values, rows having one)}`` for the table's scalar columns (not its
+        key, JSON or run columns): what a listing can offer as facets."""
+        t = rt.table
+        cols = [c for c in t.c if c.name not in rt.key and c.name != "run_id" and not is_json(c.type)]
+        if not cols:
+            return {}
+        stmt = sa.select(*(x for c in cols for x in (sa.func.count(sa.distinct(c)), sa.func.count(c))))
+        with self._errors("counting facets"), self.engine.connect() as conn:
+            row = conn.execute(stmt).one()
+        return {c.name: (int(row[2 * i]), int(row[2 * i + 1])) for i, c in enumerate(cols)}
+
+    def result_entry(self, name: str) -> Entry | None:
+        """The result-table row named ``name`` (in a table's name column or key), or None: the
+        web's page of a listed row, which a shipped record with that alias must not shadow."""
+        return self._result_lookup(name)
+
     def _result_lookup(self, name: str) -> Entry | None:
         """A result-table row named ``name`` (in a table's name column or key)."""
         with self._errors("looking up a tiling"), self.engine.connect() as conn:

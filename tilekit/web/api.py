@@ -131,6 +131,22 @@ def query_args(request: Request) -> dict[str, Any]:
     }
 
 
+def lookup(cat: Any, name: str) -> Any:
+    """The entry a page or API path names: a result row by its own name first (what the
+    listings link to; a shipped record may hold the same text as an alias), then the
+    catalogue's lookup; an unknown name is a 404, also when a plugin's notation reader (a
+    D-symbol, a GomJau-Hogg string) refuses it as malformed."""
+    row = cat.result_entry(name)
+    if row is not None:
+        return row
+    try:
+        return cat.get(name)
+    except ParseError as exc:
+        missing = NotFoundError("tiling", name)
+        missing.args = (f"unknown tiling {name[:80]!r} ({one_line(exc)})",)
+        raise missing from None
+
+
 def entry_json(entry: Any, spec_hash: str | None = None) -> dict[str, Any]:
     out = {"name": entry.name, "family": entry.family, "title": entry.title,
            "aliases": list(entry.aliases or []), "properties": entry.properties}
@@ -143,9 +159,12 @@ def run_query(state: Any, request: Request) -> dict[str, Any]:
     args = query_args(request)
     limit = _int(request, "limit", 24, 0, MAX_PAGE)
     offset = _int(request, "offset", 0, 0, 2**62)
-    matches = tilekit.api.query(state.catalogue, limit=limit, offset=offset, **args)
-    return {"total": matches.count(), "offset": offset, "limit": limit,
-            "items": [entry_json(e) for e in matches], "query": args}
+    # the pages' listing (tilekit.web.browse): result-table families included, filters on
+    # the families that have their keys, so totals agree with /families
+    listing = state.browser.listing(args["family"], args["where"], args["text"], args["order_by"], offset, limit,
+                                    facets=False)
+    return {"total": listing.total, "offset": offset, "limit": limit, "counts": listing.counts,
+            "items": [entry_json(e) for e in listing.entries], "query": args}
 
 
 def render_options(request: Request, body: dict[str, Any] | None) -> dict[str, Any]:
@@ -177,8 +196,9 @@ def routes(state: Any) -> list[Route]:
     @endpoint
     def families(request: Request) -> Response:
         data = []
+        counts = state.browser.counts()  # as /family/NAME lists them
         for name, fam in sorted(fams(cat().pm).items()):
-            data.append({"name": name, "summary": fam.summary, "tilings": cat().count(name)})
+            data.append({"name": name, "summary": fam.summary, "tilings": counts.get(name, 0)})
         return JSONResponse({"families": data})
 
     @endpoint
@@ -187,7 +207,7 @@ def routes(state: Any) -> list[Route]:
 
     @endpoint
     def tiling(request: Request) -> Response:
-        rec = tilekit.api.record(cat(), request.path_params["name"],
+        rec = tilekit.api.record(cat(), request.path_params["name"], get=lambda name: lookup(cat(), name),
                                  build=lambda entry: state.renderer.base_tiling(entry.name))
         out = entry_json(rec.entry)
         out["spec"] = json.loads(json.dumps(rec.entry.spec, default=str))
@@ -290,6 +310,7 @@ def routes(state: Any) -> list[Route]:
 
         return JSONResponse(run_json(info))
 
+    state.api_views = {"tiling": tiling, "spec": spec, "render": render_get}
     return [
         Route("/api/families", families),
         Route("/api/query", query),
@@ -303,6 +324,17 @@ def routes(state: Any) -> list[Route]:
         Route("/api/runs/{run_id:str}/results", run_results),
         Route("/api/runs/{run_id:str}/events", run_events),
         Route("/api/runs/{run_id:str}/cancel", cancel, methods=["POST"]),
+    ]
+
+
+def path_routes(state: Any) -> list[Route]:
+    """The tiling routes again for names holding "/" (``{name:path}``), placed after the
+    plugins' routes so that their ``/api/tiling/NAME/...`` pages still match first."""
+    views = state.api_views
+    return [
+        Route("/api/tiling/{name:path}/spec", views["spec"]),
+        Route("/api/tiling/{name:path}", views["tiling"]),
+        Route("/api/render/{name:path}", views["render"], methods=["GET"]),
     ]
 
 

@@ -26,9 +26,10 @@ from starlette.staticfiles import StaticFiles
 
 import tilekit.api
 from tilekit.catalogue import open_catalogue, run_json
-from tilekit.errors import NotFoundError, TilekitError
+from tilekit.errors import NotFoundError, ParameterError, TilekitError
 from tilekit.plugins import WebRoute, families, get_plugin_manager
 from tilekit.web import api, pages
+from tilekit.web.browse import Browser, csv_text, listing_csv, listing_json
 from tilekit.web.limits import DEFAULT_MAX_TILES
 from tilekit.web.service import Renderer, normalise_options
 
@@ -50,6 +51,7 @@ class State:
         self.max_tiles = max_tiles
         self._catalogue = catalogue
         self._renderer: Renderer | None = None
+        self._browser: Browser | None = None
         self._lock = threading.Lock()
         self.sse_interval = 0.5
         self.sse_seconds = 600.0
@@ -68,6 +70,15 @@ class State:
             if self._renderer is None:
                 self._renderer = Renderer(cat, self.max_tiles)
             return self._renderer
+
+    @property
+    def browser(self) -> Browser:
+        """The listings of the catalogue (tilekit.web.browse): totals, facets, pages."""
+        cat = self.catalogue
+        with self._lock:
+            if self._browser is None:
+                self._browser = Browser(cat)
+            return self._browser
 
     def close(self) -> None:
         if self._catalogue is not None:
@@ -185,6 +196,8 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
             try:
                 return await run_in_threadpool(fn, request)
             except TilekitError as exc:
+                if request.query_params.get("_format") in ("json", "csv") or request.path_params.get("fmt"):
+                    return api.error_response(exc)  # a JSON or CSV view answers in JSON
                 code = api.status_of(exc)
                 return _html(pages.error_page(api.one_line(exc), code), code)
 
@@ -194,6 +207,36 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
     def cell(table: str | None, column: str, value: Any, row: Any) -> str | None:
         return hook.tilekit_web_render_cell(table=table, column=column, value=value, row=row)
 
+    def out_format(request: Request) -> str:
+        """html, json or csv: a ``.json`` / ``.csv`` path suffix or ``?_format=``."""
+        fmt = request.path_params.get("fmt") or request.query_params.get("_format") or "html"
+        if fmt not in ("html", "json", "csv"):
+            raise ParameterError(f"_format {fmt[:20]!r} must be html, json or csv")
+        return fmt
+
+    def view_of(request: Request) -> str:
+        view = request.query_params.get("view") or "grid"
+        if view not in ("grid", "table"):
+            raise ParameterError(f"view {view[:20]!r} must be grid or table")
+        return view
+
+    def link_query(request: Request) -> dict[str, Any]:
+        """The request's query as links keep it (offset and _format left to the links)."""
+        q = request.query_params
+        return {k: q.getlist(k) if k == "where" else q[k] for k in q if k not in ("offset", "_format")}
+
+    def listing_response(request: Request, listing: Any, name: str) -> Response | None:
+        fmt = out_format(request)
+        if fmt == "json":
+            return JSONResponse(listing_json(listing, api.entry_json))
+        if fmt == "csv":
+            return Response(listing_csv(listing), media_type="text/csv; charset=utf-8",
+                            headers={"Content-Disposition": f'inline; filename="{name}.csv"'})
+        return None
+
+    def key_rows() -> list[tuple[str, str, tuple[str, ...], str, str]]:
+        return [(k.key, k.type, k.families, k.example, k.meaning) for k in state.catalogue.key_table()]
+
     @page
     def search(request: Request) -> Response:
         q = request.query_params
@@ -202,32 +245,61 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
         form["where"] = [w for w in q.getlist("where") if w.strip()]
         fams = sorted(state.catalogue_families())
         try:
-            result = api.run_query(state, request)
-            entries = state.catalogue.query(limit=result["limit"], offset=result["offset"], **result["query"])
-            return _html(pages.search_page(form, fams, result, None, entries))
+            view = view_of(request)
+            args = api.query_args(request)
+            limit = api._int(request, "limit", 48, 1, api.MAX_PAGE)
+            offset = api._int(request, "offset", 0, 0, 2**62)
+            listing = state.browser.listing(args["family"], args["where"], args["text"], args["order_by"],
+                                            offset, limit)
+            answer = listing_response(request, listing, "tilings")
+            if answer is not None:
+                return answer
+            return _html(pages.search_page(form, fams, listing, None, view, link_query(request), key_rows()))
         except TilekitError as exc:
             code = api.status_of(exc)
-            return _html(pages.search_page(form, fams, None, api.one_line(exc), []), code)
+            if request.query_params.get("_format") in ("json", "csv"):
+                return api.error_response(exc)
+            return _html(pages.search_page(form, fams, None, api.one_line(exc), "grid", {}, key_rows()), code)
 
     def catalogue_families() -> list[str]:
         return list(families(state.catalogue.pm))
 
     state.catalogue_families = catalogue_families  # type: ignore[attr-defined]
 
+    def lookup(name: str) -> Any:
+        return api.lookup(state.catalogue, name)
+
     @page
     def tiling(request: Request) -> Response:
-        entry = state.catalogue.get(request.path_params["name"])
-        svg = describe = problem = None
+        entry = lookup(request.path_params["name"])
+        if out_format(request) != "html":
+            out = api.entry_json(entry)
+            out["spec"] = json.loads(json.dumps(entry.spec, default=str))
+            return JSONResponse(out)
+        q = request.query_params
+        chosen = {k: q[k] for k in ("region", "depth") if q.get(k, "").strip()}
+        svg = describe = problem = view_problem = None
         links: list[tuple[str, str]] = []
+        region = None
+        prototiles: list[Any] = []
         try:
             t = state.renderer.base_tiling(entry.name)
             describe = t.describe()
-            _, svg, _ = state.renderer.render(entry.name, {"size": 640})
+            region = t.default_region().bounds
+            prototiles = list(t.prototiles)[:12]
+            if chosen:
+                try:
+                    _, svg, _ = state.renderer.render(entry.name, {"size": 640, **chosen})
+                except TilekitError as exc:
+                    view_problem = api.one_line(exc)
+            if svg is None:
+                _, svg, _ = state.renderer.render(entry.name, {"size": 640})
             for offered in reversed(hook.tilekit_web_tiling_links(web=state, name=entry.name, tiling=t)):
                 links.extend(offered or [])
         except TilekitError as exc:
             problem = api.one_line(exc)
-        return _html(pages.tiling_page(entry, svg, describe, problem, links))
+        return _html(pages.tiling_page(entry, svg, describe, problem, links, chosen=chosen, region=region,
+                                       view_problem=view_problem, prototiles=prototiles))
 
     @page
     def thumb(request: Request) -> Response:
@@ -236,7 +308,7 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
             t, svg, _ = state.renderer.render(name, {"size": 160}, thumbnail=True)
             etag = '"' + state.renderer.spec_hash(t) + '"'
         except TilekitError as exc:
-            state.catalogue.get(name)  # an unknown name is a 404, a tiling without geometry a placeholder
+            lookup(name)  # an unknown name is a 404, a tiling without geometry a placeholder
             svg = _placeholder(api.one_line(exc))
             etag = None
         headers = {"Cache-Control": "public, max-age=3600"}
@@ -248,7 +320,15 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
 
     @page
     def families_view(request: Request) -> Response:
-        rows = [(n, f.summary, state.catalogue.count(n)) for n, f in sorted(families(state.catalogue.pm).items())]
+        counts = state.browser.counts()  # what each family's page lists
+        rows = [(n, f.summary, counts.get(n, 0)) for n, f in sorted(families(state.catalogue.pm).items())]
+        fmt = out_format(request)
+        if fmt == "json":
+            return JSONResponse({"families": [{"name": n, "summary": s, "tilings": c} for n, s, c in rows],
+                                 "total": sum(c for _, _, c in rows)})
+        if fmt == "csv":
+            return Response(csv_text(({"family": n, "summary": s, "tilings": c} for n, s, c in rows),
+                                     ["family", "summary", "tilings"]), media_type="text/csv; charset=utf-8")
         return _html(pages.families_page(rows))
 
     @page
@@ -257,23 +337,53 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
         fams = families(state.catalogue.pm)
         if name not in fams:
             raise NotFoundError("family", name, fams)
+        view = view_of(request)
         limit = api._int(request, "limit", 48, 1, api.MAX_PAGE)
         offset = api._int(request, "offset", 0, 0, 2**62)
-        matches = tilekit.api.query(state.catalogue, name, limit=limit, offset=offset)
+        q = request.query_params
+        listing = state.browser.listing(name, [w for w in q.getlist("where") if w.strip()], q.get("text") or None,
+                                        q.get("order") or "name", offset, limit)
+        answer = listing_response(request, listing, name)
+        if answer is not None:
+            return answer
         fam = fams[name]
-        return _html(pages.family_page(name, fam.summary, fam.description or "", matches.count(), offset, limit,
-                                       list(matches)))
+        return _html(pages.family_page(name, fam.summary, fam.description or "", listing, view, link_query(request)))
 
     @page
     def runs(request: Request) -> Response:
-        return _html(pages.runs_page(tilekit.api.run_data(state.catalogue)))
+        items = tilekit.api.run_data(state.catalogue)
+        fmt = out_format(request)
+        if fmt == "json":
+            return JSONResponse({"runs": items})
+        if fmt == "csv":
+            cols = ["id", "kind", "status", "chunks_done", "chunks_total", "rows", "seconds", "created_at", "finished_at"]
+            return Response(csv_text(items, cols), media_type="text/csv; charset=utf-8")
+        return _html(pages.runs_page(items))
 
     @page
     def run(request: Request) -> Response:
         run_id = api._run_id(request)
         info = run_json(state.catalogue.run(run_id))
         page_data = api.results_page(state, run_id, request)
-        return _html(pages.run_page(info, page_data, state.writable, cell))
+        fmt = out_format(request)
+        if fmt == "json":
+            return JSONResponse({"run": info, "results": page_data})
+        if fmt == "csv":
+            return Response(csv_text(page_data["rows"], page_data["columns"]), media_type="text/csv; charset=utf-8")
+        rt = state.catalogue.result_tables.get(page_data.get("table") or "")
+        if rt is not None and rt.family:
+            column = rt.name_column or rt.key[0]
+
+            def link(row: Any) -> str | None:
+                value = row.get(column)
+                return value if isinstance(value, str) and value else None
+        else:
+            known = set(state.catalogue.names()) if page_data["rows"] else set()
+
+            def link(row: Any) -> str | None:
+                value = row.get("name")
+                return value if isinstance(value, str) and value in known else None
+        return _html(pages.run_page(info, page_data, state.writable, cell, link))
 
     api_lines = [(",".join(r.methods), r.path, r.doc) for r in plugin_routes if r.path.startswith("/api/") and r.doc]
 
@@ -289,9 +399,11 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
 
     routes = [
         Route("/", search),
-        Route("/tiling/{name:str}", tiling),
-        Route("/thumb/{name:str}.svg", thumb),
+        Route("/tiling/{name:path}", tiling),  # a name may hold "/" (a polyomino's rows)
+        Route("/thumb/{name:path}.svg", thumb),
         Route("/families", families_view),
+        Route("/families.{fmt:str}", families_view),
+        Route("/family/{name:str}.{fmt:str}", family),
         Route("/family/{name:str}", family),
         Route("/runs", runs),
         Route("/runs/{run_id:str}", run),
@@ -300,6 +412,7 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
         Route("/favicon.ico", lambda r: Response(status_code=204)),
         # the plugins' pages after the app's own (an app path wins), their files before /static
         *(Route(r.path, plugin_view(r, state, _html), methods=list(r.methods)) for r in plugin_routes),
+        *api.path_routes(state),  # names with "/", after the plugins' /api/tiling/NAME/... pages
         *(Mount(f"/static/plugins/{name}", app=StaticFiles(directory=str(folder))) for name, folder in statics),
         Mount("/static", app=StaticFiles(directory=str(STATIC)), name="static"),
     ]

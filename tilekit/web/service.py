@@ -153,7 +153,10 @@ class Renderer:
             if hit is not None:
                 self._tilings.move_to_end(name)
                 return hit
-        tiling = self.catalogue.tiling(name)
+        # a result row's own name (a polyomino's code) is that row, even where a shipped record
+        # has the name as an alias: the row is what the listings link to (its witness, verdict)
+        found = getattr(self.catalogue, "result_entry", None)
+        tiling = self.catalogue.tiling((found(name) if found else None) or name)
         with self._lock:
             self._tilings[name] = tiling
             while len(self._tilings) > 256:
