@@ -13,6 +13,9 @@ The third family, ``curved``, holds the uniform tilings of the sphere and the hy
 plane by Wythoff's construction: ``wythoff`` (the triangle group, the generator, the faces),
 ``uniform`` (UniformTiling, named by vertex configuration or Wythoff symbol), ``notation``
 (vertex configurations), records from ``catalogue/curved/uniform.toml``.
+
+``web`` is the plugin's page in ``tilekit serve``: the curved-space viewer (``/curved/NAME``),
+the Poincaré disc moved by dragging, the sphere turned.
 """
 
 from __future__ import annotations
@@ -22,7 +25,7 @@ from typing import TYPE_CHECKING, Any
 
 import tilekit
 from tilekit.lazy import lazy_exports
-from tilekit.plugins import CatalogueRecord, Family
+from tilekit.plugins import CatalogueRecord, Family, web_pages
 
 if TYPE_CHECKING:  # pragma: no cover
     from tilekit.plugins.curved.tiling import RegularTiling
@@ -242,3 +245,8 @@ def tilekit_cli_commands(cli: Any) -> None:
     from tilekit.plugins.curved.cli import sphere_mesh_command
 
     cli.add_command(sphere_mesh_command)
+
+
+# the curved-space viewer (/curved/NAME, /curved?p=7&q=3): web.py, imported when a web app is made
+(tilekit_web_routes, tilekit_web_menu_links, tilekit_web_tiling_links,
+ tilekit_web_static) = web_pages("tilekit.plugins.curved.web", [("/curved?p=7&q=3", "hyperbolic viewer")])
