@@ -93,7 +93,7 @@
   function fmt(v) { return v.toFixed(6); }
   function arc(a, b) { // SVG command for the geodesic from disc point a to b (y flipped)
     const det = a[0] * b[1] - a[1] * b[0], ra = a[0] * a[0] + a[1] * a[1], rb = b[0] * b[0] + b[1] * b[1];
-    if (Math.abs(det) < 1e-12 * Math.max(1e-300, Math.sqrt(ra * rb))) return "L" + fmt(b[0]) + " " + fmt(-b[1]);
+    if (Math.abs(det) < 1e-12 * Math.max(1e-300, Math.sqrt(Math.max(ra, rb)))) return "L" + fmt(b[0]) + " " + fmt(-b[1]);
     const ka = (ra + 1) / 2, kb = (rb + 1) / 2;
     const cx = (ka * b[1] - kb * a[1]) / det, cy = (a[0] * kb - b[0] * ka) / det;
     const r = Math.sqrt(Math.max(cx * cx + cy * cy - 1, 0));
