@@ -358,6 +358,8 @@ class StarTiling(Tiling):
         cfg = notation.canonical(notation.parse(str(configuration)))
         self.star = Star(cfg)
         self.star.edge  # noqa: B018 - a configuration that is not hyperbolic is refused here
+        self.plane, self.samples = drawing_options(plane, samples, False)
+        self.radius = None if radius is None else float(_number("radius", radius, 0, MAX_RADIUS, False))
         if pairing is None:
             found = find(cfg)
             if not found:
@@ -371,8 +373,6 @@ class StarTiling(Tiling):
                                      "a vertex (try tilekit.plugins.curved.stars.find)")
         self.family = "curved"
         self.kind = wythoff.HYPERBOLIC
-        self.plane, self.samples = drawing_options(plane, samples, False)
-        self.radius = None if radius is None else float(_number("radius", radius, 0, MAX_RADIUS, False))
         self.configuration = notation.dotted(cfg)
         self.name = name or notation.exponent(cfg)
         self.title = title
