@@ -453,7 +453,8 @@ def _spec_bases() -> dict[str, list[dict]]:
         "spherical": [{"p": 5, "q": 3}, {"p": 3, "q": 4, "samples": 3, "name": "octahedron"}],
         "hyperbolic": [{"p": 7, "q": 3, "depth": 3}, {"p": 5, "q": 4, "radius": 2.5, "samples": 2}],
         "curved": [{"configuration": "3.4.4.4"}, {"symbol": "2 3 | 7", "radius": 1.5, "samples": 2},
-                   {"configuration": "3.3.4.3.5", "plane": "halfplane", "radius": 1.0, "geometry": "hyperbolic"}],
+                   {"configuration": "3.3.4.3.5", "plane": "halfplane", "radius": 1.0, "geometry": "hyperbolic"},
+                   {"configuration": "3.3.3.6.6", "pairing": "0- 1+ 2+ 3- 4+", "radius": 1.5}],
         "quasiperiodic": [{"n": 5}, {"n": 8, "gamma": [0.1, 0.2, 0.3, 0.4], "singular": "perturb"}],
     }
 

@@ -125,3 +125,21 @@ def test_sphere_turns_by_the_rotation_from_start_to_end(page):
     assert np.allclose(r @ pa, pb, atol=1e-6) and np.allclose(r @ r.T, np.eye(3), atol=1e-9)
     assert np.allclose(r @ np.cross(pa, pb), np.cross(pa, pb), atol=1e-6)  # the axis through both is fixed
     assert not page.js_errors
+
+
+def test_viewer_api_sends_model_points_and_lorentz_symmetries(client):
+    """The payload of a non-Wythoffian record: corners on the hyperboloid (x^2 + y^2 - t^2 = -1),
+    symmetries in O(2,1) (g^T J g = J); bad {p,q}, and a record of another family, are one-line
+    400s naming what is valid."""
+    body = client.get("/api/curved/3%5E3.6%5E2").json()
+    assert body["geometry"] == "hyperbolic" and set(body["sizes"]) == {3, 6}
+    pts = np.array(body["points"]).reshape(-1, 3)
+    assert len(pts) == sum(body["sizes"]) and np.allclose(pts[:, 0] ** 2 + pts[:, 1] ** 2 - pts[:, 2] ** 2, -1, atol=1e-6)
+    j = np.diag([1.0, 1.0, -1.0])
+    syms = np.array(body["symmetries"]).reshape(-1, 3, 3)
+    assert len(syms) > 5 and np.allclose(syms.transpose(0, 2, 1) @ j @ syms, j, atol=1e-6)
+    bad = client.get("/api/curved", params={"p": 2, "q": 3})
+    assert bad.status_code == 400 and "p must be an integer 3..60, got 2" in bad.json()["error"]
+    other = client.get("/curved/IH16")
+    assert other.status_code == 400 and "draws the spherical, hyperbolic, curved families" in other.text
+    assert 'href="/curved/3%5E3.6%5E2"' in client.get("/tiling/3%5E3.6%5E2").text
