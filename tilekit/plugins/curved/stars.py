@@ -38,7 +38,13 @@ from tilekit.geometry import as_region
 from tilekit.limits import MAX_TILES, refuse_over, refuse_over_memory
 from tilekit.plugins.curved import model, notation, wythoff
 from tilekit.plugins.curved.render import curved_svg
-from tilekit.plugins.curved.tiling import DEFAULT_SAMPLES, MAX_SAMPLES, _number, drawing_options
+from tilekit.plugins.curved.tiling import (
+    DEFAULT_SAMPLES,
+    MAX_SAMPLES,
+    _number,
+    drawing_options,
+    drawing_spec,
+)
 from tilekit.tiling import Tiling
 
 G = model.HYPERBOLIC_GEOMETRY
@@ -466,18 +472,8 @@ class StarTiling(Tiling):
                           title=self.title if same else "")
 
     def spec(self) -> dict[str, Any]:
-        out: dict[str, Any] = {"configuration": self.configuration, "pairing": format_pairing(self.pairing)}
-        if self.radius is not None:
-            out["radius"] = self.radius
-        if self.samples != DEFAULT_SAMPLES:
-            out["samples"] = self.samples
-        if self.plane != "poincare":
-            out["plane"] = self.plane
-        if self.name != notation.exponent(self.star.cfg):
-            out["name"] = self.name
-        if self.title:
-            out["title"] = self.title
-        return out
+        return drawing_spec({"configuration": self.configuration, "pairing": format_pairing(self.pairing)}, self,
+                            notation.exponent(self.star.cfg))
 
     @classmethod
     def from_spec(cls, spec: Mapping[str, Any]) -> StarTiling:
