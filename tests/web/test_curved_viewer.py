@@ -48,6 +48,13 @@ def _face_at(page, xy) -> int | None:
     return got
 
 
+def _console_errors(page) -> list[str]:
+    """The console's error messages from now on (the page fixture records uncaught exceptions)."""
+    errors: list[str] = []
+    page.on("console", lambda msg: errors.append(msg.text) if msg.type == "error" else None)
+    return errors
+
+
 def _wait_render(page, before: int) -> None:
     page.wait_for_function("n => Number(document.querySelector('#curved').dataset.renders || 0) > n", arg=before,
                            timeout=20000)
@@ -65,6 +72,7 @@ def _drag(page, a, b, steps: int = 12) -> None:
 
 
 def test_drag_translates_the_disc_by_the_mobius_map(page):
+    console = _console_errors(page)
     page.goto("/curved/hyperbolic-7-3")
     page.wait_for_selector("#curved[data-state=ok]", timeout=20000)
     a, b = (0.21 + 0.13j), (-0.32 + 0.27j)
@@ -87,13 +95,14 @@ def test_drag_translates_the_disc_by_the_mobius_map(page):
     # the tile under the drag's start is now under its end, and it was not there before
     assert _face_at(page, _pixels(page, [(b.real, b.imag)])[0]) == match[0]
     assert not np.allclose(np.abs(want - z), 0)
-    assert not page.js_errors
+    assert not page.js_errors and console == []
 
 
 def test_long_drags_rebase_by_symmetries_and_the_disc_stays_covered(page):
     """Drags far past the patch's radius: the view is rebased by the tiling's symmetries
     (data-rebases) and the screen's centre and a point near the rim are still on tiles
     whose corners lie on a regular heptagon (equal distances from their mean on the hyperboloid)."""
+    console = _console_errors(page)
     page.goto("/curved/hyperbolic-7-3")
     page.wait_for_selector("#curved[data-state=ok]", timeout=20000)
     for _ in range(2):
@@ -109,10 +118,11 @@ def test_long_drags_rebase_by_symmetries_and_the_disc_stays_covered(page):
         centre /= np.sqrt(centre[2] ** 2 - centre[0] ** 2 - centre[1] ** 2)
         cosh = hyp[:, 2] * centre[2] - hyp[:, :2] @ centre[:2]
         assert len(c) == 7 and np.ptp(cosh) < 1e-4 * cosh.mean()
-    assert not page.js_errors
+    assert not page.js_errors and console == []
 
 
 def test_sphere_turns_by_the_rotation_from_start_to_end(page):
+    console = _console_errors(page)
     page.goto("/curved/cube")
     page.wait_for_selector("#curved[data-state=ok]", timeout=20000)
     v0 = np.array([float(x) for x in page.get_attribute("#curved", "data-view").split(",")]).reshape(3, 3)
@@ -124,7 +134,7 @@ def test_sphere_turns_by_the_rotation_from_start_to_end(page):
     pb = np.array([b[0], b[1], np.sqrt(1 - b[0] ** 2 - b[1] ** 2)])
     assert np.allclose(r @ pa, pb, atol=1e-6) and np.allclose(r @ r.T, np.eye(3), atol=1e-9)
     assert np.allclose(r @ np.cross(pa, pb), np.cross(pa, pb), atol=1e-6)  # the axis through both is fixed
-    assert not page.js_errors
+    assert not page.js_errors and console == []
 
 
 def test_viewer_api_sends_model_points_and_lorentz_symmetries(client):
