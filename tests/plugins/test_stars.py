@@ -138,3 +138,17 @@ def test_bad_input_is_one_line():
         stars.Star((3, 3, 3, 4, 4)).edge  # noqa: B018
     with pytest.raises(ParameterError, match="radius"):
         stars.StarTiling("3.3.3.6.6", radius=99)
+
+
+@pytest.mark.slow  # about 18 s at load 22 on 2 cores: four developments of radius up to 6.5, each validated
+def test_every_shipped_record_closes_up_and_validates():
+    """The records of catalogue/curved/stars.toml (3.3.3.p.p, p = 6..12): the shipped pairing
+    closes round every face, and its development validates with every inner vertex's angles
+    summing to 2π over five faces (stars.check)."""
+    from tilekit.plugins.curved import _star_configurations
+
+    configurations, pairing = _star_configurations()
+    assert configurations == [(3, 3, 3, p, p) for p in (6, 8, 10, 12)]
+    for cfg in configurations:
+        star = stars.Star(cfg)
+        assert stars.check(star, stars.parse_pairing(pairing, 5))
