@@ -64,8 +64,8 @@ def test_the_plugin_page_draws_a_valid_wall(demo_client):
     assert "Brick wall 3 x 1, rows shifted by 0.25" in r.text
     # the page is in the site's layout, with every plugin's menu link (built-in ones first)
     nav = re.search(r"<nav>(.*?)</nav>", r.text, re.S).group(1)
-    assert re.findall(r'href="([^"]+)"', nav) == ["/", "/families", "/runs", "/editor", "/penrose", "/multigrid", "/bricks",
-                                                          "/api"]
+    assert re.findall(r'href="([^"]+)"', nav) == ["/", "/families", "/runs", "/editor", "/penrose", "/multigrid",
+                                                      "/curved?p=7&amp;q=3", "/bricks", "/api"]
     # the wall it draws is a tiling: the same patch passes the core's gap/overlap check
     from tilekit_demo_family import PAGE_BRICKS, BrickWall
 

@@ -12,7 +12,12 @@ validation in the Klein model and on the sphere), ``tiling`` (RegularTiling), ``
 The third family, ``curved``, holds the uniform tilings of the sphere and the hyperbolic
 plane by Wythoff's construction: ``wythoff`` (the triangle group, the generator, the faces),
 ``uniform`` (UniformTiling, named by vertex configuration or Wythoff symbol), ``notation``
-(vertex configurations), records from ``catalogue/curved/uniform.toml``.
+(vertex configurations), records from ``catalogue/curved/uniform.toml``; ``stars`` (StarTiling:
+uniform tilings Wythoff's construction does not give, developed from a vertex star, the
+3.3.3.p.p family of ``catalogue/curved/stars.toml``).
+
+``web`` is the plugin's page in ``tilekit serve``: the curved-space viewer (``/curved/NAME``),
+the Poincaré disc moved by dragging, the sphere turned.
 """
 
 from __future__ import annotations
@@ -22,7 +27,7 @@ from typing import TYPE_CHECKING, Any
 
 import tilekit
 from tilekit.lazy import lazy_exports
-from tilekit.plugins import CatalogueRecord, Family
+from tilekit.plugins import CatalogueRecord, Family, web_pages
 
 if TYPE_CHECKING:  # pragma: no cover
     from tilekit.plugins.curved.tiling import RegularTiling
@@ -79,8 +84,12 @@ def uniform_tiling(configuration: str | None = None, **options: Any) -> UniformT
     return UniformTiling(configuration, **options)
 
 
-def _uniform_from_spec(spec: Mapping[str, Any]) -> UniformTiling:
+def _uniform_from_spec(spec: Mapping[str, Any]) -> Any:
     # measured start-up cost: as in regular()
+    if isinstance(spec, Mapping) and "pairing" in spec:  # a vertex-star tiling (stars.py)
+        from tilekit.plugins.curved.stars import StarTiling
+
+        return StarTiling.from_spec(spec)
     from tilekit.plugins.curved.uniform import UniformTiling
 
     return UniformTiling.from_spec(spec)
@@ -189,6 +198,38 @@ def _isohedral_from_file(path: str) -> Any:
     return from_file(path)
 
 
+#: The non-Wythoffian uniform tilings' data file (the 3.3.3.p.p family, stars.py).
+STARS_FILE = "stars.toml"
+
+
+def _star_configurations() -> tuple[list[tuple[int, ...]], str]:
+    """The configurations and pairing catalogue/curved/stars.toml ships (checked, one-line errors)."""
+    from tilekit.resources import catalogue_dir, read_toml
+    from tilekit.schema import Field, check
+
+    data = check(Field("table", fields={"max_sides": Field("int", required=True, range=(6, 60)),
+                                        "pairing": Field("str", required=True)}),
+                 read_toml(catalogue_dir() / "curved" / STARS_FILE, "curved records"), f"curved records {STARS_FILE}")
+    return [(3, 3, 3, p, p) for p in range(6, data["max_sides"] + 1, 2)], data["pairing"]
+
+
+def star_records() -> list[CatalogueRecord]:
+    """The non-Wythoffian uniform tilings 3.3.3.p.p (catalogue/curved/stars.toml)."""
+    # measured start-up cost: NumPy and the construction (records are built only when seeding)
+    from tilekit.plugins.curved import notation
+    from tilekit.plugins.curved.stars import StarTiling
+
+    configurations, pairing = _star_configurations()
+    out = []
+    for cfg in configurations:
+        t = StarTiling(notation.dotted(cfg), pairing=pairing)
+        aliases = sorted({notation.dotted(cfg), notation.exponent(cfg)} - {t.name})
+        out.append(CatalogueRecord(family=CURVED, name=t.name, spec=t.spec(), properties=t.properties(),
+                                   title=f"{t.configuration}: a non-Wythoffian uniform tiling of the hyperbolic plane "
+                                         "(the analogue of 3^3.4^2)", aliases=aliases))
+    return out
+
+
 @tilekit.hookimpl
 def tilekit_families() -> list[Family]:
     return [
@@ -213,7 +254,8 @@ def tilekit_families() -> list[Family]:
             from_spec=_uniform_from_spec,
             description=("Named by vertex configuration (3.4.4.4, 3.14.14) or Wythoff symbol (p|q r, p q|r, p q r|, "
                          "|p q r): the Archimedean solids, prisms and antiprisms, truncations and snubs of {p,q} in "
-                         "the hyperbolic plane. Options: configuration, symbol, radius, samples, plane, geometry."),
+                         "the hyperbolic plane; and non-Wythoffian ones developed from a vertex star (3.3.3.6.6, the analogues of "
+                         "3^3.4^2; option pairing). Options: configuration, symbol, radius, samples, plane, geometry."),
         ),
         Family(
             name=CURVED_ISOHEDRAL,
@@ -231,7 +273,7 @@ def tilekit_families() -> list[Family]:
 
 @tilekit.hookimpl
 def tilekit_catalogue_records() -> list[CatalogueRecord]:
-    return curved_records() + uniform_records()
+    return curved_records() + uniform_records() + star_records()
 
 
 @tilekit.hookimpl
@@ -249,12 +291,14 @@ def tilekit_resolve_name(name: str) -> list[str] | None:
         return None
     if notation.geometry_of(cfg) == "euclidean":
         return None
+    dotted = notation.dotted(notation.canonical(cfg))
+    if notation.canonical(cfg) in _star_configurations()[0]:
+        return [f"vertex_configuration={dotted}"]
     # start-up cost: the construction loads NumPy, only for a name that is a curved configuration
     from tilekit.errors import ParameterError
     from tilekit.plugins.curved import wythoff
 
     sym = wythoff.symbol_for(cfg)  # raises when no uniform tiling has this configuration
-    dotted = notation.dotted(notation.canonical(cfg))
     bounds = _uniform_data()["enumerate"]
     if not any(wythoff.recorded(s, **bounds) for s in wythoff.symbols_for(cfg)):
         raise ParameterError(f"{dotted} is the uniform tiling {sym}, which has no catalogue record (records: orders "
@@ -270,3 +314,8 @@ def tilekit_cli_commands(cli: Any) -> None:
     from tilekit.plugins.curved.cli import sphere_mesh_command
 
     cli.add_command(sphere_mesh_command)
+
+
+# the curved-space viewer (/curved/NAME, /curved?p=7&q=3): web.py, imported when a web app is made
+(tilekit_web_routes, tilekit_web_menu_links, tilekit_web_tiling_links,
+ tilekit_web_static) = web_pages("tilekit.plugins.curved.web", [("/curved?p=7&q=3", "hyperbolic viewer")])

@@ -29,7 +29,9 @@ def arc_commands(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     for SVG: 'A r r 0 0 s x y', or 'L x y' for a geodesic through the centre (a diameter)."""
     det = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
     ra, rb = (a * a).sum(axis=1), (b * b).sum(axis=1)
-    straight = np.abs(det) < 1e-12 * np.maximum(1e-300, np.sqrt(ra * rb))
+    # through the centre (up to rounding): |det| = |a||b| sin, so a point at the centre itself
+    # (a tiling centred on a vertex) is measured against the other point's length
+    straight = np.abs(det) < 1e-12 * np.maximum(1e-300, np.sqrt(np.maximum(ra, rb)))
     d = np.where(straight, 1.0, det)
     # the centre c of the orthogonal circle: c . a = (|a|^2 + 1) / 2, c . b = (|b|^2 + 1) / 2
     ka, kb = (ra + 1) / 2, (rb + 1) / 2

@@ -79,6 +79,22 @@ def drawing_options(plane: Any, samples: Any, spherical: bool) -> tuple[str, int
     return plane, int(_number("samples", samples, 1, MAX_SAMPLES, True))
 
 
+def drawing_spec(out: dict[str, Any], tiling: Any, default_name: str) -> dict[str, Any]:
+    """``out`` with what a curved tiling's spec adds past its defining keys: radius, samples and
+    plane when not the defaults, name when not ``default_name``, title when given."""
+    if getattr(tiling, "radius", None) is not None:
+        out["radius"] = tiling.radius
+    if tiling.samples != DEFAULT_SAMPLES:
+        out["samples"] = tiling.samples
+    if tiling.plane != "poincare":
+        out["plane"] = tiling.plane
+    if tiling.name != default_name:
+        out["name"] = tiling.name
+    if tiling.title:
+        out["title"] = tiling.title
+    return out
+
+
 @lru_cache(maxsize=256)
 def _exact_counts(p: int, q: int, depth: int) -> tuple[int, ...]:
     """Layer counts 0..depth, stopping after the first layer over 10^4 tiles (cheap: the NumPy
@@ -311,17 +327,7 @@ class RegularTiling(Tiling):
         out: dict[str, Any] = {"p": self.p, "q": self.q}
         if self.depth is not None:
             out["depth"] = self.depth
-        if self.radius is not None:
-            out["radius"] = self.radius
-        if self.samples != DEFAULT_SAMPLES:
-            out["samples"] = self.samples
-        if self.plane != "poincare":
-            out["plane"] = self.plane
-        if self.name != f"{self.kind}-{self.p}-{self.q}":
-            out["name"] = self.name
-        if self.title:
-            out["title"] = self.title
-        return out
+        return drawing_spec(out, self, f"{self.kind}-{self.p}-{self.q}")
 
     @classmethod
     def from_spec(cls, spec: Mapping[str, Any], want: str | None = None) -> RegularTiling:

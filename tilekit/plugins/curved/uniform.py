@@ -34,6 +34,7 @@ from tilekit.plugins.curved.tiling import (
     MAX_SAMPLES,
     _number,
     drawing_options,
+    drawing_spec,
 )
 from tilekit.plugins.curved.wythoff import GEOMETRIES, check_geometry  # noqa: F401 - the spellings, re-exported
 from tilekit.tiling import Patch, PeriodicTiling, Prototile, Tiling
@@ -270,17 +271,7 @@ class UniformTiling(Tiling):
     def spec(self) -> dict[str, Any]:
         out: dict[str, Any] = ({"configuration": self.configuration} if self.given == "configuration"
                                else {"symbol": str(self.symbol)})
-        if self.radius is not None:
-            out["radius"] = self.radius
-        if self.samples != DEFAULT_SAMPLES:
-            out["samples"] = self.samples
-        if self.plane != "poincare":
-            out["plane"] = self.plane
-        if self.name != notation.exponent(self.symbol.configuration or ()):
-            out["name"] = self.name
-        if self.title:
-            out["title"] = self.title
-        return out
+        return drawing_spec(out, self, notation.exponent(self.symbol.configuration or ()))
 
     @classmethod
     def from_spec(cls, spec: Mapping[str, Any]) -> UniformTiling:

@@ -1,0 +1,490 @@
+"""Uniform tilings of the hyperbolic plane that Wythoff's construction does not give, found
+by developing one vertex star: the non-Wythoffian family 3.3.3.p.q (p, q even, the hyperbolic
+analogues of the plane's 3^3.4^2; B. Datta and S. Gupta, "Semi-regular tilings of the
+hyperbolic plane", Discrete Comput. Geom. 65 (2021), doi:10.1007/s00454-019-00156-0, on
+vertex types admitting uniform tilings beyond Wythoff's).
+
+The star S at the pole: edges of one length l (the root of sum of the faces' angles = 2π,
+a regular n-gon with side l having angle 2 asin(cos(π/n) / cosh(l/2))), edge i at direction
+θ_i, face i between edges i and i + 1. A vertex-transitive tiling with this star has, for
+each edge i, a motion g_i taking the pole to the edge's far end w_i and some edge j of S onto
+the edge back (w_i to the pole), its two faces onto the two faces along that edge: a proper
+motion when the faces round edge j, in order, are those round edge i reversed; a
+reflection when they are the same. The *pairing* names, for every edge i, that partner j and
+the sign (``+`` proper, ``-`` reflecting); g_j is g_i's inverse, so the pairing is an
+involution. The tiling is then every image h(S), h a word in the g_i: a breadth-first walk
+over vertices (new ones told apart from known ones on a grid, wythoff.dedup), the faces
+deduplicated by their centres. Not every pairing closes up: :func:`find` builds each
+pairing's patch and keeps those that pass ``ModelPatch.validate`` (no overlap, the disc
+covered) with every inner vertex's angles summing to 2π over the configuration's valence;
+:func:`distinct` drops pairings that give the same faces round the pole.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass
+from functools import cached_property
+from typing import Any
+
+import numpy as np
+import shapely
+from shapely.geometry.base import BaseGeometry
+
+from tilekit.errors import GeometryError, ParameterError, ParseError
+from tilekit.geometry import as_region
+from tilekit.limits import MAX_TILES, refuse_over, refuse_over_memory
+from tilekit.plugins.curved import model, notation, wythoff
+from tilekit.plugins.curved.render import curved_svg
+from tilekit.plugins.curved.tiling import (
+    DEFAULT_SAMPLES,
+    MAX_SAMPLES,
+    _number,
+    drawing_options,
+    drawing_spec,
+)
+from tilekit.tiling import Tiling
+
+G = model.HYPERBOLIC_GEOMETRY
+_FLIP = np.diag([1.0, -1.0, 1.0])
+#: Largest valence whose pairings are searched (the involutions of d edges grow fast).
+MAX_VALENCE = 8
+
+
+def polygon_angle(n: int, edge: float) -> float:
+    """The interior angle of the regular hyperbolic n-gon with side ``edge``."""
+    return 2.0 * math.asin(min(1.0, math.cos(math.pi / n) / math.cosh(edge / 2)))
+
+
+def edge_length(cfg: tuple[int, ...]) -> float:
+    """The side l at which the regular faces of ``cfg`` close round a vertex (bisection: the
+    angle sum falls from the Euclidean sum, above 2π, to 0 as l grows)."""
+    if notation.geometry_of(cfg) != wythoff.HYPERBOLIC:
+        raise ParameterError(f"{notation.dotted(cfg)} is {notation.geometry_of(cfg)}: the vertex-star construction "
+                             "is for hyperbolic configurations (angles summing past a full turn)")
+    lo, hi = 1e-9, 1.0
+    while sum(polygon_angle(n, hi) for n in cfg) > 2 * math.pi:
+        hi *= 2
+    for _ in range(200):
+        mid = (lo + hi) / 2
+        lo, hi = (mid, hi) if sum(polygon_angle(n, mid) for n in cfg) > 2 * math.pi else (lo, mid)
+    return (lo + hi) / 2
+
+
+Pairing = tuple[tuple[int, int], ...]
+
+
+def parse_pairing(text: str, valence: int) -> Pairing:
+    """``'0- 2+ 1+ 3- 4-'``: per edge its partner and sign (one-line ParseError)."""
+    if not isinstance(text, str):
+        raise ParseError(f"pairing must be text such as '0- 2+ 1+ 3- 4-', got {type(text).__name__}")
+    out = []
+    for tok in text.split():
+        if len(tok) < 2 or tok[-1] not in "+-" or not tok[:-1].isdigit():
+            raise ParseError(f"pairing {text[:60]!r}: each edge's entry is its partner edge and a sign, e.g. 2+ or 0-")
+        out.append((int(tok[:-1]), 1 if tok[-1] == "+" else -1))
+    if len(out) != valence:
+        raise ParseError(f"pairing {text[:60]!r} has {len(out)} entries; the configuration has {valence} edges")
+    for i, (j, s) in enumerate(out):
+        if not 0 <= j < valence or out[j] != (i, s):
+            raise ParseError(f"pairing {text[:60]!r}: edge {i} names {j}{'+' if s > 0 else '-'}, which must name "
+                             f"{i} back with the same sign")
+    return tuple(out)
+
+
+def format_pairing(pairing: Pairing) -> str:
+    return " ".join(f"{j}{'+' if s > 0 else '-'}" for j, s in pairing)
+
+
+@dataclass(frozen=True)
+class Star:
+    """The vertex star of a configuration at the pole (see the module)."""
+
+    cfg: tuple[int, ...]
+
+    @cached_property
+    def edge(self) -> float:
+        return edge_length(self.cfg)
+
+    @cached_property
+    def angles(self) -> np.ndarray:
+        return np.array([polygon_angle(n, self.edge) for n in self.cfg])
+
+    @cached_property
+    def directions(self) -> np.ndarray:
+        """θ_i, edge i's direction (θ_0 = 0)."""
+        return np.concatenate([[0.0], np.cumsum(self.angles)[:-1]])
+
+    def flank(self, i: int) -> tuple[int, int]:
+        """(face before, face after) edge i, counter-clockwise: sizes of faces i − 1 and i."""
+        d = len(self.cfg)
+        return self.cfg[(i - 1) % d], self.cfg[i]
+
+    def circumradius(self, n: int) -> float:
+        return float(G.acos(1.0 / (math.tan(math.pi / n) * math.tan(self.angles_of(n) / 2))))
+
+    def angles_of(self, n: int) -> float:
+        return polygon_angle(n, self.edge)
+
+    def face_frames(self) -> np.ndarray:
+        """(d, 3, 3): face i as the image of the regular n_i-gon at the pole (vertex k at
+        angle 2πk/n), its vertex 0 at the pole and vertex 1 at edge i's far end."""
+        out = []
+        for i, n in enumerate(self.cfg):
+            phi = self.directions[i] + self.angles[i] / 2
+            # the half-turn about the face's centre puts vertex 0 on the side of the pole
+            out.append(G.rotation(phi) @ G.translation(self.circumradius(n)) @ G.rotation(math.pi))
+        return np.array(out)
+
+    def edge_frame(self, i: int) -> np.ndarray:
+        """The proper motion taking the pole to itself and direction 0 to edge i's."""
+        return G.rotation(float(self.directions[i]))
+
+    def back_frame(self, i: int) -> np.ndarray:
+        """The proper motion taking the pole to w_i and direction 0 to the direction back along edge i."""
+        return G.rotation(float(self.directions[i])) @ G.translation(self.edge) @ G.rotation(math.pi)
+
+    def generator(self, i: int, j: int, sign: int) -> np.ndarray:
+        """g_i for partner j: edge j of S onto edge i reversed (a reflection for sign −1)."""
+        inner = _FLIP if sign < 0 else np.eye(3)
+        return self.back_frame(i) @ inner @ self.edge_frame(j).T
+
+    def allowed(self, i: int, j: int, sign: int) -> bool:
+        """Whether edge j's faces can go onto edge i's reversed (sign +1) or kept (−1)."""
+        a, b = self.flank(i)
+        c, e = self.flank(j)
+        return (c, e) == ((b, a) if sign > 0 else (a, b))
+
+    def pairings(self) -> Iterator[Pairing]:
+        """Every involutive pairing the faces allow."""
+        d = len(self.cfg)
+        if d > MAX_VALENCE:
+            raise ParameterError(f"{notation.dotted(self.cfg)} has valence {d}; the pairing search takes up to "
+                                 f"{MAX_VALENCE}")
+
+        def rec(assigned: dict[int, tuple[int, int]]) -> Iterator[Pairing]:
+            free = [i for i in range(d) if i not in assigned]
+            if not free:
+                yield tuple(assigned[i] for i in range(d))
+                return
+            i = free[0]
+            for j in free:
+                for s in (1, -1):
+                    if self.allowed(i, j, s) and (i == j or self.allowed(j, i, s)):
+                        nxt = dict(assigned)
+                        nxt[i] = (j, s)
+                        nxt[j] = (i, s)
+                        yield from rec(nxt)
+
+        yield from rec({})
+
+
+def closes(star: Star, pairing: Pairing) -> bool:
+    """The local condition for a pairing to make a tiling: walking round each face of S by
+    the generators (leaving each vertex along the face's next edge in that vertex's own
+    star, whose orientation the walk tracks) returns to the pole after the face's n steps,
+    by a motion that maps S onto itself (its faces' centres and sizes)."""
+    gens = [star.generator(i, j, s) for i, (j, s) in enumerate(pairing)]
+    frames = star.face_frames()
+    centres = frames[:, :, 2]
+    d = len(star.cfg)
+    for i, n in enumerate(star.cfg):
+        h, e = np.eye(3), i
+        for step in range(n):
+            j = pairing[e][0]
+            h = h @ gens[e]
+            back = step == n - 1
+            if np.allclose(h[:, 2], (0.0, 0.0, 1.0), atol=1e-7) != back:
+                return False
+            e = (j - 1) % d if np.linalg.det(h) > 0 else (j + 1) % d
+        moved = centres @ h.T
+        match = np.abs(moved[:, None, :] - centres[None, :, :]).max(axis=2) < 1e-7
+        if not (match.any(axis=1).all() and all(star.cfg[int(np.argmax(match[k]))] == star.cfg[k] for k in range(d))):
+            return False
+    return True
+
+
+def develop(star: Star, pairing: Pairing, radius: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(vertex motions (m, 3, 3), face transforms (n, 3, 3), face sizes (n,)): every vertex
+    within ``radius`` + one edge of the pole reached by words in the g_i through such
+    vertices, and every face of their stars whose centre lies within ``radius`` plus its
+    circumradius (so the disc of ``radius`` is covered when the pairing closes up)."""
+    gens = np.array([star.generator(i, j, s) for i, (j, s) in enumerate(pairing)])
+    sep = 0.5 * 2 * math.sinh(star.edge / 2)  # half the Euclidean gap between neighbours on the hyperboloid
+    reach = math.cosh(radius + star.edge + max(star.circumradius(n) for n in set(star.cfg))) * (1 + 1e-9)
+    layers = [np.eye(3)[None]]
+    known = np.array([[0.0, 0.0, 1.0]])
+    while True:
+        cand = np.matmul(layers[-1][:, None], gens[None]).reshape(-1, 3, 3)
+        cand = cand[cand[:, 2, 2] <= reach]
+        if not len(cand):
+            break
+        pts = cand[:, :, 2]
+        new = wythoff.dedup(np.concatenate([known, pts]), sep, first=len(known)) - len(known)
+        if not len(new):
+            break
+        layers.append(cand[new])
+        known = np.concatenate([known, pts[new]])
+        if len(known) > 2_000_000:
+            raise GeometryError("the vertex-star development did not close up (too many vertices)")
+    verts = np.concatenate(layers)
+    frames = star.face_frames()
+    faces = np.matmul(verts[:, None], frames[None]).reshape(-1, 3, 3)
+    sizes = np.tile(np.array(star.cfg), len(verts))
+    circ = np.array([star.circumradius(n) for n in star.cfg])
+    keep = faces[:, 2, 2] <= np.cosh(radius + np.tile(circ, len(verts))) * (1 + 1e-9)
+    faces, sizes = faces[keep], sizes[keep]
+    centres = faces[:, :, 2]
+    first = wythoff.dedup(centres[:, :2], sep * 0.5)
+    return verts, faces[first], sizes[first]
+
+
+@dataclass
+class Found:
+    """One pairing that closes up: the tiling's faces round the pole, for telling tilings apart."""
+
+    pairing: Pairing
+    signature: bytes
+
+
+def check(star: Star, pairing: Pairing, radius: float | None = None) -> bool:
+    """Whether the pairing's development is a tiling on the disc of ``radius`` (default: one
+    edge and the largest face's diameter, every face at the pole's neighbours): no overlap, the disc covered, every vertex inside it
+    with angles summing to 2π over the valence."""
+    from tilekit.plugins.curved.patch import vertex_angle_sums
+
+    if not closes(star, pairing):
+        return False
+    big = max(star.circumradius(n) for n in star.cfg)
+    r = radius if radius is not None else 2 * big + 2 * star.edge
+    try:
+        patch = patch_of(star, pairing, r)
+    except GeometryError:
+        return False
+    disc = math.tanh(r / 2)
+    report = patch.validate(shapely.Point(0, 0).buffer(disc * 0.999, 64))
+    if report.overlaps or not report.ok:
+        return False
+    sums, counts = vertex_angle_sums(patch)
+    pts = _vertex_points(patch)
+    inner = pts[:, 2] <= math.cosh(r - 2 * big) * (1 + 1e-9)
+    return bool(np.allclose(sums[inner], 2 * math.pi, atol=1e-7) and (counts[inner] == len(star.cfg)).all())
+
+
+def _vertex_points(patch: object, decimals: int = 9) -> np.ndarray:
+    """The patch's vertices welded as vertex_angle_sums welds them, in its order."""
+    keys = []
+    for _, idx, proto in patch.parts():  # type: ignore[attr-defined]
+        v = model.apply(patch.transform[idx], proto.points[list(proto.corners or range(len(proto.points)))])  # type: ignore[attr-defined]
+        keys.append(np.round(v.reshape(-1, 3), decimals))
+    return np.unique(np.concatenate(keys), axis=0)
+
+
+def patch_of(star: Star, pairing: Pairing, radius: float, samples: int = 1, plane: str = "poincare"):  # noqa: ANN201
+    """The development as a :class:`ModelPatch`, one prototile per face size (colour: its index)."""
+    from tilekit.plugins.curved.patch import ModelPatch
+
+    _, faces, sizes = develop(star, pairing, radius)
+    protos = prototiles(star, samples, plane)
+    kinds = np.searchsorted(sorted(set(star.cfg)), sizes)
+    return ModelPatch(protos, kinds, faces, colour=kinds.copy())
+
+
+def prototiles(star: Star, samples: int = 1, plane: str = "poincare") -> list:
+    from tilekit.plugins.curved.patch import ModelPrototile
+    from tilekit.plugins.curved.uniform import _polygon
+
+    out = []
+    for n in sorted(set(star.cfg)):
+        v = G.point(star.circumradius(n), 2 * np.pi * np.arange(n) / n)
+        pts = model.sample_edges(G, v, star.edge, samples)
+        out.append(ModelPrototile(model.project(pts, plane), name=_polygon(n), points=pts, sign=-1, plane=plane,
+                                  corners=tuple(range(0, len(pts), max(1, samples)))))
+    return out
+
+
+def signature(star: Star, pairing: Pairing, radius: float) -> bytes:
+    """The face centres within ``radius`` of the pole, rounded and sorted: equal for two
+    pairings exactly when they make the same faces there."""
+    _, faces, sizes = develop(star, pairing, radius)
+    c = faces[:, :, 2]
+    c = c[c[:, 2] <= math.cosh(radius) * (1 - 1e-9)]
+    key = np.round(c, 6) + 0.0
+    key = key[np.lexsort(key.T[::-1])]
+    return key.tobytes()
+
+
+def find(cfg: tuple[int, ...]) -> list[Pairing]:
+    """The pairings of ``cfg``'s star that close up into a tiling, one per distinct tiling
+    (see the module), in the order :meth:`Star.pairings` lists them."""
+    star = Star(notation.canonical(cfg))
+    big = max(star.circumradius(n) for n in star.cfg)
+    out: list[Found] = []
+    for pairing in star.pairings():
+        if not check(star, pairing):
+            continue
+        sig = signature(star, pairing, 2 * big + star.edge)  # every face at the pole's neighbours
+        if all(f.signature != sig for f in out):
+            out.append(Found(pairing, sig))
+    return [f.pairing for f in out]
+
+
+def family(max_sides: int) -> Iterator[tuple[int, ...]]:
+    """The configurations 3.3.3.p.q, p ≤ q even, 4 ≤ p, q ≤ max_sides, less the plane's 3.3.3.4.4."""
+    for p, q in itertools.combinations_with_replacement(range(4, max_sides + 1, 2), 2):
+        if (p, q) != (4, 4):
+            yield (3, 3, 3, p, q)
+
+
+# --------------------------------------------------------------------------- the tiling
+
+
+#: Faces of a patch when no radius is given.
+DEFAULT_FACES = 800
+MAX_RADIUS = 10.0
+#: Peak bytes per face while a patch is made (the vertex motions, their faces before the
+#: centres are deduplicated: about d faces per vertex at 72 bytes each, and the dedup grid).
+STAR_BYTES_PER_TILE = 2000
+_OPTIONS = ("configuration", "pairing", "radius", "samples", "plane")
+_SPEC_KEYS = set(_OPTIONS) | {"name", "title"}
+
+
+class StarTiling(Tiling):
+    """A uniform tiling of the hyperbolic plane developed from its vertex star by a pairing
+    of the star's edges (see the module): ``configuration`` (e.g. 3.3.3.6.6), ``pairing``
+    (default: the first that closes up, :func:`find`), ``radius`` (the disc covered)."""
+
+    streams = False
+    bytes_per_tile = STAR_BYTES_PER_TILE
+
+    def __init__(self, configuration: str, *, pairing: str | None = None, radius: float | None = None,
+                 samples: int = DEFAULT_SAMPLES, plane: str = "poincare", name: str = "", title: str = "") -> None:
+        cfg = notation.canonical(notation.parse(str(configuration)))
+        self.star = Star(cfg)
+        self.star.edge  # noqa: B018 - a configuration that is not hyperbolic is refused here
+        self.plane, self.samples = drawing_options(plane, samples, False)
+        self.radius = None if radius is None else float(_number("radius", radius, 0, MAX_RADIUS, False))
+        if pairing is None:
+            found = find(cfg)
+            if not found:
+                raise ParameterError(f"{notation.dotted(cfg)}: no pairing of its star's edges closes up into a "
+                                     "vertex-transitive tiling")
+            self.pairing = found[0]
+        else:
+            self.pairing = parse_pairing(pairing, len(cfg))
+            if not closes(self.star, self.pairing):
+                raise ParameterError(f"{notation.dotted(cfg)} with pairing {pairing}: the faces do not close up round "
+                                     "a vertex (try tilekit.plugins.curved.stars.find)")
+        self.family = "curved"
+        self.kind = wythoff.HYPERBOLIC
+        self.configuration = notation.dotted(cfg)
+        self.name = name or notation.exponent(cfg)
+        self.title = title
+
+    hyperbolic = True
+
+    @cached_property
+    def _protos(self) -> list:
+        return prototiles(self.star, self.samples, self.plane)
+
+    @property
+    def prototiles(self) -> list:
+        return list(self._protos)
+
+    def default_region(self) -> BaseGeometry:
+        return shapely.box(*model.PLANE_VIEWS[self.plane])
+
+    def faces_per_area(self) -> float:
+        """Faces per unit area: sum 1/n over the vertex's faces, over each face's area share."""
+        area = {n: (n - 2) * math.pi - n * self.star.angles_of(n) for n in set(self.star.cfg)}
+        return sum(1 / n for n in self.star.cfg) / sum(area[n] / n for n in self.star.cfg)
+
+    def _big(self) -> float:
+        return max(self.star.circumradius(n) for n in set(self.star.cfg))
+
+    def _radius(self) -> float:
+        if self.radius is not None:
+            return self.radius
+        r = math.acosh(1 + DEFAULT_FACES / (2 * math.pi * self.faces_per_area()))
+        return float(min(MAX_RADIUS, max(0.0, r - self._big())))
+
+    def estimate_tiles(self, region: Any = None) -> float:
+        """Faces per area times the disc's area, the disc grown by twice the largest face's circumradius."""
+        r = self._radius() + 2 * self._big()
+        return 1.0 + self.faces_per_area() * 2 * math.pi * (math.cosh(r) - 1)
+
+    def patch(self, region: Any = None) -> Any:
+        """Every face whose centre is within the radius plus its circumradius (the disc of the
+        radius covered), less those whose outline misses ``region``; colour: the face's size."""
+        what = f"faces of {self.configuration}"
+        estimate = self.estimate_tiles(region)
+        refuse_over(what, estimate, MAX_TILES, "--max-tiles", "ask for a smaller radius (--set radius=R)")
+        refuse_over_memory(what, estimate, self.bytes_per_tile, "ask for a smaller radius (--set radius=R)")
+        patch = patch_of(self.star, self.pairing, self._radius(), self.samples, self.plane)
+        reg = None if region is None else as_region(region)
+        if reg is not None and len(patch) and not reg.covers(shapely.box(-1, -1, 1, 1)):
+            patch = patch.subset(patch.clip_index(reg))
+        return patch
+
+    def symmetries(self, reach: float) -> np.ndarray:
+        """The tiling's symmetries (words in the generators) moving the pole at most ``reach``."""
+        verts, _, _ = develop(self.star, self.pairing, reach)
+        return verts[verts[:, 2, 2] <= math.cosh(reach) * (1 + 1e-12)]
+
+    def render_svg(self, patch: Any, **options: Any) -> str:
+        return curved_svg(self, patch, **options)
+
+    def properties(self) -> dict[str, Any]:
+        cfg = self.star.cfg
+        return {"periodic": True, "k_hedral": len(set(cfg)), "k_isogonal": 1, "edge_to_edge": True,
+                "uniform": True, "geometry": self.kind, "vertex_configuration": self.configuration,
+                "construction": "vertex star", "pairing": format_pairing(self.pairing), "wythoffian": False,
+                "sides": sorted(set(cfg)), "valence": len(cfg)}
+
+    def describe(self) -> str:
+        return (f"{self.configuration}: a uniform tiling of the hyperbolic plane that Wythoff's construction does not "
+                f"give, developed from its vertex star (edge pairing {format_pairing(self.pairing)})")
+
+    def options_help(self) -> str:
+        return "\n".join([
+            "--set configuration=C       the vertex configuration, e.g. 3.3.3.6.6",
+            "--set pairing=P             each star edge's partner and sign, e.g. '0- 1+ 2+ 3- 4+' (default: the "
+            "first that closes up)",
+            f"--set radius=R              the faces covering the disc of radius R (0..{MAX_RADIUS:g}; default: about "
+            f"{DEFAULT_FACES} faces)",
+            f"--set samples=N             points per edge of exported outlines (1..{MAX_SAMPLES}, default "
+            f"{DEFAULT_SAMPLES}); SVG draws true arcs",
+            "--set plane=P               the hyperbolic drawing plane: poincare (default), klein or halfplane",
+        ])
+
+    def configure(self, **options: Any) -> StarTiling:
+        unknown = set(options) - set(_OPTIONS)
+        if unknown:
+            raise ParameterError(f"{self.name} does not take option(s) {', '.join(sorted(unknown))}; "
+                                 f"valid: {', '.join(_OPTIONS)}")
+        same = "configuration" not in options
+        pairing = options.get("pairing", format_pairing(self.pairing) if same else None)
+        return StarTiling(options.get("configuration", self.configuration), pairing=pairing,
+                          radius=options.get("radius", self.radius), samples=options.get("samples", self.samples),
+                          plane=options.get("plane", self.plane), name=self.name if same else "",
+                          title=self.title if same else "")
+
+    def spec(self) -> dict[str, Any]:
+        return drawing_spec({"configuration": self.configuration, "pairing": format_pairing(self.pairing)}, self,
+                            notation.exponent(self.star.cfg))
+
+    @classmethod
+    def from_spec(cls, spec: Mapping[str, Any]) -> StarTiling:
+        if not isinstance(spec, Mapping):
+            raise ParseError(f"curved spec must be a table, got {type(spec).__name__}")
+        unknown = set(spec) - _SPEC_KEYS
+        if unknown:
+            raise ParseError(f"curved vertex-star spec has unknown key(s) {', '.join(sorted(map(str, unknown)))}; "
+                             f"valid: {', '.join(sorted(_SPEC_KEYS))}")
+        if "configuration" not in spec:
+            raise ParseError("curved vertex-star spec needs a configuration, e.g. 3.3.3.6.6")
+        return cls(spec["configuration"], pairing=spec.get("pairing"), radius=spec.get("radius"),
+                   samples=spec.get("samples", DEFAULT_SAMPLES), plane=spec.get("plane", "poincare"),
+                   name=str(spec.get("name", "")), title=str(spec.get("title", "")))

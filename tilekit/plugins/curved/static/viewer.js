@@ -1,0 +1,219 @@
+// The curved-space viewer (tilekit/plugins/curved/web.py): the patch arrives once as model
+// points; the view is a 3x3 matrix V on the model (a Lorentz matrix of the hyperboloid, a
+// rotation of the sphere). A drag composes onto the view at the drag's start, V0, the motion
+// taking the start point to the current point: the hyperbolic translation along their
+// geodesic (Poincaré disc, edges redrawn as true arcs), or the rotation about the axis
+// through both (orthographic sphere). Hyperbolic views are rebased by the tiling's own
+// symmetries (V <- V g), which leaves the picture as it is and keeps the patch round the
+// screen's centre.
+(function () {
+  "use strict";
+  const root = document.getElementById("curved");
+  if (!root) return;
+  const view = document.getElementById("view");
+  const errorBox = document.getElementById("error");
+  const status = document.getElementById("status");
+  const NS = "http://www.w3.org/2000/svg";
+  const PAD = 1.02;
+  let data = null, V = eye(), V0 = null, start = null, starts = [], svg = null, paths = [];
+  let syms = [], rebase = 0.9, hyper = true, frame = 0;
+
+  function eye() { return [1, 0, 0, 0, 1, 0, 0, 0, 1]; }
+  function mul(a, b) {
+    const c = new Array(9);
+    for (let i = 0; i < 3; i++) for (let j = 0; j < 3; j++)
+      c[3 * i + j] = a[3 * i] * b[j] + a[3 * i + 1] * b[3 + j] + a[3 * i + 2] * b[6 + j];
+    return c;
+  }
+  function apply(m, x, y, z) {
+    return [m[0] * x + m[1] * y + m[2] * z, m[3] * x + m[4] * y + m[5] * z, m[6] * x + m[7] * y + m[8] * z];
+  }
+  // the pure boost taking the pole (0, 0, 1) to the hyperboloid point (x, y, t)
+  function boost(x, y, t) {
+    const k = 1 / (1 + t);
+    return [1 + x * x * k, x * y * k, x, x * y * k, 1 + y * y * k, y, x, y, t];
+  }
+  function fromDisc(p) {
+    const r2 = p[0] * p[0] + p[1] * p[1];
+    return [2 * p[0] / (1 - r2), 2 * p[1] / (1 - r2), (1 + r2) / (1 - r2)];
+  }
+  // the hyperbolic translation taking disc point a to disc point b (along their geodesic):
+  // conjugate by the boost to a the boost from the pole to w, the image of b brought back
+  function translation(a, b) {
+    const A = fromDisc(a), B = fromDisc(b);
+    const toA = boost(A[0], A[1], A[2]), fromA = boost(-A[0], -A[1], A[2]);
+    const w = apply(fromA, B[0], B[1], B[2]);
+    return mul(mul(toA, boost(w[0], w[1], w[2])), fromA);
+  }
+  function onSphere(p) {
+    const r2 = p[0] * p[0] + p[1] * p[1];
+    if (r2 >= 1) { const r = Math.sqrt(r2); return [p[0] / r, p[1] / r, 0]; }
+    return [p[0], p[1], Math.sqrt(1 - r2)];
+  }
+  // the rotation about a x b taking the unit vector a to b (Rodrigues)
+  function rotation(a, b) {
+    const A = onSphere(a), B = onSphere(b);
+    let k = [A[1] * B[2] - A[2] * B[1], A[2] * B[0] - A[0] * B[2], A[0] * B[1] - A[1] * B[0]];
+    const s = Math.hypot(k[0], k[1], k[2]), c = A[0] * B[0] + A[1] * B[1] + A[2] * B[2];
+    if (s < 1e-15) return eye();
+    k = k.map(function (v) { return v / s; });
+    const K = [0, -k[2], k[1], k[2], 0, -k[0], -k[1], k[0], 0], K2 = mul(K, K);
+    return eye().map(function (v, i) { return v + s * K[i] + (1 - c) * K2[i]; });
+  }
+  // back onto O(2,1): Gram-Schmidt in the Lorentz form, the time-like column first
+  function clean(m) {
+    const col = function (j) { return [m[j], m[3 + j], m[6 + j]]; };
+    const dot = function (u, v) { return u[0] * v[0] + u[1] * v[1] - u[2] * v[2]; };
+    let t = col(2); const nt = Math.sqrt(-dot(t, t)); t = t.map(function (v) { return v / nt; });
+    let x = col(0); let d = dot(x, t);
+    x = x.map(function (v, i) { return v + d * t[i]; }); const nx = Math.sqrt(dot(x, x)); x = x.map(function (v) { return v / nx; });
+    let y = col(1); d = dot(y, t); const e = dot(y, x);
+    y = y.map(function (v, i) { return v + d * t[i] - e * x[i]; }); const ny = Math.sqrt(dot(y, y)); y = y.map(function (v) { return v / ny; });
+    return [x[0], y[0], t[0], x[1], y[1], t[1], x[2], y[2], t[2]];
+  }
+  // the point under the screen's centre, V^-1 (pole): for a Lorentz V, J V^T J (pole)
+  function centreOf(m) { return [-m[6], -m[7], m[8]]; }
+  function dist(g, c) { // cosh of the distance from g(pole) to the hyperboloid point c
+    return -(g[2] * c[0] + g[5] * c[1] - g[8] * c[2]);
+  }
+  function rebaseView() {
+    let moved = false;
+    for (let step = 0; step < 200; step++) {
+      const c = centreOf(V);
+      if (c[2] <= Math.cosh(rebase)) break;
+      let best = null, bestD = c[2] * (1 - 1e-12);
+      syms.forEach(function (g) { const d = dist(g, c); if (d < bestD) { best = g; bestD = d; } });
+      if (!best) break;
+      V = clean(mul(V, best));
+      if (V0) V0 = clean(mul(V0, best));
+      moved = true;
+    }
+    if (moved) root.dataset.rebases = String(Number(root.dataset.rebases || 0) + 1);
+  }
+  function fmt(v) { return v.toFixed(6); }
+  function arc(a, b) { // SVG command for the geodesic from disc point a to b (y flipped)
+    const det = a[0] * b[1] - a[1] * b[0], ra = a[0] * a[0] + a[1] * a[1], rb = b[0] * b[0] + b[1] * b[1];
+    if (Math.abs(det) < 1e-12 * Math.max(1e-300, Math.sqrt(Math.max(ra, rb)))) return "L" + fmt(b[0]) + " " + fmt(-b[1]);
+    const ka = (ra + 1) / 2, kb = (rb + 1) / 2;
+    const cx = (ka * b[1] - kb * a[1]) / det, cy = (a[0] * kb - b[0] * ka) / det;
+    const r = Math.sqrt(Math.max(cx * cx + cy * cy - 1, 0));
+    const cross = (a[0] - cx) * (b[1] - cy) - (a[1] - cy) * (b[0] - cx);
+    return "A" + fmt(r) + " " + fmt(r) + " 0 0 " + (cross > 0 ? "0" : "1") + " " + fmt(b[0]) + " " + fmt(-b[1]);
+  }
+  function draw() {
+    const pts = data.points;
+    let off = 0;
+    const order = [];
+    data.sizes.forEach(function (k, f) {
+      const flat = [];
+      let front = 0;
+      for (let i = 0; i < k; i++, off += 3) {
+        const q = apply(V, pts[off], pts[off + 1], pts[off + 2]);
+        if (hyper) flat.push([q[0] / (1 + q[2]), q[1] / (1 + q[2])]);
+        else {
+          front += q[2];
+          const r = Math.hypot(q[0], q[1]) || 1;
+          flat.push(q[2] >= 0 ? [q[0], q[1]] : [q[0] / r, q[1] / r]);
+        }
+      }
+      let d = "M" + fmt(flat[0][0]) + " " + fmt(-flat[0][1]);
+      for (let i = 0; i < k; i++) {
+        const b = flat[(i + 1) % k];
+        d += " " + (hyper ? arc(flat[i], b) : "L" + fmt(b[0]) + " " + fmt(-b[1]));
+      }
+      const el = paths[f];
+      el.setAttribute("d", d + " Z");
+      if (!hyper) {
+        el.setAttribute("fill-opacity", front >= 0 ? "1" : "0.2");
+        el.setAttribute("stroke-opacity", front >= 0 ? "1" : "0.2");
+        order.push([front, el]);
+      }
+    });
+    if (!hyper) order.sort(function (a, b) { return a[0] - b[0]; }).forEach(function (p) { svg.appendChild(p[1]); });
+    root.dataset.view = V.map(function (v) { return v.toPrecision(12); }).join(",");
+    root.dataset.renders = String(Number(root.dataset.renders || 0) + 1);
+  }
+  function later() {
+    if (frame) return;
+    frame = requestAnimationFrame(function () { frame = 0; draw(); });
+  }
+  function discPoint(ev) { // the pointer in model-plane coordinates (y up)
+    const m = svg.getScreenCTM().inverse();
+    const p = svg.createSVGPoint(); p.x = ev.clientX; p.y = ev.clientY;
+    const q = p.matrixTransform(m);
+    return [q.x, -q.y];
+  }
+  function inside(p) { return p[0] * p[0] + p[1] * p[1] < (hyper ? 0.9999 : 1); }
+  function build() {
+    svg = document.createElementNS(NS, "svg");
+    svg.setAttribute("viewBox", [-PAD, -PAD, 2 * PAD, 2 * PAD].join(" "));
+    svg.setAttribute("id", "disc");
+    const rim = document.createElementNS(NS, "circle");
+    Object.entries({ cx: 0, cy: 0, r: 1, fill: hyper ? "#f8f8f8" : "#eef2f6", stroke: "#222", "stroke-width": 0.004 })
+      .forEach(function (kv) { rim.setAttribute(kv[0], kv[1]); });
+    svg.appendChild(rim);
+    paths = data.sizes.map(function (k, f) {
+      const el = document.createElementNS(NS, "path");
+      el.setAttribute("fill", data.palette[data.colour[f] % data.palette.length]);
+      el.setAttribute("stroke", "#222");
+      el.setAttribute("stroke-width", "0.003");
+      el.setAttribute("stroke-linejoin", "round");
+      el.dataset.face = String(f);
+      svg.appendChild(el);
+      return el;
+    });
+    view.innerHTML = "";
+    view.appendChild(svg);
+    svg.addEventListener("pointerdown", function (ev) {
+      const p = discPoint(ev);
+      if (!inside(p)) return;
+      start = p; V0 = V.slice();
+      starts.push(p);
+      svg.setPointerCapture(ev.pointerId);
+      root.dataset.dragging = "1";
+    });
+    svg.addEventListener("pointermove", function (ev) {
+      if (!start) return;
+      let p = discPoint(ev);
+      if (hyper && !inside(p)) { const r = Math.hypot(p[0], p[1]) / 0.9999; p = [p[0] / r, p[1] / r]; }
+      V = mul(hyper ? translation(start, p) : rotation(start, p), V0);
+      if (hyper) rebaseView();
+      later();
+    });
+    const end = function () {
+      if (!start) return;
+      start = null; V0 = null;
+      delete root.dataset.dragging;
+      later();
+    };
+    svg.addEventListener("pointerup", end);
+    svg.addEventListener("pointercancel", end);
+  }
+  function load() {
+    fetch(root.dataset.src).then(function (r) {
+      return r.json().then(function (body) {
+        if (!r.ok) throw new Error(body.error || ("HTTP " + r.status));
+        return body;
+      });
+    }).then(function (body) {
+      data = body;
+      hyper = body.geometry === "hyperbolic";
+      syms = [];
+      for (let i = 0; hyper && i < body.symmetries.length; i += 9) syms.push(body.symmetries.slice(i, i + 9));
+      V = hyper ? eye() : [1, 0, 0, 0, 0.906307787, -0.422618262, 0, 0.422618262, 0.906307787];
+      build();
+      draw();
+      status.textContent = body.sizes.length + " faces" +
+        (hyper ? " within hyperbolic distance " + body.radius.toFixed(2) + " of the patch's centre" : "");
+      root.dataset.state = "ok";
+    }).catch(function (err) {
+      errorBox.textContent = String(err.message || err);
+      root.dataset.state = "error";
+    });
+  }
+  document.getElementById("reset").addEventListener("click", function () {
+    V = hyper ? eye() : [1, 0, 0, 0, 0.906307787, -0.422618262, 0, 0.422618262, 0.906307787];
+    if (data) draw();
+  });
+  load();
+})();
