@@ -90,6 +90,7 @@ def _uniform_from_spec(spec: Mapping[str, Any]) -> Any:
         from tilekit.plugins.curved.stars import StarTiling
 
         return StarTiling.from_spec(spec)
+    # measured start-up cost: as in regular()
     from tilekit.plugins.curved.uniform import UniformTiling
 
     return UniformTiling.from_spec(spec)
@@ -204,6 +205,7 @@ STARS_FILE = "stars.toml"
 
 def _star_configurations() -> tuple[list[tuple[int, ...]], str]:
     """The configurations and pairing catalogue/curved/stars.toml ships (checked, one-line errors)."""
+    # start-up cost: the data file is read only when seeding
     from tilekit.resources import catalogue_dir, read_toml
     from tilekit.schema import Field, check
 

@@ -37,6 +37,7 @@ from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.geometry import as_region
 from tilekit.limits import MAX_TILES, refuse_over, refuse_over_memory
 from tilekit.plugins.curved import model, notation, wythoff
+from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile, vertex_angle_sums
 from tilekit.plugins.curved.render import curved_svg
 from tilekit.plugins.curved.tiling import (
     DEFAULT_SAMPLES,
@@ -45,6 +46,7 @@ from tilekit.plugins.curved.tiling import (
     drawing_options,
     drawing_spec,
 )
+from tilekit.plugins.curved.uniform import _polygon
 from tilekit.tiling import Tiling
 
 G = model.HYPERBOLIC_GEOMETRY
@@ -253,7 +255,6 @@ def check(star: Star, pairing: Pairing, radius: float | None = None) -> bool:
     """Whether the pairing's development is a tiling on the disc of ``radius`` (default: one
     edge and the largest face's diameter, every face at the pole's neighbours): no overlap, the disc covered, every vertex inside it
     with angles summing to 2π over the valence."""
-    from tilekit.plugins.curved.patch import vertex_angle_sums
 
     if not closes(star, pairing):
         return False
@@ -284,7 +285,6 @@ def _vertex_points(patch: object, decimals: int = 9) -> np.ndarray:
 
 def patch_of(star: Star, pairing: Pairing, radius: float, samples: int = 1, plane: str = "poincare"):  # noqa: ANN201
     """The development as a :class:`ModelPatch`, one prototile per face size (colour: its index)."""
-    from tilekit.plugins.curved.patch import ModelPatch
 
     _, faces, sizes = develop(star, pairing, radius)
     protos = prototiles(star, samples, plane)
@@ -293,8 +293,6 @@ def patch_of(star: Star, pairing: Pairing, radius: float, samples: int = 1, plan
 
 
 def prototiles(star: Star, samples: int = 1, plane: str = "poincare") -> list:
-    from tilekit.plugins.curved.patch import ModelPrototile
-    from tilekit.plugins.curved.uniform import _polygon
 
     out = []
     for n in sorted(set(star.cfg)):

@@ -25,7 +25,9 @@ import numpy as np
 
 from tilekit.errors import ParameterError
 from tilekit.plugins import WebRoute
-from tilekit.plugins.curved import CURVED, HYPERBOLIC, SPHERICAL
+from tilekit.plugins.curved import CURVED, HYPERBOLIC, SPHERICAL, regular
+from tilekit.plugins.curved.model import check_pq
+from tilekit.plugins.curved.render import DEFAULT_PALETTE
 from tilekit.web.pages import esc, name_path
 
 #: The name this plugin's static files are served under (/static/plugins/curved/).
@@ -75,7 +77,6 @@ def view_data(tiling: Any, max_tiles: int) -> dict[str, Any]:
     """What the viewer draws: per face its corners (hyperbolic) or sampled outline (sphere)
     on the model, flat, with the faces' sizes and colours (by kind of face); for a hyperbolic tiling the
     patch's radius and the symmetries for rebasing (row-major 3x3 each)."""
-    from tilekit.plugins.curved.render import DEFAULT_PALETTE
 
     if getattr(tiling, "family", "") not in FAMILIES:
         raise ParameterError(f"{tiling.name} is a {getattr(tiling, 'family', '?')} tiling; the curved-space viewer "
@@ -110,8 +111,6 @@ def view_data(tiling: Any, max_tiles: int) -> dict[str, Any]:
 def _tiling(request: Any, web: Any, name: str | None) -> Any:
     if name is not None:
         return web.renderer.base_tiling(name)
-    from tilekit.plugins.curved import regular
-    from tilekit.plugins.curved.model import check_pq
 
     p, q = (request.query_params.get(k, d) for k, d in (("p", "7"), ("q", "3")))
     return regular(*check_pq(p, q))
