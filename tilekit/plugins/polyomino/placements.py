@@ -24,7 +24,7 @@ from functools import cached_property
 
 import numpy as np
 
-from tilekit.lattice import Grid, fixed_form, halo_of, pack, unique_keys, unpack
+from tilekit.lattice import Grid, pack, unique_keys, unpack, vertex_neighbour_table
 
 
 @dataclass(eq=False)
@@ -40,22 +40,25 @@ class Forms:
 
     def __post_init__(self) -> None:
         self.cells = np.asarray(self.cells, dtype=np.int64).reshape(-1, 2)
-        forms, gs, shifts, seen = [], [], [], set()
-        for g, m in enumerate(self.grid.group):
-            img = self.cells @ m.T
-            f = fixed_form(self.grid, img)
-            key = tuple(np.sort(pack(f)).tolist())
-            if key in seen:
-                continue
-            seen.add(key)
-            # fixed_form sorts and translates; recover the translation from the first cell
-            order = np.lexsort((img[:, 0], img[:, 1]))
-            forms.append(f)
-            gs.append(g)
-            shifts.append(f[0] - img[order][0])
-        self.forms = np.array(forms, dtype=np.int64)  # (J, n, 2)
-        self.g = np.array(gs, dtype=np.int64)
-        self.shift = np.array(shifts, dtype=np.int64)
+        # every image at once, each in fixed form (sorted by (y, x), the least cell moved into
+        # [0, period)^2, as lattice.fixed_form): (G, n, 2)
+        img = np.einsum("gab,nb->gna", self.grid.group.astype(np.int64), self.cells)
+        order = np.argsort(pack(img[..., ::-1]), axis=1, kind="stable")
+        img = np.take_along_axis(img, order[..., None], axis=1)
+        c0 = img[:, 0, :]
+        shift = np.mod(c0, self.grid.period) - c0  # fixed form = image + shift
+        fixed = img + shift[:, None, :]
+        keys = np.sort(pack(fixed), axis=1)
+        seen: set[bytes] = set()
+        first = []
+        for g in range(len(fixed)):  # distinct orientations, in group order
+            b = keys[g].tobytes()
+            if b not in seen:
+                seen.add(b)
+                first.append(g)
+        self.forms = fixed[first]  # (J, n, 2)
+        self.g = np.array(first, dtype=np.int64)
+        self.shift = shift[first]
         self.keys = pack(self.forms)  # (J, n)
 
     @property
@@ -68,34 +71,47 @@ class Forms:
 
     @cached_property
     def halos(self) -> np.ndarray:
-        """(J, H, 2): the halo of each orientation (all halos have the same size)."""
-        return np.array([halo_of(self.grid, f) for f in self.forms], dtype=np.int64)
+        """(J, H, 2): the halo of each orientation (all halos have the same size), in one array
+        pass: every cell's vertex neighbours (the grid's per-type table), keyed by orientation,
+        deduplicated by one sort, less the orientation's own cells."""
+        J, n = self.J, self.n
+        tab = vertex_neighbour_table(self.grid)
+        cand = self.forms[:, :, None, :] + tab[self.grid.cell_type(self.forms.reshape(-1, 2))].reshape(J, n, -1, 2)
+        jj = np.arange(J, dtype=np.int64)[:, None] << 42
+        key = unique_keys(jj | pack(cand).reshape(J, -1))
+        own = np.sort((jj | self.keys).ravel())
+        pos = np.minimum(np.searchsorted(own, key), len(own) - 1)
+        key = key[own[pos] != key]
+        return unpack(key & ((np.int64(1) << 42) - 1)).reshape(J, -1, 2)
 
     @cached_property
     def adjacent(self) -> list[np.ndarray]:
         """Per orientation j, rows ``(k, tx, ty)``: ``forms[k] + t`` touches ``forms[j]``
-        (sorted by k, then by the packed translation). One array pass over every (j, k) pair:
-        the translations taking a cell of ``forms[k]`` onto a halo cell of ``forms[j]``."""
+        (sorted by k, then by the packed translation); :meth:`adjacent_to` for each j."""
+        return [self.adjacent_to(j) for j in range(self.J)]
+
+    def adjacent_to(self, j: int) -> np.ndarray:
+        """``adjacent[j]``, computed (and kept) alone: corona 1 needs only the kernel's, j = 0.
+        One array pass over every orientation k: the translations taking a cell of
+        ``forms[k]`` onto a halo cell of ``forms[j]``, less the copies overlapping ``forms[j]``."""
+        done = self.__dict__.setdefault("_adjacent_to", {})
+        if j in done:
+            return done[j]
         p, J = self.grid.period, self.J
-        t = self.halos[:, None, :, None, :] - self.forms[None, :, None, :, :]  # (J, J, H, n, 2)
-        jj = np.broadcast_to(np.arange(J)[:, None, None, None], t.shape[:-1]).ravel()
-        kk = np.broadcast_to(np.arange(J)[None, :, None, None], t.shape[:-1]).ravel()
+        t = self.halos[j][None, :, None, :] - self.forms[:, None, :, :]  # (J, H, n, 2)
+        kk = np.broadcast_to(np.arange(J)[:, None, None], t.shape[:-1]).ravel()
         t = t.reshape(-1, 2)
         ok = (t % p == 0).all(axis=1)
-        # distinct (j, k, t) as one sorted int64 key (packed translations are < 2^42)
-        key = unique_keys(((jj[ok] * J + kk[ok]) << 42) | pack(t[ok]))
-        jk = key >> 42
-        jj, kk = jk // J, jk % J
+        # distinct (k, t) as one sorted int64 key (packed translations are < 2^42)
+        key = unique_keys((kk[ok] << 42) | pack(t[ok]))
+        kk = key >> 42
         tt = unpack(key & ((np.int64(1) << 42) - 1))
         moved = pack(self.forms[kk] + tt[:, None, :])  # (R, n)
-        # a copy overlapping forms[j] does not touch it: (j, cell) pairs as one sorted key
-        own = np.sort(((np.arange(J)[:, None] << 42) | self.keys).ravel())
-        probe = (jj[:, None] << 42) | moved
-        pos = np.minimum(np.searchsorted(own, probe), len(own) - 1)
-        clash = (own[pos] == probe).any(axis=1)
-        rows = np.column_stack([kk, tt]).astype(np.int64)[~clash]
-        cut = np.searchsorted(jj[~clash], np.arange(1, J))
-        return np.split(rows, cut)
+        own = np.sort(self.keys[j])
+        pos = np.minimum(np.searchsorted(own, moved), len(own) - 1)
+        clash = (own[pos] == moved).any(axis=1)
+        done[j] = np.column_stack([kk, tt]).astype(np.int64)[~clash]
+        return done[j]
 
     def placement_cells(self, rows: np.ndarray) -> np.ndarray:
         """(m, n) packed cell keys of placements ``rows`` = (j, tx, ty)."""
