@@ -200,6 +200,22 @@ class CNF:
             self.top = max(self.top, max(abs(v) for v in lits))
             self.atmosts.append((lits, int(k)))
 
+    def add_atmost_groups(self, flat: Any, starts: Any, extra: Any, k: int = 1) -> None:
+        """Many native at-most-``k`` constraints at once: group g is ``flat[starts[g]:starts[g+1]]``
+        plus ``extra[g]`` (integer arrays of non-zero literals). The lists are cut from one
+        ``tolist`` of each array, with no per-literal check (:meth:`add_atmost` is the checked
+        one-at-a-time form)."""
+        import numpy as np
+
+        flat, starts, extra = (np.asarray(a, dtype=np.int64) for a in (flat, starts, extra))
+        if not len(starts):
+            return
+        if not flat.all() or not extra.all():
+            raise ParameterError("at-most constraints hold non-zero literals")
+        self.top = max(self.top, int(np.abs(flat).max(initial=0)), int(np.abs(extra).max()))
+        lits, ends = flat.tolist(), [*starts[1:].tolist(), len(flat)]
+        self.atmosts += [([*lits[a:b], e], k) for a, b, e in zip(starts.tolist(), ends, extra.tolist())]
+
     def literals(self) -> int:
         """How many literals the clauses hold (a solver's memory grows with them)."""
         return sum(len(c) for c in self.clauses) + sum(int(b.size) for b in self.blocks)
@@ -462,8 +478,9 @@ class IncrementalSolver:
             return
         with gc_paused():
             collections.deque(map(self._adder(), _clauses_of(clauses)), maxlen=0)
+            add = self._atmost_adder()
             for lits, k in atmosts:
-                self._s.add_atmost(lits, k)
+                add(lits, k)
 
     def _adder(self) -> Any:
         """The cheapest call adding one clause: python-sat's C function bound to this
@@ -481,6 +498,20 @@ class IncrementalSolver:
             if fn is not None and getattr(inner, handle, None) is not None:
                 return functools.partial(fn, getattr(inner, handle))
         return inner.add_clause
+
+    def _atmost_adder(self) -> Any:
+        """As :meth:`_adder` for native at-most-k constraints (Gluecard's C call; it returns
+        False when the constraint makes the formula unsatisfiable, which the next solve says
+        too)."""
+        if self.solver == "gluecard4":
+            import functools
+
+            import pysolvers
+
+            handle = getattr(self._s.solver, "gluecard", None)
+            if handle is not None and hasattr(pysolvers, "gluecard41_add_am"):
+                return functools.partial(pysolvers.gluecard41_add_am, handle)
+        return self._s.add_atmost
 
     def solve(self, assumptions: Sequence[int] = (), time_limit: float | None = None) -> SatAnswer:
         """Answer the formula so far under ``assumptions``; ``None`` when ``time_limit`` expires."""

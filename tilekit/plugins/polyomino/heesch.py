@@ -664,8 +664,7 @@ class CoronaLadder:
             lev = self._vars(len(keys))
             self.lev.append((keys, lev))
             if len(keys):
-                for g, lits in zip(np.split(yy, st[1:]), (-lev).tolist()):
-                    cnf.add_atmost([*g.tolist(), lits], 1)
+                cnf.add_atmost_groups(yy, st, -lev, 1)
                 cnf.add_block(_padded(-lev, st, yy, F))
         else:
             # lev[h, i] <-> some copy of corona i covers h, at most one of them: a ladder
