@@ -180,7 +180,7 @@ def routes(state: Any) -> list[Route]:
     def families(request: Request) -> Response:
         data = []
         for name, fam in sorted(fams(cat().pm).items()):
-            data.append({"name": name, "summary": fam.summary, "tilings": cat().count(name)})
+            data.append({"name": name, "summary": fam.summary, "tilings": cat().count_matching(name)})
         return JSONResponse({"families": data})
 
     @endpoint

@@ -247,7 +247,7 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
 
     @page
     def families_view(request: Request) -> Response:
-        rows = [(n, f.summary, state.catalogue.count(n)) for n, f in sorted(families(state.catalogue.pm).items())]
+        rows = [(n, f.summary, state.catalogue.count_matching(n)) for n, f in sorted(families(state.catalogue.pm).items())]
         return _html(pages.families_page(rows))
 
     @page
