@@ -38,9 +38,10 @@ import collections
 import contextlib
 import gc
 import multiprocessing
+import os
 import threading
 import time
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -344,21 +345,67 @@ def _stats(s: Any) -> dict[str, int]:
         return {}
 
 
+class _Watchdog:
+    """One daemon thread that calls each armed function at its deadline: the time limits of
+    interruptible solves, without starting a thread per solve (a ``threading.Timer`` each cost
+    more than a small corona formula's whole solve, measured on the polyform classifications)."""
+
+    def __init__(self) -> None:
+        self._cond = threading.Condition()
+        self._jobs: dict[int, tuple[float, Callable[[], Any]]] = {}
+        self._fired: set[int] = set()
+        self._next = 0
+        self._pid = -1  # the process whose thread runs (a forked child starts its own)
+
+    def arm(self, seconds: float, fn: Callable[[], Any]) -> int:
+        with self._cond:
+            if self._pid != os.getpid():
+                self._pid = os.getpid()
+                self._jobs.clear()
+                self._fired.clear()
+                threading.Thread(target=self._loop, name="tilekit-sat-watchdog", daemon=True).start()
+            self._next += 1
+            self._jobs[self._next] = (time.monotonic() + seconds, fn)
+            self._cond.notify()
+            return self._next
+
+    def disarm(self, token: int) -> bool:
+        """Forget ``token``; whether its function was called."""
+        with self._cond:
+            self._jobs.pop(token, None)
+            fired = token in self._fired
+            self._fired.discard(token)
+            return fired
+
+    def _loop(self) -> None:
+        with self._cond:
+            while True:
+                now = time.monotonic()
+                for token in [t for t, (d, _) in self._jobs.items() if d <= now]:
+                    fn = self._jobs.pop(token)[1]
+                    self._fired.add(token)
+                    fn()
+                wait = min((d for d, _ in self._jobs.values()), default=None)
+                self._cond.wait(None if wait is None else max(0.0, wait - time.monotonic()))
+
+
+_WATCHDOG = _Watchdog()
+
+
 def _run(s: Any, assumptions: list[int], time_limit: float | None) -> tuple[bool | None, list[int] | None, dict[str, int]]:
-    """Solve on the live pysat solver ``s`` (interrupting by a timer when a limit is given)."""
+    """Solve on the live pysat solver ``s`` (interrupted by the shared watchdog at the limit)."""
     if isinstance(s, _Cms):
         answer = s.solve(assumptions, time_limit)
         return answer, (s.get_model() if answer else None), {}
     if time_limit is None:
         answer = s.solve(assumptions=assumptions)
     else:
-        timer = threading.Timer(time_limit, s.interrupt)
-        timer.start()
+        token = _WATCHDOG.arm(time_limit, s.interrupt)
         try:
             answer = s.solve_limited(assumptions=assumptions, expect_interrupt=True)
         finally:
-            timer.cancel()
-        if answer is None:
+            fired = _WATCHDOG.disarm(token)
+        if answer is None or fired:
             s.clear_interrupt()
     return answer, (s.get_model() if answer else None), _stats(s)
 
