@@ -37,6 +37,7 @@ from __future__ import annotations
 import collections
 import contextlib
 import gc
+import math
 import multiprocessing
 import os
 import threading
@@ -356,17 +357,21 @@ class _Watchdog:
         self._fired: set[int] = set()
         self._next = 0
         self._pid = -1  # the process whose thread runs (a forked child starts its own)
+        self._wake = 0.0  # when the thread wakes next (inf: only when notified)
 
     def arm(self, seconds: float, fn: Callable[[], Any]) -> int:
         with self._cond:
             if self._pid != os.getpid():
                 self._pid = os.getpid()
+                self._wake = 0.0  # notified until the new thread sets its wake-up
                 self._jobs.clear()
                 self._fired.clear()
                 threading.Thread(target=self._loop, name="tilekit-sat-watchdog", daemon=True).start()
             self._next += 1
-            self._jobs[self._next] = (time.monotonic() + seconds, fn)
-            self._cond.notify()
+            deadline = time.monotonic() + seconds
+            self._jobs[self._next] = (deadline, fn)
+            if deadline < self._wake:  # earlier than the thread's wake-up: wake it to wait less
+                self._cond.notify()
             return self._next
 
     def disarm(self, token: int) -> bool:
@@ -385,8 +390,8 @@ class _Watchdog:
                     fn = self._jobs.pop(token)[1]
                     self._fired.add(token)
                     fn()
-                wait = min((d for d, _ in self._jobs.values()), default=None)
-                self._cond.wait(None if wait is None else max(0.0, wait - time.monotonic()))
+                self._wake = min((d for d, _ in self._jobs.values()), default=math.inf)
+                self._cond.wait(None if math.isinf(self._wake) else max(0.0, self._wake - time.monotonic()))
 
 
 _WATCHDOG = _Watchdog()
