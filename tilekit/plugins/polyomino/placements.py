@@ -24,7 +24,80 @@ from functools import cached_property
 
 import numpy as np
 
-from tilekit.lattice import Grid, pack, unique_keys, unpack, vertex_neighbour_table
+from tilekit.jit import njit
+from tilekit.lattice import Grid, pack, vertex_neighbour_table
+
+
+@njit(cache=True)
+def _adjacent(forms, halo, own, period):  # pragma: no cover - compiled
+    """Rows ``(k, tx, ty)``: ``forms[k] + t`` covers a cell of ``halo`` and none of ``own``
+    (sorted packed keys), each once, sorted by k and then by the packed translation (the
+    translations taking a cell of ``forms[k]`` onto a halo cell, one loop)."""
+    J, n = forms.shape[0], forms.shape[1]
+    H = halo.shape[0]
+    off, m = np.int64(1 << 20), np.int64(1 << 21)
+    keys = np.empty(J * H * n, np.int64)
+    c = 0
+    for k in range(J):
+        for h in range(H):
+            for i in range(n):
+                tx = halo[h, 0] - forms[k, i, 0]
+                ty = halo[h, 1] - forms[k, i, 1]
+                if tx % period == 0 and ty % period == 0:
+                    keys[c] = (np.int64(k) << 42) | ((tx + off) * m + (ty + off))
+                    c += 1
+    keys = np.unique(keys[:c])
+    out = np.empty((keys.shape[0], 3), np.int64)
+    r = 0
+    for q in range(keys.shape[0]):
+        k = keys[q] >> 42
+        t = keys[q] & ((np.int64(1) << 42) - 1)
+        tx = t // m - off
+        ty = t % m - off
+        clash = False
+        for i in range(n):
+            v = (forms[k, i, 0] + tx + off) * m + (forms[k, i, 1] + ty + off)
+            p = np.searchsorted(own, v)
+            if p < own.shape[0] and own[p] == v:
+                clash = True
+                break
+        if not clash:
+            out[r, 0] = k
+            out[r, 1] = tx
+            out[r, 2] = ty
+            r += 1
+    return out[:r].copy()
+
+
+@njit(cache=True)
+def _halos(forms, table, types, period):  # pragma: no cover - compiled
+    """Per orientation, its halo cells sorted by packed key (see :meth:`Forms.halos`)."""
+    J, n, K = forms.shape[0], forms.shape[1], table.shape[1]
+    off, m = np.int64(1 << 20), np.int64(1 << 21)
+    out = np.empty((0, 0, 2), np.int64)
+    for j in range(J):
+        own = np.empty(n, np.int64)
+        cand = np.empty(n * K, np.int64)
+        for i in range(n):
+            x, y = forms[j, i, 0], forms[j, i, 1]
+            own[i] = (x + off) * m + (y + off)
+            t = types[(y % period) * period + x % period]
+            for k in range(K):
+                cand[i * K + k] = (x + table[t, k, 0] + off) * m + (y + table[t, k, 1] + off)
+        own = np.sort(own)
+        cand = np.unique(cand)
+        keep = np.ones(cand.shape[0], np.bool_)
+        for q in range(cand.shape[0]):
+            p = np.searchsorted(own, cand[q])
+            if p < n and own[p] == cand[q]:
+                keep[q] = False
+        cand = cand[keep]
+        if j == 0:
+            out = np.empty((J, cand.shape[0], 2), np.int64)
+        for q in range(cand.shape[0]):
+            out[j, q, 0] = cand[q] // m - off
+            out[j, q, 1] = cand[q] % m - off
+    return out
 
 
 @dataclass(eq=False)
@@ -71,18 +144,10 @@ class Forms:
 
     @cached_property
     def halos(self) -> np.ndarray:
-        """(J, H, 2): the halo of each orientation (all halos have the same size), in one array
-        pass: every cell's vertex neighbours (the grid's per-type table), keyed by orientation,
-        deduplicated by one sort, less the orientation's own cells."""
-        J, n = self.J, self.n
-        tab = vertex_neighbour_table(self.grid)
-        cand = self.forms[:, :, None, :] + tab[self.grid.cell_type(self.forms.reshape(-1, 2))].reshape(J, n, -1, 2)
-        jj = np.arange(J, dtype=np.int64)[:, None] << 42
-        key = unique_keys(jj | pack(cand).reshape(J, -1))
-        own = np.sort((jj | self.keys).ravel())
-        pos = np.minimum(np.searchsorted(own, key), len(own) - 1)
-        key = key[own[pos] != key]
-        return unpack(key & ((np.int64(1) << 42) - 1)).reshape(J, -1, 2)
+        """(J, H, 2): the halo of each orientation (all halos have the same size), one compiled
+        loop: every cell's vertex neighbours (the grid's per-type table), deduplicated by a
+        sort, less the orientation's own cells."""
+        return _halos(self.forms, vertex_neighbour_table(self.grid), self.grid.type_table, np.int64(self.grid.period))
 
     @cached_property
     def adjacent(self) -> list[np.ndarray]:
@@ -95,22 +160,9 @@ class Forms:
         One array pass over every orientation k: the translations taking a cell of
         ``forms[k]`` onto a halo cell of ``forms[j]``, less the copies overlapping ``forms[j]``."""
         done = self.__dict__.setdefault("_adjacent_to", {})
-        if j in done:
-            return done[j]
-        p, J = self.grid.period, self.J
-        t = self.halos[j][None, :, None, :] - self.forms[:, None, :, :]  # (J, H, n, 2)
-        kk = np.broadcast_to(np.arange(J)[:, None, None], t.shape[:-1]).ravel()
-        t = t.reshape(-1, 2)
-        ok = (t % p == 0).all(axis=1)
-        # distinct (k, t) as one sorted int64 key (packed translations are < 2^42)
-        key = unique_keys((kk[ok] << 42) | pack(t[ok]))
-        kk = key >> 42
-        tt = unpack(key & ((np.int64(1) << 42) - 1))
-        moved = pack(self.forms[kk] + tt[:, None, :])  # (R, n)
-        own = np.sort(self.keys[j])
-        pos = np.minimum(np.searchsorted(own, moved), len(own) - 1)
-        clash = (own[pos] == moved).any(axis=1)
-        done[j] = np.column_stack([kk, tt]).astype(np.int64)[~clash]
+        if j not in done:
+            done[j] = _adjacent(self.forms, np.ascontiguousarray(self.halos[j]), np.sort(self.keys[j]),
+                                np.int64(self.grid.period))
         return done[j]
 
     def placement_cells(self, rows: np.ndarray) -> np.ndarray:
