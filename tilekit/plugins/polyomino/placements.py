@@ -25,7 +25,7 @@ from functools import cached_property
 import numpy as np
 
 from tilekit.jit import njit
-from tilekit.lattice import Grid, pack, vertex_neighbour_table
+from tilekit.lattice import _M, _OFF, Grid, pack, vertex_neighbour_table
 
 
 @njit(cache=True)
@@ -35,7 +35,7 @@ def _adjacent(forms, halo, own, period):  # pragma: no cover - compiled
     translations taking a cell of ``forms[k]`` onto a halo cell, one loop)."""
     J, n = forms.shape[0], forms.shape[1]
     H = halo.shape[0]
-    off, m = np.int64(1 << 20), np.int64(1 << 21)
+    off, m = np.int64(_OFF), np.int64(_M)  # lattice.pack's offsets
     keys = np.empty(J * H * n, np.int64)
     c = 0
     for k in range(J):
@@ -73,7 +73,7 @@ def _adjacent(forms, halo, own, period):  # pragma: no cover - compiled
 def _halos(forms, table, types, period):  # pragma: no cover - compiled
     """Per orientation, its halo cells sorted by packed key (see :meth:`Forms.halos`)."""
     J, n, K = forms.shape[0], forms.shape[1], table.shape[1]
-    off, m = np.int64(1 << 20), np.int64(1 << 21)
+    off, m = np.int64(_OFF), np.int64(_M)  # lattice.pack's offsets
     out = np.empty((0, 0, 2), np.int64)
     for j in range(J):
         own = np.empty(n, np.int64)
