@@ -36,7 +36,11 @@ def _free_forms(grid, n):
     period, group = grid.period, grid.group.astype(np.int64)
     forms = np.asarray(grid.roots, dtype=np.int64)[:, None, :]  # (F, 1, 2)
 
-    def canonical(cand):  # (C, m, 2) -> the distinct canonical forms
+    def canonical(cand):  # (C, m, 2) -> the distinct canonical forms, in blocks (bounded memory)
+        if len(cand) > 20000:
+            parts = np.concatenate([canonical(cand[i:i + 20000]) for i in range(0, len(cand), 20000)])
+            _, first = np.unique(parts.reshape(len(parts), -1), axis=0, return_index=True)
+            return parts[np.sort(first)]
         img = np.einsum("gab,cmb->gcma", group, cand)  # (G, C, m, 2)
         key = img[..., 0] * (1 << 32) + img[..., 1]
         order = np.argsort(key, axis=-1)
