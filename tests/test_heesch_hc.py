@@ -132,3 +132,31 @@ def test_bad_levels_are_refused_with_the_range():
     with pytest.raises(ParameterError, match="before the coronas are grown"):
         hs.drop_enclosing()
     assert isinstance(CoronaLadder(HeeschSolver(SQUARE, np.array([[1, 1]]))), CoronaLadder)
+
+
+@pytest.mark.parametrize("grid,n,settles", [("kite", 6, True), (HEXAGONAL, 6, False), (TRIANGULAR, 8, False)])
+def test_the_corona_1_local_test_keeps_every_patch(grid, n, settles):
+    """``first_corona_support`` is sound: over every hole-free form, the one-corona formula
+    (holes allowed) on all the copies touching the kernel is satisfiable exactly when it is on
+    the copies the local test keeps, and unsatisfiable whenever the test keeps none (then the
+    form cannot tile: no corona at all)."""
+    from tilekit.lattice import get_grid
+    from tilekit.plugins.polyomino.heesch import first_corona_support
+
+    grid = get_grid(grid) if isinstance(grid, str) else grid
+    settled = 0
+    for root in range(len(grid.roots)):
+        polys, flags, _ = enumerate_free(grid, n, root=root, maxsize=n, with_holes=True)
+        for cells, holey in zip(polys, flags):
+            if len(cells) != n or holey:
+                continue
+            full = HeeschSolver(grid, cells)
+            raw = full.forms.adjacent_to(0)
+            keep = first_corona_support(full.forms.placement_cells(raw), full.kernel_halo)
+            full.levels.append(raw)  # corona 1 unpruned
+            pruned = HeeschSolver(grid, cells)
+            pruned.levels.append(raw[keep])
+            ok = full.surrounds(1)
+            assert ok == (bool(keep.any()) and pruned.surrounds(1))
+            settled += not keep.any()
+    assert (settled > 0) == settles  # on the 6-kites it settles some forms alone

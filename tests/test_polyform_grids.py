@@ -27,9 +27,111 @@ A075224 = [0, 0, 0, 0, 0, 0, 0, 0, 6, 25, 53, 47, 97]  # anisohedral polyiamonds
 A071334 = [0, 0, 0, 0, 0, 0, 1, 0, 20, 103, 594, 1192, 6290]  # hole-free polyiamonds that do not tile
 
 
+def _free_forms(grid, n):
+    """Every free n-form of ``grid`` by plain growth, independent of the library's enumeration
+    (Redelmeier's tree from one root cell type, canonical codes, hole flags): the monomers of
+    every cell type, then each (n-1)-form plus each edge neighbour of each of its cells, all
+    children of a size at once; a form is the least (by rows) of its images under the point
+    group, each image's cells sorted and moved by a grid translation into [0, period)^2."""
+    period, group = grid.period, grid.group.astype(np.int64)
+    forms = np.asarray(grid.roots, dtype=np.int64)[:, None, :]  # (F, 1, 2)
+
+    def canonical(cand):  # (C, m, 2) -> the distinct canonical forms, in blocks (bounded memory)
+        if len(cand) > 20000:
+            parts = np.concatenate([canonical(cand[i:i + 20000]) for i in range(0, len(cand), 20000)])
+            _, first = np.unique(parts.reshape(len(parts), -1), axis=0, return_index=True)
+            return parts[np.sort(first)]
+        img = np.einsum("gab,cmb->gcma", group, cand)  # (G, C, m, 2)
+        key = img[..., 0] * (1 << 32) + img[..., 1]
+        order = np.argsort(key, axis=-1)
+        img = np.take_along_axis(img, order[..., None], axis=2)
+        img = img - (img[:, :, :1, :] - np.mod(img[:, :, :1, :], period))
+        G, C, m = img.shape[:3]
+        rows = img.reshape(G * C, 2 * m)
+        _, ids = np.unique(rows, axis=0, return_inverse=True)
+        ids = ids.reshape(G, C)
+        best = np.argmin(ids, axis=0)
+        pick = img[best, np.arange(C)]
+        _, first = np.unique(ids[best, np.arange(C)], return_index=True)
+        return pick[np.sort(first)]
+
+    forms = canonical(forms)
+    for m in range(2, n + 1):
+        types = grid.cell_type(forms.reshape(-1, 2)).reshape(forms.shape[:2])
+        nb = forms[:, :, None, :] + grid.neighbours[types]  # (F, m-1, D, 2)
+        F, k, D = nb.shape[:3]
+        child = np.concatenate([np.repeat(forms[:, None, None], k, 1).repeat(D, 2),
+                                nb[:, :, :, None, :]], axis=3).reshape(F * k * D, m, 2)
+        # drop children whose new cell was already in the form
+        fresh = ~(child[:, :-1, :] == child[:, -1:, :]).all(axis=2).any(axis=1)
+        forms = canonical(child[fresh])
+    return forms
+
+
+def _has_hole(grid, cells):
+    """Whether the cells enclose an empty cell: a flood fill over empty cells through edge
+    neighbours within the bounding box grown by two periods, from every cell of that box more
+    than one period away from the cells (a hole lies within one period of them: a hole cell's
+    edge neighbours are cells of the form or of the hole); an empty cell left is in a hole."""
+    period = grid.period
+    filled = {tuple(c) for c in cells.tolist()}
+    lo, hi = cells.min(axis=0) - 2 * period, cells.max(axis=0) + 2 * period
+    nlo, nhi = cells.min(axis=0) - period, cells.max(axis=0) + period
+    box = [(x, y) for x in range(lo[0], hi[0] + 1) for y in range(lo[1], hi[1] + 1)]
+    empty = [c for c, t in zip(box, grid.cell_type(np.array(box))) if t >= 0 and c not in filled]
+    stack = [c for c in empty if not (nlo[0] <= c[0] <= nhi[0] and nlo[1] <= c[1] <= nhi[1])]
+    seen = set(stack)
+    while stack:
+        c = stack.pop()
+        for d in grid.neighbours[grid.cell_type(np.array([c]))[0]].tolist():
+            q = (c[0] + d[0], c[1] + d[1])
+            if lo[0] <= q[0] <= hi[0] and lo[1] <= q[1] <= hi[1] and q not in filled and q not in seen:
+                seen.add(q)
+                stack.append(q)
+    return len(seen) < len(empty)
+
+
 def _hole_free(grid, n):
-    polys, holes, _ = enumerate_free(grid, n, maxsize=n, with_holes=True)
-    return [p for p, h in zip(polys, holes) if len(p) == n and not h]
+    """The hole-free free n-forms, found without the library's enumeration (:func:`_free_forms`,
+    :func:`_has_hole`)."""
+    return [p for p in _free_forms(grid, n) if not _has_hole(grid, p)]
+
+
+A000228 = [1, 1, 3, 7, 22, 82, 333, 1448]  # free polyhexes (FACTS.md)
+A000577 = [1, 1, 1, 3, 4, 12, 24, 66, 160, 448, 1186, 3334]  # free polyiamonds (FACTS.md)
+A057786 = [1, 2, 4, 10, 27, 85, 262]  # free polykites (FACTS.md)
+
+
+@pytest.mark.parametrize("grid,counts,upto", [(HEXAGONAL, A000228, 6), (TRIANGULAR, A000577, 10),
+                                              ("kite", A057786, 6)])
+def test_the_independent_enumeration_counts_free_forms_as_the_oeis(grid, counts, upto):
+    """The tests' own enumeration (:func:`_free_forms`) finds every free form: A000228 /
+    A000577 / A057786; and its hole-free forms are the library's, from every cell type."""
+    from tilekit.lattice import get_grid
+
+    grid = get_grid(grid) if isinstance(grid, str) else grid
+    for n in range(1, upto + 1):
+        forms = _free_forms(grid, n)
+        assert len(forms) == counts[n - 1]
+    mine = {encode(grid, p) for p in _hole_free(grid, upto)}
+    theirs = set()
+    for root in range(len(grid.roots)):
+        polys, holes, _ = enumerate_free(grid, upto, root=root, maxsize=upto, with_holes=True)
+        theirs |= {encode(grid, p) for p, h in zip(polys, holes) if len(p) == upto and not h}
+    assert mine == theirs
+
+
+@pytest.mark.slow
+def test_the_hole_free_12_iamonds_include_the_one_from_the_second_cell_type():
+    """All 3,334 free 12-iamonds (A000577), 3,226 of them hole-free; one of those is reached by
+    the library's enumeration only from the down-pointing cell type (the helper before this
+    test enumerated from the first type alone and found 3,225)."""
+    assert len(_free_forms(TRIANGULAR, 12)) == A000577[11]
+    forms = _hole_free(TRIANGULAR, 12)
+    assert len(forms) == 3226
+    polys, holes, _ = enumerate_free(TRIANGULAR, 12, root=0, maxsize=12, with_holes=True)
+    first = {encode(TRIANGULAR, p) for p, h in zip(polys, holes) if len(p) == 12 and not h}
+    assert len({encode(TRIANGULAR, p) for p in forms} - first) == 1
 
 
 def _isohedral_count(grid, n):
@@ -72,9 +174,11 @@ def test_sixfold_iamonds_need_both_orders():
     """Seven 9-iamonds tile isohedrally only with type CC3C3C6C6 (IH21, p6, six tiles a unit).
     Five of them read C C6 C6 C3 C3 counter-clockwise, the mirror order of the other two: with
     one order only, the count was 128, not A075223(9) = 133."""
+    from tilekit.lattice import canonical
+
     orders = []
-    for p in _hole_free(TRIANGULAR, 9):
-        a = analyse(TRIANGULAR, p, construct=True)
+    for p in _hole_free(TRIANGULAR, 9):  # in the library's canonical image (the orders are chiral)
+        a = analyse(TRIANGULAR, canonical(TRIANGULAR, p), construct=True)
         if a["isohedral"] and not any(a[k] for k in ("translation", "halfturn", "reflection", "threefold")):
             assert a["ih_types"] == [21]
             orders.append(sorted({t.factorisation.template for t in a["tilings"]}))
@@ -254,14 +358,22 @@ def test_hex_rows_list_show_render_and_web(catalogue_cli, tmp_path):
     assert res.exit_code == 0, res.output
 
     def count(*where):
-        return catalogue_cli.count("polyomino", "grid=hex", *where)
+        return catalogue_cli.count("polyform", "grid=hex", *where)
 
     assert count() == 1 + 1 + 3 + 7 + 22 + 82  # A000228
     assert count("tiles=false", "holes=false") == 4
     assert count("tiles=true", "isohedral=false") == 1
     assert count("heesch=2") == 1
+    # `polyomino` is the square grid's rows alone, `polyform` every grid's: in list, keys and
+    # the web's family counts
     assert catalogue_cli.count("polyomino", "grid=square") == 0
-    r = run("list", "--family", "polyomino", "--where", "grid=hex", "--where", "heesch=2", "--format", "json")
+    assert catalogue_cli.count("polyomino") == 0
+    assert catalogue_cli.count("polyform") == count()
+    keys = {k["key"]: k for k in json.loads(run("keys", "polyomino", "--format", "json").output)}
+    assert keys["grid"]["tilings"] == 0
+    keys = {k["key"]: k for k in json.loads(run("keys", "polyform", "--format", "json").output)}
+    assert keys["grid"]["tilings"] == count()
+    r = run("list", "--family", "polyform", "--where", "grid=hex", "--where", "heesch=2", "--format", "json")
     code = json.loads(r.output)[0]["code"]
     assert code == "hex:0,0;3,0;6,0;-3,3;6,3;-6,6"
     res = run("show", code)
@@ -270,7 +382,7 @@ def test_hex_rows_list_show_render_and_web(catalogue_cli, tmp_path):
         out = tmp_path / name
         res = run("render", code, *(("--set", f"view={view}") if view else ()), "-o", str(out))
         assert res.exit_code == 0 and out.stat().st_size > 0, res.output
-    r = run("list", "--family", "polyomino", "--where", "grid=hex", "--where", "isohedral=false",
+    r = run("list", "--family", "polyform", "--where", "grid=hex", "--where", "isohedral=false",
             "--where", "tiles=true", "--format", "json")
     aniso = json.loads(r.output)[0]["code"]
     res = run("render", aniso, "-o", str(tmp_path / "aniso.svg"))
@@ -278,3 +390,7 @@ def test_hex_rows_list_show_render_and_web(catalogue_cli, tmp_path):
     with TestClient(create_app(catalogue_cli.url)) as client:
         for url in (f"/tiling/{quote(code, safe='')}", f"/thumb/{quote(aniso, safe='')}.svg"):
             assert client.get(url).status_code == 200, url
+        fams = {f["name"]: f["tilings"] for f in client.get("/api/families").json()["families"]}
+        assert fams["polyomino"] == 0  # the family's rows, as on its page: the square grid's
+        assert client.get("/api/query?family=polyomino").json()["total"] == 0
+        assert client.get("/api/query?family=polyform").json()["total"] == count()

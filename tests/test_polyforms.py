@@ -96,7 +96,7 @@ def test_stored_kite_run_checked_independently(catalogue_cli, tmp_path):
     res = catalogue_cli.run("search", "polyforms", "--grid", "kite", "--max-cells", "7")
     assert res.exit_code == 0, res.output
     for n in range(1, 8):
-        assert catalogue_cli.count("polyomino", "grid=kite", f"cells={n}") == A057786[n - 1]
+        assert catalogue_cli.count("polyform", "grid=kite", f"cells={n}") == A057786[n - 1]
     engine = sa.create_engine(catalogue_cli.url)
     with engine.connect() as conn:
         rows = conn.execute(sa.text("SELECT * FROM polyominoes WHERE grid = 'kite'")).mappings().all()
@@ -125,7 +125,7 @@ def test_stored_kite_run_checked_independently(catalogue_cli, tmp_path):
     out = tmp_path / "k.svg"
     res = catalogue_cli.run("render", code, "-o", str(out))
     assert res.exit_code == 0 and out.read_text().startswith("<")
-    res = catalogue_cli.run("list", "--family", "polyomino", "--where", "grid=kite", "--where", "cells=2")
+    res = catalogue_cli.run("list", "--family", "polyform", "--where", "grid=kite", "--where", "cells=2")
     assert res.exit_code == 0 and "2-kite" in res.output and "not classified" in res.output
 
 

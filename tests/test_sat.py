@@ -149,3 +149,34 @@ def test_cryptominisat_takes_blocks_and_answers_like_the_others():
         # an assumption on a variable no clause mentions is no obstacle
         assert s.solve(assumptions=[1000]).satisfiable is False
     assert models == 6
+
+
+def test_time_limited_solves_share_one_watchdog_thread():
+    """A time limit interrupts a hard formula, and 50 time-limited solves start no thread each
+    (one shared watchdog); a solve after an interrupted one answers normally."""
+    import threading
+
+    with IncrementalSolver(_hard_cnf(), solver="gluecard4") as hard, \
+            IncrementalSolver([[1, 2], [-1]], solver="gluecard4") as easy:
+        assert hard.solve(time_limit=0.3).satisfiable is None
+        before = threading.active_count()
+        for _ in range(50):
+            assert easy.solve(time_limit=60).satisfiable is True
+        assert threading.active_count() <= before
+        assert hard.solve(time_limit=0.2).satisfiable is None
+        assert easy.solve(time_limit=60).satisfiable is True
+
+
+def test_atmost_groups_equal_one_at_a_time():
+    """``CNF.add_atmost_groups`` gives the constraints ``add_atmost`` gives one by one; zero
+    literals are refused."""
+    import numpy as np
+
+    flat, starts, extra = np.array([1, 2, 3, 4, 5, -6]), np.array([0, 2, 3]), np.array([-7, 8, 9])
+    a, b = CNF(), CNF()
+    a.add_atmost_groups(flat, starts, extra, 1)
+    for lits in ([1, 2, -7], [3, 8], [4, 5, -6, 9]):
+        b.add_atmost(lits, 1)
+    assert a.atmosts == b.atmosts and a.top == b.top == 9
+    with pytest.raises(ParameterError, match="non-zero"):
+        CNF().add_atmost_groups(np.array([1, 0]), np.array([0]), np.array([3]))

@@ -98,14 +98,19 @@ class Grid:
     def rotation_order(self) -> int:
         return len(self.group) // 2
 
+    @cached_property
+    def type_table(self) -> np.ndarray:
+        """(period * period,) cell type at residue ``(x % period) + period * (y % period)``, -1: none."""
+        out = np.full(self.period * self.period, -1, dtype=np.int64)
+        for r, (x, y) in enumerate(np.asarray(self.roots, dtype=np.int64).tolist()):
+            out[y * self.period + x] = r
+        return out
+
     def cell_type(self, c: np.ndarray) -> np.ndarray:
         """Type index of each centre (k, 2) (ValueError-free: -1 for a non-centre)."""
         c = np.asarray(c, dtype=np.int64).reshape(-1, 2)
         m = np.mod(c, self.period)
-        out = np.full(len(c), -1, dtype=np.int64)
-        for r, root in enumerate(self.roots):
-            out[(m == root).all(axis=1)] = r
-        return out
+        return self.type_table[m[:, 1] * self.period + m[:, 0]]
 
     def is_cell(self, c: np.ndarray) -> np.ndarray:
         return self.cell_type(c) >= 0
@@ -1378,14 +1383,24 @@ def _vertex_neighbours(grid: Grid) -> tuple[np.ndarray, ...]:
     return tuple(out)
 
 
+@cache
+def vertex_neighbour_table(grid: Grid) -> np.ndarray:
+    """(R, K, 2): :func:`_vertex_neighbours` as one array, each type's list padded by repeating
+    its last offset (a set-like table: duplicates vanish in any union)."""
+    nb = _vertex_neighbours(grid)
+    k = max(len(o) for o in nb)
+    return np.stack([np.concatenate([o, np.repeat(o[-1:], k - len(o), axis=0)]) for o in nb]).astype(np.int64)
+
+
 def halo_of(grid: Grid, cells: np.ndarray) -> np.ndarray:
     """The cells sharing a vertex with ``cells`` and not in it (sorted by key)."""
     cells = np.asarray(cells, dtype=np.int64).reshape(-1, 2)
-    nb = _vertex_neighbours(grid)
-    types = grid.cell_type(cells)
-    parts = [cells[types == r][:, None, :] + nb[r][None] for r in range(len(grid.roots))]
-    cand = unique_keys(pack(np.concatenate([p.reshape(-1, 2) for p in parts])))
-    cand = cand[~np.isin(cand, pack(cells))]
+    tab = vertex_neighbour_table(grid)
+    cand = unique_keys(pack(cells[:, None, :] + tab[grid.cell_type(cells)]))
+    own = np.sort(pack(cells))
+    pos = np.minimum(np.searchsorted(own, cand), len(own) - 1) if len(own) else None
+    if pos is not None:
+        cand = cand[own[pos] != cand]
     return unpack(cand)
 
 

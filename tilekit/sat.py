@@ -37,10 +37,12 @@ from __future__ import annotations
 import collections
 import contextlib
 import gc
+import math
 import multiprocessing
+import os
 import threading
 import time
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -200,6 +202,22 @@ class CNF:
             self.top = max(self.top, max(abs(v) for v in lits))
             self.atmosts.append((lits, int(k)))
 
+    def add_atmost_groups(self, flat: Any, starts: Any, extra: Any, k: int = 1) -> None:
+        """Many native at-most-``k`` constraints at once: group g is ``flat[starts[g]:starts[g+1]]``
+        plus ``extra[g]`` (integer arrays of non-zero literals). The lists are cut from one
+        ``tolist`` of each array, with no per-literal check (:meth:`add_atmost` is the checked
+        one-at-a-time form)."""
+        import numpy as np
+
+        flat, starts, extra = (np.asarray(a, dtype=np.int64) for a in (flat, starts, extra))
+        if not len(starts):
+            return
+        if not flat.all() or not extra.all():
+            raise ParameterError("at-most constraints hold non-zero literals")
+        self.top = max(self.top, int(np.abs(flat).max(initial=0)), int(np.abs(extra).max()))
+        lits, ends = flat.tolist(), [*starts[1:].tolist(), len(flat)]
+        self.atmosts += [([*lits[a:b], e], k) for a, b, e in zip(starts.tolist(), ends, extra.tolist())]
+
     def literals(self) -> int:
         """How many literals the clauses hold (a solver's memory grows with them)."""
         return sum(len(c) for c in self.clauses) + sum(int(b.size) for b in self.blocks)
@@ -328,21 +346,71 @@ def _stats(s: Any) -> dict[str, int]:
         return {}
 
 
+class _Watchdog:
+    """One daemon thread that calls each armed function at its deadline: the time limits of
+    interruptible solves, without starting a thread per solve (a ``threading.Timer`` each cost
+    more than a small corona formula's whole solve, measured on the polyform classifications)."""
+
+    def __init__(self) -> None:
+        self._cond = threading.Condition()
+        self._jobs: dict[int, tuple[float, Callable[[], Any]]] = {}
+        self._fired: set[int] = set()
+        self._next = 0
+        self._pid = -1  # the process whose thread runs (a forked child starts its own)
+        self._wake = 0.0  # when the thread wakes next (inf: only when notified)
+
+    def arm(self, seconds: float, fn: Callable[[], Any]) -> int:
+        with self._cond:
+            if self._pid != os.getpid():
+                self._pid = os.getpid()
+                self._wake = 0.0  # notified until the new thread sets its wake-up
+                self._jobs.clear()
+                self._fired.clear()
+                threading.Thread(target=self._loop, name="tilekit-sat-watchdog", daemon=True).start()
+            self._next += 1
+            deadline = time.monotonic() + seconds
+            self._jobs[self._next] = (deadline, fn)
+            if deadline < self._wake:  # earlier than the thread's wake-up: wake it to wait less
+                self._cond.notify()
+            return self._next
+
+    def disarm(self, token: int) -> bool:
+        """Forget ``token``; whether its function was called."""
+        with self._cond:
+            self._jobs.pop(token, None)
+            fired = token in self._fired
+            self._fired.discard(token)
+            return fired
+
+    def _loop(self) -> None:
+        with self._cond:
+            while True:
+                now = time.monotonic()
+                for token in [t for t, (d, _) in self._jobs.items() if d <= now]:
+                    fn = self._jobs.pop(token)[1]
+                    self._fired.add(token)
+                    fn()
+                self._wake = min((d for d, _ in self._jobs.values()), default=math.inf)
+                self._cond.wait(None if math.isinf(self._wake) else max(0.0, self._wake - time.monotonic()))
+
+
+_WATCHDOG = _Watchdog()
+
+
 def _run(s: Any, assumptions: list[int], time_limit: float | None) -> tuple[bool | None, list[int] | None, dict[str, int]]:
-    """Solve on the live pysat solver ``s`` (interrupting by a timer when a limit is given)."""
+    """Solve on the live pysat solver ``s`` (interrupted by the shared watchdog at the limit)."""
     if isinstance(s, _Cms):
         answer = s.solve(assumptions, time_limit)
         return answer, (s.get_model() if answer else None), {}
     if time_limit is None:
         answer = s.solve(assumptions=assumptions)
     else:
-        timer = threading.Timer(time_limit, s.interrupt)
-        timer.start()
+        token = _WATCHDOG.arm(time_limit, s.interrupt)
         try:
             answer = s.solve_limited(assumptions=assumptions, expect_interrupt=True)
         finally:
-            timer.cancel()
-        if answer is None:
+            fired = _WATCHDOG.disarm(token)
+        if answer is None or fired:
             s.clear_interrupt()
     return answer, (s.get_model() if answer else None), _stats(s)
 
@@ -462,8 +530,9 @@ class IncrementalSolver:
             return
         with gc_paused():
             collections.deque(map(self._adder(), _clauses_of(clauses)), maxlen=0)
+            add = self._atmost_adder()
             for lits, k in atmosts:
-                self._s.add_atmost(lits, k)
+                add(lits, k)
 
     def _adder(self) -> Any:
         """The cheapest call adding one clause: python-sat's C function bound to this
@@ -481,6 +550,20 @@ class IncrementalSolver:
             if fn is not None and getattr(inner, handle, None) is not None:
                 return functools.partial(fn, getattr(inner, handle))
         return inner.add_clause
+
+    def _atmost_adder(self) -> Any:
+        """As :meth:`_adder` for native at-most-k constraints (Gluecard's C call; it returns
+        False when the constraint makes the formula unsatisfiable, which the next solve says
+        too)."""
+        if self.solver == "gluecard4":
+            import functools
+
+            import pysolvers
+
+            handle = getattr(self._s.solver, "gluecard", None)
+            if handle is not None and hasattr(pysolvers, "gluecard41_add_am"):
+                return functools.partial(pysolvers.gluecard41_add_am, handle)
+        return self._s.add_atmost
 
     def solve(self, assumptions: Sequence[int] = (), time_limit: float | None = None) -> SatAnswer:
         """Answer the formula so far under ``assumptions``; ``None`` when ``time_limit`` expires."""

@@ -63,7 +63,7 @@ class ResultsMixin:
             return None
         for rt in self.result_tables.values():
             if rt.family == family or family in rt.aliases:
-                return rt
+                return rt.scoped(family) if rt.scopes else rt
         return None
 
     def _prepare_rows(
@@ -169,6 +169,8 @@ class ResultsMixin:
             conditions.append(column_condition(params, f"{quote(t.name)}.{quote(column.name)}", column_kind(column.type), f))
         if conditions:
             stmt = stmt.where(sa.text(" AND ".join(conditions)).bindparams(**params))
+        for key, value in rt.where:  # the rows of the family name the table was looked up by
+            stmt = stmt.where(t.c[key] == value)
         if text:
             needle = text.lower()
             texts = [c for c in t.c if isinstance(c.type, sa.String | sa.Text)]

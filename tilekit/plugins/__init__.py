@@ -122,7 +122,9 @@ class ResultTable:
     rebuilds (for show and render); ``tiling_family`` names that family when it is not
     ``family`` itself (e.g. rows listed as ``vertex-species`` rebuilt as ``archimedean``).
     ``aliases`` are further family names that read the same table (``--family polyform`` for
-    the polyomino family's rows on every grid).
+    the polyomino family's rows on every grid). ``scopes`` restricts a family name to some
+    rows: ``(name, column, value)`` entries, e.g. ``("polyomino", "grid", "square")`` (the
+    table as that family is read with ``where`` set to those conditions).
     """
 
     table: Any  # sqlalchemy.Table
@@ -133,10 +135,19 @@ class ResultTable:
     title: Callable[[Mapping[str, Any]], str] | None = None
     tiling_family: str | None = None
     aliases: tuple[str, ...] = ()
+    scopes: tuple[tuple[str, str, Any], ...] = ()
+    #: the (column, value) conditions of the family name this table was looked up by
+    where: tuple[tuple[str, Any], ...] = ()
 
     @property
     def name(self) -> str:
         return str(self.table.name)
+
+    def scoped(self, family: str) -> ResultTable:
+        """This table as ``family`` reads it (its ``scopes`` for that name as ``where``)."""
+        import dataclasses
+
+        return dataclasses.replace(self, where=tuple((c, v) for f, c, v in self.scopes if f == family))
 
 
 @dataclass(frozen=True)

@@ -42,7 +42,15 @@ import numpy as np
 from tilekit import limits
 from tilekit.errors import ParameterError
 from tilekit.jit import njit
-from tilekit.lattice import Grid, _empty_components, halo_of, holes_of, pack, unique_keys, unpack
+from tilekit.lattice import (
+    Grid,
+    _empty_components,
+    _vertex_neighbours,
+    holes_of,
+    pack,
+    unique_keys,
+    unpack,
+)
 from tilekit.plugins.polyomino.placements import Forms
 from tilekit.sat import CNF, DEFAULT_SAT_SOLVER, NATIVE_ATMOST, IncrementalSolver, gc_paused
 
@@ -52,6 +60,17 @@ MAX_LEVEL_LIMIT = 12
 #: spares the per-cell clausal ladders (measured on the non-tiling 10-ominoes: half the time of
 #: Glucose with ladders, docs/benchmarks.md).
 HC_SOLVER = "gluecard4"
+
+
+#: Estimates below this many bytes skip the memory probe (it reads /proc, ~0.1 ms, more than
+#: an easy shape's whole level-1 test); any machine holds them.
+SMALL_BYTES = 1 << 24
+
+
+def _refuse_over_memory(what: str, count: float, bytes_each: float, hint: str = "") -> None:
+    """:func:`tilekit.limits.refuse_over_memory` for estimates of at least :data:`SMALL_BYTES`."""
+    if count * bytes_each >= SMALL_BYTES:
+        limits.refuse_over_memory(what, count, bytes_each, hint=hint)
 
 
 @dataclass
@@ -107,14 +126,107 @@ def unfillable_pairs(grid: Grid, forms: Forms, j: int = 0) -> np.ndarray:
     the polyform: no copy fits in it (a copy covering a cell of the hole lies inside it), so a
     hole-free patch never uses the two copies together. Kaplan's heesch-sat drops every pair
     whose union is not simply connected; this keeps the pairs whose hole a copy could fill."""
-    adj = forms.adjacent[j]
-    if not len(adj):
+    return unfillable_rows(grid, forms, forms.adjacent_to(j), j)
+
+
+def unfillable_rows(grid: Grid, forms: Forms, rows: np.ndarray, j: int = 0) -> np.ndarray:
+    """:func:`unfillable_pairs` for the given placement rows touching ``forms[j]``."""
+    if not len(rows):
         return np.zeros(0, dtype=bool)
-    cells = np.concatenate([np.broadcast_to(forms.forms[j], (len(adj), forms.n, 2)),
-                            forms.forms[adj[:, 0]] + adj[:, None, 1:3]], axis=1)
+    cells = np.concatenate([np.broadcast_to(forms.forms[j], (len(rows), forms.n, 2)),
+                            forms.forms[rows[:, 0]] + rows[:, None, 1:3]], axis=1)
     least = _least_holes(np.ascontiguousarray(cells), grid.roots.astype(np.int64), grid.neighbours.astype(np.int64),
                          np.int64(grid.period))
     return (least > 0) & (least < forms.n)
+
+
+@njit(cache=True)
+def _support(col, hcol, ncells):  # pragma: no cover - compiled
+    """Arc consistency of :func:`first_corona_support` over cell indices: ``col`` (m, n) the
+    cells of each copy, ``hcol`` (H,) the halo's cells; the mask of copies kept."""
+    m, n = col.shape
+    H = hcol.shape[0]
+    inc = np.zeros((m, ncells), np.bool_)
+    for p in range(m):
+        for k in range(n):
+            inc[p, col[p, k]] = True
+    overlap = np.zeros((m, m), np.bool_)
+    for p in range(m):
+        for q in range(p, m):
+            for k in range(n):
+                if inc[q, col[p, k]]:
+                    overlap[p, q] = True
+                    overlap[q, p] = True
+                    break
+    # per halo cell, the copies covering it (CSR)
+    start = np.zeros(H + 1, np.int64)
+    for h in range(H):
+        c = 0
+        for p in range(m):
+            if inc[p, hcol[h]]:
+                c += 1
+        start[h + 1] = start[h] + c
+    cover = np.zeros(start[H], np.int64)
+    for h in range(H):
+        c = start[h]
+        for p in range(m):
+            if inc[p, hcol[h]]:
+                cover[c] = p
+                c += 1
+    alive = np.ones(m, np.bool_)
+    changed = True
+    while changed:
+        changed = False
+        for h in range(H):
+            any_alive = False
+            for c in range(start[h], start[h + 1]):
+                if alive[cover[c]]:
+                    any_alive = True
+                    break
+            if not any_alive:
+                alive[:] = False
+                return alive
+        for p in range(m):
+            if not alive[p]:
+                continue
+            for h in range(H):
+                if inc[p, hcol[h]]:
+                    continue
+                ok = False
+                for c in range(start[h], start[h + 1]):
+                    q = cover[c]
+                    if alive[q] and not overlap[p, q]:
+                        ok = True
+                        break
+                if not ok:
+                    alive[p] = False
+                    changed = True
+                    break
+    return alive
+
+
+def first_corona_support(cells: np.ndarray, halo: np.ndarray) -> np.ndarray:
+    """The copies of corona 1 that can be in some corona patch, by a local test before any SAT.
+
+    ``cells`` (m, n) are the packed cells of the candidate copies (each touching the kernel,
+    none overlapping it), ``halo`` the kernel's halo. In every patch of k >= 1 coronas (holes
+    allowed) each halo cell is covered by a copy of corona 1 (a copy covering it touches the
+    kernel, and only corona 1 does), and the copies do not overlap. So a copy p can be used
+    only if every halo cell h is covered by p or by some usable copy disjoint from p; removing
+    the copies that fail this until none does (arc consistency, a compiled loop over all
+    copies) keeps every copy of every patch. Returns the mask of the copies kept; all False
+    when some halo cell is left with no copy: then no corona exists at all (Hc = Hh = 0, a
+    proof that the polyform does not tile).
+    """
+    m = len(cells)
+    if not m:
+        return np.zeros(0, dtype=bool)
+    universe = unique_keys(cells)
+    hpos = np.minimum(np.searchsorted(universe, halo), len(universe) - 1)
+    if (universe[hpos] != halo).any():
+        return np.zeros(m, dtype=bool)
+    col = np.searchsorted(universe, cells).astype(np.int64)
+    return _support(np.ascontiguousarray(col), hpos.astype(np.int64), len(universe))
 
 
 class HeeschSolver:
@@ -134,17 +246,17 @@ class HeeschSolver:
 
     def drop_enclosing(self) -> int:
         """For hole-free questions only: leave out of corona 1 the copies that make an
-        unfillable hole with the kernel (:func:`unfillable_pairs`); corona 2 on is grown from
-        what is left. Call before any level is grown; returns how many were left out."""
+        unfillable hole with the kernel (:func:`unfillable_rows`), then repeat the local test
+        of :func:`first_corona_support` on what is left; corona 2 on is grown from what is
+        left. Call before any level is grown; returns how many were left out."""
         if len(self.levels) > 1:
             raise ParameterError("drop_enclosing() must come before the coronas are grown")
         self._grow()
-        bad = unfillable_pairs(self.grid, self.forms, 0)
         rows = self.levels[1]
+        bad = unfillable_rows(self.grid, self.forms, rows, 0)
         if bad.any():
-            # corona 1 is adjacent[0] less the copies overlapping the kernel: match by key
-            drop = np.isin(self._row_keys(rows), self._row_keys(self.forms.adjacent[0][bad]))
-            self.levels[1] = rows[~drop]
+            kept = rows[~bad]
+            self.levels[1] = kept[first_corona_support(self.forms.placement_cells(kept), self.kernel_halo)]
         return int(len(rows) - len(self.levels[1]))
 
     # -- placements per level -------------------------------------------------------------
@@ -155,14 +267,19 @@ class HeeschSolver:
     def _grow(self) -> None:
         """Add the placements of the next level: copies touching a copy of the last level."""
         last = self.levels[-1]
-        adj = self.forms.adjacent
+        if len(self.levels) == 1:  # corona 1: the copies touching the kernel, less the local test
+            rows = self.forms.adjacent_to(0)
+            self.levels.append(rows[first_corona_support(self.forms.placement_cells(rows), self.kernel_halo)])
+            return
+        used = np.unique(last[:, 0]).tolist()
+        adj = {j: self.forms.adjacent_to(j) for j in used}
         # estimate first: every copy of the last level times the copies touching it, as
         # (orientation, tx, ty) rows plus their keys, before any is allocated
-        candidates = sum(int((last[:, 0] == j).sum()) * len(adj[j]) for j in range(self.forms.J))
-        limits.refuse_over_memory(f"candidate placements for corona {len(self.levels)}", candidates, 72,
-                                  hint="ask for fewer coronas (--max-level)")
+        candidates = sum(int((last[:, 0] == j).sum()) * len(adj[j]) for j in used)
+        _refuse_over_memory(f"candidate placements for corona {len(self.levels)}", candidates, 72,
+                            hint="ask for fewer coronas (--max-level)")
         parts = []
-        for j in range(self.forms.J):
+        for j in used:
             sel = last[last[:, 0] == j]
             if not len(sel) or not len(adj[j]):
                 continue
@@ -486,7 +603,7 @@ class CoronaLadder:
         self.pairs: list[tuple[np.ndarray, np.ndarray]] = [(np.zeros(0, dtype=np.int64),) * 2]
         grid = hs.grid
         #: per cell type, the offsets of the cells sharing a vertex with it
-        self.around = [halo_of(grid, r[None, :]) - r for r in grid.roots]
+        self.around = _vertex_neighbours(grid)
 
     def _vertex_pairs(self, keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(c, d) for every cell c of ``keys`` and every cell d sharing a vertex with it,
@@ -530,7 +647,7 @@ class CoronaLadder:
         m, n = len(rows), hs.forms.n
         hint = "ask for fewer coronas (--max-level)"
         limits.refuse_over(f"SAT variables for {i} coronas", (self.top + m * (n + 2)), limits.MAX_SAT_VARIABLES, hint=hint)
-        limits.refuse_over_memory(f"clauses for {i} coronas", m * (4 * n + hs.forms.halos.shape[1]), 24, hint=hint)
+        _refuse_over_memory(f"clauses for {i} coronas", m * (4 * n + hs.forms.halos.shape[1]), 24, hint=hint)
         cells = hs.forms.placement_cells(rows)
         halos = hs.forms.placement_halos(rows)
         y = self._vars(m)
@@ -547,8 +664,7 @@ class CoronaLadder:
             lev = self._vars(len(keys))
             self.lev.append((keys, lev))
             if len(keys):
-                for g, lits in zip(np.split(yy, st[1:]), (-lev).tolist()):
-                    cnf.add_atmost([*g.tolist(), lits], 1)
+                cnf.add_atmost_groups(yy, st, -lev, 1)
                 cnf.add_block(_padded(-lev, st, yy, F))
         else:
             # lev[h, i] <-> some copy of corona i covers h, at most one of them: a ladder
@@ -678,6 +794,10 @@ def hole_free_heesch(grid: Grid, cells: np.ndarray, *, max_level: int = 6, solve
     hs = HeeschSolver(grid, cells, solver=solver)
     best = Corona(hs.levels[0].copy(), np.zeros(1, dtype=np.int64), False)
     hs.drop_enclosing()
+    if max_level >= 1 and not len(hs.levels[1]):  # no copy can be in corona 1: no SAT needed
+        return HeeschResult(0, None, best, None, 0, False,
+                            "no hole-free 1-corona patch: a halo cell no copy of corona 1 can cover "
+                            "(Hc only: not a proof that it cannot tile)", 0, time.monotonic() - t0)
     ladder = CoronaLadder(hs)
     try:
         for k in range(1, max_level + 1):

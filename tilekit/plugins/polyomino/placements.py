@@ -24,7 +24,80 @@ from functools import cached_property
 
 import numpy as np
 
-from tilekit.lattice import Grid, fixed_form, halo_of, pack, unique_keys, unpack
+from tilekit.jit import njit
+from tilekit.lattice import _M, _OFF, Grid, pack, vertex_neighbour_table
+
+
+@njit(cache=True)
+def _adjacent(forms, halo, own, period):  # pragma: no cover - compiled
+    """Rows ``(k, tx, ty)``: ``forms[k] + t`` covers a cell of ``halo`` and none of ``own``
+    (sorted packed keys), each once, sorted by k and then by the packed translation (the
+    translations taking a cell of ``forms[k]`` onto a halo cell, one loop)."""
+    J, n = forms.shape[0], forms.shape[1]
+    H = halo.shape[0]
+    off, m = np.int64(_OFF), np.int64(_M)  # lattice.pack's offsets
+    keys = np.empty(J * H * n, np.int64)
+    c = 0
+    for k in range(J):
+        for h in range(H):
+            for i in range(n):
+                tx = halo[h, 0] - forms[k, i, 0]
+                ty = halo[h, 1] - forms[k, i, 1]
+                if tx % period == 0 and ty % period == 0:
+                    keys[c] = (np.int64(k) << 42) | ((tx + off) * m + (ty + off))
+                    c += 1
+    keys = np.unique(keys[:c])
+    out = np.empty((keys.shape[0], 3), np.int64)
+    r = 0
+    for q in range(keys.shape[0]):
+        k = keys[q] >> 42
+        t = keys[q] & ((np.int64(1) << 42) - 1)
+        tx = t // m - off
+        ty = t % m - off
+        clash = False
+        for i in range(n):
+            v = (forms[k, i, 0] + tx + off) * m + (forms[k, i, 1] + ty + off)
+            p = np.searchsorted(own, v)
+            if p < own.shape[0] and own[p] == v:
+                clash = True
+                break
+        if not clash:
+            out[r, 0] = k
+            out[r, 1] = tx
+            out[r, 2] = ty
+            r += 1
+    return out[:r].copy()
+
+
+@njit(cache=True)
+def _halos(forms, table, types, period):  # pragma: no cover - compiled
+    """Per orientation, its halo cells sorted by packed key (see :meth:`Forms.halos`)."""
+    J, n, K = forms.shape[0], forms.shape[1], table.shape[1]
+    off, m = np.int64(_OFF), np.int64(_M)  # lattice.pack's offsets
+    out = np.empty((0, 0, 2), np.int64)
+    for j in range(J):
+        own = np.empty(n, np.int64)
+        cand = np.empty(n * K, np.int64)
+        for i in range(n):
+            x, y = forms[j, i, 0], forms[j, i, 1]
+            own[i] = (x + off) * m + (y + off)
+            t = types[(y % period) * period + x % period]
+            for k in range(K):
+                cand[i * K + k] = (x + table[t, k, 0] + off) * m + (y + table[t, k, 1] + off)
+        own = np.sort(own)
+        cand = np.unique(cand)
+        keep = np.ones(cand.shape[0], np.bool_)
+        for q in range(cand.shape[0]):
+            p = np.searchsorted(own, cand[q])
+            if p < n and own[p] == cand[q]:
+                keep[q] = False
+        cand = cand[keep]
+        if j == 0:
+            out = np.empty((J, cand.shape[0], 2), np.int64)
+        for q in range(cand.shape[0]):
+            out[j, q, 0] = cand[q] // m - off
+            out[j, q, 1] = cand[q] % m - off
+    return out
 
 
 @dataclass(eq=False)
@@ -40,22 +113,25 @@ class Forms:
 
     def __post_init__(self) -> None:
         self.cells = np.asarray(self.cells, dtype=np.int64).reshape(-1, 2)
-        forms, gs, shifts, seen = [], [], [], set()
-        for g, m in enumerate(self.grid.group):
-            img = self.cells @ m.T
-            f = fixed_form(self.grid, img)
-            key = tuple(np.sort(pack(f)).tolist())
-            if key in seen:
-                continue
-            seen.add(key)
-            # fixed_form sorts and translates; recover the translation from the first cell
-            order = np.lexsort((img[:, 0], img[:, 1]))
-            forms.append(f)
-            gs.append(g)
-            shifts.append(f[0] - img[order][0])
-        self.forms = np.array(forms, dtype=np.int64)  # (J, n, 2)
-        self.g = np.array(gs, dtype=np.int64)
-        self.shift = np.array(shifts, dtype=np.int64)
+        # every image at once, each in fixed form (sorted by (y, x), the least cell moved into
+        # [0, period)^2, as lattice.fixed_form): (G, n, 2)
+        img = np.einsum("gab,nb->gna", self.grid.group.astype(np.int64), self.cells)
+        order = np.argsort(pack(img[..., ::-1]), axis=1, kind="stable")
+        img = np.take_along_axis(img, order[..., None], axis=1)
+        c0 = img[:, 0, :]
+        shift = np.mod(c0, self.grid.period) - c0  # fixed form = image + shift
+        fixed = img + shift[:, None, :]
+        keys = np.sort(pack(fixed), axis=1)
+        seen: set[bytes] = set()
+        first = []
+        for g in range(len(fixed)):  # distinct orientations, in group order
+            b = keys[g].tobytes()
+            if b not in seen:
+                seen.add(b)
+                first.append(g)
+        self.forms = fixed[first]  # (J, n, 2)
+        self.g = np.array(first, dtype=np.int64)
+        self.shift = shift[first]
         self.keys = pack(self.forms)  # (J, n)
 
     @property
@@ -68,34 +144,26 @@ class Forms:
 
     @cached_property
     def halos(self) -> np.ndarray:
-        """(J, H, 2): the halo of each orientation (all halos have the same size)."""
-        return np.array([halo_of(self.grid, f) for f in self.forms], dtype=np.int64)
+        """(J, H, 2): the halo of each orientation (all halos have the same size), one compiled
+        loop: every cell's vertex neighbours (the grid's per-type table), deduplicated by a
+        sort, less the orientation's own cells."""
+        return _halos(self.forms, vertex_neighbour_table(self.grid), self.grid.type_table, np.int64(self.grid.period))
 
     @cached_property
     def adjacent(self) -> list[np.ndarray]:
         """Per orientation j, rows ``(k, tx, ty)``: ``forms[k] + t`` touches ``forms[j]``
-        (sorted by k, then by the packed translation). One array pass over every (j, k) pair:
-        the translations taking a cell of ``forms[k]`` onto a halo cell of ``forms[j]``."""
-        p, J = self.grid.period, self.J
-        t = self.halos[:, None, :, None, :] - self.forms[None, :, None, :, :]  # (J, J, H, n, 2)
-        jj = np.broadcast_to(np.arange(J)[:, None, None, None], t.shape[:-1]).ravel()
-        kk = np.broadcast_to(np.arange(J)[None, :, None, None], t.shape[:-1]).ravel()
-        t = t.reshape(-1, 2)
-        ok = (t % p == 0).all(axis=1)
-        # distinct (j, k, t) as one sorted int64 key (packed translations are < 2^42)
-        key = unique_keys(((jj[ok] * J + kk[ok]) << 42) | pack(t[ok]))
-        jk = key >> 42
-        jj, kk = jk // J, jk % J
-        tt = unpack(key & ((np.int64(1) << 42) - 1))
-        moved = pack(self.forms[kk] + tt[:, None, :])  # (R, n)
-        # a copy overlapping forms[j] does not touch it: (j, cell) pairs as one sorted key
-        own = np.sort(((np.arange(J)[:, None] << 42) | self.keys).ravel())
-        probe = (jj[:, None] << 42) | moved
-        pos = np.minimum(np.searchsorted(own, probe), len(own) - 1)
-        clash = (own[pos] == probe).any(axis=1)
-        rows = np.column_stack([kk, tt]).astype(np.int64)[~clash]
-        cut = np.searchsorted(jj[~clash], np.arange(1, J))
-        return np.split(rows, cut)
+        (sorted by k, then by the packed translation); :meth:`adjacent_to` for each j."""
+        return [self.adjacent_to(j) for j in range(self.J)]
+
+    def adjacent_to(self, j: int) -> np.ndarray:
+        """``adjacent[j]``, computed (and kept) alone: corona 1 needs only the kernel's, j = 0.
+        One array pass over every orientation k: the translations taking a cell of
+        ``forms[k]`` onto a halo cell of ``forms[j]``, less the copies overlapping ``forms[j]``."""
+        done = self.__dict__.setdefault("_adjacent_to", {})
+        if j not in done:
+            done[j] = _adjacent(self.forms, np.ascontiguousarray(self.halos[j]), np.sort(self.keys[j]),
+                                np.int64(self.grid.period))
+        return done[j]
 
     def placement_cells(self, rows: np.ndarray) -> np.ndarray:
         """(m, n) packed cell keys of placements ``rows`` = (j, tx, ty)."""

@@ -3,7 +3,8 @@
 One row per free polyform of any grid (``grid`` column; a polyomino is the square grid's
 polyform): the canonical code is the natural key; ``result_table()`` is the
 ``tilekit.plugins.ResultTable`` the ``tilekit_result_tables`` hook returns. The rows are listed
-as family ``polyomino`` (the family's name since part 1) or, the same rows, ``polyform``.
+as family ``polyform`` (every grid) or ``polyomino`` (the family's name since part 1: the
+square grid's rows only).
 """
 
 from __future__ import annotations
@@ -81,4 +82,4 @@ def result_table():
     if cls is None:  # pragma: no cover - an older run layer
         return None
     return cls(table=TABLE, key=KEY, family="polyomino", name_column=NAME_COLUMN, spec=row_spec,
-               title=row_title, aliases=("polyform",))
+               title=row_title, aliases=("polyform",), scopes=(("polyomino", "grid", "square"),))
