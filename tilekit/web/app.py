@@ -340,6 +340,8 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
     ]
     @contextlib.asynccontextmanager
     async def lifespan(app: Any) -> Any:
+        if state.pool is not None:
+            state.pool.warm()
         yield
         state.close()
 

@@ -17,9 +17,11 @@ cannot open (an in-memory SQLite database) or whose plugins were registered by h
 from __future__ import annotations
 
 import contextlib
-import multiprocessing
 import os
 import queue
+import socket
+import subprocess
+import sys
 import threading
 from collections.abc import Callable
 from typing import Any
@@ -77,6 +79,15 @@ def resident_bytes(pid: int | str = "self") -> int:
 _CHILD: dict[str, Any] = {}
 
 
+def _child_entry() -> None:
+    """A worker's main (``python -c``): argv is the socket's descriptor, the catalogue URL
+    ('' for the default catalogue) and the tile limit."""
+    from multiprocessing.connection import Connection
+
+    fd, url, max_tiles = sys.argv[1:4]
+    _child_main(Connection(int(fd)), url or None, int(max_tiles))
+
+
 def _child_main(conn: Any, url: str | None, max_tiles: int) -> None:
     import signal
 
@@ -129,12 +140,21 @@ def _line(exc: BaseException) -> str:
 
 
 class _Worker:
-    def __init__(self, ctx: Any, url: str | None, max_tiles: int) -> None:
-        self.conn, child = ctx.Pipe()
-        self.process = ctx.Process(target=_child_main, args=(child, url, max_tiles), daemon=True,
-                                   name="tilekit-render")
-        self.process.start()
-        child.close()
+    """One worker process (``python -c``, not multiprocessing's spawn, which re-runs the
+    parent's ``__main__``) and a socket pair to it carrying pickled calls and answers."""
+
+    def __init__(self, url: str | None, max_tiles: int) -> None:
+        from multiprocessing.connection import Connection
+
+        ours, theirs = socket.socketpair()
+        code = "from tilekit.web.executor import _child_entry; _child_entry()"
+        try:
+            self.process = subprocess.Popen(
+                [sys.executable, "-c", code, str(theirs.fileno()), url or "", str(max_tiles)],
+                pass_fds=(theirs.fileno(),), stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL)
+        finally:
+            theirs.close()
+        self.conn = Connection(ours.detach())
         if not self.conn.poll(START_SECONDS):
             self.kill()
             raise WorkerError(f"render worker did not start within {START_SECONDS:g} s", 503)
@@ -148,12 +168,12 @@ class _Worker:
             raise WorkerError(first[2], first[1])
 
     def alive(self) -> bool:
-        return self.process.is_alive()
+        return self.process.poll() is None
 
     def kill(self) -> None:
         with contextlib.suppress(Exception):
             self.process.kill()
-            self.process.join(5)
+            self.process.wait(5)
         with contextlib.suppress(Exception):
             self.conn.close()
 
@@ -178,8 +198,8 @@ class RenderPool:
             self._idle.put(None)  # a worker is started on first use
         self._live: set[_Worker] = set()
         self._lock = threading.Lock()
-        self._ctx = multiprocessing.get_context("spawn")  # no fork of a threaded server
         self.running = 0
+        self._closed = False
         self.stats = {"calls": 0, "busy": 0, "timeouts": 0, "recycled": 0, "started": 0}
 
     @property
@@ -213,7 +233,10 @@ class RenderPool:
             finally:
                 with self._lock:
                     self.running -= 1
-                self._idle.put(keep)
+                if keep is None and self.workers > 0:
+                    self._refill()  # a killed or recycled worker's successor starts now, not on the next call
+                else:
+                    self._idle.put(keep)
             if error is not None:
                 raise error
             return value
@@ -227,7 +250,7 @@ class RenderPool:
             if worker is not None:
                 self._forget(worker)
             try:
-                worker = _Worker(self._ctx, self.url, self.max_tiles)
+                worker = _Worker(self.url, self.max_tiles)
             except WorkerError as exc:
                 return None, None, exc
             with self._lock:
@@ -261,6 +284,42 @@ class RenderPool:
             return None, reply[1], None
         return worker, reply[1], None
 
+    def _refill(self) -> None:
+        def start() -> None:
+            worker: _Worker | None = None
+            if not self._closed:
+                with contextlib.suppress(WorkerError):
+                    worker = _Worker(self.url, self.max_tiles)
+                if worker is not None:
+                    with self._lock:
+                        self._live.add(worker)
+                        self.stats["started"] += 1
+                    if self._closed:
+                        self._forget(worker)
+                        worker = None
+            self._idle.put(worker)
+
+        threading.Thread(target=start, daemon=True, name="tilekit-render-start").start()
+
+    def warm(self) -> None:
+        """Start the workers now, in the background (the app's start-up), so the first
+        renders do not wait for Python to import tilekit in each."""
+        if self.workers == 0:
+            return
+        taken = 0
+        while True:
+            try:
+                worker = self._idle.get_nowait()
+            except queue.Empty:
+                break
+            if worker is None:
+                taken += 1
+            else:
+                self._idle.put(worker)
+                break
+        for _ in range(taken):
+            self._refill()
+
     def _forget(self, worker: _Worker) -> None:
         worker.kill()
         with self._lock:
@@ -268,6 +327,7 @@ class RenderPool:
 
     def close(self) -> None:
         """Stop every worker (the app's shutdown)."""
+        self._closed = True
         with self._lock:
             live = list(self._live)
             self._live.clear()
