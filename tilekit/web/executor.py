@@ -23,6 +23,7 @@ import socket
 import subprocess
 import sys
 import threading
+import time
 from collections.abc import Callable
 from typing import Any
 
@@ -200,6 +201,7 @@ class RenderPool:
         self._lock = threading.Lock()
         self.running = 0
         self._closed = False
+        self._starting = 0
         self.stats = {"calls": 0, "busy": 0, "timeouts": 0, "recycled": 0, "started": 0}
 
     @property
@@ -218,10 +220,7 @@ class RenderPool:
         if not self._slots.acquire(blocking=False):
             raise self._busy(f"{max(1, self.workers) + self.queue_size} renders running or waiting")
         try:
-            try:
-                worker = self._idle.get(timeout=self.seconds)
-            except queue.Empty:
-                raise self._busy(f"no render worker became free within {self.seconds:g} s") from None
+            worker = self._wait_for_worker()
             keep: _Worker | None = None
             with self._lock:
                 self.running += 1
@@ -242,6 +241,18 @@ class RenderPool:
             return value
         finally:
             self._slots.release()
+
+    def _wait_for_worker(self) -> _Worker | None:
+        """An idle worker (or a token to start one), waiting at most ``seconds``, longer while
+        a worker is starting (at most START_SECONDS more): a start is not a busy server."""
+        deadline = time.monotonic() + self.seconds
+        while True:
+            try:
+                return self._idle.get(timeout=0.25)
+            except queue.Empty:
+                now = time.monotonic()
+                if now > deadline and (self._starting == 0 or now > deadline + START_SECONDS):
+                    raise self._busy(f"no render worker became free within {self.seconds:g} s") from None
 
     def _run(self, worker: _Worker | None, fn: Callable[..., Any], args: tuple,
              what: str) -> tuple[_Worker | None, Any, TilekitError | None]:
@@ -285,6 +296,9 @@ class RenderPool:
         return worker, reply[1], None
 
     def _refill(self) -> None:
+        with self._lock:
+            self._starting += 1
+
         def start() -> None:
             worker: _Worker | None = None
             if not self._closed:
@@ -298,6 +312,8 @@ class RenderPool:
                         self._forget(worker)
                         worker = None
             self._idle.put(worker)
+            with self._lock:
+                self._starting -= 1
 
         threading.Thread(target=start, daemon=True, name="tilekit-render-start").start()
 
