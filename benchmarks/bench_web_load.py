@@ -136,7 +136,7 @@ def plan(requests: int, seed: int = 1) -> list[tuple[str, str, dict]]:
         elif x < 0.90:
             out.append(("uncached", "/api/render/3.4.6.4", {"size": next(sizes), "region": "-10,-10,10,10"}))
         elif x < 0.95:
-            out.append(("solver", "/api/render/kari-14", {**KARI, "set": f"seed={i}"}))
+            out.append(("solver", "/api/render/kari-14", {**KARI, "seed": i}))
         else:
             out.append(("oversize", "/api/render/penrose-p3", {"depth": 14}))
     return out
@@ -180,7 +180,7 @@ def stall(url: str, pid: int, renders: int) -> dict:
     waits: list[float] = []
     with httpx.Client(base_url=url, timeout=120) as http, Sampler(pid) as mem, ThreadPoolExecutor(renders) as ex:
         t0 = time.perf_counter()
-        futures = [ex.submit(http.get, "/api/render/kari-14", params={**KARI, "set": f"seed={1000 + i}"})
+        futures = [ex.submit(http.get, "/api/render/kari-14", params={**KARI, "seed": 1000 + i})
                    for i in range(renders)]
         while not all(f.done() for f in futures):
             h0 = time.perf_counter()

@@ -6,7 +6,9 @@ processes. At most ``workers + queue`` calls are admitted at once; the next gets
 a free worker gets it too. A call that runs past ``seconds`` of wall-clock time gets
 :class:`RenderTimeout` (HTTP 504) and its worker is killed, so a solver cannot hold a CPU or
 its memory past the budget; a worker whose resident memory grew past ``recycle_bytes`` is
-replaced after its call, so memory comes back to the system. The health check and every
+replaced after its call, so memory comes back to the system. Calls of a key (a tiling's
+name) that once ran past half the budget share a slow lane of ``workers - 1`` slots, so a run
+of solver renders leaves a worker to the quick ones. The health check and every
 other request keep their event loop and their GIL: the work runs in another process.
 
 ``workers=0`` runs the calls in the calling thread with the same admission limit, but no
@@ -24,6 +26,7 @@ import subprocess
 import sys
 import threading
 import time
+from collections import OrderedDict
 from collections.abc import Callable
 from typing import Any
 
@@ -202,6 +205,8 @@ class RenderPool:
         self.running = 0
         self._closed = False
         self._starting = 0
+        self._slow: OrderedDict[str, None] = OrderedDict()  # keys whose calls ran long
+        self._slow_lane = threading.BoundedSemaphore(max(1, workers - 1))
         self.stats = {"calls": 0, "busy": 0, "timeouts": 0, "recycled": 0, "started": 0}
 
     @property
@@ -214,9 +219,34 @@ class RenderPool:
         return Busy(f"the server is busy ({why}); try again in {self.retry_after} s", self.retry_after)
 
     def call(self, fn: Callable[..., Any], *args: Any, local: Callable[[], Any] | None = None,
-             what: str = "render") -> Any:
+             what: str = "render", key: str | None = None) -> Any:
         """``fn(*args)`` in a worker (``local()`` in this thread when ``workers=0``), bounded as
-        the module docstring says. ``fn`` and ``args`` must pickle."""
+        the module docstring says. ``fn`` and ``args`` must pickle. ``key`` (a tiling's name)
+        marks calls alike: once one ran past half the budget, the key's calls share the slow
+        lane (all workers but one), so slow renders cannot starve quick ones."""
+        slow = key is not None and self.workers > 1 and self._is_slow(key)
+        if slow and not self._slow_lane.acquire(blocking=False):
+            raise self._busy(f"{what} ran long before, and {self.workers - 1} such renders are running; "
+                             "the last worker is kept for quick ones")
+        try:
+            return self._call(fn, args, local, what, key)
+        finally:
+            if slow:
+                self._slow_lane.release()
+
+    def _is_slow(self, key: str) -> bool:
+        with self._lock:
+            return key in self._slow
+
+    def _mark_slow(self, key: str) -> None:
+        with self._lock:
+            self._slow[key] = None
+            self._slow.move_to_end(key)
+            while len(self._slow) > 1024:
+                self._slow.popitem(last=False)
+
+    def _call(self, fn: Callable[..., Any], args: tuple, local: Callable[[], Any] | None, what: str,
+              key: str | None) -> Any:
         if not self._slots.acquire(blocking=False):
             raise self._busy(f"{max(1, self.workers) + self.queue_size} renders running or waiting")
         try:
@@ -228,7 +258,11 @@ class RenderPool:
             try:
                 if self.workers == 0:
                     return local() if local is not None else fn(*args)
+                started = time.monotonic()
                 keep, value, error = self._run(worker, fn, args, what)
+                if key is not None and (isinstance(error, RenderTimeout)
+                                        or time.monotonic() - started > self.seconds / 2):
+                    self._mark_slow(key)
             finally:
                 with self._lock:
                     self.running -= 1

@@ -222,7 +222,8 @@ class Renderer:
         else:  # off this process, bounded in time and in number (tilekit.web.executor)
             from tilekit.web.executor import render_job
 
-            svg, _ = self.pool.call(render_job, name, dict(raw), thumbnail, local=draw, what=f"render of {name!r}")
+            svg, _ = self.pool.call(render_job, name, dict(raw), thumbnail, local=draw, what=f"render of {name!r}",
+                                    key=name)
         self.cache.put(key, svg)
         return tiling, svg, estimate
 
