@@ -81,7 +81,7 @@ def test_slow_keys_share_a_lane_and_leave_a_worker_to_quick_ones(web_catalogue):
     pool = RenderPool(_url(web_catalogue), 20_000, workers=2, queue_size=4, seconds=2.0)
     try:
         pool.warm()
-        pids = {_call_when_started(pool, os.getpid) for _ in range(2)}
+        _call_when_started(pool, os.getpid)
         pool.call(time.sleep, 1.2, key="kari")  # past half the budget: 'kari' is slow from now on
         gate = threading.Thread(target=pool.call, args=(time.sleep, 1.5), kwargs={"key": "kari"})
         gate.start()
@@ -89,7 +89,7 @@ def test_slow_keys_share_a_lane_and_leave_a_worker_to_quick_ones(web_catalogue):
         with pytest.raises(Busy, match="ran long before"):  # the slow lane (2 - 1 workers) is full
             pool.call(time.sleep, 0.1, key="kari")
         t0 = time.monotonic()
-        assert pool.call(os.getpid, key="quick") in pids
+        assert pool.call(os.getpid, key="quick") != os.getpid()  # answered by a worker ...
         assert time.monotonic() - t0 < 1.0  # the other worker was free for it
         gate.join()
         assert pool.call(os.getpid, key="kari") > 0  # the lane is free again
