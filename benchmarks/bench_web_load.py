@@ -145,8 +145,11 @@ def plan(requests: int, seed: int = 1) -> list[tuple[str, str, dict]]:
 def load(url: str, pid: int, clients: int, requests: int) -> dict:
     """Part 1: the mix of :func:`plan` from ``clients`` threads."""
     with httpx.Client(base_url=url, timeout=120) as http:
-        for path in CACHED:  # what "cached" means: asked once before
-            r = http.get(path)
+        for path in CACHED:  # what "cached" means: asked once before (a first build on a
+            for _ in range(5):  # loaded machine may run past the budget: ask again)
+                r = http.get(path)
+                if r.status_code == 200:
+                    break
             assert r.status_code == 200, (path, r.status_code, r.text[:300])
     jobs = plan(requests)
     times: dict[str, list[float]] = defaultdict(list)
