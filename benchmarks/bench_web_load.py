@@ -1,6 +1,6 @@
 """Load, stall and memory test of ``tilekit serve`` on loopback (issue 30; docs/benchmarks.md).
 
-Run: python benchmarks/bench_web_load.py [--clients 16] [--requests 2000] [--render-seconds 10]
+Run: python benchmarks/bench_web_load.py [--clients 16] [--requests 2000] [--render-seconds 20]
          [--wang 42] [--memory 150] [--render-workers N] [--catalogue PATH]
 
 ``tilekit serve`` runs in a subprocess (its default render pool: --render-workers, a
@@ -221,7 +221,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--clients", type=int, default=16)
     ap.add_argument("--requests", type=int, default=2000)
-    ap.add_argument("--render-seconds", type=float, default=10.0)
+    ap.add_argument("--render-seconds", type=float, default=20.0)
     ap.add_argument("--wang", type=int, default=42)
     ap.add_argument("--memory", type=int, default=150)
     ap.add_argument("--render-workers", type=int, default=None,

@@ -25,7 +25,7 @@ def _bench():
 @pytest.mark.slow
 def test_load_mix_and_wang_stall(web_catalogue):
     bench = _bench()
-    with bench.serve(str(web_catalogue.path), "--render-seconds", "10", "--render-workers", "2") as (url, proc):
+    with bench.serve(str(web_catalogue.path), "--render-seconds", "20", "--render-workers", "2") as (url, proc):
         out = bench.load(url, proc.pid, clients=16, requests=2000)
         assert out["errors"] == []  # every request answered: no reset, no timeout
         answered = sum(sum(c.values()) for c in out["codes"].values())
