@@ -85,11 +85,25 @@ _CHILD: dict[str, Any] = {}
 
 def _child_entry() -> None:
     """A worker's main (``python -c``): argv is the socket's descriptor, the catalogue URL
-    ('' for the default catalogue) and the tile limit."""
+    ('' for the default catalogue), the tile limit and the server's process id."""
     from multiprocessing.connection import Connection
 
-    fd, url, max_tiles = sys.argv[1:4]
+    fd, url, max_tiles, parent = sys.argv[1:5]
+    _die_with(int(parent))
     _child_main(Connection(int(fd)), url or None, int(max_tiles))
+
+
+def _die_with(parent: int) -> None:
+    """End this worker when the server process ends, however it ends: a worker still importing
+    tilekit would otherwise outlive it, holding its stderr. (Linux's parent-death signal
+    follows the thread that started the worker, not the process, so a watcher polls.)"""
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(0.5)
+        os._exit(0)
+
+    threading.Thread(target=watch, daemon=True, name="tilekit-render-watch").start()
 
 
 def _child_main(conn: Any, url: str | None, max_tiles: int) -> None:
@@ -102,9 +116,13 @@ def _child_main(conn: Any, url: str | None, max_tiles: int) -> None:
 
         _CHILD["renderer"] = Renderer(open_catalogue(url), max_tiles, cache_bytes=0)
     except BaseException as exc:  # noqa: BLE001 - reported to the parent as one line
-        conn.send(("error", 503, f"render worker could not start: {_line(exc)}", {}))
+        with contextlib.suppress(OSError):
+            conn.send(("error", 503, f"render worker could not start: {_line(exc)}", {}))
         return
-    conn.send(("ready",))
+    try:
+        conn.send(("ready",))
+    except OSError:  # the server stopped while this worker started
+        return
     while True:
         try:
             fn, args = conn.recv()
@@ -154,7 +172,7 @@ class _Worker:
         code = "from tilekit.web.executor import _child_entry; _child_entry()"
         try:
             self.process = subprocess.Popen(
-                [sys.executable, "-c", code, str(theirs.fileno()), url or "", str(max_tiles)],
+                [sys.executable, "-c", code, str(theirs.fileno()), url or "", str(max_tiles), str(os.getpid())],
                 pass_fds=(theirs.fileno(),), stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL)
         finally:
             theirs.close()
