@@ -4,7 +4,6 @@ and an admission limit, a byte-bounded cache, and uvicorn's limits against slow 
 from __future__ import annotations
 
 import concurrent.futures
-import contextlib
 import gzip
 import json
 import os
@@ -14,7 +13,7 @@ import time
 
 import httpx
 import pytest
-from cliutil import free_port
+from cliutil import serving
 
 from tilekit.web.cache import ByteLRU
 from tilekit.web.executor import Busy, RenderPool, RenderTimeout, WorkerError
@@ -24,27 +23,11 @@ from tilekit.web.executor import Busy, RenderPool, RenderTimeout, WorkerError
 KARI = {"region": "0,0,100,100", "size": 400}
 
 
-@contextlib.contextmanager
 def served(app, **config):
     """``app`` under uvicorn as ``tilekit serve`` configures it, on a free loopback port."""
-    import uvicorn
-
     from tilekit.web.server import uvicorn_config
 
-    port = free_port()
-    server = uvicorn.Server(uvicorn_config(app, host="127.0.0.1", port=port, **config))
-    thread = threading.Thread(target=server.run, daemon=True)
-    thread.start()
-    deadline = time.monotonic() + 30
-    while not server.started:
-        if time.monotonic() > deadline or not thread.is_alive():
-            pytest.fail("uvicorn did not start within 30 s")
-        time.sleep(0.05)
-    try:
-        yield f"http://127.0.0.1:{port}"
-    finally:
-        server.should_exit = True
-        thread.join(15)
+    return serving(app, lambda app, **where: uvicorn_config(app, **where, **config))
 
 
 def _url(cat) -> str:
