@@ -59,12 +59,17 @@ def free_port() -> int:
 
 
 @contextlib.contextmanager
-def serving(app):
-    """uvicorn on 127.0.0.1 with a free port, in a thread; yields the base URL."""
+def serving(app, make_config=None):
+    """uvicorn on 127.0.0.1 with a free port, in a thread; yields the base URL.
+    ``make_config(app, host=, port=)`` builds the uvicorn.Config (default: uvicorn's own)."""
     import uvicorn
 
     port = free_port()
-    server = uvicorn.Server(uvicorn.Config(app, host="127.0.0.1", port=port, log_level="warning"))
+    if make_config is None:
+        config = uvicorn.Config(app, host="127.0.0.1", port=port, log_level="warning")
+    else:
+        config = make_config(app, host="127.0.0.1", port=port)
+    server = uvicorn.Server(config)
     thread = threading.Thread(target=server.run, daemon=True)
     thread.start()
     deadline = time.monotonic() + 20

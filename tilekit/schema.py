@@ -76,16 +76,26 @@ def check_nesting(value: Any, where: str, max_depth: int = MAX_NESTING) -> Any:
     return value
 
 
+def _bounded_int(digits: str, limit: int) -> int:
+    n = len(digits.lstrip("-"))
+    if n > limit:
+        raise ParseError(f"an integer of {n:,} digits is out of range (at most {limit})")
+    return int(digits)
+
+
 def _no_constant(name: str) -> Any:
     raise ParseError(f"{name} is not a JSON number; give a finite number")
 
 
-def parse_json(text: str | bytes, where: str, max_depth: int = MAX_NESTING) -> Any:
+def parse_json(text: str | bytes, where: str, max_depth: int = MAX_NESTING, max_int_digits: int | None = None) -> Any:
     """JSON text as Python values, or a one-line ParseError naming ``where``: bad syntax,
-    ``NaN`` / ``Infinity``, an integer of more digits than Python converts, nesting deeper
-    than ``max_depth``."""
+    ``NaN`` / ``Infinity``, an integer of more digits than Python converts (or than
+    ``max_int_digits``, checked before converting), nesting deeper than ``max_depth``."""
+    extra: dict[str, Any] = {}
+    if max_int_digits is not None:
+        extra["parse_int"] = lambda digits: _bounded_int(digits, max_int_digits)
     try:
-        value = json.loads(text, parse_constant=_no_constant)
+        value = json.loads(text, parse_constant=_no_constant, **extra)
     except ParseError as exc:
         raise ParseError(f"{where}: {exc}") from None
     except json.JSONDecodeError as exc:

@@ -11,7 +11,11 @@ from tilekit.cli.base import (
     cli,
     pass_state,
 )
+from tilekit.cli_types import BoundedInt, FiniteFloat
 from tilekit.errors import ParameterError
+from tilekit.web import executor  # stdlib-only modules: the defaults shown in --help
+from tilekit.web.cache import DEFAULT_CACHE_BYTES
+from tilekit.web.limits import HEAD_SECONDS
 
 # --------------------------------------------------------------------------- serve (issue 16)
 # A self-contained block: the web catalogue and editor of tilekit.web (docs/web.md).
@@ -22,8 +26,24 @@ from tilekit.errors import ParameterError
 @click.option("--port", default=8000, show_default=True, type=click.IntRange(min=0, max=65535), help="TCP port.")
 @click.option("--writable", is_flag=True, help="Allow the write endpoints (cancel a run); read-only otherwise.")
 @click.option("--max-tiles", default=20_000, show_default=True, type=click.IntRange(min=1), help="Tiles one render request may draw.")
+@click.option("--allow-host", multiple=True, metavar="NAME",
+              help="Another Host name to answer to (repeatable); others get 421 (DNS rebinding).")
+@click.option("--render-workers", default=executor.DEFAULT_WORKERS, show_default=True, type=BoundedInt(0, 64),
+              help="Worker processes that draw renders (0: in the request's thread, without a time budget).")
+@click.option("--render-queue", default=executor.DEFAULT_QUEUE, show_default=True, type=BoundedInt(0, 1000),
+              help="Renders that may wait for a worker; more get 503 with Retry-After.")
+@click.option("--render-seconds", default=executor.DEFAULT_SECONDS, show_default=True, type=FiniteFloat(86_400, min=0.1),
+              help="Wall-clock budget of one render (and of its wait for a worker); past it: 504.")
+@click.option("--cache-mb", default=DEFAULT_CACHE_BYTES >> 20, show_default=True, type=BoundedInt(0, 1 << 20),
+              help="Memory the render cache may hold (MiB).")
+@click.option("--worker-mb", default=executor.DEFAULT_RECYCLE_BYTES >> 20, show_default=True, type=BoundedInt(64, 1 << 20),
+              help="A render worker whose resident memory passes this (MiB) is replaced after its render.")
+@click.option("--head-seconds", default=HEAD_SECONDS, show_default=True, type=FiniteFloat(3600, min=0.5),
+              help="Seconds a client has to send a request's headers before the connection is closed.")
 @pass_state
-def serve(state: State, host: str, port: int, writable: bool, max_tiles: int) -> None:
+def serve(state: State, host: str, port: int, writable: bool, max_tiles: int, allow_host: tuple[str, ...],
+          render_workers: int, render_queue: int, render_seconds: float, cache_mb: int, worker_mb: int,
+          head_seconds: float) -> None:
     """Serve the web catalogue, tiling pages and the isohedral editor (needs the web extra).
 
     Example: tilekit serve --port 8000, then open http://127.0.0.1:8000/
@@ -37,11 +57,16 @@ def serve(state: State, host: str, port: int, writable: bool, max_tiles: int) ->
     from tilekit.web import create_app
     state.catalogue()  # open (and migrate) before binding: a bad catalogue is one line, exit 2
     sock = _listening_socket(host, port)  # a bad --host or a taken port: one line, exit 2
-    app = create_app(state.url, writable=writable, max_tiles=max_tiles, catalogue=state.catalogue())
+    app = create_app(state.url, writable=writable, max_tiles=max_tiles, catalogue=state.catalogue(),
+                     bind_host=host, allow_hosts=allow_host, render_workers=render_workers,
+                     render_queue=render_queue, render_seconds=render_seconds, cache_bytes=cache_mb << 20,
+                     worker_bytes=worker_mb << 20)
     bound = sock.getsockname()[1]
     shown = f"[{host}]" if ":" in host else host
     click.echo(f"serving {state.catalogue().url} on http://{shown}:{bound}/ ({'writable' if writable else 'read-only'})", err=True)
-    uvicorn.Server(uvicorn.Config(app, log_level="warning")).run(sockets=[sock])
+    from tilekit.web.server import uvicorn_config
+
+    uvicorn.Server(uvicorn_config(app, head_seconds=head_seconds)).run(sockets=[sock])
 
 
 def _listening_socket(host: str, port: int) -> Any:

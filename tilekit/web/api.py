@@ -27,6 +27,7 @@ from tilekit.errors import (
     NotFoundError,
     ParameterError,
     ParseError,
+    SolverLimit,
     TilekitError,
 )
 from tilekit.plugins import families as fams
@@ -36,6 +37,8 @@ from tilekit.web.service import normalise_options, query_options
 
 MAX_PAGE = 200
 MAX_BODY = 64 * 1024
+#: Digits of the longest integer a JSON body may hold (checked before Python converts it).
+MAX_INT_DIGITS = 30
 TERMINAL = ("done", "failed", "cancelled", "interrupted")
 
 
@@ -52,6 +55,11 @@ def one_line(message: Any) -> str:
 
 
 def status_of(exc: BaseException) -> int:
+    own = getattr(exc, "http_status", None)  # the render pool's Busy (503), RenderTimeout (504), ...
+    if isinstance(own, int):
+        return own
+    if isinstance(exc, SolverLimit):  # a solver's own budget ran out: not the request's fault
+        return 504
     if isinstance(exc, RenderTooLarge | BodyTooLarge):
         return 413
     if isinstance(exc, NotFoundError):
@@ -73,7 +81,9 @@ def error_response(exc: BaseException | str, status: int | None = None) -> JSONR
     body: dict[str, Any] = {"error": one_line(exc), "status": code}
     if isinstance(exc, RenderTooLarge):
         body["estimate"], body["limit"] = exc.estimate, exc.limit
-    return JSONResponse(body, status_code=code)
+    body.update(getattr(exc, "extra", None) or {})
+    retry = getattr(exc, "retry_after", None)
+    return JSONResponse(body, status_code=code, headers={"Retry-After": str(retry)} if retry else None)
 
 
 def endpoint(fn: Callable[..., Any]) -> Callable[[Request], Any]:
@@ -98,8 +108,10 @@ def _int(request: Request, key: str, default: int, lo: int, hi: int) -> int:
     raw = request.query_params.get(key)
     if raw in (None, ""):
         return default
-    if not raw.isdigit() or len(raw) > 12:
-        raise ParseError(f"{key} {raw!r} is not a whole number >= 0")
+    if not raw.isdigit():
+        raise ParseError(f"{key} {raw[:40]!r} is not a whole number >= 0")
+    if len(raw) > 100 or len(raw.lstrip("0")) > 40:  # before int(): no 5,000-digit conversions
+        raise ParameterError(f"{key} of {len(raw):,} digits must be between {lo} and {hi}")
     value = int(raw)
     if not lo <= value <= hi:
         raise ParameterError(f"{key} {value} must be between {lo} and {hi}")
@@ -181,7 +193,8 @@ async def read_json(request: Request) -> dict[str, Any]:
         if size > MAX_BODY:
             raise BodyTooLarge(f"request body over {MAX_BODY} bytes")
         chunks.append(chunk)
-    data = parse_json(b"".join(chunks) or b"{}", "request body")  # bounded nesting, finite numbers
+    # bounded nesting, finite numbers, integers of at most 30 digits (2**62 has 19)
+    data = parse_json(b"".join(chunks) or b"{}", "request body", max_int_digits=MAX_INT_DIGITS)
     if not isinstance(data, dict):
         raise ParseError("request body must be a JSON object")
     return data
@@ -236,9 +249,7 @@ def routes(state: Any) -> list[Route]:
                 data["outline"] = [[round(x, 9), round(y, 9)] for x, y in outline.tolist()]
             return JSONResponse(json.loads(json.dumps(data, default=str)))
         if fmt == "png":
-            import cairosvg
-
-            png = cairosvg.svg2png(bytestring=svg.encode("utf-8"))
+            png = svg_to_png(state, svg)
             return Response(png, media_type="image/png", headers=_download(request, name, "png"))
         return Response(svg, media_type="image/svg+xml", headers=_download(request, name, "svg"))
 
@@ -336,6 +347,23 @@ def path_routes(state: Any) -> list[Route]:
         Route("/api/tiling/{name:path}", views["tiling"]),
         Route("/api/render/{name:path}", views["render"], methods=["GET"]),
     ]
+
+
+def svg_to_png(state: Any, svg: str) -> bytes:
+    """cairosvg's PNG of ``svg``, in the render pool when the app has one (a large SVG's
+    conversion holds a CPU and the interpreter for seconds)."""
+    import cairosvg
+
+    pool = getattr(state.renderer, "pool", None)
+    if pool is None or pool.workers == 0:
+        return cairosvg.svg2png(bytestring=svg.encode("utf-8"))
+    return pool.call(_png_job, svg, what="PNG conversion")
+
+
+def _png_job(svg: str) -> bytes:
+    import cairosvg
+
+    return cairosvg.svg2png(bytestring=svg.encode("utf-8"))
 
 
 def _download(request: Request, name: str, ext: str) -> dict[str, str]:

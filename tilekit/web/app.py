@@ -19,6 +19,8 @@ from typing import Any
 
 from starlette.applications import Starlette
 from starlette.concurrency import run_in_threadpool
+from starlette.middleware import Middleware
+from starlette.middleware.gzip import GZipMiddleware
 from starlette.requests import Request
 from starlette.responses import HTMLResponse, JSONResponse, Response
 from starlette.routing import Mount, Route
@@ -30,6 +32,9 @@ from tilekit.errors import NotFoundError, ParameterError, TilekitError
 from tilekit.plugins import WebRoute, families, get_plugin_manager
 from tilekit.web import api, pages
 from tilekit.web.browse import Browser, csv_text, listing_csv, listing_json
+from tilekit.web.cache import DEFAULT_CACHE_BYTES
+from tilekit.web.executor import Busy, RenderPool, RenderTimeout, resident_bytes
+from tilekit.web.guard import Guard
 from tilekit.web.limits import DEFAULT_MAX_TILES
 from tilekit.web.service import Renderer, normalise_options
 
@@ -44,11 +49,13 @@ class State:
     """What the routes share: the catalogue (opened on first use), the renderer, the mode."""
 
     def __init__(self, url: str | None, writable: bool, max_tiles: int, catalogue: Any = None,
-                 pm: Any = None) -> None:
+                 pm: Any = None, pool: RenderPool | None = None, cache_bytes: int = DEFAULT_CACHE_BYTES) -> None:
         self.url = url
         self.pm = pm
         self.writable = writable
         self.max_tiles = max_tiles
+        self.pool = pool
+        self.cache_bytes = cache_bytes
         self._catalogue = catalogue
         self._renderer: Renderer | None = None
         self._browser: Browser | None = None
@@ -68,7 +75,7 @@ class State:
         cat = self.catalogue
         with self._lock:
             if self._renderer is None:
-                self._renderer = Renderer(cat, self.max_tiles)
+                self._renderer = Renderer(cat, self.max_tiles, self.cache_bytes, self.pool)
             return self._renderer
 
     @property
@@ -81,6 +88,8 @@ class State:
             return self._browser
 
     def close(self) -> None:
+        if self.pool is not None:
+            self.pool.close()
         if self._catalogue is not None:
             self._catalogue.close()
 
@@ -179,10 +188,20 @@ def plugin_view(route: WebRoute, state: State, html_page: Callable[..., HTMLResp
 
 
 def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_tiles: int = DEFAULT_MAX_TILES,
-               catalogue: Any = None) -> Any:
-    """The ASGI app for one catalogue (``catalogue`` may be an open Catalogue, for tests)."""
+               catalogue: Any = None, bind_host: str | None = None, allow_hosts: Any = (),
+               render_workers: int = 0, render_queue: int | None = None, render_seconds: float | None = None,
+               cache_bytes: int = DEFAULT_CACHE_BYTES, worker_bytes: int | None = None) -> Any:
+    """The ASGI app for one catalogue (``catalogue`` may be an open Catalogue, for tests).
+
+    ``bind_host`` (with ``allow_hosts``) turns on the Host check of :mod:`tilekit.web.guard`;
+    ``render_workers`` > 0 draws renders in that many worker processes with a wall-clock
+    budget of ``render_seconds`` (:mod:`tilekit.web.executor`; they open ``catalogue_url``, or
+    the open catalogue's own URL, and load the installed plugins); 0 draws in the request's
+    thread, still at most ``1 + render_queue`` at once. ``cache_bytes`` bounds the render cache.
+    """
     pm = catalogue.pm if catalogue is not None else get_plugin_manager()
-    state = State(catalogue_url, writable, max_tiles, catalogue, pm)
+    pool = _pool(catalogue_url, catalogue, max_tiles, render_workers, render_queue, render_seconds, worker_bytes)
+    state = State(catalogue_url, writable, max_tiles, catalogue, pm, pool, cache_bytes)
     hook = pm.hook
     plugin_routes = [r for rs in hook.tilekit_web_routes(web=state) for r in (rs or [])]
     nav = _nav([link for links in reversed(hook.tilekit_web_menu_links(web=state)) for link in (links or [])])
@@ -199,7 +218,10 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
                 if request.query_params.get("_format") in ("json", "csv") or request.path_params.get("fmt"):
                     return api.error_response(exc)  # a JSON or CSV view answers in JSON
                 code = api.status_of(exc)
-                return _html(pages.error_page(api.one_line(exc), code), code)
+                response = _html(pages.error_page(api.one_line(exc), code), code)
+                if getattr(exc, "retry_after", None):
+                    response.headers["Retry-After"] = str(exc.retry_after)  # type: ignore[attr-defined]
+                return response
 
         handler.__name__ = fn.__name__
         return handler
@@ -307,6 +329,8 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
         try:
             t, svg, _ = state.renderer.render(name, {"size": 160}, thumbnail=True)
             etag = '"' + state.renderer.spec_hash(t) + '"'
+        except (Busy, RenderTimeout):
+            raise  # a busy server is a 503/504, not a placeholder a browser would cache
         except TilekitError as exc:
             lookup(name)  # an unknown name is a 404, a tiling without geometry a placeholder
             svg = _placeholder(api.one_line(exc))
@@ -390,6 +414,17 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
     async def api_doc(request: Request) -> Response:
         return _html(pages.api_page(api_lines))
 
+    async def health(request: Request) -> Response:
+        """Liveness for monitors: answered on the event loop, touching neither the catalogue
+        nor the render workers (so it answers while every render slot is busy)."""
+        out: dict[str, Any] = {"status": "ok", "rss_mb": round(resident_bytes() / 2**20, 1)}
+        if state.pool is not None:
+            out["renders"] = state.pool.snapshot()
+        if state._renderer is not None:
+            cache = state._renderer.cache
+            out["cache"] = {"entries": len(cache), "bytes": cache.bytes, "max_bytes": cache.max_bytes}
+        return JSONResponse(out, headers={"Cache-Control": "no-store"})
+
     async def not_found(request: Request, exc: Exception) -> Response:
         code = getattr(exc, "status_code", 404)
         detail = getattr(exc, "detail", "not found")
@@ -408,6 +443,7 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
         Route("/runs", runs),
         Route("/runs/{run_id:str}", run),
         Route("/api", api_doc),
+        Route("/health", health),
         *api.routes(state),
         Route("/favicon.ico", lambda r: Response(status_code=204)),
         # the plugins' pages after the app's own (an app path wins), their files before /static
@@ -418,12 +454,32 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
     ]
     @contextlib.asynccontextmanager
     async def lifespan(app: Any) -> Any:
+        if state.pool is not None:
+            state.pool.warm()
         yield
         state.close()
 
-    app = Starlette(routes=routes, exception_handlers={404: not_found, 405: not_found}, lifespan=lifespan)
+    middleware = [Middleware(Guard, bind_host=bind_host, allow_hosts=tuple(allow_hosts)),
+                  # SVG and HTML go out gzip-compressed (level 5: most of level 9's gain, a third of its time)
+                  Middleware(GZipMiddleware, minimum_size=1024, compresslevel=5)]
+    app = Starlette(routes=routes, exception_handlers={404: not_found, 405: not_found}, lifespan=lifespan,
+                    middleware=middleware)
     app.state.tilekit = state
     return Limits(app)
+
+
+def _pool(url: str | None, catalogue: Any, max_tiles: int, workers: int, queue_size: int | None,
+          seconds: float | None, worker_bytes: int | None) -> RenderPool:
+    from tilekit.web import executor
+
+    if workers > 0 and url is None and catalogue is not None:
+        url = catalogue.engine.url.render_as_string(hide_password=False)
+        if catalogue.path is None and url.startswith("sqlite"):  # in memory: no other process can open it
+            workers = 0
+    return RenderPool(url, max_tiles, workers=workers,
+                      queue_size=executor.DEFAULT_QUEUE if queue_size is None else queue_size,
+                      seconds=executor.DEFAULT_SECONDS if seconds is None else seconds,
+                      recycle_bytes=executor.DEFAULT_RECYCLE_BYTES if worker_bytes is None else worker_bytes)
 
 
 def _placeholder(message: str) -> str:

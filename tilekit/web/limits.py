@@ -19,6 +19,19 @@ from tilekit.errors import ParameterError, TilekitError
 #: command line's ``tilekit.limits.MAX_TILES``, since a browser draws every tile it is sent.
 DEFAULT_MAX_TILES = 20_000
 
+# the server's connection limits (tilekit.web.server, set by tilekit serve)
+#: Seconds a client has to send a whole request head (``tilekit serve --head-seconds``).
+HEAD_SECONDS = 10.0
+#: Seconds an idle keep-alive connection stays open after a response.
+KEEP_ALIVE_SECONDS = 5
+#: The largest request head (request line and headers) h11 buffers: above the app's own
+#: 8 KiB query and 2 KiB path limits, so their 414 is the app's JSON.
+MAX_HEAD_BYTES = 2 << 20
+#: Open connections (and requests in flight) before uvicorn answers 503 itself.
+MAX_CONNECTIONS = 1000
+#: Seconds the server waits for requests in flight when told to stop.
+GRACEFUL_SECONDS = 10
+
 
 class RenderTooLarge(TilekitError):
     """A render request would draw more tiles than the limit (HTTP 413)."""

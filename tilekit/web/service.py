@@ -21,6 +21,7 @@ from tilekit.render import parse_palette
 from tilekit.schema import finite_number
 from tilekit.text import parse_region as text_region
 from tilekit.text import parse_settings
+from tilekit.web.cache import DEFAULT_CACHE_BYTES, ByteLRU
 from tilekit.web.limits import DEFAULT_MAX_TILES, RenderTooLarge
 
 #: Options a render request may carry besides the tiling's name.
@@ -31,8 +32,17 @@ MAX_SETTINGS = 16
 MAX_SIZE = 2000
 MAX_EDGES = 32
 MAX_POINTS = 64
+#: Colours one render request may name.
+MAX_PALETTE = 64
 
 
+def _number(value: Any, what: str) -> float:
+    """A finite number from a JSON number or numeric text; ``true``/``false`` are not numbers."""
+    if isinstance(value, bool):
+        raise ParseError(f"{what} {str(value).lower()} is a boolean, not a number")
+    if isinstance(value, str) and len(value) > 100:
+        raise ParseError(f"{what} of {len(value):,} characters is not a number (at most 100)")
+    return finite_number(value, what)
 
 
 def _numbers(value: Any, what: str) -> list[float]:
@@ -42,7 +52,24 @@ def _numbers(value: Any, what: str) -> list[float]:
         raise ParseError(f"{what} {value!r} is not a list of numbers")
     if len(value) > 64:
         raise ParameterError(f"{what}: at most 64 numbers, got {len(value)}")
-    return [finite_number(v, what) for v in value]
+    return [_number(v, what) for v in value]
+
+
+def _palette(value: Any) -> tuple[str, ...] | None:
+    """``colours``: 'red,#00ff00' text or a list of colour strings (parse_palette checks each)."""
+    if value in (None, "", []):
+        return None
+    if isinstance(value, list | tuple):
+        if not all(isinstance(c, str) for c in value):
+            raise ParseError("colours must be a list of colour strings or 'red,#00ff00,...' text")
+        if len(value) > MAX_PALETTE:
+            raise ParameterError(f"colours: at most {MAX_PALETTE} colours, got {len(value)}")
+    elif not isinstance(value, str):
+        raise ParseError(f"colours {str(value)[:40]} is a {type(value).__name__}; give a list of colour strings "
+                         "or 'red,#00ff00,...' text")
+    elif len(value) > MAX_PALETTE * 32:
+        raise ParameterError(f"colours: at most {MAX_PALETTE * 32} characters")
+    return parse_palette(value)
 
 
 def parse_region(value: Any) -> tuple[float, float, float, float] | None:
@@ -51,7 +78,7 @@ def parse_region(value: Any) -> tuple[float, float, float, float] | None:
     if value is None or value == "":
         return None
     if not isinstance(value, str):
-        value = ",".join(str(finite_number(v, "region")) for v in (value if isinstance(value, list | tuple) else [value]))
+        value = ",".join(str(_number(v, "region")) for v in (value if isinstance(value, list | tuple) else [value]))
     return text_region(value)
 
 
@@ -101,11 +128,14 @@ def normalise_options(raw: Mapping[str, Any]) -> dict[str, Any]:
     if raw.get("depth") not in (None, ""):
         d = raw["depth"]
         if isinstance(d, bool) or not (isinstance(d, int) or (isinstance(d, str) and d.strip().isdigit())):
-            raise ParseError(f"depth {d!r} is not a whole number >= 0")
+            raise ParseError(f"depth {str(d)[:40]!r} is not a whole number >= 0")
+        if len(str(d).strip()) > 6:  # before int(): Python refuses over 4,300 digits with its own words
+            raise ParameterError(f"depth of {len(str(d).strip()):,} digits is out of range; give a whole number "
+                                 "0..999999 (the tile limit bounds it further)")
         out["depth"] = int(d)
     for key in ("r1", "theta1", "r2", "theta2"):
         if raw.get(key) not in (None, ""):
-            out[key] = finite_number(raw[key], key)
+            out[key] = _number(raw[key], key)
     for key in ("colouring", "seed"):
         if raw.get(key) not in (None, ""):
             out[key] = str(raw[key])[:200]
@@ -138,11 +168,13 @@ def _too_large(name: str) -> Any:
 class Renderer:
     """Builds and renders tilings for one catalogue, with an LRU cache keyed by spec hash."""
 
-    def __init__(self, catalogue: Any, max_tiles: int = DEFAULT_MAX_TILES, cache_size: int = 1024) -> None:
+    def __init__(self, catalogue: Any, max_tiles: int = DEFAULT_MAX_TILES, cache_bytes: int = DEFAULT_CACHE_BYTES,
+                 pool: Any = None) -> None:
         self.catalogue = catalogue
         self.max_tiles = max_tiles
-        self.cache_size = cache_size
-        self._cache: OrderedDict[str, str] = OrderedDict()
+        self.cache = ByteLRU(cache_bytes)
+        #: a :class:`tilekit.web.executor.RenderPool` that draws cache misses, or None (this thread)
+        self.pool = pool
         self._tilings: OrderedDict[str, Any] = OrderedDict()
         self._lock = threading.Lock()
 
@@ -172,26 +204,32 @@ class Renderer:
         """(tiling, SVG text, tile estimate) for a tiling and raw options; bounded."""
 
         options = normalise_options(raw)
-        size = int(finite_number(raw.get("size", 240 if thumbnail else 800), "size"))
-        if not 16 <= size <= MAX_SIZE:
-            raise ParameterError(f"size {size} must be between 16 and {MAX_SIZE} pixels")
-        palette = parse_palette(raw.get("colours")) if raw.get("colours") not in (None, "") else None
+        size_value = _number(raw.get("size", 240 if thumbnail else 800), "size")
+        if not 16 <= size_value <= MAX_SIZE:
+            raise ParameterError(f"size {size_value:g} must be between 16 and {MAX_SIZE} pixels")
+        size = int(size_value)
+        palette = _palette(raw.get("colours"))
         labels = str(raw.get("labels", "")).lower() in ("1", "true", "yes", "on")
         tiling = self.build(name, options)
         box = parse_region(raw.get("region"))
         key = self.key(tiling, box, size, palette, labels, thumbnail)
-        with self._lock:
-            hit = self._cache.get(key)
-            if hit is not None:
-                self._cache.move_to_end(key)
-                return tiling, hit, -1
-        picture = api.render_svg(tiling, box, max_tiles=self.max_tiles, too_large=_too_large(name),
-                                 palette=palette, labels=labels, size=size)
-        svg, estimate = picture.svg, picture.estimate
-        with self._lock:
-            self._cache[key] = svg
-            while len(self._cache) > self.cache_size:
-                self._cache.popitem(last=False)
+        hit = self.cache.get(key)
+        if hit is not None:
+            return tiling, hit, -1
+
+        def draw() -> tuple[str, int]:
+            picture = api.render_svg(tiling, box, max_tiles=self.max_tiles, too_large=_too_large(name),
+                                     palette=palette, labels=labels, size=size)
+            return picture.svg, picture.estimate
+
+        if self.pool is None:
+            svg, estimate = draw()
+        else:  # off this process, bounded in time and in number (tilekit.web.executor)
+            from tilekit.web.executor import render_job
+
+            svg, estimate = self.pool.call(render_job, name, dict(raw), thumbnail, local=draw,
+                                           what=f"render of {name!r}", key=name)
+        self.cache.put(key, svg)
         return tiling, svg, estimate
 
     @staticmethod
