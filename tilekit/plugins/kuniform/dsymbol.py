@@ -35,10 +35,13 @@ from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import cache
-from typing import TypeVar
+from typing import TYPE_CHECKING, TypeVar
 
 from tilekit.regular.notation import VertexType, format_sequence
 from tilekit.regular.notation import euclidean_vertex_types as vertex_types  # the 21 vertex types
+
+if TYPE_CHECKING:
+    import numpy as np
 
 Perm = tuple[int, ...]
 T = TypeVar("T")
@@ -205,22 +208,23 @@ class DSymbol:
             x = self.s2[self.s1[x]]
         return VertexType.of(tuple(seq)).polygons
 
+    def arrays(self) -> tuple[np.ndarray, ...]:
+        """σ0, σ1, σ2, m01, m12 as int64 arrays (what the compiled loops read)."""
+        import numpy as np  # start-up cost: only when a symbol is compared or written
+
+        return tuple(np.array(x, np.int64) for x in (self.s0, self.s1, self.s2, self.face, self.degree))
+
     def is_minimal(self) -> bool:
-        return len(set(self.minimal_classes())) == self.size
+        return max(self.minimal_classes()) == self.size - 1
 
     def minimal_classes(self) -> list[int]:
         """The coarsest partition compatible with σ0, σ1, σ2, m01 and m12 (Moore's
-        refinement): its classes are the chambers of the minimal image."""
-        keys = list(zip(self.face, self.degree))
-        index = {k: i for i, k in enumerate(sorted(set(keys)))}
-        cls = [index[k] for k in keys]
-        while True:
-            sig = [(cls[c], cls[self.s0[c]], cls[self.s1[c]], cls[self.s2[c]]) for c in range(self.size)]
-            index = {k: i for i, k in enumerate(sorted(set(sig)))}
-            new = [index[k] for k in sig]
-            if len(index) == len(set(cls)):
-                return new
-            cls = new
+        refinement, :func:`.kernels.minimal_classes`): its classes, numbered in order of
+        their first chamber, are the chambers of the minimal image."""
+        # start-up cost: numba loads only when a symbol is compared or divided
+        from tilekit.plugins.kuniform import kernels
+
+        return kernels.minimal_classes(*self.arrays()).tolist()
 
     def minimal_image(self) -> DSymbol:
         """The symbol divided by :meth:`minimal_classes`: the D-symbol of the tiling's full
@@ -235,25 +239,13 @@ class DSymbol:
                        tuple(self.face[rep[i]] for i in range(n)), tuple(self.degree[rep[i]] for i in range(n)))
 
     def canonical_form(self) -> tuple:
-        """The least breadth-first relabelling over every start chamber: equal for
-        isomorphic symbols (the symbol must be connected)."""
-        best = None
-        for start in range(self.size):
-            number = {start: 0}
-            order = [start]
-            for x in order:
-                for s in (self.s0, self.s1, self.s2):
-                    y = s[x]
-                    if y not in number:
-                        number[y] = len(order)
-                        order.append(y)
-            form = tuple(
-                (number[self.s0[x]], number[self.s1[x]], number[self.s2[x]], self.face[x], self.degree[x])
-                for x in order
-            )
-            if best is None or form < best:
-                best = form
-        return best
+        """The least breadth-first relabelling over every start chamber
+        (:func:`.kernels.canonical_form`), as a tuple of rows (σ0, σ1, σ2, m01, m12): equal
+        for isomorphic symbols (the symbol must be connected)."""
+        # start-up cost: numba loads only when a symbol is compared or written
+        from tilekit.plugins.kuniform import kernels
+
+        return _form_key(kernels.canonical_form(*self.arrays()))
 
     def encode(self) -> str:
         """A compact text: ``m01/m12/σ0/σ1/σ2`` lists, chambers in canonical order."""
@@ -288,6 +280,10 @@ class DSymbol:
         if curvature != 0:
             raise ValueError(f"the D-symbol has curvature {curvature}, not 0: it does not tile the Euclidean plane")
         return sym
+
+
+def _form_key(form: np.ndarray) -> tuple:
+    return tuple(map(tuple, form.tolist()))
 
 
 def _component(sym: DSymbol) -> set[int]:
@@ -350,166 +346,104 @@ def chamber_count(combo: Sequence[Star]) -> int:
     return sum(2 * len(s.polygons) // len(s.group) for s in combo)
 
 
-def gluings(combo: Sequence[Star], *, symmetry_breaking: bool = True) -> Iterator[DSymbol]:
-    """Every σ0 completing the stars of ``combo`` to a connected D-symbol whose faces
-    close (see the module text); minimal or not, isomorphic ones repeated. Without
-    ``symmetry_breaking`` (the benchmarks' plain search) every labelling is tried."""
+def _search_arrays(combo: Sequence[Star]) -> dict[str, np.ndarray]:
+    """The integer tables the compiled search (:func:`.kernels.glue`) reads for ``combo``."""
+    import numpy as np  # start-up cost: only when a search runs
+
     s1, s2, face, degree = _from_stars(combo)
     n = len(s1)
-    s0 = [-1] * n
-    # symmetry breaking: a star none of whose chambers is glued yet ("fresh") can be
-    # relabelled by any automorphism of its chamber structure, and fresh stars of one kind
-    # are interchangeable; so a gluing into fresh stars goes only to the first fresh star
-    # of its kind, at a chamber that is least in its orbit under those automorphisms.
-    # Completeness: the part glued so far does not see the fresh star, so every completion
-    # with another choice is isomorphic to one with this choice.
     owner: list[int] = []
     offsets: list[int] = []
-    first_of_orbit: list[bool] = []
+    leader: list[bool] = []
     for i, star in enumerate(combo):
         offsets.append(len(owner))
         owner += [i] * chamber_count([star])
-        first_of_orbit += star_orbit_leaders(star)
+        leader += star_orbit_leaders(star)
     offsets.append(n)
-    kind = [(star.polygons, star.stabilizer) for star in combo]
-    glued = [0] * len(combo)  # chambers of each star with σ0 set
+    kinds: dict[tuple, int] = {}
+    kind = [kinds.setdefault((star.polygons, star.stabilizer), len(kinds)) for star in combo]
     # σ0 keeps the face, commutes with σ2 (so keeps the face across the edge and whether the
     # edge end is fixed by σ2): candidates for d share this signature with it
     by_signature: dict[tuple[int, bool, int], list[int]] = {}
     for e in range(n):
         by_signature.setdefault((face[e], s2[e] == e, face[s2[e]]), []).append(e)
-    signature = [(face[e], s2[e] == e, face[s2[e]]) for e in range(n)]
+    sig_id = {key: i for i, key in enumerate(by_signature)}
+    sig = [sig_id[(face[e], s2[e] == e, face[s2[e]])] for e in range(n)]
+    cand_start = np.cumsum([0] + [len(v) for v in by_signature.values()])
+    cand_list = [e for v in by_signature.values() for e in v]
+    i64 = np.int64
+    return {
+        "s1": np.array(s1, i64), "s2": np.array(s2, i64), "face": np.array(face, i64),
+        "degree": np.array(degree, i64), "owner": np.array(owner, i64), "offsets": np.array(offsets, i64),
+        "leader": np.array(leader, np.bool_), "kind": np.array(kind, i64), "sig": np.array(sig, i64),
+        "cand_start": cand_start.astype(i64), "cand_list": np.array(cand_list, i64),
+    }
 
-    def fresh(t: int) -> bool:
-        return glued[t] == 0
 
-    def clear(xs: list[int]) -> None:
-        for x in xs:
-            s0[x] = -1
-            glued[owner[x]] -= 1
+def gluing_batches(combo: Sequence[Star], *, symmetry_breaking: bool = True,
+                   batch: int = 0) -> Iterator[tuple[np.ndarray, dict[str, np.ndarray]]]:
+    """Every σ0 completing the stars of ``combo`` to a connected D-symbol whose faces close,
+    as (rows, tables) batches: each row of ``rows`` is one σ0, ``tables`` holds σ1, σ2 and
+    the labels. Minimal or not, isomorphic ones repeated; without ``symmetry_breaking``
+    (the benchmarks' plain search) every labelling of every star is tried.
 
-    def face_walk(c: int) -> tuple[bool, int]:
-        """Whether the <σ0, σ1>-orbit of c can still close (closed: r | p; open: length
-        <= 2p), and a chamber at an open end of it (-1 when closed)."""
-        p = face[c]
-        length, ends, open_end = 1, 0, -1
-        for step0 in (0, 1):
-            x, step = c, step0
-            while True:
-                y = s0[x] if step == 0 else s1[x]
-                if y < 0:
-                    open_end = x
-                    break
-                if y == x:
-                    ends += 1
-                    break
-                if y == c:  # a cycle: both directions meet
-                    return length % 2 == 0 and p % (length // 2) == 0, -1
-                length += 1
-                if length > 2 * p:
-                    return False, -1
-                x, step = y, 1 - step
-        if open_end >= 0:
-            return True, open_end
-        return ends == 2 and p % length == 0, -1
+    The search (compiled, :func:`.kernels.glue`) assigns σ0 edge end by edge end: a chamber
+    d, then each candidate e with d's signature (face, σ2-fixed, face across the edge) in
+    turn, setting σ0 on d, e, σ2(d), σ2(e) at once; every face walk it touched must still be
+    able to close (:mod:`this module's text <.dsymbol>`). It follows the face it just
+    extended (an open end of a touched walk), else the least open chamber of a star glued
+    to. Symmetry breaking: a star none of whose chambers is glued yet ("fresh") can be
+    relabelled by any automorphism of its chamber structure, and fresh stars of one kind are
+    interchangeable; so a gluing into fresh stars goes only to the first fresh star of its
+    kind, at a chamber that is least in its orbit under those automorphisms. Completeness:
+    the part glued so far does not see the fresh star, so every completion with another
+    choice is isomorphic to one with this choice."""
+    # start-up cost: NumPy and numba load only when a search runs
+    import numpy as np
 
-    def connected() -> bool:
-        seen = {0}
-        stack = [0]
-        while stack:
-            x = stack.pop()
-            for y in (s0[x], s1[x], s2[x]):
-                if y not in seen:
-                    seen.add(y)
-                    stack.append(y)
-        return len(seen) == n
+    from tilekit.plugins.kuniform import kernels
 
-    # explicit stack of (chamber, candidate iterator, assigned chambers)
-    def assign(d: int, e: int) -> list[int] | None:
-        pairs = [(d, e), (e, d), (s2[d], s2[e]), (s2[e], s2[d])]
-        done: list[int] = []
-        for a, b in pairs:
-            if s0[a] == -1:
-                s0[a] = b
-                glued[owner[a]] += 1
-                done.append(a)
-            elif s0[a] != b:
-                clear(done)
-                return None
-        return done
+    t = _search_arrays(combo)
+    n = len(t["s1"])
+    s0 = np.full(n, -1, np.int64)
+    glued = np.zeros(len(combo), np.int64)
+    stack_d = np.zeros(n + 1, np.int64)
+    stack_pos = np.zeros(n + 1, np.int64)
+    stack_done = np.zeros((n + 1, 4), np.int64)
+    stack_nd = np.zeros(n + 1, np.int64)
+    state = np.zeros(2, np.int64)
+    out = np.empty((batch or kernels.BATCH, n), np.int64)
+    while state[1] != 2:
+        got = kernels.glue(t["s1"], t["s2"], t["face"], t["owner"], t["offsets"], t["leader"], t["kind"], t["sig"],
+                           t["cand_start"], t["cand_list"], symmetry_breaking, s0, glued, stack_d, stack_pos,
+                           stack_done, stack_nd, state, out)
+        if got:
+            yield out[:got].copy(), t
 
-    def candidates(d: int) -> Iterator[int]:
-        home = owner[d]
-        allowed_fresh: dict[tuple, int] = {}
-        for t in range(len(combo)):
-            if t != home and kind[t] not in allowed_fresh and fresh(t):
-                allowed_fresh[kind[t]] = t
-        for e in by_signature[signature[d]]:
-            if s0[e] != -1:
-                continue
-            t = owner[e]
-            if symmetry_breaking and t != home and fresh(t) and (allowed_fresh.get(kind[t]) != t or not first_of_orbit[e]):
-                continue
-            yield e
 
-    stack: list[tuple[int, Iterator[int], list[int]]] = []
-
-    def first_open() -> int:
-        """The least unglued chamber of a star that is already glued to (-1 if none)."""
-        for t in range(len(combo)):
-            if t == 0 or not fresh(t):
-                for i in range(offsets[t], offsets[t + 1]):
-                    if s0[i] < 0:
-                        return i
-        return -1
-
-    d = first_open()
-    if d < 0:
-        return
-    stack.append((d, candidates(d), []))
-    while stack:
-        d, cands, done = stack[-1]
-        clear(done)
-        stack[-1] = (d, cands, [])
-        nxt = -1
-        for e in cands:
-            got = assign(d, e)
-            if got is None:
-                continue
-            ok = True
-            nxt = -1
-            for x in got:
-                fine, end = face_walk(x)
-                if not fine:
-                    ok = False
-                    break
-                if end >= 0 and nxt < 0:
-                    nxt = end
-            if ok:
-                stack[-1] = (d, cands, got)
-                break
-            clear(got)
-        else:
-            stack.pop()
-            continue
-        # close the face just extended before opening another
-        if nxt < 0:
-            nxt = first_open()
-        if nxt < 0:
-            # every glued-to star is complete: a symbol if nothing is left, else disconnected
-            if all(x >= 0 for x in s0) and connected():
-                yield DSymbol(tuple(s0), tuple(s1), tuple(s2), tuple(face), tuple(degree))
-            continue
-        stack.append((nxt, candidates(nxt), []))
+def gluings(combo: Sequence[Star], *, symmetry_breaking: bool = True) -> Iterator[DSymbol]:
+    """:func:`gluing_batches` one D-symbol at a time."""
+    for rows, t in gluing_batches(combo, symmetry_breaking=symmetry_breaking):
+        rest = tuple(tuple(t[k].tolist()) for k in ("s1", "s2", "face", "degree"))
+        for row in rows.tolist():
+            yield DSymbol(tuple(row), *rest)
 
 
 def symbols(combo: Sequence[Star], *, symmetry_breaking: bool = True) -> dict[tuple, DSymbol]:
-    """The distinct minimal D-symbols with exactly the vertex orbits of ``combo``."""
+    """The distinct minimal D-symbols with exactly the vertex orbits of ``combo``, keyed by
+    canonical form (the first gluing met of each class)."""
+    # start-up cost: NumPy and numba load only when a search runs
+    import numpy as np
+
+    from tilekit.plugins.kuniform import kernels
+
     out: dict[tuple, DSymbol] = {}
-    for sym in gluings(combo, symmetry_breaking=symmetry_breaking):
-        if sym.is_minimal():
-            key = sym.canonical_form()
-            out.setdefault(key, sym)
+    for rows, t in gluing_batches(combo, symmetry_breaking=symmetry_breaking):
+        s1, s2, face, degree = t["s1"], t["s2"], t["face"], t["degree"]
+        for i in np.flatnonzero(kernels.minimal_rows(rows, s1, s2, face, degree)):
+            key = _form_key(kernels.canonical_form(rows[i], s1, s2, face, degree))
+            if key not in out:
+                out[key] = DSymbol(tuple(rows[i].tolist()), *(tuple(x.tolist()) for x in (s1, s2, face, degree)))
     return out
 
 
