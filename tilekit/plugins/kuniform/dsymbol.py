@@ -346,38 +346,105 @@ def chamber_count(combo: Sequence[Star]) -> int:
     return sum(2 * len(s.polygons) // len(s.group) for s in combo)
 
 
-def _search_arrays(combo: Sequence[Star]) -> dict[str, np.ndarray]:
-    """The integer tables the compiled search (:func:`.kernels.glue`) reads for ``combo``."""
+@cache
+def _star_tables(star: Star) -> tuple[np.ndarray, ...]:
+    """One star's part of the search tables: σ1, σ2 (local numbering), face sizes, orbit
+    leaders (:func:`star_orbit_leaders`) and each chamber's signature number."""
     import numpy as np  # start-up cost: only when a search runs
 
-    s1, s2, face, degree = _from_stars(combo)
-    n = len(s1)
-    owner: list[int] = []
-    offsets: list[int] = []
-    leader: list[bool] = []
-    for i, star in enumerate(combo):
-        offsets.append(len(owner))
-        owner += [i] * chamber_count([star])
-        leader += star_orbit_leaders(star)
-    offsets.append(n)
-    kinds: dict[tuple, int] = {}
-    kind = [kinds.setdefault((star.polygons, star.stabilizer), len(kinds)) for star in combo]
+    _of, s1, s2, face = star.chambers()
+    i64 = np.int64
+    s1a, s2a, fa = np.array(s1, i64), np.array(s2, i64), np.array(face, i64)
     # σ0 keeps the face, commutes with σ2 (so keeps the face across the edge and whether the
     # edge end is fixed by σ2): candidates for d share this signature with it
-    by_signature: dict[tuple[int, bool, int], list[int]] = {}
-    for e in range(n):
-        by_signature.setdefault((face[e], s2[e] == e, face[s2[e]]), []).append(e)
-    sig_id = {key: i for i, key in enumerate(by_signature)}
-    sig = [sig_id[(face[e], s2[e] == e, face[s2[e]])] for e in range(n)]
-    cand_start = np.cumsum([0] + [len(v) for v in by_signature.values()])
-    cand_list = [e for v in by_signature.values() for e in v]
+    signature = (fa * 2 + (s2a == np.arange(len(s1)))) * 64 + fa[s2a]
+    return s1a, s2a, fa, np.array(star_orbit_leaders(star), np.bool_), signature
+
+
+@cache
+def _star_number(star: Star) -> int:
+    return stars().index(star)
+
+
+@cache
+def _global_tables() -> tuple[np.ndarray, ...]:
+    """Every star's :func:`_star_tables` end to end (star g's chambers from ``star_off[g]``),
+    with each star's degree and those offsets: what :func:`.kernels.combo_tables` reads."""
+    import numpy as np  # start-up cost: only when a search runs
+
+    parts = [_star_tables(star) for star in stars()]
+    star_off = np.concatenate([[0], np.cumsum([len(p[0]) for p in parts])]).astype(np.int64)
+    gdeg = np.array([len(star.polygons) for star in stars()], np.int64)
+    return (*(np.concatenate([p[i] for p in parts]) for i in range(5)), gdeg, star_off)
+
+
+def _table_buffers(n: int, k: int) -> tuple[np.ndarray, ...]:
+    import numpy as np  # start-up cost: only when a search runs
+
     i64 = np.int64
-    return {
-        "s1": np.array(s1, i64), "s2": np.array(s2, i64), "face": np.array(face, i64),
-        "degree": np.array(degree, i64), "owner": np.array(owner, i64), "offsets": np.array(offsets, i64),
-        "leader": np.array(leader, np.bool_), "kind": np.array(kind, i64), "sig": np.array(sig, i64),
-        "cand_start": cand_start.astype(i64), "cand_list": np.array(cand_list, i64),
-    }
+    return (np.zeros(n, i64), np.zeros(n, i64), np.zeros(n, i64), np.zeros(n, i64), np.zeros(n, i64),
+            np.zeros(k + 1, i64), np.zeros(n, np.bool_), np.zeros(k, i64), np.zeros(n, i64), np.zeros(n + 1, i64),
+            np.zeros(n, i64))
+
+
+_TABLE_NAMES = ("s1", "s2", "face", "degree", "owner", "offsets", "leader", "kind", "sig", "cand_start", "cand_list")
+
+
+def _search_arrays(combo: Sequence[Star]) -> dict[str, np.ndarray]:
+    """The integer tables the compiled search (:func:`.kernels.glue`) reads for ``combo``
+    (:func:`.kernels.combo_tables`)."""
+    import numpy as np  # start-up cost: only when a search runs
+
+    from tilekit.plugins.kuniform import kernels
+
+    g = _global_tables()
+    tables = _table_buffers(chamber_count(combo), len(combo))
+    n = kernels.combo_tables(np.array([_star_number(s) for s in combo], np.int64), *g, *tables)
+    out = dict(zip(_TABLE_NAMES, tables))
+    out["cand_start"] = out["cand_start"][:int(np.max(np.flatnonzero(out["cand_start"] == n))) + 1]
+    return out
+
+
+def star_numbers(combo: Sequence[Star]) -> list[int]:
+    """The stars of ``combo`` as their positions in :func:`stars` (the rows
+    :func:`minimal_symbols` takes)."""
+    return [_star_number(s) for s in combo]
+
+
+def minimal_symbols(combos: np.ndarray, *, symmetry_breaking: bool = True) -> Iterator[tuple[int, DSymbol]]:
+    """(row, symbol) for every minimal D-symbol the gluing search completes, for each star
+    combination in turn (a row of star numbers, :func:`star_numbers`, all rows of one length
+    k); isomorphic ones repeated. One compiled loop runs the whole list
+    (:func:`.kernels.search_chunk`); only the minimal symbols come back to Python."""
+    import numpy as np  # start-up cost: only when a search runs
+
+    from tilekit.plugins.kuniform import kernels
+
+    combos = np.ascontiguousarray(combos, dtype=np.int64)
+    if not len(combos):
+        return
+    g = _global_tables()
+    per_star = np.diff(g[-1])
+    nmax = int(per_star[combos].sum(axis=1).max())
+    k = combos.shape[1]
+    tables = _table_buffers(nmax, k)
+    s0 = np.full(nmax, -1, np.int64)
+    glued = np.zeros(k, np.int64)
+    stack = (np.zeros(nmax + 1, np.int64), np.zeros(nmax + 1, np.int64), np.zeros((nmax + 1, 4), np.int64),
+             np.zeros(nmax + 1, np.int64))
+    state = np.zeros(4, np.int64)
+    tmp = np.empty((kernels.BATCH, nmax), np.int64)
+    out = np.empty((4 * kernels.BATCH, nmax), np.int64)
+    out_combo = np.empty(4 * kernels.BATCH, np.int64)
+    while True:
+        got = kernels.search_chunk(combos, *g, symmetry_breaking, tables, s0, glued, *stack, state, tmp, out, out_combo)
+        for i in range(got):
+            row = int(out_combo[i])
+            t = _search_arrays([stars()[x] for x in combos[row]])
+            n = len(t["s1"])
+            yield row, DSymbol(tuple(out[i, :n].tolist()), *(tuple(t[key].tolist()) for key in ("s1", "s2", "face", "degree")))
+        if state[2] >= len(combos):
+            return
 
 
 def gluing_batches(combo: Sequence[Star], *, symmetry_breaking: bool = True,
@@ -432,18 +499,9 @@ def gluings(combo: Sequence[Star], *, symmetry_breaking: bool = True) -> Iterato
 def symbols(combo: Sequence[Star], *, symmetry_breaking: bool = True) -> dict[tuple, DSymbol]:
     """The distinct minimal D-symbols with exactly the vertex orbits of ``combo``, keyed by
     canonical form (the first gluing met of each class)."""
-    # start-up cost: NumPy and numba load only when a search runs
-    import numpy as np
-
-    from tilekit.plugins.kuniform import kernels
-
     out: dict[tuple, DSymbol] = {}
-    for rows, t in gluing_batches(combo, symmetry_breaking=symmetry_breaking):
-        s1, s2, face, degree = t["s1"], t["s2"], t["face"], t["degree"]
-        for i in np.flatnonzero(kernels.minimal_rows(rows, s1, s2, face, degree)):
-            key = _form_key(kernels.canonical_form(rows[i], s1, s2, face, degree))
-            if key not in out:
-                out[key] = DSymbol(tuple(rows[i].tolist()), *(tuple(x.tolist()) for x in (s1, s2, face, degree)))
+    for _row, sym in minimal_symbols([star_numbers(combo)], symmetry_breaking=symmetry_breaking):
+        out.setdefault(sym.canonical_form(), sym)
     return out
 
 

@@ -210,6 +210,82 @@ def glue(s1, s2, face, owner, offsets, leader, kind, sig, cand_start, cand_list,
 
 
 @njit(cache=True, nogil=True)
+def combo_tables(combo, gs1, gs2, gface, gleader, gsig, gdeg, star_off, s1, s2, face, degree, owner, offsets,
+                 leader, kind, sig, cand_start, cand_list):  # pragma: no cover - compiled
+    """Fill the search tables of one star combination (star ids ``combo``; the g... arrays
+    hold every star's chambers, star g's from ``star_off[g]``): the stars' chambers side by
+    side, their owner star, and the chambers grouped by signature (``cand_list``, group g
+    from ``cand_start[g]``, each in increasing order); return the number of chambers."""
+    n = 0
+    offsets[0] = 0
+    for t in range(combo.shape[0]):
+        g = combo[t]
+        base = n
+        for j in range(star_off[g], star_off[g + 1]):
+            s1[n] = gs1[j] + base
+            s2[n] = gs2[j] + base
+            face[n] = gface[j]
+            degree[n] = gdeg[g]
+            owner[n] = t
+            leader[n] = gleader[j]
+            n += 1
+        offsets[t + 1] = n
+        kind[t] = g
+    keys = np.empty(n, dtype=np.int64)
+    for x in range(n):
+        keys[x] = gsig[star_off[combo[owner[x]]] + x - offsets[owner[x]]]
+    order = np.argsort(keys, kind="mergesort")
+    groups = 0
+    for i in range(n):
+        x = order[i]
+        if i == 0 or keys[x] != keys[order[i - 1]]:
+            cand_start[groups] = i
+            groups += 1
+        sig[x] = groups - 1
+        cand_list[i] = x
+    cand_start[groups] = n
+    return n
+
+
+@njit(cache=True, nogil=True)
+def search_chunk(combos, gs1, gs2, gface, gleader, gsig, gdeg, star_off, breaking, tables, s0, glued, stack_d,
+                 stack_pos, stack_done, stack_nd, state, tmp, out, out_combo):  # pragma: no cover - compiled
+    """Run the gluing search of each star combination (a row of star ids in ``combos``) in
+    turn and write the minimal symbols' σ0 rows to ``out`` (padded with -1) and their
+    combination's row number to ``out_combo``; return how many. Returns early, resumable,
+    when ``out`` has less room than ``tmp`` (one batch of completions). ``state`` is
+    (depth, phase, combination, chambers) with phase as in :func:`glue`."""
+    s1, s2, face, degree, owner, offsets, leader, kind, sig, cand_start, cand_list = tables
+    count = 0
+    while state[2] < combos.shape[0]:
+        if out.shape[0] - count < tmp.shape[0]:
+            return count
+        if state[1] == 0 and state[0] == 0:
+            n = combo_tables(combos[state[2]], gs1, gs2, gface, gleader, gsig, gdeg, star_off, s1, s2, face, degree,
+                              owner, offsets, leader, kind, sig, cand_start, cand_list)
+            state[3] = n
+            s0[:n] = -1
+            glued[:] = 0
+        n = state[3]
+        k = combos.shape[1]
+        got = glue(s1[:n], s2[:n], face[:n], owner[:n], offsets[:k + 1], leader[:n], kind[:k], sig[:n],
+                   cand_start, cand_list[:n], breaking, s0[:n], glued[:k], stack_d, stack_pos, stack_done,
+                   stack_nd, state, tmp[:, :n])
+        for r in range(got):
+            cls = minimal_classes(tmp[r, :n], s1[:n], s2[:n], face[:n], degree[:n])
+            if cls.max() == n - 1:
+                out[count, :] = -1
+                out[count, :n] = tmp[r, :n]
+                out_combo[count] = state[2]
+                count += 1
+        if state[1] == 2:
+            state[0] = 0
+            state[1] = 0
+            state[2] += 1
+    return count
+
+
+@njit(cache=True, nogil=True)
 def minimal_classes(s0, s1, s2, face, degree):  # pragma: no cover - compiled
     """The classes of the coarsest partition compatible with σ0, σ1, σ2, m01, m12 (Moore's
     refinement), numbered from 0 in order of first chamber; equal to ``range(n)`` exactly
