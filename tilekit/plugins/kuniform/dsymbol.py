@@ -45,8 +45,8 @@ if TYPE_CHECKING:
 
 Perm = tuple[int, ...]
 T = TypeVar("T")
-#: The largest D-symbol text accepted: 12 chambers per vertex orbit, k <= 6.
-MAX_CHAMBERS = 72
+#: The largest D-symbol text accepted: 12 chambers per vertex orbit, k <= 7.
+MAX_CHAMBERS = 84
 
 
 # --------------------------------------------------------------------------- vertex stars
@@ -254,12 +254,15 @@ class DSymbol:
         return "/".join(",".join(str(v) for v in col) for col in (cols[3], cols[4], cols[0], cols[1], cols[2]))
 
     @classmethod
-    def decode(cls, text: str) -> DSymbol:
+    def decode(cls, text: str, *, max_chambers: int = MAX_CHAMBERS) -> DSymbol:
+        """Read :meth:`encode`'s text (any chamber numbering), checked: involutions,
+        σ0σ2 = σ2σ0, connected, curvature 0, at most ``max_chambers`` chambers."""
         parts = text.strip().split("/")
         if len(parts) != 5:
             raise ValueError(f"a D-symbol text has 5 '/'-separated lists (m01/m12/σ0/σ1/σ2), got {len(parts)}")
-        if any(p.count(",") >= MAX_CHAMBERS for p in parts):
-            raise ValueError(f"a D-symbol text may have at most {MAX_CHAMBERS} chambers (12 per vertex orbit, k <= 6)")
+        if any(p.count(",") >= max_chambers for p in parts):
+            limit = " (12 per vertex orbit, k <= 7)" if max_chambers == MAX_CHAMBERS else ""
+            raise ValueError(f"a D-symbol text may have at most {max_chambers} chambers{limit}")
         face, degree, s0, s1, s2 = (tuple(int(v) for v in p.split(",")) for p in parts)
         n = len(face)
         if not n or any(len(x) != n for x in (degree, s0, s1, s2)):
@@ -555,7 +558,7 @@ def from_gavrog(text: str) -> DSymbol:
     if m.group(2) is not None and int(m.group(2)) != 2:
         raise ValueError(f"only 2-dimensional D-symbols (tilings of the plane) are read here, not dimension {m.group(2)}")
     if not 1 <= n <= MAX_CHAMBERS:
-        raise ValueError(f"a D-symbol here has 1 to {MAX_CHAMBERS} chambers (12 per vertex orbit, k <= 6), not {n}")
+        raise ValueError(f"a D-symbol here has 1 to {MAX_CHAMBERS} chambers (12 per vertex orbit, k <= 7), not {n}")
     ops = m.group(3).split(",")
     mvals = m.group(4).split(",")
     if len(ops) != 3 or len(mvals) != 2:

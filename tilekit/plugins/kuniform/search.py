@@ -30,6 +30,7 @@ from tilekit.plugins.kuniform.dsymbol import (
 from tilekit.plugins.kuniform.names import ARCHIMEDEAN_TABLE, notation_properties
 from tilekit.plugins.kuniform.realize import periodic_tiling
 from tilekit.plugins.kuniform.tes import read_tes
+from tilekit.plugins.kuniform.tescatalog import tes_catalog_id
 from tilekit.regular.notation import VertexType, format_sequence
 from tilekit.regular.tiles import unit_text
 from tilekit.symmetry import ORBIFOLD, wallpaper_group
@@ -39,9 +40,9 @@ if TYPE_CHECKING:
     import numpy as np
 
 FAMILY = "k-uniform"
-#: The largest k a run accepts (Galebach's published enumeration ends at 6); k = 5 takes
-#: 8 minutes on two cores, k = 6 far longer (docs/benchmarks.md).
-MAX_K = 6
+#: The largest k a run accepts (Galebach's published enumeration ends at 6; the tes-catalog
+#: and OEIS A068599 give 1,472 for k = 7); docs/benchmarks.md has the times.
+MAX_K = 7
 
 
 def _order(seq: tuple[int, ...]) -> tuple:
@@ -185,13 +186,13 @@ def star_rows(types: Sequence[tuple[int, ...]]) -> np.ndarray:
 
 def tilings_with_types(types: Sequence[tuple[int, ...]]) -> list[DSymbol]:
     """The k-uniform tilings whose vertex orbits have exactly these types (one minimal
-    D-symbol each, in the order of their encodings)."""
+    D-symbol each, chambers in canonical order, in the order of their encodings)."""
     found: dict[tuple, DSymbol] = {}
     if not linked(types):
         return []
     for _row, sym in minimal_symbols(star_rows(types)):
         found.setdefault(sym.canonical_form(), sym)
-    return sorted(found.values(), key=lambda s: s.encode())
+    return sorted((DSymbol.decode(s.encode()) for s in found.values()), key=lambda s: s.encode())
 
 
 def record_of(tiling: KUniformTiling, name: str, iuc: str) -> CatalogueRecord:
@@ -199,6 +200,9 @@ def record_of(tiling: KUniformTiling, name: str, iuc: str) -> CatalogueRecord:
     props = tiling.properties()
     props.update({"wallpaper_group": iuc, "orbifold": ORBIFOLD[iuc], "symmetry_group": ORBIFOLD[iuc]})
     props.update(notation_properties(tiling.symbol))
+    ident = tes_catalog_id(props["dsymbol"])
+    if ident is not None:
+        props["tes_catalog"] = ident
     spec = tiling.spec()
     spec["name"] = name
     return CatalogueRecord(FAMILY, name, spec, title=f"{props['k']}-uniform tiling {props['orbit_types']}, {iuc}",
