@@ -315,6 +315,27 @@ def test_the_congruence_check_sees_moved_copies_and_tells_near_twins_apart():
     assert not congruent(tiling_of(p6m), tiling_of(p6))
 
 
+#: The catalogue's split by number of vertex types (tes-catalog folders; FACTS.md), m = 2..k.
+SPLITS = {4: [33, 85, 33], 5: [74, 149, 94, 15]}
+
+
+@pytest.mark.slow
+def test_five_uniform_through_the_run_layer(tmp_path):
+    """k = 5 with two worker processes: 332 tilings (A068599), split 74 / 149 / 94 / 15 by the
+    number of vertex types (the last is A068600), each stored once with k = 5."""
+    from tilekit.catalogue import open_catalogue
+    from tilekit.search import run_search
+
+    cat = open_catalogue(f"sqlite:///{tmp_path / 'k5.sqlite'}")
+    run = run_search(cat, "k-uniform", {"k": 5}, executor="process", workers=2)
+    summary = cat.run(run).summary
+    records = list(cat.query(family="k-uniform"))
+    cat.close()
+    assert summary["found"] == summary["tilings"] == A068599[4]
+    assert [summary[f"with_{m}_types"] for m in range(2, 6)] == SPLITS[5]
+    assert len({r.name for r in records}) == A068599[4] and all(r.properties["k"] == 5 for r in records)
+
+
 @pytest.mark.slow
 def test_four_uniform_through_the_run_layer(tmp_path):
     """k = 4 with two worker processes: 151 tilings (A068599), 33 with four vertex types
