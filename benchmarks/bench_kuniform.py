@@ -7,7 +7,9 @@ the same stars, face-first order and checks, but every labelling of every star i
 (what one writes first; it was tilekit's own first version). Both run in this process on the
 same type multisets and must give the same tilings.
 
-Run: python benchmarks/bench_kuniform.py [--k 1 2 3] [--plain-max-k 3] [--layout]
+Run: python benchmarks/bench_kuniform.py [--k 1 2 3] [--plain-max-k 3] [--layout] [--tes DIR]
+(--tes: also check that the search's symbols for each k are exactly those of a tes-catalog
+checkout's k-uniform files, read by the plugin's .tes reader)
 The whole stored run (chunks, records, wallpaper groups) is timed from the shell:
 /usr/bin/time tilekit --catalogue sqlite:////tmp/k.sqlite search k-uniform --k 4 --executor process --workers 2
 """
@@ -18,8 +20,15 @@ import argparse
 import os
 import time
 
-from tilekit.plugins.kuniform.dsymbol import Star, stabilizer_classes, symbols, vertex_types
-from tilekit.plugins.kuniform.search import chunks, star_choices, tiling_of
+from tilekit.plugins.kuniform.dsymbol import (
+    DSymbol,
+    Star,
+    minimal_symbols,
+    stabilizer_classes,
+    vertex_types,
+)
+from tilekit.plugins.kuniform.search import chunks, star_rows, tiling_of
+from tilekit.plugins.kuniform.tescatalog import match_files
 from tilekit.regular.notation import VertexType
 
 
@@ -27,8 +36,9 @@ def enumerate_k(k: int, symmetry_breaking: bool) -> tuple[dict, float]:
     found: dict = {}
     started = time.process_time()
     for chunk in chunks({"k": k}):  # the run's own multisets
-        for stars in star_choices([VertexType.parse(t).polygons for t in chunk["types"]]):
-            found.update(symbols(stars, symmetry_breaking=symmetry_breaking))
+        rows = star_rows([VertexType.parse(t).polygons for t in chunk["types"]])
+        for _row, sym in minimal_symbols(rows, symmetry_breaking=symmetry_breaking):
+            found.setdefault(sym.canonical_form(), sym)
     return found, time.process_time() - started
 
 
@@ -38,6 +48,7 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--k", type=int, nargs="+", default=[1, 2, 3])
     ap.add_argument("--plain-max-k", type=int, default=3, help="largest k for the plain search")
     ap.add_argument("--layout", action="store_true", help="also time laying every tiling out")
+    ap.add_argument("--tes", metavar="DIR", help="a tes-catalog checkout to compare each k's symbols with")
     return ap
 
 
@@ -62,6 +73,12 @@ def main() -> None:
             for sym in found.values():
                 tiling_of(sym)
             row += f" {time.process_time() - started:.2f} |"
+        if args.tes:
+            theirs, refused = match_files(args.tes, k)
+            ours = {DSymbol.decode(s.encode()).encode() for s in found.values()}
+            same = ours == {enc for enc, (kk, _i) in theirs.items() if kk == k} and not refused
+            row += f" tes-catalog k = {k}: {sum(1 for kk, _i in theirs.values() if kk == k)} files, " \
+                   f"{'the same symbols' if same else 'DIFFERENT'} |"
         print(row, flush=True)
     print(f"load average {os.getloadavg()[0]:.2f}")
 

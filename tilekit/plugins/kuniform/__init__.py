@@ -96,5 +96,14 @@ def tilekit_extra_properties(record):
 
 
 @hookimpl
+def tilekit_cli_commands(cli):
+    # measured start-up cost: cli.py loads only click and the core's cli_types; the reader and
+    # the catalogue load when the command runs
+    from tilekit.plugins.kuniform.cli import register
+
+    register(cli)
+
+
+@hookimpl
 def tilekit_claim_file(path):
     return FAMILY if str(path).lower().endswith(".tes") else None

@@ -35,15 +35,18 @@ from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import cache
-from typing import TypeVar
+from typing import TYPE_CHECKING, TypeVar
 
 from tilekit.regular.notation import VertexType, format_sequence
 from tilekit.regular.notation import euclidean_vertex_types as vertex_types  # the 21 vertex types
 
+if TYPE_CHECKING:
+    import numpy as np
+
 Perm = tuple[int, ...]
 T = TypeVar("T")
-#: The largest D-symbol text accepted: 12 chambers per vertex orbit, k <= 6.
-MAX_CHAMBERS = 72
+#: The largest D-symbol text accepted: 12 chambers per vertex orbit, k <= 7.
+MAX_CHAMBERS = 84
 
 
 # --------------------------------------------------------------------------- vertex stars
@@ -205,22 +208,23 @@ class DSymbol:
             x = self.s2[self.s1[x]]
         return VertexType.of(tuple(seq)).polygons
 
+    def arrays(self) -> tuple[np.ndarray, ...]:
+        """σ0, σ1, σ2, m01, m12 as int64 arrays (what the compiled loops read)."""
+        import numpy as np  # start-up cost: only when a symbol is compared or written
+
+        return tuple(np.array(x, np.int64) for x in (self.s0, self.s1, self.s2, self.face, self.degree))
+
     def is_minimal(self) -> bool:
-        return len(set(self.minimal_classes())) == self.size
+        return max(self.minimal_classes()) == self.size - 1
 
     def minimal_classes(self) -> list[int]:
         """The coarsest partition compatible with σ0, σ1, σ2, m01 and m12 (Moore's
-        refinement): its classes are the chambers of the minimal image."""
-        keys = list(zip(self.face, self.degree))
-        index = {k: i for i, k in enumerate(sorted(set(keys)))}
-        cls = [index[k] for k in keys]
-        while True:
-            sig = [(cls[c], cls[self.s0[c]], cls[self.s1[c]], cls[self.s2[c]]) for c in range(self.size)]
-            index = {k: i for i, k in enumerate(sorted(set(sig)))}
-            new = [index[k] for k in sig]
-            if len(index) == len(set(cls)):
-                return new
-            cls = new
+        refinement, :func:`.kernels.minimal_classes`): its classes, numbered in order of
+        their first chamber, are the chambers of the minimal image."""
+        # start-up cost: numba loads only when a symbol is compared or divided
+        from tilekit.plugins.kuniform import kernels
+
+        return kernels.minimal_classes(*self.arrays()).tolist()
 
     def minimal_image(self) -> DSymbol:
         """The symbol divided by :meth:`minimal_classes`: the D-symbol of the tiling's full
@@ -235,25 +239,13 @@ class DSymbol:
                        tuple(self.face[rep[i]] for i in range(n)), tuple(self.degree[rep[i]] for i in range(n)))
 
     def canonical_form(self) -> tuple:
-        """The least breadth-first relabelling over every start chamber: equal for
-        isomorphic symbols (the symbol must be connected)."""
-        best = None
-        for start in range(self.size):
-            number = {start: 0}
-            order = [start]
-            for x in order:
-                for s in (self.s0, self.s1, self.s2):
-                    y = s[x]
-                    if y not in number:
-                        number[y] = len(order)
-                        order.append(y)
-            form = tuple(
-                (number[self.s0[x]], number[self.s1[x]], number[self.s2[x]], self.face[x], self.degree[x])
-                for x in order
-            )
-            if best is None or form < best:
-                best = form
-        return best
+        """The least breadth-first relabelling over every start chamber
+        (:func:`.kernels.canonical_form`), as a tuple of rows (σ0, σ1, σ2, m01, m12): equal
+        for isomorphic symbols (the symbol must be connected)."""
+        # start-up cost: numba loads only when a symbol is compared or written
+        from tilekit.plugins.kuniform import kernels
+
+        return _form_key(kernels.canonical_form(*self.arrays()))
 
     def encode(self) -> str:
         """A compact text: ``m01/m12/σ0/σ1/σ2`` lists, chambers in canonical order."""
@@ -262,12 +254,15 @@ class DSymbol:
         return "/".join(",".join(str(v) for v in col) for col in (cols[3], cols[4], cols[0], cols[1], cols[2]))
 
     @classmethod
-    def decode(cls, text: str) -> DSymbol:
+    def decode(cls, text: str, *, max_chambers: int = MAX_CHAMBERS) -> DSymbol:
+        """Read :meth:`encode`'s text (any chamber numbering), checked: involutions,
+        σ0σ2 = σ2σ0, connected, curvature 0, at most ``max_chambers`` chambers."""
         parts = text.strip().split("/")
         if len(parts) != 5:
             raise ValueError(f"a D-symbol text has 5 '/'-separated lists (m01/m12/σ0/σ1/σ2), got {len(parts)}")
-        if any(p.count(",") >= MAX_CHAMBERS for p in parts):
-            raise ValueError(f"a D-symbol text may have at most {MAX_CHAMBERS} chambers (12 per vertex orbit, k <= 6)")
+        if any(p.count(",") >= max_chambers for p in parts):
+            limit = " (12 per vertex orbit, k <= 7)" if max_chambers == MAX_CHAMBERS else ""
+            raise ValueError(f"a D-symbol text may have at most {max_chambers} chambers{limit}")
         face, degree, s0, s1, s2 = (tuple(int(v) for v in p.split(",")) for p in parts)
         n = len(face)
         if not n or any(len(x) != n for x in (degree, s0, s1, s2)):
@@ -288,6 +283,10 @@ class DSymbol:
         if curvature != 0:
             raise ValueError(f"the D-symbol has curvature {curvature}, not 0: it does not tile the Euclidean plane")
         return sym
+
+
+def _form_key(form: np.ndarray) -> tuple:
+    return tuple(map(tuple, form.tolist()))
 
 
 def _component(sym: DSymbol) -> set[int]:
@@ -350,166 +349,162 @@ def chamber_count(combo: Sequence[Star]) -> int:
     return sum(2 * len(s.polygons) // len(s.group) for s in combo)
 
 
-def gluings(combo: Sequence[Star], *, symmetry_breaking: bool = True) -> Iterator[DSymbol]:
-    """Every σ0 completing the stars of ``combo`` to a connected D-symbol whose faces
-    close (see the module text); minimal or not, isomorphic ones repeated. Without
-    ``symmetry_breaking`` (the benchmarks' plain search) every labelling is tried."""
-    s1, s2, face, degree = _from_stars(combo)
-    n = len(s1)
-    s0 = [-1] * n
-    # symmetry breaking: a star none of whose chambers is glued yet ("fresh") can be
-    # relabelled by any automorphism of its chamber structure, and fresh stars of one kind
-    # are interchangeable; so a gluing into fresh stars goes only to the first fresh star
-    # of its kind, at a chamber that is least in its orbit under those automorphisms.
-    # Completeness: the part glued so far does not see the fresh star, so every completion
-    # with another choice is isomorphic to one with this choice.
-    owner: list[int] = []
-    offsets: list[int] = []
-    first_of_orbit: list[bool] = []
-    for i, star in enumerate(combo):
-        offsets.append(len(owner))
-        owner += [i] * chamber_count([star])
-        first_of_orbit += star_orbit_leaders(star)
-    offsets.append(n)
-    kind = [(star.polygons, star.stabilizer) for star in combo]
-    glued = [0] * len(combo)  # chambers of each star with σ0 set
+@cache
+def _star_tables(star: Star) -> tuple[np.ndarray, ...]:
+    """One star's part of the search tables: σ1, σ2 (local numbering), face sizes, orbit
+    leaders (:func:`star_orbit_leaders`) and each chamber's signature number."""
+    import numpy as np  # start-up cost: only when a search runs
+
+    _of, s1, s2, face = star.chambers()
+    i64 = np.int64
+    s1a, s2a, fa = np.array(s1, i64), np.array(s2, i64), np.array(face, i64)
     # σ0 keeps the face, commutes with σ2 (so keeps the face across the edge and whether the
     # edge end is fixed by σ2): candidates for d share this signature with it
-    by_signature: dict[tuple[int, bool, int], list[int]] = {}
-    for e in range(n):
-        by_signature.setdefault((face[e], s2[e] == e, face[s2[e]]), []).append(e)
-    signature = [(face[e], s2[e] == e, face[s2[e]]) for e in range(n)]
+    signature = (fa * 2 + (s2a == np.arange(len(s1)))) * 64 + fa[s2a]
+    return s1a, s2a, fa, np.array(star_orbit_leaders(star), np.bool_), signature
 
-    def fresh(t: int) -> bool:
-        return glued[t] == 0
 
-    def clear(xs: list[int]) -> None:
-        for x in xs:
-            s0[x] = -1
-            glued[owner[x]] -= 1
+@cache
+def _star_number(star: Star) -> int:
+    return stars().index(star)
 
-    def face_walk(c: int) -> tuple[bool, int]:
-        """Whether the <σ0, σ1>-orbit of c can still close (closed: r | p; open: length
-        <= 2p), and a chamber at an open end of it (-1 when closed)."""
-        p = face[c]
-        length, ends, open_end = 1, 0, -1
-        for step0 in (0, 1):
-            x, step = c, step0
-            while True:
-                y = s0[x] if step == 0 else s1[x]
-                if y < 0:
-                    open_end = x
-                    break
-                if y == x:
-                    ends += 1
-                    break
-                if y == c:  # a cycle: both directions meet
-                    return length % 2 == 0 and p % (length // 2) == 0, -1
-                length += 1
-                if length > 2 * p:
-                    return False, -1
-                x, step = y, 1 - step
-        if open_end >= 0:
-            return True, open_end
-        return ends == 2 and p % length == 0, -1
 
-    def connected() -> bool:
-        seen = {0}
-        stack = [0]
-        while stack:
-            x = stack.pop()
-            for y in (s0[x], s1[x], s2[x]):
-                if y not in seen:
-                    seen.add(y)
-                    stack.append(y)
-        return len(seen) == n
+@cache
+def _global_tables() -> tuple[np.ndarray, ...]:
+    """Every star's :func:`_star_tables` end to end (star g's chambers from ``star_off[g]``),
+    with each star's degree and those offsets: what :func:`.kernels.combo_tables` reads."""
+    import numpy as np  # start-up cost: only when a search runs
 
-    # explicit stack of (chamber, candidate iterator, assigned chambers)
-    def assign(d: int, e: int) -> list[int] | None:
-        pairs = [(d, e), (e, d), (s2[d], s2[e]), (s2[e], s2[d])]
-        done: list[int] = []
-        for a, b in pairs:
-            if s0[a] == -1:
-                s0[a] = b
-                glued[owner[a]] += 1
-                done.append(a)
-            elif s0[a] != b:
-                clear(done)
-                return None
-        return done
+    parts = [_star_tables(star) for star in stars()]
+    star_off = np.concatenate([[0], np.cumsum([len(p[0]) for p in parts])]).astype(np.int64)
+    gdeg = np.array([len(star.polygons) for star in stars()], np.int64)
+    return (*(np.concatenate([p[i] for p in parts]) for i in range(5)), gdeg, star_off)
 
-    def candidates(d: int) -> Iterator[int]:
-        home = owner[d]
-        allowed_fresh: dict[tuple, int] = {}
-        for t in range(len(combo)):
-            if t != home and kind[t] not in allowed_fresh and fresh(t):
-                allowed_fresh[kind[t]] = t
-        for e in by_signature[signature[d]]:
-            if s0[e] != -1:
-                continue
-            t = owner[e]
-            if symmetry_breaking and t != home and fresh(t) and (allowed_fresh.get(kind[t]) != t or not first_of_orbit[e]):
-                continue
-            yield e
 
-    stack: list[tuple[int, Iterator[int], list[int]]] = []
+def _table_buffers(n: int, k: int) -> tuple[np.ndarray, ...]:
+    import numpy as np  # start-up cost: only when a search runs
 
-    def first_open() -> int:
-        """The least unglued chamber of a star that is already glued to (-1 if none)."""
-        for t in range(len(combo)):
-            if t == 0 or not fresh(t):
-                for i in range(offsets[t], offsets[t + 1]):
-                    if s0[i] < 0:
-                        return i
-        return -1
+    i64 = np.int64
+    return (np.zeros(n, i64), np.zeros(n, i64), np.zeros(n, i64), np.zeros(n, i64), np.zeros(n, i64),
+            np.zeros(k + 1, i64), np.zeros(n, np.bool_), np.zeros(k, i64), np.zeros(n, i64), np.zeros(n + 1, i64),
+            np.zeros(n, i64))
 
-    d = first_open()
-    if d < 0:
+
+_TABLE_NAMES = ("s1", "s2", "face", "degree", "owner", "offsets", "leader", "kind", "sig", "cand_start", "cand_list")
+
+
+def _search_arrays(combo: Sequence[Star]) -> dict[str, np.ndarray]:
+    """The integer tables the compiled search (:func:`.kernels.glue`) reads for ``combo``
+    (:func:`.kernels.combo_tables`)."""
+    import numpy as np  # start-up cost: only when a search runs
+
+    from tilekit.plugins.kuniform import kernels
+
+    g = _global_tables()
+    tables = _table_buffers(chamber_count(combo), len(combo))
+    n = kernels.combo_tables(np.array([_star_number(s) for s in combo], np.int64), *g, *tables)
+    out = dict(zip(_TABLE_NAMES, tables))
+    out["cand_start"] = out["cand_start"][:int(np.max(np.flatnonzero(out["cand_start"] == n))) + 1]
+    return out
+
+
+def star_numbers(combo: Sequence[Star]) -> list[int]:
+    """The stars of ``combo`` as their positions in :func:`stars` (the rows
+    :func:`minimal_symbols` takes)."""
+    return [_star_number(s) for s in combo]
+
+
+def minimal_symbols(combos: np.ndarray, *, symmetry_breaking: bool = True) -> Iterator[tuple[int, DSymbol]]:
+    """(row, symbol) for every minimal D-symbol the gluing search completes, for each star
+    combination in turn (a row of star numbers, :func:`star_numbers`, all rows of one length
+    k); isomorphic ones repeated. One compiled loop runs the whole list
+    (:func:`.kernels.search_chunk`); only the minimal symbols come back to Python."""
+    import numpy as np  # start-up cost: only when a search runs
+
+    from tilekit.plugins.kuniform import kernels
+
+    combos = np.ascontiguousarray(combos, dtype=np.int64)
+    if not len(combos):
         return
-    stack.append((d, candidates(d), []))
-    while stack:
-        d, cands, done = stack[-1]
-        clear(done)
-        stack[-1] = (d, cands, [])
-        nxt = -1
-        for e in cands:
-            got = assign(d, e)
-            if got is None:
-                continue
-            ok = True
-            nxt = -1
-            for x in got:
-                fine, end = face_walk(x)
-                if not fine:
-                    ok = False
-                    break
-                if end >= 0 and nxt < 0:
-                    nxt = end
-            if ok:
-                stack[-1] = (d, cands, got)
-                break
-            clear(got)
-        else:
-            stack.pop()
-            continue
-        # close the face just extended before opening another
-        if nxt < 0:
-            nxt = first_open()
-        if nxt < 0:
-            # every glued-to star is complete: a symbol if nothing is left, else disconnected
-            if all(x >= 0 for x in s0) and connected():
-                yield DSymbol(tuple(s0), tuple(s1), tuple(s2), tuple(face), tuple(degree))
-            continue
-        stack.append((nxt, candidates(nxt), []))
+    g = _global_tables()
+    per_star = np.diff(g[-1])
+    nmax = int(per_star[combos].sum(axis=1).max())
+    k = combos.shape[1]
+    tables = _table_buffers(nmax, k)
+    s0 = np.full(nmax, -1, np.int64)
+    glued = np.zeros(k, np.int64)
+    stack = (np.zeros(nmax + 1, np.int64), np.zeros(nmax + 1, np.int64), np.zeros((nmax + 1, 4), np.int64),
+             np.zeros(nmax + 1, np.int64))
+    state = np.zeros(4, np.int64)
+    tmp = np.empty((kernels.BATCH, nmax), np.int64)
+    out = np.empty((4 * kernels.BATCH, nmax), np.int64)
+    out_combo = np.empty(4 * kernels.BATCH, np.int64)
+    while True:
+        got = kernels.search_chunk(combos, *g, symmetry_breaking, tables, s0, glued, *stack, state, tmp, out, out_combo)
+        for i in range(got):
+            row = int(out_combo[i])
+            t = _search_arrays([stars()[x] for x in combos[row]])
+            n = len(t["s1"])
+            yield row, DSymbol(tuple(out[i, :n].tolist()), *(tuple(t[key].tolist()) for key in ("s1", "s2", "face", "degree")))
+        if state[2] >= len(combos):
+            return
+
+
+def gluing_batches(combo: Sequence[Star], *, symmetry_breaking: bool = True,
+                   batch: int = 0) -> Iterator[tuple[np.ndarray, dict[str, np.ndarray]]]:
+    """Every σ0 completing the stars of ``combo`` to a connected D-symbol whose faces close,
+    as (rows, tables) batches: each row of ``rows`` is one σ0, ``tables`` holds σ1, σ2 and
+    the labels. Minimal or not, isomorphic ones repeated; without ``symmetry_breaking``
+    (the benchmarks' plain search) every labelling of every star is tried.
+
+    The search (compiled, :func:`.kernels.glue`) assigns σ0 edge end by edge end: a chamber
+    d, then each candidate e with d's signature (face, σ2-fixed, face across the edge) in
+    turn, setting σ0 on d, e, σ2(d), σ2(e) at once; every face walk it touched must still be
+    able to close (:mod:`this module's text <.dsymbol>`). It follows the face it just
+    extended (an open end of a touched walk), else the least open chamber of a star glued
+    to. Symmetry breaking: a star none of whose chambers is glued yet ("fresh") can be
+    relabelled by any automorphism of its chamber structure, and fresh stars of one kind are
+    interchangeable; so a gluing into fresh stars goes only to the first fresh star of its
+    kind, at a chamber that is least in its orbit under those automorphisms. Completeness:
+    the part glued so far does not see the fresh star, so every completion with another
+    choice is isomorphic to one with this choice."""
+    # start-up cost: NumPy and numba load only when a search runs
+    import numpy as np
+
+    from tilekit.plugins.kuniform import kernels
+
+    t = _search_arrays(combo)
+    n = len(t["s1"])
+    s0 = np.full(n, -1, np.int64)
+    glued = np.zeros(len(combo), np.int64)
+    stack_d = np.zeros(n + 1, np.int64)
+    stack_pos = np.zeros(n + 1, np.int64)
+    stack_done = np.zeros((n + 1, 4), np.int64)
+    stack_nd = np.zeros(n + 1, np.int64)
+    state = np.zeros(2, np.int64)
+    out = np.empty((batch or kernels.BATCH, n), np.int64)
+    while state[1] != 2:
+        got = kernels.glue(t["s1"], t["s2"], t["face"], t["owner"], t["offsets"], t["leader"], t["kind"], t["sig"],
+                           t["cand_start"], t["cand_list"], symmetry_breaking, s0, glued, stack_d, stack_pos,
+                           stack_done, stack_nd, state, out)
+        if got:
+            yield out[:got].copy(), t
+
+
+def gluings(combo: Sequence[Star], *, symmetry_breaking: bool = True) -> Iterator[DSymbol]:
+    """:func:`gluing_batches` one D-symbol at a time."""
+    for rows, t in gluing_batches(combo, symmetry_breaking=symmetry_breaking):
+        rest = tuple(tuple(t[k].tolist()) for k in ("s1", "s2", "face", "degree"))
+        for row in rows.tolist():
+            yield DSymbol(tuple(row), *rest)
 
 
 def symbols(combo: Sequence[Star], *, symmetry_breaking: bool = True) -> dict[tuple, DSymbol]:
-    """The distinct minimal D-symbols with exactly the vertex orbits of ``combo``."""
+    """The distinct minimal D-symbols with exactly the vertex orbits of ``combo``, keyed by
+    canonical form (the first gluing met of each class)."""
     out: dict[tuple, DSymbol] = {}
-    for sym in gluings(combo, symmetry_breaking=symmetry_breaking):
-        if sym.is_minimal():
-            key = sym.canonical_form()
-            out.setdefault(key, sym)
+    for _row, sym in minimal_symbols([star_numbers(combo)], symmetry_breaking=symmetry_breaking):
+        out.setdefault(sym.canonical_form(), sym)
     return out
 
 
@@ -563,7 +558,7 @@ def from_gavrog(text: str) -> DSymbol:
     if m.group(2) is not None and int(m.group(2)) != 2:
         raise ValueError(f"only 2-dimensional D-symbols (tilings of the plane) are read here, not dimension {m.group(2)}")
     if not 1 <= n <= MAX_CHAMBERS:
-        raise ValueError(f"a D-symbol here has 1 to {MAX_CHAMBERS} chambers (12 per vertex orbit, k <= 6), not {n}")
+        raise ValueError(f"a D-symbol here has 1 to {MAX_CHAMBERS} chambers (12 per vertex orbit, k <= 7), not {n}")
     ops = m.group(3).split(",")
     mvals = m.group(4).split(",")
     if len(ops) != 3 or len(mvals) != 2:

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 from collections import deque
+from functools import lru_cache
 
 import numpy as np
 
@@ -101,9 +102,11 @@ def _lattice(flags: dict, radius: float) -> tuple[np.ndarray, np.ndarray] | None
     return v1, v2
 
 
+@lru_cache(maxsize=4)
 def layout(sym: DSymbol) -> tuple[dict, np.ndarray, np.ndarray]:
     """The flags round the base vertex out to a radius that shows a lattice basis and a
-    whole fundamental parallelogram, with that basis."""
+    whole fundamental parallelogram, with that basis (the last few kept: a stored record is
+    laid out for its unit and again for its GomJau-Hogg notation; callers only read it)."""
     radius = 6.0 + math.sqrt(sym.size)
     while True:
         flags = develop(sym, radius)

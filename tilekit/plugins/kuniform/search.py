@@ -14,30 +14,35 @@ import itertools
 import json
 import time
 from collections.abc import Iterator, Mapping, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from tilekit.errors import ParseError
 from tilekit.plugins import CatalogueRecord, ChunkResult, Search, SearchParam
 from tilekit.plugins.kuniform.dsymbol import (
     DSymbol,
     Star,
+    minimal_symbols,
     stabilizer_classes,
-    symbols,
+    star_numbers,
     to_gavrog,
     vertex_types,
 )
 from tilekit.plugins.kuniform.names import ARCHIMEDEAN_TABLE, notation_properties
 from tilekit.plugins.kuniform.realize import periodic_tiling
 from tilekit.plugins.kuniform.tes import read_tes
+from tilekit.plugins.kuniform.tescatalog import tes_catalog_id
 from tilekit.regular.notation import VertexType, format_sequence
 from tilekit.regular.tiles import unit_text
 from tilekit.symmetry import ORBIFOLD, wallpaper_group
 from tilekit.tiling import PeriodicTiling
 
+if TYPE_CHECKING:
+    import numpy as np
+
 FAMILY = "k-uniform"
-#: The largest k a run accepts (Galebach's published enumeration ends at 6); k = 5 takes
-#: 8 minutes on two cores, k = 6 far longer (docs/benchmarks.md).
-MAX_K = 6
+#: The largest k a run accepts (Galebach's published enumeration ends at 6; the tes-catalog
+#: and OEIS A068599 give 1,472 for k = 7); docs/benchmarks.md has the times.
+MAX_K = 7
 
 
 def _order(seq: tuple[int, ...]) -> tuple:
@@ -163,16 +168,31 @@ def star_choices(types: Sequence[tuple[int, ...]]) -> Iterator[tuple[Star, ...]]
         yield tuple(Star(seq, i) for (seq, _n), classes in zip(groups, pick) for i in classes)
 
 
+def star_rows(types: Sequence[tuple[int, ...]]) -> np.ndarray:
+    """:func:`star_choices` as rows of star numbers (positions in :func:`.dsymbol.stars`),
+    in the same order, built as arrays (a k = 7 chunk has up to ~10^5 of them)."""
+    import numpy as np  # start-up cost: only when a search runs
+
+    groups = [(seq, len(list(run))) for seq, run in itertools.groupby(sorted(types))]
+    blocks = []
+    for seq, n in groups:
+        first = star_numbers([Star(seq, 0)])[0]  # a type's stars are consecutive, class order
+        picks = np.array(list(itertools.combinations_with_replacement(range(len(stabilizer_classes(seq))), n)),
+                         dtype=np.int64).reshape(-1, n)
+        blocks.append(first + picks)
+    index = np.indices([len(b) for b in blocks]).reshape(len(blocks), -1)
+    return np.concatenate([b[i] for b, i in zip(blocks, index)], axis=1)
+
+
 def tilings_with_types(types: Sequence[tuple[int, ...]]) -> list[DSymbol]:
     """The k-uniform tilings whose vertex orbits have exactly these types (one minimal
-    D-symbol each, in the order of their encodings)."""
+    D-symbol each, chambers in canonical order, in the order of their encodings)."""
     found: dict[tuple, DSymbol] = {}
     if not linked(types):
         return []
-    for combo in star_choices(types):
-        for key, sym in symbols(combo).items():
-            found.setdefault(key, sym)
-    return sorted(found.values(), key=lambda s: s.encode())
+    for _row, sym in minimal_symbols(star_rows(types)):
+        found.setdefault(sym.canonical_form(), sym)
+    return sorted((DSymbol.decode(s.encode()) for s in found.values()), key=lambda s: s.encode())
 
 
 def record_of(tiling: KUniformTiling, name: str, iuc: str) -> CatalogueRecord:
@@ -180,6 +200,9 @@ def record_of(tiling: KUniformTiling, name: str, iuc: str) -> CatalogueRecord:
     props = tiling.properties()
     props.update({"wallpaper_group": iuc, "orbifold": ORBIFOLD[iuc], "symmetry_group": ORBIFOLD[iuc]})
     props.update(notation_properties(tiling.symbol))
+    ident = tes_catalog_id(props["dsymbol"])
+    if ident is not None:
+        props["tes_catalog"] = ident
     spec = tiling.spec()
     spec["name"] = name
     return CatalogueRecord(FAMILY, name, spec, title=f"{props['k']}-uniform tiling {props['orbit_types']}, {iuc}",

@@ -217,7 +217,8 @@ def symbol_of_tes(tes: TesFile, source: str = ".tes file") -> DSymbol:
         degree.append(steps)
     enc = "/".join(",".join(map(str, col)) for col in (face, degree, s0, s1, s2))
     try:
-        return DSymbol.decode(enc).minimal_image()
+        # the file's tiles are a translational unit or more: its symbol is not minimal yet
+        return DSymbol.decode(enc, max_chambers=4 * MAX_LABELS).minimal_image()
     except ValueError as exc:
         raise ParseError(f"{source}: {exc}") from None
 
