@@ -30,7 +30,7 @@ import tilekit.api
 from tilekit.catalogue import open_catalogue, run_json
 from tilekit.errors import NotFoundError, ParameterError, TilekitError
 from tilekit.plugins import WebRoute, families, get_plugin_manager
-from tilekit.web import api, pages
+from tilekit.web import api, executor, pages
 from tilekit.web.browse import Browser, csv_text, listing_csv, listing_json
 from tilekit.web.cache import DEFAULT_CACHE_BYTES
 from tilekit.web.executor import Busy, RenderPool, RenderTimeout, resident_bytes
@@ -470,8 +470,6 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
 
 def _pool(url: str | None, catalogue: Any, max_tiles: int, workers: int, queue_size: int | None,
           seconds: float | None, worker_bytes: int | None) -> RenderPool:
-    from tilekit.web import executor
-
     if workers > 0 and url is None and catalogue is not None:
         url = catalogue.engine.url.render_as_string(hide_password=False)
         if catalogue.path is None and url.startswith("sqlite"):  # in memory: no other process can open it

@@ -119,7 +119,9 @@ class Browser:
         cat = self.catalogue
         cat.check_family(family)
         rt = cat.family_table(family)
-        return rt.family if rt is not None and rt.family else family
+        if rt is None or not rt.family or rt.scopes:  # a scoped name (polyform) reads its own rows
+            return family
+        return rt.family
 
     def counts(self) -> dict[str, int]:
         """Entries per family, as each family's page lists them."""
@@ -155,6 +157,10 @@ class Browser:
         family = self.family_name(family)
         every = self.sources()
         chosen = [s for s in every if family is None or s.family == family]
+        if family is not None and not chosen:  # a result table's scoped name (polyform: every grid)
+            rt = self.catalogue.family_table(family)
+            if rt is not None:
+                chosen = [Source(family, rt, frozenset(c.name for c in rt.table.c))]
         for f in filters:
             if not any(s.has(f.key) for s in chosen):
                 known = sorted({k for s in chosen for k in s.keys} - set(TEXT_COLUMNS) - set(SHARED_COLUMNS))

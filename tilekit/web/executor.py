@@ -78,82 +78,6 @@ def resident_bytes(pid: int | str = "self") -> int:
         return 0
 
 
-# --------------------------------------------------------------------------- the child side
-
-_CHILD: dict[str, Any] = {}
-
-
-def _child_entry() -> None:
-    """A worker's main (``python -c``): argv is the socket's descriptor, the catalogue URL
-    ('' for the default catalogue), the tile limit and the server's process id."""
-    from multiprocessing.connection import Connection
-
-    fd, url, max_tiles, parent = sys.argv[1:5]
-    _die_with(int(parent))
-    _child_main(Connection(int(fd)), url or None, int(max_tiles))
-
-
-def _die_with(parent: int) -> None:
-    """End this worker when the server process ends, however it ends: a worker still importing
-    tilekit would otherwise outlive it, holding its stderr. (Linux's parent-death signal
-    follows the thread that started the worker, not the process, so a watcher polls.)"""
-
-    def watch() -> None:
-        while os.getppid() == parent:
-            time.sleep(0.5)
-        os._exit(0)
-
-    threading.Thread(target=watch, daemon=True, name="tilekit-render-watch").start()
-
-
-def _child_main(conn: Any, url: str | None, max_tiles: int) -> None:
-    import signal
-
-    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the server's Ctrl-C stops the parent; it ends us
-    try:
-        from tilekit.catalogue import open_catalogue
-        from tilekit.web.service import Renderer
-
-        _CHILD["renderer"] = Renderer(open_catalogue(url), max_tiles, cache_bytes=0)
-    except BaseException as exc:  # noqa: BLE001 - reported to the parent as one line
-        with contextlib.suppress(OSError):
-            conn.send(("error", 503, f"render worker could not start: {_line(exc)}", {}))
-        return
-    try:
-        conn.send(("ready",))
-    except OSError:  # the server stopped while this worker started
-        return
-    while True:
-        try:
-            fn, args = conn.recv()
-        except (EOFError, OSError):
-            return
-        try:
-            out = fn(*args)
-            reply: tuple = ("ok", out, resident_bytes())
-        except TilekitError as exc:
-            from tilekit.web.api import status_of
-
-            extra = {k: getattr(exc, k) for k in ("estimate", "limit") if hasattr(exc, k)}
-            reply = ("error", status_of(exc), _line(exc), extra)
-        except (ValueError, TypeError) as exc:
-            reply = ("error", 400, f"bad request: {_line(exc)}", {})
-        except MemoryError:
-            reply = ("error", 503, "the render ran out of memory; ask for a smaller region or depth", {})
-        except Exception as exc:  # noqa: BLE001 - a bug: answered as 500, the worker lives on
-            reply = ("error", 500, f"render failed: {type(exc).__name__}: {_line(exc)}", {})
-        try:
-            conn.send(reply)
-        except (OSError, ValueError):
-            return
-
-
-def render_job(name: str, raw: dict[str, Any], thumbnail: bool) -> tuple[str, int]:
-    """In a worker: (SVG, estimate) of ``Renderer.render`` over the worker's own catalogue."""
-    _, svg, estimate = _CHILD["renderer"].render(name, raw, thumbnail=thumbnail)
-    return svg, estimate
-
-
 def _line(exc: BaseException) -> str:
     return "; ".join(s.strip() for s in str(exc).splitlines() if s.strip()) or type(exc).__name__
 
@@ -169,7 +93,7 @@ class _Worker:
         from multiprocessing.connection import Connection
 
         ours, theirs = socket.socketpair()
-        code = "from tilekit.web.executor import _child_entry; _child_entry()"
+        code = "from tilekit.web.worker import main; main()"
         try:
             self.process = subprocess.Popen(
                 [sys.executable, "-c", code, str(theirs.fileno()), url or "", str(max_tiles), str(os.getpid())],

@@ -225,8 +225,6 @@ class Renderer:
         if self.pool is None:
             svg, estimate = draw()
         else:  # off this process, bounded in time and in number (tilekit.web.executor)
-            from tilekit.web.executor import render_job
-
             svg, estimate = self.pool.call(render_job, name, dict(raw), thumbnail, local=draw,
                                            what=f"render of {name!r}", key=name)
         self.cache.put(key, svg)
@@ -242,3 +240,13 @@ class Renderer:
         blob = json.dumps({"family": tiling.family, "name": tiling.name, "spec": tiling.spec()},
                           sort_keys=True, default=str)
         return hashlib.sha256(blob.encode()).hexdigest()[:16]
+
+
+#: The renderer of a render worker process (set by :mod:`tilekit.web.worker` at its start).
+WORKER: dict[str, Any] = {}
+
+
+def render_job(name: str, raw: dict[str, Any], thumbnail: bool) -> tuple[str, int]:
+    """In a worker: (SVG, estimate) of ``Renderer.render`` over the worker's own catalogue."""
+    _, svg, estimate = WORKER["renderer"].render(name, raw, thumbnail=thumbnail)
+    return svg, estimate

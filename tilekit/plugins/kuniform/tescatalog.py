@@ -79,6 +79,7 @@ def match_files(root: str | os.PathLike[str], max_k: int | None = None
                 ) -> tuple[dict[str, tuple[int, str]], list[tuple[str, str]]]:
     """Read every file (:func:`catalogue_files`): ``{encoding: (k, identifier)}`` and the
     refused files as (path, one-line reason). Two files of one tiling refuse the second."""
+    # start-up cost: the reader (NumPy, the D-symbol code) loads only for an import
     from tilekit.plugins.kuniform.tes import read_tes
 
     found: dict[str, tuple[int, str]] = {}
@@ -145,6 +146,7 @@ def attach(cat: Any, root: str | os.PathLike[str], max_k: int | None = None) -> 
     checkout at ``root`` draws (k <= max_k); returns counts: ``attached``, ``unmatched`` (files
     of a searched k that draw no record: 0 when the search is complete), ``refused`` ((path,
     reason) of malformed files), ``ks`` (the k values the catalogue holds)."""
+    # start-up cost: the plugin manager loads only for an import
     from tilekit.plugins import CatalogueRecord
 
     records = {e.properties.get("dsymbol"): e for e in cat.iter_query(family=FAMILY)}
