@@ -89,7 +89,7 @@ def serve(catalogue: str, *options: str):
             proc.communicate(timeout=30)
         except subprocess.TimeoutExpired:
             proc.kill()
-            proc.communicate()
+            proc.wait()  # not communicate(): a render worker outliving the server may hold its stderr
 
 
 def _pct(values: list[float], q: float) -> float:
@@ -217,7 +217,8 @@ def _mb(pair: tuple[float, ...]) -> str:
     return f"{pair[0]:,.0f} + {pair[1]:,.0f} MiB"
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
+    """The command's options (the docs' runner checks documented invocations against them)."""
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--clients", type=int, default=16)
     ap.add_argument("--requests", type=int, default=2000)
@@ -227,7 +228,11 @@ def main() -> None:
     ap.add_argument("--render-workers", type=int, default=None,
                     help="tilekit serve's --render-workers (0: the in-thread renders of the app before issue 30)")
     ap.add_argument("--catalogue", help="an existing catalogue (default: a fresh SQLite file)")
-    args = ap.parse_args()
+    return ap
+
+
+def main() -> None:
+    args = build_parser().parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         catalogue = args.catalogue or str(Path(tmp) / "load.sqlite")
         if not args.catalogue:

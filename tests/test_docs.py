@@ -35,14 +35,13 @@ _STATES: dict[str, DocState] = {}
 
 
 def _marks(block: Block) -> list:
-    # A document's blocks share a folder and a namespace: under pytest-xdist (README's test
-    # command runs ``--dist loadgroup``) they all go to one worker, in document order.
-    group = pytest.mark.xdist_group(block.doc.relative_to(ROOT).as_posix())
+    # A document's blocks share a folder and a namespace: README's test command runs pytest-xdist
+    # with ``--dist loadfile``, so this file's tests run on one worker, in document order.
     if block.tag in ("slow", "server"):
-        return [group, pytest.mark.slow]
+        return [pytest.mark.slow]
     if block.tag == "benchmark" and os.environ.get("TILEKIT_DOC_BENCHMARKS") == "1":
-        return [group, pytest.mark.slow]
-    return [group]
+        return [pytest.mark.slow]
+    return []
 
 
 def _state(block: Block, factory: pytest.TempPathFactory) -> DocState:

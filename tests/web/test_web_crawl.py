@@ -37,7 +37,9 @@ def full_site(tmp_path_factory):
     run_search(cat, "polyomino-classify", {"max_cells": 8})
     for k in (1, 2, 3):
         run_search(cat, "k-uniform", {"k": k})
-    with serving(create_app(catalogue=cat)) as url:
+    # the crawl checks links, not capacity (tests/web/test_web_load.py does): thumbnails drawn
+    # one at a time may wait longer than the default 20 s for a slot on a loaded machine
+    with serving(create_app(catalogue=cat, render_seconds=300)) as url:
         yield cat, url
     cat.close()
 

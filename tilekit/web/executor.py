@@ -89,14 +89,15 @@ class _Worker:
     """One worker process (``python -c``, not multiprocessing's spawn, which re-runs the
     parent's ``__main__``) and a socket pair to it carrying pickled calls and answers."""
 
-    def __init__(self, url: str | None, max_tiles: int) -> None:
+    def __init__(self, url: str | None, max_tiles: int, seconds: float = 0.0) -> None:
         from multiprocessing.connection import Connection
 
         ours, theirs = socket.socketpair()
         code = "from tilekit.web.worker import main; main()"
         try:
             self.process = subprocess.Popen(
-                [sys.executable, "-c", code, str(theirs.fileno()), url or "", str(max_tiles), str(os.getpid())],
+                [sys.executable, "-c", code, str(theirs.fileno()), url or "", str(max_tiles), str(os.getpid()),
+                 str(seconds)],
                 pass_fds=(theirs.fileno(),), stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL)
         finally:
             theirs.close()
@@ -237,7 +238,7 @@ class RenderPool:
             if worker is not None:
                 self._forget(worker)
             try:
-                worker = _Worker(self.url, self.max_tiles)
+                worker = _Worker(self.url, self.max_tiles, self.seconds)
             except WorkerError as exc:
                 return None, None, exc
             with self._lock:
@@ -279,7 +280,7 @@ class RenderPool:
             worker: _Worker | None = None
             if not self._closed:
                 with contextlib.suppress(WorkerError):
-                    worker = _Worker(self.url, self.max_tiles)
+                    worker = _Worker(self.url, self.max_tiles, self.seconds)
                 if worker is not None:
                     with self._lock:
                         self._live.add(worker)

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 import threading
 from collections import OrderedDict
 from collections.abc import Iterable, Mapping
@@ -217,9 +218,16 @@ class Renderer:
         if hit is not None:
             return tiling, hit, -1
 
+        # the estimate is checked here, before a render slot is taken: an oversize request is 413,
+        # never a 503 of a full pool
+        box_, _ = api.tiling_region(tiling, box)
+        estimate = float(tiling.estimate_tiles(box_))
+        if not (math.isfinite(estimate) and estimate <= self.max_tiles):
+            _too_large(name)(estimate if math.isfinite(estimate) else 2**62, self.max_tiles, tiling.name or name)
+
         def draw() -> tuple[str, int]:
             picture = api.render_svg(tiling, box, max_tiles=self.max_tiles, too_large=_too_large(name),
-                                     palette=palette, labels=labels, size=size)
+                                     estimate=estimate, palette=palette, labels=labels, size=size)
             return picture.svg, picture.estimate
 
         if self.pool is None:

@@ -23,8 +23,9 @@ def main() -> None:
     from multiprocessing.connection import Connection
 
     fd, url, max_tiles, parent = sys.argv[1:5]
+    seconds = float(sys.argv[5]) if len(sys.argv) > 5 else 0.0
     _die_with(int(parent))
-    _child_main(Connection(int(fd)), url or None, int(max_tiles))
+    _child_main(Connection(int(fd)), url or None, int(max_tiles), seconds)
 
 
 def _die_with(parent: int) -> None:
@@ -40,10 +41,15 @@ def _die_with(parent: int) -> None:
     threading.Thread(target=watch, daemon=True, name="tilekit-render-watch").start()
 
 
-def _child_main(conn: Any, url: str | None, max_tiles: int) -> None:
+def _child_main(conn: Any, url: str | None, max_tiles: int, seconds: float = 0.0) -> None:
     import signal
 
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the server's Ctrl-C stops the parent; it ends us
+    # A render past twice its budget ends this process from the kernel (SIGALRM's default
+    # action): the server kills a late worker itself, but when the server is gone, a solver
+    # holding the GIL would keep _die_with's thread from ever running.
+    signal.signal(signal.SIGALRM, signal.SIG_DFL)
+    alarm = int(2 * seconds) + 5 if seconds > 0 else 0
     try:
         # start-up cost: imported after _die_with watches the server (an import takes seconds)
         from tilekit.catalogue import open_catalogue
@@ -65,7 +71,9 @@ def _child_main(conn: Any, url: str | None, max_tiles: int) -> None:
         except (EOFError, OSError):
             return
         try:
+            signal.alarm(alarm)
             out = fn(*args)
+            signal.alarm(0)
             reply: tuple = ("ok", out, resident_bytes())
         except TilekitError as exc:
             extra = {k: getattr(exc, k) for k in ("estimate", "limit") if hasattr(exc, k)}
@@ -76,6 +84,7 @@ def _child_main(conn: Any, url: str | None, max_tiles: int) -> None:
             reply = ("error", 503, "the render ran out of memory; ask for a smaller region or depth", {})
         except Exception as exc:  # noqa: BLE001 - a bug: answered as 500, the worker lives on
             reply = ("error", 500, f"render failed: {type(exc).__name__}: {_line(exc)}", {})
+        signal.alarm(0)
         try:
             conn.send(reply)
         except (OSError, ValueError):
