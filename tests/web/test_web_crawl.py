@@ -38,8 +38,9 @@ def full_site(tmp_path_factory):
     for k in (1, 2, 3):
         run_search(cat, "k-uniform", {"k": k})
     # the crawl checks links, not capacity (tests/web/test_web_load.py does): thumbnails drawn
-    # one at a time may wait longer than the default 20 s for a slot on a loaded machine
-    with serving(create_app(catalogue=cat, render_seconds=300)) as url:
+    # one at a time may wait longer than the default 20 s for a slot, and a table page asks for
+    # more at once than the default queue (8) holds
+    with serving(create_app(catalogue=cat, render_seconds=300, render_queue=64)) as url:
         yield cat, url
     cat.close()
 
