@@ -422,6 +422,9 @@ def _in_child(job: Any, solver: str, time_limit: float) -> tuple[bool | None, li
     parent, child = ctx.Pipe(duplex=False)
 
     def target() -> None:
+        # only the parent reads: with its end closed here, a parent that died breaks the pipe
+        # (the send fails and this process ends) instead of blocking the send for ever
+        parent.close()
         child.send(job())
         child.close()
 
