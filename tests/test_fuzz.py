@@ -50,8 +50,8 @@ def parses_or_tilekit_error(fn: Callable[..., Any], *args: Any) -> None:
 def _parsers() -> dict[str, tuple[Callable[[str], Any], str]]:
     from tilekit.catalogue import parse_filter
     from tilekit.colouring import Colouring
+    from tilekit.edgeshapes import EdgeShape, parse_edge_option
     from tilekit.geometry import as_region
-    from tilekit.plugins.isohedral.shapes import EdgeShape, parse_edge_option
     from tilekit.plugins.isohedral.symbols import IncidenceSymbol
     from tilekit.plugins.isohedral.templates import parse_ih_name, parse_zero_based_colouring
     from tilekit.plugins.substitution.expr import evaluate

@@ -16,11 +16,11 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from tilekit.cli import cli
+from tilekit.edgeshapes import EdgeShape
 from tilekit.errors import ParameterError, ParseError
 from tilekit.plugins.isohedral import escher
 from tilekit.plugins.isohedral.engine import IsohedralTiling
 from tilekit.plugins.isohedral.escher_limits import MAX_GOAL_POINTS
-from tilekit.plugins.isohedral.shapes import EdgeShape
 from tilekit.plugins.isohedral.spec import editor_path, tiling_from_spec
 from tilekit.polygon import signed_area
 

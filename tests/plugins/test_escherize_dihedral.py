@@ -17,10 +17,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from tilekit.cli import cli
+from tilekit.edgeshapes import EdgeShape
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.plugins.isohedral import dihedral, escher, heaven
 from tilekit.plugins.isohedral.engine import IsohedralTiling
-from tilekit.plugins.isohedral.shapes import EdgeShape
 from tilekit.plugins.isohedral.spec import tiling_from_spec
 from tilekit.plugins.isohedral.split import (
     SplitTiling,

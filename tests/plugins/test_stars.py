@@ -140,6 +140,20 @@ def test_bad_input_is_one_line():
         stars.StarTiling("3.3.3.6.6", radius=99)
 
 
+def test_a_search_past_the_pairing_limit_is_refused_before_it_starts():
+    """3^8's star allows more than MAX_PAIRINGS pairings (each a patch to develop): refused at
+    once with the limit and the way round it; a configure that changes the configuration and
+    gives no pairing goes through the same search."""
+    import time
+
+    start = time.perf_counter()
+    with pytest.raises(ParameterError, match=f"more than {stars.MAX_PAIRINGS} pairings.*--set pairing"):
+        stars.find((3,) * 8)
+    with pytest.raises(ParameterError, match="too many to search"):
+        stars.StarTiling("3.3.3.6.6", pairing="0- 1+ 2+ 3- 4+").configure(configuration="3^8")
+    assert time.perf_counter() - start < 5
+
+
 @pytest.mark.slow  # about 18 s at load 22 on 2 cores: four developments of radius up to 6.5, each validated
 def test_every_shipped_record_closes_up_and_validates():
     """The records of catalogue/curved/stars.toml (3.3.3.p.p, p = 6..12): the shipped pairing

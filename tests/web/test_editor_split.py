@@ -19,9 +19,9 @@ from hypothesis import strategies as st
 from test_web_browser import renders, wait_render
 
 from tilekit.cli import cli
+from tilekit.edgeshapes import EdgeShape
 from tilekit.errors import GeometryError, ParseError
 from tilekit.plugins.isohedral.engine import IsohedralTiling
-from tilekit.plugins.isohedral.shapes import EdgeShape
 from tilekit.plugins.isohedral.spec import (
     editor_path,
     editor_query,

@@ -12,9 +12,9 @@ from urllib.parse import parse_qsl, urlsplit
 import numpy as np
 import pytest
 
+from tilekit.edgeshapes import EdgeShape
 from tilekit.errors import ParameterError, ParseError
 from tilekit.plugins.isohedral.engine import IsohedralTiling, unmarked_from_spec
-from tilekit.plugins.isohedral.shapes import EdgeShape
 from tilekit.plugins.isohedral.spec import editor_path, editor_query
 from tilekit.web.service import normalise_options, query_options
 

@@ -14,13 +14,14 @@ from tilekit.errors import ParameterError
 FORMATS: tuple[str, ...] = ("json", "csv", "jsonl")
 
 
-def _cell(value: Any) -> str:
+def csv_cell(value: Any) -> str:
+    """A property value as one CSV cell: empty for None, true/false, JSON for lists and tables."""
     if value is None:
         return ""
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, list | dict):
-        return json.dumps(value, ensure_ascii=False)
+        return json.dumps(value, ensure_ascii=False, default=str)
     return str(value)
 
 
@@ -69,7 +70,7 @@ def write_entries(
         row = [e.name, e.family, e.title]
         if full:
             row.append("; ".join(e.aliases))
-        row.extend(_cell(e.properties.get(k)) for k in keys)
+        row.extend(csv_cell(e.properties.get(k)) for k in keys)
         if full:
             row.append(json.dumps(e.spec, ensure_ascii=False))
         writer.writerow(row)

@@ -24,6 +24,7 @@ from typing import Any
 
 from tilekit.catalogue.entry import SHARED_COLUMNS, TEXT_COLUMNS
 from tilekit.catalogue.filters import parse_filter, parse_order
+from tilekit.catalogue.output import csv_cell
 from tilekit.catalogue.vocabulary import KEY_ALIASES, SHARED_BY_NAME, SHARED_KEYS, canonical_key
 from tilekit.errors import NotFoundError
 from tilekit.plugins import families as installed_families
@@ -292,18 +293,8 @@ def csv_text(rows: Iterable[Mapping[str, Any]], columns: Sequence[str]) -> str:
     writer = csv.writer(out, lineterminator="\n")
     writer.writerow(columns)
     for row in rows:
-        writer.writerow([_csv_cell(row.get(c)) for c in columns])
+        writer.writerow([csv_cell(row.get(c)) for c in columns])
     return out.getvalue()
-
-
-def _csv_cell(value: Any) -> Any:
-    if value is None:
-        return ""
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, list | dict):
-        return json.dumps(value, ensure_ascii=False, default=str)
-    return value
 
 
 def listing_csv(listing: Listing) -> str:

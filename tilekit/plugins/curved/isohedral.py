@@ -46,19 +46,22 @@ from typing import Any
 
 import numpy as np
 import shapely
-from shapely.geometry.base import BaseGeometry
 
 from tilekit.edgeshapes import ROT, EdgeShape, apply_unit, complete
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.files import read_text
-from tilekit.geometry import as_region
 from tilekit.limits import MAX_TILES, refuse_over, refuse_over_memory
 from tilekit.plugins.curved import model, wythoff
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
-from tilekit.plugins.curved.render import curved_svg
-from tilekit.plugins.curved.tiling import MAX_RADIUS, PLANES, _number
+from tilekit.plugins.curved.tiling import (
+    MAX_RADIUS,
+    PLANES,
+    CurvedTiling,
+    _number,
+    clipped,
+    spec_table,
+)
 from tilekit.polygon import ear_clip, signed_area
-from tilekit.tiling import Patch, Tiling
 
 FAMILY = "curved-isohedral"
 #: Chart points per segment of an edge's curve (the curve is subdivided on the unit segment
@@ -297,7 +300,7 @@ def _densify(curve: np.ndarray, samples: int) -> np.ndarray:
     return np.vstack([pts.reshape(-1, 2), curve[-1:]])
 
 
-class CurvedIsohedralTiling(Tiling):
+class CurvedIsohedralTiling(CurvedTiling):
     """Copies of one deformable tile filling the sphere or the hyperbolic plane (see the module).
 
     ``CurvedIsohedralTiling(7, 3, pairing='a b c a b c d', edges={'a': EdgeShape(...)})``.
@@ -306,6 +309,7 @@ class CurvedIsohedralTiling(Tiling):
     streams = False
     bytes_per_tile = BYTES_PER_TILE
     family = FAMILY
+    OPTIONS = _OPTIONS
 
     def __init__(self, p: int = 6, q: int = 4, *, pairing: str | None = None,
                  edges: Mapping[str, EdgeShape | str] | None = None, radius: float | None = None,
@@ -433,13 +437,6 @@ class CurvedIsohedralTiling(Tiling):
     def prototiles(self) -> list[ModelPrototile]:
         return [self._proto]
 
-    @property
-    def hyperbolic(self) -> bool:
-        return self.kind == model.HYPERBOLIC
-
-    def default_region(self) -> BaseGeometry:
-        return shapely.box(*model.PLANE_VIEWS[self.plane])
-
     def _radius(self) -> float:
         return DEFAULT_RADIUS if self.radius is None else self.radius
 
@@ -504,13 +501,7 @@ class CurvedIsohedralTiling(Tiling):
         the perfect colouring (see the module), less those whose outline misses ``region``."""
         mats, cols = self.group_elements()
         patch = ModelPatch([self._proto], np.zeros(len(mats), dtype=np.int64), mats, colour=cols)
-        reg = None if region is None else as_region(region)
-        if reg is not None and len(patch) and not reg.covers(shapely.box(-1, -1, 1, 1)):
-            patch = patch.subset(patch.clip_index(reg))
-        return patch
-
-    def render_svg(self, patch: Patch, **options: Any) -> str:
-        return curved_svg(self, patch, **options)
+        return clipped(patch, region)
 
     # -- records, options, specs ----------------------------------------------------------
     def properties(self) -> dict[str, Any]:
@@ -549,10 +540,7 @@ class CurvedIsohedralTiling(Tiling):
         ])
 
     def configure(self, **options: Any) -> CurvedIsohedralTiling:
-        unknown = set(options) - set(_OPTIONS)
-        if unknown:
-            raise ParameterError(f"{self.name} does not take option(s) {', '.join(sorted(unknown))}; "
-                                 f"valid: {', '.join(_OPTIONS)}")
+        self.check_options(options)
         spec = self.spec()
         if "edges" in options and isinstance(options["edges"], str):
             try:
@@ -590,12 +578,7 @@ class CurvedIsohedralTiling(Tiling):
 
     @classmethod
     def from_spec(cls, spec: Mapping[str, Any]) -> CurvedIsohedralTiling:
-        if not isinstance(spec, Mapping):
-            raise ParseError(f"{FAMILY} spec must be a table, got {type(spec).__name__}")
-        unknown = set(spec) - _SPEC_KEYS - {"geometry"}
-        if unknown:
-            raise ParseError(f"{FAMILY} spec has unknown key(s) {', '.join(sorted(map(str, unknown)))}; "
-                             f"valid: {', '.join(sorted(_SPEC_KEYS))}")
+        spec_table(spec, sorted(_SPEC_KEYS | {"geometry"}), FAMILY)  # geometry: a check, as in configure
         return cls(spec.get("p", 6), spec.get("q", 4), pairing=spec.get("pairing"), edges=spec.get("edges"),
                    radius=spec.get("radius"), samples=spec.get("samples", DEFAULT_SAMPLES),
                    colours=spec.get("colours"), plane=spec.get("plane", "poincare"), geometry=spec.get("geometry"),

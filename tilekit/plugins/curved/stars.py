@@ -31,28 +31,29 @@ from typing import Any
 
 import numpy as np
 import shapely
-from shapely.geometry.base import BaseGeometry
 
 from tilekit.errors import GeometryError, ParameterError, ParseError
-from tilekit.geometry import as_region
-from tilekit.limits import MAX_TILES, refuse_over, refuse_over_memory
 from tilekit.plugins.curved import model, notation, wythoff
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile, vertex_angle_sums
-from tilekit.plugins.curved.render import curved_svg
 from tilekit.plugins.curved.tiling import (
     DEFAULT_SAMPLES,
-    MAX_SAMPLES,
+    DRAWING_HELP,
+    CurvedTiling,
     _number,
+    clipped,
     drawing_options,
     drawing_spec,
+    spec_table,
 )
 from tilekit.plugins.curved.uniform import _polygon
-from tilekit.tiling import Tiling
 
 G = model.HYPERBOLIC_GEOMETRY
 _FLIP = np.diag([1.0, -1.0, 1.0])
 #: Largest valence whose pairings are searched (the involutions of d edges grow fast).
 MAX_VALENCE = 8
+#: Most pairings :func:`find` checks (each develops a patch: 2,768 took 6 s at valence 8;
+#: 3^8's star allows far more). Past it the search is refused before it starts.
+MAX_PAIRINGS = 4096
 
 
 def polygon_angle(n: int, edge: float) -> float:
@@ -318,9 +319,13 @@ def find(cfg: tuple[int, ...]) -> list[Pairing]:
     """The pairings of ``cfg``'s star that close up into a tiling, one per distinct tiling
     (see the module), in the order :meth:`Star.pairings` lists them."""
     star = Star(notation.canonical(cfg))
+    pairings = list(itertools.islice(star.pairings(), MAX_PAIRINGS + 1))
+    if len(pairings) > MAX_PAIRINGS:
+        raise ParameterError(f"{notation.dotted(star.cfg)}: its star's edges allow more than {MAX_PAIRINGS} pairings, "
+                             "too many to search; give one (--set pairing='0- 1+ ...')")
     big = max(star.circumradius(n) for n in star.cfg)
     out: list[Found] = []
-    for pairing in star.pairings():
+    for pairing in pairings:
         if not check(star, pairing):
             continue
         sig = signature(star, pairing, 2 * big + star.edge)  # every face at the pole's neighbours
@@ -349,13 +354,14 @@ _OPTIONS = ("configuration", "pairing", "radius", "samples", "plane")
 _SPEC_KEYS = set(_OPTIONS) | {"name", "title"}
 
 
-class StarTiling(Tiling):
+class StarTiling(CurvedTiling):
     """A uniform tiling of the hyperbolic plane developed from its vertex star by a pairing
     of the star's edges (see the module): ``configuration`` (e.g. 3.3.3.6.6), ``pairing``
     (default: the first that closes up, :func:`find`), ``radius`` (the disc covered)."""
 
     streams = False
     bytes_per_tile = STAR_BYTES_PER_TILE
+    OPTIONS = _OPTIONS
 
     def __init__(self, configuration: str, *, pairing: str | None = None, radius: float | None = None,
                  samples: int = DEFAULT_SAMPLES, plane: str = "poincare", name: str = "", title: str = "") -> None:
@@ -381,8 +387,6 @@ class StarTiling(Tiling):
         self.name = name or notation.exponent(cfg)
         self.title = title
 
-    hyperbolic = True
-
     @cached_property
     def _protos(self) -> list:
         return prototiles(self.star, self.samples, self.plane)
@@ -390,9 +394,6 @@ class StarTiling(Tiling):
     @property
     def prototiles(self) -> list:
         return list(self._protos)
-
-    def default_region(self) -> BaseGeometry:
-        return shapely.box(*model.PLANE_VIEWS[self.plane])
 
     def faces_per_area(self) -> float:
         """Faces per unit area: sum 1/n over the vertex's faces, over each face's area share."""
@@ -418,21 +419,14 @@ class StarTiling(Tiling):
         radius covered), less those whose outline misses ``region``; colour: the face's size."""
         what = f"faces of {self.configuration}"
         estimate = self.estimate_tiles(region)
-        refuse_over(what, estimate, MAX_TILES, "--max-tiles", "ask for a smaller radius (--set radius=R)")
-        refuse_over_memory(what, estimate, self.bytes_per_tile, "ask for a smaller radius (--set radius=R)")
+        self.refuse_oversize(what, estimate, "ask for a smaller radius (--set radius=R)")
         patch = patch_of(self.star, self.pairing, self._radius(), self.samples, self.plane)
-        reg = None if region is None else as_region(region)
-        if reg is not None and len(patch) and not reg.covers(shapely.box(-1, -1, 1, 1)):
-            patch = patch.subset(patch.clip_index(reg))
-        return patch
+        return clipped(patch, region)
 
     def symmetries(self, reach: float) -> np.ndarray:
         """The tiling's symmetries (words in the generators) moving the pole at most ``reach``."""
         verts, _, _ = develop(self.star, self.pairing, reach)
         return verts[verts[:, 2, 2] <= math.cosh(reach) * (1 + 1e-12)]
-
-    def render_svg(self, patch: Any, **options: Any) -> str:
-        return curved_svg(self, patch, **options)
 
     def properties(self) -> dict[str, Any]:
         cfg = self.star.cfg
@@ -452,16 +446,11 @@ class StarTiling(Tiling):
             "first that closes up)",
             f"--set radius=R              the faces covering the disc of radius R (0..{MAX_RADIUS:g}; default: about "
             f"{DEFAULT_FACES} faces)",
-            f"--set samples=N             points per edge of exported outlines (1..{MAX_SAMPLES}, default "
-            f"{DEFAULT_SAMPLES}); SVG draws true arcs",
-            "--set plane=P               the hyperbolic drawing plane: poincare (default), klein or halfplane",
+            *DRAWING_HELP,
         ])
 
     def configure(self, **options: Any) -> StarTiling:
-        unknown = set(options) - set(_OPTIONS)
-        if unknown:
-            raise ParameterError(f"{self.name} does not take option(s) {', '.join(sorted(unknown))}; "
-                                 f"valid: {', '.join(_OPTIONS)}")
+        self.check_options(options)
         same = "configuration" not in options
         pairing = options.get("pairing", format_pairing(self.pairing) if same else None)
         return StarTiling(options.get("configuration", self.configuration), pairing=pairing,
@@ -475,12 +464,7 @@ class StarTiling(Tiling):
 
     @classmethod
     def from_spec(cls, spec: Mapping[str, Any]) -> StarTiling:
-        if not isinstance(spec, Mapping):
-            raise ParseError(f"curved spec must be a table, got {type(spec).__name__}")
-        unknown = set(spec) - _SPEC_KEYS
-        if unknown:
-            raise ParseError(f"curved vertex-star spec has unknown key(s) {', '.join(sorted(map(str, unknown)))}; "
-                             f"valid: {', '.join(sorted(_SPEC_KEYS))}")
+        spec_table(spec, sorted(_SPEC_KEYS), "curved vertex-star")
         if "configuration" not in spec:
             raise ParseError("curved vertex-star spec needs a configuration, e.g. 3.3.3.6.6")
         return cls(spec["configuration"], pairing=spec.get("pairing"), radius=spec.get("radius"),

@@ -11,7 +11,7 @@ faces, drawn in orthographic projection with the far side faint.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from functools import lru_cache
 from typing import Any
 
@@ -51,6 +51,12 @@ CURVED_BYTES_PER_TILE = 200
 _OPTIONS = ("p", "q", "depth", "radius", "samples", "plane")
 #: The hyperbolic drawing planes (``--set plane=...``).
 PLANES = ("poincare", "klein", "halfplane")
+#: ``options_help``'s lines for samples and plane (the uniform and vertex-star tilings).
+DRAWING_HELP = (
+    f"--set samples=N             points per edge of exported outlines (1..{MAX_SAMPLES}, default "
+    f"{DEFAULT_SAMPLES}); SVG draws true arcs",
+    "--set plane=P               the hyperbolic drawing plane: poincare (default), klein or halfplane",
+)
 
 _PALETTE = ("#f4d35e", "#ee964b", "#f95738", "#0d3b66", "#5aa9e6", "#7fc8f8", "#c1e1c1", "#a3c4bc")
 
@@ -114,11 +120,70 @@ def _layer_estimate(p: int, q: int, depth: int) -> float:
     return total
 
 
-class RegularTiling(Tiling):
+class CurvedTiling(Tiling):
+    """What every tiling of the curved family shares: its geometry (``kind``), its hyperbolic
+    drawing plane, the curved SVG (true arcs), the clip of a model patch to a region of the
+    drawing plane, the size check before a patch is made, and the check of configure's
+    option names against the subclass's ``OPTIONS``."""
+
+    kind: str
+    plane: str = "poincare"
+    OPTIONS: tuple[str, ...] = ()
+
+    @property
+    def hyperbolic(self) -> bool:
+        return self.kind == model.HYPERBOLIC
+
+    def default_region(self) -> BaseGeometry:
+        return shapely.box(*model.PLANE_VIEWS[self.plane])
+
+    def render_svg(self, patch: Patch, **options: Any) -> str:
+        return curved_svg(self, patch, **options)
+
+    def check_options(self, options: Mapping[str, Any]) -> None:
+        """One-line ParameterError for an option name not in ``OPTIONS``."""
+        unknown = set(options) - set(self.OPTIONS)
+        if unknown:
+            raise ParameterError(f"{self.name} does not take option(s) {', '.join(sorted(unknown))}; "
+                                 f"valid: {', '.join(self.OPTIONS)}")
+
+    def refuse_oversize(self, what: str, estimate: float, hint: str) -> None:
+        """Refuse a patch of ``estimate`` tiles past the tile limit or the memory bound."""
+        refuse_over(what, estimate, MAX_TILES, "--max-tiles", hint)
+        refuse_over_memory(what, estimate, self.bytes_per_tile, hint)
+
+
+def spec_table(spec: Any, keys: Iterable[str], what: str) -> Mapping[str, Any]:
+    """``spec`` checked as a table whose keys are among ``keys`` (listed in that order in the
+    error); one-line ParseErrors naming ``what`` ("curved", "curved vertex-star" ...)."""
+    if not isinstance(spec, Mapping):
+        raise ParseError(f"{what} spec must be a table, got {type(spec).__name__}")
+    keys = tuple(keys)
+    unknown = set(spec) - set(keys)
+    if unknown:
+        raise ParseError(f"{what} spec has unknown key(s) {', '.join(sorted(map(str, unknown)))}; "
+                         f"valid: {', '.join(keys)}")
+    return spec
+
+
+def clip_region(region: Any) -> BaseGeometry | None:
+    """``region`` as a shape when it cuts the drawing plane's unit box, else None (no clip)."""
+    reg = None if region is None else as_region(region)
+    return None if reg is None or reg.covers(shapely.box(-1, -1, 1, 1)) else reg
+
+
+def clipped(patch: ModelPatch, region: Any) -> ModelPatch:
+    """``patch`` less the tiles whose projected outline misses ``region`` (see :func:`clip_region`)."""
+    reg = clip_region(region)
+    return patch.subset(patch.clip_index(reg)) if reg is not None and len(patch) else patch
+
+
+class RegularTiling(CurvedTiling):
     """The regular tiling {p, q}: p-gons, q at each vertex, on the sphere or the hyperbolic plane."""
 
     streams = True
     bytes_per_tile = CURVED_BYTES_PER_TILE
+    OPTIONS = _OPTIONS
 
     def __init__(self, p: int = 7, q: int = 3, *, depth: int | None = None, radius: float | None = None,
                  samples: int = DEFAULT_SAMPLES, plane: str = "poincare", name: str = "", title: str = "",
@@ -149,13 +214,6 @@ class RegularTiling(Tiling):
     def prototiles(self) -> list[ModelPrototile]:
         return [self._proto]
 
-    @property
-    def hyperbolic(self) -> bool:
-        return self.kind == model.HYPERBOLIC
-
-    def default_region(self) -> BaseGeometry:
-        return shapely.box(*model.PLANE_VIEWS[self.plane])
-
     def _depth(self) -> int:
         return DEFAULT_DEPTH if self.depth is None else self.depth
 
@@ -180,8 +238,7 @@ class RegularTiling(Tiling):
     def _check_size(self, estimate: float) -> None:
         what = f"tiles of {{{self.p},{self.q}}}"
         hint = ("ask for fewer layers (--depth) or a smaller radius (--set radius=R)" if self.hyperbolic else "")
-        refuse_over(what, estimate, MAX_TILES, "--max-tiles", hint)
-        refuse_over_memory(what, estimate, self.bytes_per_tile, hint)
+        self.refuse_oversize(what, estimate, hint)
 
     def layers(self) -> Iterator[tuple[int, np.ndarray]]:
         """(layer number, transforms) for the patch's layers; with a radius, each layer
@@ -208,14 +265,13 @@ class RegularTiling(Tiling):
         None: the whole disc or sphere) are left out. Colour: the layer number."""
         check_chunk_tiles(chunk_tiles)
         self._check_size(self.estimate_tiles(region))
-        reg = None if region is None else as_region(region)
-        clip = reg is not None and not reg.covers(shapely.box(-1, -1, 1, 1))
+        reg = clip_region(region)
         for k, t in self.layers():
             for lo in range(0, len(t), chunk_tiles):
                 part = t[lo:lo + chunk_tiles]
                 patch = ModelPatch([self._proto], np.zeros(len(part), dtype=np.int64), part,
                                    colour=np.full(len(part), k, dtype=np.int64))
-                if clip and len(patch):
+                if reg is not None and len(patch):
                     patch = patch.subset(patch.clip_index(reg))
                 if len(patch):
                     yield patch
@@ -223,8 +279,7 @@ class RegularTiling(Tiling):
     def patch(self, region: Any = None) -> ModelPatch:
         """The tiles of :meth:`iter_patches` as one patch; layers of the whole disc are written
         in place into one array (no concatenation)."""
-        reg = None if region is None else as_region(region)
-        if self.hyperbolic and self.radius is None and (reg is None or reg.covers(shapely.box(-1, -1, 1, 1))):
+        if self.hyperbolic and self.radius is None and clip_region(region) is None:
             estimate = self.estimate_tiles(region)
             self._check_size(estimate)
             t, sizes = layers.hyperbolic_transforms(self.p, self.q, self._depth(), capacity=int(estimate) + 1)
@@ -234,9 +289,6 @@ class RegularTiling(Tiling):
         if not parts:
             return ModelPatch([self._proto], np.zeros(0, dtype=np.int64), np.zeros((0, 3, 3)))
         return parts[0] if len(parts) == 1 else ModelPatch.concat(parts)  # type: ignore[return-value]
-
-    def render_svg(self, patch: Patch, **options: Any) -> str:
-        return curved_svg(self, patch, **options)
 
     # -- records and options -------------------------------------------------------------
     def vertex_configuration(self) -> str:
@@ -307,10 +359,7 @@ class RegularTiling(Tiling):
                                      "a vertex configuration closes on one surface only")
             if not options:
                 return self
-        unknown = set(options) - set(_OPTIONS)
-        if unknown:
-            raise ParameterError(f"{self.name} does not take option(s) {', '.join(sorted(unknown))}; "
-                                 f"valid: {', '.join(_OPTIONS)}")
+        self.check_options(options)
         p = options.get("p", self.p)
         q = options.get("q", self.q)
         depth = options.get("depth", self.depth if "radius" not in options else None)
@@ -331,12 +380,7 @@ class RegularTiling(Tiling):
 
     @classmethod
     def from_spec(cls, spec: Mapping[str, Any], want: str | None = None) -> RegularTiling:
-        if not isinstance(spec, Mapping):
-            raise ParseError(f"{want or 'curved'} spec must be a table, got {type(spec).__name__}")
-        unknown = set(spec) - {"p", "q", "depth", "radius", "samples", "plane", "name", "title"}
-        if unknown:
-            raise ParseError(f"{want or 'curved'} spec has unknown key(s) {', '.join(sorted(map(str, unknown)))}; "
-                             "valid: p, q, depth, radius, samples, plane, name, title")
+        spec_table(spec, ("p", "q", "depth", "radius", "samples", "plane", "name", "title"), want or "curved")
         if "p" not in spec or "q" not in spec:
             raise ParseError(f"{want or 'curved'} spec needs p and q (the Schläfli symbol {{p,q}})")
         return cls(spec["p"], spec["q"], depth=spec.get("depth"), radius=spec.get("radius"),

@@ -19,25 +19,23 @@ from functools import cached_property
 from typing import Any
 
 import numpy as np
-import shapely
-from shapely.geometry.base import BaseGeometry
 
-from tilekit.errors import ParameterError, ParseError
-from tilekit.geometry import as_region
-from tilekit.limits import MAX_TILES, refuse_over, refuse_over_memory
+from tilekit.errors import ParameterError
 from tilekit.plugins.curved import model, notation, wythoff
 from tilekit.plugins.curved.orbifold import UniformSymmetry, symbol_symmetry, uniform_symmetry
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
-from tilekit.plugins.curved.render import curved_svg
 from tilekit.plugins.curved.tiling import (
     DEFAULT_SAMPLES,
-    MAX_SAMPLES,
+    DRAWING_HELP,
+    CurvedTiling,
     _number,
+    clipped,
     drawing_options,
     drawing_spec,
+    spec_table,
 )
 from tilekit.plugins.curved.wythoff import GEOMETRIES, check_geometry  # noqa: F401 - the spellings, re-exported
-from tilekit.tiling import Patch, PeriodicTiling, Prototile, Tiling
+from tilekit.tiling import PeriodicTiling, Prototile
 
 #: Faces of a hyperbolic patch when no radius is given (the radius is chosen to give about this many).
 DEFAULT_FACES = 800
@@ -97,11 +95,12 @@ def _polygon(n: int) -> str:
     return _POLYGON_NAMES.get(n, f"{n}-gon")
 
 
-class UniformTiling(Tiling):
+class UniformTiling(CurvedTiling):
     """A uniform tiling of the sphere or the hyperbolic plane by Wythoff's construction."""
 
     streams = False
     bytes_per_tile = UNIFORM_BYTES_PER_TILE
+    OPTIONS = _OPTIONS
 
     def __init__(self, configuration: str | None = None, *, symbol: str | None = None, radius: float | None = None,
                  samples: int = DEFAULT_SAMPLES, plane: str = "poincare", geometry: str | None = None,
@@ -151,13 +150,6 @@ class UniformTiling(Tiling):
     def prototiles(self) -> list[ModelPrototile]:
         return list(self._protos)
 
-    @property
-    def hyperbolic(self) -> bool:
-        return self.kind == wythoff.HYPERBOLIC
-
-    def default_region(self) -> BaseGeometry:
-        return shapely.box(*model.PLANE_VIEWS[self.plane])
-
     def _radius(self) -> float:
         if self.radius is not None:
             return self.radius
@@ -178,8 +170,7 @@ class UniformTiling(Tiling):
     def _check_size(self, estimate: float) -> None:
         what = f"faces of {self.configuration}"
         hint = "ask for a smaller radius (--set radius=R)" if self.hyperbolic else ""
-        refuse_over(what, estimate, MAX_TILES, "--max-tiles", hint)
-        refuse_over_memory(what, estimate, self.bytes_per_tile, hint)
+        self.refuse_oversize(what, estimate, hint)
 
     def patch(self, region: Any = None) -> ModelPatch:
         """Every face (sphere) or every face whose centre is within the radius plus its
@@ -187,13 +178,7 @@ class UniformTiling(Tiling):
         self._check_size(self.estimate_tiles(region))
         mats, kinds = self.construction.faces(self._radius() if self.hyperbolic else None)
         patch = ModelPatch(self._protos, kinds, mats, colour=kinds.copy())
-        reg = None if region is None else as_region(region)
-        if reg is not None and len(patch) and not reg.covers(shapely.box(-1, -1, 1, 1)):
-            patch = patch.subset(patch.clip_index(reg))
-        return patch
-
-    def render_svg(self, patch: Patch, **options: Any) -> str:
-        return curved_svg(self, patch, **options)
+        return clipped(patch, region)
 
     # -- records and options -------------------------------------------------------------
     def face_counts(self) -> dict[int, int]:
@@ -244,16 +229,11 @@ class UniformTiling(Tiling):
             f"--set radius=R              hyperbolic: the faces covering the disc of radius R (0..{MAX_RADIUS:g}; "
             f"default: about {DEFAULT_FACES} faces)",
             "--set geometry=G            sphere, plane or hyperbolic: a check on the configuration's geometry",
-            f"--set samples=N             points per edge of exported outlines (1..{MAX_SAMPLES}, default "
-            f"{DEFAULT_SAMPLES}); SVG draws true arcs",
-            "--set plane=P               the hyperbolic drawing plane: poincare (default), klein or halfplane",
+            *DRAWING_HELP,
         ])
 
     def configure(self, **options: Any) -> UniformTiling:
-        unknown = set(options) - set(_OPTIONS)
-        if unknown:
-            raise ParameterError(f"{self.name} does not take option(s) {', '.join(sorted(unknown))}; "
-                                 f"valid: {', '.join(_OPTIONS)}")
+        self.check_options(options)
         if "configuration" in options and "symbol" in options:
             raise ParameterError("give configuration or symbol, not both")
         if "configuration" in options:
@@ -275,12 +255,7 @@ class UniformTiling(Tiling):
 
     @classmethod
     def from_spec(cls, spec: Mapping[str, Any]) -> UniformTiling:
-        if not isinstance(spec, Mapping):
-            raise ParseError(f"curved spec must be a table, got {type(spec).__name__}")
-        unknown = set(spec) - _SPEC_KEYS
-        if unknown:
-            raise ParseError(f"curved spec has unknown key(s) {', '.join(sorted(map(str, unknown)))}; "
-                             f"valid: {', '.join(sorted(_SPEC_KEYS))}")
+        spec_table(spec, sorted(_SPEC_KEYS), "curved")
         return cls(spec.get("configuration"), symbol=spec.get("symbol"), radius=spec.get("radius"),
                    samples=spec.get("samples", DEFAULT_SAMPLES), plane=spec.get("plane", "poincare"),
                    geometry=spec.get("geometry"), name=str(spec.get("name", "")), title=str(spec.get("title", "")))

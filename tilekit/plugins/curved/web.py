@@ -91,17 +91,22 @@ def view_data(tiling: Any, max_tiles: int) -> dict[str, Any]:
     else:
         tiling = tiling.configure(samples=SPHERE_SAMPLES)
     patch = tiling.patch()
-    pts: list[np.ndarray] = [np.zeros((0, 3))] * len(patch)
+    kinds = np.asarray(patch.prototile, dtype=np.int64)
+    chosen = [proto.points[list(proto.corners)] if hyperbolic and proto.corners else proto.points
+              for proto in patch.prototiles]
+    sizes = np.array([len(c) for c in chosen], dtype=np.int64)[kinds]
+    start = np.cumsum(sizes) - sizes  # each face's first row, faces in patch order
+    flat = np.zeros((int(sizes.sum()), 3))
+    by_proto = {id(proto): c for proto, c in zip(patch.prototiles, chosen, strict=True)}
     for _, idx, proto in patch.parts():
-        chosen = proto.points[list(proto.corners)] if hyperbolic and proto.corners else proto.points
-        v = np.matmul(patch.transform[idx], chosen.T).transpose(0, 2, 1)
-        for i, t in enumerate(idx):
-            pts[t] = v[i]
-    out["sizes"] = [len(p) for p in pts]
-    out["points"] = np.round(np.concatenate(pts).reshape(-1), 10).tolist() if pts else []
+        corners = by_proto[id(proto)]
+        v = np.matmul(patch.transform[idx], corners.T).transpose(0, 2, 1)
+        flat[start[idx][:, None] + np.arange(len(corners))] = v
+    out["sizes"] = sizes.tolist()
+    out["points"] = np.round(flat.reshape(-1), 10).tolist()
     # colour by the kind of face, which the symmetries keep (a layer colouring would jump when
     # the view is rebased)
-    out["colour"] = [int(c) for c in patch.prototile]
+    out["colour"] = kinds.tolist()
     if hyperbolic:
         sym = symmetries(tiling, SYMMETRY_REACH)
         out["symmetries"] = np.round(sym.reshape(-1), 12).tolist()

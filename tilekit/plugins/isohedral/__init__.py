@@ -25,7 +25,7 @@ __all__ = ["EdgeShape", "IncidenceSymbol", "IsohedralTiling", "isohedral_tiling"
 _LAZY = {
     "IsohedralTiling": "tilekit.plugins.isohedral.engine",
     "lookup": "tilekit.plugins.isohedral.lookup",
-    "EdgeShape": "tilekit.plugins.isohedral.shapes",
+    "EdgeShape": "tilekit.edgeshapes",
     "IncidenceSymbol": "tilekit.plugins.isohedral.symbols",
 }
 __getattr__, __dir__ = lazy_exports(__name__, _LAZY, pinned=("lookup",))
@@ -43,8 +43,8 @@ as the Laves tile of their topology with a marking."""
 def isohedral_tiling(name: str | int, **options) -> IsohedralTiling:
     """IsohedralTiling('IH16', params=[0.3], edges=['b=0,0:0.3,0.2:1,0'])-style convenience."""
     # measured start-up cost: the engine (NumPy, shapely, symmetry; ~0.5 s), loaded on use
+    from tilekit.edgeshapes import parse_edge_option  # start-up cost: as above
     from tilekit.plugins.isohedral.engine import IsohedralTiling
-    from tilekit.plugins.isohedral.shapes import parse_edge_option  # start-up cost: as above
 
     edges = options.pop("edges", None) or []
     shapes = dict(parse_edge_option(e) if isinstance(e, str) else e for e in edges)

@@ -24,6 +24,7 @@ from typing import Any
 
 import numpy as np
 
+from tilekit.edgeshapes import EdgeShape
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.plugins.isohedral import escher
 from tilekit.plugins.isohedral.engine import IsohedralTiling
@@ -48,7 +49,6 @@ from tilekit.plugins.isohedral.escher_limits import (
     MAX_PATH_POINTS,
     MAX_WORKERS,
 )
-from tilekit.plugins.isohedral.shapes import EdgeShape
 from tilekit.plugins.isohedral.spec import tiling_from_spec
 from tilekit.plugins.isohedral.split import (
     SplitTiling,

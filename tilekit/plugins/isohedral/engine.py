@@ -22,10 +22,7 @@ import numpy as np
 import shapely
 
 from tilekit.colouring import Colouring
-from tilekit.errors import GeometryError, ParameterError, ParseError
-from tilekit.geometry import Affine, snap_noise
-from tilekit.plugins.isohedral.properties import type_properties
-from tilekit.plugins.isohedral.shapes import (
+from tilekit.edgeshapes import (
     FLIP,
     IDENTITY,
     ROFL,
@@ -35,6 +32,9 @@ from tilekit.plugins.isohedral.shapes import (
     complete,
     parse_edge_option,
 )
+from tilekit.errors import GeometryError, ParameterError, ParseError
+from tilekit.geometry import Affine, snap_noise
+from tilekit.plugins.isohedral.properties import type_properties
 from tilekit.plugins.isohedral.symbols import IncidenceSymbol
 from tilekit.plugins.isohedral.templates import (
     Parameterization,

@@ -29,6 +29,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from tilekit.edgeshapes import EdgeShape
 from tilekit.errors import GeometryError, ParameterError, TilekitError
 from tilekit.escher import (  # noqa: F401 - the metric's names, re-exported for the dihedral and Heaven-and-Hell fits
     SUBSHIFTS,
@@ -67,7 +68,6 @@ from tilekit.plugins.isohedral.escher_limits import (
     MAX_STARTS,
     MAX_WORKERS,
 )
-from tilekit.plugins.isohedral.shapes import EdgeShape
 from tilekit.plugins.isohedral.spec import editor_path
 from tilekit.plugins.isohedral.templates import get_template, load_parameterizations
 

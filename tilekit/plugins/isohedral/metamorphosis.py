@@ -17,10 +17,10 @@ import math
 
 import numpy as np
 
+from tilekit.edgeshapes import EdgeShape
 from tilekit.errors import ParameterError
 from tilekit.geometry import Affine
 from tilekit.plugins.isohedral.engine import IsohedralTiling
-from tilekit.plugins.isohedral.shapes import EdgeShape
 from tilekit.tiling import Patch, Prototile
 
 #: Strip size bounds (columns and rows of tile-sized cells): the strip is built tile by tile.

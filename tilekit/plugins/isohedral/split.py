@@ -29,9 +29,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import shapely
 
+from tilekit.edgeshapes import EdgeShape
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.geometry import snap_noise
-from tilekit.plugins.isohedral.shapes import EdgeShape
 from tilekit.polygon import signed_area
 from tilekit.schema import Field, check, finite_number
 from tilekit.tiling import Patch, PeriodicTiling, Prototile

@@ -14,11 +14,11 @@ from typing import Any
 
 import numpy as np
 
+from tilekit.edgeshapes import parse_edge_option
 from tilekit.errors import ParameterError, TilekitError
 from tilekit.plugins import WebRoute
 from tilekit.plugins.isohedral.engine import IsohedralTiling, shape_classes
 from tilekit.plugins.isohedral.metamorphosis import metamorphosis
-from tilekit.plugins.isohedral.shapes import parse_edge_option
 from tilekit.plugins.isohedral.split import SplitTiling
 from tilekit.plugins.isohedral.templates import get_template
 from tilekit.render import PALETTE, parse_palette
