@@ -32,6 +32,16 @@ def test_serve_bad_catalogue_is_one_line(tmp_path):
     assert result.output.count("\n") == 1 and result.output.startswith("error: ")
 
 
+def test_serve_refuses_workers_and_cache_the_memory_cannot_hold(tmp_path):
+    """64 workers that may each grow to 1 TiB before recycling: refused before anything starts,
+    one line naming the options, exit 2."""
+    cat = tmp_path / "c.sqlite"
+    result = CliRunner().invoke(cli, ["--catalogue", str(cat), "serve", "--port", "0", "--render-workers", "64",
+                                      "--worker-mb", str(1 << 20)])
+    assert result.exit_code == 2, result.output
+    assert result.output.count("\n") == 1 and "--render-workers" in result.output and "memory" in result.output
+
+
 def test_serve_runs_on_loopback(web_catalogue):
     import socket
 

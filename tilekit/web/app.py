@@ -29,6 +29,7 @@ from starlette.staticfiles import StaticFiles
 import tilekit.api
 from tilekit.catalogue import open_catalogue, run_json
 from tilekit.errors import NotFoundError, ParameterError, TilekitError
+from tilekit.limits import refuse_over_memory
 from tilekit.plugins import WebRoute, families, get_plugin_manager
 from tilekit.web import api, executor, pages
 from tilekit.web.browse import Browser, csv_text, listing_csv, listing_json
@@ -200,6 +201,10 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
     thread, still at most ``1 + render_queue`` at once. ``cache_bytes`` bounds the render cache.
     """
     pm = catalogue.pm if catalogue is not None else get_plugin_manager()
+    # estimate first: each worker may grow to its recycling bound and the cache to its own
+    recycle = executor.DEFAULT_RECYCLE_BYTES if worker_bytes is None else worker_bytes
+    refuse_over_memory("bytes of render workers and cache", render_workers * recycle + cache_bytes, 1,
+                       "ask for fewer --render-workers, a smaller --worker-mb or --cache-mb")
     pool = _pool(catalogue_url, catalogue, max_tiles, render_workers, render_queue, render_seconds, worker_bytes)
     state = State(catalogue_url, writable, max_tiles, catalogue, pm, pool, cache_bytes)
     hook = pm.hook
