@@ -141,7 +141,9 @@ def test_viewer_api_sends_model_points_and_lorentz_symmetries(client):
     """The payload of a non-Wythoffian record: corners on the hyperboloid (x^2 + y^2 - t^2 = -1),
     symmetries in O(2,1) (g^T J g = J); bad {p,q}, and a record of another family, are one-line
     400s naming what is valid."""
-    body = client.get("/api/curved/3%5E3.6%5E2").json()
+    answer = client.get("/api/curved/3%5E3.6%5E2")
+    body = answer.json()
+    assert answer.status_code == 200, (answer.status_code, body)
     assert body["geometry"] == "hyperbolic" and set(body["sizes"]) == {3, 6}
     pts = np.array(body["points"]).reshape(-1, 3)
     assert len(pts) == sum(body["sizes"]) and np.allclose(pts[:, 0] ** 2 + pts[:, 1] ** 2 - pts[:, 2] ** 2, -1, atol=1e-6)
@@ -153,3 +155,27 @@ def test_viewer_api_sends_model_points_and_lorentz_symmetries(client):
     other = client.get("/curved/IH16")
     assert other.status_code == 400 and "draws the spherical, hyperbolic, curved families" in other.text
     assert 'href="/curved/3%5E3.6%5E2"' in client.get("/tiling/3%5E3.6%5E2").text
+
+
+def test_a_hyperbolic_vertex_species_row_opens_the_curved_record(tmp_path):
+    """After `search vertex-species`, the name 3^3.6^2 is also a row of the vertex_species
+    table (a hyperbolic type: the row's own family draws no plane tiling). The row's page and
+    the viewer's data show the curved family's record of that name instead of an error (this
+    failed whenever a test that runs the search shared the web app with this file)."""
+    from starlette.testclient import TestClient
+
+    from tilekit import open_catalogue
+    from tilekit.search import run_search
+    from tilekit.web import create_app
+
+    cat = open_catalogue(str(tmp_path / "c.sqlite"))
+    try:
+        run_search(cat, "vertex-species")
+        assert cat.result_entry("3^3.6^2").family == "vertex-species"
+        with TestClient(create_app(catalogue=cat)) as client:
+            answer = client.get("/api/curved/3%5E3.6%5E2")
+            assert answer.status_code == 200 and answer.json()["geometry"] == "hyperbolic"
+            page = client.get("/tiling/3%5E3.6%5E2")
+            assert page.status_code == 200 and "no plane tiling" not in page.text and "<svg" in page.text
+    finally:
+        cat.close()

@@ -17,7 +17,7 @@ from collections.abc import Iterable, Mapping
 from typing import Any
 
 from tilekit import api
-from tilekit.errors import ParameterError, ParseError
+from tilekit.errors import ParameterError, ParseError, TilekitError
 from tilekit.render import parse_palette
 from tilekit.schema import finite_number
 from tilekit.text import parse_region as text_region
@@ -187,9 +187,21 @@ class Renderer:
                 self._tilings.move_to_end(name)
                 return hit
         # a result row's own name (a polyomino's code) is that row, even where a shipped record
-        # has the name as an alias: the row is what the listings link to (its witness, verdict)
+        # has the name as an alias: the row is what the listings link to (its witness, verdict).
+        # A row whose family draws nothing (a hyperbolic vertex type found by the vertex-species
+        # search) shows the shipped record of that name (the curved family's tiling) instead.
         found = getattr(self.catalogue, "result_entry", None)
-        tiling = self.catalogue.tiling((found(name) if found else None) or name)
+        row = found(name) if found else None
+        if row is None:
+            tiling = self.catalogue.tiling(name)
+        else:
+            try:
+                tiling = self.catalogue.tiling(row)
+            except TilekitError as exc:
+                try:
+                    tiling = self.catalogue.tiling(name)
+                except TilekitError:
+                    raise exc from None
         with self._lock:
             self._tilings[name] = tiling
             while len(self._tilings) > 256:
