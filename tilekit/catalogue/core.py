@@ -577,12 +577,30 @@ def _refuse_unknown(script: Any, revisions: Iterable[str], where: str) -> None:
             )
 
 
+def _journal_wal(cursor: Any) -> None:
+    """``PRAGMA journal_mode = WAL``, retried while another process holds the file: the
+    change to WAL needs an exclusive lock, and SQLite may answer "database is locked" at once
+    instead of calling the busy handler (seen when first opens of a new file race)."""
+    import sqlite3
+    import time
+
+    deadline = time.monotonic() + BUSY_TIMEOUT_MS / 1000.0
+    while True:
+        try:
+            cursor.execute("PRAGMA journal_mode = WAL")
+            return
+        except sqlite3.OperationalError as exc:
+            if "locked" not in str(exc) or time.monotonic() > deadline:
+                raise
+            time.sleep(0.02)
+
+
 def _sqlite_pragmas(dbapi_connection: Any, _record: Any) -> None:
     cursor = dbapi_connection.cursor()
     try:
         cursor.execute(f"PRAGMA busy_timeout = {BUSY_TIMEOUT_MS}")
         cursor.execute("PRAGMA foreign_keys = ON")
-        cursor.execute("PRAGMA journal_mode = WAL")
+        _journal_wal(cursor)
         # in WAL mode, NORMAL is durable across process crashes (SIGKILL loses nothing
         # committed); only a power cut may lose the last transactions. It saves an fsync per commit.
         cursor.execute("PRAGMA synchronous = NORMAL")
