@@ -14,6 +14,17 @@ import uuid
 import pytest
 from cliutil import ENV, CatalogueCLI, postgres_server
 
+try:
+    from hypothesis import settings as _hypothesis_settings
+
+    # Speed is measured in benchmarks/, never asserted in unit tests: Hypothesis' default 200 ms
+    # deadline per example can fail property tests on a loaded CI machine (two xdist workers
+    # on two cores), so the suite runs without it.
+    _hypothesis_settings.register_profile("tilekit", deadline=None, print_blob=True)
+    _hypothesis_settings.load_profile("tilekit")
+except ImportError:  # pragma: no cover - hypothesis is in the test extra
+    pass
+
 
 def pytest_addoption(parser):
     parser.addoption("--postgres", default=None, metavar="URL",
