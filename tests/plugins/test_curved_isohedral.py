@@ -36,7 +36,6 @@ from tilekit.plugins.curved.isohedral import (
     example_pairing,
     from_file,
     orbifold,
-    orbifold_features,
     write_spec,
 )
 from tilekit.plugins.curved.orbifold import OrbifoldGroup
@@ -69,9 +68,23 @@ def test_tetrahedron_with_s_edges() -> None:
 @pytest.mark.parametrize("p, q", [(6, 4), (7, 3), (5, 4), (4, 8), (8, 3), (4, 6), (3, 12)])
 def test_hyperbolic_orbifold_area_is_the_polygon(p: int, q: int) -> None:
     pairing = Pairing.parse(example_pairing(p, q), p)
-    handles, cones = orbifold_features(pairing, q)
-    chi = 2 - 2 * handles - sum(Fraction(n - 1, n) for n in cones)
+    chi = orbifold_chi(orbifold(pairing, q))
     assert math.isclose(-2 * math.pi * float(chi), model.RegularPolygon(p, q).area, rel_tol=1e-12)
+
+
+def orbifold_chi(text: str) -> Fraction:
+    """Conway's characteristic read off an orbifold symbol (Thurston, Conway: 2 − 2 per o − 1
+    per x − 1 per mirror boundary − (n−1)/n per cone − (n−1)/2n per corner)."""
+    head, *rings = text.split("*")
+
+    def orders(part: str) -> list[int]:
+        digits = part.replace("o", "").replace("x", "")
+        return [int(c) for c in (digits.split(",") if "," in digits else digits) if c]
+
+    chi = Fraction(2) - len(rings) - 2 * head.count("o") - text.count("x")
+    chi -= sum((Fraction(n - 1, n) for n in orders(head)), Fraction(0))
+    chi -= sum((Fraction(n - 1, 2 * n) for r in rings for n in orders(r)), Fraction(0))
+    return chi
 
 
 def _centres_match(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -164,7 +177,7 @@ def test_bad_pairings() -> None:
         CurvedIsohedralTiling(4, 3, pairing="a a a b")
     with pytest.raises(ParameterError, match="no side pairing"):
         CurvedIsohedralTiling(3, 5)     # no fixed-point-free rotation group of {3,5} acts on its 20 faces
-    with pytest.raises(ParameterError, match="no edge"):
+    with pytest.raises(ParameterError, match="no shaped edge"):
         CurvedIsohedralTiling(6, 4, pairing="a a b b c d", edges={"z": "0.3,0.1"})
 
 
