@@ -68,7 +68,7 @@ def test_sphere_types_tile_and_their_groups_have_the_right_order(pq: tuple[int, 
 def test_regular_tile_with_mirror_edges_has_the_triangle_group(p: int, q: int, group: str) -> None:
     t = CurvedIsohedralTiling(p, q, symbol="[" + "a" * p + "; a]", radius=1.0 if (p - 2) * (q - 2) > 4 else None)
     assert t.properties()["orbifold"] == group
-    assert t.properties()["edge_kinds"] == "I" * p and t.properties()["parameters"] == 0
+    assert t.properties()["edge_kinds"] == "I" * p and t.properties()["edge_shapes"] == 0
 
 
 @pytest.mark.parametrize("p, q", [(7, 3), (4, 5), (5, 4), (3, 7)])
@@ -171,3 +171,15 @@ def test_pairings_are_incidence_symbols() -> None:
     assert again.properties()["orbifold"] == t.properties()["orbifold"]
     assert len(again.patch()) == len(CurvedIsohedralTiling(6, 4, pairing="a a b b c d", radius=2.0).patch())
     assert IncidenceSymbol.parse(str(t.symbol)).edge_kinds() == "JJJJSS"
+
+
+@pytest.mark.parametrize("topology, p, q", [("3^6", 6, 3), ("4^4", 4, 4), ("6^3", 3, 6)])
+def test_enumeration_on_the_plane_gives_grunbaum_shephards_types(topology: str, p: int, q: int) -> None:
+    # The same Delaney rule on the Euclidean {p,q} (1/p + 1/q = 1/2) gives exactly the isohedral
+    # types of Grünbaum and Shephard with that topological type (§5.2: 20 with Laves type [3^6],
+    # 36 with [4^4], 11 with [6^3]), as the planar family's shipped templates list them.
+    from tilekit.plugins.isohedral.templates import load_templates
+
+    published = {str(t.symbol.canonical()) for t in load_templates().values() if t.topology == topology}
+    assert len(published) == {"3^6": 20, "4^4": 36, "6^3": 11}[topology]
+    assert {str(s) for s in delaney.enumerate_types(p, q)} == published

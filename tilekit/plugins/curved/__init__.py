@@ -199,6 +199,41 @@ def _isohedral_from_file(path: str) -> Any:
     return from_file(path)
 
 
+#: The curved isohedral types' data file (the {p, q} whose types are shipped).
+ISOHEDRAL_FILE = "isohedral.toml"
+
+
+def isohedral_records() -> list[CatalogueRecord]:
+    """Every isohedral type on each {p, q} of catalogue/curved/isohedral.toml (delaney.py's
+    enumeration; properties without drawing, isohedral.type_properties)."""
+    # measured start-up cost: NumPy and the curved modules (records are built only when seeding)
+    from tilekit.errors import ParseError
+    from tilekit.plugins.curved import delaney, model
+    from tilekit.plugins.curved.isohedral import type_properties
+    from tilekit.resources import catalogue_dir, read_toml
+    from tilekit.schema import Field, check
+
+    pair = Field("list", items=Field("int", range=(3, model.MAX_PQ)))
+    data = check(Field("table", fields={"schlafli": Field("list", required=True, items=pair)}),
+                 read_toml(catalogue_dir() / "curved" / ISOHEDRAL_FILE, "curved records"),
+                 f"curved records {ISOHEDRAL_FILE}")
+    out = []
+    for pq in data["schlafli"]:
+        if len(pq) != 2:
+            raise ParseError(f"curved records {ISOHEDRAL_FILE}: schlafli entry {pq} is not [p, q]")
+        p, q = model.check_pq(*pq)
+        if model.kind_of(p, q) == model.EUCLIDEAN:
+            raise ParseError(f"curved records {ISOHEDRAL_FILE}: {{{p},{q}}} is Euclidean (the isohedral family's)")
+        for n, sym in enumerate(delaney.enumerate_types(p, q), 1):
+            props = type_properties(sym, p, q)
+            name = f"curved-ih-{p}-{q}-{n}"
+            title = (f"{{{p},{q}}} isohedral type {n}: {props['edge_kinds']} edges, group {props['orbifold']}, "
+                     f"{sym}")
+            out.append(CatalogueRecord(family=CURVED_ISOHEDRAL, name=name, title=title, properties=props,
+                                       spec={"p": p, "q": q, "symbol": str(sym), "name": name, "title": title}))
+    return out
+
+
 #: The non-Wythoffian uniform tilings' data file (the 3.3.3.p.p family, stars.py).
 STARS_FILE = "stars.toml"
 
@@ -275,7 +310,7 @@ def tilekit_families() -> list[Family]:
 
 @tilekit.hookimpl
 def tilekit_catalogue_records() -> list[CatalogueRecord]:
-    return curved_records() + uniform_records() + star_records()
+    return curved_records() + uniform_records() + star_records() + isohedral_records()
 
 
 @tilekit.hookimpl

@@ -264,6 +264,19 @@ def enumerate_types(p: int, q: int) -> Iterator[IncidenceSymbol]:
                     edge_orbit[perm[2 * i] // 2] = len(reps)
                 reps.append(i)
         undirected = [any(perm[2 * r] == 2 * r + 1 for perm in perms) for r in reps]
+        # D = S-orbits of chambers, with s1 (s0 is fixed by the pairing below); survivors of the
+        # cheap vertex test are written as symbols and checked in full
+        orbit_of = [-1] * (2 * p)
+        size = 0
+        for c in range(2 * p):
+            if orbit_of[c] < 0:
+                for perm in perms:
+                    orbit_of[perm[c]] = size
+                size += 1
+        s1 = [0] * size
+        for i in range(p):
+            s1[orbit_of[2 * i + 1]] = orbit_of[2 * ((i + 1) % p)]
+            s1[orbit_of[2 * ((i + 1) % p)]] = orbit_of[2 * i + 1]
         # per edge orbit: partner orbit and hop kind (direct / opposite); undirected edges: opposite only
         n = len(reps)
         for match in _matchings(list(range(n))):
@@ -280,6 +293,13 @@ def enumerate_types(p: int, q: int) -> Iterator[IncidenceSymbol]:
             for kinds in product(*options):
                 if any(match[a] > a and kinds[a] != kinds[match[a]] for a in range(n)):
                     continue
+                s2 = [0] * size
+                for a in range(n):
+                    r, r2 = reps[a], reps[match[a]]
+                    for e in (0, 1):
+                        s2[orbit_of[2 * r + e]] = orbit_of[2 * r2 + (1 - e if kinds[a] else e)]
+                if not _closes(s1, s2, q):
+                    continue
                 sym = _symbol(p, reps, edge_orbit, perms, undirected, match, kinds)
                 if sym is None:
                     continue
@@ -292,6 +312,21 @@ def enumerate_types(p: int, q: int) -> Iterator[IncidenceSymbol]:
                 if key not in seen:
                     seen.add(key)
                     yield canon
+
+
+def _closes(s1: list[int], s2: list[int], q: int) -> bool:
+    """s2 an involution and every (s1 s2)-cycle's length dividing q (the vertex test, cheaply)."""
+    for x in range(len(s1)):
+        if s2[s2[x]] != x:
+            return False
+        y, r = s1[s2[x]], 1
+        while y != x:
+            y, r = s1[s2[y]], r + 1
+            if r > q:
+                return False
+        if q % r:
+            return False
+    return True
 
 
 def _matchings(items: list[int]) -> Iterator[dict[int, int]]:

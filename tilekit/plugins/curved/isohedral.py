@@ -90,6 +90,8 @@ _FLIP3 = np.diag([-1.0, 1.0, 1.0])   # the mirror in its perpendicular bisector 
 #: Default shapes: an S edge's half (completed by the half-turn) and a J edge's whole curve.
 DEFAULT_S = "0.18,0.16:0.34,0.14"
 DEFAULT_J = "0.25,0.16:0.55,-0.12:0.8,0.06"
+#: Factors the default shapes are tried at, in turn, until the tile is simple.
+DEFAULT_DAMPING = (1.0, 0.5, 0.25, 0.125)
 #: A U edge's half (completed by the mirror in the perpendicular bisector).
 DEFAULT_U = "0.2,0.12:0.36,-0.06"
 
@@ -384,13 +386,25 @@ class CurvedIsohedralTiling(CurvedTiling):
                                             int(_number("colours", colours, 1, MAX_COLOURS, True)))
         self.colour_count = self.quotient[0] * self.quotient[1]
         self.asked_colours = colours is not None
-        self.edge_shapes = self._shapes(edges or {})
         self.name = name or f"{FAMILY}-{self.p}-{self.q}"
         self.title = title
-        self._proto = self._prototile()
+        given = edges or {}
+        # the default shapes bend less, halved up to three times, until the tile is simple
+        # (an edge shape given is never changed: a crossing is its one-line error)
+        for damp in DEFAULT_DAMPING:
+            self.edge_shapes = self._shapes(given, damp)
+            try:
+                self._proto = self._prototile()
+                break
+            except ParameterError:
+                if damp == DEFAULT_DAMPING[-1] or set(shape_classes(self.symbol)) <= set(given):
+                    raise
 
     # -- shapes ------------------------------------------------------------------------
-    def _shapes(self, edges: Mapping[str, Any]) -> dict[str, EdgeShape]:
+    def _label(self, i: int) -> str:
+        return self.pairing.labels[i] if self.pairing is not None else self.symbol.edges[i][0]
+
+    def _shapes(self, edges: Mapping[str, Any], damp: float = 1.0) -> dict[str, EdgeShape]:
         if not isinstance(edges, Mapping):
             raise ParameterError(f"edges must map edge letters to shapes, got {type(edges).__name__}")
         owners = shape_classes(self.symbol)
@@ -401,7 +415,7 @@ class CurvedIsohedralTiling(CurvedTiling):
                                      f"its shaped edges are {', '.join(sorted(owners)) or 'none (all I: straight)'}")
             out[lab] = shape if isinstance(shape, EdgeShape) else EdgeShape.parse(str(shape))
         # the defaults bend less where the corners are sharp (angle 2π/q), so the tile stays simple
-        scale = min(1.0, 4.0 / self.q)
+        scale = min(1.0, 4.0 / self.q) * damp
         for lab in owners:
             kind = self.symbol.label_kind(lab)
             base = EdgeShape.parse(DEFAULT_J if kind == "J" else DEFAULT_S if kind == "S" else DEFAULT_U)
@@ -510,14 +524,14 @@ class CurvedIsohedralTiling(CurvedTiling):
             lines.append(shapely.LineString(seg))
         for i in range(self.p):
             if not lines[i].is_simple:
-                return (f"the shape of edge {i + 1} ({self.pairing.labels[i]!r}) crosses itself: the tile must stay "
+                return (f"the shape of edge {i + 1} ({self._label(i)!r}) crosses itself: the tile must stay "
                         "a simple polygon")
             for j in range(i + 1, self.p):
                 inter = lines[i].intersection(lines[j])
                 adjacent = (j == i + 1) or (i == 0 and j == self.p - 1)
                 if not inter.is_empty and (not adjacent or inter.geom_type != "Point"):
-                    return (f"the shapes of edges {i + 1} ({self.pairing.labels[i]!r}) and {j + 1} "
-                            f"({self.pairing.labels[j]!r}) cross: the tile must stay a simple polygon; use smaller "
+                    return (f"the shapes of edges {i + 1} ({self._label(i)!r}) and {j + 1} "
+                            f"({self._label(j)!r}) cross: the tile must stay a simple polygon; use smaller "
                             "deflections")
         return "the edge shapes turn the tile inside out: the tile must stay a simple counter-clockwise polygon"
 
@@ -594,26 +608,10 @@ class CurvedIsohedralTiling(CurvedTiling):
 
     # -- records, options, specs ----------------------------------------------------------
     def properties(self) -> dict[str, Any]:
-        group = delaney.orbifold_symbol(self.delaney, self.q)
-        props = {
-            "periodic": self.hyperbolic,
-            "k_isohedral": 1,
-            "k_hedral": 1,
-            "geometry": self.kind,
-            "p": self.p,
-            "q": self.q,
-            "schlafli": f"{{{self.p},{self.q}}}",
-            "incidence_symbol": str(self.symbol),
-            "edge_kinds": self.symbol.edge_kinds(),
-            "parameters": len(shape_classes(self.symbol)),
-            "tile_symmetry": len(self.symbol.tile_symmetries()),
-            "symmetry_group": group,
-            "orbifold": group,
-            "colours": self.colour_count,
-            "colour_group": (f"Z{self.quotient[1]}" if self.quotient[0] == 1
-                             else f"Z{self.quotient[0]} x Z{self.quotient[1]}"),
-            "sides": [self.p],
-        }
+        props = type_properties(self.symbol, self.p, self.q, self.delaney)
+        props.update(colours=self.colour_count,
+                     colour_group=(f"Z{self.quotient[1]}" if self.quotient[0] == 1
+                                   else f"Z{self.quotient[0]} x Z{self.quotient[1]}"))
         if self.pairing is not None:
             props["pairing"] = str(self.pairing)
         return props
@@ -697,6 +695,38 @@ class CurvedIsohedralTiling(CurvedTiling):
                    radius=spec.get("radius"), samples=spec.get("samples", DEFAULT_SAMPLES),
                    colours=spec.get("colours"), plane=spec.get("plane", "poincare"), geometry=spec.get("geometry"),
                    name=str(spec.get("name", "")), title=str(spec.get("title", "")))
+
+
+def type_properties(symbol: IncidenceSymbol, p: int, q: int, d: delaney.Delaney | None = None) -> dict[str, Any]:
+    """What a type's record says without drawing it (cheap: no geometry): the space, {p,q},
+    the incidence symbol and its canonical form, the edge kinds (J/U/S/I, per edge and
+    counted), ``edge_shapes`` (the free fundamental shapes: the type's parameters, the
+    polygon itself being rigid), the tile's own symmetries and the group's orbifold."""
+    d = d if d is not None else delaney.check_on(symbol, p, q)
+    group = delaney.orbifold_symbol(d, q)
+    kinds = symbol.edge_kinds()
+    hyperbolic = model.kind_of(p, q) == model.HYPERBOLIC
+    return {
+        "periodic": hyperbolic,
+        "k_isohedral": 1,
+        "k_hedral": 1,
+        "geometry": model.kind_of(p, q),
+        "p": p,
+        "q": q,
+        "schlafli": f"{{{p},{q}}}",
+        "incidence_symbol": str(symbol),
+        "canonical_symbol": str(symbol.canonical()),
+        "edge_kinds": kinds,
+        "j_edges": kinds.count("J"),
+        "u_edges": kinds.count("U"),
+        "s_edges": kinds.count("S"),
+        "i_edges": kinds.count("I"),
+        "edge_shapes": len(shape_classes(symbol)),
+        "tile_symmetry": len(symbol.tile_symmetries()),
+        "symmetry_group": group,
+        "orbifold": group,
+        "sides": [p],
+    }
 
 
 def write_spec(tiling: CurvedIsohedralTiling, path: str | Path) -> None:
