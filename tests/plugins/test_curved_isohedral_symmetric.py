@@ -183,3 +183,51 @@ def test_enumeration_on_the_plane_gives_grunbaum_shephards_types(topology: str, 
     published = {str(t.symbol.canonical()) for t in load_templates().values() if t.topology == topology}
     assert len(published) == {"3^6": 20, "4^4": 36, "6^3": 11}[topology]
     assert {str(s) for s in delaney.enumerate_types(p, q)} == published
+
+
+def test_every_record_draws_and_tiles() -> None:
+    from tilekit.plugins import curved as plugin
+
+    records = plugin.isohedral_records()
+    assert len({r.name for r in records}) == len(records)
+    by_pq: dict[tuple[int, int], int] = {}
+    for rec in records:
+        p, q = rec.properties["p"], rec.properties["q"]
+        by_pq[p, q] = by_pq.get((p, q), 0) + 1
+        spec = dict(rec.spec)
+        if rec.properties["geometry"] == "hyperbolic":
+            spec["radius"] = 0.8
+        t = CurvedIsohedralTiling.from_spec(spec)
+        props = t.properties()
+        assert {k: props[k] for k in rec.properties} == rec.properties, rec.name
+        patch = t.patch()
+        if t.hyperbolic:
+            assert patch.validate(shapely.Point(0, 0).buffer(0.05, 16)).ok, rec.name
+        else:
+            assert len(patch) * len(t.symbol.tile_symmetries()) == 2 / delaney.euler_characteristic(t.delaney, q)
+            assert patch.validate().ok, rec.name
+    # the sphere's five {p,q} are all shipped, with their regular all-I tile among the types
+    assert {pq for pq in by_pq if (pq[0] - 2) * (pq[1] - 2) < 4} == set(PLATONIC_FACES)
+
+
+@pytest.fixture
+def cli(tmp_path, monkeypatch):
+    from family_cli import family_cli
+
+    return family_cli(tmp_path, monkeypatch, "curved")
+
+
+@pytest.mark.slow   # seeding a fresh catalogue with the curved plugin's records: about 8 s
+def test_records_list_by_geometry_and_render_by_name(cli, tmp_path) -> None:
+    from tilekit.plugins import curved as plugin
+
+    hyperbolic = {r.name for r in plugin.isohedral_records() if r.properties["geometry"] == "hyperbolic"}
+    res = cli("list", "--family", "curved-isohedral", "--where", "geometry=hyperbolic", "--format", "csv")
+    assert res.exit_code == 0, res.output
+    listed = {line.split(",")[0] for line in res.output.strip().splitlines()[1:]}
+    assert listed == hyperbolic
+    res = cli("list", "--family", "curved-isohedral", "--where", "orbifold=*532")
+    assert res.exit_code == 0 and "curved-ih-5-3-4" in res.output and "curved-ih-3-5-2" in res.output
+    res = cli("render", "curved-ih-4-5-2", "-o", "t.svg")
+    assert res.exit_code == 0, res.output
+    assert (tmp_path / "t.svg").read_text().count("<path") >= 5

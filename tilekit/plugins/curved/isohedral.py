@@ -599,6 +599,16 @@ class CurvedIsohedralTiling(CurvedTiling):
             mats, cols = mats[keep], cols[keep]
         return mats, cols
 
+    def symmetries(self, reach: float) -> np.ndarray:
+        """(n, 3, 3) proper motions of the group that keep the colouring (φ = 0) and move the
+        pole at most ``reach`` (hyperbolic; the identity first): the viewer folds them into
+        its view, which leaves the coloured picture unchanged."""
+        mats, cols = self.configure(radius=reach).group_elements()
+        keep = mats[cols == 0]
+        both = np.matmul(keep[:, None], self.tile_symmetries[None]).reshape(-1, 3, 3)
+        both = both[(np.linalg.det(both) > 0) & (both[:, 2, 2] <= math.cosh(reach) * (1 + 1e-12))]
+        return both
+
     def patch(self, region: Any = None) -> ModelPatch:
         """Every tile (sphere) or every tile whose centre lies within the radius, coloured by
         the perfect colouring (see the module), less those whose outline misses ``region``."""

@@ -1,6 +1,6 @@
 """The curved plugin's pages in ``tilekit serve`` (tilekit_web_routes, docs/web.md): the
-curved-space viewer, ``/curved/NAME`` for every record of the spherical, hyperbolic and
-curved families and ``/curved?p=7&q=3`` for any {p, q}, with its data at
+curved-space viewer, ``/curved/NAME`` for every record of the spherical, hyperbolic,
+curved and curved-isohedral families and ``/curved?p=7&q=3`` for any {p, q}, with its data at
 ``/api/curved/NAME`` and ``/api/curved?p=..&q=..``.
 
 The page gets the patch once, as model coordinates (the hyperboloid's (x, y, t) or the
@@ -25,7 +25,7 @@ import numpy as np
 
 from tilekit.errors import ParameterError
 from tilekit.plugins import WebRoute
-from tilekit.plugins.curved import CURVED, HYPERBOLIC, SPHERICAL, regular
+from tilekit.plugins.curved import CURVED, CURVED_ISOHEDRAL, HYPERBOLIC, SPHERICAL, regular
 from tilekit.plugins.curved.model import check_pq
 from tilekit.plugins.curved.render import DEFAULT_PALETTE
 from tilekit.web.pages import esc, name_path
@@ -33,7 +33,7 @@ from tilekit.web.pages import esc, name_path
 #: The name this plugin's static files are served under (/static/plugins/curved/).
 STATIC = "curved"
 STATIC_DIR = Path(__file__).with_name("static")
-FAMILIES = (SPHERICAL, HYPERBOLIC, CURVED)
+FAMILIES = (SPHERICAL, HYPERBOLIC, CURVED, CURVED_ISOHEDRAL)
 #: Faces the viewer's hyperbolic patch holds at most (its radius is the largest up to
 #: MAX_VIEW_RADIUS within this count and the app's tile limit).
 VIEW_FACES = 2500
@@ -105,8 +105,9 @@ def view_data(tiling: Any, max_tiles: int) -> dict[str, Any]:
     out["sizes"] = sizes.tolist()
     out["points"] = np.round(flat.reshape(-1), 10).tolist()
     # colour by the kind of face, which the symmetries keep (a layer colouring would jump when
-    # the view is rebased)
-    out["colour"] = kinds.tolist()
+    # the view is rebased); an isohedral tiling by its perfect colouring, whose rebasing
+    # symmetries keep the colours (CurvedIsohedralTiling.symmetries)
+    out["colour"] = (patch.colour if tiling.family == CURVED_ISOHEDRAL else kinds).tolist()
     if hyperbolic:
         sym = symmetries(tiling, SYMMETRY_REACH)
         out["symmetries"] = np.round(sym.reshape(-1), 12).tolist()
