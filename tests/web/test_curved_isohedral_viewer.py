@@ -83,3 +83,67 @@ def test_long_drags_on_an_isohedral_record_rebase_and_keep_the_disc_covered(page
                             list(px(x, y)))
         assert got is not None, (x, y)
     assert not page.js_errors and errors == []
+
+
+def _box(page) -> list[float]:
+    return page.eval_on_selector("#disc", "s => { const r = s.getBoundingClientRect(); const v = s.viewBox.baseVal; "
+                                 "return [r.left, r.top, r.width, r.height, v.x, v.y, v.width, v.height]; }")
+
+
+def _to_client(box, x: float, y: float) -> tuple[float, float]:
+    """SVG point (x, y down) to client pixels."""
+    left, top, w, h, vx, vy, vw, vh = box
+    return left + (x - vx) / vw * w, top + (y - vy) / vh * h
+
+
+def _to_svg(box, cx: float, cy: float) -> tuple[float, float]:
+    left, top, w, h, vx, vy, vw, vh = box
+    return vx + (cx - left) / w * vw, vy + (cy - top) / h * vh
+
+
+def test_wheel_zooms_about_the_pointer_and_reset_restores(page):
+    """Wheel up magnifies the drawing (the viewBox shrinks by the zoom factor) and the model
+    point under the pointer stays under it; the view matrix is untouched (a zoom is not a
+    motion); reset restores zoom 1."""
+    page.goto("/curved/curved-ih-4-5-2")
+    page.wait_for_selector("#curved[data-state=ok]", timeout=20000)
+    view0 = page.get_attribute("#curved", "data-view")
+    before = _box(page)
+    target = (0.12, -0.2)
+    cx, cy = _to_client(before, *target)
+    page.mouse.move(cx, cy)
+    for _ in range(4):
+        page.mouse.wheel(0, -200)
+    page.wait_for_function("() => Number(document.querySelector('#curved').dataset.zoom || 1) > 2", timeout=10000)
+    zoom = float(page.get_attribute("#curved", "data-zoom"))
+    after = _box(page)
+    assert 2 < zoom <= 16
+    assert abs(after[6] - before[6] / zoom) < 1e-6 * before[6]
+    gx, gy = _to_svg(after, cx, cy)
+    assert abs(gx - target[0]) < 1e-3 and abs(gy - target[1]) < 1e-3
+    assert page.get_attribute("#curved", "data-view") == view0
+    page.click("#reset")
+    assert float(page.get_attribute("#curved", "data-zoom")) == 1.0
+    assert not page.js_errors
+
+
+def test_pinch_zooms_by_the_fingers_spread(page):
+    """Two pointers moving apart from 100 to 250 pixels magnify by 2.5 about their midpoint."""
+    page.goto("/curved/curved-ih-4-3-5")
+    page.wait_for_selector("#curved[data-state=ok]", timeout=20000)
+    before = _box(page)
+    mx, my = _to_client(before, 0.1, 0.05)
+    page.evaluate("""([mx, my]) => {
+        const s = document.querySelector('#disc');
+        const ev = (type, id, x) => s.dispatchEvent(new PointerEvent(type, {pointerId: id, clientX: x, clientY: my,
+            bubbles: true, pointerType: 'touch', isPrimary: id === 1}));
+        ev('pointerdown', 1, mx - 50); ev('pointerdown', 2, mx + 50);
+        for (let k = 1; k <= 5; k++) { ev('pointermove', 1, mx - 50 - 15 * k); ev('pointermove', 2, mx + 50 + 15 * k); }
+        ev('pointerup', 1, mx - 125); ev('pointerup', 2, mx + 125);
+    }""", [mx, my])
+    zoom = float(page.get_attribute("#curved", "data-zoom"))
+    assert abs(zoom - 2.5) < 1e-6
+    after = _box(page)
+    gx, gy = _to_svg(after, mx, my)
+    assert abs(gx - 0.1) < 1e-3 and abs(gy - 0.05) < 1e-3
+    assert not page.js_errors

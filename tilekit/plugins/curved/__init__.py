@@ -15,6 +15,9 @@ plane by Wythoff's construction: ``wythoff`` (the triangle group, the generator,
 (vertex configurations), records from ``catalogue/curved/uniform.toml``; ``stars`` (StarTiling:
 uniform tilings Wythoff's construction does not give, developed from a vertex star, the
 3.3.3.p.p family of ``catalogue/curved/stars.toml``).
+The fourth, ``curved-isohedral``, holds Escher-like isohedral tiles on {p, q}: ``isohedral``
+(CurvedIsohedralTiling) and ``delaney`` (the types as Delaney symbols), records from
+``catalogue/curved/isohedral.toml``.
 
 ``web`` is the plugin's page in ``tilekit serve``: the curved-space viewer (``/curved/NAME``),
 the Poincaré disc moved by dragging, the sphere turned.
@@ -297,13 +300,16 @@ def tilekit_families() -> list[Family]:
         Family(
             name=CURVED_ISOHEDRAL,
             summary="Escher-like isohedral tiles on the sphere and the hyperbolic plane: {p,q}'s polygon, "
-                    "edges paired by motions, J and S edges (§7.3)",
+                    "J/U/S/I edges, tiles with their own symmetry (§7.3)",
             from_spec=_isohedral_from_spec,
             from_file=_isohedral_from_file,
-            description=("The regular p-gon of {p,q} with its edges paired (a letter once: an S edge, half-turn; twice: "
-                         "a J pair), deformed by edge shapes; the pairings' group tiles by Poincaré's theorem; tiles "
-                         "coloured by a perfect colouring. Options: p, q, pairing, edges, radius, samples, colours, "
-                         "plane. Read from a JSON spec file: tilekit render --system x.json --family curved-isohedral."),
+            description=("The regular p-gon of {p,q} with its edges matched by an incidence symbol (§5.2: tile "
+                         "symmetry, J/U/S/I edges, hops by half-turns, mirrors or glides) or a pairing (a letter "
+                         "once: an S edge; twice: a J pair), deformed by edge shapes; Poincaré's condition checked "
+                         "on the Delaney symbol; tiles coloured by a perfect colouring. Records: every type of the "
+                         "sphere's {p,q} and of a few hyperbolic ones (curved-ih-P-Q-N). Options: p, q, symbol, "
+                         "pairing, edges, radius, samples, colours, plane. Read from a JSON spec file: tilekit "
+                         "render --system x.json --family curved-isohedral."),
         ),
     ]
 

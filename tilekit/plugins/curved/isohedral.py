@@ -1,36 +1,38 @@
 """Isohedral tiles on the sphere and the hyperbolic plane (issue 35; §3.6.2, §7.3): the regular
-p-gon of the tiling {p, q} with its edges paired by motions, each edge shaped by the J/S rule its
-pairing allows (the planar isohedral family's edge vocabulary, :mod:`tilekit.edgeshapes`).
+p-gon of the tiling {p, q} with its edges matched up by motions, each edge shaped by the J/U/S/I
+rule the group allows (the planar isohedral family's edge vocabulary, :mod:`tilekit.edgeshapes`,
+and incidence symbols, :mod:`tilekit.incidence`).
 
-The pairing names each edge with a letter: a letter on one edge is an **S** edge, paired with
-itself by the half-turn about its midpoint; a letter on two edges is a **J** pair, edge j carried
-onto edge i by the direct motion ``H_i = F_i · R · F_j⁻¹`` (F_k the frame at edge k's midpoint
-along the edge, R the half-turn there). By Poincaré's polygon theorem the motions generate a
-discrete group Γ with the polygon as a fundamental domain exactly when every vertex cycle (the
-corners the pairings glue together: corner c goes to corner partner(c) + 1) has a length m
-dividing q; then Γ's images of the polygon are the tiles of {p, q}, each once, and Γ acts on
-them simply transitively. The tile may therefore be deformed freely: an edge's curve lives on
-the unit segment (0,0)–(1,0) and is carried onto the surface through the edge's chart
+A type is an incidence symbol (§5.2) on the p-gon, or, for tiles without symmetry hopped by
+half-turns only, a *pairing*: a letter per edge, once for an **S** edge (paired with itself by
+the half-turn about its midpoint), twice for a **J** pair (the symbol with each edge its own
+label, a pair's labels adjacent with +). The hop across edge i is ``H_i = F_i · O · F_j⁻¹``
+(F_k the frame at edge k's midpoint along the edge, j the first edge with the adjacent label,
+O the half-turn for a direct hop or the mirror in the edge's line for an opposite one: with
+F's a reflection or a glide), and the tile symmetries the symbol's labels and arrows keep are
+the polygon's rotations and mirrors. Whether they tile {p, q} — each tile once, the group acting
+transitively with the tile's stabiliser exactly those symmetries — is Poincaré's condition in
+Dress's form, checked on the symbol's Delaney symbol (:mod:`.delaney`), which also gives the
+group's orbifold. The tile may be deformed freely: an edge's curve lives on the unit segment
+(0,0)–(1,0) and is carried onto the surface through the edge's chart
 ``F_k · exp((x − ½)L, yL)`` (the exponential map at the pole, L the edge length), which
-commutes with the half-turn, so a curve put on edge j arrives on edge i as R applied to it.
+commutes with the half-turn and the two mirrors of the edge, so a curve put on one edge arrives
+on its partner as the unit-segment image the symbol names (:func:`tilekit.incidence.edge_curves`).
 Neighbouring tiles share their edges point for point, and the tile is the geodesic polygon
 through those points (straight in the Klein model), so the deformed tiles tile exactly as the
-polygons do; a tile whose boundary crosses itself is refused.
+polygons do; a tile whose boundary crosses itself is refused (default shapes are damped first).
 
-Γ's orbifold: a cone point q/m per vertex cycle (when > 1), a cone point 2 per S edge, and
-(1 + J pairs − cycles)/2 handles. Colours: a homomorphism φ: Γ → Z_k given on the pairing
-motions (φ of a J pair's two motions opposite, 2φ = 0 on an S edge, (q/m)·Σφ = 0 round each
-vertex cycle: the relations of Γ) colours the tile γ(P) by φ(γ); its classes are the cosets of
-the kernel, a normal subgroup of index k, so the colouring is perfect, and with φ ≠ 0 on every
-motion no two neighbours share a colour. The smallest such k (at least 2) is used, or the one
-asked for; none is a one-line error.
+Colours: a homomorphism φ: Γ → Z_k (or Z_a × Z_b), zero on the tile symmetries, one value per
+pair of adjacent labels (:func:`colour_classes`), constrained by the relations found round the
+tile's vertices (:meth:`CurvedIsohedralTiling.relations`), colours the tile γ(P) by φ(γ); its
+classes are the cosets of the kernel, a normal subgroup of index k, so the colouring is perfect,
+and with φ ≠ 0 on every hop no two neighbours share a colour. The smallest such k (at least 2)
+is used, or the one asked for; none is a one-line error.
 
-Covered: every orientation-preserving side pairing of the regular p-gon of {p, q} (orientation-
-reversing pairings and U/I edges, which need mirrors, are not). On the sphere these are the
-isohedral types of the Platonic tilings whose group acts simply transitively on the tiles, e.g.
-{3,3} with S edges (group 222, the four-colour tetrahedron), {4,4}'s analogue is not spherical,
-{3,6} is Euclidean (see the isohedral family); Grünbaum–Shephard's types with tile symmetry are
-not among them.
+Covered: every isohedral type of {p, q}'s regular polygon (J, U, S and I edges; hops by
+half-turns, mirrors and glides; tiles with any subgroup of the polygon's symmetries) on the
+sphere and in the hyperbolic plane; :func:`tilekit.plugins.curved.delaney.enumerate_types`
+lists them, and the family's records are those of the {p, q} in catalogue/curved/isohedral.toml.
 """
 
 from __future__ import annotations

@@ -144,7 +144,7 @@ def viewer_page(request: Any, web: Any) -> str:
     how = ("Drag to translate the Poincaré disc: the view moves by the hyperbolic translation taking the point "
            "under the pointer where the drag began to where it is now." if hyperbolic else
            "Drag to turn the sphere: the rotation taking the point under the pointer where the drag began to "
-           "where it is now.")
+           "where it is now.") + " The wheel or a two-finger pinch zooms about the pointer (1x to 16x)."
     body = f"""<h1>{heading}</h1>
 <p>{esc(getattr(tiling, 'title', '') or tiling.describe())}</p>
 <p>{esc(how)} <button type="button" id="reset">reset view</button></p>
