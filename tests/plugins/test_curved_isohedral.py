@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import json
 import math
-from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -27,6 +26,7 @@ from cliutil import assert_one_line_error
 from family_cli import family_cli
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from test_curved_isohedral_symmetric import orbifold_chi
 
 from tilekit.errors import ParameterError, ParseError
 from tilekit.plugins.curved import model
@@ -70,21 +70,6 @@ def test_hyperbolic_orbifold_area_is_the_polygon(p: int, q: int) -> None:
     pairing = Pairing.parse(example_pairing(p, q), p)
     chi = orbifold_chi(orbifold(pairing, q))
     assert math.isclose(-2 * math.pi * float(chi), model.RegularPolygon(p, q).area, rel_tol=1e-12)
-
-
-def orbifold_chi(text: str) -> Fraction:
-    """Conway's characteristic read off an orbifold symbol (Thurston, Conway: 2 − 2 per o − 1
-    per x − 1 per mirror boundary − (n−1)/n per cone − (n−1)/2n per corner)."""
-    head, *rings = text.split("*")
-
-    def orders(part: str) -> list[int]:
-        digits = part.replace("o", "").replace("x", "")
-        return [int(c) for c in (digits.split(",") if "," in digits else digits) if c]
-
-    chi = Fraction(2) - len(rings) - 2 * head.count("o") - text.count("x")
-    chi -= sum((Fraction(n - 1, n) for n in orders(head)), Fraction(0))
-    chi -= sum((Fraction(n - 1, 2 * n) for r in rings for n in orders(r)), Fraction(0))
-    return chi
 
 
 def _centres_match(a: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -69,17 +69,28 @@ class Delaney:
         return seen
 
 
+def _chamber_permutation(p: int, shift: int, reflect: bool) -> list[int]:
+    """A symmetry of the p-gon (edge i to shift ± i) as a permutation of its chambers."""
+    return [2 * ((shift - i) % p) + (1 - e) if reflect else 2 * ((shift + i) % p) + e
+            for i in range(p) for e in (0, 1)]
+
+
 def _tile_permutations(symbol: IncidenceSymbol) -> list[list[int]]:
     """The tile symmetries as permutations of P's chambers."""
     p = len(symbol.edges)
-    out = []
-    for shift, reflect in symbol.tile_symmetries():
-        perm = [0] * (2 * p)
-        for i in range(p):
-            for e in (0, 1):
-                perm[2 * i + e] = 2 * ((shift - i) % p) + (1 - e) if reflect else 2 * ((shift + i) % p) + e
-        out.append(perm)
-    return out
+    return [_chamber_permutation(p, shift, reflect) for shift, reflect in symbol.tile_symmetries()]
+
+
+def _orbits(perms: list[list[int]], n: int) -> tuple[list[int], int]:
+    """(orbit of each of n chambers under the group of permutations ``perms``, orbit count)."""
+    orbit_of = [-1] * n
+    count = 0
+    for c in range(n):
+        if orbit_of[c] < 0:
+            for perm in perms:
+                orbit_of[perm[c]] = count
+            count += 1
+    return orbit_of, count
 
 
 def _bad(symbol: IncidenceSymbol, why: str) -> ParameterError:
@@ -91,13 +102,7 @@ def delaney(symbol: IncidenceSymbol) -> Delaney:
     hops are not consistent with its tile symmetries is a one-line ParameterError."""
     p = len(symbol.edges)
     perms = _tile_permutations(symbol)
-    orbit_of = [-1] * (2 * p)
-    count = 0
-    for c in range(2 * p):
-        if orbit_of[c] < 0:
-            for perm in perms:
-                orbit_of[perm[c]] = count
-            count += 1
+    orbit_of, count = _orbits(perms, 2 * p)
     table = symbol_table(symbol)
     s0, s1, s2 = [-1] * count, [-1] * count, [-1] * count
     for i in range(p):
@@ -251,10 +256,7 @@ def enumerate_types(p: int, q: int) -> Iterator[IncidenceSymbol]:
     s0 and closes round every vertex (r12 | q), written as an incidence symbol."""
     seen: set[str] = set()
     for sub in _subgroups(p):
-        perms = []
-        for shift, reflect in sub:
-            perms.append([2 * ((shift - i) % p) + (1 - e) if reflect else 2 * ((shift + i) % p) + e
-                          for i in range(p) for e in (0, 1)])
+        perms = [_chamber_permutation(p, shift, reflect) for shift, reflect in sub]
         # edge orbits under S (with whether an element reverses the edge onto itself)
         edge_orbit: dict[int, int] = {}
         reps: list[int] = []
@@ -266,13 +268,7 @@ def enumerate_types(p: int, q: int) -> Iterator[IncidenceSymbol]:
         undirected = [any(perm[2 * r] == 2 * r + 1 for perm in perms) for r in reps]
         # D = S-orbits of chambers, with s1 (s0 is fixed by the pairing below); survivors of the
         # cheap vertex test are written as symbols and checked in full
-        orbit_of = [-1] * (2 * p)
-        size = 0
-        for c in range(2 * p):
-            if orbit_of[c] < 0:
-                for perm in perms:
-                    orbit_of[perm[c]] = size
-                size += 1
+        orbit_of, size = _orbits(perms, 2 * p)
         s1 = [0] * size
         for i in range(p):
             s1[orbit_of[2 * i + 1]] = orbit_of[2 * ((i + 1) % p)]

@@ -324,6 +324,29 @@ def _chart(g: model.Geometry, frame: np.ndarray, length: float, uv: np.ndarray) 
     return pts @ frame.T
 
 
+#: Unit-segment points closer than this to the chord of their neighbours are dropped (and
+#: repeated points merged): they change the shape invisibly but leave slivers that no
+#: triangulation or validation can tell from an overlap.
+FLAT = 1e-6
+
+
+def _clean(curve: np.ndarray) -> np.ndarray:
+    """The curve without repeated points and without points within FLAT of the chord between
+    their neighbours (decided for every point at once, so an edge and its partner, images
+    under an isometry of the unit segment, keep the same points)."""
+    keep = np.ones(len(curve), dtype=bool)
+    keep[1:] = np.abs(np.diff(curve, axis=0)).max(axis=1) > 1e-12
+    c = curve[keep]
+    if len(c) < 3:
+        return np.array([curve[0], curve[-1]])
+    a, b, m = c[:-2], c[2:], c[1:-1]
+    d = b - a
+    length = np.hypot(d[:, 0], d[:, 1])
+    t = np.clip(((m - a) * d).sum(axis=1) / np.maximum(length, 1e-300) ** 2, 0.0, 1.0)
+    near = np.hypot(*(a + t[:, None] * d - m).T) < FLAT
+    return c[np.concatenate([[True], ~near, [True]])]
+
+
 def _densify(curve: np.ndarray, samples: int) -> np.ndarray:
     """The curve's segments each cut into ``samples`` pieces (end point kept)."""
     if samples <= 1:
@@ -499,7 +522,7 @@ class CurvedIsohedralTiling(CurvedTiling):
         length = self.polygon.edge_length
         parts, edge_of = [], []
         for i, curve in enumerate(self.edge_curves()):
-            pts = _chart(g, self.frames[i], length, _densify(curve, self.samples))[:-1]
+            pts = _chart(g, self.frames[i], length, _densify(_clean(curve), self.samples))[:-1]
             parts.append(pts)
             edge_of += [i] * len(pts)
         pts = np.vstack(parts)

@@ -250,7 +250,15 @@ class ModelPatch(Patch):
         owner = tri.colour
         fan = report.overlaps
         report.overlaps = sorted({(int(owner[i]), int(owner[j]), a) for i, j, a in fan if owner[i] != owner[j]})
-        report.invalid_tiles = sorted({int(owner[i]) for i in report.invalid_tiles})
+        # a tile is invalid when it is (its fan triangles are not finite, or their areas sum to
+        # next to nothing): a sliver triangle of a good tile — a nearly straight stretch of a
+        # deformed edge, squeezed towards the rim — is below the core's per-triangle tolerance
+        # while its tile is not
+        det = np.abs(np.linalg.det(tri.transform)) / 2
+        finite = np.isfinite(det) & np.isfinite(tri.transform).all(axis=(1, 2))
+        tile_area = np.bincount(owner[finite], weights=det[finite], minlength=len(self))
+        tiny = tile_area <= tolerance * float(np.median(tile_area)) if len(self) else np.zeros(0, dtype=bool)
+        report.invalid_tiles = sorted({int(t) for t in owner[~finite]} | {int(t) for t in np.flatnonzero(tiny)})
         report.tiles = len(self)
         return report
 
