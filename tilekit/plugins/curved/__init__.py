@@ -228,7 +228,7 @@ def isohedral_records() -> list[CatalogueRecord]:
         if model.kind_of(p, q) == model.EUCLIDEAN:
             raise ParseError(f"curved records {ISOHEDRAL_FILE}: {{{p},{q}}} is Euclidean (the isohedral family's)")
         for n, sym in enumerate(delaney.enumerate_types(p, q), 1):
-            props = type_properties(sym, p, q)
+            props = type_properties(sym, p, q, canonical=True)
             name = f"curved-ih-{p}-{q}-{n}"
             title = (f"{{{p},{q}}} isohedral type {n}: {props['edge_kinds']} edges, group {props['orbifold']}, "
                      f"{sym}")

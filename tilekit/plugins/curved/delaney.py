@@ -276,19 +276,14 @@ def enumerate_types(p: int, q: int) -> Iterator[IncidenceSymbol]:
         # per edge orbit: partner orbit and hop kind (direct / opposite); undirected edges: opposite only
         n = len(reps)
         for match in _matchings(list(range(n))):
-            options = []
-            ok = True
-            for a in range(n):
-                b = match[a]
-                if undirected[a] != undirected[b]:
-                    ok = False
-                    break
-                options.append([False] if undirected[a] else [True, False])
-            if not ok:
+            if any(undirected[a] != undirected[match[a]] for a in range(n)):
                 continue
-            for kinds in product(*options):
-                if any(match[a] > a and kinds[a] != kinds[match[a]] for a in range(n)):
-                    continue
+            owners = [a for a in range(n) if match[a] >= a]  # one hop kind per pair of edge orbits
+            options = [[False] if undirected[a] else [True, False] for a in owners]
+            for chosen in product(*options):
+                kinds = [False] * n
+                for a, k in zip(owners, chosen):
+                    kinds[a] = kinds[match[a]] = k
                 s2 = [0] * size
                 for a in range(n):
                     r, r2 = reps[a], reps[match[a]]
@@ -296,18 +291,19 @@ def enumerate_types(p: int, q: int) -> Iterator[IncidenceSymbol]:
                         s2[orbit_of[2 * r + e]] = orbit_of[2 * r2 + (1 - e if kinds[a] else e)]
                 if not _closes(s1, s2, q):
                     continue
-                sym = _symbol(p, reps, edge_orbit, perms, undirected, match, kinds)
+                sym = _symbol(p, reps, edge_orbit, perms, undirected, match, tuple(kinds))
                 if sym is None:
-                    continue
-                try:
-                    check_on(sym, p, q)
-                except ParameterError:
                     continue
                 canon = sym.canonical()
                 key = str(canon)
-                if key not in seen:
-                    seen.add(key)
-                    yield canon
+                if key in seen:
+                    continue
+                seen.add(key)
+                try:
+                    check_on(canon, p, q)  # the full check, once per type
+                except ParameterError:
+                    continue
+                yield canon
 
 
 def _closes(s1: list[int], s2: list[int], q: int) -> bool:

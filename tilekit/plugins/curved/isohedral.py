@@ -732,11 +732,13 @@ class CurvedIsohedralTiling(CurvedTiling):
                    name=str(spec.get("name", "")), title=str(spec.get("title", "")))
 
 
-def type_properties(symbol: IncidenceSymbol, p: int, q: int, d: delaney.Delaney | None = None) -> dict[str, Any]:
+def type_properties(symbol: IncidenceSymbol, p: int, q: int, d: delaney.Delaney | None = None,
+                    canonical: bool = False) -> dict[str, Any]:
     """What a type's record says without drawing it (cheap: no geometry): the space, {p,q},
     the incidence symbol and its canonical form, the edge kinds (J/U/S/I, per edge and
     counted), ``edge_shapes`` (the free fundamental shapes: the type's parameters, the
-    polygon itself being rigid), the tile's own symmetries and the group's orbifold."""
+    polygon itself being rigid), the tile's own symmetries and the group's orbifold.
+    ``canonical``: the symbol is in canonical form already (as the enumeration yields it)."""
     d = d if d is not None else delaney.check_on(symbol, p, q)
     group = delaney.orbifold_symbol(d, q)
     kinds = symbol.edge_kinds()
@@ -750,7 +752,7 @@ def type_properties(symbol: IncidenceSymbol, p: int, q: int, d: delaney.Delaney 
         "q": q,
         "schlafli": f"{{{p},{q}}}",
         "incidence_symbol": str(symbol),
-        "canonical_symbol": str(symbol.canonical()),
+        "canonical_symbol": str(symbol if canonical else symbol.canonical()),
         "edge_kinds": kinds,
         "j_edges": kinds.count("J"),
         "u_edges": kinds.count("U"),
