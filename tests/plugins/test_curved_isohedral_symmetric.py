@@ -231,3 +231,17 @@ def test_records_list_by_geometry_and_render_by_name(cli, tmp_path) -> None:
     res = cli("render", "curved-ih-4-5-2", "-o", "t.svg")
     assert res.exit_code == 0, res.output
     assert (tmp_path / "t.svg").read_text().count("<path") >= 5
+
+
+def test_symbol_spec_file_reopens_and_configure_switches_type(tmp_path) -> None:
+    from tilekit.plugins.curved.isohedral import from_file, write_spec
+
+    t = CurvedIsohedralTiling(5, 4, symbol="[a+b+c+d+e+; a-e+d+c+b+]", radius=1.5, edges={"b": "0.3,0.1:0.6,-0.1"})
+    write_spec(t, tmp_path / "t.json")
+    again = from_file(str(tmp_path / "t.json"))
+    assert again.spec() == t.spec() and "pairing" not in again.spec()
+    assert np.allclose(again.prototiles[0].points, t.prototiles[0].points)
+    other = t.configure(symbol="[aaaaaa; a]")           # p follows the new symbol's edges, q stays
+    assert (other.p, other.q, other.symbol.edge_kinds(), other.radius) == (6, 4, "IIIIII", 1.5)
+    with pytest.raises(ParameterError, match="Euclidean"):
+        t.configure(symbol="[aaaa; a]")                   # {4,4}: the planar isohedral family's
