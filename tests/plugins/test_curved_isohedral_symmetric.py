@@ -228,6 +228,9 @@ def test_records_list_by_geometry_and_render_by_name(cli, tmp_path) -> None:
     assert listed == hyperbolic
     res = cli("list", "--family", "curved-isohedral", "--where", "orbifold=*532")
     assert res.exit_code == 0 and "curved-ih-5-3-4" in res.output and "curved-ih-3-5-2" in res.output
+    res = cli("list", "--family", "curved-isohedral", "--where", "incidence_symbol=[aaa; a]", "--format", "csv")
+    assert {line.split(",")[0] for line in res.output.strip().splitlines()[1:]} == {
+        "curved-ih-3-3-5", "curved-ih-3-4-8", "curved-ih-3-5-2", "curved-ih-3-7-2"}   # the regular triangle, mirrors
     res = cli("render", "curved-ih-4-5-2", "-o", "t.svg")
     assert res.exit_code == 0, res.output
     assert (tmp_path / "t.svg").read_text().count("<path") >= 5
