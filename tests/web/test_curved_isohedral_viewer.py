@@ -67,7 +67,7 @@ def test_long_drags_on_an_isohedral_record_rebase_and_keep_the_disc_covered(page
     def px(x: float, y: float) -> tuple[float, float]:
         return left + (x - vx) / vw * w, top + (-y - vy) / vh * h
 
-    for _ in range(3):
+    for _ in range(2):
         n = int(page.get_attribute("#curved", "data-renders") or 0)
         page.mouse.move(*px(0.9, 0.05))
         page.mouse.down()
