@@ -456,7 +456,8 @@ def _spec_bases() -> dict[str, list[dict]]:
                    {"configuration": "3.3.4.3.5", "plane": "halfplane", "radius": 1.0, "geometry": "hyperbolic"},
                    {"configuration": "3.3.3.6.6", "pairing": "0- 1+ 2+ 3- 4+", "radius": 1.5}],
         "curved-isohedral": [{"p": 6, "q": 4, "pairing": "a a b b c d", "radius": 2.0, "edges": {"a": "0.3,0.1:0.6,-0.1"}},
-                             {"p": 3, "q": 3, "pairing": "a b c", "samples": 2}],
+                             {"p": 3, "q": 3, "pairing": "a b c", "samples": 2},
+                             {"p": 4, "q": 5, "symbol": "[abab; ba]", "radius": 1.5, "edges": {"a": "0.2,0.1:0.35,-0.05"}}],
         "quasiperiodic": [{"n": 5}, {"n": 8, "gamma": [0.1, 0.2, 0.3, 0.4], "singular": "perturb"}],
     }
 

@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import json
 import math
-from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -27,6 +26,7 @@ from cliutil import assert_one_line_error
 from family_cli import family_cli
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from test_curved_isohedral_symmetric import orbifold_chi
 
 from tilekit.errors import ParameterError, ParseError
 from tilekit.plugins.curved import model
@@ -36,7 +36,6 @@ from tilekit.plugins.curved.isohedral import (
     example_pairing,
     from_file,
     orbifold,
-    orbifold_features,
     write_spec,
 )
 from tilekit.plugins.curved.orbifold import OrbifoldGroup
@@ -69,8 +68,7 @@ def test_tetrahedron_with_s_edges() -> None:
 @pytest.mark.parametrize("p, q", [(6, 4), (7, 3), (5, 4), (4, 8), (8, 3), (4, 6), (3, 12)])
 def test_hyperbolic_orbifold_area_is_the_polygon(p: int, q: int) -> None:
     pairing = Pairing.parse(example_pairing(p, q), p)
-    handles, cones = orbifold_features(pairing, q)
-    chi = 2 - 2 * handles - sum(Fraction(n - 1, n) for n in cones)
+    chi = orbifold_chi(orbifold(pairing, q))
     assert math.isclose(-2 * math.pi * float(chi), model.RegularPolygon(p, q).area, rel_tol=1e-12)
 
 
@@ -164,7 +162,7 @@ def test_bad_pairings() -> None:
         CurvedIsohedralTiling(4, 3, pairing="a a a b")
     with pytest.raises(ParameterError, match="no side pairing"):
         CurvedIsohedralTiling(3, 5)     # no fixed-point-free rotation group of {3,5} acts on its 20 faces
-    with pytest.raises(ParameterError, match="no edge"):
+    with pytest.raises(ParameterError, match="no shaped edge"):
         CurvedIsohedralTiling(6, 4, pairing="a a b b c d", edges={"z": "0.3,0.1"})
 
 

@@ -153,7 +153,7 @@ def test_viewer_api_sends_model_points_and_lorentz_symmetries(client):
     bad = client.get("/api/curved", params={"p": 2, "q": 3})
     assert bad.status_code == 400 and "p must be an integer 3..60, got 2" in bad.json()["error"]
     other = client.get("/curved/IH16")
-    assert other.status_code == 400 and "draws the spherical, hyperbolic, curved families" in other.text
+    assert other.status_code == 400 and "draws the spherical, hyperbolic, curved, curved-isohedral families" in other.text
     assert 'href="/curved/3%5E3.6%5E2"' in client.get("/tiling/3%5E3.6%5E2").text
 
 

@@ -15,6 +15,9 @@ plane by Wythoff's construction: ``wythoff`` (the triangle group, the generator,
 (vertex configurations), records from ``catalogue/curved/uniform.toml``; ``stars`` (StarTiling:
 uniform tilings Wythoff's construction does not give, developed from a vertex star, the
 3.3.3.p.p family of ``catalogue/curved/stars.toml``).
+The fourth, ``curved-isohedral``, holds Escher-like isohedral tiles on {p, q}: ``isohedral``
+(CurvedIsohedralTiling) and ``delaney`` (the types as Delaney symbols), records from
+``catalogue/curved/isohedral.toml``.
 
 ``web`` is the plugin's page in ``tilekit serve``: the curved-space viewer (``/curved/NAME``),
 the Poincaré disc moved by dragging, the sphere turned.
@@ -199,6 +202,41 @@ def _isohedral_from_file(path: str) -> Any:
     return from_file(path)
 
 
+#: The curved isohedral types' data file (the {p, q} whose types are shipped).
+ISOHEDRAL_FILE = "isohedral.toml"
+
+
+def isohedral_records() -> list[CatalogueRecord]:
+    """Every isohedral type on each {p, q} of catalogue/curved/isohedral.toml (delaney.py's
+    enumeration; properties without drawing, isohedral.type_properties)."""
+    # measured start-up cost: NumPy and the curved modules (records are built only when seeding)
+    from tilekit.errors import ParseError
+    from tilekit.plugins.curved import delaney, model
+    from tilekit.plugins.curved.isohedral import type_properties
+    from tilekit.resources import catalogue_dir, read_toml
+    from tilekit.schema import Field, check
+
+    pair = Field("list", items=Field("int", range=(3, model.MAX_PQ)))
+    data = check(Field("table", fields={"schlafli": Field("list", required=True, items=pair)}),
+                 read_toml(catalogue_dir() / "curved" / ISOHEDRAL_FILE, "curved records"),
+                 f"curved records {ISOHEDRAL_FILE}")
+    out = []
+    for pq in data["schlafli"]:
+        if len(pq) != 2:
+            raise ParseError(f"curved records {ISOHEDRAL_FILE}: schlafli entry {pq} is not [p, q]")
+        p, q = model.check_pq(*pq)
+        if model.kind_of(p, q) == model.EUCLIDEAN:
+            raise ParseError(f"curved records {ISOHEDRAL_FILE}: {{{p},{q}}} is Euclidean (the isohedral family's)")
+        for n, sym in enumerate(delaney.enumerate_types(p, q), 1):
+            props = type_properties(sym, p, q, canonical=True)
+            name = f"curved-ih-{p}-{q}-{n}"
+            title = (f"{{{p},{q}}} isohedral type {n}: {props['edge_kinds']} edges, group {props['orbifold']}, "
+                     f"{sym}")
+            out.append(CatalogueRecord(family=CURVED_ISOHEDRAL, name=name, title=title, properties=props,
+                                       spec={"p": p, "q": q, "symbol": str(sym), "name": name, "title": title}))
+    return out
+
+
 #: The non-Wythoffian uniform tilings' data file (the 3.3.3.p.p family, stars.py).
 STARS_FILE = "stars.toml"
 
@@ -262,20 +300,23 @@ def tilekit_families() -> list[Family]:
         Family(
             name=CURVED_ISOHEDRAL,
             summary="Escher-like isohedral tiles on the sphere and the hyperbolic plane: {p,q}'s polygon, "
-                    "edges paired by motions, J and S edges (§7.3)",
+                    "J/U/S/I edges, tiles with their own symmetry (§7.3)",
             from_spec=_isohedral_from_spec,
             from_file=_isohedral_from_file,
-            description=("The regular p-gon of {p,q} with its edges paired (a letter once: an S edge, half-turn; twice: "
-                         "a J pair), deformed by edge shapes; the pairings' group tiles by Poincaré's theorem; tiles "
-                         "coloured by a perfect colouring. Options: p, q, pairing, edges, radius, samples, colours, "
-                         "plane. Read from a JSON spec file: tilekit render --system x.json --family curved-isohedral."),
+            description=("The regular p-gon of {p,q} with its edges matched by an incidence symbol (§5.2: tile "
+                         "symmetry, J/U/S/I edges, hops by half-turns, mirrors or glides) or a pairing (a letter "
+                         "once: an S edge; twice: a J pair), deformed by edge shapes; Poincaré's condition checked "
+                         "on the Delaney symbol; tiles coloured by a perfect colouring. Records: every type of the "
+                         "sphere's {p,q} and of a few hyperbolic ones (curved-ih-P-Q-N). Options: p, q, symbol, "
+                         "pairing, edges, radius, samples, colours, plane. Read from a JSON spec file: tilekit "
+                         "render --system x.json --family curved-isohedral."),
         ),
     ]
 
 
 @tilekit.hookimpl
 def tilekit_catalogue_records() -> list[CatalogueRecord]:
-    return curved_records() + uniform_records() + star_records()
+    return curved_records() + uniform_records() + star_records() + isohedral_records()
 
 
 @tilekit.hookimpl

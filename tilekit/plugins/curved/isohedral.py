@@ -1,36 +1,38 @@
 """Isohedral tiles on the sphere and the hyperbolic plane (issue 35; §3.6.2, §7.3): the regular
-p-gon of the tiling {p, q} with its edges paired by motions, each edge shaped by the J/S rule its
-pairing allows (the planar isohedral family's edge vocabulary, :mod:`tilekit.edgeshapes`).
+p-gon of the tiling {p, q} with its edges matched up by motions, each edge shaped by the J/U/S/I
+rule the group allows (the planar isohedral family's edge vocabulary, :mod:`tilekit.edgeshapes`,
+and incidence symbols, :mod:`tilekit.incidence`).
 
-The pairing names each edge with a letter: a letter on one edge is an **S** edge, paired with
-itself by the half-turn about its midpoint; a letter on two edges is a **J** pair, edge j carried
-onto edge i by the direct motion ``H_i = F_i · R · F_j⁻¹`` (F_k the frame at edge k's midpoint
-along the edge, R the half-turn there). By Poincaré's polygon theorem the motions generate a
-discrete group Γ with the polygon as a fundamental domain exactly when every vertex cycle (the
-corners the pairings glue together: corner c goes to corner partner(c) + 1) has a length m
-dividing q; then Γ's images of the polygon are the tiles of {p, q}, each once, and Γ acts on
-them simply transitively. The tile may therefore be deformed freely: an edge's curve lives on
-the unit segment (0,0)–(1,0) and is carried onto the surface through the edge's chart
+A type is an incidence symbol (§5.2) on the p-gon, or, for tiles without symmetry hopped by
+half-turns only, a *pairing*: a letter per edge, once for an **S** edge (paired with itself by
+the half-turn about its midpoint), twice for a **J** pair (the symbol with each edge its own
+label, a pair's labels adjacent with +). The hop across edge i is ``H_i = F_i · O · F_j⁻¹``
+(F_k the frame at edge k's midpoint along the edge, j the first edge with the adjacent label,
+O the half-turn for a direct hop or the mirror in the edge's line for an opposite one: with
+F's a reflection or a glide), and the tile symmetries the symbol's labels and arrows keep are
+the polygon's rotations and mirrors. Whether they tile {p, q} — each tile once, the group acting
+transitively with the tile's stabiliser exactly those symmetries — is Poincaré's condition in
+Dress's form, checked on the symbol's Delaney symbol (:mod:`.delaney`), which also gives the
+group's orbifold. The tile may be deformed freely: an edge's curve lives on the unit segment
+(0,0)–(1,0) and is carried onto the surface through the edge's chart
 ``F_k · exp((x − ½)L, yL)`` (the exponential map at the pole, L the edge length), which
-commutes with the half-turn, so a curve put on edge j arrives on edge i as R applied to it.
+commutes with the half-turn and the two mirrors of the edge, so a curve put on one edge arrives
+on its partner as the unit-segment image the symbol names (:func:`tilekit.incidence.edge_curves`).
 Neighbouring tiles share their edges point for point, and the tile is the geodesic polygon
 through those points (straight in the Klein model), so the deformed tiles tile exactly as the
-polygons do; a tile whose boundary crosses itself is refused.
+polygons do; a tile whose boundary crosses itself is refused (default shapes are damped first).
 
-Γ's orbifold: a cone point q/m per vertex cycle (when > 1), a cone point 2 per S edge, and
-(1 + J pairs − cycles)/2 handles. Colours: a homomorphism φ: Γ → Z_k given on the pairing
-motions (φ of a J pair's two motions opposite, 2φ = 0 on an S edge, (q/m)·Σφ = 0 round each
-vertex cycle: the relations of Γ) colours the tile γ(P) by φ(γ); its classes are the cosets of
-the kernel, a normal subgroup of index k, so the colouring is perfect, and with φ ≠ 0 on every
-motion no two neighbours share a colour. The smallest such k (at least 2) is used, or the one
-asked for; none is a one-line error.
+Colours: a homomorphism φ: Γ → Z_k (or Z_a × Z_b), zero on the tile symmetries, one value per
+pair of adjacent labels (:func:`colour_classes`), constrained by the relations found round the
+tile's vertices (:meth:`CurvedIsohedralTiling.relations`), colours the tile γ(P) by φ(γ); its
+classes are the cosets of the kernel, a normal subgroup of index k, so the colouring is perfect,
+and with φ ≠ 0 on every hop no two neighbours share a colour. The smallest such k (at least 2)
+is used, or the one asked for; none is a one-line error.
 
-Covered: every orientation-preserving side pairing of the regular p-gon of {p, q} (orientation-
-reversing pairings and U/I edges, which need mirrors, are not). On the sphere these are the
-isohedral types of the Platonic tilings whose group acts simply transitively on the tiles, e.g.
-{3,3} with S edges (group 222, the four-colour tetrahedron), {4,4}'s analogue is not spherical,
-{3,6} is Euclidean (see the isohedral family); Grünbaum–Shephard's types with tile symmetry are
-not among them.
+Covered: every isohedral type of {p, q}'s regular polygon (J, U, S and I edges; hops by
+half-turns, mirrors and glides; tiles with any subgroup of the polygon's symmetries) on the
+sphere and in the hyperbolic plane; :func:`tilekit.plugins.curved.delaney.enumerate_types`
+lists them, and the family's records are those of the {p, q} in catalogue/curved/isohedral.toml.
 """
 
 from __future__ import annotations
@@ -47,11 +49,12 @@ from typing import Any
 import numpy as np
 import shapely
 
-from tilekit.edgeshapes import ROT, EdgeShape, apply_unit, complete
+from tilekit.edgeshapes import ROT, EdgeShape
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.files import read_text
+from tilekit.incidence import IncidenceSymbol, edge_curves, shape_classes, symbol_table
 from tilekit.limits import MAX_TILES, refuse_over, refuse_over_memory
-from tilekit.plugins.curved import model, wythoff
+from tilekit.plugins.curved import delaney, model, wythoff
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
 from tilekit.plugins.curved.tiling import (
     MAX_RADIUS,
@@ -81,12 +84,18 @@ MAX_SPEC_BYTES = 1 << 16
 #: layers' candidates (p per tile); bounded generously.
 BYTES_PER_TILE = 4000
 
-_OPTIONS = ("p", "q", "pairing", "edges", "radius", "samples", "colours", "plane", "geometry")
+_OPTIONS = ("p", "q", "pairing", "symbol", "edges", "radius", "samples", "colours", "plane", "geometry")
 _SPEC_KEYS = set(_OPTIONS) - {"geometry"} | {"name", "title"}
 _ROT3 = np.diag([-1.0, -1.0, 1.0])
+_ROFL3 = np.diag([1.0, -1.0, 1.0])   # the mirror in the edge's line (the unit segment's ROFL)
+_FLIP3 = np.diag([-1.0, 1.0, 1.0])   # the mirror in its perpendicular bisector (FLIP)
 #: Default shapes: an S edge's half (completed by the half-turn) and a J edge's whole curve.
 DEFAULT_S = "0.18,0.16:0.34,0.14"
 DEFAULT_J = "0.25,0.16:0.55,-0.12:0.8,0.06"
+#: Factors the default shapes are tried at, in turn, until the tile is simple.
+DEFAULT_DAMPING = (1.0, 0.5, 0.25, 0.125)
+#: A U edge's half (completed by the mirror in the perpendicular bisector).
+DEFAULT_U = "0.2,0.12:0.36,-0.06"
 
 
 # --------------------------------------------------------------------------- the pairing
@@ -164,21 +173,29 @@ def _pairing_hint(p: int, q: int) -> str:
     return f"e.g. '{ex}'" if ex else f"no pairing of the {p}-gon found for {{{p},{q}}} (p up to 10 searched)"
 
 
-def orbifold_features(pairing: Pairing, q: int) -> tuple[int, list[int]]:
-    """(handles, cone orders largest first) of the group's orbifold: a cone q/m per vertex
-    cycle of m corners (when q/m > 1), a cone 2 per S edge; the quotient of the polygon has
-    V − E + F = cycles + S edges − (J pairs + S edges) + 1 = 2 − 2·handles."""
-    cyc = pairing.cycles()
-    cones = [q // len(c) for c in cyc if q // len(c) > 1] + [2] * sum(1 for i in range(len(pairing.labels))
-                                                                    if pairing.kind(i) == "S")
-    pairs = sum(1 for i in range(len(pairing.labels)) if pairing.partner[i] > i)
-    return (1 + pairs - len(cyc)) // 2, sorted(cones, reverse=True)
+def pairing_symbol(pairing: Pairing) -> IncidenceSymbol:
+    """The incidence symbol of a pairing: every edge its own label, directed; a J pair's two
+    labels adjacent with + (a direct hop, the half-turn seen from the edge), an S edge's label
+    adjacent to itself with +. The owner edge of each pair keeps the pairing's letter, the
+    other edge takes an unused one."""
+    p = len(pairing.labels)
+    spare = iter(c for c in "abcdefghijklmnopqrstuvwxyz" if c not in pairing.labels)
+    names = [""] * p
+    for i in range(p):
+        if pairing.partner[i] >= i:
+            names[i] = pairing.labels[i]
+    for i in range(p):
+        if not names[i]:
+            names[i] = next(spare)
+    edges = tuple((n, 1) for n in names)
+    adjacency = tuple((names[pairing.partner[i]], 1) for i in range(p))
+    return IncidenceSymbol(edges, adjacency)
 
 
-def orbifold(pairing: Pairing, q: int) -> str:
-    """The group's orbifold symbol: handles (o), then cone points, largest first."""
-    handles, cones = orbifold_features(pairing, q)
-    return "o" * handles + "".join(map(str, cones))
+def orbifold(pairing: Pairing | IncidenceSymbol, q: int) -> str:
+    """The group's orbifold symbol (Conway), read off the Delaney symbol (:mod:`.delaney`)."""
+    sym = pairing_symbol(pairing) if isinstance(pairing, Pairing) else pairing
+    return delaney.orbifold_symbol(delaney.check_on(sym, len(sym.edges), q), q)
 
 
 def example_pairing(p: int, q: int) -> str | None:
@@ -218,46 +235,63 @@ def example_pairing(p: int, q: int) -> str | None:
 QUOTIENTS = ((1, 2), (1, 3), (1, 4), (2, 2), (1, 5), (1, 6), (1, 7), (1, 8), (2, 4))
 
 
-def colouring(pairing: Pairing, q: int, k: int | None = None) -> tuple[tuple[int, int], tuple[int, ...]]:
-    """((a, b), φ per edge's motion as a colour index x·b + y of Z_a × Z_b): a homomorphism of the group onto a finite
-    abelian group A (Z_b or Z_a × Z_b, k = |A| elements; see the module), nonzero on every
-    motion when one is (neighbours then differ), else any onto A; the smallest A first, or the
-    first with k elements when k is asked for; a quotient whose assignments number over
-    MAX_ASSIGNMENTS is skipped. No homomorphism onto any A of QUOTIENTS: one
-    colour (k = 1, the trivial colouring, perfect too)."""
-    p = len(pairing.labels)
-    owners = pairing.owners()
-    cycles = pairing.cycles()
+def colour_classes(symbol: IncidenceSymbol) -> tuple[list[int], list[int], list[bool]]:
+    """(class of each edge's hop, its sign ±1, per class whether it is an involution's class):
+    hops of one label agree up to tile symmetries, a label's neighbour's hop is its inverse up
+    to them, and a label adjacent to itself has a hop whose square is a tile symmetry."""
+    adj = symbol.adjacent_map()
+    cls: dict[str, tuple[int, int]] = {}
+    order2: list[bool] = []
+    for lab in symbol.labels:
+        if lab in cls:
+            continue
+        other = adj[lab][0]
+        cls[lab] = (len(order2), 1)
+        if other != lab:
+            cls[other] = (len(order2), -1)
+        order2.append(other == lab)
+    return ([cls[lab][0] for lab, _ in symbol.edges], [cls[lab][1] for lab, _ in symbol.edges], order2)
+
+
+def colouring(symbol: IncidenceSymbol, relations: np.ndarray, k: int | None = None
+              ) -> tuple[tuple[int, int], tuple[int, ...]]:
+    """((a, b), φ per edge's hop as a colour index x·b + y of Z_a × Z_b): a homomorphism of the
+    group onto a finite abelian group A (Z_b or Z_a × Z_b, k = |A|), zero on the tile symmetries
+    (so a tile has one colour), given by one value per colour class (:func:`colour_classes`)
+    that satisfies ``relations`` (rows: the classes' signed counts along two words of hops that
+    reach one tile; see :meth:`CurvedIsohedralTiling.relations`); nonzero on every hop when one
+    is (neighbours then differ), else any onto A; the smallest A first, or the first with k
+    elements when k is asked for; a quotient whose assignments number over MAX_ASSIGNMENTS is
+    skipped. None: one colour (k = 1, the trivial colouring, perfect too)."""
+    p = len(symbol.edges)
+    edge_class, edge_sign, order2 = colour_classes(symbol)
+    n = len(order2)
     quotients = [ab for ab in QUOTIENTS if k is None or ab[0] * ab[1] == k]
     if k is not None and not quotients:
         raise ParameterError(f"colours must be one of {', '.join(str(a * b) for a, b in QUOTIENTS[:8])} (the "
                              f"abelian groups searched), got {k}")
+    rel = np.asarray(relations, dtype=np.int64).reshape(-1, n)
     for nonzero in (True, False):
         for a, b in quotients:
             elems = [(x, y) for x in range(a) for y in range(b)]
             allowed = elems[1:] if nonzero else elems
-            half = [e for e in allowed if not (2 * e[0]) % a and not (2 * e[1]) % b]  # an S edge's φ: 2φ = 0
-            choices = [half if pairing.kind(i) == "S" else allowed for i in owners]
-            if math.prod(len(c) for c in choices) > MAX_ASSIGNMENTS:
+            half = [e for e in allowed if not (2 * e[0]) % a and not (2 * e[1]) % b]  # 2φ = 0
+            choices = [half if order2[c] else allowed for c in range(n)]
+            total = math.prod(len(c) for c in choices)
+            if not total or total > MAX_ASSIGNMENTS:
                 continue  # budget: this quotient is not searched (the docstring says so)
-            for values in itertools.product(*choices):
-                phi = [(0, 0)] * p
-                for i, v in zip(owners, values):
-                    phi[i] = v
-                    if pairing.partner[i] != i:
-                        phi[pairing.partner[i]] = ((-v[0]) % a, (-v[1]) % b)
-                if any(pairing.kind(i) == "S" and ((2 * phi[i][0]) % a or (2 * phi[i][1]) % b) for i in range(p)):
-                    continue
-                if any(((q // len(c)) * sum(phi[x][0] for x in c)) % a or ((q // len(c)) * sum(phi[x][1] for x in c)) % b
-                       for c in cycles):
-                    continue
+            cand = np.array(list(itertools.product(*choices)), dtype=np.int64).reshape(total, n, 2)
+            ok = ((cand[:, :, 0] @ rel.T) % a == 0).all(axis=1) & ((cand[:, :, 1] @ rel.T) % b == 0).all(axis=1)
+            for row in cand[ok]:
                 reach = {(0, 0)}
                 for _ in range(a * b):
-                    reach |= {((r[0] + g[0]) % a, (r[1] + g[1]) % b) for r in reach for g in phi}
+                    reach |= {((r[0] + g[0]) % a, (r[1] + g[1]) % b) for r in reach for g in row.tolist()}
                 if len(reach) == a * b:
+                    phi = [(int(edge_sign[i] * row[edge_class[i], 0]) % a, int(edge_sign[i] * row[edge_class[i], 1]) % b)
+                           for i in range(p)]
                     return (a, b), tuple(x * b + y for x, y in phi)
     if k is not None:
-        raise ParameterError(f"pairing '{pairing}' on {{{p},{q}}} has no perfect colouring with {k} colours (no "
+        raise ParameterError(f"incidence symbol {symbol} has no perfect colouring with {k} colours (no "
                              "homomorphism of its group onto an abelian group of that order)")
     return (1, 1), (0,) * p
 
@@ -290,6 +324,29 @@ def _chart(g: model.Geometry, frame: np.ndarray, length: float, uv: np.ndarray) 
     return pts @ frame.T
 
 
+#: Unit-segment points closer than this to the chord of their neighbours are dropped (and
+#: repeated points merged): they change the shape invisibly but leave slivers that no
+#: triangulation or validation can tell from an overlap.
+FLAT = 1e-6
+
+
+def _clean(curve: np.ndarray) -> np.ndarray:
+    """The curve without repeated points and without points within FLAT of the chord between
+    their neighbours (decided for every point at once, so an edge and its partner, images
+    under an isometry of the unit segment, keep the same points)."""
+    keep = np.ones(len(curve), dtype=bool)
+    keep[1:] = np.abs(np.diff(curve, axis=0)).max(axis=1) > 1e-12
+    c = curve[keep]
+    if len(c) < 3:
+        return np.array([curve[0], curve[-1]])
+    a, b, m = c[:-2], c[2:], c[1:-1]
+    d = b - a
+    length = np.hypot(d[:, 0], d[:, 1])
+    t = np.clip(((m - a) * d).sum(axis=1) / np.maximum(length, 1e-300) ** 2, 0.0, 1.0)
+    near = np.hypot(*(a + t[:, None] * d - m).T) < FLAT
+    return c[np.concatenate([[True], ~near, [True]])]
+
+
 def _densify(curve: np.ndarray, samples: int) -> np.ndarray:
     """The curve's segments each cut into ``samples`` pieces (end point kept)."""
     if samples <= 1:
@@ -311,23 +368,34 @@ class CurvedIsohedralTiling(CurvedTiling):
     family = FAMILY
     OPTIONS = _OPTIONS
 
-    def __init__(self, p: int = 6, q: int = 4, *, pairing: str | None = None,
+    def __init__(self, p: int | None = None, q: int = 4, *, pairing: str | None = None, symbol: str | None = None,
                  edges: Mapping[str, EdgeShape | str] | None = None, radius: float | None = None,
                  samples: int = DEFAULT_SAMPLES, colours: int | None = None, plane: str = "poincare",
                  geometry: str | None = None, name: str = "", title: str = "") -> None:
+        if pairing is not None and symbol is not None:
+            raise ParameterError("give a pairing ('a b a b') or an incidence symbol ('[a+b+; b+a+]'), not both")
+        parsed = IncidenceSymbol.parse(symbol) if symbol is not None else None
+        if p is None:
+            p = len(parsed.edges) if parsed is not None else 6
         self.p, self.q = model.check_pq(p, q)
         self.kind = model.kind_of(self.p, self.q)
         want = wythoff.check_geometry(geometry)
         if want is not None and want != self.kind:
             raise ParameterError(f"{{{self.p},{self.q}}} is {self.kind}, not {want}: (p-2)(q-2) < 4 is the sphere, "
                                  "> 4 the hyperbolic plane")
-        if pairing is None:
-            pairing = example_pairing(self.p, self.q)
+        if parsed is None:
             if pairing is None:
-                raise ParameterError(f"{{{self.p},{self.q}}}: no side pairing of the {self.p}-gon found; give one "
-                                     "(--set pairing='a b ...')")
-        self.pairing = Pairing.parse(pairing, self.p)
-        check_pairing(self.pairing, self.p, self.q)
+                pairing = example_pairing(self.p, self.q)
+                if pairing is None:
+                    raise ParameterError(f"{{{self.p},{self.q}}}: no side pairing of the {self.p}-gon found; give one "
+                                         "(--set pairing='a b ...') or an incidence symbol (--set symbol='[aaa; a]')")
+            self.pairing: Pairing | None = Pairing.parse(pairing, self.p)
+            check_pairing(self.pairing, self.p, self.q)
+            self.symbol = pairing_symbol(self.pairing)
+        else:
+            self.pairing = None
+            self.symbol = parsed
+        self.delaney = delaney.check_on(self.symbol, self.p, self.q)
         if not isinstance(plane, str) or plane not in PLANES:
             raise ParameterError(f"plane must be one of {', '.join(PLANES)}, got {str(plane)[:40]}")
         if plane != "poincare" and self.kind == model.SPHERE:
@@ -337,46 +405,57 @@ class CurvedIsohedralTiling(CurvedTiling):
         if radius is not None and self.kind == model.SPHERE:
             raise ParameterError("radius applies to hyperbolic tilings; a tiling of the sphere is drawn whole")
         self.radius = None if radius is None else float(_number("radius", radius, 0, MAX_RADIUS, False))
-        self.quotient, self.phi = colouring(self.pairing, self.q,
-                                                None if colours is None else
-                                                int(_number("colours", colours, 1, MAX_COLOURS, True)))
+        self.polygon = model.RegularPolygon(self.p, self.q)
+        self.quotient, self.phi = colouring(self.symbol, self.relations(),
+                                            None if colours is None else
+                                            int(_number("colours", colours, 1, MAX_COLOURS, True)))
         self.colour_count = self.quotient[0] * self.quotient[1]
         self.asked_colours = colours is not None
-        self.edge_shapes = self._shapes(edges or {})
-        self.polygon = model.RegularPolygon(self.p, self.q)
         self.name = name or f"{FAMILY}-{self.p}-{self.q}"
         self.title = title
-        self._proto = self._prototile()
+        given = edges or {}
+        # the default shapes bend less, halved up to three times, until the tile is simple
+        # (an edge shape given is never changed: a crossing is its one-line error)
+        for damp in DEFAULT_DAMPING:
+            self.edge_shapes = self._shapes(given, damp)
+            try:
+                self._proto = self._prototile()
+                break
+            except ParameterError:
+                if damp == DEFAULT_DAMPING[-1] or set(shape_classes(self.symbol)) <= set(given):
+                    raise
 
     # -- shapes ------------------------------------------------------------------------
-    def _shapes(self, edges: Mapping[str, Any]) -> dict[str, EdgeShape]:
+    def _label(self, i: int) -> str:
+        return self.pairing.labels[i] if self.pairing is not None else self.symbol.edges[i][0]
+
+    def _shapes(self, edges: Mapping[str, Any], damp: float = 1.0) -> dict[str, EdgeShape]:
         if not isinstance(edges, Mapping):
             raise ParameterError(f"edges must map edge letters to shapes, got {type(edges).__name__}")
-        letters = {self.pairing.labels[i]: i for i in self.pairing.owners()}
+        owners = shape_classes(self.symbol)
         out: dict[str, EdgeShape] = {}
         for lab, shape in edges.items():
-            if lab not in letters:
-                raise ParameterError(f"{{{self.p},{self.q}}} with pairing '{self.pairing}' has no edge {str(lab)[:10]!r}; "
-                                     f"its edges are {', '.join(sorted(letters))}")
+            if lab not in owners:
+                raise ParameterError(f"{{{self.p},{self.q}}} with {self._what()} has no shaped edge {str(lab)[:10]!r}; "
+                                     f"its shaped edges are {', '.join(sorted(owners)) or 'none (all I: straight)'}")
             out[lab] = shape if isinstance(shape, EdgeShape) else EdgeShape.parse(str(shape))
         # the defaults bend less where the corners are sharp (angle 2π/q), so the tile stays simple
-        scale = min(1.0, 4.0 / self.q)
-        for lab, i in letters.items():
-            base = EdgeShape.parse(DEFAULT_S if self.pairing.kind(i) == "S" else DEFAULT_J)
+        scale = min(1.0, 4.0 / self.q) * damp
+        for lab in owners:
+            kind = self.symbol.label_kind(lab)
+            base = EdgeShape.parse(DEFAULT_J if kind == "J" else DEFAULT_S if kind == "S" else DEFAULT_U)
             out.setdefault(lab, EdgeShape(base.points * np.array([1.0, scale])))
         return out
 
+    def _what(self) -> str:
+        return f"pairing '{self.pairing}'" if self.pairing is not None else f"incidence symbol {self.symbol}"
+
     def edge_curves(self) -> list[np.ndarray]:
-        """Each edge's curve on the unit segment, (0,0) to (1,0): an S edge completed by the
-        half-turn, a J pair's second edge the half-turn image of the first's."""
-        curves: list[np.ndarray] = [np.zeros((0, 2))] * self.p
-        for i in self.pairing.owners():
-            kind = self.pairing.kind(i)
-            curve = complete(kind, self.edge_shapes[self.pairing.labels[i]])
-            curves[i] = curve
-            if kind == "J":
-                curves[self.pairing.partner[i]] = apply_unit(ROT, curve)
-        return curves
+        """Each edge's curve on the unit segment, (0,0) to (1,0), in the tile's counter-clockwise
+        direction: levels 1 and 2 of the edge model (:func:`tilekit.incidence.edge_curves`: J
+        whole, S and U completed by the half-turn or the mirror, I straight, a label's neighbour
+        the hop's image)."""
+        return edge_curves(self.symbol, self.edge_shapes)
 
     @cached_property
     def frames(self) -> np.ndarray:
@@ -384,17 +463,66 @@ class CurvedIsohedralTiling(CurvedTiling):
 
     @cached_property
     def motions(self) -> np.ndarray:
-        """(p, 3, 3): H_i carries the tile onto its neighbour across edge i."""
+        """(p, 3, 3): the hop H_i = F_i O F_j⁻¹ carries the tile onto its neighbour across edge
+        i, presenting its edge j there (O the half-turn for a direct hop, the mirror in the
+        edge's line for an opposite one)."""
         f = self.frames
         inv = np.linalg.inv(f)
-        return np.array([f[i] @ _ROT3 @ inv[self.pairing.partner[i]] for i in range(self.p)])
+        table = symbol_table(self.symbol)
+        out = []
+        for i in range(self.p):
+            o = _ROT3 if (table.orientation[i] == ROT).all() else _ROFL3
+            out.append(f[i] @ o @ inv[int(table.partner[i])])
+        return np.array(out)
+
+    @cached_property
+    def tile_symmetries(self) -> np.ndarray:
+        """(s, 3, 3): the motions of the tile onto itself that keep labels and arrows."""
+        f = self.frames
+        inv0 = np.linalg.inv(f[0])
+        return np.array([f[shift] @ (_FLIP3 if reflect else np.eye(3)) @ inv0
+                         for shift, reflect in self.symbol.tile_symmetries()])
+
+    def relations(self) -> np.ndarray:
+        """Relations among the colour classes' values (:func:`colour_classes`): breadth first
+        over hops from the tile to every tile within two circumradii (the tiles round the
+        tile's vertices, whose cycles give the group's relations with the classes' own), each
+        tile with the signed class counts of its word; where two words reach one tile, their
+        difference is a row."""
+        g = self.polygon.geometry
+        edge_class, edge_sign, order2 = colour_classes(self.symbol)
+        n = len(order2)
+        step = np.zeros((self.p, n), dtype=np.int64)
+        step[np.arange(self.p), edge_class] = edge_sign
+        bound = math.inf if not self.hyperbolic else 2 * self.polygon.circumradius + 1e-9
+        sep = 2 * self.polygon.inradius
+        mats, words = np.eye(3)[None], np.zeros((1, n), dtype=np.int64)
+        layer, layer_w = mats, words
+        rows = []
+        while len(layer):
+            cand = np.matmul(layer[:, None], self.motions[None]).reshape(-1, 3, 3)
+            cw = (layer_w[:, None, :] + step[None]).reshape(-1, n)
+            if math.isfinite(bound):
+                inside = g.acos(cand[:, 2, 2]) <= bound
+                cand, cw = cand[inside], cw[inside]
+            allm, allw = np.concatenate([mats, cand]), np.concatenate([words, cw])
+            key = allm[:, :, 2] if g.sign > 0 else allm[:, :2, 2]
+            rep = wythoff.weld(key, sep)
+            dup = np.flatnonzero(rep != np.arange(len(allm)))
+            rows.append(allw[dup] - allw[rep[dup]])
+            new = np.flatnonzero(rep == np.arange(len(allm)))
+            new = new[new >= len(mats)]
+            layer, layer_w = allm[new], allw[new]
+            mats, words = np.concatenate([mats, layer]), np.concatenate([words, layer_w])
+        out = np.concatenate(rows) if rows else np.zeros((0, n), dtype=np.int64)
+        return np.unique(out, axis=0)
 
     def _prototile(self) -> ModelPrototile:
         g = self.polygon.geometry
         length = self.polygon.edge_length
         parts, edge_of = [], []
         for i, curve in enumerate(self.edge_curves()):
-            pts = _chart(g, self.frames[i], length, _densify(curve, self.samples))[:-1]
+            pts = _chart(g, self.frames[i], length, _densify(_clean(curve), self.samples))[:-1]
             parts.append(pts)
             edge_of += [i] * len(pts)
         pts = np.vstack(parts)
@@ -421,14 +549,14 @@ class CurvedIsohedralTiling(CurvedTiling):
             lines.append(shapely.LineString(seg))
         for i in range(self.p):
             if not lines[i].is_simple:
-                return (f"the shape of edge {i + 1} ({self.pairing.labels[i]!r}) crosses itself: the tile must stay "
+                return (f"the shape of edge {i + 1} ({self._label(i)!r}) crosses itself: the tile must stay "
                         "a simple polygon")
             for j in range(i + 1, self.p):
                 inter = lines[i].intersection(lines[j])
                 adjacent = (j == i + 1) or (i == 0 and j == self.p - 1)
                 if not inter.is_empty and (not adjacent or inter.geom_type != "Point"):
-                    return (f"the shapes of edges {i + 1} ({self.pairing.labels[i]!r}) and {j + 1} "
-                            f"({self.pairing.labels[j]!r}) cross: the tile must stay a simple polygon; use smaller "
+                    return (f"the shapes of edges {i + 1} ({self._label(i)!r}) and {j + 1} "
+                            f"({self._label(j)!r}) cross: the tile must stay a simple polygon; use smaller "
                             "deflections")
         return "the edge shapes turn the tile inside out: the tile must stay a simple counter-clockwise polygon"
 
@@ -496,6 +624,16 @@ class CurvedIsohedralTiling(CurvedTiling):
             mats, cols = mats[keep], cols[keep]
         return mats, cols
 
+    def symmetries(self, reach: float) -> np.ndarray:
+        """(n, 3, 3) proper motions of the group that keep the colouring (φ = 0) and move the
+        pole at most ``reach`` (hyperbolic; the identity first): the viewer folds them into
+        its view, which leaves the coloured picture unchanged."""
+        mats, cols = self.configure(radius=reach).group_elements()
+        keep = mats[cols == 0]
+        both = np.matmul(keep[:, None], self.tile_symmetries[None]).reshape(-1, 3, 3)
+        both = both[(np.linalg.det(both) > 0) & (both[:, 2, 2] <= math.cosh(reach) * (1 + 1e-12))]
+        return both
+
     def patch(self, region: Any = None) -> ModelPatch:
         """Every tile (sphere) or every tile whose centre lies within the radius, coloured by
         the perfect colouring (see the module), less those whose outline misses ``region``."""
@@ -505,32 +643,25 @@ class CurvedIsohedralTiling(CurvedTiling):
 
     # -- records, options, specs ----------------------------------------------------------
     def properties(self) -> dict[str, Any]:
-        return {
-            "periodic": self.hyperbolic,
-            "k_isohedral": 1,
-            "k_hedral": 1,
-            "geometry": self.kind,
-            "schlafli": f"{{{self.p},{self.q}}}",
-            "pairing": str(self.pairing),
-            "edge_kinds": "".join(self.pairing.kind(i) for i in range(self.p)),
-            "symmetry_group": orbifold(self.pairing, self.q),
-            "orbifold": orbifold(self.pairing, self.q),
-            "colours": self.colour_count,
-            "colour_group": (f"Z{self.quotient[1]}" if self.quotient[0] == 1
-                             else f"Z{self.quotient[0]} x Z{self.quotient[1]}"),
-            "sides": [self.p],
-        }
+        props = type_properties(self.symbol, self.p, self.q, self.delaney)
+        props.update(colours=self.colour_count,
+                     colour_group=(f"Z{self.quotient[1]}" if self.quotient[0] == 1
+                                   else f"Z{self.quotient[0]} x Z{self.quotient[1]}"))
+        if self.pairing is not None:
+            props["pairing"] = str(self.pairing)
+        return props
 
     def describe(self) -> str:
         where = "the sphere" if not self.hyperbolic else "the hyperbolic plane"
-        kinds = "".join(self.pairing.kind(i) for i in range(self.p))
-        return (f"isohedral tiles of {where} on {{{self.p},{self.q}}}: edges {kinds} paired '{self.pairing}', group "
-                f"{orbifold(self.pairing, self.q)}, a perfect {self.colour_count}-colouring")
+        return (f"isohedral tiles of {where} on {{{self.p},{self.q}}}: edges {self.symbol.edge_kinds()}, "
+                f"{self._what()}, group {delaney.orbifold_symbol(self.delaney, self.q)}, a perfect "
+                f"{self.colour_count}-colouring")
 
     def options_help(self) -> str:
         return "\n".join([
             "--set p=P --set q=Q         the regular tiling {P,Q} whose polygon is deformed",
             "--set pairing='a b a b ...' one letter per edge: once an S edge, twice a J pair",
+            "--set symbol='[aaa; a]'     an incidence symbol (§5.2) instead: tile symmetry, U/I/glide edges",
             "--set edges=JSON            edge shapes by letter, e.g. '{\"a\": \"0.2,0.1:0.4,0.1\"}' (EdgeShape text)",
             f"--set radius=R              hyperbolic: the tiles whose centre is within R (default {DEFAULT_RADIUS:g})",
             f"--set samples=N             chart points per segment of an edge curve (1..{MAX_SAMPLES}, default "
@@ -548,20 +679,35 @@ class CurvedIsohedralTiling(CurvedTiling):
             except json.JSONDecodeError:
                 raise ParseError("edges must be JSON like '{\"a\": \"0.2,0.1:0.4,0.1\"}'") from None
         if {"p", "q"} & set(options):
-            if "pairing" not in options:
+            if "pairing" not in options and "symbol" not in options:
                 spec.pop("pairing", None)
+                spec.pop("symbol", None)
                 spec.pop("edges", None)
             p, q = model.check_pq(options.get("p", self.p), options.get("q", self.q))
             if model.kind_of(p, q) == model.SPHERE:  # a sphere is drawn whole, in its own view
                 for key in ("radius", "plane"):
                     if key not in options:
                         spec.pop(key, None)
+        if "symbol" in options:
+            spec.pop("pairing", None)
+            if "edges" not in options:
+                spec.pop("edges", None)
+            if "p" not in options:
+                spec.pop("p", None)
+        if "pairing" in options:
+            spec.pop("symbol", None)
+            if "edges" not in options:
+                spec.pop("edges", None)
         spec.update(options)
         return CurvedIsohedralTiling.from_spec(spec)
 
     def spec(self) -> dict[str, Any]:
-        out: dict[str, Any] = {"p": self.p, "q": self.q, "pairing": str(self.pairing),
-                               "edges": {k: v.to_text() for k, v in sorted(self.edge_shapes.items())}}
+        out: dict[str, Any] = {"p": self.p, "q": self.q}
+        if self.pairing is not None:
+            out["pairing"] = str(self.pairing)
+        else:
+            out["symbol"] = str(self.symbol)
+        out["edges"] = {k: v.to_text() for k, v in sorted(self.edge_shapes.items())}
         if self.radius is not None:
             out["radius"] = self.radius
         if self.samples != DEFAULT_SAMPLES:
@@ -579,10 +725,45 @@ class CurvedIsohedralTiling(CurvedTiling):
     @classmethod
     def from_spec(cls, spec: Mapping[str, Any]) -> CurvedIsohedralTiling:
         spec_table(spec, sorted(_SPEC_KEYS | {"geometry"}), FAMILY)  # geometry: a check, as in configure
-        return cls(spec.get("p", 6), spec.get("q", 4), pairing=spec.get("pairing"), edges=spec.get("edges"),
+        return cls(spec.get("p"), spec.get("q", 4), pairing=spec.get("pairing"), symbol=spec.get("symbol"),
+                   edges=spec.get("edges"),
                    radius=spec.get("radius"), samples=spec.get("samples", DEFAULT_SAMPLES),
                    colours=spec.get("colours"), plane=spec.get("plane", "poincare"), geometry=spec.get("geometry"),
                    name=str(spec.get("name", "")), title=str(spec.get("title", "")))
+
+
+def type_properties(symbol: IncidenceSymbol, p: int, q: int, d: delaney.Delaney | None = None,
+                    canonical: bool = False) -> dict[str, Any]:
+    """What a type's record says without drawing it (cheap: no geometry): the space, {p,q},
+    the incidence symbol and its canonical form, the edge kinds (J/U/S/I, per edge and
+    counted), ``edge_shapes`` (the free fundamental shapes: the type's parameters, the
+    polygon itself being rigid), the tile's own symmetries and the group's orbifold.
+    ``canonical``: the symbol is in canonical form already (as the enumeration yields it)."""
+    d = d if d is not None else delaney.check_on(symbol, p, q)
+    group = delaney.orbifold_symbol(d, q)
+    kinds = symbol.edge_kinds()
+    hyperbolic = model.kind_of(p, q) == model.HYPERBOLIC
+    return {
+        "periodic": hyperbolic,
+        "k_isohedral": 1,
+        "k_hedral": 1,
+        "geometry": model.kind_of(p, q),
+        "p": p,
+        "q": q,
+        "schlafli": f"{{{p},{q}}}",
+        "incidence_symbol": str(symbol),
+        "canonical_symbol": str(symbol if canonical else symbol.canonical()),
+        "edge_kinds": kinds,
+        "j_edges": kinds.count("J"),
+        "u_edges": kinds.count("U"),
+        "s_edges": kinds.count("S"),
+        "i_edges": kinds.count("I"),
+        "edge_shapes": len(shape_classes(symbol)),
+        "tile_symmetry": len(symbol.tile_symmetries()),
+        "symmetry_group": group,
+        "orbifold": group,
+        "sides": [p],
+    }
 
 
 def write_spec(tiling: CurvedIsohedralTiling, path: str | Path) -> None:

@@ -168,15 +168,14 @@ class ModelPatch(Patch):
 
     def orientations(self) -> tuple[np.ndarray, np.ndarray]:
         """Each tile's turn in the drawing plane (the direction from its centre to its first
-        vertex, less its prototile's) and reflected (never: the tiles are placed by
-        motions of determinant 1)."""
+        vertex, less its prototile's) and reflected (placed by a motion of determinant −1)."""
         angle = np.zeros(len(self))
         c = self.centres()
         for _, idx, proto in self.parts():
             v0 = self._project(self.transform[idx], proto, True)[:, 0]
             ref = proto.project(proto.points[0])
             angle[idx] = np.degrees(np.arctan2(v0[:, 1] - c[idx, 1], v0[:, 0] - c[idx, 0]) - np.arctan2(ref[1], ref[0]))
-        return np.round(angle, 9) % 360.0, np.zeros(len(self), dtype=bool)
+        return np.round(angle, 9) % 360.0, np.linalg.det(self.transform) < 0
 
     def subset(self, index: Any) -> ModelPatch:
         return ModelPatch(self.prototiles, self.prototile[index], self.transform[index],
@@ -251,7 +250,15 @@ class ModelPatch(Patch):
         owner = tri.colour
         fan = report.overlaps
         report.overlaps = sorted({(int(owner[i]), int(owner[j]), a) for i, j, a in fan if owner[i] != owner[j]})
-        report.invalid_tiles = sorted({int(owner[i]) for i in report.invalid_tiles})
+        # a tile is invalid when it is (its fan triangles are not finite, or their areas sum to
+        # next to nothing): a sliver triangle of a good tile — a nearly straight stretch of a
+        # deformed edge, squeezed towards the rim — is below the core's per-triangle tolerance
+        # while its tile is not
+        det = np.abs(np.linalg.det(tri.transform)) / 2
+        finite = np.isfinite(det) & np.isfinite(tri.transform).all(axis=(1, 2))
+        tile_area = np.bincount(owner[finite], weights=det[finite], minlength=len(self))
+        tiny = tile_area <= tolerance * float(np.median(tile_area)) if len(self) else np.zeros(0, dtype=bool)
+        report.invalid_tiles = sorted({int(t) for t in owner[~finite]} | {int(t) for t in np.flatnonzero(tiny)})
         report.tiles = len(self)
         return report
 
@@ -319,6 +326,8 @@ def chain_report(patch: ModelPatch, tolerance: float = AREA_TOL) -> ValidationRe
     owners, starts, ends = [], [], []
     for _, idx, proto in patch.parts():
         pts = model.apply(patch.transform[idx], proto.points)        # (m, k, 3)
+        mirrored = np.linalg.det(patch.transform[idx]) < 0            # a reflected tile runs clockwise
+        pts[mirrored] = pts[mirrored, ::-1]
         tri = proto.triangles if proto.triangles is not None else np.array(
             [(0, i, i + 1) for i in range(1, len(proto.points) - 1)])
         area = sum(_spherical_area(proto.points[list(t)]) for t in tri)

@@ -1,6 +1,6 @@
 """The curved plugin's pages in ``tilekit serve`` (tilekit_web_routes, docs/web.md): the
-curved-space viewer, ``/curved/NAME`` for every record of the spherical, hyperbolic and
-curved families and ``/curved?p=7&q=3`` for any {p, q}, with its data at
+curved-space viewer, ``/curved/NAME`` for every record of the spherical, hyperbolic,
+curved and curved-isohedral families and ``/curved?p=7&q=3`` for any {p, q}, with its data at
 ``/api/curved/NAME`` and ``/api/curved?p=..&q=..``.
 
 The page gets the patch once, as model coordinates (the hyperboloid's (x, y, t) or the
@@ -25,7 +25,7 @@ import numpy as np
 
 from tilekit.errors import ParameterError
 from tilekit.plugins import WebRoute
-from tilekit.plugins.curved import CURVED, HYPERBOLIC, SPHERICAL, regular
+from tilekit.plugins.curved import CURVED, CURVED_ISOHEDRAL, HYPERBOLIC, SPHERICAL, regular
 from tilekit.plugins.curved.model import check_pq
 from tilekit.plugins.curved.render import DEFAULT_PALETTE
 from tilekit.web.pages import esc, name_path
@@ -33,7 +33,7 @@ from tilekit.web.pages import esc, name_path
 #: The name this plugin's static files are served under (/static/plugins/curved/).
 STATIC = "curved"
 STATIC_DIR = Path(__file__).with_name("static")
-FAMILIES = (SPHERICAL, HYPERBOLIC, CURVED)
+FAMILIES = (SPHERICAL, HYPERBOLIC, CURVED, CURVED_ISOHEDRAL)
 #: Faces the viewer's hyperbolic patch holds at most (its radius is the largest up to
 #: MAX_VIEW_RADIUS within this count and the app's tile limit).
 VIEW_FACES = 2500
@@ -105,8 +105,9 @@ def view_data(tiling: Any, max_tiles: int) -> dict[str, Any]:
     out["sizes"] = sizes.tolist()
     out["points"] = np.round(flat.reshape(-1), 10).tolist()
     # colour by the kind of face, which the symmetries keep (a layer colouring would jump when
-    # the view is rebased)
-    out["colour"] = kinds.tolist()
+    # the view is rebased); an isohedral tiling by its perfect colouring, whose rebasing
+    # symmetries keep the colours (CurvedIsohedralTiling.symmetries)
+    out["colour"] = (patch.colour if tiling.family == CURVED_ISOHEDRAL else kinds).tolist()
     if hyperbolic:
         sym = symmetries(tiling, SYMMETRY_REACH)
         out["symmetries"] = np.round(sym.reshape(-1), 12).tolist()
@@ -143,7 +144,7 @@ def viewer_page(request: Any, web: Any) -> str:
     how = ("Drag to translate the Poincaré disc: the view moves by the hyperbolic translation taking the point "
            "under the pointer where the drag began to where it is now." if hyperbolic else
            "Drag to turn the sphere: the rotation taking the point under the pointer where the drag began to "
-           "where it is now.")
+           "where it is now.") + " The wheel or a two-finger pinch zooms about the pointer (1x to 16x)."
     body = f"""<h1>{heading}</h1>
 <p>{esc(getattr(tiling, 'title', '') or tiling.describe())}</p>
 <p>{esc(how)} <button type="button" id="reset">reset view</button></p>

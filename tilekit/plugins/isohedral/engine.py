@@ -25,17 +25,16 @@ from tilekit.colouring import Colouring
 from tilekit.edgeshapes import (
     FLIP,
     IDENTITY,
-    ROFL,
-    ROT,
     EdgeShape,
     apply_unit,
-    complete,
     parse_edge_option,
 )
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.geometry import Affine, snap_noise
+from tilekit.incidence import IncidenceSymbol, SymbolTable, shape_classes, symbol_table  # noqa: F401 (re-exported)
+from tilekit.incidence import label_curves as _label_curves
+from tilekit.incidence import unit_orientation as _unit_orientation
 from tilekit.plugins.isohedral.properties import type_properties
-from tilekit.plugins.isohedral.symbols import IncidenceSymbol
 from tilekit.plugins.isohedral.templates import (
     Parameterization,
     Template,
@@ -93,33 +92,6 @@ def laves_polygon(topology: str) -> np.ndarray:
 
 
 @dataclass(frozen=True)
-class SymbolTable:
-    """What the hops of an incidence symbol are, independent of the tiling vertices: per edge
-    i, the edge j of the neighbour that meets it (``partner``) and the orientation O of
-    ``H_i = T_i O T_j^-1`` (the half-turn ROT or the mirror ROFL). Compiled once per symbol."""
-
-    partner: np.ndarray  # (n,) int
-    orientation: np.ndarray  # (n, 3, 3)
-
-
-@functools.cache
-def symbol_table(symbol: IncidenceSymbol) -> SymbolTable:
-    """The compiled :class:`SymbolTable` of ``symbol`` (cached: symbols are frozen)."""
-    adj = symbol.adjacent_map()
-    first = {}
-    for j, (lab, _) in enumerate(symbol.edges):
-        first.setdefault(lab, j)  # the first edge with the adjacent label (the rules assume this)
-    partner, orientation = [], []
-    for label, sign in symbol.edges:
-        other, t = adj[label]
-        j = first[other]
-        direct = sign != 0 and t == sign * symbol.edges[j][1]  # undirected edges: a mirror image
-        partner.append(j)
-        orientation.append(ROT if direct else ROFL)
-    return SymbolTable(np.array(partner, dtype=np.int64), np.array(orientation))
-
-
-@dataclass(frozen=True)
 class UnitProgram:
     """Appendix A's rules of one type compiled to indices: rule r multiplies the transform of
     ``base[r]`` (an earlier result) by the hops ``hops[r]`` (0-based edges); results are the
@@ -168,7 +140,7 @@ class HopEngine:
 
     def unit_orientation(self, i: int) -> np.ndarray:
         """O_i: how edge i's curve sits relative to its label's curve (FLIP for reversed arrows)."""
-        return FLIP if self.symbol.edges[i][1] < 0 else IDENTITY
+        return _unit_orientation(self.symbol, i)
 
     def tile_symmetries(self) -> np.ndarray:
         """(s, 3, 3): the isometries of the tiling polygon that preserve labels and arrows."""
@@ -180,23 +152,7 @@ class HopEngine:
 
     def label_curves(self, shapes: Mapping[str, EdgeShape]) -> dict[str, np.ndarray]:
         """Level 1 and 2 of the edge model: the curve of every label, from (0,0) to (1,0)."""
-        sym = self.symbol
-        curves: dict[str, np.ndarray] = {
-            lab: complete("I", None) for lab in sym.labels if sym.label_kind(lab) == "I"
-        }
-        for rep in shape_classes(sym):
-            kind = sym.label_kind(rep)
-            base = complete(kind, shapes.get(rep))
-            curves[rep] = base
-            other, _ = sym.adjacent_map()[rep]
-            if other != rep:
-                i = next(k for k, (lab, _) in enumerate(sym.edges) if lab == rep)
-                j = self.partner[i]
-                c = apply_unit(self.unit_orientation(i), base)
-                c = apply_unit(self.orientation[i], c)
-                c = apply_unit(self.unit_orientation(j), c)
-                curves[other] = c
-        return curves
+        return _label_curves(self.symbol, shapes)
 
     def outline(self, shapes: Mapping[str, EdgeShape]) -> tuple[np.ndarray, tuple[int, ...], list[np.ndarray]]:
         """Level 3: the prototile outline, the indices of the tiling vertices in it, and edge curves."""
@@ -213,20 +169,6 @@ class HopEngine:
             parts.append(pts[:-1])
             count += len(pts) - 1
         return np.vstack(parts), tuple(corners), edge_paths
-
-
-def shape_classes(symbol: IncidenceSymbol) -> list[str]:
-    """Labels that own a fundamental shape: one per pair of adjacent labels, I edges excluded."""
-    out: list[str] = []
-    adj = symbol.adjacent_map()
-    for lab in symbol.labels:
-        if symbol.label_kind(lab) == "I":
-            continue
-        other = adj[lab][0]
-        if other in out:
-            continue
-        out.append(lab)
-    return out
 
 
 def compute_unit(template: Template, verts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, HopEngine]:

@@ -5,7 +5,9 @@
 // geodesic (Poincaré disc, edges redrawn as true arcs), or the rotation about the axis
 // through both (orthographic sphere). Hyperbolic views are rebased by the tiling's own
 // symmetries (V <- V g), which leaves the picture as it is and keeps the patch round the
-// screen's centre.
+// screen's centre. The wheel and a two-finger pinch magnify the picture (a Euclidean zoom of
+// the drawing, 1x to 16x, by the SVG's viewBox) about the point under the pointer or between
+// the fingers, which stays where it is; the reset button restores view and zoom.
 (function () {
   "use strict";
   const root = document.getElementById("curved");
@@ -17,6 +19,9 @@
   const PAD = 1.02;
   let data = null, V = eye(), V0 = null, start = null, starts = [], svg = null, paths = [];
   let syms = [], rebase = 0.9, hyper = true, frame = 0;
+  const MAX_ZOOM = 16;
+  let zoom = 1, centre = [0, 0]; // the viewBox: centre (SVG coordinates, y down) and magnification
+  const touches = new Map(); let pinch = null;
 
   function eye() { return [1, 0, 0, 0, 1, 0, 0, 0, 1]; }
   function mul(a, b) {
@@ -143,11 +148,29 @@
     const q = p.matrixTransform(m);
     return [q.x, -q.y];
   }
+  function svgPoint(x, y) { // client pixels to SVG coordinates (y down)
+    const p = svg.createSVGPoint(); p.x = x; p.y = y;
+    return p.matrixTransform(svg.getScreenCTM().inverse());
+  }
+  function setBox() {
+    const half = PAD / zoom, room = PAD - half;
+    centre = centre.map(function (v) { return Math.max(-room, Math.min(room, v)); });
+    svg.setAttribute("viewBox", [centre[0] - half, centre[1] - half, 2 * half, 2 * half].join(" "));
+    root.dataset.zoom = zoom.toFixed(6);
+  }
+  // magnify to z about the SVG point m, from the zoom z0 and centre c0 (m stays put)
+  function zoomAbout(m, z, z0, c0) {
+    z = Math.max(1, Math.min(MAX_ZOOM, z));
+    centre = [m.x + (c0[0] - m.x) * z0 / z, m.y + (c0[1] - m.y) * z0 / z];
+    zoom = z;
+    setBox();
+  }
   function inside(p) { return p[0] * p[0] + p[1] * p[1] < (hyper ? 0.9999 : 1); }
   function build() {
     svg = document.createElementNS(NS, "svg");
-    svg.setAttribute("viewBox", [-PAD, -PAD, 2 * PAD, 2 * PAD].join(" "));
     svg.setAttribute("id", "disc");
+    svg.style.touchAction = "none"; // pinches reach the page's handlers, not the browser's zoom
+    zoom = 1; centre = [0, 0]; setBox();
     const rim = document.createElementNS(NS, "circle");
     Object.entries({ cx: 0, cy: 0, r: 1, fill: hyper ? "#f8f8f8" : "#eef2f6", stroke: "#222", "stroke-width": 0.004 })
       .forEach(function (kv) { rim.setAttribute(kv[0], kv[1]); });
@@ -165,14 +188,32 @@
     view.innerHTML = "";
     view.appendChild(svg);
     svg.addEventListener("pointerdown", function (ev) {
+      touches.set(ev.pointerId, [ev.clientX, ev.clientY]);
+      if (touches.size === 2) { // a pinch begins: the drag (if any) stops where it is
+        start = null; V0 = null; delete root.dataset.dragging;
+        const t = Array.from(touches.values());
+        pinch = { d: Math.hypot(t[0][0] - t[1][0], t[0][1] - t[1][1]) || 1, zoom: zoom, centre: centre.slice(),
+                  mid: svgPoint((t[0][0] + t[1][0]) / 2, (t[0][1] + t[1][1]) / 2) };
+        try { svg.setPointerCapture(ev.pointerId); } catch (e) { /* a synthetic pointer */ }
+        return;
+      }
+      if (touches.size > 2) return;
       const p = discPoint(ev);
       if (!inside(p)) return;
       start = p; V0 = V.slice();
       starts.push(p);
-      svg.setPointerCapture(ev.pointerId);
+      try { svg.setPointerCapture(ev.pointerId); } catch (e) { /* a synthetic pointer */ }
       root.dataset.dragging = "1";
     });
     svg.addEventListener("pointermove", function (ev) {
+      if (touches.has(ev.pointerId)) touches.set(ev.pointerId, [ev.clientX, ev.clientY]);
+      if (pinch && touches.size === 2) {
+        const t = Array.from(touches.values());
+        const d = Math.hypot(t[0][0] - t[1][0], t[0][1] - t[1][1]);
+        zoomAbout(pinch.mid, pinch.zoom * d / pinch.d, pinch.zoom, pinch.centre);
+        root.dataset.renders = String(Number(root.dataset.renders || 0) + 1);
+        return;
+      }
       if (!start) return;
       let p = discPoint(ev);
       if (hyper && !inside(p)) { const r = Math.hypot(p[0], p[1]) / 0.9999; p = [p[0] / r, p[1] / r]; }
@@ -180,7 +221,9 @@
       if (hyper) rebaseView();
       later();
     });
-    const end = function () {
+    const end = function (ev) {
+      touches.delete(ev.pointerId);
+      if (touches.size < 2) pinch = null;
       if (!start) return;
       start = null; V0 = null;
       delete root.dataset.dragging;
@@ -188,6 +231,12 @@
     };
     svg.addEventListener("pointerup", end);
     svg.addEventListener("pointercancel", end);
+    svg.addEventListener("wheel", function (ev) {
+      ev.preventDefault();
+      const step = ev.deltaMode === 1 ? 40 : ev.deltaMode === 2 ? 800 : 1; // lines, pages to pixels
+      zoomAbout(svgPoint(ev.clientX, ev.clientY), zoom * Math.exp(-ev.deltaY * step * 0.0015), zoom, centre);
+      root.dataset.renders = String(Number(root.dataset.renders || 0) + 1);
+    }, { passive: false });
   }
   function load() {
     fetch(root.dataset.src).then(function (r) {
@@ -213,6 +262,7 @@
   }
   document.getElementById("reset").addEventListener("click", function () {
     V = hyper ? eye() : [1, 0, 0, 0, 0.906307787, -0.422618262, 0, 0.422618262, 0.906307787];
+    if (svg) { zoom = 1; centre = [0, 0]; setBox(); }
     if (data) draw();
   });
   load();
