@@ -52,7 +52,7 @@ def _parsers() -> dict[str, tuple[Callable[[str], Any], str]]:
     from tilekit.colouring import Colouring
     from tilekit.edgeshapes import EdgeShape, parse_edge_option
     from tilekit.geometry import as_region
-    from tilekit.plugins.isohedral.symbols import IncidenceSymbol
+    from tilekit.incidence import IncidenceSymbol
     from tilekit.plugins.isohedral.templates import parse_ih_name, parse_zero_based_colouring
     from tilekit.plugins.substitution.expr import evaluate
     from tilekit.plugins.substitution.shapes import parse_edge_shape

@@ -29,8 +29,11 @@ from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 import tilekit
+from tilekit.errors import ParseError
 from tilekit.lazy import lazy_exports
 from tilekit.plugins import CatalogueRecord, Family, web_pages
+from tilekit.resources import catalogue_dir, read_toml
+from tilekit.schema import Field, check
 
 if TYPE_CHECKING:  # pragma: no cover
     from tilekit.plugins.curved.tiling import RegularTiling
@@ -114,8 +117,6 @@ def curved_records() -> list[CatalogueRecord]:
     file and the field)."""
     # measured start-up cost: the tiling module, as in regular() (records are built only when seeding)
     from tilekit.plugins.curved.tiling import RegularTiling
-    from tilekit.resources import catalogue_dir, read_toml
-    from tilekit.schema import Field, check
 
     path = catalogue_dir() / "curved" / RECORDS_FILE
     where = f"curved records {RECORDS_FILE}"
@@ -147,8 +148,6 @@ def _uniform_data() -> dict[str, Any]:
     """catalogue/curved/uniform.toml, checked (one-line errors naming the file and the field)."""
     # start-up cost: the construction loads NumPy; records are read only when seeding
     from tilekit.plugins.curved import wythoff
-    from tilekit.resources import catalogue_dir, read_toml
-    from tilekit.schema import Field, check
 
     path = catalogue_dir() / "curved" / UNIFORM_FILE
     bound = Field("int", required=True, range=(2, wythoff.MAX_ORDER))
@@ -169,7 +168,6 @@ def uniform_records() -> list[CatalogueRecord]:
     # measured start-up cost: NumPy and the construction (records are built only when seeding)
     from tilekit.plugins.curved import notation, wythoff
     from tilekit.plugins.curved.uniform import UniformTiling
-    from tilekit.resources import catalogue_dir, read_toml
 
     data = _uniform_data()
     names = {notation.canonical(notation.parse(n["configuration"])): n for n in data["named"]}
@@ -210,11 +208,8 @@ def isohedral_records() -> list[CatalogueRecord]:
     """Every isohedral type on each {p, q} of catalogue/curved/isohedral.toml (delaney.py's
     enumeration; properties without drawing, isohedral.type_properties)."""
     # measured start-up cost: NumPy and the curved modules (records are built only when seeding)
-    from tilekit.errors import ParseError
     from tilekit.plugins.curved import delaney, model
     from tilekit.plugins.curved.isohedral import type_properties
-    from tilekit.resources import catalogue_dir, read_toml
-    from tilekit.schema import Field, check
 
     pair = Field("list", items=Field("int", range=(3, model.MAX_PQ)))
     data = check(Field("table", fields={"schlafli": Field("list", required=True, items=pair)}),
@@ -244,8 +239,6 @@ STARS_FILE = "stars.toml"
 def _star_configurations() -> tuple[list[tuple[int, ...]], str]:
     """The configurations and pairing catalogue/curved/stars.toml ships (checked, one-line errors)."""
     # start-up cost: the data file is read only when seeding
-    from tilekit.resources import catalogue_dir, read_toml
-    from tilekit.schema import Field, check
 
     data = check(Field("table", fields={"max_sides": Field("int", required=True, range=(6, 60)),
                                         "pairing": Field("str", required=True)}),
@@ -325,7 +318,6 @@ def tilekit_resolve_name(name: str) -> list[str] | None:
     (``4.3.4.4``, ``3.4^3``): the uniform tiling with it (``vertex_configuration`` filter);
     one that no Wythoff symbol gives is a one-line error naming it."""
     # measured start-up cost: the notation parser (no NumPy) only for a name not found
-    from tilekit.errors import ParseError
     from tilekit.plugins.curved import notation
 
     try:

@@ -26,7 +26,7 @@ _LAZY = {
     "IsohedralTiling": "tilekit.plugins.isohedral.engine",
     "lookup": "tilekit.plugins.isohedral.lookup",
     "EdgeShape": "tilekit.edgeshapes",
-    "IncidenceSymbol": "tilekit.plugins.isohedral.symbols",
+    "IncidenceSymbol": "tilekit.incidence",
 }
 __getattr__, __dir__ = lazy_exports(__name__, _LAZY, pinned=("lookup",))
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 from functools import lru_cache
 
 from tilekit.errors import NotFoundError, ParameterError, ParseError
-from tilekit.plugins.isohedral.symbols import IncidenceSymbol
+from tilekit.incidence import IncidenceSymbol
 from tilekit.plugins.isohedral.templates import load_templates, topology_valences
 
 

@@ -28,9 +28,9 @@ from tilekit.colouring import Colouring
 from tilekit.edgeshapes import ROFL
 from tilekit.errors import GeometryError, ParameterError
 from tilekit.geometry import Affine
+from tilekit.incidence import IncidenceSymbol
 from tilekit.plugins.isohedral.engine import HopEngine, edge_frames, laves_polygon
 from tilekit.plugins.isohedral.properties import type_properties
-from tilekit.plugins.isohedral.symbols import IncidenceSymbol
 from tilekit.plugins.isohedral.templates import get_template
 from tilekit.polygon import vertex_symmetries
 from tilekit.symmetry import successive_minima

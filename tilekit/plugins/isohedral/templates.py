@@ -18,7 +18,7 @@ import numpy as np
 
 from tilekit.colouring import Colouring
 from tilekit.errors import NotFoundError, ParseError
-from tilekit.plugins.isohedral.symbols import IncidenceSymbol
+from tilekit.incidence import IncidenceSymbol
 from tilekit.resources import catalogue_dir
 
 _TOPOLOGY = re.compile(r"^\d+(\^\d+)?(\.\d+(\^\d+)?)*$")
