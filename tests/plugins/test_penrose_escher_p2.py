@@ -8,40 +8,18 @@ import json
 from pathlib import Path
 
 import numpy as np
-import pytest
 from click.testing import CliRunner
-from test_penrose_escher import DATA, KNOWN, KNOWN_EDGES, check_penrose, similar
+from test_penrose_escher import DATA, check_penrose, recover_known
 
-from tilekit import escher
 from tilekit.cli import cli
 from tilekit.plugins.substitution import penrose_escher as pe
-from tilekit.plugins.substitution import tiling
-
-
-def known_p2() -> dict[str, np.ndarray]:
-    t = tiling("penrose-p2").configure(**KNOWN, edges=KNOWN_EDGES)
-    return {p.name: np.asarray(p.outline) for p in t.prototiles}
 
 
 def test_known_kite_and_dart_are_recovered_from_moved_goals() -> None:
-    """The synthetic pair: a kite and a dart of known quasivertex parameters and edge shapes,
-    each moved by its own similarity (the dart mirrored), are recovered at distance < 1e-6
-    with their parameters, and the result is a Penrose tiling."""
-    tiles = known_p2()
-    a = similar(tiles["kite"], 0.7, 3.0, (5.0, -2.0), False)
-    b = similar(tiles["dart"], -1.9, 0.4, (-1.0, 8.0), True)
-    result = pe.escherize_penrose(a, b, tiling="p2", settings=pe.PenroseSettings(starts=2))
-    assert result.system == "penrose-p2"
-    assert result.distance < 1e-6
-    assert result.mirrored == [False, True]
-    assert result.shrink == 1.0
-    for k, v in KNOWN.items():
-        assert result.params[k] == pytest.approx(v, abs=1e-4)
-    check_penrose(result)
-    again = tiling("penrose-p2").configure(**{k: v for k, v in result.spec().items() if k in KNOWN},
-                                           edges=result.spec()["edges"])
-    kite = next(p for p in again.prototiles if p.name == "kite")
-    assert escher.shape_distance(kite.outline, tiles["kite"]) < 1e-6
+    """The synthetic pair on P2: a kite and a dart of known quasivertex parameters and edge
+    shapes, moved (the dart mirrored), are recovered at distance < 1e-6 with the parameters,
+    and the result is a Penrose tiling (test_penrose_escher.recover_known)."""
+    recover_known("p2")
 
 
 def test_cli_p2_writes_a_validated_result_that_reopens(tmp_path: Path) -> None:
