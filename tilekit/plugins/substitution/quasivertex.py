@@ -1,4 +1,6 @@
-"""Quasivertex parameterizations of the Penrose rhombs (book §6.3, Figures 6.13 and 6.14).
+"""Quasivertex parameterizations of the Penrose tiles (book §6.3): the rhombs' of Figures 6.13
+and 6.14 (below), and the kite and dart's, derived in :mod:`.quasivertex_p2` and served
+through the same functions (``system_outlines``, ``deformed_tiles``, ``matching_report``).
 
 Four numbers r1, theta1, r2, theta2 move the tiling vertices of a P3 tiling off the rhombs'
 corners. Figure 6.13 places the quasivertices in a frame where the thick rhomb is
