@@ -21,6 +21,8 @@ from tilekit.geometry import Affine
 from tilekit.plugins.substitution import quasivertex as qv
 from tilekit.plugins.substitution import quasivertex_p2 as p2
 from tilekit.plugins.substitution import tiling
+from tilekit.plugins.substitution.shapes import canonical_transforms, halves_mirror
+from tilekit.tiling import Patch
 
 
 def p2_tiling(r1: float, t1: float, r2: float, t2: float, **kw):
@@ -79,13 +81,24 @@ def test_every_quasivertex_of_a_larger_patch_is_parameterized() -> None:
 @given(st.floats(0.0, 0.3), st.floats(-45.0, 45.0), st.floats(0.0, 0.3), st.floats(-45.0, 45.0))
 def test_deformed_kites_and_darts_tile_and_match(r1: float, t1: float, r2: float, t2: float) -> None:
     """Any admissible (r1, theta1, r2, theta2) in this range: the patch validates (no gap, no
-    overlap) and every shared piece pairs a label with its §6.3 partner, drawn identically."""
+    overlap), every shared piece pairs a label with its §6.3 partner, drawn identically, and
+    the substitution family's arrangement is kept: on the same placements, tiles that share an
+    edge when straight still share one, and deformed tiles only meet tiles their straight
+    forms touched."""
     params = qv.QuasivertexParams(r1, t1, r2, t2)
     assume(not qv._bad_tiles(params, "penrose-p2"))
-    patch = p2_tiling(r1, t1, r2, t2).patch((-4.0, -4.0, 4.0, 4.0))
+    deformed = p2_tiling(r1, t1, r2, t2)
+    patch = deformed.patch((-4.0, -4.0, 4.0, 4.0))
     assert_valid(patch, (-3.0, -3.0, 3.0, 3.0))
     report = qv.matching_report(patch)
     assert report.ok, report.summary()
+    straight = tiling("penrose-p2")
+    proto, tr = straight.raw(shapely.box(-3.0, -3.0, 3.0, 3.0))
+    tr = canonical_transforms(proto, tr, halves_mirror(straight.system))
+    before = Patch(straight.prototiles, proto, tr).adjacency()
+    after = Patch(deformed.prototiles, proto, tr).adjacency()
+    pairs = [{tuple(p) for p in np.asarray(a).tolist()} for a in (before.edge, after.edge, before.touching)]
+    assert pairs[0] <= pairs[1] <= pairs[2]
 
 
 def test_shaped_pieces_interlock_and_labels_are_the_books() -> None:
