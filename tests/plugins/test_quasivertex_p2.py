@@ -12,11 +12,13 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 import shapely
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 from test_substitution import assert_valid
 
+from tilekit.errors import ParameterError
 from tilekit.geometry import Affine
 from tilekit.plugins.substitution import quasivertex as qv
 from tilekit.plugins.substitution import quasivertex_p2 as p2
@@ -128,3 +130,14 @@ def test_spokes_are_the_named_parameters() -> None:
     assert np.allclose(kite[2], [cut.real, cut.imag])
     spoke2 = k0 - u * r2 * complex(math.cos(t2), math.sin(t2))
     assert np.allclose(kite[1], [spoke2.real, spoke2.imag])
+
+
+def test_bad_p2_options_are_one_line() -> None:
+    """P2's own pairs are named; a label and its partner cannot both be given; a spoke too long
+    for the tiles is refused with the admissible range."""
+    with pytest.raises(ParameterError, match="pairs a/d, b/h, c/e, f/g interlock"):
+        p2_tiling(0.1, 0.0, 0.1, 0.0, edges=["z=0.5,0.1"])
+    with pytest.raises(ParameterError, match="interlock"):
+        p2_tiling(0.1, 0.0, 0.1, 0.0, edges=["a=0.5,0.1", "d=0.5,0.1"])
+    with pytest.raises(ParameterError, match=r"kite and dart tiles self-intersect.*r1 must lie in about \[0, 0.618\]"):
+        p2_tiling(5.0, 0.0, 0.0, 0.0)
