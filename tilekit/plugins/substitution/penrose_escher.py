@@ -398,16 +398,18 @@ def _valid_result(model: PenroseModel, qvec: np.ndarray, x: np.ndarray, goals: S
 
 
 def tiles_svg(result: PenroseResult, goals: Sequence[np.ndarray], size: int = 400) -> str:
-    """The two tiles side by side (goal B's first: thin rhomb / dart, then thick / kite; light
-    and dark, the patch's colours), each with its goal aligned onto it (dashed)."""
+    """The two tiles side by side in the system's prototile order (P3: thin, thick; P2: kite,
+    dart; light and dark, the patch's colours), each with its goal aligned onto it (dashed)."""
+    order = [t.name for t in result.tiling().prototiles]
     tiles = {t.name: np.asarray(t.outline, dtype=float) for t in result.tiling().prototiles}
-    first, second = GOAL_TILES[result.system]
-    shapes = [tiles[second], tiles[first]]
+    fitted = list(GOAL_TILES[result.system])  # goal A's tile, goal B's tile
+    shapes = [tiles[name] for name in order]
     shapes[1] = shapes[1] + [float(shapes[0][:, 0].max() - shapes[1][:, 0].min()) + 0.3, 0.0]
-    pair = [goals[-1], goals[0]]  # thin / dart: goal B (or the one goal); thick / kite: goal A
-    aligned = [escher.align_onto(s, g, m) for s, g, m in zip(shapes, pair, result.mirrored[::-1])]
-    title = (f"{result.system}  d = {result.distance:.4f} ({second} {result.distances[1]:.4f}, "
-             f"{first} {result.distances[0]:.4f})")
+    idx = [fitted.index(name) for name in order]
+    pair = [goals[min(i, len(goals) - 1)] for i in idx]  # one goal: both tiles against it
+    aligned = [escher.align_onto(s, g, result.mirrored[i]) for s, g, i in zip(shapes, pair, idx)]
+    title = (f"{result.system}  d = {result.distance:.4f} ("
+             + ", ".join(f"{name} {result.distances[i]:.4f}" for name, i in zip(order, idx)) + ")")
     return escher.overlay_svg(title, shapes, aligned, size)
 
 
