@@ -190,8 +190,18 @@ def book_to_system() -> dict[str, np.ndarray]:
     }
 
 
+#: A spoke shorter than this (edge lengths) is drawn as none: quasivertices closer than it to
+#: their corner would be distinct points closer than the patches' point tolerance (found by
+#: the hypothesis test: r1 = 1e-7 made outlines that could not be triangulated).
+MIN_SPOKE = 1e-6
+
+
 def system_outlines(params: QuasivertexParams, system_name: str = "penrose-p3") -> dict[str, tuple[np.ndarray, str]]:
-    """{tile name: (quasivertices (k, 2) in the system's frame, edge labels)}, unmerged."""
+    """{tile name: (quasivertices (k, 2) in the system's frame, edge labels)}, unmerged; r1 or r2
+    below MIN_SPOKE counts as 0."""
+    if abs(params.r1) < MIN_SPOKE or abs(params.r2) < MIN_SPOKE:
+        params = QuasivertexParams(params.r1 if abs(params.r1) >= MIN_SPOKE else 0.0, params.theta1,
+                                   params.r2 if abs(params.r2) >= MIN_SPOKE else 0.0, params.theta2)
     if system_name == "penrose-p2":
         return p2.outlines(*params.radians())
     maps = book_to_system()
