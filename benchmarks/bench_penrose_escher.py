@@ -9,7 +9,9 @@ same objective (the larger of the two rhombs' metric distances, the same FFT ali
 shifts and mirror images), from the same starts, with the same validity check (patch
 validated, matching rules) and distance report at the end.
 
-Run: python benchmarks/bench_penrose_escher.py [--pairs fish,fish+bird,known] [--starts 4] [--repeat 1]
+With ``--tiling p2`` the same comparison runs on the kite and dart (goal A: kite, goal B: dart).
+
+Run: python benchmarks/bench_penrose_escher.py [--tiling p3|p2] [--pairs fish,fish+bird,known] [--starts 4] [--repeat 1]
 """
 
 from __future__ import annotations
@@ -26,28 +28,27 @@ from threadpoolctl import threadpool_limits
 
 from tilekit import escher
 from tilekit.plugins.substitution import penrose_escher as pe
-from tilekit.plugins.substitution import quasivertex as qv
 from tilekit.plugins.substitution import tiling
 
 ROOT = Path(__file__).resolve().parent.parent
 DATA = ROOT / "tests" / "data" / "escher"
 
 
-def goals(name: str) -> list[np.ndarray]:
-    """fish / bird (one goal), fish+bird (thick: fish, thin: bird), known (a deformed pair)."""
+def goals(name: str, system: str = "penrose-p3") -> list[np.ndarray]:
+    """fish / bird (one goal), fish+bird (thick / kite: fish, thin / dart: bird), known (a deformed pair)."""
     if name == "known":
-        t = tiling("penrose-p3").configure(r1=0.12, theta1=25, r2=0.2, theta2=-15,
-                                           edges=["a=0.25,0.06:0.5,0.1:0.75,0.04", "c=0.5,0.07", "f=0.4,-0.06"])
-        thin, thick = (np.asarray(p.outline) for p in t.prototiles)
-        return [thick, thin]
+        t = tiling(system).configure(r1=0.12, theta1=25, r2=0.2, theta2=-15,
+                                     edges=["a=0.25,0.06:0.5,0.1:0.75,0.04", "c=0.5,0.07", "f=0.4,-0.06"])
+        tiles = {p.name: np.asarray(p.outline) for p in t.prototiles}
+        return [tiles[n] for n in pe.GOAL_TILES[system]]
     return [escher.read_goal(DATA / f"{part}.json") for part in name.split("+")]
 
 
-def peer(gs: list[np.ndarray], settings: pe.PenroseSettings) -> pe.PenroseResult:
+def peer(gs: list[np.ndarray], settings: pe.PenroseSettings, system: str = "penrose-p3") -> pe.PenroseResult:
     """L-BFGS-B over (q, x) on the larger of the two distances, the same starts and checks."""
     with threadpool_limits(limits=1, user_api="blas"):
         t0 = time.perf_counter()
-        model = pe.PenroseModel(settings.edge_points)
+        model = pe.PenroseModel(settings.edge_points, system)
         pair = gs if len(gs) == 2 else [gs[0], gs[0]]
         banks = [escher.GoalBank.build(g, settings.samples, settings.reflection) for g in pair]
         evaluations = 0
@@ -55,17 +56,17 @@ def peer(gs: list[np.ndarray], settings: pe.PenroseSettings) -> pe.PenroseResult
         def f(z: np.ndarray) -> float:
             nonlocal evaluations
             evaluations += 1
-            if qv._bad_tiles(pe._params(z[:4])):
+            if model.bad(z[:4]):
                 return 2.0
             return max(b.align(escher.resample(o, settings.samples))[0]
                        for o, b in zip(model.outlines(z[:4], z[4:]), banks))
 
         best = None
-        for s in pe._starts(settings):
+        for s in pe._starts(settings, model):
             res = minimize(f, np.concatenate([s, model.c0]), method="L-BFGS-B")
             if best is None or res.fun < best.fun:
                 best = res
-        r = pe._valid_result(model, best.x[:4], best.x[4:], pair, "penrose-p3", settings)
+        r = pe._valid_result(model, best.x[:4], best.x[4:], pair, system, settings)
         r.evaluations = evaluations
         r.seconds = time.perf_counter() - t0
         return r
@@ -74,6 +75,7 @@ def peer(gs: list[np.ndarray], settings: pe.PenroseSettings) -> pe.PenroseResult
 def build_parser() -> argparse.ArgumentParser:
     """The command line this benchmark takes (docs/benchmarks.md shows its invocations)."""
     ap = argparse.ArgumentParser()
+    ap.add_argument("--tiling", default="p3", choices=pe.TILINGS)
     ap.add_argument("--pairs", default="fish,fish+bird,known")
     ap.add_argument("--starts", type=int, default=pe.DEFAULT_STARTS)
     ap.add_argument("--repeat", type=int, default=1)
@@ -83,16 +85,17 @@ def build_parser() -> argparse.ArgumentParser:
 def main() -> None:
     args = build_parser().parse_args()
     settings = pe.PenroseSettings(starts=args.starts)
-    print(f"load {os.getloadavg()}; starts {args.starts}")
+    system = pe.SYSTEMS[args.tiling]
+    print(f"load {os.getloadavg()}; {system}; starts {args.starts}")
     for name in args.pairs.split(","):
-        gs = goals(name)
+        gs = goals(name, system)
         ours, theirs = [], []
         for _ in range(args.repeat):
             t0 = time.process_time()
-            r = pe.escherize_penrose(*gs, settings=settings)
+            r = pe.escherize_penrose(*gs, tiling=args.tiling, settings=settings)
             ours.append((time.process_time() - t0, r))
             t0 = time.process_time()
-            p = peer(gs, settings)
+            p = peer(gs, settings, system)
             theirs.append((time.process_time() - t0, p))
         ot = [t for t, _ in ours]
         pt = [t for t, _ in theirs]

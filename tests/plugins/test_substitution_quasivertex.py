@@ -162,8 +162,8 @@ def test_named_range_is_valid() -> None:
 def test_bad_options_are_rejected() -> None:
     with pytest.raises(ParameterError, match="r1='x' is not a number"):
         tiling("penrose-p3").configure(r1="x")
-    with pytest.raises(ParameterError, match="apply to penrose-p3 only"):
-        tiling("penrose-p2").configure(r1=0.1, r2=0.2)
+    with pytest.raises(ParameterError, match="apply to penrose-p3, penrose-p2 only"):
+        tiling("chair").configure(r1=0.1, r2=0.2)
     with pytest.raises(ParameterError, match="cannot be combined"):
         tiling("penrose-p3").configure(r1=0.1, r2=0.2, params=[0.1])
     with pytest.raises(ParameterError, match="not a quasivertex edge label"):

@@ -174,3 +174,50 @@ def test_a_420_px_screen_keeps_the_tiling_usable(browser, live_server):
         assert page.locator("#view").bounding_box()["width"] >= 340
     finally:
         context.close()
+
+
+# --------------------------------------------------------------------------- Penrose editor on P2
+
+
+def test_penrose_editor_serves_the_kite_and_dart(client):
+    """/penrose?tiling=p2 edits penrose-p2 (the page names its system for the script); its r
+    ranges are the kite and dart's admissible values, not the rhombs'; a bad tiling is one line."""
+    page = client.get("/penrose", params={"tiling": "p2"}).text
+    assert 'data-system="penrose-p2"' in page and "kite and dart" in page
+    body = client.get("/api/penrose/range", params={"tiling": "p2", "r1": 0.15, "theta1": 20, "r2": 0.1,
+                                                    "theta2": -15}).json()
+    assert body["system"] == "penrose-p2"
+    hi = body["r1"][1]
+    qv.validate_params(qv.QuasivertexParams(hi, 20, 0.1, -15), "penrose-p2")
+    with pytest.raises(ParameterError, match="self-intersect"):
+        qv.validate_params(qv.QuasivertexParams(hi + 0.0012, 20, 0.1, -15), "penrose-p2")
+    p3 = client.get("/api/penrose/range", params={"r1": 0.15, "theta1": 20, "r2": 0.1, "theta2": -15}).json()
+    assert p3["r1"] != body["r1"]
+    bad = client.get("/api/penrose/range", params={"tiling": "p7"})
+    assert bad.status_code == 400 and "valid: p3, p2" in bad.json()["error"]
+    assert "/penrose?tiling=p2" in client.get("/tiling/penrose-p2").text
+
+
+def test_penrose_editor_on_p2_draws_and_exports_a_spec_that_reopens(page, tmp_path):
+    """In chromium: the P2 editor draws, follows a slider, and its exported spec rebuilds the
+    same kite and dart (a validated patch with the §6.3 pairs on every shared piece)."""
+    from tilekit.plugins.substitution import from_spec
+
+    page.goto("/penrose?tiling=p2")
+    page.wait_for_selector("#penrose[data-state=ok]", timeout=20000)
+    n = renders(page, "#penrose")
+    page.locator("#theta2").fill("-30")
+    wait_render(page, n, "#penrose")
+    assert page.get_attribute("#penrose", "data-state") == "ok"
+    with page.expect_download() as dl:
+        page.click("#export-spec")
+    path = tmp_path / "p2.json"
+    dl.value.save_as(path)
+    spec = json.loads(path.read_text())["spec"]
+    assert spec["system"] == "penrose-p2" and spec["theta2"] == -30
+    rebuilt = from_spec(spec)
+    assert [len(p.outline) for p in rebuilt.prototiles] == [10, 10]
+    patch = rebuilt.patch((-3.0, -3.0, 3.0, 3.0))
+    assert patch.validate((-2.0, -2.0, 2.0, 2.0))
+    assert qv.matching_report(patch).ok
+    assert not page.js_errors

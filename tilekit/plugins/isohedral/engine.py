@@ -426,18 +426,22 @@ class IsohedralTiling(PeriodicTiling):
             "--edge b=x,y:x,y:...   an edge shape for a label (end points (0,0), (1,0) optional)",
             "--set colouring=(c..)(p..)(q..)   a colouring of §5.4.3",
             "--set split=S,T[;x,y:...:1,0]     split every tile in two by a path from boundary position S to T",
+            "--set split_colour=piece|tile|class   colour a split tiling by piece (default), base tile or class",
             "                       (edge index + fraction; the path in the frame of the chord S -> T)",
         ])
 
     def configure(self, **options: Any) -> PeriodicTiling:
         """A new tiling with ``params`` (floats), ``edges`` ('b=x,y:...'), ``colours``/``colouring``;
         with ``split`` ('S,T;PATH', :mod:`.split`) the dihedral tiling of the new tile split in two."""
+        if "split_colour" in options and "split" not in options:
+            raise ParameterError(f"{self.name}: split_colour applies to a split tiling; give split=S,T too")
         if "split" in options:
             # start-up cost: the split tiling is loaded only when a split is asked for
             from tilekit.plugins.isohedral.split import with_split
 
             split = options.pop("split")
-            return with_split(self.configure(**options), split)
+            colour = options.pop("split_colour", None)
+            return with_split(self.configure(**options), split, colour)
         params = self.params
         edges = dict(self.edge_shapes)
         colouring: Colouring | None = self.colouring
@@ -466,7 +470,7 @@ class IsohedralTiling(PeriodicTiling):
                 colouring = Colouring.parse(value) if isinstance(value, str) else value
             else:
                 raise ParameterError(
-                    f"{self.name} does not take option {key!r}; valid: params, edges, colouring, split"
+                    f"{self.name} does not take option {key!r}; valid: params, edges, colouring, split, split_colour"
                 )
         return IsohedralTiling(self.template.ih, params, edges, colouring)
 

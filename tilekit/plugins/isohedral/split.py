@@ -44,7 +44,14 @@ SPLIT = Field("table", fields={
     "ends": Field("list", items=Field("number"), length=(2, 2), required=True,
                   missing="'ends' is missing; give two boundary positions [s, t] (edge index + fraction)"),
     "path": Field("str"),
+    "colour": Field("str"),
 })
+#: How a split tiling's pieces are coloured (``--set split_colour=...``, the spec's split.colour):
+#: by piece (the two prototiles, the default), by the base tile they split (the isohedral
+#: tiling's own colouring, both pieces alike), or by transitivity class under the split
+#: tiling's symmetry group (tilekit.symmetry.tile_orbits: a Heaven-and-Hell split whose pieces
+#: are congruent by a symmetry of the tiling has one class).
+SPLIT_COLOURS = ("piece", "tile", "class")
 #: Relative tolerance of the pieces' areas summing to the tile's.
 AREA_TOL = 1e-9
 
@@ -198,8 +205,12 @@ class SplitTiling(PeriodicTiling):
     tile replaced by its two pieces under the same transform, coloured by piece.
     """
 
-    def __init__(self, base: IsohedralTiling, s: float, t: float, path: EdgeShape | None = None) -> None:
+    def __init__(self, base: IsohedralTiling, s: float, t: float, path: EdgeShape | None = None,
+                 colour: str = "piece") -> None:
+        if colour not in SPLIT_COLOURS:
+            raise ParameterError(f"split colour {colour!r} is not one of {', '.join(SPLIT_COLOURS)}")
         self.base = base
+        self.colour = colour
         path = path or EdgeShape.straight()
         self.ends = (float(s), float(t))
         self.path = path
@@ -214,8 +225,19 @@ class SplitTiling(PeriodicTiling):
                                 "give ends on different parts of the boundary and a path inside the tile")
         protos = [Prototile(q, name=f"{base.name} piece {i}") for i, q in enumerate(pieces)]
         n = len(base.unit_prototile)
-        super().__init__(protos, np.tile([0, 1], n), np.repeat(base.unit_transform, 2, axis=0), base.v1, base.v2,
-                         None, np.tile([0, 1], n), family=base.family, name=f"{base.name} split")
+        transforms = np.repeat(base.unit_transform, 2, axis=0)
+        if colour == "tile":  # the base tile's aspect and colouring on both its pieces
+            colouring, aspect = base.colouring, np.repeat(base.unit_aspect, 2)
+        else:
+            colouring, aspect = None, np.tile([0, 1], n)
+        super().__init__(protos, np.tile([0, 1], n), transforms, base.v1, base.v2, colouring, aspect,
+                         family=base.family, name=f"{base.name} split")
+        if colour == "class":  # start-up cost: the symmetry search, only for this colouring
+            from tilekit.symmetry import tile_orbits
+
+            orbits = tile_orbits(self)
+            super().__init__(protos, np.tile([0, 1], n), transforms, base.v1, base.v2, None, orbits,
+                             family=base.family, name=f"{base.name} split")
 
     def patch(self, region: Any) -> Patch:
         """The base tiling's tiles, each as its two pieces (transforms snapped as the base's)."""
@@ -229,7 +251,10 @@ class SplitTiling(PeriodicTiling):
         (``"none"``: unsplit) or else by this tiling's split again (so the path follows the
         tile); the split is checked on the new tile."""
         split = options.pop("split", self._split_table())
-        return with_split(self.base.configure(**options), split)
+        colour = options.pop("split_colour", None)
+        if colour is None and isinstance(split, Mapping) and "colour" not in split:
+            colour = self.colour
+        return with_split(self.base.configure(**options), split, colour)
 
     def options_help(self) -> str:
         return self.base.options_help()
@@ -238,11 +263,14 @@ class SplitTiling(PeriodicTiling):
         return self.base.default_region()
 
     def _split_table(self) -> dict[str, Any]:
-        return {"ends": list(self.ends), "path": self.path.to_text()}
+        out: dict[str, Any] = {"ends": list(self.ends), "path": self.path.to_text()}
+        if self.colour != "piece":
+            out["colour"] = self.colour
+        return out
 
     def spec(self) -> dict[str, Any]:
         out = self.base.spec()
-        out["split"] = {"ends": list(self.ends), "path": self.path.to_text()}
+        out["split"] = self._split_table()
         return out
 
     def properties(self) -> dict[str, Any]:
@@ -256,10 +284,17 @@ class SplitTiling(PeriodicTiling):
 def split_from_spec(spec: Mapping[str, Any], base: IsohedralTiling) -> SplitTiling:
     """The split tiling of ``spec["split"]`` over the isohedral tiling ``base``."""
     s, t, path = checked_split(spec["split"], len(base.edge_paths))
-    return SplitTiling(base, s, t, path)
+    return SplitTiling(base, s, t, path, str(spec["split"].get("colour") or "piece"))
 
 
-def with_split(base: IsohedralTiling, split: Any) -> PeriodicTiling:
-    """``base`` split by a split option (:func:`parse_split`: text, a table, or none)."""
+def with_split(base: IsohedralTiling, split: Any, colour: str | None = None) -> PeriodicTiling:
+    """``base`` split by a split option (:func:`parse_split`: text, a table, or none), its
+    pieces coloured by ``colour`` (one of SPLIT_COLOURS; default the table's, else by piece)."""
     table = parse_split(split)
-    return base if table is None else split_from_spec({"split": table}, base)
+    if table is None:
+        if colour is not None:
+            raise ParameterError("split_colour applies to a split tiling; give split=S,T too")
+        return base
+    if colour is not None:
+        table["colour"] = colour
+    return split_from_spec({"split": table}, base)

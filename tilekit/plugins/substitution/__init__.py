@@ -56,7 +56,20 @@ def from_spec(spec: Mapping[str, Any]) -> SubstitutionTiling:
 
 
 def from_file(path: str) -> SubstitutionTiling:
-    """A tiling from a user's system file; its spec embeds the file's data."""
+    """A tiling from a user's system file (TOML; its spec embeds the file's data), or from a
+    JSON file holding a spec: a bare one, or ``{"family": "substitution", "spec": {...}}`` as
+    ``escherize-penrose`` writes it (penrose.json)."""
+    if Path(path).suffix.lower() == ".json":
+        from tilekit.errors import ParseError
+        from tilekit.files import read_json
+
+        data = read_json(path, "substitution spec")
+        if isinstance(data, dict) and data.get("family", "substitution") == "substitution":
+            spec = data.get("spec", data)
+            if isinstance(spec, dict) and ("system" in spec or "system_data" in spec):
+                return from_spec(spec)
+        raise ParseError(f"{Path(path).name}: not a substitution spec (a JSON object with 'system', or "
+                         "{'family': 'substitution', 'spec': {...}} as escherize-penrose writes)")
     # measured start-up cost: as in from_spec
     from tilekit.plugins.substitution.system import load_system
     from tilekit.plugins.substitution.tiling import make_tiling  # start-up cost: as above

@@ -21,8 +21,8 @@ from tilekit.plugins.substitution import penrose_limits as lim
 @click.option("-o", "--output", "out", required=True, type=click.Path(file_okay=False),
               help="Directory for penrose.json, tiles.svg and patch.svg.")
 @click.option("--tiling", "which", default="p3", show_default=True, metavar="p3|p2",
-              help="The Penrose tiling whose quasivertex parameters are fitted (P3 rhombs; P2 is refused: "
-                   "the book's text lacks its kite and dart formulas).")
+              help="The Penrose tiling whose quasivertex parameters are fitted: p3 (thick and thin rhombs, "
+                   "Figure 6.13) or p2 (kite and dart, derived from P2 patches).")
 @click.option("--samples", type=BoundedInt(MIN_SAMPLES, MAX_SAMPLES), default=DEFAULT_SAMPLES, show_default=True,
               help="Points each outline is resampled to by arc length.")
 @click.option("--starts", type=BoundedInt(1, lim.MAX_STARTS), default=lim.DEFAULT_STARTS, show_default=True,
@@ -35,12 +35,14 @@ from tilekit.plugins.substitution import penrose_limits as lim
               help="Seed of the random starts.")
 def escherize_penrose_command(goals: tuple[str, ...], out: str, which: str, samples: int, starts: int,
                               edge_points: int, reflection: bool, seed: int) -> None:
-    """Deform the Penrose P3 rhombs to resemble GOAL (Penrose Escherization, §7.3 and §6.3).
+    """Deform the Penrose P3 rhombs (or, with --tiling p2, the kite and dart) to resemble GOAL
+    (Penrose Escherization, §7.3 and §6.3).
 
-    The quasivertex parameters r1, theta1, r2, theta2 (Figure 6.13) and the interlocking edge
-    shapes a, b, c, f (Figure 6.14; their partners g, e, d, h get the complements) are fitted
-    with the Escherization metric. With one goal both rhombs are compared with it; with two,
-    the thick rhomb with GOAL and the thin one with GOAL_B. The score is the larger of the two
+    The quasivertex parameters r1, theta1, r2, theta2 (Figure 6.13 for P3, derived for P2) and
+    the interlocking edge shapes a, b, c, f (Figure 6.14; their partners get the complements)
+    are fitted with the Escherization metric. With one goal both tiles are compared with it;
+    with two, the thick rhomb (the kite) with GOAL and the thin one (the dart) with GOAL_B. The
+    score is the larger of the two
     distances (0 = similar). The result is checked as a Penrose tiling (a validated patch, the
     matching rules on every shared edge) and written to -o DIR.
 
@@ -52,9 +54,10 @@ def escherize_penrose_command(goals: tuple[str, ...], out: str, which: str, samp
     Examples:
       tilekit escherize-penrose fish.json -o penrose-fish/
       tilekit escherize-penrose fish.json bird.json --starts 2 -o penrose-pair/
+      tilekit escherize-penrose --tiling p2 kite-goal.json dart-goal.json -o p2/
     """
     if len(goals) > 2:
-        raise TilekitError(f"escherize-penrose takes one goal or two (thick, thin), got {len(goals)}: "
+        raise TilekitError(f"escherize-penrose takes one goal or two (thick or kite, thin or dart), got {len(goals)}: "
                            + " ".join(goals[:4]))
     for module in ("scipy.optimize", "threadpoolctl"):
         optional(module, "escher", "tilekit escherize-penrose")
@@ -73,7 +76,8 @@ def escherize_penrose_command(goals: tuple[str, ...], out: str, which: str, samp
     click.echo(f"{what} goal{'s' if len(targets) > 1 else ''}, {result.system}, {settings.starts} starts, "
                f"{result.evaluations} evaluations")
     note = "" if result.shrink == 1.0 else f"  (edge shapes shrunk to {result.shrink:g} to tile; fit {result.fitted_distance:.4f})"
-    click.echo(f"distance {result.distance:.5f}  thick {result.distances[0]:.5f}  thin {result.distances[1]:.5f}{note}")
+    first, second = pe.GOAL_TILES[result.system]
+    click.echo(f"distance {result.distance:.5f}  {first} {result.distances[0]:.5f}  {second} {result.distances[1]:.5f}{note}")
     click.echo("quasivertex " + ", ".join(f"{k}={v:.4g}" for k, v in result.params.items()))
     click.echo(f"wrote {len(written)} files to {out}")
     click.echo("render: tilekit render " + " ".join(result.render_options()) + " -o penrose.svg")

@@ -1,9 +1,11 @@
 """Penrose Escherization (Kaplan 2009, §7.3: "Escher-like tilings based on the shape
 parameterizations of the Penrose tilings in Section 6.3"): the P3 rhombs deformed by the
-quasivertex parameters r1, theta1, r2, theta2 (Figure 6.13) and by Figure 6.14's interlocking
-edge shapes, fitted to one goal (both rhombs compared with it) or to two (the thick rhomb
-with the first, the thin with the second); the objective is the larger of the two distances
+quasivertex parameters r1, theta1, r2, theta2 (Figure 6.13), or P2's kite and dart by theirs
+(derived in :mod:`.quasivertex_p2`), and by Figure 6.14's interlocking edge shapes, fitted to
+one goal (both tiles compared with it) or to two (the thick rhomb or the kite with the first,
+the thin rhomb or the dart with the second); the objective is the larger of the two distances
 of the core's Escherization metric (:mod:`tilekit.escher`), as in dihedral Escherization.
+What follows says "rhombs"; P2's tiles go through the same steps.
 
 The tile space. For fixed quasivertex parameters q, the two rhombs' quasivertices are fixed
 points (:func:`~.quasivertex.book_outlines`) and every edge between consecutive quasivertices
@@ -46,12 +48,13 @@ from tilekit.plugins.substitution.penrose_limits import (
     START_EVALUATIONS,
 )
 
-#: The tilings with a quasivertex parameterization here (P2's kite and dart formulas of
-#: Figure 6.12 are not in the book's text, see quasivertex.py).
-TILINGS = ("p3",)
-SYSTEMS = {"p3": "penrose-p3"}
-#: The goal each rhomb is compared with, in order (goal A: thick, goal B: thin).
-TILES = ("thick", "thin")
+#: The tilings with a quasivertex parameterization (P3: Figure 6.13; P2: derived in
+#: quasivertex_p2.py).
+TILINGS = ("p3", "p2")
+SYSTEMS = {"p3": "penrose-p3", "p2": "penrose-p2"}
+#: The goal each tile is compared with, in order (goal A: thick / kite, goal B: thin / dart).
+GOAL_TILES = {"penrose-p3": ("thick", "thin"), "penrose-p2": ("kite", "dart")}
+TILES = GOAL_TILES["penrose-p3"]
 #: Alternations (resample, align, project) per evaluation of q, and before the polish.
 INNER_STEPS = 6
 FINAL_STEPS = 30
@@ -73,13 +76,10 @@ SIMPLEX_STEPS = np.array([0.08, 0.3, 0.08, 0.3])
 def check_tiling(name: str) -> str:
     """The system of ``--tiling NAME``, or a one-line ParameterError naming the valid ones."""
     key = str(name).lower()
-    if key == "p2":
-        raise ParameterError(
-            "--tiling p2: the kite and dart quasivertex formulas (the book's Figure 6.12) are not in its text, "
-            "so only P3 has a quasivertex parameterization here; valid: p3"
-        )
     if key not in SYSTEMS:
-        raise ParameterError(f"--tiling {name!r} is not a Penrose tiling with quasivertex parameters; valid: p3")
+        raise ParameterError(
+            f"--tiling {name!r} is not a Penrose tiling with quasivertex parameters; valid: {', '.join(TILINGS)}"
+        )
     return SYSTEMS[key]
 
 
@@ -97,27 +97,31 @@ def _params(qvec: np.ndarray) -> qv.QuasivertexParams:
 
 @dataclass
 class PenroseModel:
-    """Both rhombs as functions of q (four numbers) and x (the control coordinates of the
-    primary labels' shapes, ``edge_points`` (x, y) pairs each): each outline is
-    ``Z(q) @ x + g(q)`` (complex), vertices in the book's frame (Figure 6.13)."""
+    """Both tiles (goal A's first) as functions of q (four numbers) and x (the control
+    coordinates of the primary labels' shapes, ``edge_points`` (x, y) pairs each): each
+    outline is ``Z(q) @ x + g(q)`` (complex), vertices in the system's frame."""
 
     edge_points: int
+    system: str = "penrose-p3"
     rows: dict[str, tuple[np.ndarray, np.ndarray, np.ndarray]] = field(init=False)
     c0: np.ndarray = field(init=False)
 
     def __post_init__(self) -> None:
         k = self.edge_points
+        spec = qv.SPECS[self.system]
+        self.tiles = GOAL_TILES[self.system]
         xs = np.arange(1, k + 1) / (k + 1)
-        self.c0 = np.tile(np.column_stack([xs, np.zeros(k)]).ravel(), len(qv.PRIMARY))
+        self.c0 = np.tile(np.column_stack([xs, np.zeros(k)]).ravel(), len(spec.primary))
         self.rows = {}
-        for name, labels in (("thick", qv.THICK_LABELS), ("thin", qv.THIN_LABELS)):
+        for name in self.tiles:
+            labels = spec.labels[name]
             edge, col, sign = [], [], []
             for i, lab in enumerate(labels):
                 edge.append(i)
                 col.append(0)
                 sign.append(0)
-                primary = lab in qv.PRIMARY
-                j = qv.PRIMARY.index(lab if primary else qv.PARTNER[lab])
+                primary = lab in spec.primary
+                j = spec.primary.index(lab if primary else spec.partner[lab])
                 for p in range(k):
                     edge.append(i)
                     # a partner edge runs the complement: point p is 1 - s[k - 1 - p]
@@ -130,15 +134,19 @@ class PenroseModel:
         return len(self.c0)
 
     def corners(self, qvec: np.ndarray) -> dict[str, np.ndarray]:
-        """The quasivertices of both rhombs (complex, unmerged: 12 and 10 points)."""
-        out = qv.book_outlines(_params(qvec))
-        return {name: escher._complex(out[name][0]) for name in TILES}
+        """The quasivertices of both tiles (complex, unmerged: 12 and 10 points for P3, 10 and 10 for P2)."""
+        out = qv.system_outlines(_params(qvec), self.system)
+        return {name: escher._complex(out[name][0]) for name in self.tiles}
+
+    def bad(self, qvec: np.ndarray) -> bool:
+        """Whether a tile's quasivertex outline is not simple at q."""
+        return bool(qv._bad_tiles(_params(qvec), self.system))
 
     def linear(self, qvec: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
-        """[(Z, g)] for the thick and the thin rhomb at q."""
+        """[(Z, g)] for goal A's tile and goal B's at q."""
         corners = self.corners(qvec)
         out = []
-        for name in TILES:
+        for name in self.tiles:
             pts = corners[name]
             d = np.roll(pts, -1) - pts
             edge, col, sign = self.rows[name]
@@ -158,7 +166,7 @@ class PenroseModel:
         """The primary labels' interior points ((k, 2) each), as quasivertex.deformed_tiles takes them."""
         k = self.edge_points
         return {lab: np.asarray(x[2 * k * j : 2 * k * (j + 1)], dtype=float).reshape(k, 2)
-                for j, lab in enumerate(qv.PRIMARY)}
+                for j, lab in enumerate(qv.SPECS[self.system].primary)}
 
 
 def project(model: PenroseModel, qvec: np.ndarray, banks: Sequence[escher.GoalBank], steps: int, ridge: float,
@@ -196,7 +204,7 @@ class PenroseResult:
     params: dict[str, float]
     edges: dict[str, str]  # label -> "x,y:x,y" interior points (substitution --edge syntax)
     distance: float
-    distances: list[float]  # thick, thin
+    distances: list[float]  # goal A's tile (thick / kite), goal B's (thin / dart)
     mirrored: list[bool]
     evaluations: int = 0
     seconds: float = 0.0
@@ -230,7 +238,7 @@ def _shape_text(pts: np.ndarray) -> str:
     return ":".join(f"{x:.12g},{y:.12g}" for x, y in np.asarray(pts, dtype=float))
 
 
-def _starts(settings: PenroseSettings) -> list[np.ndarray]:
+def _starts(settings: PenroseSettings, model: PenroseModel) -> list[np.ndarray]:
     """Start 0 is r1 = r2 = 0 (the straight rhombs' corners, shapes free); the others are drawn
     (seeded) with r in [0, 0.35] and theta within a quarter turn, redrawn until both rhombs
     are simple (at most 50 draws each)."""
@@ -240,7 +248,7 @@ def _starts(settings: PenroseSettings) -> list[np.ndarray]:
         for _ in range(50):
             q = np.array([rng.uniform(0, 0.35), rng.uniform(-math.pi / 2, math.pi / 2),
                           rng.uniform(0, 0.35), rng.uniform(-math.pi / 2, math.pi / 2)])
-            if not qv._bad_tiles(_params(q)):
+            if not model.bad(q):
                 break
         out.append(q)
     return out
@@ -268,21 +276,21 @@ def _fit(goals: list[np.ndarray], system: str, settings: PenroseSettings) -> Pen
     from scipy.optimize import minimize  # start-up cost: scipy (~0.3 s), only for a search
 
     t0 = time.perf_counter()
-    model = PenroseModel(settings.edge_points)
+    model = PenroseModel(settings.edge_points, system)
     banks = [escher.GoalBank.build(g, settings.samples, settings.reflection) for g in goals]
     evaluations = 0
 
     def f(qvec: np.ndarray, ridge: float) -> float:
         nonlocal evaluations
         evaluations += 1
-        if qv._bad_tiles(_params(qvec)):
+        if model.bad(qvec):
             return 2.0
         d, _, x = project(model, qvec, banks, INNER_STEPS, ridge, model.c0)
         bad = any(escher.crossings(z) for z in model.outlines(qvec, x))
         return d + CROSSING_PENALTY * bad
 
     best_q, best_f, best_ridge = np.zeros(4), math.inf, RIDGES[0]
-    for i, s in enumerate(_starts(settings)):
+    for i, s in enumerate(_starts(settings, model)):
         ridge = RIDGES[i % len(RIDGES)]
         simplex = np.vstack([s, s + np.diag(SIMPLEX_STEPS)])
         res = minimize(f, s, args=(ridge,), method="Nelder-Mead",
@@ -340,7 +348,7 @@ def _polish(model: PenroseModel, qvec: np.ndarray, x: np.ndarray, goals: Sequenc
     except ValueError:  # a degenerate outline at a trial point: keep the projection's answer
         return None
     z = res.x
-    if not np.all(np.isfinite(z)) or qv._bad_tiles(_params(z[:4])):
+    if not np.all(np.isfinite(z)) or model.bad(z[:4]):
         return None
     r = res.fun
     ds = [math.sqrt(float(np.sum(r[2 * n * i : 2 * n * (i + 1)] ** 2))) / weights[i] for i in range(2)]
@@ -377,7 +385,7 @@ def _valid_result(model: PenroseModel, qvec: np.ndarray, x: np.ndarray, goals: S
             continue
         tiles = {t.name: t for t in tiling.prototiles}
         infos = [escher._distance(escher._complex(np.asarray(tiles[name].outline)), g, settings.samples,
-                                  settings.reflection, refine=True) for name, g in zip(TILES, goals)]
+                                  settings.reflection, refine=True) for name, g in zip(model.tiles, goals)]
         result.distances = [float(d) for d, _ in infos]
         result.mirrored = [bool(info["mirrored"]) for _, info in infos]
         result.distance = max(result.distances)
@@ -390,15 +398,18 @@ def _valid_result(model: PenroseModel, qvec: np.ndarray, x: np.ndarray, goals: S
 
 
 def tiles_svg(result: PenroseResult, goals: Sequence[np.ndarray], size: int = 400) -> str:
-    """The thin and thick rhombs side by side (light and dark, the patch's colours), each with
-    its goal aligned onto it (dashed)."""
+    """The two tiles side by side in the system's prototile order (P3: thin, thick; P2: kite,
+    dart; light and dark, the patch's colours), each with its goal aligned onto it (dashed)."""
+    order = [t.name for t in result.tiling().prototiles]
     tiles = {t.name: np.asarray(t.outline, dtype=float) for t in result.tiling().prototiles}
-    shapes = [tiles["thin"], tiles["thick"]]
+    fitted = list(GOAL_TILES[result.system])  # goal A's tile, goal B's tile
+    shapes = [tiles[name] for name in order]
     shapes[1] = shapes[1] + [float(shapes[0][:, 0].max() - shapes[1][:, 0].min()) + 0.3, 0.0]
-    pair = [goals[-1], goals[0]]  # thin: goal B (or the one goal); thick: goal A
-    aligned = [escher.align_onto(s, g, m) for s, g, m in zip(shapes, pair, result.mirrored[::-1])]
-    title = (f"{result.system}  d = {result.distance:.4f} (thin {result.distances[1]:.4f}, "
-             f"thick {result.distances[0]:.4f})")
+    idx = [fitted.index(name) for name in order]
+    pair = [goals[min(i, len(goals) - 1)] for i in idx]  # one goal: both tiles against it
+    aligned = [escher.align_onto(s, g, result.mirrored[i]) for s, g, i in zip(shapes, pair, idx)]
+    title = (f"{result.system}  d = {result.distance:.4f} ("
+             + ", ".join(f"{name} {result.distances[i]:.4f}" for name, i in zip(order, idx)) + ")")
     return escher.overlay_svg(title, shapes, aligned, size)
 
 

@@ -1,4 +1,6 @@
-"""Quasivertex parameterizations of the Penrose rhombs (book §6.3, Figures 6.13 and 6.14).
+"""Quasivertex parameterizations of the Penrose tiles (book §6.3): the rhombs' of Figures 6.13
+and 6.14 (below), and the kite and dart's, derived in :mod:`.quasivertex_p2` and served
+through the same functions (``system_outlines``, ``deformed_tiles``, ``matching_report``).
 
 Four numbers r1, theta1, r2, theta2 move the tiling vertices of a P3 tiling off the rhombs'
 corners. Figure 6.13 places the quasivertices in a frame where the thick rhomb is
@@ -45,6 +47,7 @@ import shapely
 
 from tilekit.errors import GeometryError, ParameterError
 from tilekit.geometry import POINT_TOL, Affine
+from tilekit.plugins.substitution import quasivertex_p2 as p2
 from tilekit.plugins.substitution.shapes import complement
 from tilekit.tiling import Prototile
 
@@ -60,8 +63,25 @@ PARTNER = {"a": "g", "g": "a", "b": "e", "e": "b", "c": "d", "d": "c", "f": "h",
 PRIMARY = ("a", "b", "c", "f")
 #: Option names (angles in degrees).
 PARAM_NAMES = ("r1", "theta1", "r2", "theta2")
-#: Systems whose whole tiles are the P3 rhombs in the frame this module expects.
-SUPPORTED = ("penrose-p3",)
+#: Systems with a quasivertex parameterization: P3's of Figure 6.13 (this module) and P2's
+#: derived from the family's own patches (:mod:`.quasivertex_p2`).
+SUPPORTED = ("penrose-p3", "penrose-p2")
+
+
+@dataclass(frozen=True)
+class QuasivertexSpec:
+    """What a system's quasivertex tiles are: tile names (system order), labels, pairs."""
+
+    tiles: tuple[str, ...]
+    labels: dict[str, str]
+    partner: dict[str, str]
+    primary: tuple[str, ...]
+
+
+SPECS = {
+    "penrose-p3": QuasivertexSpec(("thin", "thick"), {"thick": THICK_LABELS, "thin": THIN_LABELS}, PARTNER, PRIMARY),
+    "penrose-p2": QuasivertexSpec(("kite", "dart"), dict(p2.LABELS), p2.PARTNER, p2.PRIMARY),
+}
 
 
 @dataclass(frozen=True)
@@ -170,17 +190,40 @@ def book_to_system() -> dict[str, np.ndarray]:
     }
 
 
-def check_system(tiles: Sequence[Prototile], system_name: str) -> None:
-    """Raise ParameterError unless ``tiles`` are P3's thin and thick rhombs in the expected frames."""
-    if system_name not in SUPPORTED or [t.name for t in tiles] != ["thin", "thick"]:
-        raise ParameterError(
-            f"quasivertex parameters (r1, theta1, r2, theta2) apply to {', '.join(SUPPORTED)} only, "
-            f"not {system_name!r} (the kite/dart formulas of Figure 6.12 are not in the book's text)"
-        )
-    straight = book_outlines(QuasivertexParams())
+#: A spoke shorter than this (edge lengths) is drawn as none: quasivertices closer than it to
+#: their corner would be distinct points closer than the patches' point tolerance (found by
+#: the hypothesis test: r1 = 1e-7 made outlines that could not be triangulated).
+MIN_SPOKE = 1e-6
+
+
+def system_outlines(params: QuasivertexParams, system_name: str = "penrose-p3") -> dict[str, tuple[np.ndarray, str]]:
+    """{tile name: (quasivertices (k, 2) in the system's frame, edge labels)}, unmerged; r1 or r2
+    below MIN_SPOKE counts as 0."""
+    if abs(params.r1) < MIN_SPOKE or abs(params.r2) < MIN_SPOKE:
+        params = QuasivertexParams(params.r1 if abs(params.r1) >= MIN_SPOKE else 0.0, params.theta1,
+                                   params.r2 if abs(params.r2) >= MIN_SPOKE else 0.0, params.theta2)
+    if system_name == "penrose-p2":
+        return p2.outlines(*params.radians())
     maps = book_to_system()
+    return {name: (Affine.apply(maps[name], pts), labels) for name, (pts, labels) in book_outlines(params).items()}
+
+
+def _spec(system_name: str) -> QuasivertexSpec:
+    if system_name not in SPECS:
+        raise ParameterError(
+            f"quasivertex parameters (r1, theta1, r2, theta2) apply to {', '.join(SUPPORTED)} only, not {system_name!r}"
+        )
+    return SPECS[system_name]
+
+
+def check_system(tiles: Sequence[Prototile], system_name: str) -> None:
+    """Raise ParameterError unless ``tiles`` are the system's straight tiles in the expected frames."""
+    spec = _spec(system_name)
+    if tuple(t.name for t in tiles) != spec.tiles:
+        raise ParameterError(f"{system_name}: tiles {[t.name for t in tiles]} are not {list(spec.tiles)}")
+    straight = system_outlines(QuasivertexParams(), system_name)
     for tile in tiles:
-        pts = Affine.apply(maps[tile.name], _merge(*straight[tile.name])[0])
+        pts = _merge(*straight[tile.name])[0]
         ok = len(pts) == len(tile.outline) and any(
             np.allclose(np.roll(pts, k, axis=0), tile.outline, atol=1e-9) for k in range(len(pts))
         )
@@ -211,16 +254,18 @@ def _simple(outline: np.ndarray) -> bool:
     return not bool(np.any((np.abs(cross) <= 1e-9 * scale) & (dot < 0)))
 
 
-def _bad_tiles(params: QuasivertexParams) -> list[str]:
-    return [name for name, (pts, labels) in book_outlines(params).items() if not _simple(_merge(pts, labels)[0])]
+def _bad_tiles(params: QuasivertexParams, system_name: str = "penrose-p3") -> list[str]:
+    return [name for name, (pts, labels) in system_outlines(params, system_name).items()
+            if not _simple(_merge(pts, labels)[0])]
 
 
-def _valid_run(params: QuasivertexParams, name: str) -> tuple[float, float, float] | None:
+def _valid_run(params: QuasivertexParams, name: str, system_name: str = "penrose-p3") -> tuple[float, float, float] | None:
     """With the other three parameters fixed: (distance to the nearest valid value of ``name``,
     low end, high end of the run of valid sampled values holding it), or None if none is valid."""
     values = np.linspace(0.0, 1.0, 401) if name.startswith("r") else np.arange(-180.0, 180.5, 1.0)
     given = getattr(params, name)
-    ok = np.array([not _bad_tiles(QuasivertexParams(**{**params.as_dict(), name: float(v)})) for v in values])
+    ok = np.array([not _bad_tiles(QuasivertexParams(**{**params.as_dict(), name: float(v)}), system_name)
+                   for v in values])
     if not ok.any():
         return None
     idx = np.flatnonzero(ok)
@@ -235,7 +280,7 @@ def _valid_run(params: QuasivertexParams, name: str) -> tuple[float, float, floa
 
 
 def admissible_range(params: QuasivertexParams, name: str, lo: float, hi: float, samples: int = 64,
-                     tol: float = 1e-4) -> tuple[float, float] | None:
+                     tol: float = 1e-4, system_name: str = "penrose-p3") -> tuple[float, float] | None:
     """The values of parameter ``name`` in [lo, hi] that keep both rhombs simple with the other
     three fixed: the run of such values around the given one (or the nearest run), its ends
     found by bisection to ``tol`` and given on their valid side; None if no sampled value is
@@ -244,7 +289,7 @@ def admissible_range(params: QuasivertexParams, name: str, lo: float, hi: float,
         raise ParameterError(f"quasivertex parameter {name!r} is not one of {', '.join(PARAM_NAMES)}")
 
     def valid(v: float) -> bool:
-        return not _bad_tiles(QuasivertexParams(**{**params.as_dict(), name: float(v)}))
+        return not _bad_tiles(QuasivertexParams(**{**params.as_dict(), name: float(v)}), system_name)
 
     values = np.linspace(lo, hi, samples + 1)
     ok = np.array([valid(v) for v in values])
@@ -269,17 +314,18 @@ def admissible_range(params: QuasivertexParams, name: str, lo: float, hi: float,
     return low, high
 
 
-def validate_params(params: QuasivertexParams) -> None:
+def validate_params(params: QuasivertexParams, system_name: str = "penrose-p3") -> None:
     """Raise ParameterError naming a parameter when a deformed rhomb self-intersects.
 
     The named parameter is the one whose smallest change (others fixed, r measured in edge
     lengths and theta in half-turns) makes both rhombs simple again, with its valid range.
     """
-    bad = _bad_tiles(params)
+    bad = _bad_tiles(params, system_name)
     if not bad:
         return
-    what = f"the {' and '.join(bad)} rhomb{'s' if len(bad) > 1 else ''}"
-    runs = {name: _valid_run(params, name) for name in PARAM_NAMES}
+    noun = "rhomb" if system_name == "penrose-p3" else "tile"
+    what = f"the {' and '.join(bad)} {noun}{'s' if len(bad) > 1 else ''}"
+    runs = {name: _valid_run(params, name, system_name) for name in PARAM_NAMES}
     fixable = sorted((run[0], name, run[1], run[2]) for name, run in runs.items() if run is not None)
     if not fixable:
         raise ParameterError(
@@ -299,16 +345,18 @@ def validate_params(params: QuasivertexParams) -> None:
     )
 
 
-def resolve_shapes(shapes: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
+def resolve_shapes(shapes: Mapping[str, np.ndarray], system_name: str = "penrose-p3") -> dict[str, np.ndarray]:
     """Edge shapes per label a..h: a shape given on a label puts its complement on the partner."""
+    pairs = _spec(system_name).partner
     out: dict[str, np.ndarray] = {}
     for name, pts in shapes.items():
-        if name not in PARTNER:
+        if name not in pairs:
+            text = ", ".join(f"{a}/{pairs[a]}" for a in _spec(system_name).primary)
             raise ParameterError(
-                f"edge shape {name!r} is not a quasivertex edge label; valid: {', '.join(sorted(PARTNER))} "
-                "(pairs a/g, b/e, c/d, f/h interlock)"
+                f"edge shape {name!r} is not a quasivertex edge label; valid: {', '.join(sorted(pairs))} "
+                f"(pairs {text} interlock)"
             )
-        partner = PARTNER[name]
+        partner = pairs[name]
         if partner in shapes:
             raise ParameterError(
                 f"edge shapes {name!r} and {partner!r} interlock (one is the other's complement); give only one"
@@ -331,14 +379,13 @@ def deformed_tiles(
     shapes make a tile self-intersect.
     """
     check_system(tiles, system_name)
-    validate_params(params)
-    per_label = resolve_shapes(shapes or {})
-    outlines = book_outlines(params)
-    maps = book_to_system()
+    validate_params(params, system_name)
+    per_label = resolve_shapes(shapes or {}, system_name)
+    outlines = system_outlines(params, system_name)
+    noun = "rhomb" if system_name == "penrose-p3" else "tile"
     out = []
     for tile in tiles:
         pts, labels, _ = _merge(*outlines[tile.name])
-        pts = Affine.apply(maps[tile.name], pts)
         k = len(pts)
         outline: list[np.ndarray] = []
         corners: list[int] = []
@@ -355,7 +402,7 @@ def deformed_tiles(
         if not _simple(arr):
             culprits = sorted({lab for lab in labels if lab in per_label and len(per_label[lab])})
             raise ParameterError(
-                f"edge shapes on {', '.join(culprits)} make the {tile.name} rhomb self-intersect "
+                f"edge shapes on {', '.join(culprits)} make the {tile.name} {noun} self-intersect "
                 f"at {params.text()}; use smaller or different shapes"
             )
         out.append(Prototile(arr, edge_labels=tuple(seg_labels), name=tile.name, corners=tuple(corners)))
@@ -399,6 +446,8 @@ def matching_report(patch: Any, decimals: int = 6) -> MatchingReport:
     tiles (prototiles with ``corners`` and per-segment ``edge_labels``, as
     :func:`deformed_tiles` makes them). Edges are matched by their end points (rounded to
     ``decimals``); each prototile's edges are placed for all its tiles in one batched map."""
+    names = {p.name for p in patch.prototiles}
+    pairs = next((s.partner for s in SPECS.values() if names <= set(s.tiles)), PARTNER)
     keys: list[np.ndarray] = []
     labels: list[np.ndarray] = []
     lines: list[np.ndarray] = []
@@ -431,7 +480,7 @@ def matching_report(patch: Any, decimals: int = 6) -> MatchingReport:
     for g in np.flatnonzero(counts == 2):
         i, j = order[starts[g]], order[starts[g] + 1]
         la, lb = str(alllabels[i]), str(alllabels[j])
-        if PARTNER.get(la) != lb:
+        if pairs.get(la) != lb:
             mislabelled.append((la, lb))
         a, b = lines[i], lines[j]
         misfit = max(misfit, float(np.abs(a - b).max()) if a.shape == b.shape else math.inf)

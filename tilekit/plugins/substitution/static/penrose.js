@@ -1,4 +1,5 @@
-// The Penrose quasivertex editor (§6.3, Figure 6.13): r1, theta1, r2, theta2 and the depth of
+// The Penrose quasivertex editor (§6.3, Figure 6.13 for P3; P2's kite and dart with
+// ?tiling=p2, the page's data-system): r1, theta1, r2, theta2 and the depth of
 // the substituted patch; the server builds the deformed rhombs and refuses self-intersecting ones.
 // The r sliders are limited to the values that keep both rhombs simple for the other three
 // parameters (/api/penrose/range, asked again as they change); the export links name the last
@@ -10,6 +11,7 @@
   const view = document.getElementById("view");
   const errorBox = document.getElementById("error");
   const keys = ["r1", "theta1", "r2", "theta2"];
+  const system = root.dataset.system || "penrose-p3";  // penrose-p3 or penrose-p2 (?tiling=p2)
   let timer = null, rangeSeq = 0;
 
   function query(extra) {
@@ -21,9 +23,9 @@
   const live = window.tilekitLive(root, view, errorBox);
 
   function render() {
-    const links = { svg: "/api/render/penrose-p3?" + query({ format: "svg", size: 800, download: 1 }),
-                    spec: "/api/tiling/penrose-p3/spec?" + query({ download: 1 }) };
-    live("/api/render/penrose-p3?" + query({ format: "json", size: 720 })).then(function (drawn) {
+    const links = { svg: "/api/render/" + system + "?" + query({ format: "svg", size: 800, download: 1 }),
+                    spec: "/api/tiling/" + system + "/spec?" + query({ download: 1 }) };
+    live("/api/render/" + system + "?" + query({ format: "json", size: 720 })).then(function (drawn) {
       if (drawn === true) {
         document.getElementById("export-svg").href = links.svg;
         document.getElementById("export-spec").href = links.spec;
@@ -39,6 +41,7 @@
     const mine = ++rangeSeq;
     const q = new URLSearchParams();
     keys.forEach(function (k) { q.set(k, document.getElementById(k).value); });
+    q.set("tiling", system === "penrose-p2" ? "p2" : "p3");
     fetch("/api/penrose/range?" + q).then(function (r) { return r.ok ? r.json() : null; }).then(function (body) {
       if (!body || mine !== rangeSeq) return;
       ["r1", "r2"].forEach(function (k) {
