@@ -2,7 +2,7 @@
 
 The book gives P2's consequences only in its text: the edge labels abcdaefghd (kite) and
 ghefgcdabf (dart) with the interlocking pairs (a,d), (b,h), (c,e), (f,g), "four non-congruent
-edge shapes between them". The derivation (quasivertex_p2.derive) must find them from the
+edge shapes between them". The derivation (p2_derivation.derive) must find them from the
 adjacencies of the family's own patches; the formulas used by the family must be the ones
 it finds; deformed patches must tile and keep the labels' pairing on every shared piece.
 """
@@ -20,9 +20,9 @@ from test_substitution import assert_valid
 
 from tilekit.errors import ParameterError
 from tilekit.geometry import Affine
+from tilekit.plugins.substitution import p2_derivation, tiling
 from tilekit.plugins.substitution import quasivertex as qv
 from tilekit.plugins.substitution import quasivertex_p2 as p2
-from tilekit.plugins.substitution import tiling
 from tilekit.plugins.substitution.shapes import canonical_transforms, halves_mirror
 from tilekit.tiling import Patch
 
@@ -36,7 +36,7 @@ def test_derivation_reproduces_the_books_labels() -> None:
     (kite abcdaefghd, dart ghefgcdabf, pairs (a,d), (b,h), (c,e), (f,g)), mirror images of
     each other, each leaving four free parameters (P3's r1, theta1, r2, theta2 count); the
     module's data is the first of them."""
-    d = p2.derive(max_cuts=1)
+    d = p2_derivation.derive(max_cuts=1)
     assert d.edges == p2.EDGES
     book = d.book
     assert sorted(tuple(sorted(c.cuts.items())) for c in book) == [

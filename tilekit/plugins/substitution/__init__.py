@@ -12,6 +12,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import tilekit
+from tilekit.errors import ParseError
+from tilekit.files import read_json
 from tilekit.lazy import lazy_exports
 from tilekit.plugins import CatalogueRecord, Family, Sampler, web_pages
 from tilekit.plugins.substitution.builtin import builtin_systems, system_dir
@@ -60,9 +62,6 @@ def from_file(path: str) -> SubstitutionTiling:
     JSON file holding a spec: a bare one, or ``{"family": "substitution", "spec": {...}}`` as
     ``escherize-penrose`` writes it (penrose.json)."""
     if Path(path).suffix.lower() == ".json":
-        from tilekit.errors import ParseError
-        from tilekit.files import read_json
-
         data = read_json(path, "substitution spec")
         if isinstance(data, dict) and data.get("family", "substitution") == "substitution":
             spec = data.get("spec", data)
