@@ -5,12 +5,14 @@ The order of the tests is the cheap-first order of Myers' and Kaplan's searches:
 
 1. a hole: no tiling (a copy covering a cell of the hole would have to fit inside it);
 2. the boundary-word test (:mod:`isohedral`, Langerman and Winslow): an isohedral tiling;
-3. coronas by SAT (:mod:`heesch`) up to ``probe`` levels (one more when Kaplan's numbers are
+3. the local test of corona 1 (:func:`heesch.first_corona_rows`, one compiled call): no copy
+   left for corona 1 proves a non-tiler with Hc = Hh = 0 before any solver is set up;
+4. coronas by SAT (:mod:`heesch`) up to ``probe`` levels (one more when Kaplan's numbers are
    known but need the proof): a level with no patch even with holes proves a non-tiler, and
    its Hc and Hh are Kaplan's;
-4. otherwise tori with 2..``torus_tiles`` tiles per translational unit (:mod:`torus`): a
+5. otherwise tori with 2..``torus_tiles`` tiles per translational unit (:mod:`torus`): a
    cover is a periodic tiling, and the fewest transitivity classes found is the k recorded;
-5. otherwise coronas up to ``max_level``; still surrounded: ``undecided`` with the bounds.
+6. otherwise coronas up to ``max_level``; still surrounded: ``undecided`` with the bounds.
 
 The ``polyomino-classify`` search that runs this over every free polyomino is
 :mod:`classify_search`.
@@ -31,7 +33,14 @@ import numpy as np
 from tilekit.colouring import Colouring
 from tilekit.errors import ParameterError, ParseError
 from tilekit.lattice import GRIDS, Grid, outline
-from tilekit.plugins.polyomino.heesch import MAX_LEVEL_LIMIT, Corona, HeeschSolver, heesch
+from tilekit.plugins.polyomino.heesch import (
+    MAX_LEVEL_LIMIT,
+    Corona,
+    HeeschResult,
+    HeeschSolver,
+    first_corona_rows,
+    heesch,
+)
 from tilekit.plugins.polyomino.placements import Forms
 from tilekit.plugins.polyomino.torus import TorusSearch, TorusTiling
 from tilekit.schema import Field, check
@@ -127,7 +136,12 @@ def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes:
     def left() -> float | None:
         return None if time_limit is None else max(0.0, time_limit - (time.monotonic() - t0))
 
-    hs = HeeschSolver(grid, cells, solver=solver)
+    first = first_corona_rows(grid, cells)  # corona 1's copies by the local test, one compiled call
+    if not len(first):  # no corona even with holes: Hc = Hh = 0, proved with no solver
+        kernel = Corona(np.zeros((1, 3), dtype=np.int64), np.zeros(1, dtype=np.int64), False)
+        seconds = time.monotonic() - t0
+        return _non_tiler(HeeschResult(0, 0, kernel, kernel, 0, True, "no 1-corona patch exists", 0, seconds), seconds)
+    hs = HeeschSolver(grid, cells, solver=solver, first=first)
     r = heesch(grid, cells, max_level=probe, time_limit=left(), hs=hs)
     level = probe
     if not r.decided and hs.kaplan and r.surrounded >= probe and probe < max_level:

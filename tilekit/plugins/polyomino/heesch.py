@@ -43,6 +43,8 @@ from tilekit import limits
 from tilekit.errors import ParameterError
 from tilekit.jit import njit
 from tilekit.lattice import (
+    _M,
+    _OFF,
     Grid,
     _empty_components,
     _vertex_neighbours,
@@ -50,8 +52,9 @@ from tilekit.lattice import (
     pack,
     unique_keys,
     unpack,
+    vertex_neighbour_table,
 )
-from tilekit.plugins.polyomino.placements import Forms
+from tilekit.plugins.polyomino.placements import Forms, _adjacent, _halos
 from tilekit.sat import CNF, DEFAULT_SAT_SOLVER, NATIVE_ATMOST, IncrementalSolver, gc_paused
 
 #: The most coronas a search will build (Kaplan's sat tool stops at 7 by default).
@@ -229,16 +232,117 @@ def first_corona_support(cells: np.ndarray, halo: np.ndarray) -> np.ndarray:
     return _support(np.ascontiguousarray(col), hpos.astype(np.int64), len(universe))
 
 
+@njit(cache=True)
+def _orientations(cells, group, period):  # pragma: no cover - compiled
+    """The distinct images of ``cells`` under ``group``, each in fixed form (sorted by (y, x),
+    the least cell moved into [0, period)^2, as :class:`Forms`): (J, n, 2) and their sorted
+    packed keys (J, n), the polyform's own fixed form first."""
+    G, n = group.shape[0], cells.shape[0]
+    off, mm = np.int64(_OFF), np.int64(_M)  # lattice.pack's offsets
+    out = np.empty((G, n, 2), np.int64)
+    keys = np.empty((G, n), np.int64)
+    J = 0
+    for g in range(G):
+        img = np.empty((n, 2), np.int64)
+        b = 0
+        for i in range(n):
+            img[i, 0] = group[g, 0, 0] * cells[i, 0] + group[g, 0, 1] * cells[i, 1]
+            img[i, 1] = group[g, 1, 0] * cells[i, 0] + group[g, 1, 1] * cells[i, 1]
+            if img[i, 1] < img[b, 1] or (img[i, 1] == img[b, 1] and img[i, 0] < img[b, 0]):
+                b = i
+        sx = img[b, 0] % period - img[b, 0]
+        sy = img[b, 1] % period - img[b, 1]
+        k = np.empty(n, np.int64)
+        for i in range(n):
+            img[i, 0] += sx
+            img[i, 1] += sy
+            k[i] = (img[i, 0] + off) * mm + (img[i, 1] + off)
+        k = np.sort(k)
+        dup = False
+        for j in range(J):
+            same = True
+            for i in range(n):
+                if keys[j, i] != k[i]:
+                    same = False
+                    break
+            if same:
+                dup = True
+                break
+        if not dup:
+            out[J] = img
+            keys[J] = k
+            J += 1
+    return out[:J], keys[:J]
+
+
+@njit(cache=True)
+def _first_corona(cells, group, period, table, types):  # pragma: no cover - compiled
+    """:func:`first_corona_rows` in one compiled call: the orientations, the kernel's halo, the
+    copies touching the kernel (:func:`placements._adjacent`) and the local test
+    (:func:`_support`)."""
+    forms, keys = _orientations(cells, group, period)
+    n = cells.shape[0]
+    off, mm = np.int64(_OFF), np.int64(_M)
+    halo = _halos(forms[:1], table, types, period)[0]
+    rows = _adjacent(forms, halo, keys[0], period)
+    m = rows.shape[0]
+    if m == 0:
+        return rows
+    pk = np.empty((m, n), np.int64)
+    for p in range(m):
+        f = rows[p, 0]
+        for i in range(n):
+            pk[p, i] = (forms[f, i, 0] + rows[p, 1] + off) * mm + (forms[f, i, 1] + rows[p, 2] + off)
+    universe = np.unique(pk.ravel())
+    H = halo.shape[0]
+    hcol = np.empty(H, np.int64)
+    for h in range(H):
+        key = (halo[h, 0] + off) * mm + (halo[h, 1] + off)
+        q = np.searchsorted(universe, key)
+        if q >= universe.shape[0] or universe[q] != key:
+            return rows[:0]  # a halo cell no copy touching the kernel covers
+        hcol[h] = q
+    col = np.searchsorted(universe, pk.ravel()).reshape(m, n)
+    return rows[_support(col, hcol, universe.shape[0])]
+
+
+def first_corona_rows(grid: Grid, cells: np.ndarray) -> np.ndarray:
+    """The candidate copies of corona 1 that pass the local test of :func:`first_corona_support`,
+    as placement rows ``(j, tx, ty)`` of :class:`Forms` (the same rows, in the same order, as
+    :class:`HeeschSolver`'s first level), in one compiled call without building :class:`Forms`.
+    Empty: no corona exists even with holes, so Hc = Hh = 0 and the polyform does not tile
+    (most forms of the drafter and bevelhex grids end here, where setting up the solver was
+    most of their cost)."""
+    return _first_corona(np.ascontiguousarray(cells, dtype=np.int64).reshape(-1, 2), *_grid_tables(grid))
+
+
+_TABLES: dict[str, tuple] = {}
+
+
+def _grid_tables(grid: Grid) -> tuple:
+    """(point group, period, vertex-neighbour table, type table) of a grid as the compiled
+    loops take them, made once per grid."""
+    got = _TABLES.get(grid.name)
+    if got is None:
+        got = _TABLES[grid.name] = (grid.group.astype(np.int64), np.int64(grid.period),
+                                    vertex_neighbour_table(grid), grid.type_table)
+    return got
+
+
 class HeeschSolver:
     """Coronas of one polyform, level by level (see the module docstring)."""
 
-    def __init__(self, grid: Grid, cells: np.ndarray, *, solver: str = DEFAULT_SAT_SOLVER) -> None:
+    def __init__(self, grid: Grid, cells: np.ndarray, *, solver: str = DEFAULT_SAT_SOLVER,
+                 first: np.ndarray | None = None) -> None:
+        """``first``: corona 1's rows from :func:`first_corona_rows`, when already computed."""
         self.grid = grid
         self.forms = Forms(grid, cells)
         self.solver = solver
         self.kernel_keys = np.sort(self.forms.keys[0])
         self.kernel_halo = unique_keys(self.forms.placement_halos(np.array([[0, 0, 0]]))[0])
         self.levels: list[np.ndarray] = [np.array([[0, 0, 0]], dtype=np.int64)]  # level 0: kernel
+        if first is not None:
+            self.levels.append(np.asarray(first, dtype=np.int64).reshape(-1, 3))
         self.sat_calls = 0
         self.solve_seconds = 0.0  # inside the solver (the rest is building the formulas)
         #: (Hc, Hh, hole-free witness, holey witness) once Kaplan's loop has stopped
@@ -248,10 +352,11 @@ class HeeschSolver:
         """For hole-free questions only: leave out of corona 1 the copies that make an
         unfillable hole with the kernel (:func:`unfillable_rows`), then repeat the local test
         of :func:`first_corona_support` on what is left; corona 2 on is grown from what is
-        left. Call before any level is grown; returns how many were left out."""
-        if len(self.levels) > 1:
-            raise ParameterError("drop_enclosing() must come before the coronas are grown")
-        self._grow()
+        left. Call before corona 2 is grown; returns how many were left out."""
+        if len(self.levels) > 2:
+            raise ParameterError("drop_enclosing() must come before corona 2 is grown")
+        if len(self.levels) == 1:
+            self._grow()
         rows = self.levels[1]
         bad = unfillable_rows(self.grid, self.forms, rows, 0)
         if bad.any():
