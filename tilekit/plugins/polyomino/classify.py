@@ -142,6 +142,15 @@ def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes:
         seconds = time.monotonic() - t0
         return _non_tiler(HeeschResult(0, 0, kernel, kernel, 0, True, "no 1-corona patch exists", 0, seconds), seconds)
     hs = HeeschSolver(grid, cells, solver=solver, first=first)
+    try:
+        return _coronas_and_tori(grid, cells, hs, probe, max_level, torus_tiles, solver, t0, left)
+    finally:
+        hs.close()
+
+
+def _coronas_and_tori(grid: Grid, cells: np.ndarray, hs: HeeschSolver, probe: int, max_level: int, torus_tiles: int,
+                      solver: str, t0: float, left) -> Classification:
+    """Steps 4-6 of the module docstring, on ``hs`` (its ladder holds every corona level)."""
     r = heesch(grid, cells, max_level=probe, time_limit=left(), hs=hs)
     level = probe
     if not r.decided and hs.kaplan and r.surrounded >= probe and probe < max_level:

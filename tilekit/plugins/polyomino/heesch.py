@@ -63,6 +63,11 @@ MAX_LEVEL_LIMIT = 12
 #: spares the per-cell clausal ladders (measured on the non-tiling 10-ominoes: half the time of
 #: Glucose with ladders, docs/benchmarks.md).
 HC_SOLVER = "gluecard4"
+#: The same solver with native at-most-one constraints: Gluecard is Glucose 4.1 and Minicard is
+#: Minisat 2.2, each with cardinality constraints, so :class:`CoronaLadder` asked for Glucose or
+#: Minisat runs them (the classification's coronas: 1.2-1.9x less CPU than Glucose with ladders
+#: on the forms of five grids that need a solver, docs/benchmarks.md).
+NATIVE_VARIANT = {"glucose4": "gluecard4", "minisat22": "minicard"}
 
 
 #: Estimates below this many bytes skip the memory probe (it reads /proc, ~0.1 ms, more than
@@ -347,6 +352,24 @@ class HeeschSolver:
         self.solve_seconds = 0.0  # inside the solver (the rest is building the formulas)
         #: (Hc, Hh, hole-free witness, holey witness) once Kaplan's loop has stopped
         self.kaplan: tuple[int, int, Corona, Corona] | None = None
+        self.ladder: CoronaLadder | None = None  # :func:`heesch`'s levels in one solver
+
+    def ladder_at(self, k: int) -> CoronaLadder | None:
+        """This polyform's :class:`CoronaLadder` (one incremental solver for every level, made on
+        first use) holding exactly ``k`` coronas, or None when it already holds more."""
+        if self.ladder is None:
+            self.ladder = CoronaLadder(self)
+        if self.ladder.k > k:
+            return None
+        while self.ladder.k < k:
+            self.ladder.add_level()
+        return self.ladder
+
+    def close(self) -> None:
+        """Free the ladder's solver (the per-level formulas free theirs as they go)."""
+        if self.ladder is not None:
+            self.ladder.close()
+            self.ladder = None
 
     def drop_enclosing(self) -> int:
         """For hole-free questions only: leave out of corona 1 the copies that make an
@@ -596,8 +619,18 @@ def heesch(grid: Grid, cells: np.ndarray, *, max_level: int = 6, solver: str = D
     """
     if not 0 <= max_level <= MAX_LEVEL_LIMIT:
         raise ParameterError(f"max_level must be between 0 and {MAX_LEVEL_LIMIT}, got {max_level}")
+    if hs is not None:
+        return _heesch(hs, max_level, time_limit, start, best)
+    hs = HeeschSolver(grid, cells, solver=solver)
+    try:
+        return _heesch(hs, max_level, time_limit, start, best)
+    finally:
+        hs.close()
+
+
+def _heesch(hs: HeeschSolver, max_level: int, time_limit: float | None, start: int, best: Corona | None) -> HeeschResult:
+    """:func:`heesch` on a solver's levels (its ladder left open for the caller's next call)."""
     t0 = time.monotonic()
-    hs = hs or HeeschSolver(grid, cells, solver=solver)
     best = best or Corona(hs.levels[0].copy(), np.zeros(1, dtype=np.int64), False)  # the kernel
 
     def result(decided: bool, reason: str, surrounded: int) -> HeeschResult:
@@ -610,10 +643,16 @@ def heesch(grid: Grid, cells: np.ndarray, *, max_level: int = 6, solver: str = D
             return result(False, f"time limit after {k - 1} coronas", k - 1)
         answer = ok = None
         try:  # the proof question (holes allowed) once Kaplan's numbers are known, else coronas
-            if hs.kaplan:
-                ok = hs.surrounds(k, time_limit=left)
+            lad = hs.ladder_at(k)
+            if lad is None:  # levels asked out of order: a formula of its own
+                if hs.kaplan:
+                    ok = hs.surrounds(k, time_limit=left)
+                else:
+                    answer = hs.corona(k, time_limit=left)
+            elif hs.kaplan:
+                ok = False if lad.empty else lad.solve([], left).satisfiable
             else:
-                answer = hs.corona(k, time_limit=left)
+                answer = lad.corona(False, left)
         except limits.LimitError as exc:  # a bound like the time limit: undecided, with the reason
             return result(False, f"{k} coronas: {exc}", k - 1)
         if answer is None:
@@ -704,7 +743,9 @@ class CoronaLadder:
         self.pending = CNF()
         self.pending.add([-self.false])
         self.empty = False  # a clause with no literal was met: no k-corona for any k >= self.k
-        self.native = hs.solver in NATIVE_ATMOST  # at-most-one as native constraints
+        #: the solver, as its variant with native at-most-one constraints when it has one
+        self.solver_name = NATIVE_VARIANT.get(hs.solver, hs.solver)
+        self.native = self.solver_name in NATIVE_ATMOST  # at-most-one as native constraints
         self.pairs: list[tuple[np.ndarray, np.ndarray]] = [(np.zeros(0, dtype=np.int64),) * 2]
         grid = hs.grid
         #: per cell type, the offsets of the cells sharing a vertex with it
@@ -821,7 +862,7 @@ class CoronaLadder:
     def _flush(self) -> IncrementalSolver:
         with gc_paused():
             if self.solver is None:
-                self.solver = IncrementalSolver(self.pending, solver=self.hs.solver)
+                self.solver = IncrementalSolver(self.pending, solver=self.solver_name)
             else:
                 self.solver.extend(self.pending)
         self.pending = CNF()
