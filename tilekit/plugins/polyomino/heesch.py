@@ -375,11 +375,10 @@ class HeeschSolver:
         """For hole-free questions only: leave out of corona 1 the copies that make an
         unfillable hole with the kernel (:func:`unfillable_rows`), then repeat the local test
         of :func:`first_corona_support` on what is left; corona 2 on is grown from what is
-        left. Call before corona 2 is grown; returns how many were left out."""
-        if len(self.levels) > 2:
-            raise ParameterError("drop_enclosing() must come before corona 2 is grown")
-        if len(self.levels) == 1:
-            self._grow()
+        left. Call before any level is grown; returns how many were left out."""
+        if len(self.levels) > 1:
+            raise ParameterError("drop_enclosing() must come before the coronas are grown")
+        self._grow()
         rows = self.levels[1]
         bad = unfillable_rows(self.grid, self.forms, rows, 0)
         if bad.any():
