@@ -41,6 +41,7 @@ from tilekit.plugins.polyomino.heesch import (
     first_corona_rows,
     heesch,
 )
+from tilekit.plugins.polyomino.isohedral import analyse
 from tilekit.plugins.polyomino.placements import Forms
 from tilekit.plugins.polyomino.torus import TorusSearch, TorusTiling
 from tilekit.schema import Field, check
@@ -227,6 +228,20 @@ def _coronas_and_tori(grid: Grid, cells: np.ndarray, hs: HeeschSolver, probe: in
                 return _undecided(r.surrounded, tried_m, time.monotonic() - t0, r.reason, r.hc_witness)
             level = bound
     return _undecided(level, tried_m, time.monotonic() - t0, r.reason, r.hc_witness)
+
+
+def classify_form(grid: Grid, cells: np.ndarray, *, has_holes: bool = False, **bounds: Any) -> Classification:
+    """:func:`classify` for one polyform with no boundary-word analysis at hand: the local test
+    of corona 1 runs before the boundary-word test (a form it settles cannot tile, so it has no
+    isohedral tiling to look for), then :func:`isohedral.analyse`; the same verdicts as
+    ``classify(grid, cells, analyse(grid, cells, construct=False), ...)``. ``bounds``: the
+    keyword arguments of :func:`classify`."""
+    if has_holes:
+        return classify(grid, cells, None, has_holes=True, **bounds)
+    check_grid(grid)
+    if not len(first_corona_rows(grid, cells)):
+        return classify(grid, cells, None, **bounds)
+    return classify(grid, cells, analyse(grid, cells, construct=False), **bounds)
 
 
 def _non_tiler(r, seconds: float, torus: int | None = None) -> Classification:
