@@ -65,7 +65,7 @@ MAX_LEVEL_LIMIT = 12
 HC_SOLVER = "gluecard4"
 #: The same solver with native at-most-one constraints: Gluecard is Glucose 4.1 and Minicard is
 #: Minisat 2.2, each with cardinality constraints, so :class:`CoronaLadder` asked for Glucose or
-#: Minisat runs them (the classification's coronas: 1.2-1.9x less CPU than Glucose with ladders
+#: Minisat runs them (the classification's coronas: 1.1-1.9x less CPU than Glucose with ladders
 #: on the forms of five grids that need a solver, docs/benchmarks.md).
 NATIVE_VARIANT = {"glucose4": "gluecard4", "minisat22": "minicard"}
 
