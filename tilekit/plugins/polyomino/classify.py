@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import json
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -150,7 +151,7 @@ def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes:
 
 
 def _coronas_and_tori(grid: Grid, cells: np.ndarray, hs: HeeschSolver, probe: int, max_level: int, torus_tiles: int,
-                      solver: str, t0: float, left) -> Classification:
+                      solver: str, t0: float, left: Callable[[], float | None]) -> Classification:
     """Steps 4-6 of the module docstring, on ``hs`` (its ladder holds every corona level)."""
     r = heesch(grid, cells, max_level=probe, time_limit=left(), hs=hs)
     level = probe
