@@ -5,12 +5,14 @@ The order of the tests is the cheap-first order of Myers' and Kaplan's searches:
 
 1. a hole: no tiling (a copy covering a cell of the hole would have to fit inside it);
 2. the boundary-word test (:mod:`isohedral`, Langerman and Winslow): an isohedral tiling;
-3. coronas by SAT (:mod:`heesch`) up to ``probe`` levels (one more when Kaplan's numbers are
+3. the local test of corona 1 (:func:`heesch.first_corona_rows`, one compiled call): no copy
+   left for corona 1 proves a non-tiler with Hc = Hh = 0 before any solver is set up;
+4. coronas by SAT (:mod:`heesch`) up to ``probe`` levels (one more when Kaplan's numbers are
    known but need the proof): a level with no patch even with holes proves a non-tiler, and
    its Hc and Hh are Kaplan's;
-4. otherwise tori with 2..``torus_tiles`` tiles per translational unit (:mod:`torus`): a
+5. otherwise tori with 2..``torus_tiles`` tiles per translational unit (:mod:`torus`): a
    cover is a periodic tiling, and the fewest transitivity classes found is the k recorded;
-5. otherwise coronas up to ``max_level``; still surrounded: ``undecided`` with the bounds.
+6. otherwise coronas up to ``max_level``; still surrounded: ``undecided`` with the bounds.
 
 The ``polyomino-classify`` search that runs this over every free polyomino is
 :mod:`classify_search`.
@@ -23,6 +25,7 @@ from __future__ import annotations
 
 import json
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -31,7 +34,15 @@ import numpy as np
 from tilekit.colouring import Colouring
 from tilekit.errors import ParameterError, ParseError
 from tilekit.lattice import GRIDS, Grid, outline
-from tilekit.plugins.polyomino.heesch import MAX_LEVEL_LIMIT, Corona, HeeschSolver, heesch
+from tilekit.plugins.polyomino.heesch import (
+    MAX_LEVEL_LIMIT,
+    Corona,
+    HeeschResult,
+    HeeschSolver,
+    first_corona_rows,
+    heesch,
+)
+from tilekit.plugins.polyomino.isohedral import analyse
 from tilekit.plugins.polyomino.placements import Forms
 from tilekit.plugins.polyomino.torus import TorusSearch, TorusTiling
 from tilekit.schema import Field, check
@@ -127,7 +138,21 @@ def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes:
     def left() -> float | None:
         return None if time_limit is None else max(0.0, time_limit - (time.monotonic() - t0))
 
-    hs = HeeschSolver(grid, cells, solver=solver)
+    first = first_corona_rows(grid, cells)  # corona 1's copies by the local test, one compiled call
+    if not len(first):  # no corona even with holes: Hc = Hh = 0, proved with no solver
+        kernel = Corona(np.zeros((1, 3), dtype=np.int64), np.zeros(1, dtype=np.int64), False)
+        seconds = time.monotonic() - t0
+        return _non_tiler(HeeschResult(0, 0, kernel, kernel, 0, True, "no 1-corona patch exists", 0, seconds), seconds)
+    hs = HeeschSolver(grid, cells, solver=solver, first=first)
+    try:
+        return _coronas_and_tori(grid, cells, hs, probe, max_level, torus_tiles, solver, t0, left)
+    finally:
+        hs.close()
+
+
+def _coronas_and_tori(grid: Grid, cells: np.ndarray, hs: HeeschSolver, probe: int, max_level: int, torus_tiles: int,
+                      solver: str, t0: float, left: Callable[[], float | None]) -> Classification:
+    """Steps 4-6 of the module docstring, on ``hs`` (its ladder holds every corona level)."""
     r = heesch(grid, cells, max_level=probe, time_limit=left(), hs=hs)
     level = probe
     if not r.decided and hs.kaplan and r.surrounded >= probe and probe < max_level:
@@ -204,6 +229,20 @@ def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes:
                 return _undecided(r.surrounded, tried_m, time.monotonic() - t0, r.reason, r.hc_witness)
             level = bound
     return _undecided(level, tried_m, time.monotonic() - t0, r.reason, r.hc_witness)
+
+
+def classify_form(grid: Grid, cells: np.ndarray, *, has_holes: bool = False, **bounds: Any) -> Classification:
+    """:func:`classify` for one polyform with no boundary-word analysis at hand: the local test
+    of corona 1 runs before the boundary-word test (a form it settles cannot tile, so it has no
+    isohedral tiling to look for), then :func:`isohedral.analyse`; the same verdicts as
+    ``classify(grid, cells, analyse(grid, cells, construct=False), ...)``. ``bounds``: the
+    keyword arguments of :func:`classify`."""
+    if has_holes:
+        return classify(grid, cells, None, has_holes=True, **bounds)
+    check_grid(grid)
+    if not len(first_corona_rows(grid, cells)):
+        return classify(grid, cells, None, **bounds)
+    return classify(grid, cells, analyse(grid, cells, construct=False), **bounds)
 
 
 def _non_tiler(r, seconds: float, torus: int | None = None) -> Classification:

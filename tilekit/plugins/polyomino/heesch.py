@@ -43,6 +43,8 @@ from tilekit import limits
 from tilekit.errors import ParameterError
 from tilekit.jit import njit
 from tilekit.lattice import (
+    _M,
+    _OFF,
     Grid,
     _empty_components,
     _vertex_neighbours,
@@ -50,8 +52,9 @@ from tilekit.lattice import (
     pack,
     unique_keys,
     unpack,
+    vertex_neighbour_table,
 )
-from tilekit.plugins.polyomino.placements import Forms
+from tilekit.plugins.polyomino.placements import Forms, _adjacent, _halos
 from tilekit.sat import CNF, DEFAULT_SAT_SOLVER, NATIVE_ATMOST, IncrementalSolver, gc_paused
 
 #: The most coronas a search will build (Kaplan's sat tool stops at 7 by default).
@@ -60,6 +63,11 @@ MAX_LEVEL_LIMIT = 12
 #: spares the per-cell clausal ladders (measured on the non-tiling 10-ominoes: half the time of
 #: Glucose with ladders, docs/benchmarks.md).
 HC_SOLVER = "gluecard4"
+#: The same solver with native at-most-one constraints: Gluecard is Glucose 4.1 and Minicard is
+#: Minisat 2.2, each with cardinality constraints, so :class:`CoronaLadder` asked for Glucose or
+#: Minisat runs them (the classification's coronas: 1.1-1.9x less CPU than Glucose with ladders
+#: on the forms of five grids that need a solver, docs/benchmarks.md).
+NATIVE_VARIANT = {"glucose4": "gluecard4", "minisat22": "minicard"}
 
 
 #: Estimates below this many bytes skip the memory probe (it reads /proc, ~0.1 ms, more than
@@ -229,20 +237,139 @@ def first_corona_support(cells: np.ndarray, halo: np.ndarray) -> np.ndarray:
     return _support(np.ascontiguousarray(col), hpos.astype(np.int64), len(universe))
 
 
+@njit(cache=True)
+def _orientations(cells, group, period):  # pragma: no cover - compiled
+    """The distinct images of ``cells`` under ``group``, each in fixed form (sorted by (y, x),
+    the least cell moved into [0, period)^2, as :class:`Forms`): (J, n, 2) and their sorted
+    packed keys (J, n), the polyform's own fixed form first."""
+    G, n = group.shape[0], cells.shape[0]
+    off, mm = np.int64(_OFF), np.int64(_M)  # lattice.pack's offsets
+    out = np.empty((G, n, 2), np.int64)
+    keys = np.empty((G, n), np.int64)
+    J = 0
+    for g in range(G):
+        img = np.empty((n, 2), np.int64)
+        b = 0
+        for i in range(n):
+            img[i, 0] = group[g, 0, 0] * cells[i, 0] + group[g, 0, 1] * cells[i, 1]
+            img[i, 1] = group[g, 1, 0] * cells[i, 0] + group[g, 1, 1] * cells[i, 1]
+            if img[i, 1] < img[b, 1] or (img[i, 1] == img[b, 1] and img[i, 0] < img[b, 0]):
+                b = i
+        sx = img[b, 0] % period - img[b, 0]
+        sy = img[b, 1] % period - img[b, 1]
+        k = np.empty(n, np.int64)
+        for i in range(n):
+            img[i, 0] += sx
+            img[i, 1] += sy
+            k[i] = (img[i, 0] + off) * mm + (img[i, 1] + off)
+        k = np.sort(k)
+        dup = False
+        for j in range(J):
+            same = True
+            for i in range(n):
+                if keys[j, i] != k[i]:
+                    same = False
+                    break
+            if same:
+                dup = True
+                break
+        if not dup:
+            out[J] = img
+            keys[J] = k
+            J += 1
+    return out[:J], keys[:J]
+
+
+@njit(cache=True)
+def _first_corona(cells, group, period, table, types):  # pragma: no cover - compiled
+    """:func:`first_corona_rows` in one compiled call: the orientations, the kernel's halo, the
+    copies touching the kernel (:func:`placements._adjacent`) and the local test
+    (:func:`_support`)."""
+    forms, keys = _orientations(cells, group, period)
+    n = cells.shape[0]
+    off, mm = np.int64(_OFF), np.int64(_M)
+    halo = _halos(forms[:1], table, types, period)[0]
+    rows = _adjacent(forms, halo, keys[0], period)
+    m = rows.shape[0]
+    if m == 0:
+        return rows
+    pk = np.empty((m, n), np.int64)
+    for p in range(m):
+        f = rows[p, 0]
+        for i in range(n):
+            pk[p, i] = (forms[f, i, 0] + rows[p, 1] + off) * mm + (forms[f, i, 1] + rows[p, 2] + off)
+    universe = np.unique(pk.ravel())
+    H = halo.shape[0]
+    hcol = np.empty(H, np.int64)
+    for h in range(H):
+        key = (halo[h, 0] + off) * mm + (halo[h, 1] + off)
+        q = np.searchsorted(universe, key)
+        if q >= universe.shape[0] or universe[q] != key:
+            return rows[:0]  # a halo cell no copy touching the kernel covers
+        hcol[h] = q
+    col = np.searchsorted(universe, pk.ravel()).reshape(m, n)
+    return rows[_support(col, hcol, universe.shape[0])]
+
+
+def first_corona_rows(grid: Grid, cells: np.ndarray) -> np.ndarray:
+    """The candidate copies of corona 1 that pass the local test of :func:`first_corona_support`,
+    as placement rows ``(j, tx, ty)`` of :class:`Forms` (the same rows, in the same order, as
+    :class:`HeeschSolver`'s first level), in one compiled call without building :class:`Forms`.
+    Empty: no corona exists even with holes, so Hc = Hh = 0 and the polyform does not tile
+    (most forms of the drafter and bevelhex grids end here, where setting up the solver was
+    most of their cost)."""
+    return _first_corona(np.ascontiguousarray(cells, dtype=np.int64).reshape(-1, 2), *_grid_tables(grid))
+
+
+_TABLES: dict[str, tuple] = {}
+
+
+def _grid_tables(grid: Grid) -> tuple:
+    """(point group, period, vertex-neighbour table, type table) of a grid as the compiled
+    loops take them, made once per grid."""
+    got = _TABLES.get(grid.name)
+    if got is None:
+        got = _TABLES[grid.name] = (grid.group.astype(np.int64), np.int64(grid.period),
+                                    vertex_neighbour_table(grid), grid.type_table)
+    return got
+
+
 class HeeschSolver:
     """Coronas of one polyform, level by level (see the module docstring)."""
 
-    def __init__(self, grid: Grid, cells: np.ndarray, *, solver: str = DEFAULT_SAT_SOLVER) -> None:
+    def __init__(self, grid: Grid, cells: np.ndarray, *, solver: str = DEFAULT_SAT_SOLVER,
+                 first: np.ndarray | None = None) -> None:
+        """``first``: corona 1's rows from :func:`first_corona_rows`, when already computed."""
         self.grid = grid
         self.forms = Forms(grid, cells)
         self.solver = solver
         self.kernel_keys = np.sort(self.forms.keys[0])
         self.kernel_halo = unique_keys(self.forms.placement_halos(np.array([[0, 0, 0]]))[0])
         self.levels: list[np.ndarray] = [np.array([[0, 0, 0]], dtype=np.int64)]  # level 0: kernel
+        if first is not None:
+            self.levels.append(np.asarray(first, dtype=np.int64).reshape(-1, 3))
         self.sat_calls = 0
         self.solve_seconds = 0.0  # inside the solver (the rest is building the formulas)
         #: (Hc, Hh, hole-free witness, holey witness) once Kaplan's loop has stopped
         self.kaplan: tuple[int, int, Corona, Corona] | None = None
+        self.ladder: CoronaLadder | None = None  # :func:`heesch`'s levels in one solver
+
+    def ladder_at(self, k: int) -> CoronaLadder | None:
+        """This polyform's :class:`CoronaLadder` (one incremental solver for every level, made on
+        first use) holding exactly ``k`` coronas, or None when it already holds more."""
+        if self.ladder is None:
+            self.ladder = CoronaLadder(self)
+        if self.ladder.k > k:
+            return None
+        while self.ladder.k < k:
+            self.ladder.add_level()
+        return self.ladder
+
+    def close(self) -> None:
+        """Free the ladder's solver (the per-level formulas free theirs as they go)."""
+        if self.ladder is not None:
+            self.ladder.close()
+            self.ladder = None
 
     def drop_enclosing(self) -> int:
         """For hole-free questions only: leave out of corona 1 the copies that make an
@@ -491,8 +618,18 @@ def heesch(grid: Grid, cells: np.ndarray, *, max_level: int = 6, solver: str = D
     """
     if not 0 <= max_level <= MAX_LEVEL_LIMIT:
         raise ParameterError(f"max_level must be between 0 and {MAX_LEVEL_LIMIT}, got {max_level}")
+    if hs is not None:
+        return _heesch(hs, max_level, time_limit, start, best)
+    hs = HeeschSolver(grid, cells, solver=solver)
+    try:
+        return _heesch(hs, max_level, time_limit, start, best)
+    finally:
+        hs.close()
+
+
+def _heesch(hs: HeeschSolver, max_level: int, time_limit: float | None, start: int, best: Corona | None) -> HeeschResult:
+    """:func:`heesch` on a solver's levels (its ladder left open for the caller's next call)."""
     t0 = time.monotonic()
-    hs = hs or HeeschSolver(grid, cells, solver=solver)
     best = best or Corona(hs.levels[0].copy(), np.zeros(1, dtype=np.int64), False)  # the kernel
 
     def result(decided: bool, reason: str, surrounded: int) -> HeeschResult:
@@ -505,10 +642,16 @@ def heesch(grid: Grid, cells: np.ndarray, *, max_level: int = 6, solver: str = D
             return result(False, f"time limit after {k - 1} coronas", k - 1)
         answer = ok = None
         try:  # the proof question (holes allowed) once Kaplan's numbers are known, else coronas
-            if hs.kaplan:
-                ok = hs.surrounds(k, time_limit=left)
+            lad = hs.ladder_at(k)
+            if lad is None:  # levels asked out of order: a formula of its own
+                if hs.kaplan:
+                    ok = hs.surrounds(k, time_limit=left)
+                else:
+                    answer = hs.corona(k, time_limit=left)
+            elif hs.kaplan:
+                ok = False if lad.empty else lad.solve([], left).satisfiable
             else:
-                answer = hs.corona(k, time_limit=left)
+                answer = lad.corona(False, left)
         except limits.LimitError as exc:  # a bound like the time limit: undecided, with the reason
             return result(False, f"{k} coronas: {exc}", k - 1)
         if answer is None:
@@ -599,7 +742,9 @@ class CoronaLadder:
         self.pending = CNF()
         self.pending.add([-self.false])
         self.empty = False  # a clause with no literal was met: no k-corona for any k >= self.k
-        self.native = hs.solver in NATIVE_ATMOST  # at-most-one as native constraints
+        #: the solver, as its variant with native at-most-one constraints when it has one
+        self.solver_name = NATIVE_VARIANT.get(hs.solver, hs.solver)
+        self.native = self.solver_name in NATIVE_ATMOST  # at-most-one as native constraints
         self.pairs: list[tuple[np.ndarray, np.ndarray]] = [(np.zeros(0, dtype=np.int64),) * 2]
         grid = hs.grid
         #: per cell type, the offsets of the cells sharing a vertex with it
@@ -716,7 +861,7 @@ class CoronaLadder:
     def _flush(self) -> IncrementalSolver:
         with gc_paused():
             if self.solver is None:
-                self.solver = IncrementalSolver(self.pending, solver=self.hs.solver)
+                self.solver = IncrementalSolver(self.pending, solver=self.solver_name)
             else:
                 self.solver.extend(self.pending)
         self.pending = CNF()

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from tilekit.jit import njit
 from tilekit.lattice import Grid
 from tilekit.plugins.polyomino.isohedral import _hnf_add
 from tilekit.plugins.polyomino.placements import Forms
@@ -52,6 +53,70 @@ def _in_lattice(w: np.ndarray, basis: tuple[int, int, int]) -> bool:
         return False
     y -= (x // a) * b
     return y % d == 0 if d else y == 0
+
+
+@njit(cache=True)
+def _tile_maps(plane, gidx, taus, group, types, roots, period, a, b, d, label, rep):  # pragma: no cover - compiled
+    """For each candidate map ``x -> group[gidx[k]] x + taus[k]``: whether it takes every tile
+    of ``plane`` (m, n, 2) onto a tile of the torus tiling, and the tile it takes each onto.
+    ``label``/``rep`` give, per torus cell (type * a * d + residue), its tile and the unit
+    offset of that tile's cell there (a map is a symmetry when each tile's cells land on one
+    tile with one common offset)."""
+    K, m, n = gidx.shape[0], plane.shape[0], plane.shape[1]
+    perms = np.zeros((K, m), np.int64)
+    ok = np.zeros(K, np.bool_)
+    for k in range(K):
+        g = group[gidx[k]]
+        good = True
+        for i in range(m):
+            lab0 = -1
+            ou = 0
+            ov = 0
+            for c in range(n):
+                x = g[0, 0] * plane[i, c, 0] + g[0, 1] * plane[i, c, 1] + taus[k, 0]
+                y = g[1, 0] * plane[i, c, 0] + g[1, 1] * plane[i, c, 1] + taus[k, 1]
+                t = types[(y % period) * period + x % period]
+                if t < 0:
+                    good = False
+                    break
+                u = (x - roots[t, 0]) // period
+                v = (y - roots[t, 1]) // period
+                q = u // a
+                cell = t * (a * d) + (u - q * a) * d + (v - q * b) % d
+                lab = label[cell]
+                du = u - rep[cell, 0]
+                dv = v - rep[cell, 1]
+                if c == 0:
+                    lab0, ou, ov = lab, du, dv
+                elif lab != lab0 or du != ou or dv != ov:
+                    good = False
+                    break
+            if not good:
+                break
+            perms[k, i] = lab0
+        ok[k] = good
+    return perms, ok
+
+
+def _orbits(perms: np.ndarray, m: int) -> np.ndarray:
+    """Class of each of m tiles: the orbits under the tile permutations ``perms`` (rows),
+    numbered in order of their first tile."""
+    parent = list(range(m))
+
+    def root(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    for perm in perms.tolist():
+        for i, j in enumerate(perm):
+            ri, rj = root(i), root(j)
+            if ri != rj:
+                parent[max(ri, rj)] = min(ri, rj)
+    roots = [root(i) for i in range(m)]
+    order = {r: c for c, r in enumerate(dict.fromkeys(roots))}
+    return np.array([order[r] for r in roots], dtype=np.int64)
 
 
 @dataclass
@@ -178,87 +243,59 @@ class TorusSearch:
                 yield chosen
 
     def classes(self, lattice: tuple[int, int, int], chosen: np.ndarray) -> TorusTiling:
-        """The tiling's placements in the plane, its translation lattice and tile classes."""
+        """The tiling's placements in the plane, its translation lattice and tile classes.
+
+        The symmetries are the grid's maps ``x -> g x + tau`` taking every tile onto a tile:
+        first the translations by the torus's residues (they give the tiling's own translation
+        lattice), then each point-group element that keeps that lattice, with every
+        translation taking tile 0's first cell onto a cell; each candidate is tested on all
+        cells at once in one compiled call (:func:`_tile_maps`). The classes are the orbits of
+        the tiles under the maps found."""
         grid = self.forms.grid
         a, b, d = lattice
         N = a * d
         p = grid.period
         rows = np.column_stack([chosen[:, 0], chosen[:, 1:3] * p])
-        plane = self.forms.forms[rows[:, 0]] + rows[:, None, 1:3]  # (m, n, 2) fine coordinates
+        plane = np.ascontiguousarray(self.forms.forms[rows[:, 0]] + rows[:, None, 1:3])  # (m, n, 2) fine
         m, n = plane.shape[:2]
-
-        def locate(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-            ty = grid.cell_type(x.reshape(-1, 2)).reshape(x.shape[:-1])
-            uv = (x - grid.roots[ty]) // p
-            return ty * N + _reduce(uv, a, b, d), uv
-
-        tid, uv = locate(plane)
-        label = np.full(self.R * N, -1)
+        flat = plane.reshape(-1, 2)
+        ty = grid.cell_type(flat)
+        uv = (flat - grid.roots[ty]) // p
+        tid = ty * N + _reduce(uv, a, b, d)
+        label = np.full(self.R * N, -1, dtype=np.int64)
         rep = np.zeros((self.R * N, 2), dtype=np.int64)
-        label[tid.ravel()] = np.repeat(np.arange(m), n)
-        rep[tid.ravel()] = uv.reshape(-1, 2)
-
-        def image_tiles(mapped: np.ndarray) -> np.ndarray | None:
-            """Tile index of each mapped tile, or None if some image is not a tile."""
-            ty = grid.cell_type(mapped.reshape(-1, 2)).reshape(mapped.shape[:-1])
-            if (ty < 0).any():
-                return None
-            i, uvm = locate(mapped)
-            lab = label[i]
-            off = uvm - rep[i]
-            if (lab != lab[:, :1]).any() or (off != off[:, :1]).any():
-                return None
-            return lab[:, 0]
-
-        base = (0, 0, 0)
-        base = _hnf_add(base, (a, b))
-        base = _hnf_add(base, (0, d))
-        # pure translations by the residues of the torus (those mapping tiles onto tiles)
-        maps: list[np.ndarray] = []
-        ident = np.arange(m)
+        label[tid] = np.repeat(np.arange(m), n)
+        rep[tid] = uv
+        group = grid.group.astype(np.int64)
+        roots = grid.roots.astype(np.int64)
+        tables = (group, grid.type_table, roots, np.int64(p), np.int64(a), np.int64(b), np.int64(d), label, rep)
         uu, vv = np.meshgrid(np.arange(a), np.arange(d), indexing="ij")
         trans = np.column_stack([uu.ravel(), vv.ravel()])
-        lat = base
-        for w in trans[1:]:
-            perm = image_tiles(plane + w * p)
-            if perm is not None:
-                maps.append(perm)
-                lat = _hnf_add(lat, (int(w[0]), int(w[1])))
-        # point-group elements with a translation: tile 0's first cell goes to some cell
-        c0 = plane[0, 0]
-        cand_cells = np.concatenate([grid.roots[r] + p * trans for r in range(self.R)])
-        count = 1 + len(maps)
-        for gi in range(1, len(grid.group)):
-            gm = grid.group[gi]
-            # the map must send the translation lattice onto itself
-            la, lb, ld = lat
-            if not (_in_lattice(gm @ np.array([la, lb]), lat) and _in_lattice(gm @ np.array([0, ld]), lat)):
-                continue
-            moved = plane @ gm.T
-            # only symmetries of the grid: tau a grid translation, so each cell goes to a cell
-            # of the same shape (on the octasquare grid, tau = (2, 2) maps octagons onto squares)
-            taus = cand_cells - gm @ c0
-            for tau in taus[grid.is_translation(taus)]:
-                perm = image_tiles(moved + tau)
-                if perm is not None:
-                    maps.append(perm)
-                    count += 1
-        parent = ident.copy()
-
-        def root(i: int) -> int:
-            while parent[i] != i:
-                parent[i] = parent[parent[i]]
-                i = parent[i]
-            return i
-
-        for perm in maps:
-            for i, j in enumerate(perm.tolist()):
-                ri, rj = root(i), root(j)
-                if ri != rj:
-                    parent[max(ri, rj)] = min(ri, rj)
-        roots = [root(i) for i in range(m)]
-        order = {r: c for c, r in enumerate(dict.fromkeys(roots))}
-        classes = np.array([order[r] for r in roots], dtype=np.int64)
+        # pure translations by the residues of the torus (those mapping tiles onto tiles)
+        perms, ok = _tile_maps(plane, np.zeros(len(trans) - 1, dtype=np.int64), trans[1:] * p, *tables)
+        lat = _hnf_add(_hnf_add((0, 0, 0), (a, b)), (0, d))
+        for w in trans[1:][ok].tolist():
+            lat = _hnf_add(lat, (w[0], w[1]))
+        maps = [perms[ok]]
+        # point-group elements with a translation: tile 0's first cell goes to some cell; only
+        # symmetries of the grid (tau a grid translation, so each cell goes to a cell of the same
+        # shape: on the octasquare grid, tau = (2, 2) maps octagons onto squares), and only those
+        # sending the translation lattice onto itself
+        la, lb, ld = lat
+        keep = [gi for gi in range(1, len(group))
+                if _in_lattice(group[gi] @ np.array([la, lb]), lat) and _in_lattice(group[gi] @ np.array([0, ld]), lat)]
+        count = 1 + int(ok.sum())
+        if keep:
+            c0 = plane[0, 0]
+            cand_cells = (roots[:, None, :] + p * trans[None, :, :]).reshape(-1, 2)
+            g = np.asarray(keep, dtype=np.int64)
+            taus = cand_cells[None, :, :] - (group[g] @ c0)[:, None, :]  # (G', C, 2)
+            gidx = np.broadcast_to(g[:, None], taus.shape[:2])
+            sel = grid.is_translation(taus)
+            perms, ok = _tile_maps(plane, np.ascontiguousarray(gidx[sel]), np.ascontiguousarray(taus[sel]), *tables)
+            maps.append(perms[ok])
+            count += int(ok.sum())
+        classes = _orbits(np.concatenate(maps), m)
         return TorusTiling(lattice, rows, classes, lat, count)
 
     def lattices(self, N: int) -> list[tuple[int, int, int]]:
