@@ -319,7 +319,9 @@ def test_the_congruence_check_sees_moved_copies_and_tells_near_twins_apart():
 SPLITS = {4: [33, 85, 33], 5: [74, 149, 94, 15]}
 
 
-@pytest.mark.exhaustive  # tens of minutes: the GomJau-Hogg writer tries every placement on tilings without a notation
+# 196 s CPU in all (2026-12-03, workers included; 9.5 min wall at load 7 under nice), so about
+# 100 s on two idle cores since the notation writer is bounded (it took tens of minutes before)
+@pytest.mark.slow
 def test_five_uniform_through_the_run_layer(tmp_path):
     """k = 5 with two worker processes: 332 tilings (A068599), split 74 / 149 / 94 / 15 by the
     number of vertex types (the last is A068600), each stored once with k = 5."""

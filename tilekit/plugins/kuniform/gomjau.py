@@ -813,40 +813,47 @@ def _polygons_of(shapes: Sequence[_Shape]) -> Polygons:
                     np.array([_orient_of(s) for s in shapes]))
 
 
-def _unit_of(symbol: DSymbol) -> tuple[list[_Shape], np.ndarray, np.ndarray]:
-    """The tiling of ``symbol`` laid out (realize.py): its unit's polygons and lattice."""
+def _unit_of(symbol: DSymbol) -> tuple[list[_Shape], list[list[int]], np.ndarray, np.ndarray]:
+    """The tiling of ``symbol`` laid out (realize.py): its unit's polygons, the chamber of
+    each polygon's flag (corner j, edge j to j+1, the polygon) for every j, and the lattice."""
     # start-up cost: the notation and search modules (NumPy, shapely) load only when used
     from tilekit.plugins.kuniform.realize import faces, layout
 
     flags, v1, v2 = layout(symbol)
     inv = np.linalg.inv(np.column_stack([v1, v2]))
-    out = []
-    for p, centre, m in faces(symbol, flags):
+    out, chambers = [], []
+    for p, centre, m, c in faces(symbol, flags):
         f = inv @ centre
         if np.all(np.floor(f + 1e-7) == 0):
-            a = np.radians(360.0 * np.arange(p) / p)
             # the unit polygon: first edge from the origin along +x, counter-clockwise
             pts = [(0.0, 0.0)]
             ang = 0.0
             for _ in range(p - 1):
                 pts.append((pts[-1][0] + math.cos(ang), pts[-1][1] + math.sin(ang)))
                 ang += 2 * math.pi / p
-            del a
             q = np.asarray(pts) @ m[:2, :2].T + m[:2, 2]
             out.append(_Shape(p, [(float(x), float(y)) for x, y in q]))
-    return out, np.asarray(v1, dtype=float), np.asarray(v2, dtype=float)
+            # corner 0's flag is chamber c; σ0 moves to corner 1 along the edge, σ1 turns to
+            # the edge 1-2 in the same polygon: corner j's forward flag is (σ1σ0)^j c
+            walk = [c]
+            for _ in range(p - 1):
+                walk.append(symbol.s1[symbol.s0[walk[-1]]])
+            chambers.append(walk)
+    return out, chambers, np.asarray(v1, dtype=float), np.asarray(v2, dtype=float)
 
 
-def _placements(unit: Sequence[_Shape]) -> Iterator[tuple[int, np.ndarray]]:
+def _placements(unit: Sequence[_Shape], chambers: Sequence[Sequence[int]],
+                s1: Sequence[int]) -> Iterator[tuple[int, np.ndarray, int]]:
     """Candidate isometries putting a polygon of the unit on the seed (each corner, both
-    hands): (seed size, map), largest polygons first."""
+    hands): (seed size, map, chamber of the flag put on the seed's), largest polygons first.
+    The flag of corner j, the edge to corner j - 1 (``flip``), is σ1 of corner j's forward flag."""
     for p in sorted({s.p for s in unit}, reverse=True):
         seed = seed_shape(p)
-        for s in unit:
+        for s, walk in zip(unit, chambers):
             if s.p == p:
                 for flip in (False, True):
                     for j in range(p):
-                        yield p, _fit(s, seed, j, flip)
+                        yield p, _fit(s, seed, j, flip), (s1[walk[j]] if flip else walk[j])
 
 
 def _fit(s: _Shape, seed: _Shape, j: int, flip: bool) -> np.ndarray:
@@ -868,32 +875,88 @@ def _fit(s: _Shape, seed: _Shape, j: int, flip: bool) -> np.ndarray:
 
 #: Centre transforms tried, most symmetric first.
 _CENTRE = ("m30", "r60", "m45", "r90", "m60", "r120", "m90", "r", "m")
+#: How many placements (one per flag orbit, see :func:`write_outcome`) the writer tries for
+#: one tiling before it gives up. Every k <= 4 tiling that has a written notation gets it from
+#: the first placement tried (measured; docs/families/k-uniform.md); a failing try costs about
+#: a second (up to ``max_phases`` phases), so the cap bounds a tiling to a few seconds.
+MAX_PLACEMENTS = 4
 
 
-def write(symbol: DSymbol, *, max_phases: int = 12, verify: bool = False) -> str | None:
-    """A GomJau-Hogg notation for the tiling of ``symbol`` that :func:`parse` reads back to
-    the same minimal symbol, or None when the tiling has none (see the module text).
+def ungenerable(symbol: DSymbol) -> str | None:
+    """Why no notation can draw the tiling of ``symbol``, or None. The transforms are
+    rotations about the origin, half-turns and mirrors; without a half-turn or two mirrors
+    that cross among the tiling's symmetries (groups p1, p3, pg, pm, cm) they generate a
+    finite group, or translations in one direction only. Read from the symbol's orbifold:
+    a <σi, σj>-orbit of n chambers is a corner point (two mirrors) when it holds a chamber
+    that σi or σj fixes and v = m_ij / n > 1, and a cone point of order v = m_ij / (n / 2)
+    otherwise (m01 the face size, m12 the degree, m02 = 2); a half-turn is a cone point of
+    even order."""
+    m = {(0, 1): symbol.face, (1, 2): symbol.degree, (0, 2): (2,) * symbol.size}
+    for (i, j), mij in m.items():
+        si, sj = symbol.sigma(i), symbol.sigma(j)
+        for orbit in symbol.orbits(i, j):
+            n = len(orbit)
+            bounded = any(si[c] == c or sj[c] == c for c in orbit)
+            v = mij[orbit[0]] / (n if bounded else n / 2)
+            if (bounded and v > 1) or (not bounded and round(v) % 2 == 0):
+                return None
+    return "its symmetry group has no half-turn and no two crossing mirrors (p1, p3, pg, pm or cm)"
 
-    Why the text is right without parsing it: every transform chosen is a symmetry of the
-    tiling, the seed's polygons are the tiling's and include one of each orbit of the
-    lattice, and the transforms generate the whole lattice, so the seed's orbit is the
-    tiling. ``verify`` parses it back all the same (the tests do, for every record)."""
+
+def write_outcome(symbol: DSymbol, *, max_phases: int = 12, max_placements: int | None = MAX_PLACEMENTS,
+                  verify: bool = False) -> tuple[str | None, str]:
+    """(text, "") as :func:`write` writes it, or (None, why there is none).
+
+    Placements: a placement is the isometry putting one flag (corner, edge, polygon) of the
+    tiling on the seed's first flag; it is unique for the flag. If a symmetry g of the tiling
+    maps flag f to f', the placements m (of f) and m' (of f') satisfy m = m' g, so they put
+    the tiling in the same place, m(T) = m'(g(T)) = m'(T). The writer reads only that placed
+    tiling (which polygons it holds, which isometries keep it), never the unit or the basis it
+    was given, so both give the same text or both none. Flags related by a symmetry lie in one
+    chamber of the symbol, so trying the placements in the exhaustive order but only the first
+    of each chamber returns the exhaustive writer's text: the first placement that succeeds is
+    the first of its chamber, since any earlier one of that chamber would succeed too (tests:
+    identical strings for every tiling to k = 4). That cuts the tries by the order of the
+    point group (at most 12); ``max_placements`` (None: no cap) bounds them further, and each
+    try is bounded by ``max_phases``."""
     symbol = DSymbol.decode(symbol.encode())
+    why = ungenerable(symbol)
+    if why is not None:
+        return None, why
     target = symbol.canonical_form()
-    unit, v1, v2 = _unit_of(symbol)
-    for p, m in _placements(unit):
+    unit, chambers, v1, v2 = _unit_of(symbol)
+    tried: set[int] = set()
+    for p, m, chamber in _placements(unit, chambers, symbol.s1):
+        if chamber in tried:
+            continue
+        if max_placements is not None and len(tried) >= max_placements:
+            return None, f"none found in the writer's budget of {max_placements} placements"
+        tried.add(chamber)
         text = _write_placed([s.mapped(m) for s in unit], m[:2, :2] @ v1, m[:2, :2] @ v2, p, max_phases)
         if text is None:
             continue
         if not verify:
-            return text
+            return text, ""
         try:
             got = parse(text)
         except (GeometryError, ParseError):
             continue
         if got.symbol.canonical_form() == target:
-            return text
-    return None
+            return text, ""
+    return None, f"none found: every one of the {len(tried)} placements (one per flag orbit) failed"
+
+
+def write(symbol: DSymbol, *, max_phases: int = 12, max_placements: int | None = MAX_PLACEMENTS,
+          verify: bool = False) -> str | None:
+    """A GomJau-Hogg notation for the tiling of ``symbol`` that :func:`parse` reads back to
+    the same minimal symbol, or None when the tiling has none or the writer finds none within
+    its budget (:func:`write_outcome` says which).
+
+    Why the text is right without parsing it: every transform chosen is a symmetry of the
+    tiling, the seed's polygons are the tiling's and include one of each orbit of the
+    lattice, and the transforms generate the whole lattice, so the seed's orbit is the
+    tiling. ``verify`` parses it back all the same (the tests do, for every record)."""
+    return write_outcome(symbol, max_phases=max_phases, max_placements=max_placements, verify=verify)[0]
 
 
 def _write_placed(unit: list[_Shape], v1: np.ndarray, v2: np.ndarray, seed: int, max_phases: int) -> str | None:

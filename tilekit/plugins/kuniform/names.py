@@ -51,14 +51,18 @@ def resolve(name: str) -> list[str] | None:
 
 
 def notation_properties(sym: DSymbol) -> dict[str, Any]:
-    """``dsymbol`` (this plugin's text), ``gavrog`` and, where the tiling has one, ``gomjau``."""
+    """``dsymbol`` (this plugin's text), ``gavrog`` and ``gomjau`` where the writer finds one;
+    where it does not, ``gomjau_missing`` says why (no notation can exist, or none was found
+    within the writer's budget)."""
     # start-up cost: the notation and search modules (NumPy, shapely) load only when used
-    from tilekit.plugins.kuniform.gomjau import write
+    from tilekit.plugins.kuniform.gomjau import write_outcome
 
     props: dict[str, Any] = {"dsymbol": sym.encode(), "gavrog": to_gavrog(sym)}
-    text = write(sym)
+    text, why = write_outcome(sym)
     if text is not None:
         props["gomjau"] = text
+    else:
+        props["gomjau_missing"] = why
     return props
 
 

@@ -121,10 +121,11 @@ def layout(sym: DSymbol) -> tuple[dict, np.ndarray, np.ndarray]:
         radius = min(MAX_RADIUS, radius * 1.5)
 
 
-def faces(sym: DSymbol, flags: dict) -> list[tuple[int, np.ndarray, np.ndarray]]:
-    """One (size, centre, placement) per face with a flag in ``flags``: the placement maps
-    the unit regular polygon (first edge from the origin along +x) onto the face."""
-    out: dict[tuple[int, int], tuple[int, np.ndarray, np.ndarray]] = {}
+def faces(sym: DSymbol, flags: dict) -> list[tuple[int, np.ndarray, np.ndarray, int]]:
+    """One (size, centre, placement, chamber) per face with a flag in ``flags``: the placement
+    maps the unit regular polygon (first edge from the origin along +x, counter-clockwise)
+    onto the face, and the chamber is that of the flag (its corner 0, its edge 0-1, the face)."""
+    out: dict[tuple[int, int], tuple[int, np.ndarray, np.ndarray, int]] = {}
     for (_kx, _ky, a, s), (c, x, y) in flags.items():
         if s != 1:
             continue
@@ -136,7 +137,7 @@ def faces(sym: DSymbol, flags: dict) -> list[tuple[int, np.ndarray, np.ndarray]]
         cy = y + 0.5 * math.sin(theta) + half * math.cos(theta)
         key = (round(cx * 1e4), round(cy * 1e4))
         if key not in out:
-            out[key] = (p, np.array([cx, cy]), m)
+            out[key] = (p, np.array([cx, cy]), m, c)
     return list(out.values())
 
 
@@ -148,7 +149,7 @@ def periodic_tiling(sym: DSymbol, *, name: str = "", family: str = "k-uniform", 
     inv = np.linalg.inv(np.column_stack([v1, v2]))
     sizes = tuple(sorted(set(sym.face)))
     protos, transforms = [], []
-    for p, centre, m in faces(sym, flags):
+    for p, centre, m, _c in faces(sym, flags):
         f = inv @ centre
         if np.all(np.floor(f + 1e-7) == 0):
             protos.append(sizes.index(p))

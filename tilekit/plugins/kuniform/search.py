@@ -27,6 +27,7 @@ from tilekit.plugins.kuniform.dsymbol import (
     to_gavrog,
     vertex_types,
 )
+from tilekit.plugins.kuniform.gomjau import MAX_PLACEMENTS
 from tilekit.plugins.kuniform.names import ARCHIMEDEAN_TABLE, notation_properties
 from tilekit.plugins.kuniform.realize import periodic_tiling
 from tilekit.plugins.kuniform.tes import read_tes
@@ -248,7 +249,9 @@ def summarize(params: Mapping[str, Any], results: list[dict[str, Any]]) -> dict[
 
 SEARCH = Search(
     name="k-uniform",
-    summary="Enumerate the k-uniform tilings by regular polygons (k vertex orbits) from their D-symbols",
+    summary=("Enumerate the k-uniform tilings by regular polygons (k vertex orbits) from their D-symbols; "
+             f"each record's GomJau-Hogg notation is written from at most {MAX_PLACEMENTS} placements "
+             "(else gomjau_missing says why)"),
     family=FAMILY,
     params=(SearchParam("k", int, None, "number of vertex orbits (transitivity classes)", required=True,
                         min=1, max=MAX_K),),
