@@ -518,24 +518,33 @@ def _runner(conn: Connection) -> Run:
     return run
 
 
-def _begin_immediate(conn: Connection) -> None:
-    """BEGIN IMMEDIATE, waiting for another writer in short steps (not one long wait inside
-    SQLite's C code), so that Ctrl-C and SIGTERM are answered at once even while a catalogue
-    is busy; gives up after the busy timeout."""
+def _retry_locked(action: Callable[[], None], errors: type[Exception] | tuple[type[Exception], ...],
+                  pause: float = 0.0) -> None:
+    """Run ``action`` again while it fails with "database is locked", up to the busy timeout,
+    sleeping ``pause`` seconds between tries (short steps, so Ctrl-C and SIGTERM are answered
+    at once even while a catalogue is busy)."""
     import time
 
+    deadline = time.monotonic() + BUSY_TIMEOUT_MS / 1000.0
+    while True:
+        try:
+            action()
+            return
+        except errors as exc:
+            if "locked" not in str(exc) or time.monotonic() > deadline:
+                raise
+            if pause:
+                time.sleep(pause)
+
+
+def _begin_immediate(conn: Connection) -> None:
+    """BEGIN IMMEDIATE, waiting for another writer in short steps (SQLite's own busy wait of
+    _STEP_MS per try, not one long wait inside its C code); gives up after the busy timeout."""
     from sqlalchemy.exc import OperationalError
 
-    deadline = time.monotonic() + BUSY_TIMEOUT_MS / 1000.0
     conn.exec_driver_sql(f"PRAGMA busy_timeout = {_STEP_MS}")
     try:
-        while True:
-            try:
-                conn.exec_driver_sql("BEGIN IMMEDIATE")
-                return
-            except OperationalError as exc:
-                if "locked" not in str(exc) or time.monotonic() > deadline:
-                    raise
+        _retry_locked(lambda: conn.exec_driver_sql("BEGIN IMMEDIATE"), OperationalError)
     finally:
         conn.exec_driver_sql(f"PRAGMA busy_timeout = {BUSY_TIMEOUT_MS}")
 
@@ -582,17 +591,8 @@ def _journal_wal(cursor: Any) -> None:
     change to WAL needs an exclusive lock, and SQLite may answer "database is locked" at once
     instead of calling the busy handler (seen when first opens of a new file race)."""
     import sqlite3
-    import time
 
-    deadline = time.monotonic() + BUSY_TIMEOUT_MS / 1000.0
-    while True:
-        try:
-            cursor.execute("PRAGMA journal_mode = WAL")
-            return
-        except sqlite3.OperationalError as exc:
-            if "locked" not in str(exc) or time.monotonic() > deadline:
-                raise
-            time.sleep(0.02)
+    _retry_locked(lambda: cursor.execute("PRAGMA journal_mode = WAL"), sqlite3.OperationalError, pause=0.02)
 
 
 def _sqlite_pragmas(dbapi_connection: Any, _record: Any) -> None:
