@@ -41,6 +41,30 @@ def web_catalogue(tmp_path_factory):
 
 
 @pytest.fixture(scope="session")
+def species_catalogue(tmp_path_factory):
+    """A catalogue with a finished vertex-species run, apart from ``web_catalogue``: the run's
+    result rows share names with shipped records (``3^3.6^2``), which other files' tests of the
+    shared catalogue must not meet. Yields (catalogue, run id)."""
+    from tilekit import open_catalogue
+    from tilekit.search import run_search
+
+    cat = open_catalogue(str(tmp_path_factory.mktemp("species") / "catalogue.sqlite"))
+    run_id = run_search(cat, "vertex-species")
+    yield cat, run_id
+    cat.close()
+
+
+@pytest.fixture(scope="session")
+def species_client(species_catalogue):
+    from starlette.testclient import TestClient
+
+    from tilekit.web import create_app
+
+    with TestClient(create_app(catalogue=species_catalogue[0])) as c:
+        yield c
+
+
+@pytest.fixture(scope="session")
 def app(web_catalogue):
     from tilekit.web import create_app
 

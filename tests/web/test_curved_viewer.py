@@ -157,25 +157,14 @@ def test_viewer_api_sends_model_points_and_lorentz_symmetries(client):
     assert 'href="/curved/3%5E3.6%5E2"' in client.get("/tiling/3%5E3.6%5E2").text
 
 
-def test_a_hyperbolic_vertex_species_row_opens_the_curved_record(tmp_path):
+def test_a_hyperbolic_vertex_species_row_opens_the_curved_record(species_catalogue, species_client):
     """After `search vertex-species`, the name 3^3.6^2 is also a row of the vertex_species
     table (a hyperbolic type: the row's own family draws no plane tiling). The row's page and
     the viewer's data show the curved family's record of that name instead of an error (this
     failed whenever a test that runs the search shared the web app with this file)."""
-    from starlette.testclient import TestClient
-
-    from tilekit import open_catalogue
-    from tilekit.search import run_search
-    from tilekit.web import create_app
-
-    cat = open_catalogue(str(tmp_path / "c.sqlite"))
-    try:
-        run_search(cat, "vertex-species")
-        assert cat.result_entry("3^3.6^2").family == "vertex-species"
-        with TestClient(create_app(catalogue=cat)) as client:
-            answer = client.get("/api/curved/3%5E3.6%5E2")
-            assert answer.status_code == 200 and answer.json()["geometry"] == "hyperbolic"
-            page = client.get("/tiling/3%5E3.6%5E2")
-            assert page.status_code == 200 and "no plane tiling" not in page.text and "<svg" in page.text
-    finally:
-        cat.close()
+    cat, _ = species_catalogue
+    assert cat.result_entry("3^3.6^2").family == "vertex-species"
+    answer = species_client.get("/api/curved/3%5E3.6%5E2")
+    assert answer.status_code == 200 and answer.json()["geometry"] == "hyperbolic"
+    page = species_client.get("/tiling/3%5E3.6%5E2")
+    assert page.status_code == 200 and "no plane tiling" not in page.text and "<svg" in page.text

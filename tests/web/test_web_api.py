@@ -234,22 +234,12 @@ def test_parquet_deformation_is_a_tiling(client, app):
     assert r.status_code == 400
 
 
-def test_run_results_paged_from_the_result_table(tmp_path):
+def test_run_results_paged_from_the_result_table(species_catalogue, species_client):
     """A real vertex-species run writes the archimedean plugin's vertex_species table (on a
-    catalogue of its own: the session's shared one must not gain result rows that other files'
-    tests would then meet, see test_curved_viewer.py)."""
-    from starlette.testclient import TestClient
-
-    from tilekit import open_catalogue
-    from tilekit.search import run_search
-    from tilekit.web import create_app
-
-    with open_catalogue(str(tmp_path / "species.sqlite")) as cat, TestClient(create_app(catalogue=cat)) as client:
-        _check_paged_results(cat, client, run_search(cat, "vertex-species"))
-
-
-def _check_paged_results(web_catalogue, client, run_id):
-    total = web_catalogue.count_result_rows("vertex_species", [f"run_id={run_id}"])
+    catalogue of its own, see conftest.species_catalogue)."""
+    cat, run_id = species_catalogue
+    client = species_client
+    total = cat.count_result_rows("vertex_species", [f"run_id={run_id}"])
     first = client.get(f"/api/runs/{run_id}/results", params={"limit": 50}).json()
     assert first["table"] == "vertex_species" and first["total"] == total > 50
     assert len(first["rows"]) == 50 and all(r["run_id"] == run_id for r in first["rows"])
