@@ -50,8 +50,8 @@ from tilekit.plugins.substitution.penrose_limits import (
 
 #: The tilings with a quasivertex parameterization (P3: Figure 6.13; P2: derived in
 #: quasivertex_p2.py).
-TILINGS = ("p3", "p2")
-SYSTEMS = {"p3": "penrose-p3", "p2": "penrose-p2"}
+SYSTEMS = qv.BY_TILING
+TILINGS = tuple(SYSTEMS)
 #: The goal each tile is compared with, in order (goal A: thick / kite, goal B: thin / dart).
 GOAL_TILES = {"penrose-p3": ("thick", "thin"), "penrose-p2": ("kite", "dart")}
 TILES = GOAL_TILES["penrose-p3"]

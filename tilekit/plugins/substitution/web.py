@@ -18,7 +18,7 @@ from tilekit.web.pages import esc
 STATIC = "substitution"
 STATIC_DIR = Path(__file__).with_name("static")
 #: The tilings the editor shapes, by the ``?tiling=`` value that picks them.
-EDITED = {"p3": "penrose-p3", "p2": "penrose-p2"}
+EDITED = qv.BY_TILING
 #: What each one's tiles are called on the page.
 TILE_WORDS = {"penrose-p3": ("the P3 rhombs", "both rhombs", "Figure 6.13"),
               "penrose-p2": ("the P2 kite and dart", "the kite and the dart", "derived from P2 patches")}
