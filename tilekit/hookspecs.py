@@ -150,8 +150,8 @@ def tilekit_public_names():
 # family's editors and pages arrive with the plugin, and tilekit/web names no family. ``web`` is
 # the app's state (tilekit.web.app.State): ``web.catalogue``, ``web.renderer`` (build and render
 # a catalogue tiling within the app's tile limit), ``web.writable``, ``web.page(title, body,
-# scripts=...)`` (a page in the site's layout) and ``web.render_options(request)`` (the render
-# API's query syntax, parsed). Import starlette and your page code inside the hook.
+# scripts=...)`` (a page in the site's layout) and ``web.render_options(request, own=())`` (the
+# render API's query syntax, parsed; the keys in ``own`` are the view's own, left out). Import starlette and your page code inside the hook.
 
 
 @hookspec

@@ -99,9 +99,11 @@ class State:
         """A page in the site's layout (navigation, style sheet, ``scripts`` under /static/)."""
         return pages.layout(title, body, scripts=scripts, writable=self.writable)
 
-    def render_options(self, request: Request) -> dict[str, Any]:
-        """The render API's options from the request's query string, typed and checked."""
-        return normalise_options(api.render_options(request, None))
+    def render_options(self, request: Request, own: tuple[str, ...] = ()) -> dict[str, Any]:
+        """The render API's options from the request's query string, typed and checked; the
+        keys in ``own`` are the view's own (it reads them itself), left out rather than refused."""
+        raw = api.render_options(request, None)
+        return normalise_options({k: v for k, v in raw.items() if k not in own})
 
     def query_int(self, request: Request, key: str, default: int, lo: int, hi: int) -> int:
         """A whole-number query parameter in [lo, hi] (ParseError / ParameterError otherwise)."""

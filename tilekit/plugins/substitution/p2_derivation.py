@@ -14,12 +14,15 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from tilekit.geometry import Affine
 from tilekit.plugins.substitution import tiling as substitution_tiling
+from tilekit.plugins.substitution.engine import _row_groups
 from tilekit.plugins.substitution.quasivertex_p2 import BOOK_LABELS, SYSTEM, _outline
 from tilekit.plugins.substitution.shapes import (
+    EDGE_QUANTUM,
+    InterlockClasses,
     canonical_transforms,
     edge_classes,
+    edge_keys,
     halves_mirror,
 )
 from tilekit.tiling import Patch, Prototile
@@ -87,43 +90,30 @@ def derive(radius: float = 6.0, max_cuts: int = 2, seed: int = 1) -> Derivation:
         protos = [Prototile(np.column_stack([o.real, o.imag]), name=n) for o, n in zip(outs, names)]
         patch = Patch(protos, proto, tr)
         valid = bool(patch.validate(inner))
-        groups: dict[tuple, list[tuple[int, int, bool]]] = {}
+        offsets = np.cumsum([0] + [len(o.outline) for o in protos])
+        rows, runs, nodes = [], [], []
         for p, o in enumerate(protos):
             idx = np.flatnonzero(proto == p)
-            world = np.round(Affine.apply(tr[idx], np.asarray(o.outline)), 6)
-            nxt = np.roll(world, -1, axis=1)
-            for t in range(len(idx)):
-                for j in range(len(o.outline)):
-                    a, b = tuple(world[t, j]), tuple(nxt[t, j])
-                    groups.setdefault((min(a, b), max(a, b)), []).append((p, j, a < b))
-        parent: dict[tuple[int, int], tuple[int, int]] = {}
-        parity: dict[tuple[int, int], int] = {}
-
-        def find(x: tuple[int, int]) -> tuple[tuple[int, int], int]:
-            q = 0
-            while parent.setdefault(x, x) != x:
-                q ^= parity[x]
-                x = parent[x]
-            return x, q
-
-        unpaired = 0
-        for key, members in groups.items():
-            if len(members) != 2 or members[0][2] == members[1][2]:
-                # a piece on the patch's rim has no twin; inside, none may lack one
-                if all(abs(c) < radius - 2 for pt in key for c in pt):
-                    unpaired += 1
+            if not len(idx):
                 continue
-            (p1, j1, _), (p2, j2, _) = members
-            r1, q1 = find((p1, j1))
-            r2, q2 = find((p2, j2))
-            if r1 == r2:
-                unpaired += q1 == q2
-            else:
-                parent[r2] = r1
-                parity[r2] = q1 ^ q2 ^ 1
-        roots: dict[tuple[int, int], int] = {}
-        labels = [[(roots.setdefault(find((p, j))[0], len(roots)), find((p, j))[1]) for j in range(len(o))]
-                  for p, o in enumerate(outs)]
+            key, forward = edge_keys(o.outline, tr[idx])
+            rows.append(key)
+            runs.append(forward)
+            nodes.append(offsets[p] + np.tile(np.arange(len(o.outline)), len(idx)))
+        keys, forward, node = np.concatenate(rows), np.concatenate(runs), np.concatenate(nodes)
+        _, (order, starts, sizes) = _row_groups(keys)
+        classes = InterlockClasses(int(offsets[-1]))
+        inside = (radius - 2) / EDGE_QUANTUM
+        unpaired = 0
+        for start, size in zip(starts, sizes):
+            i = order[start]
+            if size != 2 or forward[i] == forward[order[start + 1]]:
+                # a piece on the patch's rim has no twin; inside, none may lack one
+                unpaired += bool(np.all(np.abs(keys[i]) < inside))
+                continue
+            unpaired += not classes.union(int(node[i]), int(node[order[start + 1]]))
+        numbered = classes.numbered()
+        labels = [numbered[offsets[p] : offsets[p + 1]] for p in range(len(protos))]
         return valid, unpaired, labels
 
     def book_match(labels: list[list[tuple[int, int]]]) -> list[tuple[dict[str, str], dict[str, int]]]:

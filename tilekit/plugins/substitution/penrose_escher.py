@@ -50,8 +50,8 @@ from tilekit.plugins.substitution.penrose_limits import (
 
 #: The tilings with a quasivertex parameterization (P3: Figure 6.13; P2: derived in
 #: quasivertex_p2.py).
-TILINGS = ("p3", "p2")
-SYSTEMS = {"p3": "penrose-p3", "p2": "penrose-p2"}
+SYSTEMS = qv.BY_TILING
+TILINGS = tuple(SYSTEMS)
 #: The goal each tile is compared with, in order (goal A: thick / kite, goal B: thin / dart).
 GOAL_TILES = {"penrose-p3": ("thick", "thin"), "penrose-p2": ("kite", "dart")}
 TILES = GOAL_TILES["penrose-p3"]
@@ -400,10 +400,10 @@ def _valid_result(model: PenroseModel, qvec: np.ndarray, x: np.ndarray, goals: S
 def tiles_svg(result: PenroseResult, goals: Sequence[np.ndarray], size: int = 400) -> str:
     """The two tiles side by side in the system's prototile order (P3: thin, thick; P2: kite,
     dart; light and dark, the patch's colours), each with its goal aligned onto it (dashed)."""
-    order = [t.name for t in result.tiling().prototiles]
-    tiles = {t.name: np.asarray(t.outline, dtype=float) for t in result.tiling().prototiles}
+    prototiles = result.tiling().prototiles
+    order = [t.name for t in prototiles]
     fitted = list(GOAL_TILES[result.system])  # goal A's tile, goal B's tile
-    shapes = [tiles[name] for name in order]
+    shapes = [np.asarray(t.outline, dtype=float) for t in prototiles]
     shapes[1] = shapes[1] + [float(shapes[0][:, 0].max() - shapes[1][:, 0].min()) + 0.3, 0.0]
     idx = [fitted.index(name) for name in order]
     pair = [goals[min(i, len(goals) - 1)] for i in idx]  # one goal: both tiles against it

@@ -66,6 +66,8 @@ PARAM_NAMES = ("r1", "theta1", "r2", "theta2")
 #: Systems with a quasivertex parameterization: P3's of Figure 6.13 (this module) and P2's
 #: derived from the family's own patches (:mod:`.quasivertex_p2`).
 SUPPORTED = ("penrose-p3", "penrose-p2")
+#: The same systems by the short name ``--tiling`` and the editor's ``?tiling=`` take.
+BY_TILING = {name.removeprefix("penrose-"): name for name in SUPPORTED}
 
 
 @dataclass(frozen=True)

@@ -83,30 +83,70 @@ def canonical_transforms(proto: np.ndarray, transform: np.ndarray, mirrors: Sequ
     return out
 
 
+#: The grid (edge lengths) that tile corners are snapped to before edges are matched.
+EDGE_QUANTUM = 1e-6
+
+
+def edge_keys(outline: np.ndarray, transforms: np.ndarray, quantum: float = EDGE_QUANTUM) -> tuple[np.ndarray, np.ndarray]:
+    """Every edge (corner i to i + 1) of ``outline`` placed by each of ``transforms``, in
+    placement-major order: its key, the two snapped end points (lower first; int64, (m k, 4)),
+    and whether it runs from the lower end (two placed edges with one key coincide, and
+    interlock when these differ)."""
+    pts = Affine.apply(transforms, np.asarray(outline))  # (m, k, 2)
+    qa = np.floor(pts / quantum + 0.5).astype(np.int64)
+    qb = np.roll(qa, -1, axis=1)
+    first = (qa[..., 0] < qb[..., 0]) | ((qa[..., 0] == qb[..., 0]) & (qa[..., 1] <= qb[..., 1]))
+    lo = np.where(first[..., None], qa, qb)
+    hi = np.where(first[..., None], qb, qa)
+    return np.concatenate([lo, hi], axis=-1).reshape(-1, 4), first.ravel()
+
+
+class InterlockClasses:
+    """A union-find with parity over ``n`` edges (or pieces): two that interlock carry a shape
+    and its complement, so they join one class with opposite parities."""
+
+    def __init__(self, n: int) -> None:
+        self.parent = list(range(n))
+        self.parity = [0] * n
+
+    def find(self, x: int) -> tuple[int, int]:
+        """(root of x's class, x's parity relative to it)."""
+        p = 0
+        while self.parent[x] != x:
+            p ^= self.parity[x]
+            x = self.parent[x]
+        return x, p
+
+    def union(self, a: int, b: int) -> bool:
+        """a and b interlock (opposite parity); False if their class already has them alike."""
+        ra, pa = self.find(a)
+        rb, pb = self.find(b)
+        if ra == rb:
+            return pa != pb
+        self.parent[rb] = ra
+        self.parity[rb] = pa ^ pb ^ 1
+        return True
+
+    def numbered(self) -> list[tuple[int, int]]:
+        """Per member: (class index, numbered in order of first member; parity)."""
+        roots: dict[int, int] = {}
+        out = []
+        for x in range(len(self.parent)):
+            r, par = self.find(x)
+            out.append((roots.setdefault(r, len(roots)), par))
+        return out
+
+    @property
+    def count(self) -> int:
+        return sum(1 for x, p in enumerate(self.parent) if x == p)
+
+
 def edge_classes(system: SubstitutionSystem, depth: int = ADJACENCY_DEPTH) -> EdgeClasses:
     """Interlocking edge classes read off a generated patch (see the module docstring)."""
     mirrors = halves_mirror(system)
     tiles = system.tiles
     offsets = np.cumsum([0] + [len(t.outline) for t in tiles])
-    parent = list(range(offsets[-1]))
-    parity = [0] * offsets[-1]
-
-    def find(x: int) -> tuple[int, int]:
-        p = 0
-        while parent[x] != x:
-            p ^= parity[x]
-            x = parent[x]
-        return x, p
-
-    def union(a: int, b: int) -> None:  # a and b interlock: opposite parity
-        ra, pa = find(a)
-        rb, pb = find(b)
-        if ra == rb:
-            if pa == pb:
-                raise GeometryError("edges cannot interlock consistently (a class meets itself unreversed)")
-            return
-        parent[rb] = ra
-        parity[rb] = pa ^ pb ^ 1
+    classes = InterlockClasses(int(offsets[-1]))
 
     for seed in range(system.n):
         proto, tr = generate(system, depth, Affine.scaling(system.scale**depth), seed)
@@ -117,34 +157,19 @@ def edge_classes(system: SubstitutionSystem, depth: int = ADJACENCY_DEPTH) -> Ed
             idx = np.flatnonzero(proto == p)
             if not len(idx):
                 continue
-            pts = Affine.apply(tr[idx], tile.outline)  # (m, k, 2)
-            k = len(tile.outline)
-            a = pts
-            b = np.roll(pts, -1, axis=1)
-            q = 1e-6
-            qa = np.floor(a / q + 0.5).astype(np.int64)
-            qb = np.floor(b / q + 0.5).astype(np.int64)
-            first = (qa[..., 0] < qb[..., 0]) | ((qa[..., 0] == qb[..., 0]) & (qa[..., 1] <= qb[..., 1]))
-            lo = np.where(first[..., None], qa, qb)
-            hi = np.where(first[..., None], qb, qa)
-            rows.append(np.concatenate([lo, hi], axis=-1).reshape(-1, 4))
-            nodes.append(offsets[p] + np.tile(np.arange(k), len(idx)))
+            rows.append(edge_keys(tile.outline, tr[idx])[0])
+            nodes.append(offsets[p] + np.tile(np.arange(len(tile.outline)), len(idx)))
         keys = np.concatenate(rows)
         node = np.concatenate(nodes)
         _, (order, starts, sizes) = _row_groups(keys)
         for s, z in zip(starts[sizes == 2], sizes[sizes == 2]):
             del z
-            union(int(node[order[s]]), int(node[order[s + 1]]))
-    roots: dict[int, int] = {}
-    label = []
-    for p, tile in enumerate(tiles):
-        edges = []
-        for i in range(len(tile.outline)):
-            r, par = find(int(offsets[p] + i))
-            cls = roots.setdefault(r, len(roots))
-            edges.append((cls, 1 if par == 0 else -1))
-        label.append(tuple(edges))
-    return EdgeClasses(tuple(label), len(roots), tuple(mirrors))
+            if not classes.union(int(node[order[s]]), int(node[order[s + 1]])):
+                raise GeometryError("edges cannot interlock consistently (a class meets itself unreversed)")
+    numbered = classes.numbered()
+    label = tuple(tuple((cls, 1 if par == 0 else -1) for cls, par in numbered[offsets[p] : offsets[p + 1]])
+                  for p in range(len(tiles)))
+    return EdgeClasses(label, classes.count, tuple(mirrors))
 
 
 def complement(shape: np.ndarray) -> np.ndarray:

@@ -18,7 +18,7 @@ from tilekit.web.pages import esc
 STATIC = "substitution"
 STATIC_DIR = Path(__file__).with_name("static")
 #: The tilings the editor shapes, by the ``?tiling=`` value that picks them.
-EDITED = {"p3": "penrose-p3", "p2": "penrose-p2"}
+EDITED = qv.BY_TILING
 #: What each one's tiles are called on the page.
 TILE_WORDS = {"penrose-p3": ("the P3 rhombs", "both rhombs", "Figure 6.13"),
               "penrose-p2": ("the P2 kite and dart", "the kite and the dart", "derived from P2 patches")}
@@ -56,16 +56,8 @@ def r_ranges(params: qv.QuasivertexParams, system: str = "penrose-p3") -> dict[s
 
 def ranges_api(request: Any, web: Any) -> dict[str, Any]:
     """``/api/penrose/range?r1=..&theta1=..&r2=..&theta2=..[&tiling=p2]``: the r sliders' admissible ranges."""
-    q = request.query_params
-    system = edited_system(q.get("tiling"))
-    if "tiling" in q:  # not a render option: the four parameters are read here
-        unknown = sorted(set(q.keys()) - {"tiling", *qv.PARAM_NAMES})
-        if unknown:
-            raise ParameterError(f"unknown option(s) {', '.join(map(repr, unknown))}; valid: tiling, "
-                                 + ", ".join(qv.PARAM_NAMES))
-        options: dict[str, Any] = dict(q.items())
-    else:
-        options = web.render_options(request)
+    system = edited_system(request.query_params.get("tiling"))
+    options = web.render_options(request, own=("tiling",))  # tiling: this API's own, not a render option
     params = qv.QuasivertexParams.from_options({k: options[k] for k in qv.PARAM_NAMES if k in options})
     return {"params": params.as_dict(), "system": system, **r_ranges(params, system)}
 
