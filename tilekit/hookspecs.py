@@ -151,7 +151,8 @@ def tilekit_public_names():
 # the app's state (tilekit.web.app.State): ``web.catalogue``, ``web.renderer`` (build and render
 # a catalogue tiling within the app's tile limit), ``web.writable``, ``web.page(title, body,
 # scripts=...)`` (a page in the site's layout) and ``web.render_options(request, own=())`` (the
-# render API's query syntax, parsed; the keys in ``own`` are the view's own, left out). Import starlette and your page code inside the hook.
+# render API's query syntax, parsed; the keys in ``own`` are the view's own, left out). Import
+# starlette and your page code inside the hook.
 
 
 @hookspec
