@@ -173,13 +173,22 @@ def _pairing_hint(p: int, q: int) -> str:
     return f"e.g. '{ex}'" if ex else f"no pairing of the {p}-gon found for {{{p},{q}}} (p up to 10 searched)"
 
 
+#: The labels an incidence symbol spells its edges with.
+_LETTERS = "abcdefghijklmnopqrstuvwxyz"
+
+
 def pairing_symbol(pairing: Pairing) -> IncidenceSymbol:
     """The incidence symbol of a pairing: every edge its own label, directed; a J pair's two
     labels adjacent with + (a direct hop, the half-turn seen from the edge), an S edge's label
     adjacent to itself with +. The owner edge of each pair keeps the pairing's letter, the
-    other edge takes an unused one."""
+    other edge takes an unused one; a pairing of more than 26 edges (the labels a-z) is a
+    one-line ParameterError."""
     p = len(pairing.labels)
-    spare = iter(c for c in "abcdefghijklmnopqrstuvwxyz" if c not in pairing.labels)
+    if p > len(_LETTERS):
+        raise ParameterError(f"pairing '{pairing}': its incidence symbol needs a label per edge, {p}, over the "
+                             f"{len(_LETTERS)} letters a-z; pairings are taken on polygons of up to {len(_LETTERS)} "
+                             "edges")
+    spare = iter(c for c in _LETTERS if c not in pairing.labels)
     names = [""] * p
     for i in range(p):
         if pairing.partner[i] >= i:
