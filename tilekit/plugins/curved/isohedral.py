@@ -53,7 +53,6 @@ from tilekit.edgeshapes import ROT, EdgeShape
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.files import read_text
 from tilekit.incidence import IncidenceSymbol, edge_curves, shape_classes, symbol_table
-from tilekit.limits import MAX_TILES, refuse_over, refuse_over_memory
 from tilekit.plugins.curved import delaney, model, wythoff
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
 from tilekit.plugins.curved.tiling import (
@@ -590,10 +589,8 @@ class CurvedIsohedralTiling(CurvedTiling):
         edges; hyperbolic: the tiles whose centre lies within the radius. The colours are
         checked to agree wherever two paths reach one tile."""
         est = self.estimate_tiles()
-        refuse_over(f"tiles of {{{self.p},{self.q}}}", est, MAX_TILES, "--max-tiles",
-                    "ask for a smaller radius (--set radius=R)" if self.hyperbolic else "")
-        refuse_over_memory(f"tiles of {{{self.p},{self.q}}}", est, self.bytes_per_tile,
-                           "ask for a smaller radius (--set radius=R)" if self.hyperbolic else "")
+        self.refuse_oversize(f"tiles of {{{self.p},{self.q}}}", est,
+                             "ask for a smaller radius (--set radius=R)" if self.hyperbolic else "")
         g = self.polygon.geometry
         sep = 2 * self.polygon.inradius
         bound = math.inf if not self.hyperbolic else self._radius() + 2 * self.polygon.circumradius
@@ -617,7 +614,7 @@ class CurvedIsohedralTiling(CurvedTiling):
             allc = np.concatenate([known_c, cc])
             rep = wythoff.weld(key(allm), sep)
             if (allc != allc[rep]).any():
-                raise GeometryError(f"pairing '{self.pairing}': the colouring disagrees where two paths meet "
+                raise GeometryError(f"{self._what()}: the colouring disagrees where two paths meet "
                                     "(not a homomorphism)")
             first = len(known)
             new = np.flatnonzero(rep == np.arange(len(allm)))
