@@ -34,7 +34,7 @@ from fractions import Fraction
 from itertools import product
 
 from tilekit.edgeshapes import ROT
-from tilekit.errors import ParameterError
+from tilekit.errors import ParameterError, ParseError
 from tilekit.incidence import IncidenceSymbol, symbol_table
 from tilekit.limits import refuse_over
 
@@ -372,7 +372,7 @@ def _symbol(p: int, reps: list[int], edge_orbit: dict[int, int], perms: list[lis
     sym = IncidenceSymbol(tuple(edges), tuple(adjacency))
     try:
         sym.check()
-    except Exception:
+    except ParseError:  # an inconsistent symbol (check raises nothing else): not a type
         return None
     if len(sym.tile_symmetries()) != len(perms):
         return None
