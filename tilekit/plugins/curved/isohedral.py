@@ -132,9 +132,6 @@ class Pairing:
     def __str__(self) -> str:
         return " ".join(self.labels)
 
-    def kind(self, i: int) -> str:
-        return "S" if self.partner[i] == i else "J"
-
     def cycles(self) -> list[list[int]]:
         """The vertex cycles: corner c (vertex c of the polygon, where edge c starts) is glued to
         corner partner(c) + 1."""
@@ -151,10 +148,6 @@ class Pairing:
                 c = (self.partner[c] + 1) % p
             out.append(cyc)
         return out
-
-    def owners(self) -> list[int]:
-        """The edges that own a shape: each S edge and the first edge of each J pair."""
-        return [i for i in range(len(self.labels)) if self.partner[i] >= i]
 
 
 def check_pairing(pairing: Pairing, p: int, q: int) -> None:
