@@ -164,6 +164,10 @@ def test_bad_pairings() -> None:
         CurvedIsohedralTiling(3, 5)     # no fixed-point-free rotation group of {3,5} acts on its 20 faces
     with pytest.raises(ParameterError, match="no shaped edge"):
         CurvedIsohedralTiling(6, 4, pairing="a a b b c d", edges={"z": "0.3,0.1"})
+    letters = "abcdefghijklmn"      # 28 edges need 28 labels in the incidence symbol: past a-z
+    with pytest.raises(ParameterError, match="26 letters") as exc:
+        CurvedIsohedralTiling(28, 28, pairing=" ".join(letters + letters))
+    assert "\n" not in str(exc.value)
 
 
 def test_spec_file_reopens(tmp_path) -> None:

@@ -163,6 +163,14 @@ def test_bad_symbols_are_one_line_errors() -> None:
         assert "\n" not in str(exc.value)
 
 
+def test_enumeration_past_its_p_bound_is_refused_before_any_work() -> None:
+    from tilekit.limits import LimitError
+
+    with pytest.raises(LimitError, match="up to 10") as exc:
+        delaney.enumerate_types(delaney.MAX_TYPES_P + 1, 3)
+    assert "\n" not in str(exc.value)
+
+
 def test_pairings_are_incidence_symbols() -> None:
     # the family's older spelling: 'a b c a b c d' is the symbol with a J pair per repeated letter
     t = CurvedIsohedralTiling(6, 4, pairing="a a b b c d")

@@ -222,6 +222,9 @@ def isohedral_records() -> list[CatalogueRecord]:
         p, q = model.check_pq(*pq)
         if model.kind_of(p, q) == model.EUCLIDEAN:
             raise ParseError(f"curved records {ISOHEDRAL_FILE}: {{{p},{q}}} is Euclidean (the isohedral family's)")
+        if p > delaney.MAX_TYPES_P:
+            raise ParseError(f"curved records {ISOHEDRAL_FILE}: {{{p},{q}}}: types are enumerated for p up to "
+                             f"{delaney.MAX_TYPES_P}")
         for n, sym in enumerate(delaney.enumerate_types(p, q), 1):
             props = type_properties(sym, p, q, canonical=True)
             name = f"curved-ih-{p}-{q}-{n}"

@@ -34,8 +34,14 @@ from fractions import Fraction
 from itertools import product
 
 from tilekit.edgeshapes import ROT
-from tilekit.errors import ParameterError
+from tilekit.errors import ParameterError, ParseError
 from tilekit.incidence import IncidenceSymbol, symbol_table
+from tilekit.limits import refuse_over
+
+#: The largest p whose types :func:`enumerate_types` lists: the edge-orbit pairings it tries
+#: grow about fivefold with each edge (p = 10 takes seconds, p = 13 minutes), and its labels
+#: run a..l.
+MAX_TYPES_P = 10
 
 
 @dataclass(frozen=True)
@@ -253,7 +259,14 @@ def _subgroups(p: int) -> list[list[tuple[int, bool]]]:
 def enumerate_types(p: int, q: int) -> Iterator[IncidenceSymbol]:
     """Every isohedral type on {p, q}'s p-gon, one canonical incidence symbol each: for each
     tile stabiliser S (up to conjugacy), every s2 on the S-orbits of chambers that commutes with
-    s0 and closes round every vertex (r12 | q), written as an incidence symbol."""
+    s0 and closes round every vertex (r12 | q), written as an incidence symbol. p over
+    MAX_TYPES_P is a LimitError, raised before any work."""
+    refuse_over("polygon edges to enumerate isohedral types on", p, MAX_TYPES_P,
+                hint=f"types are enumerated for p up to {MAX_TYPES_P}")
+    return _enumerate_types(p, q)
+
+
+def _enumerate_types(p: int, q: int) -> Iterator[IncidenceSymbol]:
     seen: set[str] = set()
     for sub in _subgroups(p):
         perms = [_chamber_permutation(p, shift, reflect) for shift, reflect in sub]
@@ -359,7 +372,7 @@ def _symbol(p: int, reps: list[int], edge_orbit: dict[int, int], perms: list[lis
     sym = IncidenceSymbol(tuple(edges), tuple(adjacency))
     try:
         sym.check()
-    except Exception:
+    except ParseError:  # an inconsistent symbol (check raises nothing else): not a type
         return None
     if len(sym.tile_symmetries()) != len(perms):
         return None

@@ -53,7 +53,6 @@ from tilekit.edgeshapes import ROT, EdgeShape
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.files import read_text
 from tilekit.incidence import IncidenceSymbol, edge_curves, shape_classes, symbol_table
-from tilekit.limits import MAX_TILES, refuse_over, refuse_over_memory
 from tilekit.plugins.curved import delaney, model, wythoff
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
 from tilekit.plugins.curved.tiling import (
@@ -133,9 +132,6 @@ class Pairing:
     def __str__(self) -> str:
         return " ".join(self.labels)
 
-    def kind(self, i: int) -> str:
-        return "S" if self.partner[i] == i else "J"
-
     def cycles(self) -> list[list[int]]:
         """The vertex cycles: corner c (vertex c of the polygon, where edge c starts) is glued to
         corner partner(c) + 1."""
@@ -153,10 +149,6 @@ class Pairing:
             out.append(cyc)
         return out
 
-    def owners(self) -> list[int]:
-        """The edges that own a shape: each S edge and the first edge of each J pair."""
-        return [i for i in range(len(self.labels)) if self.partner[i] >= i]
-
 
 def check_pairing(pairing: Pairing, p: int, q: int) -> None:
     """Poincaré's condition: every vertex cycle's length divides q (one-line ParameterError)."""
@@ -173,13 +165,22 @@ def _pairing_hint(p: int, q: int) -> str:
     return f"e.g. '{ex}'" if ex else f"no pairing of the {p}-gon found for {{{p},{q}}} (p up to 10 searched)"
 
 
+#: The labels an incidence symbol spells its edges with.
+_LETTERS = "abcdefghijklmnopqrstuvwxyz"
+
+
 def pairing_symbol(pairing: Pairing) -> IncidenceSymbol:
     """The incidence symbol of a pairing: every edge its own label, directed; a J pair's two
     labels adjacent with + (a direct hop, the half-turn seen from the edge), an S edge's label
     adjacent to itself with +. The owner edge of each pair keeps the pairing's letter, the
-    other edge takes an unused one."""
+    other edge takes an unused one; a pairing of more than 26 edges (the labels a-z) is a
+    one-line ParameterError."""
     p = len(pairing.labels)
-    spare = iter(c for c in "abcdefghijklmnopqrstuvwxyz" if c not in pairing.labels)
+    if p > len(_LETTERS):
+        raise ParameterError(f"pairing '{pairing}': its incidence symbol needs a label per edge, {p}, over the "
+                             f"{len(_LETTERS)} letters a-z; pairings are taken on polygons of up to {len(_LETTERS)} "
+                             "edges")
+    spare = iter(c for c in _LETTERS if c not in pairing.labels)
     names = [""] * p
     for i in range(p):
         if pairing.partner[i] >= i:
@@ -581,10 +582,8 @@ class CurvedIsohedralTiling(CurvedTiling):
         edges; hyperbolic: the tiles whose centre lies within the radius. The colours are
         checked to agree wherever two paths reach one tile."""
         est = self.estimate_tiles()
-        refuse_over(f"tiles of {{{self.p},{self.q}}}", est, MAX_TILES, "--max-tiles",
-                    "ask for a smaller radius (--set radius=R)" if self.hyperbolic else "")
-        refuse_over_memory(f"tiles of {{{self.p},{self.q}}}", est, self.bytes_per_tile,
-                           "ask for a smaller radius (--set radius=R)" if self.hyperbolic else "")
+        self.refuse_oversize(f"tiles of {{{self.p},{self.q}}}", est,
+                             "ask for a smaller radius (--set radius=R)" if self.hyperbolic else "")
         g = self.polygon.geometry
         sep = 2 * self.polygon.inradius
         bound = math.inf if not self.hyperbolic else self._radius() + 2 * self.polygon.circumradius
@@ -608,7 +607,7 @@ class CurvedIsohedralTiling(CurvedTiling):
             allc = np.concatenate([known_c, cc])
             rep = wythoff.weld(key(allm), sep)
             if (allc != allc[rep]).any():
-                raise GeometryError(f"pairing '{self.pairing}': the colouring disagrees where two paths meet "
+                raise GeometryError(f"{self._what()}: the colouring disagrees where two paths meet "
                                     "(not a homomorphism)")
             first = len(known)
             new = np.flatnonzero(rep == np.arange(len(allm)))

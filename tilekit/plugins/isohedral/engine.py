@@ -31,7 +31,7 @@ from tilekit.edgeshapes import (
 )
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.geometry import Affine, snap_noise
-from tilekit.incidence import IncidenceSymbol, SymbolTable, shape_classes, symbol_table  # noqa: F401 (re-exported)
+from tilekit.incidence import IncidenceSymbol, shape_classes, symbol_table
 from tilekit.incidence import label_curves as _label_curves
 from tilekit.incidence import unit_orientation as _unit_orientation
 from tilekit.plugins.isohedral.properties import type_properties

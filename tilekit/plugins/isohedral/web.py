@@ -16,8 +16,9 @@ import numpy as np
 
 from tilekit.edgeshapes import parse_edge_option
 from tilekit.errors import ParameterError, TilekitError
+from tilekit.incidence import shape_classes
 from tilekit.plugins import WebRoute
-from tilekit.plugins.isohedral.engine import IsohedralTiling, shape_classes
+from tilekit.plugins.isohedral.engine import IsohedralTiling
 from tilekit.plugins.isohedral.metamorphosis import metamorphosis
 from tilekit.plugins.isohedral.split import SplitTiling
 from tilekit.plugins.isohedral.templates import get_template
