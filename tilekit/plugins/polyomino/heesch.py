@@ -226,15 +226,26 @@ def first_corona_support(cells: np.ndarray, halo: np.ndarray) -> np.ndarray:
     when some halo cell is left with no copy: then no corona exists at all (Hc = Hh = 0, a
     proof that the polyform does not tile).
     """
-    m = len(cells)
-    if not m:
+    if not len(cells):
         return np.zeros(0, dtype=bool)
-    universe = unique_keys(cells)
-    hpos = np.minimum(np.searchsorted(universe, halo), len(universe) - 1)
-    if (universe[hpos] != halo).any():
-        return np.zeros(m, dtype=bool)
-    col = np.searchsorted(universe, cells).astype(np.int64)
-    return _support(np.ascontiguousarray(col), hpos.astype(np.int64), len(universe))
+    return _support_keys(np.ascontiguousarray(cells, dtype=np.int64), np.ascontiguousarray(halo, dtype=np.int64))
+
+
+@njit(cache=True)
+def _support_keys(pk, hkeys):  # pragma: no cover - compiled
+    """:func:`first_corona_support` on packed keys ``pk`` (m, n), m >= 1, and ``hkeys`` (H,):
+    the cells numbered by their rank among the copies' cells, then :func:`_support`."""
+    m = pk.shape[0]
+    universe = np.unique(pk.ravel())
+    H = hkeys.shape[0]
+    hcol = np.empty(H, np.int64)
+    for h in range(H):
+        q = np.searchsorted(universe, hkeys[h])
+        if q >= universe.shape[0] or universe[q] != hkeys[h]:
+            return np.zeros(m, np.bool_)  # a halo cell no copy covers
+        hcol[h] = q
+    col = np.searchsorted(universe, pk.ravel()).reshape(pk.shape)
+    return _support(col, hcol, universe.shape[0])
 
 
 @njit(cache=True)
@@ -298,17 +309,11 @@ def _first_corona(cells, group, period, table, types):  # pragma: no cover - com
         f = rows[p, 0]
         for i in range(n):
             pk[p, i] = (forms[f, i, 0] + rows[p, 1] + off) * mm + (forms[f, i, 1] + rows[p, 2] + off)
-    universe = np.unique(pk.ravel())
     H = halo.shape[0]
-    hcol = np.empty(H, np.int64)
+    hkeys = np.empty(H, np.int64)
     for h in range(H):
-        key = (halo[h, 0] + off) * mm + (halo[h, 1] + off)
-        q = np.searchsorted(universe, key)
-        if q >= universe.shape[0] or universe[q] != key:
-            return rows[:0]  # a halo cell no copy touching the kernel covers
-        hcol[h] = q
-    col = np.searchsorted(universe, pk.ravel()).reshape(m, n)
-    return rows[_support(col, hcol, universe.shape[0])]
+        hkeys[h] = (halo[h, 0] + off) * mm + (halo[h, 1] + off)
+    return rows[_support_keys(pk, hkeys)]
 
 
 def first_corona_rows(grid: Grid, cells: np.ndarray) -> np.ndarray:
@@ -318,20 +323,9 @@ def first_corona_rows(grid: Grid, cells: np.ndarray) -> np.ndarray:
     Empty: no corona exists even with holes, so Hc = Hh = 0 and the polyform does not tile
     (most forms of the drafter and bevelhex grids end here, where setting up the solver was
     most of their cost)."""
-    return _first_corona(np.ascontiguousarray(cells, dtype=np.int64).reshape(-1, 2), *_grid_tables(grid))
-
-
-_TABLES: dict[str, tuple] = {}
-
-
-def _grid_tables(grid: Grid) -> tuple:
-    """(point group, period, vertex-neighbour table, type table) of a grid as the compiled
-    loops take them, made once per grid."""
-    got = _TABLES.get(grid.name)
-    if got is None:
-        got = _TABLES[grid.name] = (grid.group.astype(np.int64), np.int64(grid.period),
-                                    vertex_neighbour_table(grid), grid.type_table)
-    return got
+    # the grid's tables are cached where they are defined (vertex_neighbour_table, Grid.type_table)
+    return _first_corona(np.ascontiguousarray(cells, dtype=np.int64).reshape(-1, 2), grid.group.astype(np.int64),
+                         np.int64(grid.period), vertex_neighbour_table(grid), grid.type_table)
 
 
 class HeeschSolver:
