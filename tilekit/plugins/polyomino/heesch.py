@@ -54,7 +54,7 @@ from tilekit.lattice import (
     unpack,
     vertex_neighbour_table,
 )
-from tilekit.plugins.polyomino.placements import Forms, _adjacent, _halos
+from tilekit.plugins.polyomino.placements import Forms, _adjacent, _halos, _orientations
 from tilekit.sat import CNF, DEFAULT_SAT_SOLVER, NATIVE_ATMOST, IncrementalSolver, gc_paused
 
 #: The most coronas a search will build (Kaplan's sat tool stops at 7 by default).
@@ -249,54 +249,11 @@ def _support_keys(pk, hkeys):  # pragma: no cover - compiled
 
 
 @njit(cache=True)
-def _orientations(cells, group, period):  # pragma: no cover - compiled
-    """The distinct images of ``cells`` under ``group``, each in fixed form (sorted by (y, x),
-    the least cell moved into [0, period)^2, as :class:`Forms`): (J, n, 2) and their sorted
-    packed keys (J, n), the polyform's own fixed form first."""
-    G, n = group.shape[0], cells.shape[0]
-    off, mm = np.int64(_OFF), np.int64(_M)  # lattice.pack's offsets
-    out = np.empty((G, n, 2), np.int64)
-    keys = np.empty((G, n), np.int64)
-    J = 0
-    for g in range(G):
-        img = np.empty((n, 2), np.int64)
-        b = 0
-        for i in range(n):
-            img[i, 0] = group[g, 0, 0] * cells[i, 0] + group[g, 0, 1] * cells[i, 1]
-            img[i, 1] = group[g, 1, 0] * cells[i, 0] + group[g, 1, 1] * cells[i, 1]
-            if img[i, 1] < img[b, 1] or (img[i, 1] == img[b, 1] and img[i, 0] < img[b, 0]):
-                b = i
-        sx = img[b, 0] % period - img[b, 0]
-        sy = img[b, 1] % period - img[b, 1]
-        k = np.empty(n, np.int64)
-        for i in range(n):
-            img[i, 0] += sx
-            img[i, 1] += sy
-            k[i] = (img[i, 0] + off) * mm + (img[i, 1] + off)
-        k = np.sort(k)
-        dup = False
-        for j in range(J):
-            same = True
-            for i in range(n):
-                if keys[j, i] != k[i]:
-                    same = False
-                    break
-            if same:
-                dup = True
-                break
-        if not dup:
-            out[J] = img
-            keys[J] = k
-            J += 1
-    return out[:J], keys[:J]
-
-
-@njit(cache=True)
 def _first_corona(cells, group, period, table, types):  # pragma: no cover - compiled
     """:func:`first_corona_rows` in one compiled call: the orientations, the kernel's halo, the
     copies touching the kernel (:func:`placements._adjacent`) and the local test
     (:func:`_support`)."""
-    forms, keys = _orientations(cells, group, period)
+    forms, keys, _g, _shift = _orientations(cells, group, period)
     n = cells.shape[0]
     off, mm = np.int64(_OFF), np.int64(_M)
     halo = _halos(forms[:1], table, types, period)[0]
