@@ -117,8 +117,9 @@ def _corona_json(c: Corona | None, hc: int | None) -> dict | None:
 
 def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes: bool = False,
              probe: int = 2, max_level: int = 5, torus_tiles: int = DEFAULT_TORUS_TILES, time_limit: float | None = 120.0,
-             solver: str = CLASSIFY_SOLVER) -> Classification:
-    """Classify one polyform (``analysis`` from :func:`isohedral.analyse`, None if holey)."""
+             solver: str = CLASSIFY_SOLVER, first: np.ndarray | None = None) -> Classification:
+    """Classify one polyform (``analysis`` from :func:`isohedral.analyse`, None if holey).
+    ``first``: corona 1's rows from :func:`heesch.first_corona_rows`, when already computed."""
     check_grid(grid)
     check_bounds(probe, max_level, torus_tiles)
     if has_holes:
@@ -138,7 +139,8 @@ def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes:
     def left() -> float | None:
         return None if time_limit is None else max(0.0, time_limit - (time.monotonic() - t0))
 
-    first = first_corona_rows(grid, cells)  # corona 1's copies by the local test, one compiled call
+    if first is None:
+        first = first_corona_rows(grid, cells)  # corona 1's copies by the local test, one compiled call
     if not len(first):  # no corona even with holes: Hc = Hh = 0, proved with no solver
         kernel = Corona(np.zeros((1, 3), dtype=np.int64), np.zeros(1, dtype=np.int64), False)
         seconds = time.monotonic() - t0
@@ -240,9 +242,10 @@ def classify_form(grid: Grid, cells: np.ndarray, *, has_holes: bool = False, **b
     if has_holes:
         return classify(grid, cells, None, has_holes=True, **bounds)
     check_grid(grid)
-    if not len(first_corona_rows(grid, cells)):
-        return classify(grid, cells, None, **bounds)
-    return classify(grid, cells, analyse(grid, cells, construct=False), **bounds)
+    first = first_corona_rows(grid, cells)
+    if not len(first):
+        return classify(grid, cells, None, first=first, **bounds)
+    return classify(grid, cells, analyse(grid, cells, construct=False), first=first, **bounds)
 
 
 def _non_tiler(r, seconds: float, torus: int | None = None) -> Classification:

@@ -54,7 +54,7 @@ from tilekit.lattice import (
     unpack,
     vertex_neighbour_table,
 )
-from tilekit.plugins.polyomino.placements import Forms, _adjacent, _halos
+from tilekit.plugins.polyomino.placements import Forms, _adjacent, _halos, _orientations
 from tilekit.sat import CNF, DEFAULT_SAT_SOLVER, NATIVE_ATMOST, IncrementalSolver, gc_paused
 
 #: The most coronas a search will build (Kaplan's sat tool stops at 7 by default).
@@ -226,58 +226,26 @@ def first_corona_support(cells: np.ndarray, halo: np.ndarray) -> np.ndarray:
     when some halo cell is left with no copy: then no corona exists at all (Hc = Hh = 0, a
     proof that the polyform does not tile).
     """
-    m = len(cells)
-    if not m:
+    if not len(cells):
         return np.zeros(0, dtype=bool)
-    universe = unique_keys(cells)
-    hpos = np.minimum(np.searchsorted(universe, halo), len(universe) - 1)
-    if (universe[hpos] != halo).any():
-        return np.zeros(m, dtype=bool)
-    col = np.searchsorted(universe, cells).astype(np.int64)
-    return _support(np.ascontiguousarray(col), hpos.astype(np.int64), len(universe))
+    return _support_keys(np.ascontiguousarray(cells, dtype=np.int64), np.ascontiguousarray(halo, dtype=np.int64))
 
 
 @njit(cache=True)
-def _orientations(cells, group, period):  # pragma: no cover - compiled
-    """The distinct images of ``cells`` under ``group``, each in fixed form (sorted by (y, x),
-    the least cell moved into [0, period)^2, as :class:`Forms`): (J, n, 2) and their sorted
-    packed keys (J, n), the polyform's own fixed form first."""
-    G, n = group.shape[0], cells.shape[0]
-    off, mm = np.int64(_OFF), np.int64(_M)  # lattice.pack's offsets
-    out = np.empty((G, n, 2), np.int64)
-    keys = np.empty((G, n), np.int64)
-    J = 0
-    for g in range(G):
-        img = np.empty((n, 2), np.int64)
-        b = 0
-        for i in range(n):
-            img[i, 0] = group[g, 0, 0] * cells[i, 0] + group[g, 0, 1] * cells[i, 1]
-            img[i, 1] = group[g, 1, 0] * cells[i, 0] + group[g, 1, 1] * cells[i, 1]
-            if img[i, 1] < img[b, 1] or (img[i, 1] == img[b, 1] and img[i, 0] < img[b, 0]):
-                b = i
-        sx = img[b, 0] % period - img[b, 0]
-        sy = img[b, 1] % period - img[b, 1]
-        k = np.empty(n, np.int64)
-        for i in range(n):
-            img[i, 0] += sx
-            img[i, 1] += sy
-            k[i] = (img[i, 0] + off) * mm + (img[i, 1] + off)
-        k = np.sort(k)
-        dup = False
-        for j in range(J):
-            same = True
-            for i in range(n):
-                if keys[j, i] != k[i]:
-                    same = False
-                    break
-            if same:
-                dup = True
-                break
-        if not dup:
-            out[J] = img
-            keys[J] = k
-            J += 1
-    return out[:J], keys[:J]
+def _support_keys(pk, hkeys):  # pragma: no cover - compiled
+    """:func:`first_corona_support` on packed keys ``pk`` (m, n), m >= 1, and ``hkeys`` (H,):
+    the cells numbered by their rank among the copies' cells, then :func:`_support`."""
+    m = pk.shape[0]
+    universe = np.unique(pk.ravel())
+    H = hkeys.shape[0]
+    hcol = np.empty(H, np.int64)
+    for h in range(H):
+        q = np.searchsorted(universe, hkeys[h])
+        if q >= universe.shape[0] or universe[q] != hkeys[h]:
+            return np.zeros(m, np.bool_)  # a halo cell no copy covers
+        hcol[h] = q
+    col = np.searchsorted(universe, pk.ravel()).reshape(pk.shape)
+    return _support(col, hcol, universe.shape[0])
 
 
 @njit(cache=True)
@@ -285,7 +253,7 @@ def _first_corona(cells, group, period, table, types):  # pragma: no cover - com
     """:func:`first_corona_rows` in one compiled call: the orientations, the kernel's halo, the
     copies touching the kernel (:func:`placements._adjacent`) and the local test
     (:func:`_support`)."""
-    forms, keys = _orientations(cells, group, period)
+    forms, keys, _g, _shift = _orientations(cells, group, period)
     n = cells.shape[0]
     off, mm = np.int64(_OFF), np.int64(_M)
     halo = _halos(forms[:1], table, types, period)[0]
@@ -298,17 +266,11 @@ def _first_corona(cells, group, period, table, types):  # pragma: no cover - com
         f = rows[p, 0]
         for i in range(n):
             pk[p, i] = (forms[f, i, 0] + rows[p, 1] + off) * mm + (forms[f, i, 1] + rows[p, 2] + off)
-    universe = np.unique(pk.ravel())
     H = halo.shape[0]
-    hcol = np.empty(H, np.int64)
+    hkeys = np.empty(H, np.int64)
     for h in range(H):
-        key = (halo[h, 0] + off) * mm + (halo[h, 1] + off)
-        q = np.searchsorted(universe, key)
-        if q >= universe.shape[0] or universe[q] != key:
-            return rows[:0]  # a halo cell no copy touching the kernel covers
-        hcol[h] = q
-    col = np.searchsorted(universe, pk.ravel()).reshape(m, n)
-    return rows[_support(col, hcol, universe.shape[0])]
+        hkeys[h] = (halo[h, 0] + off) * mm + (halo[h, 1] + off)
+    return rows[_support_keys(pk, hkeys)]
 
 
 def first_corona_rows(grid: Grid, cells: np.ndarray) -> np.ndarray:
@@ -318,20 +280,9 @@ def first_corona_rows(grid: Grid, cells: np.ndarray) -> np.ndarray:
     Empty: no corona exists even with holes, so Hc = Hh = 0 and the polyform does not tile
     (most forms of the drafter and bevelhex grids end here, where setting up the solver was
     most of their cost)."""
-    return _first_corona(np.ascontiguousarray(cells, dtype=np.int64).reshape(-1, 2), *_grid_tables(grid))
-
-
-_TABLES: dict[str, tuple] = {}
-
-
-def _grid_tables(grid: Grid) -> tuple:
-    """(point group, period, vertex-neighbour table, type table) of a grid as the compiled
-    loops take them, made once per grid."""
-    got = _TABLES.get(grid.name)
-    if got is None:
-        got = _TABLES[grid.name] = (grid.group.astype(np.int64), np.int64(grid.period),
-                                    vertex_neighbour_table(grid), grid.type_table)
-    return got
+    # the grid's tables are cached where they are defined (vertex_neighbour_table, Grid.type_table)
+    return _first_corona(np.ascontiguousarray(cells, dtype=np.int64).reshape(-1, 2), grid.group.astype(np.int64),
+                         np.int64(grid.period), vertex_neighbour_table(grid), grid.type_table)
 
 
 class HeeschSolver:

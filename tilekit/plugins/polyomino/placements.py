@@ -100,6 +100,55 @@ def _halos(forms, table, types, period):  # pragma: no cover - compiled
     return out
 
 
+@njit(cache=True)
+def _orientations(cells, group, period):  # pragma: no cover - compiled
+    """The distinct images of ``cells`` under ``group``, in group order, each in fixed form
+    (sorted by (y, x), the least cell moved into [0, period)^2, as :func:`lattice.fixed_form`):
+    (J, n, 2), their sorted packed keys (J, n), the group index of each and its shift (J, 2)
+    (fixed form = image + shift). The polyform's own fixed form comes first."""
+    G, n = group.shape[0], cells.shape[0]
+    off, mm = np.int64(_OFF), np.int64(_M)  # lattice.pack's offsets
+    out = np.empty((G, n, 2), np.int64)
+    keys = np.empty((G, n), np.int64)
+    gidx = np.empty(G, np.int64)
+    shift = np.empty((G, 2), np.int64)
+    J = 0
+    for g in range(G):
+        img = np.empty((n, 2), np.int64)
+        yx = np.empty(n, np.int64)
+        for i in range(n):
+            img[i, 0] = group[g, 0, 0] * cells[i, 0] + group[g, 0, 1] * cells[i, 1]
+            img[i, 1] = group[g, 1, 0] * cells[i, 0] + group[g, 1, 1] * cells[i, 1]
+            yx[i] = (img[i, 1] + off) * mm + (img[i, 0] + off)
+        img = img[np.argsort(yx)]
+        sx = img[0, 0] % period - img[0, 0]
+        sy = img[0, 1] % period - img[0, 1]
+        k = np.empty(n, np.int64)
+        for i in range(n):
+            img[i, 0] += sx
+            img[i, 1] += sy
+            k[i] = (img[i, 0] + off) * mm + (img[i, 1] + off)
+        k = np.sort(k)
+        dup = False
+        for j in range(J):
+            same = True
+            for i in range(n):
+                if keys[j, i] != k[i]:
+                    same = False
+                    break
+            if same:
+                dup = True
+                break
+        if not dup:
+            out[J] = img
+            keys[J] = k
+            gidx[J] = g
+            shift[J, 0] = sx
+            shift[J, 1] = sy
+            J += 1
+    return out[:J].copy(), keys[:J].copy(), gidx[:J].copy(), shift[:J].copy()
+
+
 @dataclass(eq=False)
 class Forms:
     """The orientations of a polyform and which copies of one orientation touch another.
@@ -112,26 +161,11 @@ class Forms:
     cells: np.ndarray
 
     def __post_init__(self) -> None:
-        self.cells = np.asarray(self.cells, dtype=np.int64).reshape(-1, 2)
-        # every image at once, each in fixed form (sorted by (y, x), the least cell moved into
-        # [0, period)^2, as lattice.fixed_form): (G, n, 2)
-        img = np.einsum("gab,nb->gna", self.grid.group.astype(np.int64), self.cells)
-        order = np.argsort(pack(img[..., ::-1]), axis=1, kind="stable")
-        img = np.take_along_axis(img, order[..., None], axis=1)
-        c0 = img[:, 0, :]
-        shift = np.mod(c0, self.grid.period) - c0  # fixed form = image + shift
-        fixed = img + shift[:, None, :]
-        keys = np.sort(pack(fixed), axis=1)
-        seen: set[bytes] = set()
-        first = []
-        for g in range(len(fixed)):  # distinct orientations, in group order
-            b = keys[g].tobytes()
-            if b not in seen:
-                seen.add(b)
-                first.append(g)
-        self.forms = fixed[first]  # (J, n, 2)
-        self.g = np.array(first, dtype=np.int64)
-        self.shift = shift[first]
+        self.cells = np.ascontiguousarray(np.asarray(self.cells, dtype=np.int64).reshape(-1, 2))
+        # the distinct images, each in fixed form, in group order (one compiled loop, shared
+        # with heesch.first_corona_rows)
+        self.forms, _, self.g, self.shift = _orientations(self.cells, self.grid.group.astype(np.int64),
+                                                         np.int64(self.grid.period))  # (J, n, 2)
         self.keys = pack(self.forms)  # (J, n)
 
     @property
