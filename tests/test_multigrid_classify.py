@@ -31,6 +31,8 @@ from shapely.ops import unary_union
 from tilekit.lattice import free_polyforms, get_grid, outline, parse_polyform
 from tilekit.plugins.polyomino.classify import classify, corona_patch, torus_tiling
 from tilekit.plugins.polyomino.isohedral import analyse, periodic_tiling
+from tilekit.symmetry import wallpaper_group
+from tilekit.symmetry.orbits import isohedrality
 
 # heesch-sat 008e733, ``sat -isohedral -hh`` on every free form (benchmarks/heesch_sat_grids.py):
 # per size, isohedral tilers "I", forms with a hole "hole" (heesch-sat: Hc = Hh = 0) and the
@@ -216,7 +218,11 @@ def test_every_witness_is_checked_geometrically(name):
     for cells, holey, _, c in _classified(name, SMALL[name]):
         area = abs(outline(grid, cells).area)
         if c.tiles == "true" and c.witness and c.witness.get("kind") == "torus":
-            _check_periodic(torus_tiling(grid, cells, c.witness), area)
+            tiling = torus_tiling(grid, cells, c.witness)
+            _check_periodic(tiling, area)
+            if c.isohedral:  # found by the direct test or the tori: one class by tilekit.symmetry
+                assert isohedrality(tiling) == 1, c.verdict
+                kinds["direct" if c.evidence["step"] == "surround" else "torus"] += 1
             kinds["torus"] += 1
         elif c.tiles == "true":
             full = analyse(grid, cells)  # the boundary-word tiling, built
@@ -234,13 +240,17 @@ def test_every_witness_is_checked_geometrically(name):
                 _check_surround(grid, cells, w["hh"])
         assert c.tiles != "undecided", c.verdict
     assert kinds["corona"] > 0 or name in ("abolo", "halfcairo")  # their non-tilers to this size: Hc = 0
+    # the direct isohedral test answers the isohedral forms no boundary word describes
+    assert kinds["direct"] > 0 or name not in ("drafter", "abolo")  # (none to the sizes here elsewhere)
 
 
 def test_a_one_class_tiling_is_found_where_no_boundary_word_describes_it():
     """A single drafter tiles isohedrally (the kisrhombille tiling, 12 tiles per translational
     unit, group p6m), with each neighbour mirrored across the shared edge, which no
-    boundary-word template describes: the torus search must find the one-class tiling, and the
-    3-abolo below must come out isohedral, not with the 2 classes of its first torus tiling."""
+    boundary-word template describes: the direct isohedral test (a first corona closed under its
+    copies' transforms, :mod:`surround`) must find the one-class tiling, and the 3-abolo below
+    must come out isohedral, not with the 2 classes of its first torus tiling. The group and the
+    one class are checked by tilekit.symmetry, independently of the search."""
     for name, code in (("drafter", "drafter:5,2"), ("abolo", "abolo:2,0;4,0;0,2")):
         grid = get_grid(name)
         cells = parse_polyform(grid, code)
@@ -248,7 +258,10 @@ def test_a_one_class_tiling_is_found_where_no_boundary_word_describes_it():
         c = classify(grid, cells, a)
         assert c.tiles == "true" and c.isohedral, c.verdict
         if name == "drafter":
-            assert not a["isohedral"] and c.witness["group"] == "p6m" and len(c.witness["tiles"]) == 12
+            tiling = torus_tiling(grid, cells, c.witness)
+            assert not a["isohedral"] and c.evidence["step"] == "surround" and len(c.witness["tiles"]) == 12
+            assert wallpaper_group(tiling).iuc == "p6m" and isohedrality(tiling) == 1
+            _check_periodic(tiling, abs(outline(grid, cells).area))
 
 
 def test_copies_are_grid_symmetries():

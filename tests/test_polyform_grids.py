@@ -335,7 +335,9 @@ def test_a_one_class_torus_tiling_is_isohedral(code):
     cells = parse_polyform(grid, code)
     c = classify(grid, cells, {}, probe=1, max_level=2)
     assert c.tiles == "true" and c.isohedral and c.anisohedral_k is None
-    assert c.verdict.startswith("tiles isohedrally: a torus tiling with one transitivity class")
+    # on the kite grid (no complete boundary-word test) the direct isohedral test answers first
+    how = "a first corona closed under" if grid.name == "kite" else "a torus tiling with one transitivity class"
+    assert c.verdict.startswith(f"tiles isohedrally: {how}")
     assert c.witness["k"] == 1
     t = torus_tiling(grid, cells, c.witness)
     region = shapely.box(-2, -2, 2, 2)

@@ -44,6 +44,7 @@ from tilekit.plugins.polyomino.heesch import (
 )
 from tilekit.plugins.polyomino.isohedral import analyse
 from tilekit.plugins.polyomino.placements import Forms
+from tilekit.plugins.polyomino.surround import SurroundResult, SurroundTest
 from tilekit.plugins.polyomino.torus import TorusSearch, TorusTiling
 from tilekit.schema import Field, check
 from tilekit.symmetry import wallpaper_group
@@ -155,6 +156,15 @@ def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes:
 def _coronas_and_tori(grid: Grid, cells: np.ndarray, hs: HeeschSolver, probe: int, max_level: int, torus_tiles: int,
                       solver: str, t0: float, left: Callable[[], float | None]) -> Classification:
     """Steps 4-6 of the module docstring, on ``hs`` (its ladder holds every corona level)."""
+    complete = grid.name in BOUNDARY_COMPLETE
+    proved = complete  # no isohedral tiling: by the complete boundary-word test, or the direct one
+    if not complete:
+        # the direct isohedral test on corona 1's formula (:mod:`surround`); unsatisfiable
+        # proves that no isohedral tiling exists, so the tori need look for k >= 2 only
+        st = SurroundTest(hs).run(left())
+        if st.isohedral:
+            return _surround_isohedral(grid, cells, st, t0)
+        proved = st.isohedral is False
     r = heesch(grid, cells, max_level=probe, time_limit=left(), hs=hs)
     level = probe
     if not r.decided and hs.kaplan and r.surrounded >= probe and probe < max_level:
@@ -166,8 +176,7 @@ def _coronas_and_tori(grid: Grid, cells: np.ndarray, hs: HeeschSolver, probe: in
     if r.surrounded < level:  # the time limit
         return _undecided(r.surrounded, None, time.monotonic() - t0, r.reason, r.hc_witness)
     ts = TorusSearch(hs.forms, solver=solver)
-    complete = grid.name in BOUNDARY_COMPLETE
-    want_k = 2 if complete else 1  # with a complete boundary test, k = 2 is already the least
+    want_k = 2 if proved else 1  # with no isohedral tiling, k = 2 is already the least
     # cheap first: small translational units, one more corona, larger units, more coronas
     stages = [("torus", min(4, torus_tiles)), ("coronas", min(probe + 1, max_level)),
               ("torus", torus_tiles), ("coronas", max_level)]
@@ -178,7 +187,7 @@ def _coronas_and_tori(grid: Grid, cells: np.ndarray, hs: HeeschSolver, probe: in
             if bound <= tried_m:
                 continue
             cut = None  # where the time limit stopped the search for a tiling with fewer classes
-            if not complete and best is not None:
+            if not proved and best is not None:
                 bound = torus_tiles  # a tiler: look for one class on every torus now
             for m, tt in ts.search(range(tried_m + 1, bound + 1), want_k=want_k, time_limit=left()):
                 if tt is None:
@@ -202,7 +211,7 @@ def _coronas_and_tori(grid: Grid, cells: np.ndarray, hs: HeeschSolver, probe: in
                                               f"(0,{d_}), symmetry group {witness['group']})",
                                       evidence={"step": "torus", "m": best.m, "lattice": list(best.lattice),
                                                 "seconds": round(time.monotonic() - t0, 3)})
-            if best is not None and not complete and tried_m < torus_tiles and cut is None:
+            if best is not None and not proved and tried_m < torus_tiles and cut is None:
                 continue  # one class may need a larger unit: the next torus stage goes on
             if best is not None:
                 a_, b_, d_ = best.lattice
@@ -210,6 +219,8 @@ def _coronas_and_tori(grid: Grid, cells: np.ndarray, hs: HeeschSolver, probe: in
                 # the group's name, from the geometry (tilekit.symmetry), for the verdict
                 witness["group"] = wallpaper_group(torus_tiling(grid, cells, witness)).iuc
                 how = ("no boundary factorisation" if complete else
+                       "no isohedral tiling (the direct test: no first corona closed under its copies' transforms)"
+                       if proved else
                        f"no one-class tiling on the tori with up to {tried_m} tiles per unit (each torus searched "
                        f"for up to {ALTERNATIVES} covers; the {grid.name} grid has no complete boundary-word test)")
                 verdict = (f"tiles anisohedrally: {best.m} tiles per translational unit (torus of period lattice "
@@ -231,6 +242,20 @@ def _coronas_and_tori(grid: Grid, cells: np.ndarray, hs: HeeschSolver, probe: in
                 return _undecided(r.surrounded, tried_m, time.monotonic() - t0, r.reason, r.hc_witness)
             level = bound
     return _undecided(level, tried_m, time.monotonic() - t0, r.reason, r.hc_witness)
+
+
+def _surround_isohedral(grid: Grid, cells: np.ndarray, st: SurroundResult, t0: float) -> Classification:
+    """The isohedral tiler found by the direct test, with its tiling as a torus witness."""
+    tt = st.tiling
+    a_, b_, d_ = tt.lattice
+    # (as with the boundary-word test, the verdict does not name the wallpaper group: naming it
+    # by tilekit.symmetry cost twice the whole test; :func:`torus_tiling` of the witness has it)
+    return Classification("true", True, witness=tt.to_json(),
+                          verdict=f"tiles isohedrally: a first corona closed under its copies' transforms generates "
+                                  f"a one-class tiling ({tt.m} tiles per translational unit, period lattice "
+                                  f"({a_},{b_}),(0,{d_}))",
+                          evidence={"step": "surround", "m": tt.m, "lattice": list(tt.lattice), "models": st.models,
+                                    "seconds": round(time.monotonic() - t0, 3)})
 
 
 def classify_form(grid: Grid, cells: np.ndarray, *, has_holes: bool = False, **bounds: Any) -> Classification:
