@@ -39,7 +39,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # bench_heesch_sat, its neighbour
 
-from bench_heesch_sat import cache_dir, parse_verdicts  # noqa: E402
+from bench_heesch_sat import cache_dir, child_cpu, parse_verdicts  # noqa: E402
 
 from tilekit.lattice import canonical, free_polyforms, get_grid  # noqa: E402
 from tilekit.plugins.polyomino.classify import classify_form  # noqa: E402
@@ -188,7 +188,19 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--runs", type=int, default=3, help="rounds of both tools (CPU time: min and median)")
     ap.add_argument("--max-level", type=int, default=7,
                     help="heesch-sat's -maxlevel (coronas before 'inconclusive'; its default 7)")
+    ap.add_argument("--per-form", type=int, default=0, metavar="R",
+                    help="also time each form alone and print the medians: tilekit by process_time around each "
+                         "call; heesch-sat as (CPU of a process given the form R + 1 times - CPU of one given it "
+                         "once) / R, which leaves out its start-up and first-record costs (0: not timed)")
     return ap
+
+
+def _medians(label: str, mine: np.ndarray, peer: np.ndarray, sel: np.ndarray) -> str:
+    if not sel.any():
+        return ""
+    a, b = float(np.median(mine[sel])), float(np.median(peer[sel]))
+    return (f"  {label} ({int(sel.sum())}): tilekit {1000 * a:.2f} ms, heesch-sat {1000 * b:.2f} ms, "
+            f"heesch-sat / tilekit {b / a if a else float('inf'):.2f}\n")
 
 
 def main() -> None:
@@ -212,15 +224,26 @@ def main() -> None:
             ours(grid, cells, bool(holey), args.time_limit)
     print(f"warm-up (loading compiled code, forms of <= 4 cells): {time.process_time() - t0:.2f} s CPU", flush=True)
     peer_cpu, mine_cpu = [], []
-    for _ in range(args.runs):
+    lines = text.splitlines(keepends=True)
+    cmd = [str(sat), "-isohedral", "-hh", "-maxlevel", str(args.max_level)]
+    mine_per = np.full((args.runs, len(polys)), np.inf)
+    peer_per = np.full((args.runs, len(polys)), np.inf)
+    for rnd in range(args.runs):
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         out = subprocess.run([str(sat), "-isohedral", "-hh", "-maxlevel", str(args.max_level)], input=text,
                              capture_output=True, text=True, check=True)
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
         peer_cpu.append((after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime))
         t0 = time.process_time()
-        answers = [ours(grid, cells, bool(holey), args.time_limit) for cells, holey in zip(polys, holes)]
+        answers = []
+        for i, (cells, holey) in enumerate(zip(polys, holes)):
+            t1 = time.process_time()
+            answers.append(ours(grid, cells, bool(holey), args.time_limit))
+            mine_per[rnd, i] = time.process_time() - t1
         mine_cpu.append(time.process_time() - t0)
+        if args.per_form:
+            R = args.per_form
+            peer_per[rnd] = [(child_cpu(cmd, line * (R + 1))[0] - child_cpu(cmd, line)[0]) / R for line in lines]
     peer = parse_records(out.stdout)
     if len(peer) != len(polys):
         raise SystemExit(f"heesch-sat answered {len(peer)} records for {len(polys)} forms")
@@ -246,6 +269,14 @@ def main() -> None:
           f"{statistics.median(mine_cpu):.2f}, heesch-sat -isohedral -hh {min(peer_cpu):.2f} / "
           f"{statistics.median(peer_cpu):.2f}; heesch-sat / tilekit {min(peer_cpu) / min(mine_cpu):.2f} (min); "
           f"load {os.getloadavg()}")
+    if args.per_form:
+        mine_min, peer_min = mine_per.min(axis=0), peer_per.min(axis=0)
+        kind = np.array([m[0] for m, _ in answers])
+        print(f"per form, CPU, min of {args.runs} rounds, median (heesch-sat: form given {args.per_form + 1} times "
+              f"less given once, / {args.per_form}):\n" + _medians("all forms", mine_min, peer_min, np.ones(len(kind), bool))
+              + _medians("isohedral", mine_min, peer_min, kind == "I")
+              + _medians("non-tilers without holes", mine_min, peer_min, kind == "~")
+              + _medians("anisohedral or undecided", mine_min, peer_min, (kind == "#") | (kind == "!")), end="")
     for cells, mine, theirs, verdict in disagree:
         print(f"  differs: {to_peer(grid.name, cells).strip()} tilekit {mine} heesch-sat {theirs}: {verdict}")
 
