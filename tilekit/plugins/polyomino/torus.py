@@ -26,6 +26,7 @@ from tilekit.lattice import Grid
 from tilekit.plugins.polyomino.isohedral import _hnf_add
 from tilekit.plugins.polyomino.placements import Forms
 from tilekit.sat import DEFAULT_SAT_SOLVER, IncrementalSolver, gc_paused, solve
+from tilekit.symmetry.orbits import union_find
 
 
 def sublattices(N: int):
@@ -96,27 +97,6 @@ def _tile_maps(plane, gidx, taus, group, types, roots, period, a, b, d, label, r
             perms[k, i] = lab0
         ok[k] = good
     return perms, ok
-
-
-def _orbits(perms: np.ndarray, m: int) -> np.ndarray:
-    """Class of each of m tiles: the orbits under the tile permutations ``perms`` (rows),
-    numbered in order of their first tile."""
-    parent = list(range(m))
-
-    def root(i: int) -> int:
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
-    for perm in perms.tolist():
-        for i, j in enumerate(perm):
-            ri, rj = root(i), root(j)
-            if ri != rj:
-                parent[max(ri, rj)] = min(ri, rj)
-    roots = [root(i) for i in range(m)]
-    order = {r: c for c, r in enumerate(dict.fromkeys(roots))}
-    return np.array([order[r] for r in roots], dtype=np.int64)
 
 
 @dataclass
@@ -295,7 +275,8 @@ class TorusSearch:
             perms, ok = _tile_maps(plane, np.ascontiguousarray(gidx[sel]), np.ascontiguousarray(taus[sel]), *tables)
             maps.append(perms[ok])
             count += int(ok.sum())
-        classes = _orbits(np.concatenate(maps), m)
+        perms = np.concatenate(maps)  # tile i goes to tile perms[k, i]: the orbits are the classes
+        classes = union_find(m, np.column_stack([np.tile(np.arange(m), len(perms)), perms.ravel()]))
         return TorusTiling(lattice, rows, classes, lat, count)
 
     def lattices(self, N: int) -> list[tuple[int, int, int]]:
