@@ -44,7 +44,9 @@ from tilekit.plugins.polyomino.isohedral import _group_inverse, _group_mul, _hnf
 from tilekit.plugins.polyomino.torus import TorusSearch, TorusTiling, _reduce
 
 #: Most models of the closed-corona formula tried before the test gives up (each one that does
-#: not build a one-class tiling is blocked; none has been met: see the module docstring).
+#: not build a one-class tiling is blocked). None has been met: on every hole-free form with a
+#: corona of drafter and abolo to 7, half-Cairo, kite, bevelhex and octasquare to 6 and trihex
+#: to 7 cells (513 isohedral, 316 not), the first model built a one-class tiling.
 MAX_MODELS = 16
 
 
