@@ -24,8 +24,8 @@ levels), the torus search (``TorusSearch.search``) and the witness's wallpaper g
 from __future__ import annotations
 
 import argparse
-import cProfile
 import collections
+import cProfile
 import os
 import pstats
 import sys
