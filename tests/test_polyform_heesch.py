@@ -141,3 +141,20 @@ def test_a_torus_search_stopped_by_the_time_limit_leaves_the_coronas_their_turn(
     c = classify_form(HEXAGONAL, cells, probe=1, max_level=1, time_limit=100.0)
     assert c.tiles == "undecided" and "torus search stopped by the time limit at 2 tiles per unit" in c.verdict
     assert budgets[-1] > 100.0 * TORUS_SHARE  # no coronas left: the torus search has all the time left
+
+
+@pytest.mark.slow
+@pytest.mark.exhaustive
+@pytest.mark.parametrize("code", ["hex:0,0;3,0;9,0;-3,3;0,3;3,3;6,3;0,6;0,9",
+                                  "hex:0,0;3,0;6,0;0,3;0,6;-6,9;-3,9;0,9;-3,12"])
+def test_the_two_9_hexes_once_undecided_are_non_tilers_with_heesch_number_3(code):
+    """The full 9-hex run (docs/benchmarks.md) left these two undecided at 3 coronas, its torus
+    search stopped by the 120 s limit, while A070768(9) = 2,717 counts them among the hole-free
+    non-tilers. With the torus search held to its share of the time, the default bounds prove
+    both: no 4-corona patch even with holes, Hc = Hh = 3 (12-13 s CPU each at load 6); with them
+    the 9-hexes' Hc counts are 825 / 1,822 / 67 / 3 (docs/families/polyform-grids.md)."""
+    from tilekit.plugins.polyomino.classify import classify_form
+    from tilekit.plugins.polyomino.model import Polyomino
+
+    c = classify_form(HEXAGONAL, Polyomino.parse(code).cells)
+    assert (c.tiles, c.heesch, c.heesch_holes) == ("false", 3, 3), c.verdict
