@@ -73,7 +73,7 @@ def classify_sample(grid, forms: list[np.ndarray], flags: np.ndarray, time_limit
     return seconds, kinds
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--grid", default="square")
     ap.add_argument("--cells", type=int, default=13)
@@ -81,7 +81,11 @@ def main() -> None:
     ap.add_argument("--seed", type=int, default=28)
     ap.add_argument("--time-limit", type=float, default=300.0, help="seconds per form, as the search's default")
     ap.add_argument("--profile", action="store_true", help="a second pass under cProfile, CPU by phase")
-    args = ap.parse_args()
+    return ap
+
+
+def main() -> None:
+    args = build_parser().parse_args()
     grid = get_grid(args.grid)
     print(f"load before: {tuple(round(x, 2) for x in os.getloadavg())}", flush=True)
     t = time.process_time()
