@@ -132,28 +132,31 @@ def test_the_polyform_family_name_reads_every_grid(catalogue_cli):
 def test_a_torus_search_stopped_by_the_time_limit_leaves_the_coronas_their_turn(monkeypatch):
     """Two 9-hexes came out 'undecided' in the full 9-hex run (the torus search used the whole
     time limit), although A070768(9) counts them as non-tilers: the corona levels still to try
-    never ran. Now the torus search gets ``TORUS_SHARE`` of the time left while coronas remain,
-    and when the limit stops it the coronas go on. The 6-hex with Hc = Hh = 2 (Table 3 above)
-    with probe 1: level 2 is surrounded, the torus search is made to stop at once, and level 3
-    proves the non-tiler; with no coronas left (max level 1) it stays undecided and says why."""
+    never ran. Now the torus search first gets ``TORUS_SHARE`` of the time left while coronas
+    remain; stopped there, one more corona level runs, then the tori go on with all the time
+    left. The 6-hex with Hc = Hh = 2 (Table 3 above), probe 1: the first torus search is made
+    to stop at once, the second to find nothing, and the coronas prove the non-tiler; with no
+    coronas left (max level 1) the torus search has all the time, and its stop is 'undecided'."""
     from tilekit.plugins.polyomino import torus
     from tilekit.plugins.polyomino.classify import TORUS_SHARE, classify_form
     from tilekit.plugins.polyomino.model import Polyomino
 
     budgets = []
 
-    def stopped_at_once(self, m_range, *, time_limit=None, **kw):
+    def stopped_then_nothing(self, m_range, *, time_limit=None, **kw):
         budgets.append(time_limit)
-        yield next(iter(m_range)), None
+        if len(budgets) == 1:
+            yield next(iter(m_range)), None
 
-    monkeypatch.setattr(torus.TorusSearch, "search", stopped_at_once)
+    monkeypatch.setattr(torus.TorusSearch, "search", stopped_then_nothing)
     cells = Polyomino.parse("hex:0,0;3,0;6,0;-3,3;6,3;-6,6").cells
     c = classify_form(HEXAGONAL, cells, probe=1, max_level=3, time_limit=100.0)
     assert (c.tiles, c.heesch, c.heesch_holes) == ("false", 2, 2), c.verdict
-    assert budgets and budgets[0] <= 100.0 * TORUS_SHARE
+    assert len(budgets) >= 2 and budgets[0] <= 100.0 * TORUS_SHARE < min(budgets[1:])
+    budgets.clear()
     c = classify_form(HEXAGONAL, cells, probe=1, max_level=1, time_limit=100.0)
     assert c.tiles == "undecided" and "torus search stopped by the time limit at 2 tiles per unit" in c.verdict
-    assert budgets[-1] > 100.0 * TORUS_SHARE  # no coronas left: the torus search has all the time left
+    assert budgets[0] > 100.0 * TORUS_SHARE  # no coronas left: the torus search has all the time left
 
 
 @pytest.mark.slow
