@@ -167,7 +167,7 @@ def test_the_two_9_hexes_once_undecided_are_non_tilers_with_heesch_number_3(code
     """The full 9-hex run (docs/benchmarks.md) left these two undecided at 3 coronas, its torus
     search stopped by the 120 s limit, while A070768(9) = 2,717 counts them among the hole-free
     non-tilers. With the torus search held to its share of the time, the default bounds prove
-    both: no 4-corona patch even with holes, Hc = Hh = 3 (12-13 s CPU each at load 6); with them
+    both: no 4-corona patch even with holes, Hc = Hh = 3 (10-14 s CPU each at load 6-9); with them
     the 9-hexes' Hc counts are 825 / 1,822 / 67 / 3 (docs/families/polyform-grids.md)."""
     from tilekit.plugins.polyomino.classify import classify_form
     from tilekit.plugins.polyomino.model import Polyomino
