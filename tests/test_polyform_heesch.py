@@ -21,7 +21,8 @@ The 7-hexes' row (37 non-tilers, Hc 5 / 25 / 6 / 1 and Hh 4 / 19 / 12 / 2 for 0 
 equals ``sat -hh`` shape by shape; it is checked with TILEKIT_EXHAUSTIVE=1. So is the 10-iamonds'
 row (103 non-tilers, Hc 44 / 55 / 3 / 1 and Hh 33 / 59 / 10 / 0 / 1 for 0 / 1 / 2 / 3 / 4), equal
 to ``sat -hh`` shape by shape (``bench_heesch_sat.py --grid iamond --cells 10 --mode hc --hh``,
-2026-12-03: "heesch-sat decided 103 of 103; they differ on 0").
+2026-12-03: "heesch-sat decided 103 of 103; they differ on 0"), and the 11-iamonds' row (594
+non-tilers, Hc 236 / 346 / 11 / 1, Hh 117 / 446 / 30 / 1: "decided 594 of 594; they differ on 0").
 
 Every row sums to Myers' count of hole-free non-tilers (A070768 polyhexes: 4, 37 for n = 6, 7;
 A071334 polyiamonds: 1, 0, 20, 103 for n = 7..10), and the shapes surrounded to the level limit
@@ -46,6 +47,7 @@ KAPLAN = {
     ("iamond", 9): ({0: 11, 1: 9}, {0: 7, 1: 13}, 6),
     ("hex", 7): ({0: 5, 1: 25, 2: 6, 3: 1}, {0: 4, 1: 19, 2: 12, 3: 2}, 4),
     ("iamond", 10): ({0: 44, 1: 55, 2: 3, 3: 1}, {0: 33, 1: 59, 2: 10, 4: 1}, 25),
+    ("iamond", 11): ({0: 236, 1: 346, 2: 11, 3: 1}, {0: 117, 1: 446, 2: 30, 3: 1}, 53),
 }
 #: The 7-hexes take about 6 CPU minutes (one 7-hex has Hc = 3, and proving the Hh of the
 #: Hc = 2 ones needs four coronas): marked exhaustive (TILEKIT_EXHAUSTIVE=1).
@@ -103,6 +105,15 @@ def test_heesch_numbers_of_the_10_iamonds_equal_kaplans_tables():
     (its proof needs five corona levels with holes, minutes); the 25 forms surrounded by four
     hole-free coronas are the anisohedral 10-iamonds (A075224(10) = 25)."""
     _check("iamond", 10, max_level=4)
+
+
+@pytest.mark.slow
+@pytest.mark.exhaustive
+def test_heesch_numbers_of_the_11_iamonds_equal_kaplans_tables():
+    """Tables 5-6, n = 11: 594 hole-free non-tilers (A071334(11)), one with Hc = Hh = 3 (about
+    a minute alone); the 53 forms surrounded by four hole-free coronas are the anisohedral
+    11-iamonds (A075224(11) = 53)."""
+    _check("iamond", 11, max_level=4)
 
 
 def test_the_polyform_family_name_reads_every_grid(catalogue_cli):
