@@ -18,7 +18,11 @@ could not be read from this workspace, so the numbers below are Kaplan's by thre
   4 with (0, 1), 9 with (1, 1).
 
 The 7-hexes' row (37 non-tilers, Hc 5 / 25 / 6 / 1 and Hh 4 / 19 / 12 / 2 for 0 / 1 / 2 / 3)
-equals ``sat -hh`` shape by shape; it is checked with TILEKIT_EXHAUSTIVE=1.
+equals ``sat -hh`` shape by shape; it is checked with TILEKIT_EXHAUSTIVE=1. So is the 10-iamonds'
+row (103 non-tilers, Hc 44 / 55 / 3 / 1 and Hh 33 / 59 / 10 / 0 / 1 for 0 / 1 / 2 / 3 / 4), equal
+to ``sat -hh`` shape by shape (``bench_heesch_sat.py --grid iamond --cells 10 --mode hc --hh``,
+2026-12-03: "heesch-sat decided 103 of 103; they differ on 0"), and the 11-iamonds' row (594
+non-tilers, Hc 236 / 346 / 11 / 1, Hh 117 / 446 / 30 / 1: "decided 594 of 594; they differ on 0").
 
 Every row sums to Myers' count of hole-free non-tilers (A070768 polyhexes: 4, 37 for n = 6, 7;
 A071334 polyiamonds: 1, 0, 20, 103 for n = 7..10), and the shapes surrounded to the level limit
@@ -42,6 +46,8 @@ KAPLAN = {
     ("iamond", 8): ({}, {}, 0),
     ("iamond", 9): ({0: 11, 1: 9}, {0: 7, 1: 13}, 6),
     ("hex", 7): ({0: 5, 1: 25, 2: 6, 3: 1}, {0: 4, 1: 19, 2: 12, 3: 2}, 4),
+    ("iamond", 10): ({0: 44, 1: 55, 2: 3, 3: 1}, {0: 33, 1: 59, 2: 10, 4: 1}, 25),
+    ("iamond", 11): ({0: 236, 1: 346, 2: 11, 3: 1}, {0: 117, 1: 446, 2: 30, 3: 1}, 53),
 }
 #: The 7-hexes take about 6 CPU minutes (one 7-hex has Hc = 3, and proving the Hh of the
 #: Hc = 2 ones needs four coronas): marked exhaustive (TILEKIT_EXHAUSTIVE=1).
@@ -92,6 +98,24 @@ def test_heesch_numbers_of_the_7_hexes_equal_kaplans_tables():
     _check("hex", 7, max_level=4)
 
 
+@pytest.mark.slow
+@pytest.mark.exhaustive
+def test_heesch_numbers_of_the_10_iamonds_equal_kaplans_tables():
+    """Tables 5-6, n = 10: 103 hole-free non-tilers (A071334(10)), one with Hc = 3 and Hh = 4
+    (its proof needs five corona levels with holes, minutes); the 25 forms surrounded by four
+    hole-free coronas are the anisohedral 10-iamonds (A075224(10) = 25)."""
+    _check("iamond", 10, max_level=4)
+
+
+@pytest.mark.slow
+@pytest.mark.exhaustive
+def test_heesch_numbers_of_the_11_iamonds_equal_kaplans_tables():
+    """Tables 5-6, n = 11: 594 hole-free non-tilers (A071334(11)), one with Hc = Hh = 3 (about
+    a minute alone); the 53 forms surrounded by four hole-free coronas are the anisohedral
+    11-iamonds (A075224(11) = 53)."""
+    _check("iamond", 11, max_level=4)
+
+
 def test_the_polyform_family_name_reads_every_grid(catalogue_cli):
     """``--family polyform`` reads the classification's rows on every grid; ``polyomino`` (the
     family's name since part 1) reads the same rows. The 46 free polyiamonds to 7 cells
@@ -114,3 +138,50 @@ def test_the_polyform_family_name_reads_every_grid(catalogue_cli):
     assert r.exit_code == 0 and "heesch_holes" in r.output, r.output
     r = catalogue_cli.run("list", "--family", "polyfrom")
     assert r.exit_code == 2 and "unknown family 'polyfrom'" in r.output
+
+
+def test_a_torus_search_stopped_by_the_time_limit_leaves_the_coronas_their_turn(monkeypatch):
+    """Two 9-hexes came out 'undecided' in the full 9-hex run (the torus search used the whole
+    time limit), although A070768(9) counts them as non-tilers: the corona levels still to try
+    never ran. Now the torus search first gets ``TORUS_SHARE`` of the time left while coronas
+    remain; stopped there, one more corona level runs, then the tori go on with all the time
+    left. The 6-hex with Hc = Hh = 2 (Table 3 above), probe 1: the first torus search is made
+    to stop at once, the second to find nothing, and the coronas prove the non-tiler; with no
+    coronas left (max level 1) the torus search has all the time, and its stop is 'undecided'."""
+    from tilekit.plugins.polyomino import torus
+    from tilekit.plugins.polyomino.classify import TORUS_SHARE, classify_form
+    from tilekit.plugins.polyomino.model import Polyomino
+
+    budgets = []
+
+    def stopped_then_nothing(self, m_range, *, time_limit=None, **kw):
+        budgets.append(time_limit)
+        if len(budgets) == 1:
+            yield next(iter(m_range)), None
+
+    monkeypatch.setattr(torus.TorusSearch, "search", stopped_then_nothing)
+    cells = Polyomino.parse("hex:0,0;3,0;6,0;-3,3;6,3;-6,6").cells
+    c = classify_form(HEXAGONAL, cells, probe=1, max_level=3, time_limit=100.0)
+    assert (c.tiles, c.heesch, c.heesch_holes) == ("false", 2, 2), c.verdict
+    assert len(budgets) >= 2 and budgets[0] <= 100.0 * TORUS_SHARE < min(budgets[1:])
+    budgets.clear()
+    c = classify_form(HEXAGONAL, cells, probe=1, max_level=1, time_limit=100.0)
+    assert c.tiles == "undecided" and "torus search stopped by the time limit at 2 tiles per unit" in c.verdict
+    assert budgets[0] > 100.0 * TORUS_SHARE  # no coronas left: the torus search has all the time left
+
+
+@pytest.mark.slow
+@pytest.mark.exhaustive
+@pytest.mark.parametrize("code", ["hex:0,0;3,0;9,0;-3,3;0,3;3,3;6,3;0,6;0,9",
+                                  "hex:0,0;3,0;6,0;0,3;0,6;-6,9;-3,9;0,9;-3,12"])
+def test_the_two_9_hexes_once_undecided_are_non_tilers_with_heesch_number_3(code):
+    """The full 9-hex run (docs/benchmarks.md) left these two undecided at 3 coronas, its torus
+    search stopped by the 120 s limit, while A070768(9) = 2,717 counts them among the hole-free
+    non-tilers. With the torus search held to its share of the time, the default bounds prove
+    both: no 4-corona patch even with holes, Hc = Hh = 3 (10-14 s CPU each at load 6-9); with them
+    the 9-hexes' Hc counts are 825 / 1,822 / 67 / 3 (docs/families/polyform-grids.md)."""
+    from tilekit.plugins.polyomino.classify import classify_form
+    from tilekit.plugins.polyomino.model import Polyomino
+
+    c = classify_form(HEXAGONAL, Polyomino.parse(code).cells)
+    assert (c.tiles, c.heesch, c.heesch_holes) == ("false", 3, 3), c.verdict

@@ -13,6 +13,8 @@ The order of the tests is the cheap-first order of Myers' and Kaplan's searches:
 5. otherwise tori with 2..``torus_tiles`` tiles per translational unit (:mod:`torus`): a
    cover is a periodic tiling, and the fewest transitivity classes found is the k recorded;
 6. otherwise coronas up to ``max_level``; still surrounded: ``undecided`` with the bounds.
+   While coronas remain to be tried the torus search first gets :data:`TORUS_SHARE` of the
+   time left; stopped there, one more corona level runs before the tori go on.
 
 The ``polyomino-classify`` search that runs this over every free polyomino is
 :mod:`classify_search`.
@@ -68,6 +70,11 @@ MAX_TORUS_TILES = 12
 #: Tiles per translational unit tried by default: 8 decides every polyomino to n = 10, but one
 #: 11-omino (``..x../..xxx/xxxx./xx.x.``, pgg, k = 3) needs 12 (docs/benchmarks.md).
 DEFAULT_TORUS_TILES = 12
+#: The share of the time left that the torus search may use while coronas remain to be tried:
+#: when it is stopped there, the next corona level runs (a non-tiler whose tori are slow to
+#: exhaust is proved by it), then the torus search goes on with all the time left (a tiler
+#: that needs a large unit still finds it), once.
+TORUS_SHARE = 0.5
 #: Further covers of one torus searched for fewer transitivity classes (TorusSearch.search).
 ALTERNATIVES = 64
 #: Largest polyomino classified on request (``Polyomino.classification``, ``--set view=``).
@@ -182,22 +189,38 @@ def _coronas_and_tori(grid: Grid, cells: np.ndarray, hs: HeeschSolver, probe: in
               ("torus", torus_tiles), ("coronas", max_level)]
     best: TorusTiling | None = None
     tried_m = 1
-    for what, bound in stages:
+    shared = True  # the torus search still shares the time with the coronas (once stopped: no more)
+    i = 0
+    while i < len(stages):
+        what, bound = stages[i]
+        i += 1
         if what == "torus":
             if bound <= tried_m:
                 continue
             cut = None  # where the time limit stopped the search for a tiling with fewer classes
             if not proved and best is not None:
                 bound = torus_tiles  # a tiler: look for one class on every torus now
-            for m, tt in ts.search(range(tried_m + 1, bound + 1), want_k=want_k, time_limit=left()):
+            budget = left()
+            share = shared and budget is not None and level < max_level and best is None
+            if share:
+                budget *= TORUS_SHARE  # the rest is kept for the next corona level
+            stopped = 0
+            for m, tt in ts.search(range(tried_m + 1, bound + 1), want_k=want_k, time_limit=budget):
                 if tt is None:
                     if best is not None:  # a tiling was found: the limit only ended the search for a smaller k
                         cut = m
+                        break
+                    if share:  # one more corona level may prove a non-tiler; then the tori go on
+                        stopped = m
                         break
                     reason = f"torus search stopped by the time limit at {m} tiles per unit"
                     return _undecided(level, m - 1, time.monotonic() - t0, reason, r.hc_witness)
                 if best is None or tt.k < best.k:
                     best = tt
+            if stopped:
+                tried_m, shared = stopped - 1, False
+                stages[i:i] = [("coronas", level + 1), ("torus", bound)]
+                continue
             tried_m = bound
             if best is not None and best.k == 1:
                 # one transitivity class: an isohedral tiling the boundary-word templates did not
