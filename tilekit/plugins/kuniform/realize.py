@@ -35,6 +35,8 @@ from tilekit.tiling import PeriodicTiling
 STEPS = 24
 _COS = np.cos(np.arange(STEPS) * 2 * math.pi / STEPS)
 _SIN = np.sin(np.arange(STEPS) * 2 * math.pi / STEPS)
+# the walk adds these to Python floats: plain floats keep round() and + off NumPy scalars
+_COS_F, _SIN_F = _COS.tolist(), _SIN.tolist()
 _Q = 1e6  # points are hashed at this resolution
 #: The largest radius a layout may need (edge lengths); a symbol needing more is refused.
 MAX_RADIUS = 120.0
@@ -58,10 +60,11 @@ def develop(sym: DSymbol, radius: float) -> dict[tuple[int, int, int, int], tupl
     queue = deque([(0, 0.0, 0.0, 0, 1)])
     r2 = radius * radius
     s0, s1, s2, face = sym.s0, sym.s1, sym.s2, sym.face
+    cos, sin = _COS_F, _SIN_F
     while queue:
         c, x, y, a, s = queue.popleft()
         nxt = (
-            (s0[c], x + _COS[a], y + _SIN[a], (a + STEPS // 2) % STEPS, -s),
+            (s0[c], x + cos[a], y + sin[a], (a + STEPS // 2) % STEPS, -s),
             (s1[c], x, y, (a + s * inner[face[c]]) % STEPS, -s),
             (s2[c], x, y, a, -s),
         )
@@ -130,13 +133,12 @@ def faces(sym: DSymbol, flags: dict) -> list[tuple[int, np.ndarray, np.ndarray, 
         if s != 1:
             continue
         p = sym.face[c]
-        theta = a * 2 * math.pi / STEPS
-        m = Affine.translation(x, y) @ Affine.rotation(theta)
         half = 0.5 / math.tan(math.pi / p)
-        cx = x + 0.5 * math.cos(theta) - half * math.sin(theta)
-        cy = y + 0.5 * math.sin(theta) + half * math.cos(theta)
+        cx = x + 0.5 * _COS_F[a] - half * _SIN_F[a]
+        cy = y + 0.5 * _SIN_F[a] + half * _COS_F[a]
         key = (round(cx * 1e4), round(cy * 1e4))
         if key not in out:
+            m = Affine.translation(x, y) @ Affine.rotation(a * 2 * math.pi / STEPS)
             out[key] = (p, np.array([cx, cy]), m, c)
     return list(out.values())
 
