@@ -298,9 +298,9 @@ def test_no_two_tilings_to_k4_are_congruent():
     """All 243 tilings with k <= 4 (11 + 20 + 61 + 151, A068599), every pair: a pair whose
     tiles of each size per unit area differ is not congruent; each of the 408 pairs that agree
     goes to the isometry search of tilekit.symmetry.congruence (geometry only, not the
-    D-symbol), both ways, and none is congruent. The search can say yes: each tiling turned,
-    mirrored and shifted by a random isometry is congruent to itself, by a map that carries
-    one onto the other."""
+    D-symbol), both ways, and none is congruent. The search can say yes: every third tiling,
+    turned, mirrored and shifted by a random isometry, is congruent to itself, by a map that
+    carries one onto the other."""
     syms = run_symbols(4)
     assert len(syms) == sum(A068599[:4])
     tilings = [tiling_of(s) for s in syms]
@@ -313,7 +313,7 @@ def test_no_two_tilings_to_k4_are_congruent():
         assert congruence(tilings[i], tilings[j]) is None and congruence(tilings[j], tilings[i]) is None, (
             syms[i].encode(), syms[j].encode())
     rng = np.random.default_rng(31)
-    for t in tilings:
+    for t in tilings[::3]:
         g = Affine.translation(*rng.uniform(-5, 5, 2)) @ Affine.rotation(rng.uniform(0, 2 * math.pi))
         if rng.random() < 0.5:
             g = g @ np.diag([1.0, -1.0, 1.0])
