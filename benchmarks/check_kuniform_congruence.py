@@ -33,12 +33,17 @@ def invariants(tiling, group: str, orbit_types: list) -> tuple:
     return group, tuple(sorted(map(str, orbit_types))), per_size
 
 
-def main(argv: list[str] | None = None) -> int:
+def build_parser() -> argparse.ArgumentParser:
+    """The command line this check takes (docs/benchmarks.md shows its invocation)."""
     ap = argparse.ArgumentParser()
     ap.add_argument("catalogue", help="catalogue URL, e.g. sqlite:////tmp/k7.sqlite")
     ap.add_argument("--k", type=int, required=True)
     ap.add_argument("--budget", type=float, default=3600.0, help="seconds of CPU for the pair tests (default 3600)")
-    args = ap.parse_args(argv)
+    return ap
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
     cat = open_catalogue(args.catalogue)
     records = [r for r in cat.query(family="k-uniform", limit=1_000_000) if r.properties.get("k") == args.k]
     cat.close()
