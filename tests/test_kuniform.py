@@ -20,19 +20,29 @@ import numpy as np
 import pytest
 
 from tilekit.errors import ParseError
-from tilekit.plugins.kuniform.dsymbol import DSymbol, Star, stars, symbols, vertex_types
+from tilekit.geometry import Affine
+from tilekit.plugins.kuniform.dsymbol import (
+    DSymbol,
+    Star,
+    minimal_symbols,
+    stars,
+    symbols,
+    vertex_types,
+)
 from tilekit.plugins.kuniform.search import (
     chunks,
     from_spec,
     linked,
     records_for,
     star_choices,
+    star_rows,
     tiling_of,
     tilings_with_types,
     types_text,
 )
 from tilekit.regular.notation import VertexType
-from tilekit.symmetry import vertex_orbits, wallpaper_group
+from tilekit.symmetry import congruence, congruent, vertex_orbits, wallpaper_group
+from tilekit.tiling import PeriodicTiling
 
 A068599 = [11, 20, 61, 151, 332, 673]
 A068600 = [11, 20, 39, 33, 15, 10]
@@ -100,44 +110,6 @@ def check_tiling(sym: DSymbol, k: int) -> tuple:
     density = sorted((t, round(float(np.sum(orbit == o)) / area, 6)) for o, t in per_orbit)
     assert sorted(t for _o, t in per_orbit) == sorted(sym.vertex_type(o[0]) for o in sym.vertex_orbits())
     return wallpaper_group(tiling).iuc, tuple(density)
-
-
-def congruent(a, b, radius: float = 9.0) -> bool:
-    """Whether some isometry maps tiling a onto tiling b: the vertex a0 of a goes to a vertex
-    of b's unit, one edge of a0 onto each edge there, either way round, and every tile of a
-    within ``radius`` must land on a tile of b of the same size."""
-    pa = a.patch((-radius - 4, -radius - 4, radius + 4, radius + 4))
-    ca = np.array([p.mean(axis=0) for p in pa.polygons()])
-    sa = np.array([len(p) for p in pa.polygons()])
-    keep = np.hypot(*ca.T) < radius
-    ca, sa = ca[keep], sa[keep]
-    a0 = np.asarray(tiling_vertices(a))[0]
-    span = np.abs(b.v1) + np.abs(b.v2) + radius + 8
-    pb = b.patch((-span[0], -span[1], span[0], span[1]))
-    cb = np.array([p.mean(axis=0) for p in pb.polygons()])
-    sb = np.array([len(p) for p in pb.polygons()])
-    ea = _edge_directions(pa, a0)
-    for b0 in np.asarray(tiling_vertices(b)):
-        for eb in _edge_directions(pb, b0):
-            for flip in (1, -1):
-                theta = eb - flip * ea[0]
-                rot = np.array([[math.cos(theta), -math.sin(theta) * flip], [math.sin(theta), math.cos(theta) * flip]])
-                img = (ca - a0) @ rot.T + b0
-                d = np.hypot(*(img[:, None, :] - cb[None, :, :]).transpose(2, 0, 1))
-                j = d.argmin(axis=1)
-                if np.all(d[np.arange(len(img)), j] < 1e-5) and np.all(sb[j] == sa):
-                    return True
-    return False
-
-
-def _edge_directions(patch, v) -> list[float]:
-    out = set()
-    for p in patch.polygons():
-        for i in range(len(p)):
-            if np.hypot(*(p[i] - v)) < 1e-6:
-                for q in (p[i - 1], p[(i + 1) % len(p)]):
-                    out.add(round(math.atan2(q[1] - v[1], q[0] - v[0]), 9))
-    return sorted(out)
 
 
 def distinct_up_to_congruence(syms: list[DSymbol], k: int) -> None:
@@ -297,8 +269,69 @@ def test_stars_cover_the_21_vertex_types():
     assert {s.polygons for s in stars()} == {t.polygons for t in vertex_types()}
 
 
+def run_symbols(max_k: int) -> list[DSymbol]:
+    """Every tiling the run's chunks find for k = 1..max_k, one symbol per canonical form."""
+    found: dict = {}
+    for k in range(1, max_k + 1):
+        for chunk in chunks({"k": k}):
+            rows = star_rows([VertexType.parse(t).polygons for t in chunk["types"]])
+            for _row, sym in minimal_symbols(rows):
+                found.setdefault(sym.canonical_form(), sym)
+    return list(found.values())
+
+
+def tile_densities(tiling) -> tuple:
+    """Tiles of each size per unit area: congruent tilings have the same."""
+    area = abs(tiling.v1[0] * tiling.v2[1] - tiling.v1[1] * tiling.v2[0])
+    sizes = np.array([len(tiling.prototiles[int(p)].outline) for p in tiling.unit_prototile])
+    return tuple((int(n), round(float(np.sum(sizes == n)) / area, 6)) for n in np.unique(sizes))
+
+
+def moved(tiling, g: np.ndarray) -> PeriodicTiling:
+    """The tiling carried by the isometry g (3, 3): its unit and its lattice vectors."""
+    lin = g[:2, :2]
+    return PeriodicTiling(tiling.prototiles, tiling.unit_prototile, g @ tiling.unit_transform,
+                          lin @ tiling.v1, lin @ tiling.v2, tiling.colouring)
+
+
+def test_no_two_tilings_to_k4_are_congruent():
+    """All 243 tilings with k <= 4 (11 + 20 + 61 + 151, A068599), every pair: a pair whose
+    tiles of each size per unit area differ is not congruent; each of the 408 pairs that agree
+    goes to the isometry search of tilekit.symmetry.congruence (geometry only, not the
+    D-symbol), both ways, and none is congruent. The search can say yes: every third tiling,
+    turned, mirrored and shifted by a random isometry, is congruent to itself, by a map that
+    carries one onto the other."""
+    syms = run_symbols(4)
+    assert len(syms) == sum(A068599[:4])
+    tilings = [tiling_of(s) for s in syms]
+    classes: dict = {}
+    for i, t in enumerate(tilings):
+        classes.setdefault(tile_densities(t), []).append(i)
+    pairs = [p for group in classes.values() for p in itertools.combinations(group, 2)]
+    assert len(pairs) == 408
+    for i, j in pairs:
+        assert congruence(tilings[i], tilings[j]) is None and congruence(tilings[j], tilings[i]) is None, (
+            syms[i].encode(), syms[j].encode())
+    rng = np.random.default_rng(31)
+    for t in tilings[::3]:
+        g = Affine.translation(*rng.uniform(-5, 5, 2)) @ Affine.rotation(rng.uniform(0, 2 * math.pi))
+        if rng.random() < 0.5:
+            g = g @ np.diag([1.0, -1.0, 1.0])
+        h = congruence(t, moved(t, g))
+        assert h is not None
+        # h maps t onto its copy, so g^-1 h maps t onto itself: each unit tile's centre
+        # lands on the centre of a tile of the same size, modulo the lattice
+        polys = t.unit().polygons()
+        centre = np.array([p.mean(axis=0) for p in polys])
+        size = np.array([len(p) for p in polys])
+        image = Affine.apply(np.linalg.inv(g) @ h, centre)
+        f = (image[:, None, :] - centre[None, :, :]) @ np.linalg.inv(np.column_stack([t.v1, t.v2])).T
+        hit = (np.abs(f - np.rint(f)).max(axis=2) < 1e-6) & (size[:, None] == size[None, :])
+        assert hit.any(axis=1).all()
+
+
 def test_the_congruence_check_sees_moved_copies_and_tells_near_twins_apart():
-    """The test's own congruence check (used when two found tilings share their invariants):
+    """The test's congruence check (used when two found tilings share their invariants):
     a tiling laid out from another base chamber (so moved, turned or mirrored) is congruent
     to itself; the two [3^6; 3^4.6] tilings (p6 and p6m, same vertex types) are not."""
     p6, p6m = tilings_with_types([(3, 3, 3, 3, 3, 3), (3, 3, 3, 3, 6)])

@@ -15,8 +15,8 @@ element of the point group: every symmetry is ``T(L) @ op`` for exactly one repr
 One job per module: :mod:`.names` (the 17 groups' IUC and orbifold names), :mod:`.lattice`
 (2D lattice algebra), :mod:`.results` (the returned types), :mod:`.cell` (a period cell as
 arrays), :mod:`.matching` (congruences, locating tiles), :mod:`.group` (the group search),
-:mod:`.classify` (naming the wallpaper group), :mod:`.orbits` (transitivity classes),
-:mod:`.perfect` (perfect colourings).
+:mod:`.classify` (naming the wallpaper group), :mod:`.congruence` (one tiling onto another),
+:mod:`.orbits` (transitivity classes), :mod:`.perfect` (perfect colourings).
 """
 
 from __future__ import annotations
@@ -25,6 +25,7 @@ from typing import Any
 
 from tilekit.symmetry.cell import DEFAULT_TOL, _abs_tol, _base_cell, _check, absolute_tolerance
 from tilekit.symmetry.classify import classify_group, wallpaper_group
+from tilekit.symmetry.congruence import congruence, congruent
 from tilekit.symmetry.group import _group_of_cell, group_from_maps, symmetries
 from tilekit.symmetry.lattice import canonical_basis, reduce_basis, successive_minima
 from tilekit.symmetry.names import IUC, ORBIFOLD
@@ -53,6 +54,8 @@ __all__ = [
     "classify_group",
     "absolute_tolerance",
     "colouring_report",
+    "congruence",
+    "congruent",
     "group_from_maps",
     "is_perfect_colouring",
     "isogonality",

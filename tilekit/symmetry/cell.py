@@ -73,8 +73,8 @@ def _make_cell(
 
 
 def _scale(tiling: PeriodicTiling) -> float:
-    areas = [abs(tiling.prototiles[int(p)].area) for p in tiling.unit_prototile]
-    return math.sqrt(float(np.median(areas)))
+    areas = np.array([abs(proto.area) for proto in tiling.prototiles])  # each prototile once
+    return math.sqrt(float(np.median(areas[np.asarray(tiling.unit_prototile, dtype=np.int64)])))
 
 
 def _check(tiling: Any) -> PeriodicTiling:

@@ -96,12 +96,14 @@ def _assemble(accepted: np.ndarray, given: np.ndarray, tol: float, coloured: boo
 _PROBE = 6
 
 
-def _accepts(cell: _Cell, maps: np.ndarray, anchor: int) -> np.ndarray:
-    """Which maps send every tile of the cell onto a tile of the tiling.
+def _accepts(cell: _Cell, maps: np.ndarray, anchor: int, target: _Cell | None = None) -> np.ndarray:
+    """Which maps send every tile of the cell onto a tile of the tiling (of ``target``'s
+    tiling when given: a congruence of one tiling onto another, labels numbered alike).
 
     Candidates are first tried on the few tiles nearest the anchor, which rejects almost
     every wrong one, and only the survivors on the whole cell.
     """
+    target = cell if target is None else target
     ok = np.zeros(len(maps), dtype=bool)
     if not len(maps):
         return ok
@@ -110,11 +112,11 @@ def _accepts(cell: _Cell, maps: np.ndarray, anchor: int) -> np.ndarray:
     if m > _PROBE:
         near = np.argsort(np.hypot(*(cell.centre - cell.centre[anchor]).T), kind="stable")[:_PROBE]
         pts, cen, lab = _images(cell, maps, near)
-        found, _ = _locate(cell, pts, cen, lab)
+        found, _ = _locate(target, pts, cen, lab)
         alive = alive[(found >= 0).reshape(len(maps), len(near)).all(axis=1)]
     if len(alive):
         pts, cen, lab = _images(cell, maps[alive])
-        found, _ = _locate(cell, pts, cen, lab)
+        found, _ = _locate(target, pts, cen, lab)
         ok[alive[(found >= 0).reshape(len(alive), m).all(axis=1)]] = True
     return ok
 

@@ -382,3 +382,63 @@ def minimal_rows(rows, s1, s2, face, degree):  # pragma: no cover - compiled
         cls = minimal_classes(rows[r], s1, s2, face, degree)
         ok[r] = cls.max() == n - 1
     return ok
+
+
+@njit(cache=True, nogil=True)
+def develop_flags(s0, s1, s2, inner, radius, cos, sin, quantum, cap):  # pragma: no cover - compiled
+    """The flag walk of :func:`.realize.develop`, step for step: a breadth-first walk from the
+    base flag (chamber 0, origin, direction 0, side 1) through σ0, σ1, σ2, keeping the flags
+    whose vertex lies within ``radius``; a flag is keyed by its vertex rounded at ``quantum``,
+    its direction (mod 24) and its side, in an open-addressing hash table. Returns the number
+    of flags and their chamber, x, y, direction and side in the order first reached; the count
+    is -1 when a flag is reached with two chambers, -2 when more than ``cap`` flags are met."""
+    size = 1
+    while size < 2 * cap:
+        size *= 2
+    mask = size - 1
+    table = np.full(size, -1, dtype=np.int64)  # flag index per slot
+    kx = np.empty(cap, dtype=np.int64)
+    ky = np.empty(cap, dtype=np.int64)
+    ch = np.empty(cap, dtype=np.int64)
+    xs = np.empty(cap)
+    ys = np.empty(cap)
+    aa = np.empty(cap, dtype=np.int64)
+    ss = np.empty(cap, dtype=np.int64)
+    r2 = radius * radius
+    ch[0], xs[0], ys[0], aa[0], ss[0], kx[0], ky[0] = 0, 0.0, 0.0, 0, 1, 0, 0
+    h0 = (((0 * 1000003) ^ 0) * 31 + 0) * 2 + 1
+    table[h0 & mask] = 0
+    n = 1
+    head = 0
+    while head < n:
+        c, x, y, a, s = ch[head], xs[head], ys[head], aa[head], ss[head]
+        head += 1
+        for move in range(3):
+            if move == 0:
+                c2, x2, y2, a2 = s0[c], x + cos[a], y + sin[a], (a + 12) % 24
+            elif move == 1:
+                c2, x2, y2, a2 = s1[c], x, y, (a + s * inner[c]) % 24
+            else:
+                c2, x2, y2, a2 = s2[c], x, y, a
+            t = -s
+            if x2 * x2 + y2 * y2 > r2:
+                continue
+            qx = np.int64(np.rint(x2 * quantum))
+            qy = np.int64(np.rint(y2 * quantum))
+            h = (((qx * 1000003) ^ qy) * 31 + a2) * 2 + (1 if t > 0 else 0)
+            slot = h & mask
+            while True:
+                f = table[slot]
+                if f < 0:
+                    if n == cap:
+                        return -2, ch, xs, ys, aa, ss
+                    table[slot] = n
+                    ch[n], xs[n], ys[n], aa[n], ss[n], kx[n], ky[n] = c2, x2, y2, a2, t, qx, qy
+                    n += 1
+                    break
+                if kx[f] == qx and ky[f] == qy and aa[f] == a2 and ss[f] == t:
+                    if ch[f] != c2:
+                        return -1, ch, xs, ys, aa, ss
+                    break
+                slot = (slot + 1) & mask
+    return n, ch[:n], xs[:n], ys[:n], aa[:n], ss[:n]

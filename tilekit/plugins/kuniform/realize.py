@@ -19,8 +19,8 @@ fundamental parallelogram of that basis are the translational unit.
 from __future__ import annotations
 
 import math
-from collections import deque
 from functools import lru_cache
+from typing import NamedTuple
 
 import numpy as np
 
@@ -48,38 +48,40 @@ def interior_steps(p: int) -> int:
     return steps // (2 * p)
 
 
-def develop(sym: DSymbol, radius: float) -> dict[tuple[int, int, int, int], tuple[int, float, float]]:
-    """Every flag whose vertex lies within ``radius`` of the base vertex: key (x, y
-    quantised, direction, side) -> (chamber, x, y)."""
-    inner = {p: interior_steps(p) for p in set(sym.face)}
-    flags: dict[tuple[int, int, int, int], tuple[int, float, float]] = {}
-    start = (0, 0, 0, 1)
-    flags[start] = (0, 0.0, 0.0)
-    queue = deque([(0, 0.0, 0.0, 0, 1)])
-    r2 = radius * radius
-    s0, s1, s2, face = sym.s0, sym.s1, sym.s2, sym.face
-    while queue:
-        c, x, y, a, s = queue.popleft()
-        nxt = (
-            (s0[c], x + _COS[a], y + _SIN[a], (a + STEPS // 2) % STEPS, -s),
-            (s1[c], x, y, (a + s * inner[face[c]]) % STEPS, -s),
-            (s2[c], x, y, a, -s),
-        )
-        for c2, x2, y2, a2, t in nxt:
-            if x2 * x2 + y2 * y2 > r2:
-                continue
-            key = (round(x2 * _Q), round(y2 * _Q), a2, t)
-            got = flags.get(key)
-            if got is None:
-                flags[key] = (c2, x2, y2)
-                queue.append((c2, x2, y2, a2, t))
-            elif got[0] != c2:
-                raise GeometryError("the D-symbol does not lay out in the plane: a flag got two chambers")
-    return flags
+class Flags(NamedTuple):
+    """The flags a walk reached, in the order reached: chamber, vertex x and y, edge direction
+    (in steps of 15°) and side (1: the face is on the left)."""
+
+    chamber: np.ndarray
+    x: np.ndarray
+    y: np.ndarray
+    direction: np.ndarray
+    side: np.ndarray
 
 
-def _lattice(flags: dict, radius: float) -> tuple[np.ndarray, np.ndarray] | None:
-    pts = np.array([(x, y) for (_kx, _ky, a, s), (c, x, y) in flags.items() if c == 0 and a == 0 and s == 1])
+def develop(sym: DSymbol, radius: float) -> Flags:
+    """Every flag whose vertex lies within ``radius`` of the base vertex (a compiled loop,
+    :func:`.kernels.develop_flags`; flags are told apart by their vertex rounded at 1e-6,
+    direction and side)."""
+    from tilekit.plugins.kuniform.kernels import develop_flags
+
+    inner = np.array([interior_steps(p) for p in sym.face], dtype=np.int64)
+    s0, s1, s2 = (np.asarray(s, dtype=np.int64) for s in (sym.s0, sym.s1, sym.s2))
+    # at most 2 x 6 flags per vertex, at most 2 / sqrt(3) vertices per unit area (3^6)
+    cap = int(14 * math.pi * (radius + 1) ** 2) + 64
+    while True:
+        n, c, x, y, a, side = develop_flags(s0, s1, s2, inner, float(radius), _COS, _SIN, _Q, cap)
+        if n != -2:
+            break
+        cap *= 2
+    if n == -1:
+        raise GeometryError("the D-symbol does not lay out in the plane: a flag got two chambers")
+    return Flags(c, x, y, a, side)
+
+
+def _lattice(flags: Flags, radius: float) -> tuple[np.ndarray, np.ndarray] | None:
+    base = (flags.chamber == 0) & (flags.direction == 0) & (flags.side == 1)
+    pts = np.column_stack([flags.x[base], flags.y[base]])
     if len(pts) < 3:
         return None
     norms = np.hypot(pts[:, 0], pts[:, 1])
@@ -103,7 +105,7 @@ def _lattice(flags: dict, radius: float) -> tuple[np.ndarray, np.ndarray] | None
 
 
 @lru_cache(maxsize=4)
-def layout(sym: DSymbol) -> tuple[dict, np.ndarray, np.ndarray]:
+def layout(sym: DSymbol) -> tuple[Flags, np.ndarray, np.ndarray]:
     """The flags round the base vertex out to a radius that shows a lattice basis and a
     whole fundamental parallelogram, with that basis (the last few kept: a stored record is
     laid out for its unit and again for its GomJau-Hogg notation; callers only read it)."""
@@ -121,24 +123,34 @@ def layout(sym: DSymbol) -> tuple[dict, np.ndarray, np.ndarray]:
         radius = min(MAX_RADIUS, radius * 1.5)
 
 
-def faces(sym: DSymbol, flags: dict) -> list[tuple[int, np.ndarray, np.ndarray, int]]:
+#: Affine.rotation by each direction, and the inradius of each polygon size (edge 1).
+_ROT = np.array([Affine.rotation(a * 2 * math.pi / STEPS) for a in range(STEPS)])
+_HALF = np.array([0.5 / math.tan(math.pi / p) if p >= 3 else 0.0 for p in range(43)])
+
+
+def _face_arrays(sym: DSymbol, flags: Flags) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`faces` as arrays (size, centre, placement, chamber), computed for all flags at
+    once; a face is kept at the first of its flags in the walk's order."""
+    on = flags.side == 1
+    a, c, x, y = flags.direction[on], flags.chamber[on], flags.x[on], flags.y[on]
+    p = np.asarray(sym.face, dtype=np.int64)[c]
+    half = _HALF[p]
+    cx = x + 0.5 * _COS[a] - half * _SIN[a]
+    cy = y + 0.5 * _SIN[a] + half * _COS[a]
+    key = np.column_stack([np.rint(cx * 1e4), np.rint(cy * 1e4)])
+    _, first = np.unique(key, axis=0, return_index=True)
+    first = np.sort(first)
+    m = _ROT[a[first]].copy()
+    m[:, 0, 2], m[:, 1, 2] = x[first], y[first]
+    return p[first], np.column_stack([cx[first], cy[first]]), m, c[first]
+
+
+def faces(sym: DSymbol, flags: Flags) -> list[tuple[int, np.ndarray, np.ndarray, int]]:
     """One (size, centre, placement, chamber) per face with a flag in ``flags``: the placement
     maps the unit regular polygon (first edge from the origin along +x, counter-clockwise)
     onto the face, and the chamber is that of the flag (its corner 0, its edge 0-1, the face)."""
-    out: dict[tuple[int, int], tuple[int, np.ndarray, np.ndarray, int]] = {}
-    for (_kx, _ky, a, s), (c, x, y) in flags.items():
-        if s != 1:
-            continue
-        p = sym.face[c]
-        theta = a * 2 * math.pi / STEPS
-        m = Affine.translation(x, y) @ Affine.rotation(theta)
-        half = 0.5 / math.tan(math.pi / p)
-        cx = x + 0.5 * math.cos(theta) - half * math.sin(theta)
-        cy = y + 0.5 * math.sin(theta) + half * math.cos(theta)
-        key = (round(cx * 1e4), round(cy * 1e4))
-        if key not in out:
-            out[key] = (p, np.array([cx, cy]), m, c)
-    return list(out.values())
+    p, centre, m, c = _face_arrays(sym, flags)
+    return list(zip(p.tolist(), centre, m, c.tolist()))
 
 
 def periodic_tiling(sym: DSymbol, *, name: str = "", family: str = "k-uniform", cls: type = PeriodicTiling,
@@ -148,14 +160,14 @@ def periodic_tiling(sym: DSymbol, *, name: str = "", family: str = "k-uniform", 
     flags, v1, v2 = layout(sym)
     inv = np.linalg.inv(np.column_stack([v1, v2]))
     sizes = tuple(sorted(set(sym.face)))
-    protos, transforms = [], []
-    for p, centre, m, _c in faces(sym, flags):
-        f = inv @ centre
-        if np.all(np.floor(f + 1e-7) == 0):
-            protos.append(sizes.index(p))
-            transforms.append(m)
-    if not protos:
+    p, centre, m, _c = _face_arrays(sym, flags)
+    f0 = inv[0, 0] * centre[:, 0] + inv[0, 1] * centre[:, 1]
+    f1 = inv[1, 0] * centre[:, 0] + inv[1, 1] * centre[:, 1]
+    inside = (np.floor(f0 + 1e-7) == 0) & (np.floor(f1 + 1e-7) == 0)
+    if not inside.any():
         raise GeometryError("the layout found no face in the fundamental parallelogram")
+    protos = [sizes.index(q) for q in p[inside].tolist()]
+    transforms = list(m[inside])
     order = sorted(range(len(protos)), key=lambda i: (protos[i], round(transforms[i][0, 2], 6), round(transforms[i][1, 2], 6)))
     protos = [protos[i] for i in order]
     transforms = np.array([transforms[i] for i in order])
