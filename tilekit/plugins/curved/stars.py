@@ -93,12 +93,20 @@ def edge_length(cfg: tuple[int, ...]) -> float:
     if notation.geometry_of(cfg) != wythoff.HYPERBOLIC:
         raise ParameterError(f"{notation.dotted(cfg)} is {notation.geometry_of(cfg)}: the vertex-star construction "
                              "is for hyperbolic configurations (angles summing past a full turn)")
+    cosines = [(cfg.count(n), math.cos(math.pi / n)) for n in set(cfg)]
+
+    def total(edge: float) -> float:
+        c = math.cosh(edge / 2)
+        return sum(k * 2.0 * math.asin(min(1.0, cos / c)) for k, cos in cosines)
+
     lo, hi = 1e-9, 1.0
-    while sum(polygon_angle(n, hi) for n in cfg) > 2 * math.pi:
+    while total(hi) > 2 * math.pi:
         hi *= 2
-    for _ in range(200):
+    for _ in range(200):  # until the interval stops shrinking (about 60 halvings)
         mid = (lo + hi) / 2
-        lo, hi = (mid, hi) if sum(polygon_angle(n, mid) for n in cfg) > 2 * math.pi else (lo, mid)
+        if not lo < mid < hi:
+            break
+        lo, hi = (mid, hi) if total(mid) > 2 * math.pi else (lo, mid)
     return (lo + hi) / 2
 
 
@@ -280,7 +288,7 @@ def closes(star: Star, pairing: Pairing) -> bool:
             j = pairing[e][0]
             h = h @ gens[e]
             back = step == n - 1
-            if np.allclose(h[:, 2], (0.0, 0.0, 1.0), atol=1e-7) != back:
+            if (abs(h[0, 2]) < 1e-7 and abs(h[1, 2]) < 1e-7 and abs(h[2, 2] - 1.0) < 1e-7) != back:
                 return False
             e = (j - 1) % d if np.linalg.det(h) > 0 else (j + 1) % d
         moved = centres @ h.T
