@@ -149,6 +149,9 @@ def test_a_search_past_the_pairing_limit_is_refused_before_it_starts():
     start = time.perf_counter()
     with pytest.raises(ParameterError, match=f"more than {stars.MAX_PAIRINGS} pairings.*--set pairing"):
         stars.find((3,) * 8)
+    with pytest.raises(ParameterError, match=f"polygons of up to {stars.MAX_SIDES} sides") as exc:
+        stars.find_first((3, 3, 3, 14, 14))
+    assert "\n" not in str(exc.value)
     with pytest.raises(ParameterError, match="too many to search"):
         stars.StarTiling("3.3.3.6.6", pairing="0- 1+ 2+ 3- 4+").configure(configuration="3^8")
     assert time.perf_counter() - start < 5

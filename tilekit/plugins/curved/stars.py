@@ -574,7 +574,8 @@ class StarTiling(CurvedTiling):
         return "\n".join([
             "--set configuration=C       the vertex configuration, e.g. 3.3.3.6.6",
             "--set pairing=P             each star edge's partner and sign, e.g. '0- 1+ 2+ 3- 4+' (default: the "
-            "first that closes up)",
+            f"first that closes up; the search takes valence <= {MAX_VALENCE}, polygons <= {MAX_SIDES} sides, <= "
+            f"{MAX_PAIRINGS} pairings)",
             f"--set radius=R              the faces covering the disc of radius R (0..{MAX_RADIUS:g}; default: about "
             f"{DEFAULT_FACES} faces)",
             *DRAWING_HELP,
