@@ -13,8 +13,8 @@ The third family, ``curved``, holds the uniform tilings of the sphere and the hy
 plane by Wythoff's construction: ``wythoff`` (the triangle group, the generator, the faces),
 ``uniform`` (UniformTiling, named by vertex configuration or Wythoff symbol), ``notation``
 (vertex configurations), records from ``catalogue/curved/uniform.toml``; ``stars`` (StarTiling:
-uniform tilings Wythoff's construction does not give, developed from a vertex star, the
-3.3.3.p.p family of ``catalogue/curved/stars.toml``).
+uniform tilings Wythoff's construction does not give, developed from a vertex star: the
+3.3.3.p.p family and every vertex-species type with one, ``catalogue/curved/stars.toml``).
 The fourth, ``curved-isohedral``, holds Escher-like isohedral tiles on {p, q}: ``isohedral``
 (CurvedIsohedralTiling) and ``delaney`` (the types as Delaney symbols), records from
 ``catalogue/curved/isohedral.toml``.
