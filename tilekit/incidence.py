@@ -32,8 +32,13 @@ Edge = tuple[str, int]
 #: and the longest text parsed (the book's superscript form takes about 8 characters an edge).
 MAX_EDGES = 12
 MAX_TEXT = 400
+#: The labels, in the order symbols are relabelled with them: a-z, then A-Z for a tile of
+#: more than 26 edges (the curved family's side pairings of p-gons), so every symbol of up to
+#: 26 labels reads exactly as before. One character a label; upper and lower case differ.
+LABELS = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
 
-_TOKEN = re.compile(r"([a-z])(\^?\{?([+-])\}?)?")
+_TOKEN = re.compile(r"([a-zA-Z])(\^?\{?([+-])\}?)?")
+_RANK = {c: i for i, c in enumerate(LABELS)}  # a-z before A-Z when symbols are ordered
 _SIGN = {"+": 1, "-": -1, None: 0}
 _SIGN_TEXT = {1: "+", -1: "-", 0: ""}
 
@@ -54,7 +59,7 @@ def _parse_part(part: str, text: str, which: str) -> list[Edge]:
         if not m:
             raise ParseError(
                 f"incidence symbol {text!r}: unexpected {compact[pos:pos + 3]!r} in the {which} part "
-                "(expected letters a-z, each optionally followed by + or -)"
+                "(expected labels a-z or A-Z, each optionally followed by + or -)"
             )
         out.append((m.group(1), _SIGN[m.group(3)]))
         pos = m.end()
@@ -72,14 +77,15 @@ class IncidenceSymbol:
 
     # construction ------------------------------------------------------------------
     @classmethod
-    def parse(cls, text: str) -> IncidenceSymbol:
-        """Parse the ASCII form ``[a+b+a-; b-a+]`` or the book's ``$[a^+b^+ ...]$`` form."""
+    def parse(cls, text: str, max_edges: int = MAX_EDGES) -> IncidenceSymbol:
+        """Parse the ASCII form ``[a+b+a-; b-a+]`` or the book's ``$[a^+b^+ ...]$`` form, of at
+        most ``max_edges`` tiling edges (up to ``len(LABELS)``)."""
         if not isinstance(text, str):
             raise ParseError(f"incidence symbol {text!r} is not text like '[a+b+a-; b-a+]'")
         if len(text) > MAX_TEXT:
             raise ParseError(
                 f"incidence symbol {text[:30]!r}... is {len(text)} characters long; an isohedral tile "
-                f"has at most {MAX_EDGES} tiling edges (§5.2)"
+                f"has at most {max_edges} tiling edges (§5.2)"
             )
         s = _normalise(text)
         m = re.fullmatch(r"\[([^;\]]*);([^;\]]*)\]", s)
@@ -89,10 +95,10 @@ class IncidenceSymbol:
                 "(edge labels, a semicolon, adjacent labels, in square brackets)"
             )
         edges = _parse_part(m.group(1), text, "first")
-        if len(edges) > MAX_EDGES:
+        if len(edges) > max_edges:
             raise ParseError(
                 f"incidence symbol {text!r} has {len(edges)} edges; an isohedral tile has at most "
-                f"{MAX_EDGES} tiling edges (§5.2)"
+                f"{max_edges} tiling edges (§5.2)"
             )
         adjacency = _parse_part(m.group(2), text, "second")
         sym = cls(tuple(edges), tuple(adjacency))
@@ -210,7 +216,7 @@ class IncidenceSymbol:
         flipped: set[str] = set()
         for lab, sg in seq:
             if lab not in names:
-                names[lab] = chr(ord("a") + len(names))
+                names[lab] = LABELS[len(names)]
                 if sg < 0:
                     flipped.add(lab)
         adj = self.adjacent_map()
@@ -231,8 +237,8 @@ class IncidenceSymbol:
         # order: letters, then '+' before '-' before no sign (as Grünbaum and Shephard list them)
         order = {1: 0, -1: 1, 0: 2}
         return (
-            tuple((lab, order[sg]) for lab, sg in self.edges),
-            tuple((lab, order[sg]) for lab, sg in self.adjacency),
+            tuple((_RANK.get(lab, len(LABELS)), lab, order[sg]) for lab, sg in self.edges),
+            tuple((_RANK.get(lab, len(LABELS)), lab, order[sg]) for lab, sg in self.adjacency),
         )
 
     def canonical(self) -> IncidenceSymbol:
@@ -285,7 +291,7 @@ class IncidenceSymbol:
 def all_relabellings(symbol: IncidenceSymbol) -> list[IncidenceSymbol]:
     """Every renaming of the labels by letters a.. (small symbols only: at most 6 labels)."""
     labels = symbol.labels
-    letters = [chr(ord("a") + i) for i in range(len(labels))]
+    letters = list(LABELS[:len(labels)])
     return [symbol.relabel(dict(zip(labels, p))) for p in permutations(letters)]
 
 

@@ -131,3 +131,30 @@ def test_far_corner_orbits(symbol: str) -> None:
     c = wythoff.Construction(sym)
     assert [(f.corner, f.sides) for f in c.face_types] == sym.face_sizes()
     assert uniform_symmetry(c).vertex_stabiliser == 2 * sym.orders[0]
+
+
+def test_one_orbifold_spelling_past_order_nine(tmp_path, monkeypatch) -> None:
+    """Orders past 9 are separated by commas (Conway, Burgiel, Goodman-Strauss, *The Symmetries
+    of Things*, 2008): the uniform tilings' groups (orbifold.py) and the isohedral types'
+    (delaney.py) are written by one function, tilekit.symmetry.names.orbifold_symbol, and a
+    catalogue query answers to the old run-together spelling too. 2 | 3 10 (3.10.3.10) lies on
+    the (2, 3, 10) triangle group *10,3,2; so does the regular 10-gon of {10,3} with its full
+    symmetry as an isohedral tile, and its rotations alone give 10,3,2."""
+    from family_cli import family_cli
+
+    from tilekit.plugins.curved.isohedral import CurvedIsohedralTiling
+    from tilekit.symmetry.names import orbifold_spellings, orbifold_symbol
+
+    assert OrbifoldGroup((), (10, 3, 2), True).notation == "*10,3,2" == orbifold_symbol((), [[10, 3, 2]])
+    assert OrbifoldGroup((12, 6), (2,), True).notation == "12,6*2"
+    assert OrbifoldGroup((), (6, 3, 2), True).notation == "*632"      # single digits unchanged
+    assert UniformTiling("3.10.3.10").properties()["orbifold"] == "*10,3,2"
+    assert CurvedIsohedralTiling(10, 3, symbol="[aaaaaaaaaa; a]").properties()["orbifold"] == "*10,3,2"
+    assert CurvedIsohedralTiling(10, 3, symbol="[a+a+a+a+a+a+a+a+a+a+; a+]").properties()["orbifold"] == "10,3,2"
+    assert "*10,3,2" in orbifold_spellings("*1032") and "*1032" in orbifold_spellings("*10,3,2")
+    cli = family_cli(tmp_path, monkeypatch, "curved")
+    for spelling in ("*10,3,2", "*1032"):
+        r = cli("list", "--family", "curved", "--where", f"orbifold={spelling}")
+        assert r.exit_code == 0 and "3.10.3.10" in r.output, r.output
+        assert "3.4.10.4" in r.output          # 3 10 | 2, the same group
+        assert "rhombicosidodecahedron" not in r.output and "3.20.20" not in r.output   # *532; no record

@@ -35,7 +35,7 @@ def test_parse_and_print_ascii_and_book_forms():
         ("[a+b; b+a]", "differ in directedness"),
         ("[a+b+; b+b+]", "adjacency is not symmetric"),
         ("[a+a; a]", "both directed and undirected"),
-        ("[a+B+; a+B+]", "unexpected"),
+        ("[a+7+; a+7+]", "unexpected"),   # labels are letters a-z, A-Z (incidence.LABELS)
     ],
 )
 def test_bad_symbols_are_rejected_with_the_reason(text, problem):

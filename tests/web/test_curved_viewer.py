@@ -168,3 +168,8 @@ def test_a_hyperbolic_vertex_species_row_opens_the_curved_record(species_catalog
     assert answer.status_code == 200 and answer.json()["geometry"] == "hyperbolic"
     page = species_client.get("/tiling/3%5E3.6%5E2")
     assert page.status_code == 200 and "no plane tiling" not in page.text and "<svg" in page.text
+    # a non-Wythoffian type found by the pairing search (catalogue/curved/stars.toml, issue 35)
+    assert cat.result_entry("4^2.6^2").family == "vertex-species"
+    assert species_client.get("/api/curved/4%5E2.6%5E2").json()["geometry"] == "hyperbolic"
+    page = species_client.get("/tiling/4%5E2.6%5E2")
+    assert page.status_code == 200 and "<svg" in page.text

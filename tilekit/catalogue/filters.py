@@ -249,5 +249,6 @@ def group_names(key: str, value: str) -> list[str]:
         IUC,
         ORBIFOLD,
     )
+    from tilekit.symmetry.names import orbifold_spellings  # *1032 and *10,3,2 alike (curved groups)
 
-    return sorted({value, ORBIFOLD.get(value, value), IUC.get(value, value)})
+    return sorted({ORBIFOLD.get(value, value), IUC.get(value, value), *orbifold_spellings(value)})

@@ -13,8 +13,8 @@ The third family, ``curved``, holds the uniform tilings of the sphere and the hy
 plane by Wythoff's construction: ``wythoff`` (the triangle group, the generator, the faces),
 ``uniform`` (UniformTiling, named by vertex configuration or Wythoff symbol), ``notation``
 (vertex configurations), records from ``catalogue/curved/uniform.toml``; ``stars`` (StarTiling:
-uniform tilings Wythoff's construction does not give, developed from a vertex star, the
-3.3.3.p.p family of ``catalogue/curved/stars.toml``).
+uniform tilings Wythoff's construction does not give, developed from a vertex star: the
+3.3.3.p.p family and every vertex-species type with one, ``catalogue/curved/stars.toml``).
 The fourth, ``curved-isohedral``, holds Escher-like isohedral tiles on {p, q}: ``isohedral``
 (CurvedIsohedralTiling) and ``delaney`` (the types as Delaney symbols), records from
 ``catalogue/curved/isohedral.toml``.
@@ -235,34 +235,57 @@ def isohedral_records() -> list[CatalogueRecord]:
     return out
 
 
-#: The non-Wythoffian uniform tilings' data file (the 3.3.3.p.p family, stars.py).
+#: The non-Wythoffian uniform tilings' data file (the 3.3.3.p.p family and every vertex type
+#: of the vertex-species search's hyperbolic range that has a vertex-transitive tiling, stars.py).
 STARS_FILE = "stars.toml"
 
 
-def _star_configurations() -> tuple[list[tuple[int, ...]], str]:
-    """The configurations and pairing catalogue/curved/stars.toml ships (checked, one-line errors)."""
-    # start-up cost: the data file is read only when seeding
+def _stars_data() -> dict[str, Any]:
+    """catalogue/curved/stars.toml, checked (one-line errors naming the file and the field)."""
+    # start-up cost: the data file is read only when seeding or resolving a curved name
+    entry = Field("table", fields={"configuration": Field("str", required=True),
+                                   "pairing": Field("str", required=True)})
+    return check(Field("table", fields={
+        "max_sides": Field("int", required=True, range=(6, 60)),
+        "pairing": Field("str", required=True),
+        "species": Field("table", required=True, fields={"max_sides": Field("int", required=True, range=(3, 12)),
+                                                         "max_valence": Field("int", required=True, range=(3, 8))}),
+        "tiling": Field("list", items=entry, default=[]),
+    }), read_toml(catalogue_dir() / "curved" / STARS_FILE, "curved records"), f"curved records {STARS_FILE}")
 
-    data = check(Field("table", fields={"max_sides": Field("int", required=True, range=(6, 60)),
-                                        "pairing": Field("str", required=True)}),
-                 read_toml(catalogue_dir() / "curved" / STARS_FILE, "curved records"), f"curved records {STARS_FILE}")
-    return [(3, 3, 3, p, p) for p in range(6, data["max_sides"] + 1, 2)], data["pairing"]
+
+def _star_configurations() -> list[tuple[tuple[int, ...], str]]:
+    """(canonical configuration, pairing) of every record catalogue/curved/stars.toml ships:
+    3.3.3.p.p for even p up to max_sides, then each [[tiling]] (a configuration listed twice
+    keeps its first pairing)."""
+    from tilekit.plugins.curved import notation  # no NumPy: the core's vertex-type notation
+
+    data = _stars_data()
+    out = {(3, 3, 3, p, p): data["pairing"] for p in range(6, data["max_sides"] + 1, 2)}
+    for t in data["tiling"]:
+        try:
+            cfg = notation.canonical(notation.parse(t["configuration"]))
+        except ParseError as exc:
+            raise ParseError(f"curved records {STARS_FILE}: {exc}") from None
+        out.setdefault(cfg, t["pairing"])
+    return list(out.items())
 
 
 def star_records() -> list[CatalogueRecord]:
-    """The non-Wythoffian uniform tilings 3.3.3.p.p (catalogue/curved/stars.toml)."""
+    """The non-Wythoffian uniform tilings of catalogue/curved/stars.toml, each checked to close
+    up round every face (StarTiling refuses a pairing that does not)."""
     # measured start-up cost: NumPy and the construction (records are built only when seeding)
     from tilekit.plugins.curved import notation
     from tilekit.plugins.curved.stars import StarTiling
 
-    configurations, pairing = _star_configurations()
     out = []
-    for cfg in configurations:
+    for cfg, pairing in _star_configurations():
         t = StarTiling(notation.dotted(cfg), pairing=pairing)
         aliases = sorted({notation.dotted(cfg), notation.exponent(cfg)} - {t.name})
+        analogue = " (the analogue of 3^3.4^2)" if cfg[:3] == (3, 3, 3) and len(cfg) == 5 and cfg[3] == cfg[4] else ""
         out.append(CatalogueRecord(family=CURVED, name=t.name, spec=t.spec(), properties=t.properties(),
-                                   title=f"{t.configuration}: a non-Wythoffian uniform tiling of the hyperbolic plane "
-                                         "(the analogue of 3^3.4^2)", aliases=aliases))
+                                   title=f"{t.configuration}: a non-Wythoffian uniform tiling of the hyperbolic plane"
+                                         + analogue, aliases=aliases))
     return out
 
 
@@ -330,12 +353,21 @@ def tilekit_resolve_name(name: str) -> list[str] | None:
     if notation.geometry_of(cfg) == "euclidean":
         return None
     dotted = notation.dotted(notation.canonical(cfg))
-    if notation.canonical(cfg) in _star_configurations()[0]:
+    if notation.canonical(cfg) in dict(_star_configurations()):
         return [f"vertex_configuration={dotted}"]
     # start-up cost: the construction loads NumPy, only for a name that is a curved configuration
     from tilekit.errors import ParameterError
     from tilekit.plugins.curved import wythoff
 
+    if not wythoff.symbols_for(cfg) and notation.geometry_of(cfg) == HYPERBOLIC:
+        species = _stars_data()["species"]
+        if len(cfg) <= species["max_valence"] and max(cfg) <= species["max_sides"]:
+            raise ParameterError(f"{dotted} has no vertex-transitive tiling: no Wythoff symbol gives it, and no "
+                                 "pairing of its vertex star's edges closes up into one (every pairing was tried: "
+                                 "tilekit.plugins.curved.stars.find)")
+        raise ParameterError(f"{dotted}: no Wythoff symbol gives it, and the vertex-star records cover hyperbolic "
+                             f"types of up to {species['max_valence']} polygons of up to {species['max_sides']} sides; "
+                             f"search it: tilekit render 3.3.3.6.6 --set configuration={dotted}")
     sym = wythoff.symbol_for(cfg)  # raises when no uniform tiling has this configuration
     bounds = _uniform_data()["enumerate"]
     if not any(wythoff.recorded(s, **bounds) for s in wythoff.symbols_for(cfg)):

@@ -37,6 +37,7 @@ from tilekit.edgeshapes import ROT
 from tilekit.errors import ParameterError, ParseError
 from tilekit.incidence import IncidenceSymbol, symbol_table
 from tilekit.limits import refuse_over
+from tilekit.symmetry.names import orbifold_symbol as orbifold_text
 
 #: The largest p whose types :func:`enumerate_types` lists: the edge-orbit pairings it tries
 #: grow about fivefold with each edge (p = 10 takes seconds, p = 13 minutes), and its labels
@@ -225,10 +226,7 @@ def orbifold_symbol(d: Delaney, q: int) -> str:
         cones = [2, 2, cones[0]]  # the sphere's dihedral groups as Conway writes them: 22n, *22n
     if len(rings) == 1 and not cones and len(rings[0]) == 3 and sorted(rings[0])[:2] == [2, 2]:
         rings = [[2, 2, max(rings[0])]]
-    sep = "," if max(cones + [v for r in rings for v in r], default=0) >= 10 else ""  # 12,6,2: orders past 9
-    text = ("o" * (genus // 2) if orientable else "") + sep.join(map(str, cones))
-    text += "".join("*" + sep.join(map(str, r)) for r in rings)
-    return text + ("" if orientable else "x" * genus)
+    return orbifold_text(cones, rings, genus // 2 if orientable else 0, 0 if orientable else genus)
 
 
 def euler_characteristic(d: Delaney, q: int) -> Fraction:

@@ -52,7 +52,7 @@ import shapely
 from tilekit.edgeshapes import ROT, EdgeShape
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.files import read_text
-from tilekit.incidence import IncidenceSymbol, edge_curves, shape_classes, symbol_table
+from tilekit.incidence import LABELS, IncidenceSymbol, edge_curves, shape_classes, symbol_table
 from tilekit.plugins.curved import delaney, model, wythoff
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
 from tilekit.plugins.curved.tiling import (
@@ -165,22 +165,18 @@ def _pairing_hint(p: int, q: int) -> str:
     return f"e.g. '{ex}'" if ex else f"no pairing of the {p}-gon found for {{{p},{q}}} (p up to 10 searched)"
 
 
-#: The labels an incidence symbol spells its edges with.
-_LETTERS = "abcdefghijklmnopqrstuvwxyz"
-
-
 def pairing_symbol(pairing: Pairing) -> IncidenceSymbol:
     """The incidence symbol of a pairing: every edge its own label, directed; a J pair's two
     labels adjacent with + (a direct hop, the half-turn seen from the edge), an S edge's label
     adjacent to itself with +. The owner edge of each pair keeps the pairing's letter, the
-    other edge takes an unused one; a pairing of more than 26 edges (the labels a-z) is a
-    one-line ParameterError."""
+    other edge takes an unused label (a-z, then A-Z: :data:`tilekit.incidence.LABELS`); a
+    pairing of more edges than there are labels is a one-line ParameterError."""
     p = len(pairing.labels)
-    if p > len(_LETTERS):
+    if p > len(LABELS):
         raise ParameterError(f"pairing '{pairing}': its incidence symbol needs a label per edge, {p}, over the "
-                             f"{len(_LETTERS)} letters a-z; pairings are taken on polygons of up to {len(_LETTERS)} "
+                             f"{len(LABELS)} labels a-z, A-Z; pairings are taken on polygons of up to {len(LABELS)} "
                              "edges")
-    spare = iter(c for c in _LETTERS if c not in pairing.labels)
+    spare = iter(c for c in LABELS if c not in pairing.labels)
     names = [""] * p
     for i in range(p):
         if pairing.partner[i] >= i:
@@ -375,7 +371,7 @@ class CurvedIsohedralTiling(CurvedTiling):
                  geometry: str | None = None, name: str = "", title: str = "") -> None:
         if pairing is not None and symbol is not None:
             raise ParameterError("give a pairing ('a b a b') or an incidence symbol ('[a+b+; b+a+]'), not both")
-        parsed = IncidenceSymbol.parse(symbol) if symbol is not None else None
+        parsed = IncidenceSymbol.parse(symbol, len(LABELS)) if symbol is not None else None
         if p is None:
             p = len(parsed.edges) if parsed is not None else 6
         self.p, self.q = model.check_pq(p, q)

@@ -5,11 +5,28 @@ family imports it in this one place.
 
 from __future__ import annotations
 
-from tilekit.regular.notation import angle_excess, canonical, geometry_of
+from tilekit.regular.notation import (
+    angle_excess,
+    bounded_species,
+    canonical,
+    geometry_of,
+    types_of_species,
+)
 from tilekit.regular.notation import format_sequence as exponent
 from tilekit.regular.notation import parse_sequence as parse
 
-__all__ = ["angle_excess", "canonical", "dotted", "exponent", "geometry_of", "parse"]
+__all__ = ["angle_excess", "canonical", "dotted", "exponent", "geometry_of", "hyperbolic_types", "parse"]
+
+
+def hyperbolic_types(max_sides: int, max_valence: int) -> list[tuple[int, ...]]:
+    """Every hyperbolic vertex type of 3..max_valence polygons of 3..max_sides sides, canonical,
+    as the vertex-species search lists them (its chunks: species by valence, then their types)."""
+    out = []
+    for k in range(3, max_valence + 1):
+        for species in bounded_species(max_sides, k, k):
+            if geometry_of(species) == "hyperbolic":
+                out += [canonical(tuple(vt.polygons)) for vt in types_of_species(species)]
+    return out
 
 
 def dotted(seq: tuple[int, ...]) -> str:

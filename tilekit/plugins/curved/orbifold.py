@@ -33,6 +33,7 @@ import numpy as np
 
 from tilekit.errors import GeometryError
 from tilekit.plugins.curved import model, wythoff
+from tilekit.symmetry.names import orbifold_symbol
 
 #: Two model points closer than this (in the geometry's distance) are one point.
 _TOL = 1e-6
@@ -56,8 +57,7 @@ class OrbifoldGroup:
             cones = [2, 2, cones[0]]
         if self.mirrors and not cones and len(corners) == 3 and corners[1:] == [2, 2]:
             corners = [2, 2, corners[0]]
-        text = "".join(map(str, cones))
-        return text + ("*" + "".join(map(str, corners)) if self.mirrors else "")
+        return orbifold_symbol(cones, [corners] if self.mirrors else [])  # *10,3,2: commas past 9
 
     @property
     def euler_characteristic(self) -> Fraction:

@@ -17,7 +17,29 @@ over vertices (new ones told apart from known ones on a grid, wythoff.dedup), th
 deduplicated by their centres. Not every pairing closes up: :func:`find` builds each
 pairing's patch and keeps those that pass ``ModelPatch.validate`` (no overlap, the disc
 covered) with every inner vertex's angles summing to 2π over the configuration's valence;
-:func:`distinct` drops pairings that give the same faces round the pole.
+:func:`find` drops pairings that give the same faces round the pole.
+
+Completeness, also when the star has symmetries. Let T be a vertex-transitive tiling with
+this star at the pole, Γ its symmetry group, Stab ≤ Γ the motions fixing the pole (they map
+S onto itself), M_i ⊂ Γ the motions taking the pole to w_i. Each g ∈ M_i maps S onto the
+star at w_i, so some edge j of S onto edge i reversed, with the two faces along it, so g is
+:meth:`Star.generator` (i, j, ±) for an allowed (j, ±): a motion is fixed by where it sends
+one directed edge and whether it reverses orientation. When Stab is trivial, M_i is one
+motion and its inverse is M_j's, so the pairing is forced. When Stab is not, M_i = g·Stab
+holds |Stab| motions (one per edge of the orbit Stab·j it can come from): the motion is
+defined up to Stab, and :meth:`Star.pairings` lists every allowed (j, ±) of every edge, so
+every choice is among the candidates. An *involutive* choice always exists: for g ∈ M_i with
+g⁻¹ ∈ M_j, g·s ∈ M_i has inverse s⁻¹g⁻¹ ∈ M_{s⁻¹(j)}, so between the Stab-orbits of i and
+j every edge of one is matched with every edge of the other (choose any bijection), and
+when the orbits coincide i is matched with itself (g·s with (g·s)⁻¹ ∈ M_i swaps the pole
+and w_i, so is an involution, the generator (i, i, ±)). The chosen generators generate a
+subgroup of Γ that reaches every vertex, so their development is T: the search misses no
+vertex-transitive tiling, and a configuration all of whose pairings fail has none.
+
+A pairing is kept only when it closes up round every face of S (:func:`closes`) and every
+motion of its group fixing the pole maps S onto itself (:func:`consistent`: necessary, as a
+symmetry fixing a vertex keeps its star; without it 3.4.3.4.4's one closing pairing puts two
+different stars at one vertex), and its development then validates (:func:`check`).
 """
 
 from __future__ import annotations
@@ -56,6 +78,10 @@ MAX_VALENCE = 8
 MAX_PAIRINGS = 4096
 
 
+#: :func:`check`'s overlap and gap tolerance, relative to the median face's area (see there).
+CHECK_AREA_TOL = 1e-4
+
+
 def polygon_angle(n: int, edge: float) -> float:
     """The interior angle of the regular hyperbolic n-gon with side ``edge``."""
     return 2.0 * math.asin(min(1.0, math.cos(math.pi / n) / math.cosh(edge / 2)))
@@ -67,12 +93,20 @@ def edge_length(cfg: tuple[int, ...]) -> float:
     if notation.geometry_of(cfg) != wythoff.HYPERBOLIC:
         raise ParameterError(f"{notation.dotted(cfg)} is {notation.geometry_of(cfg)}: the vertex-star construction "
                              "is for hyperbolic configurations (angles summing past a full turn)")
+    cosines = [(cfg.count(n), math.cos(math.pi / n)) for n in set(cfg)]
+
+    def total(edge: float) -> float:
+        c = math.cosh(edge / 2)
+        return sum(k * 2.0 * math.asin(min(1.0, cos / c)) for k, cos in cosines)
+
     lo, hi = 1e-9, 1.0
-    while sum(polygon_angle(n, hi) for n in cfg) > 2 * math.pi:
+    while total(hi) > 2 * math.pi:
         hi *= 2
-    for _ in range(200):
+    for _ in range(200):  # until the interval stops shrinking (about 60 halvings)
         mid = (lo + hi) / 2
-        lo, hi = (mid, hi) if sum(polygon_angle(n, mid) for n in cfg) > 2 * math.pi else (lo, mid)
+        if not lo < mid < hi:
+            break
+        lo, hi = (mid, hi) if total(mid) > 2 * math.pi else (lo, mid)
     return (lo + hi) / 2
 
 
@@ -184,6 +218,60 @@ class Star:
         yield from rec({})
 
 
+def star_symmetries(star: Star) -> list[tuple[np.ndarray, tuple[int, ...]]]:
+    """The motions fixing the pole that map the star S onto itself (faces onto faces of the
+    same size), each with the permutation of the edges it makes: rotations taking edge i to
+    i + r, reflections taking it to r − i."""
+    cfg, d = star.cfg, len(star.cfg)
+    out = []
+    for r in range(d):
+        if all(cfg[(i + r) % d] == cfg[i] for i in range(d)):
+            out.append((star.edge_frame(r), tuple((i + r) % d for i in range(d))))
+        # face i lies between edges i and i + 1; the reflection puts it between r − i − 1 and r − i
+        if all(cfg[(r - i - 1) % d] == cfg[i] for i in range(d)):
+            out.append((star.edge_frame(r) @ _FLIP, tuple((r - i) % d for i in range(d))))
+    return out
+
+
+def consistent(star: Star, pairing: Pairing, returns: list[np.ndarray]) -> bool:
+    """Whether every motion of the pairing's group that fixes the pole maps S onto itself:
+    the group H made from the face walks' ``returns`` (:func:`closes`) and, for each s in H
+    and each edge i, g_{s(i)}^{-1} s g_i (which fixes the pole) must lie in S's symmetry
+    group; else two different stars would be put at one vertex. Necessary for a tiling (a
+    symmetry fixing a vertex keeps its star)."""
+    sym = star_symmetries(star)
+    mats = np.array([m for m, _ in sym])
+    gens = [star.generator(i, j, s) for i, (j, s) in enumerate(pairing)]
+    inv = [np.linalg.inv(g) for g in gens]
+
+    def which(h: np.ndarray) -> int:
+        hit = np.flatnonzero(np.abs(mats - h).max(axis=(1, 2)) < 1e-6)
+        return int(hit[0]) if len(hit) else -1
+
+    found = {0}  # the identity (r = 0 is always a symmetry)
+    todo = [0]
+    for h in returns:
+        k = which(h)
+        if k < 0:
+            return False
+        if k not in found:
+            found.add(k)
+            todo.append(k)
+    while todo:
+        k = todo.pop()
+        m, perm = sym[k]
+        new = [inv[perm[i]] @ m @ gens[i] for i in range(len(gens))]
+        new += [m @ sym[x][0] for x in list(found)]
+        for h in new:
+            x = which(h)
+            if x < 0:
+                return False
+            if x not in found:
+                found.add(x)
+                todo.append(x)
+    return True
+
+
 def closes(star: Star, pairing: Pairing) -> bool:
     """The local condition for a pairing to make a tiling: walking round each face of S by
     the generators (leaving each vertex along the face's next edge in that vertex's own
@@ -193,20 +281,22 @@ def closes(star: Star, pairing: Pairing) -> bool:
     frames = star.face_frames()
     centres = frames[:, :, 2]
     d = len(star.cfg)
+    returns: list[np.ndarray] = []
     for i, n in enumerate(star.cfg):
         h, e = np.eye(3), i
         for step in range(n):
             j = pairing[e][0]
             h = h @ gens[e]
             back = step == n - 1
-            if np.allclose(h[:, 2], (0.0, 0.0, 1.0), atol=1e-7) != back:
+            if (abs(h[0, 2]) < 1e-7 and abs(h[1, 2]) < 1e-7 and abs(h[2, 2] - 1.0) < 1e-7) != back:
                 return False
             e = (j - 1) % d if np.linalg.det(h) > 0 else (j + 1) % d
         moved = centres @ h.T
         match = np.abs(moved[:, None, :] - centres[None, :, :]).max(axis=2) < 1e-7
         if not (match.any(axis=1).all() and all(star.cfg[int(np.argmax(match[k]))] == star.cfg[k] for k in range(d))):
             return False
-    return True
+        returns.append(h)
+    return consistent(star, pairing, returns)
 
 
 def develop(star: Star, pairing: Pairing, radius: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -266,7 +356,10 @@ def check(star: Star, pairing: Pairing, radius: float | None = None) -> bool:
     except GeometryError:
         return False
     disc = math.tanh(r / 2)
-    report = patch.validate(shapely.Point(0, 0).buffer(disc * 0.999, 64))
+    # the tolerance is relative to the median face's area in the Klein disc, where most faces
+    # lie near the rim and are tiny: at the default 1e-6, float noise along a shared edge
+    # (1.5e-14 for 4.6.5.6.6) counted as an overlap. A wrong star overlaps by a good part of a face.
+    report = patch.validate(shapely.Point(0, 0).buffer(disc * 0.999, 64), tolerance=CHECK_AREA_TOL)
     if report.overlaps or not report.ok:
         return False
     sums, counts = vertex_angle_sums(patch)
@@ -318,11 +411,8 @@ def signature(star: Star, pairing: Pairing, radius: float) -> bytes:
 def find(cfg: tuple[int, ...]) -> list[Pairing]:
     """The pairings of ``cfg``'s star that close up into a tiling, one per distinct tiling
     (see the module), in the order :meth:`Star.pairings` lists them."""
-    star = Star(notation.canonical(cfg))
-    pairings = list(itertools.islice(star.pairings(), MAX_PAIRINGS + 1))
-    if len(pairings) > MAX_PAIRINGS:
-        raise ParameterError(f"{notation.dotted(star.cfg)}: its star's edges allow more than {MAX_PAIRINGS} pairings, "
-                             "too many to search; give one (--set pairing='0- 1+ ...')")
+    star = search_bounds(cfg)
+    pairings = list(star.pairings())
     big = max(star.circumradius(n) for n in star.cfg)
     out: list[Found] = []
     for pairing in pairings:
@@ -332,6 +422,47 @@ def find(cfg: tuple[int, ...]) -> list[Pairing]:
         if all(f.signature != sig for f in out):
             out.append(Found(pairing, sig))
     return [f.pairing for f in out]
+
+
+#: Largest polygon a searched configuration may have: the check's patch reaches twice the
+#: largest face's circumradius, whose face count grows like e^(2 circumradius).
+MAX_SIDES = 12
+
+
+def search_bounds(cfg: tuple[int, ...]) -> Star:
+    """The star of ``cfg`` after the search's limits are checked (valence, sides, pairings:
+    counted before any patch is developed), one-line ParameterErrors naming the limit."""
+    star = Star(notation.canonical(cfg))
+    if max(cfg) > MAX_SIDES:
+        raise ParameterError(f"{notation.dotted(star.cfg)} has a {max(cfg)}-gon; the pairing search takes polygons "
+                             f"of up to {MAX_SIDES} sides (its check develops a patch round the largest face)")
+    count = sum(1 for _ in itertools.islice(star.pairings(), MAX_PAIRINGS + 1))  # raises past MAX_VALENCE
+    if count > MAX_PAIRINGS:
+        raise ParameterError(f"{notation.dotted(star.cfg)}: its star's edges allow more than {MAX_PAIRINGS} pairings, "
+                             "too many to search; give one (--set pairing='0- 1+ ...')")
+    return star
+
+
+def find_first(cfg: tuple[int, ...], radius: float | None = None) -> Pairing | None:
+    """The first pairing (in :meth:`Star.pairings` order) that closes up (:func:`closes`, with
+    the stabiliser condition) and whose development validates (:func:`check`), or None when
+    none does: then ``cfg`` has no vertex-transitive tiling (every vertex-transitive tiling's
+    motions give such a pairing; see :func:`find`)."""
+    star = search_bounds(cfg)
+    for pairing in star.pairings():
+        if closes(star, pairing) and check(star, pairing, radius):
+            return pairing
+    return None
+
+
+def species_tilings(max_sides: int, max_valence: int) -> Iterator[tuple[tuple[int, ...], Pairing | None]]:
+    """(configuration, :func:`find_first`'s pairing or None) for every hyperbolic vertex type of
+    the vertex-species search's range (:func:`notation.hyperbolic_types`) that no Wythoff
+    symbol gives: what catalogue/curved/stars.toml's [[tiling]] list ships (each a few tenths
+    of a second; a minute or two for sides and valence up to 6)."""
+    for cfg in notation.hyperbolic_types(max_sides, max_valence):
+        if not wythoff.symbols_for(cfg):
+            yield cfg, find_first(cfg)
 
 
 def family(max_sides: int) -> Iterator[tuple[int, ...]]:
@@ -357,7 +488,7 @@ _SPEC_KEYS = set(_OPTIONS) | {"name", "title"}
 class StarTiling(CurvedTiling):
     """A uniform tiling of the hyperbolic plane developed from its vertex star by a pairing
     of the star's edges (see the module): ``configuration`` (e.g. 3.3.3.6.6), ``pairing``
-    (default: the first that closes up, :func:`find`), ``radius`` (the disc covered)."""
+    (default: the first that closes up, :func:`find_first`), ``radius`` (the disc covered)."""
 
     streams = False
     bytes_per_tile = STAR_BYTES_PER_TILE
@@ -371,11 +502,11 @@ class StarTiling(CurvedTiling):
         self.plane, self.samples = drawing_options(plane, samples, False)
         self.radius = None if radius is None else float(_number("radius", radius, 0, MAX_RADIUS, False))
         if pairing is None:
-            found = find(cfg)
-            if not found:
+            first = find_first(cfg)
+            if first is None:
                 raise ParameterError(f"{notation.dotted(cfg)}: no pairing of its star's edges closes up into a "
                                      "vertex-transitive tiling")
-            self.pairing = found[0]
+            self.pairing = first
         else:
             self.pairing = parse_pairing(pairing, len(cfg))
             if not closes(self.star, self.pairing):
@@ -443,7 +574,8 @@ class StarTiling(CurvedTiling):
         return "\n".join([
             "--set configuration=C       the vertex configuration, e.g. 3.3.3.6.6",
             "--set pairing=P             each star edge's partner and sign, e.g. '0- 1+ 2+ 3- 4+' (default: the "
-            "first that closes up)",
+            f"first that closes up; the search takes valence <= {MAX_VALENCE}, polygons <= {MAX_SIDES} sides, <= "
+            f"{MAX_PAIRINGS} pairings)",
             f"--set radius=R              the faces covering the disc of radius R (0..{MAX_RADIUS:g}; default: about "
             f"{DEFAULT_FACES} faces)",
             *DRAWING_HELP,
