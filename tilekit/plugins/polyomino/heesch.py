@@ -253,7 +253,7 @@ def _first_corona(cells, group, period, table, types):  # pragma: no cover - com
     """:func:`first_corona_rows` in one compiled call: the orientations, the kernel's halo, the
     copies touching the kernel (:func:`placements._adjacent`) and the local test
     (:func:`_support`)."""
-    forms, keys, _g, _shift = _orientations(cells, group, period)
+    forms, keys, _g, _shift, _owner, _gshift = _orientations(cells, group, period)
     n = cells.shape[0]
     off, mm = np.int64(_OFF), np.int64(_M)
     halo = _halos(forms[:1], table, types, period)[0]

@@ -105,13 +105,16 @@ def _orientations(cells, group, period):  # pragma: no cover - compiled
     """The distinct images of ``cells`` under ``group``, in group order, each in fixed form
     (sorted by (y, x), the least cell moved into [0, period)^2, as :func:`lattice.fixed_form`):
     (J, n, 2), their sorted packed keys (J, n), the group index of each and its shift (J, 2)
-    (fixed form = image + shift). The polyform's own fixed form comes first."""
+    (fixed form = image + shift); then, per group element g, the orientation its image is
+    (G,) and its shift (G, 2). The polyform's own fixed form comes first."""
     G, n = group.shape[0], cells.shape[0]
     off, mm = np.int64(_OFF), np.int64(_M)  # lattice.pack's offsets
     out = np.empty((G, n, 2), np.int64)
     keys = np.empty((G, n), np.int64)
     gidx = np.empty(G, np.int64)
     shift = np.empty((G, 2), np.int64)
+    owner = np.empty(G, np.int64)
+    gshift = np.empty((G, 2), np.int64)
     J = 0
     for g in range(G):
         img = np.empty((n, 2), np.int64)
@@ -129,7 +132,9 @@ def _orientations(cells, group, period):  # pragma: no cover - compiled
             img[i, 1] += sy
             k[i] = (img[i, 0] + off) * mm + (img[i, 1] + off)
         k = np.sort(k)
-        dup = False
+        gshift[g, 0] = sx
+        gshift[g, 1] = sy
+        owner[g] = J
         for j in range(J):
             same = True
             for i in range(n):
@@ -137,16 +142,16 @@ def _orientations(cells, group, period):  # pragma: no cover - compiled
                     same = False
                     break
             if same:
-                dup = True
+                owner[g] = j
                 break
-        if not dup:
+        if owner[g] == J:
             out[J] = img
             keys[J] = k
             gidx[J] = g
             shift[J, 0] = sx
             shift[J, 1] = sy
             J += 1
-    return out[:J].copy(), keys[:J].copy(), gidx[:J].copy(), shift[:J].copy()
+    return out[:J].copy(), keys[:J].copy(), gidx[:J].copy(), shift[:J].copy(), owner, gshift
 
 
 @dataclass(eq=False)
@@ -164,8 +169,9 @@ class Forms:
         self.cells = np.ascontiguousarray(np.asarray(self.cells, dtype=np.int64).reshape(-1, 2))
         # the distinct images, each in fixed form, in group order (one compiled loop, shared
         # with heesch.first_corona_rows)
-        self.forms, _, self.g, self.shift = _orientations(self.cells, self.grid.group.astype(np.int64),
-                                                         np.int64(self.grid.period))  # (J, n, 2)
+        # (and, per group element, which orientation it makes and with which shift)
+        self.forms, _, self.g, self.shift, self.owner, self.gshift = _orientations(
+            self.cells, self.grid.group.astype(np.int64), np.int64(self.grid.period))  # (J, n, 2)
         self.keys = pack(self.forms)  # (J, n)
 
     @property

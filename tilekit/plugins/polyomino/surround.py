@@ -41,6 +41,7 @@ from tilekit.jit import njit
 from tilekit.lattice import _M, _OFF
 from tilekit.plugins.polyomino.heesch import HeeschSolver
 from tilekit.plugins.polyomino.isohedral import _group_inverse, _group_mul, _hnf_add
+from tilekit.plugins.polyomino.placements import Forms
 from tilekit.plugins.polyomino.torus import TorusSearch, TorusTiling, _reduce
 
 #: Most models of the closed-corona formula tried before the test gives up (each one that does
@@ -61,47 +62,15 @@ class SurroundResult:
     seconds: float
 
 
-@njit(cache=True)
-def _element_maps(cells, group, period, fkeys):  # pragma: no cover - compiled
-    """Per point-group element g: the orientation ``o[g]`` (row of ``fkeys``, each orientation's
-    sorted packed keys) of g's image of ``cells`` and ``c[g]`` such that the grid symmetry
-    ``x -> G x + t`` takes the kernel (orientation 0) onto orientation ``o[g]`` moved by
-    ``t + c[g]``. The fixed form is :func:`placements._orientations`'s (least cell by (y, x)
-    moved into [0, period)^2)."""
-    G, n, J = group.shape[0], cells.shape[0], fkeys.shape[0]
-    off, mm = np.int64(_OFF), np.int64(_M)
-    o = np.full(G, -1, np.int64)
-    s = np.zeros((G, 2), np.int64)
-    for g in range(G):
-        img = np.empty((n, 2), np.int64)
-        yx = np.empty(n, np.int64)
-        for i in range(n):
-            img[i, 0] = group[g, 0, 0] * cells[i, 0] + group[g, 0, 1] * cells[i, 1]
-            img[i, 1] = group[g, 1, 0] * cells[i, 0] + group[g, 1, 1] * cells[i, 1]
-            yx[i] = (img[i, 1] + off) * mm + (img[i, 0] + off)
-        first = img[np.argmin(yx)]
-        sx = first[0] % period - first[0]
-        sy = first[1] % period - first[1]
-        k = np.empty(n, np.int64)
-        for i in range(n):
-            k[i] = (img[i, 0] + sx + off) * mm + (img[i, 1] + sy + off)
-        k = np.sort(k)
-        for j in range(J):
-            same = True
-            for i in range(n):
-                if fkeys[j, i] != k[i]:
-                    same = False
-                    break
-            if same:
-                o[g] = j
-                break
-        s[g, 0] = sx
-        s[g, 1] = sy
-    c = np.empty((G, 2), np.int64)
-    for g in range(G):  # c[g] = G s[0] - s[g] (the kernel is cells + s[0])
-        c[g, 0] = group[g, 0, 0] * s[0, 0] + group[g, 0, 1] * s[0, 1] - s[g, 0]
-        c[g, 1] = group[g, 1, 0] * s[0, 0] + group[g, 1, 1] * s[0, 1] - s[g, 1]
-    return o, c
+def element_maps(forms: Forms) -> tuple[np.ndarray, np.ndarray]:
+    """Per point-group element g: the orientation ``o[g]`` (row of ``forms``) of g's image of the
+    polyform and ``c[g]`` such that the grid symmetry ``x -> G x + t`` takes the kernel
+    (orientation 0) onto orientation ``o[g]`` moved by ``t + c[g]``. Fixed forms and shifts are
+    :func:`placements._orientations`'s; the kernel is ``cells + s[0]`` (element 0 is the
+    identity), so ``c[g] = G_g s[0] - s[g]``."""
+    group = forms.grid.group.astype(np.int64)
+    s = forms.gshift
+    return forms.owner, group @ s[0] - s
 
 
 @njit(cache=True)
@@ -239,7 +208,7 @@ class SurroundTest:
         self.group = grid.group.astype(np.int64)
         self.mul = np.asarray(_group_mul(grid), dtype=np.int64)
         self.inv = np.asarray(_group_inverse(grid), dtype=np.int64)
-        self.o, self.c = _element_maps(forms.cells, self.group, np.int64(grid.period), np.sort(forms.keys, axis=1))
+        self.o, self.c = element_maps(forms)
         # the elements taking the kernel onto each orientation, in group order (S of each)
         G = len(self.group)
         order = np.argsort(self.o, kind="stable")
