@@ -89,7 +89,7 @@ def test_crawl_from_the_front_page_finds_no_error(full_site, browser):
         if is_file(url):
             if files >= PAGES:
                 continue
-            r = context.request.get(url)
+            r = context.request.get(url, timeout=120_000)  # may queue behind thumbnails, as pages do
             files += 1
             if r.status >= 400:
                 problems.append(f"{r.status} for {url}")

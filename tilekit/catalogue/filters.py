@@ -245,10 +245,9 @@ def group_names(key: str, value: str) -> list[str]:
     """A wallpaper group matches by its IUC name (p6m) and its orbifold symbol (*632) alike."""
     if key not in ("symmetry_group", "wallpaper_group", "orbifold"):
         return [value]
-    from tilekit.symmetry import (  # start-up cost: tilekit.symmetry loads NumPy; only group filters need it
-        IUC,
-        ORBIFOLD,
-    )
-    from tilekit.symmetry.names import orbifold_spellings  # *1032 and *10,3,2 alike (curved groups)
+    # start-up cost: tilekit.symmetry loads NumPy; only group filters need it. orbifold_spellings
+    # writes a curved group both ways (*1032 and *10,3,2)
+    from tilekit.symmetry import IUC, ORBIFOLD
+    from tilekit.symmetry.names import orbifold_spellings
 
     return sorted({ORBIFOLD.get(value, value), IUC.get(value, value), *orbifold_spellings(value)})

@@ -32,6 +32,7 @@ import tilekit
 from tilekit.errors import ParseError
 from tilekit.lazy import lazy_exports
 from tilekit.plugins import CatalogueRecord, Family, web_pages
+from tilekit.plugins.curved import notation  # no NumPy: the core's vertex-type notation
 from tilekit.resources import catalogue_dir, read_toml
 from tilekit.schema import Field, check
 
@@ -166,7 +167,7 @@ def uniform_records() -> list[CatalogueRecord]:
     configuration the [enumerate] bounds give, less the regular ones that regular.toml ships
     (records of the spherical and hyperbolic families), named where [[named]] names them."""
     # measured start-up cost: NumPy and the construction (records are built only when seeding)
-    from tilekit.plugins.curved import notation, wythoff
+    from tilekit.plugins.curved import wythoff
     from tilekit.plugins.curved.uniform import UniformTiling
 
     data = _uniform_data()
@@ -258,7 +259,6 @@ def _star_configurations() -> list[tuple[tuple[int, ...], str]]:
     """(canonical configuration, pairing) of every record catalogue/curved/stars.toml ships:
     3.3.3.p.p for even p up to max_sides, then each [[tiling]] (a configuration listed twice
     keeps its first pairing)."""
-    from tilekit.plugins.curved import notation  # no NumPy: the core's vertex-type notation
 
     data = _stars_data()
     out = {(3, 3, 3, p, p): data["pairing"] for p in range(6, data["max_sides"] + 1, 2)}
@@ -275,7 +275,6 @@ def star_records() -> list[CatalogueRecord]:
     """The non-Wythoffian uniform tilings of catalogue/curved/stars.toml, each checked to close
     up round every face (StarTiling refuses a pairing that does not)."""
     # measured start-up cost: NumPy and the construction (records are built only when seeding)
-    from tilekit.plugins.curved import notation
     from tilekit.plugins.curved.stars import StarTiling
 
     out = []
@@ -343,9 +342,6 @@ def tilekit_resolve_name(name: str) -> list[str] | None:
     """A spherical or hyperbolic vertex configuration in any rotation or spelling
     (``4.3.4.4``, ``3.4^3``): the uniform tiling with it (``vertex_configuration`` filter);
     one that no Wythoff symbol gives is a one-line error naming it."""
-    # measured start-up cost: the notation parser (no NumPy) only for a name not found
-    from tilekit.plugins.curved import notation
-
     try:
         cfg = notation.parse(name)
     except ParseError:

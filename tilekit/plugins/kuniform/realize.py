@@ -63,6 +63,7 @@ def develop(sym: DSymbol, radius: float) -> Flags:
     """Every flag whose vertex lies within ``radius`` of the base vertex (a compiled loop,
     :func:`.kernels.develop_flags`; flags are told apart by their vertex rounded at 1e-6,
     direction and side)."""
+    # start-up cost: the compiled kernels (numba) load only when a layout is developed
     from tilekit.plugins.kuniform.kernels import develop_flags
 
     inner = np.array([interior_steps(p) for p in sym.face], dtype=np.int64)
