@@ -250,25 +250,25 @@ def consistent(star: Star, pairing: Pairing, returns: list[np.ndarray]) -> bool:
 
     found = {0}  # the identity (r = 0 is always a symmetry)
     todo = [0]
-    for h in returns:
-        k = which(h)
-        if k < 0:
-            return False
-        if k not in found:
-            found.add(k)
-            todo.append(k)
-    while todo:
-        k = todo.pop()
-        m, perm = sym[k]
-        new = [inv[perm[i]] @ m @ gens[i] for i in range(len(gens))]
-        new += [m @ sym[x][0] for x in list(found)]
-        for h in new:
-            x = which(h)
-            if x < 0:
+
+    def reach(hs: list[np.ndarray]) -> bool:
+        """Mark each of ``hs`` found; False when one is not among the symmetries."""
+        for h in hs:
+            k = which(h)
+            if k < 0:
                 return False
-            if x not in found:
-                found.add(x)
-                todo.append(x)
+            if k not in found:
+                found.add(k)
+                todo.append(k)
+        return True
+
+    if not reach(list(returns)):
+        return False
+    while todo:
+        m, perm = sym[todo.pop()]
+        new = [inv[perm[i]] @ m @ gens[i] for i in range(len(gens))]
+        if not reach(new + [m @ sym[x][0] for x in list(found)]):
+            return False
     return True
 
 
