@@ -178,6 +178,13 @@ def test_records_names_and_spec_round_trip():
     assert recs["rhombic-dodecahedron-rotations"].properties["group"] == "rotations"
     assert {r.properties["geometry"] for r in recs.values()} == {"spherical", "hyperbolic"}
     assert "[4.6.14]" in recs and "V4.6.14" in recs["[4.6.14]"].aliases
+    # every shipped full-group record's incidence symbol is under the tiling's whole group
+    for r in recs.values():
+        if r.properties["group"] == "full":
+            assert r.properties["construction_group"] == r.properties["symmetry_group"], r.name
+    # an antiprism's dual: the construction gives the trapezohedron on 22n, its group is 2*n
+    trapezohedron = LavesTiling("3.3.3.5").properties()
+    assert (trapezohedron["construction_group"], trapezohedron["symmetry_group"]) == ("522", "2*5")
     t = LavesTiling("[3.14.14]", radius=2.0, samples=3, group="rotations")
     again = LavesTiling.from_spec(t.spec())
     assert again.spec() == t.spec() and again.configuration == "3.14.14"

@@ -15,6 +15,9 @@ across the edge brings onto it. ``group='rotations'`` takes the rotation subgrou
 without mirror symmetry, as Escher-like tiles want: their edges may be chiral), which is
 isohedral unless the generator's stabiliser is trivial (the omnitruncations' duals: the
 rotations split the tiles into two mirror-image orbits — the snub's dual is the chiral one).
+The symbol is the one under the construction's group, which is the tiling's full group except
+where Wythoff's construction gives the tiling only on a subgroup (the antiprisms, | 2 2 n on
+22n, whose full group is 2*n): ``symmetry_group`` then names the larger group.
 """
 
 from __future__ import annotations
@@ -29,7 +32,14 @@ import numpy as np
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.incidence import IncidenceSymbol
 from tilekit.plugins.curved import laves_configuration, model, notation, wythoff
-from tilekit.plugins.curved.orbifold import _local_elements, _star, construction_stabiliser
+from tilekit.plugins.curved.orbifold import (
+    UniformSymmetry,
+    _local_elements,
+    _star,
+    construction_stabiliser,
+    symbol_symmetry,
+    uniform_symmetry,
+)
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
 from tilekit.plugins.curved.tiling import (
     DEFAULT_SAMPLES,
@@ -123,6 +133,11 @@ class LavesTiling(CurvedTiling):
     @cached_property
     def construction(self) -> wythoff.Construction:
         return wythoff.Construction(self.symbol)
+
+    @cached_property
+    def symmetry(self) -> UniformSymmetry:
+        """The full symmetry group, the dual uniform tiling's (orbifold notation in ``.notation``)."""
+        return symbol_symmetry(self.symbol) or uniform_symmetry(self.construction)
 
     @property
     def rotations_only(self) -> bool:
@@ -399,9 +414,16 @@ class LavesTiling(CurvedTiling):
             "construction_group": self.group_notation(),
             "sides": [len(cfg)],
             "valences": ".".join(map(str, self.valences)),
+            # the symbol under the construction's group (as the isohedral families store it: the
+            # canonical form under both keys, so an incidence_symbol filter finds it)
             "incidence_symbol": str(sym),
+            "canonical_symbol": str(sym),
             "edge_kinds": sym.edge_kinds(),
-            "tile_symmetries": len(self.stabiliser),
+            "tile_symmetry": len(self.stabiliser),
+            # the tiling's full group: the uniform tiling's (orbifold.py), which is the construction's
+            # for every shipped record (an antiprism's dual has 2*n, its construction 22n)
+            "symmetry_group": self.symmetry.notation,
+            "orbifold": self.symmetry.notation,
         }
         if not self.hyperbolic:
             props["faces"] = self.faces
