@@ -32,32 +32,10 @@ import numpy as np
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.incidence import IncidenceSymbol
 from tilekit.plugins.curved import laves_configuration, model, notation, wythoff
-from tilekit.plugins.curved.orbifold import (
-    UniformSymmetry,
-    _local_elements,
-    _star,
-    construction_stabiliser,
-    symbol_symmetry,
-    uniform_symmetry,
-)
+from tilekit.plugins.curved.orbifold import _local_elements, _star, construction_stabiliser
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
-from tilekit.plugins.curved.tiling import (
-    DEFAULT_SAMPLES,
-    DRAWING_HELP,
-    CurvedTiling,
-    _number,
-    clipped,
-    drawing_options,
-    drawing_spec,
-    spec_table,
-)
-from tilekit.plugins.curved.uniform import (
-    DEFAULT_FACES,
-    MAX_RADIUS,
-    UNIFORM_BYTES_PER_TILE,
-    resolve,
-)
-from tilekit.plugins.curved.wythoff import check_geometry
+from tilekit.plugins.curved.tiling import DEFAULT_SAMPLES, clipped
+from tilekit.plugins.curved.uniform import DEFAULT_FACES, MAX_RADIUS, UniformTiling
 
 #: The groups a Laves tiling may be taken under: the construction's (``full``) or its rotations.
 GROUPS = ("full", "rotations")
@@ -89,55 +67,36 @@ def _order(symbol: wythoff.Symbol) -> int:
     return full // 2 if symbol.form == "snub" else full
 
 
-class LavesTiling(CurvedTiling):
+class LavesTiling(UniformTiling):
     """The dual of the uniform tiling with a given vertex configuration on the sphere or the
-    hyperbolic plane: one prototile, placed by the triangle group (see the module)."""
+    hyperbolic plane: one prototile, placed by the triangle group (see the module). Named,
+    configured and specified as the uniform tiling is (UniformTiling), with ``group`` besides."""
 
-    streams = False
-    bytes_per_tile = UNIFORM_BYTES_PER_TILE
     OPTIONS = _OPTIONS
+    DEFINING = ("configuration", "symbol", "group")
+    SPEC_KEYS = tuple(sorted(_SPEC_KEYS))
+    SPEC_WHAT = "curved Laves"
 
     def __init__(self, configuration: str | None = None, *, symbol: str | None = None, group: str = "full",
                  radius: float | None = None, samples: int = DEFAULT_SAMPLES, plane: str = "poincare",
                  geometry: str | None = None, name: str = "", title: str = "") -> None:
-        cfg_text = None if configuration is None else _configuration(configuration)
-        self.symbol = resolve(cfg_text, symbol, geometry)
-        self.given = "symbol" if symbol is not None else "configuration"
-        self.geometry_hint = check_geometry(geometry)
-        kind = self.symbol.geometry
-        dotted = wythoff.uniform_configuration(self.symbol)
-        if kind == wythoff.EUCLIDEAN:
-            raise ParameterError(f"[{dotted}] tiles the Euclidean plane: see the laves family (tilekit render "
-                                 f"'[{dotted}]'); the curved family draws the sphere and the hyperbolic plane")
         self.group = _check_group(group)
+        super().__init__(None if configuration is None else _configuration(configuration), symbol=symbol,
+                         radius=radius, samples=samples, plane=plane, geometry=geometry, name=name, title=title)
         if self.group == "rotations" and self.symbol.form == "omni":
-            raise ParameterError(f"[{dotted}] under the rotation group {self.symbol.group.lstrip('*')} has two tile "
-                                 "orbits (the tile and its mirror image), so it is not isohedral; group=rotations "
-                                 "applies to the duals of vertex, edge and snub forms (the chiral dual of an "
-                                 f"omnitruncation is the snub's, e.g. [3.3.3.3.4])")
-        self.kind = kind
-        self.family = "curved"
-        self.plane, self.samples = drawing_options(plane, samples, kind == wythoff.SPHERE)
-        if radius is not None and kind == wythoff.SPHERE:
-            raise ParameterError("radius applies to hyperbolic tilings; a tiling of the sphere is drawn whole")
-        self.radius = None if radius is None else float(_number("radius", radius, 0, MAX_RADIUS, False))
-        self.configuration = dotted
-        self.name = name or self.default_name()
-        self.title = title
+            raise ParameterError(f"[{self.configuration}] under the rotation group {self.symbol.group.lstrip('*')} has "
+                                 "two tile orbits (the tile and its mirror image), so it is not isohedral; "
+                                 "group=rotations applies to the duals of vertex, edge and snub forms (the chiral "
+                                 "dual of an omnitruncation is the snub's, e.g. [3.3.3.3.4])")
+
+    def euclidean_message(self) -> str:
+        dotted = wythoff.uniform_configuration(self.symbol)
+        return (f"[{dotted}] tiles the Euclidean plane: see the laves family (tilekit render '[{dotted}]'); the "
+                "curved family draws the sphere and the hyperbolic plane")
 
     def default_name(self) -> str:
         base = f"[{notation.exponent(self.symbol.configuration or ())}]"
         return base if self.group == "full" else f"{base}-rotations"
-
-    # -- the construction ------------------------------------------------------------
-    @cached_property
-    def construction(self) -> wythoff.Construction:
-        return wythoff.Construction(self.symbol)
-
-    @cached_property
-    def symmetry(self) -> UniformSymmetry:
-        """The full symmetry group, the dual uniform tiling's (orbifold notation in ``.notation``)."""
-        return symbol_symmetry(self.symbol) or uniform_symmetry(self.construction)
 
     @property
     def rotations_only(self) -> bool:
@@ -350,8 +309,7 @@ class LavesTiling(CurvedTiling):
         group has one), every tile of the sphere, or those whose centre lies within the radius
         plus the circumradius (the disc of the radius is covered)."""
         c = self.construction
-        hint = "ask for a smaller radius (--set radius=R)" if self.hyperbolic else ""
-        self.refuse_oversize(f"tiles of [{self.configuration}]", self.estimate_tiles(), hint)
+        self._check_size(self.estimate_tiles())
         reach = None
         if self.hyperbolic:
             reach = self._radius() + self.circumradius
@@ -390,6 +348,10 @@ class LavesTiling(CurvedTiling):
         if self.hyperbolic:
             raise ParameterError(f"[{self.configuration}] tiles the hyperbolic plane: it has infinitely many tiles")
         return _order(self.symbol) // construction_stabiliser(self.symbol)
+
+    def face_counts(self) -> dict[int, int]:
+        """Tiles per number of sides on the sphere: all the tile's."""
+        return {len(self.symbol.configuration or ()): self.faces}
 
     def group_notation(self) -> str:
         """The group placing the tiles, in orbifold notation (*pqr, or pqr: its rotations)."""
@@ -438,49 +400,28 @@ class LavesTiling(CurvedTiling):
                 f"incidence symbol {self.incidence_symbol} ({self.incidence_symbol.edge_kinds()} edges)")
 
     def options_help(self) -> str:
+        own = super().options_help().splitlines()[2:]  # radius, geometry, drawing: the uniform tiling's
         return "\n".join([
             "--set configuration=C       the dual's vertex configuration, e.g. 3.4.3.4 (or [3.4.3.4], V3.4.3.4)",
             "--set symbol=S              instead: the dual's Wythoff symbol, e.g. '2 3 | 7'",
             "--set group=G               full (default: the construction's group) or rotations (chiral tiles)",
-            f"--set radius=R              hyperbolic: the tiles covering the disc of radius R (0..{MAX_RADIUS:g}; "
-            f"default: about {DEFAULT_FACES} tiles)",
-            "--set geometry=G            sphere, plane or hyperbolic: a check on the configuration's geometry",
-            *DRAWING_HELP,
+            *own,
         ])
 
-    def configure(self, **options: Any) -> LavesTiling:
-        self.check_options(options)
-        if "configuration" in options and "symbol" in options:
-            raise ParameterError("give configuration or symbol, not both")
-        if "configuration" in options:
-            named = {"configuration": options["configuration"]}
-        elif "symbol" in options:
-            named = {"symbol": options["symbol"]}
-        else:
-            named = {self.given: self.configuration if self.given == "configuration" else str(self.symbol)}
-        same = not ({"configuration", "symbol", "group"} & set(options))
-        return LavesTiling(**named, group=options.get("group", self.group), radius=options.get("radius", self.radius),
-                           samples=options.get("samples", self.samples), plane=options.get("plane", self.plane),
-                           geometry=options.get("geometry", self.geometry_hint),
-                           name=self.name if same else "", title=self.title if same else "")
+    def carried(self, options: Mapping[str, Any]) -> dict[str, Any]:
+        return {"group": options.get("group", self.group)}
 
-    def spec(self) -> dict[str, Any]:
-        out: dict[str, Any] = {"laves": True}
-        out.update({"configuration": self.configuration} if self.given == "configuration"
-                   else {"symbol": str(self.symbol)})
+    def defining_spec(self) -> dict[str, Any]:
+        out: dict[str, Any] = {"laves": True, **super().defining_spec()}
         if self.group != "full":
             out["group"] = self.group
-        return drawing_spec(out, self, self.default_name())
+        return out
 
     @classmethod
-    def from_spec(cls, spec: Mapping[str, Any]) -> LavesTiling:
-        spec_table(spec, sorted(_SPEC_KEYS), "curved Laves")
+    def spec_options(cls, spec: Mapping[str, Any]) -> dict[str, Any]:
         if spec.get("laves", True) is not True:
             raise ParseError(f"curved Laves spec: laves must be true, got {str(spec.get('laves'))[:20]}")
-        return cls(spec.get("configuration"), symbol=spec.get("symbol"), group=spec.get("group", "full"),
-                   radius=spec.get("radius"), samples=spec.get("samples", DEFAULT_SAMPLES),
-                   plane=spec.get("plane", "poincare"), geometry=spec.get("geometry"),
-                   name=str(spec.get("name", "")), title=str(spec.get("title", "")))
+        return {"group": spec.get("group", "full")}
 
 
 def _close(points: np.ndarray, pt: np.ndarray) -> np.ndarray:
