@@ -35,6 +35,7 @@ from tilekit.errors import ParseError
 from tilekit.lazy import lazy_exports
 from tilekit.plugins import CatalogueRecord, Family, web_pages
 from tilekit.plugins.curved import notation  # no NumPy: the core's vertex-type notation
+from tilekit.plugins.curved.notation import laves_configuration
 from tilekit.resources import catalogue_dir, read_toml
 from tilekit.schema import Field, check
 
@@ -426,23 +427,6 @@ def tilekit_resolve_name(name: str) -> list[str] | None:
                              f"up to {bounds['max_order']}); draw it from any curved record: tilekit render 3.14.14 "
                              f"--set configuration={dotted}")
     return [f"vertex_configuration={dotted}"]
-
-
-def laves_configuration(name: str) -> tuple[int, ...] | None:
-    """The canonical vertex configuration a Laves name ``[3.4.3.4]``, ``[3.4^3]`` or
-    ``V3.4.3.4`` denotes, or None for text that is not one (standard library only: the name
-    hooks call it)."""
-    s = name.strip()
-    if len(s) > 2 and s[0] == "[" and s[-1] == "]":
-        inner = s[1:-1]
-    elif len(s) > 1 and s[0] in "Vv" and s[1].isdigit():
-        inner = s[1:]
-    else:
-        return None
-    try:
-        return notation.canonical(notation.parse(inner))
-    except ParseError:
-        return None
 
 
 def _resolve_laves(name: str) -> list[str] | None:

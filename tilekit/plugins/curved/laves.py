@@ -31,8 +31,14 @@ import numpy as np
 
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.incidence import IncidenceSymbol
-from tilekit.plugins.curved import laves_configuration, model, notation, wythoff
-from tilekit.plugins.curved.orbifold import _local_elements, _star, construction_stabiliser
+from tilekit.plugins.curved import model, notation, wythoff
+from tilekit.plugins.curved.orbifold import (
+    _local_elements,
+    _same,
+    _star,
+    _unique,
+    construction_stabiliser,
+)
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
 from tilekit.plugins.curved.tiling import DEFAULT_SAMPLES, clipped
 from tilekit.plugins.curved.uniform import DEFAULT_FACES, MAX_RADIUS, UniformTiling
@@ -49,7 +55,7 @@ def _configuration(text: Any) -> str:
     """A configuration option with or without the Laves brackets or V (``[3.4.3.4]`` = ``3.4.3.4``)."""
     if not isinstance(text, str):
         raise ParameterError(f"configuration must be a vertex configuration like 3.4.3.4, got {str(text)[:40]}")
-    cfg = laves_configuration(text)
+    cfg = notation.laves_configuration(text)
     return text if cfg is None else notation.dotted(cfg)
 
 
@@ -57,14 +63,6 @@ def _check_group(group: Any) -> str:
     if not isinstance(group, str) or group not in GROUPS:
         raise ParameterError(f"group must be one of {', '.join(GROUPS)}, got {str(group)[:40]}")
     return group
-
-
-def _order(symbol: wythoff.Symbol) -> int:
-    """The order of the construction's group on the sphere (*pqr; its rotations for a snub)."""
-    p, q, r = symbol.orders
-    s, t = q * r + p * r + p * q, p * q * r
-    full = 4 * t // (s - t)
-    return full // 2 if symbol.form == "snub" else full
 
 
 class LavesTiling(UniformTiling):
@@ -175,8 +173,8 @@ class LavesTiling(UniformTiling):
         """(s, 3, 3): the group's elements fixing G (the tile's symmetries in the group)."""
         _, pair = self._local
         g = self.construction.generator
-        fix = _close(pair @ g, g)
-        return _distinct(pair[fix])
+        fix = _same(pair @ g, g)
+        return _unique(pair[fix])
 
     @cached_property
     def incidence_symbol(self) -> IncidenceSymbol:
@@ -199,7 +197,7 @@ class LavesTiling(UniformTiling):
             return -1, 0
 
         def index_in(target: np.ndarray, pt: np.ndarray) -> int:
-            hit = np.flatnonzero(_close(target, pt))
+            hit = np.flatnonzero(_same(target, pt))
             return int(hit[0]) if len(hit) else -1
 
         labels: list[int | None] = [None] * k
@@ -231,7 +229,7 @@ class LavesTiling(UniformTiling):
         for lab, i in first.items():
             a, b = corners[i], corners[(i + 1) % k]
             neighbour = _reflect_across(sp, g, a, b)
-            hop = pair[_close(pair @ g, neighbour)]
+            hop = pair[_same(pair @ g, neighbour)]
             if not len(hop):
                 raise GeometryError(f"[{self.configuration}]: no element of the group carries the tile across "
                                     f"its edge {i + 1}")
@@ -239,9 +237,9 @@ class LavesTiling(UniformTiling):
             found = None
             for j in range(k):
                 aj, bj = h @ corners[j], h @ corners[(j + 1) % k]
-                if _close(aj[None], b)[0] and _close(bj[None], a)[0]:
+                if _same(aj[None], b)[0] and _same(bj[None], a)[0]:
                     found = (j, -1)  # the neighbour's edge j runs from b to a: against edge i
-                elif _close(aj[None], a)[0] and _close(bj[None], b)[0]:
+                elif _same(aj[None], a)[0] and _same(bj[None], b)[0]:
                     found = (j, 1)
                 if found:
                     break
@@ -347,7 +345,8 @@ class LavesTiling(UniformTiling):
         vertices)."""
         if self.hyperbolic:
             raise ParameterError(f"[{self.configuration}] tiles the hyperbolic plane: it has infinitely many tiles")
-        return _order(self.symbol) // construction_stabiliser(self.symbol)
+        order = self.symbol.group_order() // (2 if self.symbol.form == "snub" else 1)  # a snub's: the rotations
+        return order // construction_stabiliser(self.symbol)
 
     def face_counts(self) -> dict[int, int]:
         """Tiles per number of sides on the sphere: all the tile's."""
@@ -422,21 +421,6 @@ class LavesTiling(UniformTiling):
         if spec.get("laves", True) is not True:
             raise ParseError(f"curved Laves spec: laves must be true, got {str(spec.get('laves'))[:20]}")
         return {"group": spec.get("group", "full")}
-
-
-def _close(points: np.ndarray, pt: np.ndarray) -> np.ndarray:
-    """Which of ``points`` (n, 3) equal ``pt`` (3,), relative to the coordinates' size (the
-    hyperboloid's grow as e^d)."""
-    scale = np.maximum(1.0, np.maximum(np.abs(points).max(axis=-1), float(np.abs(pt).max())))
-    return np.abs(points - pt).max(axis=-1) < 1e-7 * scale
-
-
-def _distinct(m: np.ndarray) -> np.ndarray:
-    out: list[np.ndarray] = []
-    for x in m:
-        if not any(np.abs(x - y).max() < 1e-7 * max(1.0, float(np.abs(x).max())) for y in out):
-            out.append(x)
-    return np.array(out)
 
 
 def _reflect_across(sp: wythoff.Space, g: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
