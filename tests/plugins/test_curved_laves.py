@@ -264,3 +264,18 @@ def test_validate_sees_a_mirrored_tile_twice(config):
     if not LavesTiling(config).hyperbolic:
         keep = np.arange(len(patch)) != i
         assert not patch.subset(keep).validate().ok
+
+
+def test_bytes_per_tile_bounds_the_peak():
+    import tracemalloc
+
+    for config, radius in (("4.6.14", 5.0), ("7.7.7", 5.5), ("5.5.5.5", 5.5), ("3.3.3.3.3.3.3", 6.0)):
+        t = LavesTiling(config, radius=radius)
+        tracemalloc.start()
+        try:
+            patch = t.patch()
+            peak = tracemalloc.get_traced_memory()[1]
+        finally:
+            tracemalloc.stop()
+        assert peak <= t.bytes_per_tile * len(patch), (config, peak / len(patch))
+        assert len(patch) <= t.estimate_tiles()
