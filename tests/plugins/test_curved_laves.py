@@ -279,3 +279,15 @@ def test_bytes_per_tile_bounds_the_peak():
             tracemalloc.stop()
         assert peak <= t.bytes_per_tile * len(patch), (config, peak / len(patch))
         assert len(patch) <= t.estimate_tiles()
+
+
+def test_plane_names_stay_the_laves_familys(tmp_path, monkeypatch):
+    """With the archimedean plugin loaded beside the curved one, [3.4.6.4], V3.4.6.4 and V4.3.4.6
+    are the plane's Laves tiling (the laves family), [3.4.3.4] and V3.4.3.4 the sphere's."""
+    cli = family_cli(tmp_path, monkeypatch, "archimedean,curved")
+    for name in ("[3.4.6.4]", "V3.4.6.4", "V4.3.4.6"):
+        r = cli("show", name)
+        assert r.exit_code == 0 and "family: laves" in r.output and "name: [3.4.6.4]" in r.output, r.output
+    for name in ("[3.4.3.4]", "V3.4.3.4", "[4.3.4.3]"):
+        r = cli("show", name)
+        assert r.exit_code == 0 and "name: rhombic-dodecahedron" in r.output, r.output
