@@ -291,3 +291,23 @@ def test_plane_names_stay_the_laves_familys(tmp_path, monkeypatch):
     for name in ("[3.4.3.4]", "V3.4.3.4", "[4.3.4.3]"):
         r = cli("show", name)
         assert r.exit_code == 0 and "name: rhombic-dodecahedron" in r.output, r.output
+
+
+def test_the_viewers_rebasing_symmetries_keep_the_tiling():
+    """The curved-space viewer rebases by the construction's cells (web.symmetries): each maps
+    the Laves tiling's tile centres, and its tiles' corners, onto the tiling's own."""
+    from tilekit.plugins.curved.web import symmetries, view_data
+
+    t = LavesTiling("3.4.7.4", radius=3.0)
+    data = view_data(LavesTiling("3.4.7.4"), 3000)
+    assert set(data["sizes"]) == {4} and len(data["symmetries"]) % 9 == 0
+    patch = t.patch()
+    centres = patch.model_centres()
+    corners = np.concatenate(patch.vertex_lists())
+    near = centres[centres[:, 2] <= math.cosh(1.0)]
+    near_corners = corners[corners[:, 2] <= math.cosh(1.0)]
+    for g in symmetries(t, 1.0):
+        for pts, pool in ((near, centres), (near_corners, corners)):
+            moved = pts @ g.T
+            gap = np.abs(moved[:, None, :] - pool[None, :, :]).max(axis=2).min(axis=1)
+            assert gap.max() < 1e-7
