@@ -27,6 +27,12 @@ def curved_isohedral_records() -> list:
     return isohedral_records()
 
 
+def curved_laves_records() -> list:
+    from tilekit.plugins.curved import laves_records
+
+    return laves_records()
+
+
 @pytest.fixture(scope="module")
 def cli(tmp_path_factory):
     from cliutil import CatalogueCLI
@@ -184,7 +190,7 @@ def test_order_by_an_alias(cli):
 
 def test_a_key_of_another_family_is_an_error_naming_it(cli):
     r = cli.run("list", "--family", "wang", "--where", "edge_kinds=JJ")
-    assert_one_line_error(r, "family 'wang' has no property 'edge_kinds'; curved-isohedral, isohedral have it")
+    assert_one_line_error(r, "family 'wang' has no property 'edge_kinds'; curved, curved-isohedral, isohedral have it")
     r = cli.run("list", "--family", "archimedean", "--where", "cells=4")
     assert_one_line_error(r, "polyomino has it")
     assert_one_line_error(cli.run("list", "--where", "sidez=4"), "did you mean 'sides'")
@@ -200,9 +206,10 @@ def test_keys_lists_key_type_families_and_example(cli):
                                       "quasiperiodic"}
     assert sides["aliases"] == ["polygons", "edges", "tile_vertices"]
     assert infos["aperiodic"]["type"] == "bool" and "known_aperiodic" in infos["aperiodic"]["aliases"]
-    # the planar types and the curved ones on {p,q} (tilekit.plugins.curved.isohedral_records) share the key
-    assert infos["edge_kinds"]["families"] == ["curved-isohedral", "isohedral"]
-    assert infos["edge_kinds"]["tilings"] == 93 + len(curved_isohedral_records())
+    # the planar types, the curved ones on {p,q} (tilekit.plugins.curved.isohedral_records) and the
+    # curved family's Laves tilings (laves_records) share the key
+    assert infos["edge_kinds"]["families"] == ["curved", "curved-isohedral", "isohedral"]
+    assert infos["edge_kinds"]["tilings"] == 93 + len(curved_isohedral_records()) + len(curved_laves_records())
     # every example runs as a filter
     for info in infos.values():
         r = cli.run("list", "--count", "--where", info["example"])
@@ -230,14 +237,14 @@ def test_keys_aliases_and_symbols_on_every_database(db_url):
     try:
         infos = {i.key: i for i in cat.key_table()}
         assert infos["sides"].type == "list of int" and infos["aperiodic"].type == "bool"
-        assert infos["edge_kinds"].tilings == 93 + len(curved_isohedral_records())
-        assert infos["edge_kinds"].families == ("curved-isohedral", "isohedral")
+        assert infos["edge_kinds"].tilings == 93 + len(curved_isohedral_records()) + len(curved_laves_records())
+        assert infos["edge_kinds"].families == ("curved", "curved-isohedral", "isohedral")
         assert cat.count_matching(where=["sides=6"]) == cat.count_matching(where=["polygons=6"]) > 20
         assert cat.count_matching(family="isohedral", where=["edges=6"]) == 20
         assert [e.name for e in cat.query(where=["vertex_type=4.3.4.6"])] == ["3.4.6.4", "[3.4.6.4]"]
         assert [e.name for e in cat.query(family="isohedral", limit=3, offset=8)] == ["IH9", "IH10", "IH11"]
         assert cat.get("[c+b+a+a-b-c-; c-a+b+]").name == "IH16"
-        with pytest.raises(ParameterError, match="curved-isohedral, isohedral have it"):
+        with pytest.raises(ParameterError, match="curved, curved-isohedral, isohedral have it"):
             cat.query(family="wang", where=["edge_kinds=JJ"])
     finally:
         cat.close()

@@ -465,19 +465,24 @@ def test_halfplane_is_the_cayley_image_and_draws_half_circles():
     assert svg.count(" A") > 100 and "<line" in svg
 
 
-def test_bytes_per_tile_bounds_the_peak():
+def assert_peak_within_bound(t) -> None:
+    """The patch's peak memory (tracemalloc) is within the tiling's bytes_per_tile per tile,
+    and its tile count within the estimate (test_curved_laves.py uses it too)."""
     import tracemalloc
 
+    tracemalloc.start()
+    try:
+        patch = t.patch()
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak <= t.bytes_per_tile * len(patch), (t.name, peak / len(patch))
+    assert len(patch) <= t.estimate_tiles()
+
+
+def test_bytes_per_tile_bounds_the_peak():
     for config, radius in (("3.14.14", 6.5), ("5.8.8", 5.0), ("3.3.3.3.7", 5.0)):
-        t = UniformTiling(config, radius=radius)
-        tracemalloc.start()
-        try:
-            patch = t.patch()
-            peak = tracemalloc.get_traced_memory()[1]
-        finally:
-            tracemalloc.stop()
-        assert peak <= t.bytes_per_tile * len(patch), (config, peak / len(patch))
-        assert len(patch) <= t.estimate_tiles()
+        assert_peak_within_bound(UniformTiling(config, radius=radius))
 
 
 def test_geometry_option_for_other_families():

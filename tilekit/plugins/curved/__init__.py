@@ -14,7 +14,9 @@ plane by Wythoff's construction: ``wythoff`` (the triangle group, the generator,
 ``uniform`` (UniformTiling, named by vertex configuration or Wythoff symbol), ``notation``
 (vertex configurations), records from ``catalogue/curved/uniform.toml``; ``stars`` (StarTiling:
 uniform tilings Wythoff's construction does not give, developed from a vertex star: the
-3.3.3.p.p family and every vertex-species type with one, ``catalogue/curved/stars.toml``).
+3.3.3.p.p family and every vertex-species type with one, ``catalogue/curved/stars.toml``);
+``laves`` (LavesTiling: the duals of the uniform tilings, the Catalan solids and the hyperbolic
+Laves tilings, named ``[3.4.3.4]`` or ``V3.4.3.4``, ``catalogue/curved/laves.toml``).
 The fourth, ``curved-isohedral``, holds Escher-like isohedral tiles on {p, q}: ``isohedral``
 (CurvedIsohedralTiling) and ``delaney`` (the types as Delaney symbols), records from
 ``catalogue/curved/isohedral.toml``.
@@ -33,6 +35,7 @@ from tilekit.errors import ParseError
 from tilekit.lazy import lazy_exports
 from tilekit.plugins import CatalogueRecord, Family, web_pages
 from tilekit.plugins.curved import notation  # no NumPy: the core's vertex-type notation
+from tilekit.plugins.curved.notation import laves_configuration
 from tilekit.resources import catalogue_dir, read_toml
 from tilekit.schema import Field, check
 
@@ -54,6 +57,7 @@ CURVED_ISOHEDRAL = "curved-isohedral"
 _LAZY = {
     "RegularTiling": "tilekit.plugins.curved.tiling",
     "UniformTiling": "tilekit.plugins.curved.uniform",
+    "LavesTiling": "tilekit.plugins.curved.laves",
     "euclidean_tiling": "tilekit.plugins.curved.uniform",
     "ModelPatch": "tilekit.plugins.curved.patch",
     "ModelPrototile": "tilekit.plugins.curved.patch",
@@ -64,9 +68,10 @@ _LAZY = {
 }
 __getattr__, __dir__ = lazy_exports(__name__, _LAZY)
 
-__all__ = ["CURVED", "CURVED_ISOHEDRAL", "CurvedIsohedralTiling", "HYPERBOLIC", "SPHERICAL", "ModelPatch", "ModelPrototile", "RegularPolygon", "RegularTiling",
-           "UniformTiling", "curved_records", "euclidean_tiling", "hyperbolic_layers", "layer_counts", "regular",
-           "uniform_records", "uniform_tiling"]
+__all__ = ["CURVED", "CURVED_ISOHEDRAL", "CurvedIsohedralTiling", "HYPERBOLIC", "LavesTiling", "SPHERICAL", "ModelPatch", "ModelPrototile", "RegularPolygon", "RegularTiling",
+           "UniformTiling", "curved_records", "euclidean_tiling", "hyperbolic_layers", "laves_configuration", "laves_records",
+           "layer_counts",
+           "regular", "uniform_records", "uniform_tiling"]
 
 #: The records' data file (one [[tiling]] table each: name, title, p, q, aliases, oeis).
 RECORDS_FILE = "regular.toml"
@@ -92,6 +97,11 @@ def uniform_tiling(configuration: str | None = None, **options: Any) -> UniformT
 
 
 def _uniform_from_spec(spec: Mapping[str, Any]) -> Any:
+    # measured start-up cost: as in regular()
+    if isinstance(spec, Mapping) and "laves" in spec:  # a Laves tiling, the dual of a uniform one (laves.py)
+        from tilekit.plugins.curved.laves import LavesTiling
+
+        return LavesTiling.from_spec(spec)
     # measured start-up cost: as in regular()
     if isinstance(spec, Mapping) and "pairing" in spec:  # a vertex-star tiling (stars.py)
         from tilekit.plugins.curved.stars import StarTiling
@@ -288,6 +298,47 @@ def star_records() -> list[CatalogueRecord]:
     return out
 
 
+#: The Laves tilings' data file (the duals of uniform tilings: the Catalan solids, a few hyperbolic ones).
+LAVES_FILE = "laves.toml"
+
+
+def laves_records() -> list[CatalogueRecord]:
+    """The Laves tilings of catalogue/curved/laves.toml, each with its rotation-group variant
+    where the file asks for one (one-line errors naming the file and the field)."""
+    # measured start-up cost: NumPy and the construction (records are built only when seeding)
+    from tilekit.plugins.curved.laves import LavesTiling
+
+    entry = Field("table", fields={"name": Field("str", default=""), "title": Field("str", default=""),
+                                   "configuration": Field("str", required=True),
+                                   "rotations": Field("bool", default=False)})
+    where = f"curved records {LAVES_FILE}"
+    data = check(Field("table", fields={"tiling": Field("list", required=True, items=entry)}),
+                 read_toml(catalogue_dir() / "curved" / LAVES_FILE, "curved records"), where)
+    out = []
+    for rec in data["tiling"]:
+        try:
+            cfg = notation.canonical(notation.parse(rec["configuration"]))
+        except ParseError as exc:
+            raise ParseError(f"{where}: {exc}") from None
+        dotted, exp = notation.dotted(cfg), notation.exponent(cfg)
+        for group in ("full", "rotations") if rec["rotations"] else ("full",):
+            t = LavesTiling(dotted, group=group)
+            if rec["name"]:
+                t.name = rec["name"] if group == "full" else f"{rec['name']}-rotations"
+            where_ = "the sphere" if not t.hyperbolic else "the hyperbolic plane"
+            chiral = ", under its rotation group (chiral tiles)" if group == "rotations" else ""
+            called = rec["name"].replace("-", " ") + ", " if rec["name"] else ""
+            title = rec["title"] or f"[{exp}]: {called}Laves tiling of {where_}, dual of {dotted}{chiral}"
+            if rec["title"] and group == "rotations":
+                title += chiral
+            suffix = "" if group == "full" else "-rotations"
+            aliases = sorted({f"[{exp}]{suffix}", f"[{dotted}]{suffix}", f"V{dotted}{suffix}", f"V{exp}{suffix}"}
+                             - {t.name})
+            out.append(CatalogueRecord(family=CURVED, name=t.name, spec=t.spec(), title=title,
+                                       properties=t.properties(), aliases=aliases))
+    return out
+
+
 @tilekit.hookimpl
 def tilekit_families() -> list[Family]:
     return [
@@ -313,7 +364,9 @@ def tilekit_families() -> list[Family]:
             description=("Named by vertex configuration (3.4.4.4, 3.14.14) or Wythoff symbol (p|q r, p q|r, p q r|, "
                          "|p q r): the Archimedean solids, prisms and antiprisms, truncations and snubs of {p,q} in "
                          "the hyperbolic plane; and non-Wythoffian ones developed from a vertex star (3.3.3.6.6, the analogues of "
-                         "3^3.4^2; option pairing). Options: configuration, symbol, radius, samples, plane, geometry."),
+                         "3^3.4^2; option pairing); and their duals, the Laves tilings ([3.4.3.4] or V3.4.3.4: the "
+                         "Catalan solids, [4.6.14] ...; option group=rotations for chiral tiles). Options: configuration, "
+                         "symbol, radius, samples, plane, geometry."),
         ),
         Family(
             name=CURVED_ISOHEDRAL,
@@ -334,14 +387,17 @@ def tilekit_families() -> list[Family]:
 
 @tilekit.hookimpl
 def tilekit_catalogue_records() -> list[CatalogueRecord]:
-    return curved_records() + uniform_records() + star_records() + isohedral_records()
+    return curved_records() + uniform_records() + star_records() + laves_records() + isohedral_records()
 
 
 @tilekit.hookimpl
 def tilekit_resolve_name(name: str) -> list[str] | None:
     """A spherical or hyperbolic vertex configuration in any rotation or spelling
     (``4.3.4.4``, ``3.4^3``): the uniform tiling with it (``vertex_configuration`` filter);
-    one that no Wythoff symbol gives is a one-line error naming it."""
+    one that no Wythoff symbol gives is a one-line error naming it. A Laves name of one
+    (``[3.9.9]``, ``V3.9.9``): its dual, :func:`_resolve_laves`."""
+    if name.strip()[:1] in "[Vv":
+        return _resolve_laves(name)
     try:
         cfg = notation.parse(name)
     except ParseError:
@@ -371,6 +427,42 @@ def tilekit_resolve_name(name: str) -> list[str] | None:
                              f"up to {bounds['max_order']}); draw it from any curved record: tilekit render 3.14.14 "
                              f"--set configuration={dotted}")
     return [f"vertex_configuration={dotted}"]
+
+
+def _resolve_laves(name: str) -> list[str] | None:
+    """A Laves name of a spherical or hyperbolic configuration that no record has under that
+    spelling: the record of its dual (``dual_configuration`` filter), or a one-line error when
+    no uniform tiling has the configuration or no record ships its dual."""
+    cfg = laves_configuration(name)
+    if cfg is None or notation.geometry_of(cfg) == "euclidean":
+        return None  # the laves family's (tilekit_normalise of the archimedean family)
+    # start-up cost: the construction loads NumPy, only for a name that is a curved Laves name
+    from tilekit.errors import ParameterError
+    from tilekit.plugins.curved import wythoff
+
+    dotted = notation.dotted(cfg)
+    if not wythoff.symbols_for(cfg):
+        raise ParameterError(f"[{dotted}]: no uniform tiling by Wythoff's construction has the vertex configuration "
+                             f"{dotted}, so it has no Laves dual here; e.g. [3.4.3.4], [4.6.10], [4.6.14]")
+    shipped = {notation.canonical(notation.parse(t["configuration"]))
+               for t in read_toml(catalogue_dir() / "curved" / LAVES_FILE, "curved records").get("tiling", [])
+               if isinstance(t, dict) and isinstance(t.get("configuration"), str)}
+    if cfg not in shipped:
+        raise ParameterError(f"[{dotted}], the dual of the uniform tiling {dotted}, has no catalogue record; draw it "
+                             f"from any curved Laves record: tilekit render '[4.6.14]' --set configuration={dotted}")
+    return [f"dual_configuration={dotted}", "group=full"]
+
+
+@tilekit.hookimpl
+def tilekit_normalise(key: str, value: str) -> tuple[str, str] | None:
+    """``V3.4.3.4`` (Laves's V notation, any rotation) as the bracket name ``[3.4.3.4]`` that
+    the Laves records of this family and of the laves family carry."""
+    if key != "name" or value.strip()[:1] not in ("V", "v"):
+        return None
+    cfg = laves_configuration(value)
+    if cfg is None:
+        return None
+    return "name", f"[{notation.exponent(cfg)}]"
 
 
 @tilekit.hookimpl

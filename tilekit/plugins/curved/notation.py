@@ -5,6 +5,7 @@ family imports it in this one place.
 
 from __future__ import annotations
 
+from tilekit.errors import ParseError
 from tilekit.regular.notation import (
     angle_excess,
     bounded_species,
@@ -15,7 +16,8 @@ from tilekit.regular.notation import (
 from tilekit.regular.notation import format_sequence as exponent
 from tilekit.regular.notation import parse_sequence as parse
 
-__all__ = ["angle_excess", "canonical", "dotted", "exponent", "geometry_of", "hyperbolic_types", "parse"]
+__all__ = ["angle_excess", "canonical", "dotted", "exponent", "geometry_of", "hyperbolic_types", "laves_configuration",
+           "parse"]
 
 
 def hyperbolic_types(max_sides: int, max_valence: int) -> list[tuple[int, ...]]:
@@ -32,3 +34,20 @@ def hyperbolic_types(max_sides: int, max_valence: int) -> list[tuple[int, ...]]:
 def dotted(seq: tuple[int, ...]) -> str:
     """``(3, 4, 4, 4)`` -> ``3.4.4.4``."""
     return ".".join(map(str, seq))
+
+
+def laves_configuration(name: str) -> tuple[int, ...] | None:
+    """The canonical vertex configuration a Laves name ``[3.4.3.4]``, ``[3.4^3]`` or
+    ``V3.4.3.4`` denotes, or None for text that is not one (standard library only: the name
+    hooks call it)."""
+    s = name.strip()
+    if len(s) > 2 and s[0] == "[" and s[-1] == "]":
+        inner = s[1:-1]
+    elif len(s) > 1 and s[0] in "Vv" and s[1].isdigit():
+        inner = s[1:]
+    else:
+        return None
+    try:
+        return canonical(parse(inner))
+    except ParseError:
+        return None

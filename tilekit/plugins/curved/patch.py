@@ -264,12 +264,17 @@ class ModelPatch(Patch):
 
 
 def sphere_report(patch: ModelPatch, tolerance: float = AREA_TOL) -> ValidationReport:
-    """A spherical patch checked on the sphere: faces are convex spherical polygons, so two
+    """A spherical patch checked on the sphere: faces are convex spherical polygons (those placed
+    by a reflection read backwards, so all run counter-clockwise), so two
     have disjoint interiors when a great circle through an edge of one leaves every vertex
     of the other on its far side (or on it), or a great circle through a vertex of each
     leaves them on opposite sides; the uncovered area is 4π minus the faces' areas
     (Girard: angle sum minus (p − 2)π, from the actual vertices)."""
     faces = patch.vertex_lists()  # (k, 3) each
+    # a face placed by a reflection (a Laves tile's mirror image) runs clockwise: read it
+    # backwards, so that every edge plane's normal below points into its face
+    for i in np.flatnonzero(np.linalg.det(patch.transform) < 0):
+        faces[i] = faces[i][::-1]
     n = len(faces)
     big = max((len(f) for f in faces), default=3)
     report = ValidationReport(tiles=n)

@@ -96,11 +96,17 @@ def _polygon(n: int) -> str:
 
 
 class UniformTiling(CurvedTiling):
-    """A uniform tiling of the sphere or the hyperbolic plane by Wythoff's construction."""
+    """A uniform tiling of the sphere or the hyperbolic plane by Wythoff's construction (the
+    base of its dual, laves.LavesTiling, which shares the naming, options and specs)."""
 
     streams = False
     bytes_per_tile = UNIFORM_BYTES_PER_TILE
     OPTIONS = _OPTIONS
+    #: Options that name another tiling: configure() keeps the name and title without them.
+    DEFINING: tuple[str, ...] = ("configuration", "symbol")
+    #: The spec's keys, and what its one-line errors call it.
+    SPEC_KEYS: tuple[str, ...] = tuple(sorted(_SPEC_KEYS))
+    SPEC_WHAT = "curved"
 
     def __init__(self, configuration: str | None = None, *, symbol: str | None = None, radius: float | None = None,
                  samples: int = DEFAULT_SAMPLES, plane: str = "poincare", geometry: str | None = None,
@@ -110,9 +116,7 @@ class UniformTiling(CurvedTiling):
         self.geometry_hint = check_geometry(geometry)
         kind = self.symbol.geometry
         if kind == wythoff.EUCLIDEAN:
-            raise ParameterError(f"{wythoff.uniform_configuration(self.symbol)} tiles the Euclidean plane: see the "
-                                 "archimedean family (tilekit render 3.4.6.4); the curved family draws the sphere "
-                                 "and the hyperbolic plane")
+            raise ParameterError(self.euclidean_message())
         self.kind = kind
         self.family = "curved"
         self.plane, self.samples = drawing_options(plane, samples, kind == wythoff.SPHERE)
@@ -120,8 +124,15 @@ class UniformTiling(CurvedTiling):
             raise ParameterError("radius applies to hyperbolic tilings; a tiling of the sphere is drawn whole")
         self.radius = None if radius is None else float(_number("radius", radius, 0, MAX_RADIUS, False))
         self.configuration = wythoff.uniform_configuration(self.symbol)
-        self.name = name or notation.exponent(self.symbol.configuration or ())
+        self.name = name or self.default_name()
         self.title = title
+
+    def euclidean_message(self) -> str:
+        return (f"{wythoff.uniform_configuration(self.symbol)} tiles the Euclidean plane: see the archimedean family "
+                "(tilekit render 3.4.6.4); the curved family draws the sphere and the hyperbolic plane")
+
+    def default_name(self) -> str:
+        return notation.exponent(self.symbol.configuration or ())
 
     @cached_property
     def construction(self) -> wythoff.Construction:
@@ -242,23 +253,36 @@ class UniformTiling(CurvedTiling):
             named = {"symbol": options["symbol"]}
         else:
             named = {self.given: self.configuration if self.given == "configuration" else str(self.symbol)}
-        same = not ({"configuration", "symbol"} & set(options))
-        return UniformTiling(**named, radius=options.get("radius", self.radius),
-                             samples=options.get("samples", self.samples), plane=options.get("plane", self.plane),
-                             geometry=options.get("geometry", self.geometry_hint),
-                             name=self.name if same else "", title=self.title if same else "")
+        same = not (set(self.DEFINING) & set(options))
+        return type(self)(**named, **self.carried(options), radius=options.get("radius", self.radius),
+                          samples=options.get("samples", self.samples), plane=options.get("plane", self.plane),
+                          geometry=options.get("geometry", self.geometry_hint),
+                          name=self.name if same else "", title=self.title if same else "")
+
+    def carried(self, options: Mapping[str, Any]) -> dict[str, Any]:
+        """A subclass's own options for configure(): ``options``' value, else the tiling's."""
+        return {}
+
+    def defining_spec(self) -> dict[str, Any]:
+        """The spec's keys that say which tiling this is (drawing_spec adds the rest)."""
+        return ({"configuration": self.configuration} if self.given == "configuration"
+                else {"symbol": str(self.symbol)})
 
     def spec(self) -> dict[str, Any]:
-        out: dict[str, Any] = ({"configuration": self.configuration} if self.given == "configuration"
-                               else {"symbol": str(self.symbol)})
-        return drawing_spec(out, self, notation.exponent(self.symbol.configuration or ()))
+        return drawing_spec(self.defining_spec(), self, self.default_name())
+
+    @classmethod
+    def spec_options(cls, spec: Mapping[str, Any]) -> dict[str, Any]:
+        """A subclass's own keyword arguments from its spec (checked)."""
+        return {}
 
     @classmethod
     def from_spec(cls, spec: Mapping[str, Any]) -> UniformTiling:
-        spec_table(spec, sorted(_SPEC_KEYS), "curved")
+        spec_table(spec, cls.SPEC_KEYS, cls.SPEC_WHAT)
         return cls(spec.get("configuration"), symbol=spec.get("symbol"), radius=spec.get("radius"),
                    samples=spec.get("samples", DEFAULT_SAMPLES), plane=spec.get("plane", "poincare"),
-                   geometry=spec.get("geometry"), name=str(spec.get("name", "")), title=str(spec.get("title", "")))
+                   geometry=spec.get("geometry"), name=str(spec.get("name", "")), title=str(spec.get("title", "")),
+                   **cls.spec_options(spec))
 
 
 def euclidean_tiling(configuration: str | None = None, *, symbol: str | None = None) -> PeriodicTiling:

@@ -130,14 +130,19 @@ class Symbol:
             out.append((3, 3))
         return out
 
-    def face_counts(self) -> dict[int, int]:
-        """Faces per polygon size on the sphere: the group's order over each face's
-        stabiliser (2n_i round corner i, a snub's triangles 2)."""
+    def group_order(self) -> int:
+        """The order of the triangle group *pqr on the sphere, 4 / (1/p + 1/q + 1/r − 1)
+        (a one-line error for an infinite group)."""
         p, q, r = self.orders
         s, t = q * r + p * r + p * q, p * q * r
         if s <= t:
             raise ParameterError(f"{self} is not spherical: its group is infinite")
-        order = 4 * t // (s - t)  # 4 / (1/p + 1/q + 1/r − 1)
+        return 4 * t // (s - t)
+
+    def face_counts(self) -> dict[int, int]:
+        """Faces per polygon size on the sphere: the group's order over each face's
+        stabiliser (2n_i round corner i, a snub's triangles 2)."""
+        order = self.group_order()
         out: dict[int, int] = {}
         for corner, k in self.face_sizes():
             count = order // (2 * self.orders[corner]) if corner < 3 else order // 2

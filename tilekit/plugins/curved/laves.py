@@ -1,0 +1,443 @@
+"""LavesTiling: the dual of a uniform tiling of the sphere or the hyperbolic plane (§4.4 Laves
+tilings carried to curved space): the Catalan solids as tilings of the sphere, and their
+hyperbolic kin ([4.6.14], [3.3.3.3.3.3.3] = {7,3} ...), named ``[3.4.3.4]`` or ``V3.4.3.4``
+after the vertex configuration of the uniform tiling they are dual to.
+
+Everything comes from Wythoff's construction (wythoff.py) on the same triangle group: the tile
+is the polygon round the generator G (a vertex of the uniform tiling) whose corners are the
+centres of the faces at G (orbifold._star), and the group's elements place it, one tile per
+image of G (the construction's cells times the cell corner's dihedral group, images of G told
+apart on the construction's grid). The tile is isohedral by construction: one prototile, one
+orbit; its incidence symbol (§5.3.1) comes from the group too: edges related by an element
+fixing G share a label (one that reverses an edge leaves it undirected), and each label is
+matched to the edge of the neighbouring tile that the element carrying G to its neighbour
+across the edge brings onto it. ``group='rotations'`` takes the rotation subgroup only (tiles
+without mirror symmetry, as Escher-like tiles want: their edges may be chiral), which is
+isohedral unless the generator's stabiliser is trivial (the omnitruncations' duals: the
+rotations split the tiles into two mirror-image orbits — the snub's dual is the chiral one).
+The symbol is the one under the construction's group, which is the tiling's full group except
+where Wythoff's construction gives the tiling only on a subgroup (the antiprisms, | 2 2 n on
+22n, whose full group is 2*n): ``symmetry_group`` then names the larger group.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from functools import cached_property
+from typing import Any
+
+import numpy as np
+
+from tilekit.errors import GeometryError, ParameterError, ParseError
+from tilekit.incidence import IncidenceSymbol
+from tilekit.plugins.curved import model, notation, wythoff
+from tilekit.plugins.curved.orbifold import (
+    _first_of_each,
+    _local_elements,
+    _same,
+    _star,
+    _unique,
+    construction_stabiliser,
+)
+from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
+from tilekit.plugins.curved.tiling import DEFAULT_SAMPLES, clipped
+from tilekit.plugins.curved.uniform import DEFAULT_FACES, MAX_RADIUS, UniformTiling
+
+#: Peak bytes per tile while a patch is made: the construction's cells (their breadth-first
+#: candidates) per tile are more than a uniform tiling's per face, up to a cell per tile when G is
+#: the cell's corner; measured with tracemalloc at 340-3900 for [4.6.14], [7^3], [5^4] and [3^7]
+#: patches of 2·10^3 to 3·10^4 tiles (tests/plugins/test_curved_laves.py keeps it a bound).
+LAVES_BYTES_PER_TILE = 5000
+
+#: The groups a Laves tiling may be taken under: the construction's (``full``) or its rotations.
+GROUPS = ("full", "rotations")
+
+_OPTIONS = ("configuration", "symbol", "group", "radius", "samples", "plane", "geometry")
+#: ``laves: true`` tells a Laves spec from a uniform tiling's in the curved family.
+_SPEC_KEYS = set(_OPTIONS) | {"laves", "name", "title"}
+
+
+def _configuration(text: Any) -> str:
+    """A configuration option with or without the Laves brackets or V (``[3.4.3.4]`` = ``3.4.3.4``)."""
+    if not isinstance(text, str):
+        raise ParameterError(f"configuration must be a vertex configuration like 3.4.3.4, got {str(text)[:40]}")
+    cfg = notation.laves_configuration(text)
+    return text if cfg is None else notation.dotted(cfg)
+
+
+def _check_group(group: Any) -> str:
+    if not isinstance(group, str) or group not in GROUPS:
+        raise ParameterError(f"group must be one of {', '.join(GROUPS)}, got {str(group)[:40]}")
+    return group
+
+
+class LavesTiling(UniformTiling):
+    """The dual of the uniform tiling with a given vertex configuration on the sphere or the
+    hyperbolic plane: one prototile, placed by the triangle group (see the module). Named,
+    configured and specified as the uniform tiling is (UniformTiling), with ``group`` besides."""
+
+    OPTIONS = _OPTIONS
+    bytes_per_tile = LAVES_BYTES_PER_TILE
+    DEFINING = ("configuration", "symbol", "group")
+    SPEC_KEYS = tuple(sorted(_SPEC_KEYS))
+    SPEC_WHAT = "curved Laves"
+
+    def __init__(self, configuration: str | None = None, *, symbol: str | None = None, group: str = "full",
+                 radius: float | None = None, samples: int = DEFAULT_SAMPLES, plane: str = "poincare",
+                 geometry: str | None = None, name: str = "", title: str = "") -> None:
+        self.group = _check_group(group)
+        super().__init__(None if configuration is None else _configuration(configuration), symbol=symbol,
+                         radius=radius, samples=samples, plane=plane, geometry=geometry, name=name, title=title)
+        if self.group == "rotations" and self.symbol.form == "omni":
+            raise ParameterError(f"[{self.configuration}] under the rotation group {self.symbol.group.lstrip('*')} has "
+                                 "two tile orbits (the tile and its mirror image), so it is not isohedral; "
+                                 "group=rotations applies to the duals of vertex, edge and snub forms (the chiral "
+                                 "dual of an omnitruncation is the snub's, e.g. [3.3.3.3.4])")
+
+    def euclidean_message(self) -> str:
+        dotted = wythoff.uniform_configuration(self.symbol)
+        return (f"[{dotted}] tiles the Euclidean plane: see the laves family (tilekit render '[{dotted}]'); the "
+                "curved family draws the sphere and the hyperbolic plane")
+
+    def default_name(self) -> str:
+        base = f"[{notation.exponent(self.symbol.configuration or ())}]"
+        return base if self.group == "full" else f"{base}-rotations"
+
+    @property
+    def rotations_only(self) -> bool:
+        return self.group == "rotations" or self.symbol.form == "snub"
+
+    @cached_property
+    def _local(self) -> tuple[np.ndarray, np.ndarray]:
+        """(corners (k, 3): the centres of the faces at G, counter-clockwise round G starting
+        with the first face of the star; L·L: the group's elements near G, proper ones first
+        under group='rotations' only proper ones)."""
+        c = self.construction
+        local = _local_elements(c)
+        frames, _sides = _star(c, local)
+        centres = frames[:, :, 2]
+        g = c.generator
+        frame = c.space.frame(g, centres[0])
+        inv = np.linalg.inv(frame)
+        at_pole = centres @ inv.T
+        angle = np.mod(np.arctan2(at_pole[:, 1], at_pole[:, 0]), 2 * np.pi)
+        order = np.argsort(angle, kind="stable")
+        corners = centres[order]
+        pair = np.matmul(local[:, None], local[None]).reshape(-1, 3, 3)
+        det = np.linalg.det(pair)
+        pair = pair[np.argsort(det < 0, kind="stable")]  # proper elements first
+        if self.rotations_only:
+            pair = pair[np.linalg.det(pair) > 0]
+        return corners, pair
+
+    @cached_property
+    def frame(self) -> np.ndarray:
+        """The proper motion taking the pole to G and the x axis towards the first corner: the
+        central tile's transform."""
+        corners, _ = self._local
+        return self.construction.space.frame(self.construction.generator, corners[0])
+
+    @cached_property
+    def corners(self) -> np.ndarray:
+        """(k, 3): the prototile's corners, counter-clockwise round the pole (the tile at G
+        carried back by :attr:`frame`)."""
+        corners, _ = self._local
+        out = corners @ np.linalg.inv(self.frame).T
+        k = len(out)
+        if k != len(self.symbol.configuration or ()):
+            raise GeometryError(f"[{self.configuration}]: found {k} faces round the generator, not "
+                                f"{len(self.symbol.configuration or ())}")
+        return out
+
+    @cached_property
+    def valences(self) -> tuple[int, ...]:
+        """Tiles meeting at each corner of the prototile, in order: the sides of the uniform
+        tiling's face whose centre the corner is (the dual of the dual's vertex configuration)."""
+        c = self.construction
+        g = c.generator
+        corners, _ = self._local
+        sizes = {round(f.circumradius, 9): f.sides for f in c.face_types}
+        out = []
+        for pt in corners:
+            d = float(c.space.distance(pt, g))
+            near = min(sizes, key=lambda r: abs(r - d))
+            out.append(sizes[near])
+        return tuple(out)
+
+    @cached_property
+    def circumradius(self) -> float:
+        """The largest distance from the tile's centre G to a corner."""
+        return float(self.construction.space.distance(self.corners, self.construction.space.point(0.0, 0.0)).max())
+
+    @cached_property
+    def edge_lengths(self) -> np.ndarray:
+        sp = self.construction.space
+        return sp.distance(self.corners, np.roll(self.corners, -1, axis=0))
+
+    # -- the incidence symbol (§5.3.1) ---------------------------------------------------
+    @cached_property
+    def stabiliser(self) -> np.ndarray:
+        """(s, 3, 3): the group's elements fixing G (the tile's symmetries in the group)."""
+        _, pair = self._local
+        g = self.construction.generator
+        fix = _same(pair @ g, g)
+        return _unique(pair[fix])
+
+    @cached_property
+    def incidence_symbol(self) -> IncidenceSymbol:
+        """The tile's incidence symbol under the group (canonical form)."""
+        corners, pair = self._local
+        k = len(corners)
+        sp = self.construction.space
+        g = self.construction.generator
+
+        # the tile's symmetries as edge maps: edge i (corner i to i + 1) goes to edge j forwards
+        # (+1: start to start) or backwards (−1)
+        def edge_map(m: np.ndarray, i: int, target: np.ndarray) -> tuple[int, int]:
+            a, b = index_in(target, m @ corners[i]), index_in(target, m @ corners[(i + 1) % k])
+            if a < 0 or b < 0:
+                return -1, 0
+            if b == (a + 1) % k:
+                return a, 1
+            if a == (b + 1) % k:
+                return b, -1
+            return -1, 0
+
+        def index_in(target: np.ndarray, pt: np.ndarray) -> int:
+            hit = np.flatnonzero(_same(target, pt))
+            return int(hit[0]) if len(hit) else -1
+
+        labels: list[int | None] = [None] * k
+        signs = [0] * k
+        next_label = 0
+        for i in range(k):
+            if labels[i] is not None:
+                continue
+            lab = next_label
+            next_label += 1
+            undirected = False
+            images: dict[int, int] = {}
+            for s in self.stabiliser:
+                j, sense = edge_map(s, i, corners)
+                if j < 0:
+                    raise GeometryError(f"[{self.configuration}]: a symmetry of the tile does not map its edges")
+                if j == i and sense < 0:
+                    undirected = True
+                images.setdefault(j, sense)
+            for j, sense in images.items():
+                labels[j] = lab
+                signs[j] = 0 if undirected else sense
+        # adjacency: the element carrying G to its neighbour across edge i carries some edge j
+        # of the central tile onto edge i
+        first = {}
+        for i in range(k):
+            first.setdefault(labels[i], i)
+        adjacency: dict[int, tuple[int, int]] = {}
+        for lab, i in first.items():
+            a, b = corners[i], corners[(i + 1) % k]
+            neighbour = _reflect_across(sp, g, a, b)
+            hop = pair[_same(pair @ g, neighbour)]
+            if not len(hop):
+                raise GeometryError(f"[{self.configuration}]: no element of the group carries the tile across "
+                                    f"its edge {i + 1}")
+            h = hop[0]
+            found = None
+            for j in range(k):
+                aj, bj = h @ corners[j], h @ corners[(j + 1) % k]
+                if _same(aj[None], b)[0] and _same(bj[None], a)[0]:
+                    found = (j, -1)  # the neighbour's edge j runs from b to a: against edge i
+                elif _same(aj[None], a)[0] and _same(bj[None], b)[0]:
+                    found = (j, 1)
+                if found:
+                    break
+            if found is None:
+                raise GeometryError(f"[{self.configuration}]: the neighbour across edge {i + 1} does not share it")
+            j, along = found
+            other = labels[j]
+            if signs[i] == 0:
+                adjacency[lab] = (other, 0)  # type: ignore[assignment]
+            else:
+                # the neighbour's arrow on the shared edge, as a sign along edge i; + when the two
+                # arrows point in opposite directions (§5.2)
+                theirs = signs[j] * along
+                adjacency[lab] = (other, 1 if theirs != signs[i] else -1)  # type: ignore[assignment]
+        letters = "abcdefghijklmnopqrstuvwxyz"
+        edges = tuple((letters[lab], sg) for lab, sg in zip(labels, signs))  # type: ignore[index]
+        adj = tuple((letters[adjacency[lab][0]], adjacency[lab][1]) for lab in sorted(adjacency))
+        sym = IncidenceSymbol(edges, adj)
+        sym.check()
+        return sym.canonical()
+
+    # -- the Tiling interface ------------------------------------------------------------
+    @cached_property
+    def _proto(self) -> ModelPrototile:
+        sp = self.construction.space
+        geom = model.Geometry(sp.sign)
+        v = self.corners
+        parts = []
+        for i in range(len(v)):
+            pair = np.array([v[i], v[(i + 1) % len(v)]])
+            parts.append(model.sample_edges(geom, pair, float(self.edge_lengths[i]), self.samples)[: self.samples])
+        pts = np.concatenate(parts)
+        view = model.view_rotation() if sp.sign > 0 else None
+        flat = model.project(pts, self.plane) if sp.sign < 0 else model.orthographic(pts @ view.T)
+        return ModelPrototile(flat, name=f"[{self.configuration}] tile", points=pts, sign=sp.sign, view=view,
+                              plane=self.plane, corners=tuple(range(0, len(pts), self.samples)))
+
+    @property
+    def prototiles(self) -> list[ModelPrototile]:
+        return [self._proto]
+
+    def tiles_per_area(self) -> float:
+        """Tiles (vertices of the uniform tiling) per unit area: one per generator's orbit point,
+        so per triangle of *pqr one over the generator's stabiliser (the snub's group has two
+        triangles per element)."""
+        stab = construction_stabiliser(self.symbol) * (2 if self.symbol.form == "snub" else 1)
+        return 1.0 / (stab * wythoff.triangle_area(self.symbol.orders))
+
+    def _radius(self) -> float:
+        if self.radius is not None:
+            return self.radius
+        r = math.acosh(1 + DEFAULT_FACES / (2 * math.pi * self.tiles_per_area()))
+        return float(min(MAX_RADIUS, max(0.0, r - self.circumradius)))
+
+    def estimate_tiles(self, region: Any = None) -> float:
+        """The sphere's face count; hyperbolic: tiles per area times the disc's area, the disc
+        grown by twice the tile's circumradius."""
+        if not self.hyperbolic:
+            return float(self.faces)
+        r = self._radius() + 2 * self.circumradius
+        return 1.0 + self.tiles_per_area() * 2 * math.pi * (math.cosh(r) - 1)
+
+    def group_elements(self) -> np.ndarray:
+        """(n, 3, 3): one element of the group per tile (per image of G; proper ones where the
+        group has one), every tile of the sphere, or those whose centre lies within the radius
+        plus the circumradius (the disc of the radius is covered)."""
+        c = self.construction
+        self._check_size(self.estimate_tiles())
+        reach = None
+        if self.hyperbolic:
+            reach = self._radius() + self.circumradius
+        g = c.generator
+        pole = c.corners[0]
+        cells = c.cells(None if reach is None else reach + float(c.space.distance(g, pole)) + c.cell_radius)
+        stab = c.stabiliser
+        n = c.orders[c.cell_corner]
+        if self.rotations_only:
+            stab = stab[:n]
+        # one element of the cell corner's group per image of G (G at the cell corner: just one),
+        # proper ones first, so a cell brings each of its vertices once
+        stab = stab[np.argsort(np.linalg.det(stab) < 0, kind="stable")]
+        stab = stab[_first_of_each(stab @ g)]
+        elems = np.matmul(cells[:, None], stab[None]).reshape(-1, 3, 3)
+        elems = elems[np.argsort(np.linalg.det(elems) < 0, kind="stable")]  # proper ones first
+        pts = elems @ g
+        if reach is not None:
+            near = c.space.distance(pts, pole) <= reach + 1e-12
+            elems, pts = elems[near], pts[near]
+        keep = wythoff.dedup(c._key_points(pts), c.edge_length)
+        return elems[keep]
+
+    def patch(self, region: Any = None) -> ModelPatch:
+        """Every tile (sphere) or every tile whose centre (a vertex of the uniform tiling) lies
+        within the radius plus the tile's circumradius, less those whose outline misses
+        ``region``; colour: the tile's handedness (0 placed by a rotation, 1 by a reflection:
+        the two halves of an omnitruncation's dual, all 0 where the tile has a mirror)."""
+        elems = self.group_elements()
+        mats = elems @ self.frame
+        colour = (np.linalg.det(mats) < 0).astype(np.int64)
+        patch = ModelPatch([self._proto], np.zeros(len(mats), dtype=np.int64), mats, colour=colour)
+        return clipped(patch, region)
+
+    # -- records and options -------------------------------------------------------------
+    @property
+    def faces(self) -> int:
+        """Tiles on the sphere: the group's order over G's stabiliser (the uniform tiling's
+        vertices)."""
+        if self.hyperbolic:
+            raise ParameterError(f"[{self.configuration}] tiles the hyperbolic plane: it has infinitely many tiles")
+        order = self.symbol.group_order() // (2 if self.symbol.form == "snub" else 1)  # a snub's: the rotations
+        return order // construction_stabiliser(self.symbol)
+
+    def face_counts(self) -> dict[int, int]:
+        """Tiles per number of sides on the sphere: all the tile's."""
+        return {len(self.symbol.configuration or ()): self.faces}
+
+    def group_notation(self) -> str:
+        """The group placing the tiles, in orbifold notation (*pqr, or pqr: its rotations)."""
+        digits = "".join(str(n) for n in sorted(self.symbol.orders, reverse=True))
+        return digits if self.rotations_only else "*" + digits
+
+    def properties(self) -> dict[str, Any]:
+        cfg = self.symbol.configuration or ()
+        sym = self.incidence_symbol
+        props: dict[str, Any] = {
+            "periodic": self.hyperbolic,
+            "k_hedral": 1,
+            "k_isohedral": 1,
+            "edge_to_edge": True,
+            "laves": True,
+            "geometry": self.kind,
+            "topology": f"[{notation.exponent(cfg)}]",
+            "dual": notation.exponent(cfg),
+            "dual_configuration": self.configuration,
+            "wythoff_symbol": str(self.symbol),
+            "group": self.group,
+            "construction_group": self.group_notation(),
+            "sides": [len(cfg)],
+            "valences": ".".join(map(str, self.valences)),
+            # the symbol under the construction's group (as the isohedral families store it: the
+            # canonical form under both keys, so an incidence_symbol filter finds it)
+            "incidence_symbol": str(sym),
+            "canonical_symbol": str(sym),
+            "edge_kinds": sym.edge_kinds(),
+            "tile_symmetry": len(self.stabiliser),
+            # the tiling's full group: the uniform tiling's (orbifold.py), which is the construction's
+            # for every shipped record (an antiprism's dual has 2*n, its construction 22n)
+            "symmetry_group": self.symmetry.notation,
+            "orbifold": self.symmetry.notation,
+        }
+        if not self.hyperbolic:
+            props["faces"] = self.faces
+            props["vertices"] = sum(self.symbol.face_counts().values())
+        return props
+
+    def describe(self) -> str:
+        where = "the sphere" if not self.hyperbolic else "the hyperbolic plane (Poincaré disc)"
+        count = f", {self.faces} faces" if not self.hyperbolic else ""
+        return (f"[{self.configuration}]: the Laves tiling of {where} dual to the uniform tiling {self.configuration} "
+                f"({self.symbol}){count}; one {len(self.corners)}-gon tile, group {self.group_notation()}, "
+                f"incidence symbol {self.incidence_symbol} ({self.incidence_symbol.edge_kinds()} edges)")
+
+    def options_help(self) -> str:
+        own = super().options_help().splitlines()[2:]  # radius, geometry, drawing: the uniform tiling's
+        return "\n".join([
+            "--set configuration=C       the dual's vertex configuration, e.g. 3.4.3.4 (or [3.4.3.4], V3.4.3.4)",
+            "--set symbol=S              instead: the dual's Wythoff symbol, e.g. '2 3 | 7'",
+            "--set group=G               full (default: the construction's group) or rotations (chiral tiles)",
+            *own,
+        ])
+
+    def carried(self, options: Mapping[str, Any]) -> dict[str, Any]:
+        return {"group": options.get("group", self.group)}
+
+    def defining_spec(self) -> dict[str, Any]:
+        out: dict[str, Any] = {"laves": True, **super().defining_spec()}
+        if self.group != "full":
+            out["group"] = self.group
+        return out
+
+    @classmethod
+    def spec_options(cls, spec: Mapping[str, Any]) -> dict[str, Any]:
+        if spec.get("laves", True) is not True:
+            raise ParseError(f"curved Laves spec: laves must be true, got {str(spec.get('laves'))[:20]}")
+        return {"group": spec.get("group", "full")}
+
+
+def _reflect_across(sp: wythoff.Space, g: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """G's neighbour across the dual edge ab: G's mirror image in the geodesic through a and b
+    (the uniform tiling's edge from G crosses the dual edge at right angles, and both its ends
+    are one edge length from the crossing point)."""
+    f, w = sp.mirror(a, b, g)
+    return (np.eye(3) - 2.0 * np.outer(w, f)) @ g
