@@ -673,16 +673,17 @@ def test_properties_round_trip_with_their_types(props):
 
 
 class _UpgradePlugin(testkit.GridPlugin):
-    """The test family after an upgrade: 4^4 gains a property, and one new tiling ships."""
+    """The test family after an upgrade: 4^4 gains a property, every record's vertex_degree is
+    renamed valence, and one new tiling ships."""
 
     @tilekit.hookimpl
     def tilekit_catalogue_records(self):
         out = []
         for r in testkit.records():
+            props = {("valence" if k == "vertex_degree" else k): v for k, v in r.properties.items()}
             if r.name == "4^4":
-                r = CatalogueRecord(r.family, r.name, r.spec, r.title,
-                                    {**r.properties, "shipped_in_upgrade": True}, r.aliases)
-            out.append(r)
+                props["shipped_in_upgrade"] = True
+            out.append(CatalogueRecord(r.family, r.name, r.spec, r.title, props, r.aliases))
         square = out[-1]
         out.append(CatalogueRecord(square.family, "new-in-upgrade", square.spec, "",
                                    {"periodic": True, "k_hedral": 1}))
@@ -705,6 +706,11 @@ def test_changed_plugins_refresh_shipped_records_keeping_search_results(url, mon
     cat = open_catalogue(url, pm=after)
     square = cat.get("4^4").properties
     assert square["shipped_in_upgrade"] is True and square["found_by_search"] == 7
+    # a shipped property the plugin renamed is gone, not left beside its new name
+    assert square["valence"] == 4 and "vertex_degree" not in square
+    with pytest.raises(NotFoundError, match="unknown property 'vertex_degree'"):
+        cat.count_matching(testkit.FAMILY, ["vertex_degree=3"])
+    assert cat.count_matching(testkit.FAMILY, ["valence=3"]) == 4  # 6^3, 4.8.8, 4.6.12, 3.12.12
     assert cat.get("new-in-upgrade").name == "new-in-upgrade"
     assert cat.get("search-result").name == "search-result"  # never dropped
     assert cat.refresh_shipped() is None

@@ -4,6 +4,7 @@ queries (streamed), export; its run and result-table methods come from
 
 from __future__ import annotations
 
+import json
 import os
 import threading
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
@@ -62,6 +63,9 @@ _STEP_MS = 50
 
 #: Alembic keeps its migration context in module globals: one migration at a time per process.
 _MIGRATION_LOCK = threading.RLock()
+
+#: catalogue_meta key: the property keys each family shipped at the last seeding (JSON)
+SHIPPED_KEYS_KEY = "shipped_property_keys"
 
 
 #: Names offered as suggestions at most (a catalogue of a million results is not read for them).
@@ -277,8 +281,8 @@ class Catalogue(RunsMixin, ResultsMixin, TilingReader):
 
         Compares :func:`shipped_fingerprint` with the one stored at the last seeding; when
         they differ, inserts new shipped records and updates existing ones (spec, title,
-        aliases, shipped properties), keeping properties that searches added and every
-        tiling no plugin ships. Returns (added, updated), or None when nothing changed.
+        aliases, shipped properties), dropping a property a plugin shipped before and no longer
+        ships, keeping properties that searches added and every tiling no plugin ships. Returns (added, updated), or None when nothing changed.
         """
         fingerprint = shipped_fingerprint(self.pm)
         with self._errors("reading the catalogue's metadata"), self.engine.connect() as conn:
@@ -304,22 +308,34 @@ class Catalogue(RunsMixin, ResultsMixin, TilingReader):
                     .where(TILINGS.c.name.in_(batch))
                 ).all()
             existing = {e.name: e for e in load_entries(_runner(conn), rows)}
+            # the property keys each family shipped last time: one that a shipped record no
+            # longer carries (renamed or dropped by the plugin) goes; any other key on the old
+            # row was added by a search and stays (a catalogue from before this was recorded
+            # keeps every old key once)
+            was_shipped = json.loads(conn.execute(
+                sa.select(META.c.value).where(META.c.key == SHIPPED_KEYS_KEY)).scalar() or "{}")
+            shipped: dict[str, set[str]] = {}
             merged = []
             for rec in records:
+                shipped.setdefault(rec.family, set()).update(rec.properties)
                 old = existing.get(rec.name)
                 if old is not None:
+                    stale = set(was_shipped.get(old.family, ())) - set(rec.properties)
+                    kept = {k: v for k, v in old.properties.items() if k not in stale}
                     rec = CatalogueRecord(
                         family=rec.family,
                         name=rec.name,
                         spec=rec.spec,
                         title=rec.title,
-                        properties={**old.properties, **rec.properties},
+                        properties={**kept, **rec.properties},
                         aliases=list(rec.aliases),
                     )
                 merged.append(rec)
             result = upsert(conn, merged, replace=True)
-            conn.execute(sa.delete(META).where(META.c.key == SEED_KEY))
+            conn.execute(sa.delete(META).where(META.c.key.in_([SEED_KEY, SHIPPED_KEYS_KEY])))
             conn.execute(sa.insert(META).values(key=SEED_KEY, value=fingerprint))
+            conn.execute(sa.insert(META).values(
+                key=SHIPPED_KEYS_KEY, value=json.dumps({f: sorted(k) for f, k in sorted(shipped.items())})))
             self._remember_result_families(conn, fingerprint)
             return result
 
