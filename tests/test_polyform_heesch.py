@@ -155,7 +155,7 @@ def test_a_torus_search_stopped_by_the_time_limit_leaves_the_coronas_their_turn(
     budgets = []
 
     def stopped_then_nothing(self, m_range, *, time_limit=None, **kw):
-        budgets.append(time_limit)
+        budgets.append(time_limit.cpu)  # a Budget: its CPU seconds
         if len(budgets) == 1:
             yield next(iter(m_range)), None
 
@@ -166,7 +166,7 @@ def test_a_torus_search_stopped_by_the_time_limit_leaves_the_coronas_their_turn(
     assert len(budgets) >= 2 and budgets[0] <= 100.0 * TORUS_SHARE < min(budgets[1:])
     budgets.clear()
     c = classify_form(HEXAGONAL, cells, probe=1, max_level=1, time_limit=100.0)
-    assert c.tiles == "undecided" and "torus search stopped by the time limit at 2 tiles per unit" in c.verdict
+    assert c.tiles == "undecided" and "torus search stopped by the time limit (100 CPU seconds) at 2 tiles per unit" in c.verdict
     assert budgets[0] > 100.0 * TORUS_SHARE  # no coronas left: the torus search has all the time left
 
 
