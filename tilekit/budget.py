@@ -118,7 +118,7 @@ class Budget:
         return Budget(fraction * self.remaining(), wall=fraction * wall_left, parent=self)
 
     def __str__(self) -> str:
-        text = f"{self.cpu:g} CPU seconds"
+        text = f"{self.cpu:g} CPU second{'' if self.cpu == 1 else 's'}"
         if self._capped or (self._parent is not None and self._parent._capped):
             text += f", stopped by its wall-clock cap of {self.wall:g} s"
         return text
