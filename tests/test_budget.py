@@ -1,17 +1,17 @@
 """tilekit.budget: CPU-time budgets, and the SAT layer and the polyform classification under them."""
 
 import contextlib
-import itertools
 import math
 import multiprocessing
 import threading
 import time
 
 import pytest
+from test_sat import _hard_cnf  # the pigeonhole formula, unsatisfiable and hard for CDCL
 
 from tilekit.budget import WALL_FACTOR, Budget, thread_cpu_clock
 from tilekit.errors import ParameterError
-from tilekit.sat import CNF, IncrementalSolver, solve
+from tilekit.sat import IncrementalSolver, solve
 
 
 def _busy(seconds: float) -> None:
@@ -40,18 +40,6 @@ def cpu_hogs(n: int):
         for p in procs:
             p.kill()
             p.join()
-
-
-def _hard_cnf(n: int = 11) -> CNF:
-    """The pigeonhole principle, n + 1 pigeons in n holes: unsatisfiable and hard for CDCL."""
-    cnf = CNF()
-    p = {(i, h): cnf.new_var() for i in range(n + 1) for h in range(n)}
-    for i in range(n + 1):
-        cnf.add([p[i, h] for h in range(n)])
-    for h in range(n):
-        for i, j in itertools.combinations(range(n + 1), 2):
-            cnf.add([-p[i, h], -p[j, h]])
-    return cnf
 
 
 def test_a_busy_loop_charges_cpu_and_a_sleep_does_not():

@@ -83,12 +83,12 @@ class Budget:
 
     def remaining(self) -> float:
         """CPU seconds left; 0 once the wall-clock cap has passed or a parent budget is spent."""
-        if self.elapsed() >= self.wall:
-            self._capped = True
-            return 0.0
         left = self.cpu - self.used()
         if self._parent is not None:
             left = min(left, self._parent.remaining())
+        if left > 0.0 and self.elapsed() >= self.wall:
+            self._capped = True  # what ended it (said by str)
+            return 0.0
         return max(0.0, left)
 
     def spent(self) -> bool:
