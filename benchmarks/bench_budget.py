@@ -22,6 +22,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+import tilekit.sat as sat  # noqa: E402
 from tilekit.budget import Budget, thread_cpu_clock  # noqa: E402
 from tilekit.lattice import free_polyforms, get_grid  # noqa: E402
 from tilekit.plugins.polyomino.classify import classify  # noqa: E402
@@ -55,6 +56,23 @@ def one_pass(todo: list[tuple], limit: float | None) -> tuple[float, float, list
         c = classify(grid, cells, a, time_limit=limit)
         verdicts.append((c.tiles, c.anisohedral_k, c.heesch, c.heesch_holes))
     return clock() - c0, time.perf_counter() - w0, verdicts
+
+
+def solver_calls(todo: list[tuple]) -> int:
+    """How many solves one budgeted pass makes (each arms and disarms the watchdog once): a
+    counting pass, not timed."""
+    real, count = sat._run, [0]
+
+    def counted(*args):
+        count[0] += 1
+        return real(*args)
+
+    sat._run = counted
+    try:
+        one_pass(todo, SEARCH_LIMIT)
+    finally:
+        sat._run = real
+    return count[0]
 
 
 def per_call(fn, n: int = 100_000) -> float:
@@ -92,7 +110,7 @@ def main() -> None:
           f"min {min(cpu['budget']) / min(cpu['plain']):.3f}; verdicts equal on {len(reference)} shapes")
     b = Budget(SEARCH_LIMIT)
     print(f"Budget(...) made {per_call(lambda: Budget(1.0), 20_000):.2f} us, spent() {per_call(b.spent):.2f} us, "
-          f"wake_in() {per_call(b.wake_in):.2f} us (thread CPU per call)")
+          f"wake_in() {per_call(b.wake_in):.2f} us (thread CPU per call); {solver_calls(todo)} solves a pass")
     print(f"load average {os.getloadavg()[0]:.1f}")
 
 
