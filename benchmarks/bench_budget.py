@@ -84,10 +84,14 @@ def per_call(fn, n: int = 100_000) -> float:
     return (clock() - t) / n * 1e6
 
 
-def main() -> None:
+def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--repeats", type=int, default=5)
-    args = ap.parse_args()
+    ap.add_argument("--repeats", type=int, default=5, help="passes of each mode, alternating")
+    return ap
+
+
+def main() -> None:
+    args = build_parser().parse_args()
     todo = shapes()
     print(f"{len(todo)} shapes ({', '.join(f'{g} n={n}' for g, n in SETS)}: hole-free, no boundary factorisation)")
     one_pass(todo, None)  # warm-up: the compiled kernels load once
