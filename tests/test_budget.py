@@ -1,6 +1,7 @@
 """tilekit.budget: CPU-time budgets, and the SAT layer and the polyform classification under them."""
 
 import contextlib
+import doctest
 import math
 import multiprocessing
 import threading
@@ -9,6 +10,7 @@ import time
 import pytest
 from test_sat import _hard_cnf  # the pigeonhole formula, unsatisfiable and hard for CDCL
 
+import tilekit.budget
 from tilekit.budget import WALL_FACTOR, Budget, thread_cpu_clock
 from tilekit.errors import ParameterError
 from tilekit.sat import IncrementalSolver, solve
@@ -40,6 +42,10 @@ def cpu_hogs(n: int):
         for p in procs:
             p.kill()
             p.join()
+
+
+def test_doctests():
+    assert doctest.testmod(tilekit.budget).failed == 0
 
 
 def test_a_busy_loop_charges_cpu_and_a_sleep_does_not():
