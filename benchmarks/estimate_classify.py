@@ -4,7 +4,7 @@ Every free n-form of the grid is enumerated (``lattice.free_polyforms``, the enu
 search runs per chunk), a uniform sample of ``--sample`` of them is drawn with a fixed seed, and
 each is classified as ``classify_search.run_chunk`` does it: the sample's boundary-word tests
 in one compiled call (``isohedral.analyse_many``), then ``classify.classify`` with the search's
-default bounds (probe 2, max level 5, 12 tiles per unit, ``--time-limit`` seconds). The CPU time
+default bounds (probe 2, max level 5, 12 tiles per unit, ``--time-limit`` CPU seconds). The CPU time
 per form (``time.process_time``) gives the estimate for all forms: mean x count, with a 95%
 interval from the bootstrap over the sample (the time per form has a long tail: a handful of
 anisohedral tilers and Heesch-2 forms cost seconds each, so the interval is wide and the
@@ -79,7 +79,7 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--cells", type=int, default=13)
     ap.add_argument("--sample", type=int, default=1000)
     ap.add_argument("--seed", type=int, default=28)
-    ap.add_argument("--time-limit", type=float, default=300.0, help="seconds per form, as the search's default")
+    ap.add_argument("--time-limit", type=float, default=300.0, help="CPU seconds per form, as the search's default")
     ap.add_argument("--profile", action="store_true", help="a second pass under cProfile, CPU by phase")
     return ap
 

@@ -184,7 +184,7 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--grid", choices=sorted([*TO_FINE, *BY_VERTICES]), default="octasquare")
     ap.add_argument("--max-cells", type=int, default=5, help="largest size (forms of 1..N cells)")
     ap.add_argument("--sat", help="heesch-sat's sat binary (default: the user cache, tilekit/heesch-sat/sat)")
-    ap.add_argument("--time-limit", type=float, default=120.0, help="tilekit's seconds per form")
+    ap.add_argument("--time-limit", type=float, default=120.0, help="tilekit's CPU seconds per form")
     ap.add_argument("--runs", type=int, default=3, help="rounds of both tools (CPU time: min and median)")
     ap.add_argument("--max-level", type=int, default=7,
                     help="heesch-sat's -maxlevel (coronas before 'inconclusive'; its default 7)")

@@ -24,12 +24,16 @@ Incremental use keeps one solver alive between questions (learned clauses surviv
     >>> first, second
     (True, False)
 
-**Time limits.** ``time_limit`` (seconds) on :func:`solve` or :meth:`IncrementalSolver.solve`
-gives ``satisfiable=None`` when it expires. Solvers that python-sat can interrupt
-(:data:`INTERRUPTIBLE`) are stopped by a timer in this process; the others (CaDiCaL,
-Lingeling) solve in a forked child process that is killed at the limit — the child inherits
-the clauses (and an incremental solver's state) by fork, nothing is pickled. The answer of a
-child does not teach the parent's incremental solver its learned clauses.
+**Time limits.** ``time_limit`` on :func:`solve` or :meth:`IncrementalSolver.solve` is a
+:class:`tilekit.budget.Budget` or a number of CPU seconds of the calling thread (counted from the
+call); the answer is ``satisfiable=None`` when it is spent. CPU seconds, not wall-clock ones, so
+that an answer does not depend on the machine's load; the budget's wall-clock cap still ends a
+starved solve. Solvers that python-sat can interrupt (:data:`INTERRUPTIBLE`) are stopped by a
+watchdog thread in this process that reads the solving thread's CPU clock; the others (CaDiCaL,
+Lingeling) solve in a forked child process that is killed when the budget, charged with the
+child's own CPU seconds, is spent — the child inherits the clauses (and an incremental solver's
+state) by fork, nothing is pickled. The answer of a child does not teach the parent's
+incremental solver its learned clauses.
 """
 
 from __future__ import annotations
@@ -46,14 +50,15 @@ from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from tilekit.budget import Budget
 from tilekit.errors import ParameterError, SolverLimit
 
 #: Solver names we accept: python-sat's, and CryptoMiniSat 5 through pycryptosat (the optional
 #: ``cms`` extra), the solver of Kaplan's heesch-sat.
 SAT_SOLVERS = ("cadical195", "cadical153", "glucose4", "glucose42", "minisat22", "maplechrono", "lingeling",
                "gluecard4", "minicard", "cryptominisat5")
-#: Solvers stopped in process at a time limit (python-sat's interrupt, CryptoMiniSat's own
-#: limit); the others run in a forked child under a time limit, killed when it expires.
+#: Solvers stopped in process when a time limit is spent (python-sat's interrupt, CryptoMiniSat's
+#: own limit); the others run in a forked child under a time limit, killed when it is spent.
 INTERRUPTIBLE = ("glucose4", "glucose42", "minisat22", "maplechrono", "gluecard4", "minicard", "cryptominisat5")
 #: Solvers with native at-most-k constraints (:meth:`CNF.add_atmost`): Glucose and MiniSat
 #: with cardinality propagation (Gluecard, Minicard)
@@ -347,19 +352,26 @@ def _stats(s: Any) -> dict[str, int]:
 
 
 class _Watchdog:
-    """One daemon thread that calls each armed function at its deadline: the time limits of
-    interruptible solves, without starting a thread per solve (a ``threading.Timer`` each cost
-    more than a small corona formula's whole solve, measured on the polyform classifications)."""
+    """One daemon thread that calls each armed function when its budget is spent: the time
+    limits of interruptible solves, without starting a thread per solve (a ``threading.Timer``
+    each cost more than a small corona formula's whole solve, measured on the polyform
+    classifications). A budget counts CPU seconds, which no clock can wait for: the thread sleeps
+    until the earliest moment the budget could be spent (:meth:`Budget.wake_in`: a thread uses
+    at most one CPU second a second) and looks again, so a busy solve is stopped on time and a
+    starved one costs a few more wake-ups."""
+
+    #: Least wall-clock seconds between two looks at one budget.
+    RECHECK = 0.002
 
     def __init__(self) -> None:
         self._cond = threading.Condition()
-        self._jobs: dict[int, tuple[float, Callable[[], Any]]] = {}
+        self._jobs: dict[int, tuple[float, Budget, Callable[[], Any]]] = {}
         self._fired: set[int] = set()
         self._next = 0
         self._pid = -1  # the process whose thread runs (a forked child starts its own)
         self._wake = 0.0  # when the thread wakes next (inf: only when notified)
 
-    def arm(self, seconds: float, fn: Callable[[], Any]) -> int:
+    def arm(self, budget: Budget, fn: Callable[[], Any]) -> int:
         with self._cond:
             if self._pid != os.getpid():
                 self._pid = os.getpid()
@@ -368,9 +380,9 @@ class _Watchdog:
                 self._fired.clear()
                 threading.Thread(target=self._loop, name="tilekit-sat-watchdog", daemon=True).start()
             self._next += 1
-            deadline = time.monotonic() + seconds
-            self._jobs[self._next] = (deadline, fn)
-            if deadline < self._wake:  # earlier than the thread's wake-up: wake it to wait less
+            when = time.monotonic() + budget.wake_in()
+            self._jobs[self._next] = (when, budget, fn)
+            if when < self._wake:  # earlier than the thread's wake-up: wake it to wait less
                 self._cond.notify()
             return self._next
 
@@ -386,26 +398,34 @@ class _Watchdog:
         with self._cond:
             while True:
                 now = time.monotonic()
-                for token in [t for t, (d, _) in self._jobs.items() if d <= now]:
-                    fn = self._jobs.pop(token)[1]
+                for token in [t for t, (w, _, _) in self._jobs.items() if w <= now]:
+                    _, budget, fn = self._jobs[token]
+                    later = budget.wake_in()
+                    if later > 0.0:  # not spent yet (its thread waited for the CPU): look again
+                        self._jobs[token] = (now + max(later, self.RECHECK), budget, fn)
+                        continue
+                    del self._jobs[token]
                     self._fired.add(token)
                     fn()
-                self._wake = min((d for d, _ in self._jobs.values()), default=math.inf)
+                self._wake = min((w for w, _, _ in self._jobs.values()), default=math.inf)
                 self._cond.wait(None if math.isinf(self._wake) else max(0.0, self._wake - time.monotonic()))
 
 
 _WATCHDOG = _Watchdog()
 
 
-def _run(s: Any, assumptions: list[int], time_limit: float | None) -> tuple[bool | None, list[int] | None, dict[str, int]]:
-    """Solve on the live pysat solver ``s`` (interrupted by the shared watchdog at the limit)."""
+def _run(s: Any, assumptions: list[int], budget: Budget | None) -> tuple[bool | None, list[int] | None, dict[str, int]]:
+    """Solve on the live pysat solver ``s`` (interrupted by the shared watchdog when ``budget``
+    is spent; no answer at once when it already is)."""
+    if budget is not None and budget.spent():
+        return None, None, {}
     if isinstance(s, _Cms):
-        answer = s.solve(assumptions, time_limit)
+        answer = s.solve(assumptions, None if budget is None else budget.remaining())
         return answer, (s.get_model() if answer else None), {}
-    if time_limit is None:
+    if budget is None:
         answer = s.solve(assumptions=assumptions)
     else:
-        token = _WATCHDOG.arm(time_limit, s.interrupt)
+        token = _WATCHDOG.arm(budget, s.interrupt)
         try:
             answer = s.solve_limited(assumptions=assumptions, expect_interrupt=True)
         finally:
@@ -415,9 +435,22 @@ def _run(s: Any, assumptions: list[int], time_limit: float | None) -> tuple[bool
     return answer, (s.get_model() if answer else None), _stats(s)
 
 
-def _in_child(job: Any, solver: str, time_limit: float) -> tuple[bool | None, list[int] | None, dict[str, int]]:
-    """Run ``job()`` in a forked process and kill it at the time limit (for solvers such as
-    CaDiCaL that python-sat cannot interrupt). The child inherits everything by fork."""
+def _child_cpu(pid: int) -> float | None:
+    """CPU seconds (user and system) a child process has used, from /proc; None where unreadable."""
+    try:
+        with open(f"/proc/{pid}/stat", "rb") as f:
+            fields = f.read().rsplit(b")", 1)[1].split()
+        return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+    except (OSError, IndexError, ValueError):
+        return None
+
+
+def _in_child(job: Any, solver: str, budget: Budget) -> tuple[bool | None, list[int] | None, dict[str, int]]:
+    """Run ``job()`` in a forked process and kill it when ``budget``, charged with the child's
+    CPU seconds, is spent (for solvers such as CaDiCaL that python-sat cannot interrupt). The
+    child inherits everything by fork."""
+    if budget.spent():
+        return None, None, {}
     ctx = multiprocessing.get_context("fork")
     parent, child = ctx.Pipe(duplex=False)
 
@@ -425,20 +458,31 @@ def _in_child(job: Any, solver: str, time_limit: float) -> tuple[bool | None, li
         # only the parent reads: with its end closed here, a parent that died breaks the pipe
         # (the send fails and this process ends) instead of blocking the send for ever
         parent.close()
-        child.send(job())
+        answer = job()
+        child.send((answer, time.process_time()))  # a forked child's CPU clock starts at 0
         child.close()
 
+    start = time.monotonic()
     proc = ctx.Process(target=target, daemon=True)
     proc.start()
     child.close()
+    cpu = 0.0
     try:
-        if parent.poll(time_limit):
-            try:
-                return parent.recv()
-            except EOFError:
-                raise SolverLimit(f"the {solver} process ended without an answer (exit code {proc.exitcode})") from None
-        return None, None, {}
+        while True:
+            # where /proc is not readable the child's wall-clock time stands for its CPU time
+            seen = _child_cpu(proc.pid)
+            cpu = time.monotonic() - start if seen is None else seen
+            left = min(budget.remaining() - cpu, budget.wake_in())
+            if left <= 0.0:
+                return None, None, {}
+            if parent.poll(max(left, _Watchdog.RECHECK)):
+                try:
+                    answer, cpu = parent.recv()
+                except EOFError:
+                    raise SolverLimit(f"the {solver} process ended without an answer (exit code {proc.exitcode})") from None
+                return answer
     finally:
+        budget.charge(cpu)
         if proc.is_alive():
             proc.kill()
         proc.join()
@@ -449,12 +493,13 @@ def solve(
     cnf: CNF | Iterable[Sequence[int]],
     assumptions: Sequence[int] = (),
     solver: str = DEFAULT_SAT_SOLVER,
-    time_limit: float | None = None,
+    time_limit: Budget | float | None = None,
 ) -> SatAnswer:
     """Solve ``cnf`` once under ``assumptions`` with ``solver`` (a name in :data:`SAT_SOLVERS`).
 
-    With ``time_limit`` the answer is ``satisfiable=None`` when the limit expires (see the
-    module docstring for how it is enforced).
+    With ``time_limit`` (a :class:`Budget`, or CPU seconds of the calling thread from this call
+    on) the answer is ``satisfiable=None`` when it is spent (see the module docstring for how it
+    is enforced).
     """
     from pysat.solvers import Solver  # measured start-up cost: ~45 ms, only when solving
 
@@ -465,23 +510,23 @@ def solve(
         raise ParameterError(f"native at-most constraints need one of {', '.join(NATIVE_ATMOST)}, not {solver}")
     assumptions = [int(v) for v in assumptions]
     start = time.perf_counter()
-
-    here = time_limit is None or solver in INTERRUPTIBLE
+    budget = Budget.of(time_limit)
+    here = budget is None or solver in INTERRUPTIBLE
 
     def job() -> tuple[bool | None, list[int] | None, dict[str, int]]:
         if solver == CMS:
             c = _Cms()
             c.append(cnf if isinstance(cnf, CNF) else clauses)
-            return _run(c, assumptions, None if time_limit is None else float(time_limit))
+            return _run(c, assumptions, budget)
         with gc_paused():
             s = Solver(name=solver, bootstrap_with=clauses)
             for lits, k in atmosts:
                 s.add_atmost(lits, k)
         with s:
-            # in a child the parent kills at the limit; here a timer interrupts
-            return _run(s, assumptions, float(time_limit) if here and time_limit is not None else None)
+            # in a child the parent kills it when the budget is spent; here the watchdog interrupts
+            return _run(s, assumptions, budget if here else None)
 
-    answer, model, stats = job() if here else _in_child(job, solver, float(time_limit))
+    answer, model, stats = job() if here else _in_child(job, solver, budget)
     return SatAnswer(answer, model, solver, time.perf_counter() - start, stats)
 
 
@@ -568,14 +613,16 @@ class IncrementalSolver:
                 return functools.partial(pysolvers.gluecard41_add_am, handle)
         return self._s.add_atmost
 
-    def solve(self, assumptions: Sequence[int] = (), time_limit: float | None = None) -> SatAnswer:
-        """Answer the formula so far under ``assumptions``; ``None`` when ``time_limit`` expires."""
+    def solve(self, assumptions: Sequence[int] = (), time_limit: Budget | float | None = None) -> SatAnswer:
+        """Answer the formula so far under ``assumptions``; ``None`` when ``time_limit`` (a
+        :class:`Budget`, or CPU seconds of the calling thread from this call on) is spent."""
         assumptions = [int(v) for v in assumptions]
         start = time.perf_counter()
+        budget = Budget.of(time_limit)
         self.calls += 1
-        if time_limit is None or self.solver in INTERRUPTIBLE:
-            answer, model, stats = _run(self._s, assumptions, None if time_limit is None else float(time_limit))
+        if budget is None or self.solver in INTERRUPTIBLE:
+            answer, model, stats = _run(self._s, assumptions, budget)
         else:
             s = self._s
-            answer, model, stats = _in_child(lambda: _run(s, assumptions, None), self.solver, float(time_limit))
+            answer, model, stats = _in_child(lambda: _run(s, assumptions, None), self.solver, budget)
         return SatAnswer(answer, model, self.solver, time.perf_counter() - start, stats)

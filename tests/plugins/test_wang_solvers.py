@@ -173,7 +173,7 @@ def test_limits_raise_solver_limit():
     # killed at the limit, Glucose is interrupted in process
     kari = get_tileset("kari-14")
     for solver in ("cadical195", "glucose4"):
-        with pytest.raises(SolverLimit, match="within 0.3 s"):
+        with pytest.raises(SolverLimit, match="within 0.3 CPU seconds"):
             sat_solve(kari, 70, 70, solver=solver, time_limit=0.3)
 
 

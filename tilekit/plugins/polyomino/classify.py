@@ -16,6 +16,10 @@ The order of the tests is the cheap-first order of Myers' and Kaplan's searches:
    While coronas remain to be tried the torus search first gets :data:`TORUS_SHARE` of the
    time left; stopped there, one more corona level runs before the tori go on.
 
+The time limit is a :class:`tilekit.budget.Budget`: CPU seconds of the classifying thread (and
+of any solver process it forks), so that a verdict does not depend on the machine's load; its
+wall-clock cap (``WALL_FACTOR`` times as long) still ends a starved classification.
+
 The ``polyomino-classify`` search that runs this over every free polyomino is
 :mod:`classify_search`.
 
@@ -27,12 +31,12 @@ from __future__ import annotations
 
 import json
 import time
-from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
+from tilekit.budget import Budget
 from tilekit.colouring import Colouring
 from tilekit.errors import ParameterError, ParseError
 from tilekit.lattice import GRIDS, Grid, outline
@@ -70,7 +74,7 @@ MAX_TORUS_TILES = 12
 #: Tiles per translational unit tried by default: 8 decides every polyomino to n = 10, but one
 #: 11-omino (``..x../..xxx/xxxx./xx.x.``, pgg, k = 3) needs 12 (docs/benchmarks.md).
 DEFAULT_TORUS_TILES = 12
-#: The share of the time left that the torus search may use while coronas remain to be tried:
+#: The share of the CPU time left that the torus search may use while coronas remain to be tried:
 #: when it is stopped there, the next corona level runs (a non-tiler whose tori are slow to
 #: exhaust is proved by it), then the torus search goes on with all the time left (a tiler
 #: that needs a large unit still finds it), once.
@@ -124,9 +128,12 @@ def _corona_json(c: Corona | None, hc: int | None) -> dict | None:
 
 
 def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes: bool = False,
-             probe: int = 2, max_level: int = 5, torus_tiles: int = DEFAULT_TORUS_TILES, time_limit: float | None = 120.0,
-             solver: str = CLASSIFY_SOLVER, first: np.ndarray | None = None) -> Classification:
+             probe: int = 2, max_level: int = 5, torus_tiles: int = DEFAULT_TORUS_TILES,
+             time_limit: Budget | float | None = 120.0, solver: str = CLASSIFY_SOLVER,
+             first: np.ndarray | None = None) -> Classification:
     """Classify one polyform (``analysis`` from :func:`isohedral.analyse`, None if holey).
+    ``time_limit``: a :class:`Budget`, or CPU seconds of the calling thread from this call on
+    (None: no limit); spent, the verdict is ``undecided`` with its bounds.
     ``first``: corona 1's rows from :func:`heesch.first_corona_rows`, when already computed."""
     check_grid(grid)
     check_bounds(probe, max_level, torus_tiles)
@@ -143,10 +150,7 @@ def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes:
                                       f"({', '.join(sigs)}){'; ' + ih if ih else ''}",
                               evidence={"step": "boundary word", "kinds": kinds})
     t0 = time.monotonic()
-
-    def left() -> float | None:
-        return None if time_limit is None else max(0.0, time_limit - (time.monotonic() - t0))
-
+    budget = Budget.of(time_limit)
     if first is None:
         first = first_corona_rows(grid, cells)  # corona 1's copies by the local test, one compiled call
     if not len(first):  # no corona even with holes: Hc = Hh = 0, proved with no solver
@@ -155,29 +159,29 @@ def classify(grid: Grid, cells: np.ndarray, analysis: dict | None, *, has_holes:
         return _non_tiler(HeeschResult(0, 0, kernel, kernel, 0, True, "no 1-corona patch exists", 0, seconds), seconds)
     hs = HeeschSolver(grid, cells, solver=solver, first=first)
     try:
-        return _coronas_and_tori(grid, cells, hs, probe, max_level, torus_tiles, solver, t0, left)
+        return _coronas_and_tori(grid, cells, hs, probe, max_level, torus_tiles, solver, t0, budget)
     finally:
         hs.close()
 
 
 def _coronas_and_tori(grid: Grid, cells: np.ndarray, hs: HeeschSolver, probe: int, max_level: int, torus_tiles: int,
-                      solver: str, t0: float, left: Callable[[], float | None]) -> Classification:
+                      solver: str, t0: float, budget: Budget | None) -> Classification:
     """Steps 4-6 of the module docstring, on ``hs`` (its ladder holds every corona level)."""
     complete = grid.name in BOUNDARY_COMPLETE
     proved = complete  # no isohedral tiling: by the complete boundary-word test, or the direct one
     if not complete:
         # the direct isohedral test on corona 1's formula (:mod:`surround`); unsatisfiable
         # proves that no isohedral tiling exists, so the tori need look for k >= 2 only
-        st = SurroundTest(hs).run(left())
+        st = SurroundTest(hs).run(budget)
         if st.isohedral:
             return _surround_isohedral(grid, cells, st, t0)
         proved = st.isohedral is False
-    r = heesch(grid, cells, max_level=probe, time_limit=left(), hs=hs)
+    r = heesch(grid, cells, max_level=probe, time_limit=budget, hs=hs)
     level = probe
     if not r.decided and hs.kaplan and r.surrounded >= probe and probe < max_level:
         # Kaplan's numbers are known but not yet a proof: one more level with holes allowed
         level = probe + 1
-        r = heesch(grid, cells, max_level=level, time_limit=left(), hs=hs, start=level, best=r.hc_witness)
+        r = heesch(grid, cells, max_level=level, time_limit=budget, hs=hs, start=level, best=r.hc_witness)
     if r.decided:
         return _non_tiler(r, time.monotonic() - t0)
     if r.surrounded < level:  # the time limit
@@ -200,12 +204,11 @@ def _coronas_and_tori(grid: Grid, cells: np.ndarray, hs: HeeschSolver, probe: in
             cut = None  # where the time limit stopped the search for a tiling with fewer classes
             if not proved and best is not None:
                 bound = torus_tiles  # a tiler: look for one class on every torus now
-            budget = left()
             share = shared and budget is not None and level < max_level and best is None
-            if share:
-                budget *= TORUS_SHARE  # the rest is kept for the next corona level
+            # sharing, the rest is kept for the next corona level
+            torus_budget = budget.share(TORUS_SHARE) if share else budget
             stopped = 0
-            for m, tt in ts.search(range(tried_m + 1, bound + 1), want_k=want_k, time_limit=budget):
+            for m, tt in ts.search(range(tried_m + 1, bound + 1), want_k=want_k, time_limit=torus_budget):
                 if tt is None:
                     if best is not None:  # a tiling was found: the limit only ended the search for a smaller k
                         cut = m
@@ -213,7 +216,7 @@ def _coronas_and_tori(grid: Grid, cells: np.ndarray, hs: HeeschSolver, probe: in
                     if share:  # one more corona level may prove a non-tiler; then the tori go on
                         stopped = m
                         break
-                    reason = f"torus search stopped by the time limit at {m} tiles per unit"
+                    reason = f"torus search stopped by the time limit ({budget}) at {m} tiles per unit"
                     return _undecided(level, m - 1, time.monotonic() - t0, reason, r.hc_witness)
                 if best is None or tt.k < best.k:
                     best = tt
@@ -249,7 +252,8 @@ def _coronas_and_tori(grid: Grid, cells: np.ndarray, hs: HeeschSolver, probe: in
                 verdict = (f"tiles anisohedrally: {best.m} tiles per translational unit (torus of period lattice "
                            f"({a_},{b_}),(0,{d_})), symmetry group {witness['group']}, {best.k} transitivity "
                            f"classes; {how}"
-                           + (f" (the search for fewer classes stopped by the time limit at {cut} tiles per unit)"
+                           + (f" (the search for fewer classes stopped by the time limit ({budget}) at {cut} tiles "
+                              f"per unit)"
                               if cut is not None else ""))
                 return Classification("true", False, anisohedral_k=best.k, witness=witness, verdict=verdict,
                                       evidence={"step": "torus", "m": best.m, "lattice": list(best.lattice),
@@ -258,7 +262,7 @@ def _coronas_and_tori(grid: Grid, cells: np.ndarray, hs: HeeschSolver, probe: in
         else:
             if bound <= level or best is not None:  # no coronas for a tiler
                 continue
-            r = heesch(grid, cells, max_level=bound, time_limit=left(), hs=hs, start=level + 1, best=r.hc_witness)
+            r = heesch(grid, cells, max_level=bound, time_limit=budget, hs=hs, start=level + 1, best=r.hc_witness)
             if r.decided:
                 return _non_tiler(r, time.monotonic() - t0, torus=tried_m)
             if r.surrounded < bound:  # the time limit

@@ -183,7 +183,8 @@ def _search() -> Search:
             SearchParam("max_level", int, 5, "most coronas tried before 'undecided'", min=1, max=MAX_LEVEL_LIMIT),
             SearchParam("torus_tiles", int, DEFAULT_TORUS_TILES, "most tiles per translational unit tried on tori", min=2,
                         max=MAX_TORUS_TILES),
-            SearchParam("time_limit", float, 300.0, "seconds of SAT work per polyomino before 'undecided' (0: none)",
+            SearchParam("time_limit", float, 300.0, "CPU seconds per polyform (its classifying thread and solver processes) before 'undecided' "
+                        "(0: none)",
                         min=0, max=86400),
             SearchParam("solver", str, CLASSIFY_SOLVER, "SAT solver", choices=list(SAT_SOLVERS)),
             SearchParam("prefix_depth", int, 0, "size of the tree prefix naming a chunk (0: automatic)", min=0,

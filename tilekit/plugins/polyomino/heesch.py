@@ -40,6 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from tilekit import limits
+from tilekit.budget import Budget
 from tilekit.errors import ParameterError
 from tilekit.jit import njit
 from tilekit.lattice import (
@@ -502,9 +503,9 @@ class HeeschSolver:
             out.append([*(-around).tolist(), *inside.tolist()])
         return out
 
-    def surrounds(self, k: int, *, time_limit: float | None = None) -> bool | None:
+    def surrounds(self, k: int, *, time_limit: Budget | float | None = None) -> bool | None:
         """Whether k coronas exist with holes allowed (no hole checks: the coronas of any
-        tiling satisfy this formula); None when the time limit expires."""
+        tiling satisfy this formula); None when the time limit (CPU seconds) is spent."""
         if self.starved(k):
             return False
         with gc_paused():
@@ -515,9 +516,10 @@ class HeeschSolver:
         self.solve_seconds += ans.seconds
         return ans.satisfiable
 
-    def corona(self, k: int, *, time_limit: float | None = None) -> tuple[Corona | None, Corona | None, bool | None]:
+    def corona(self, k: int, *, time_limit: Budget | float | None = None) -> tuple[Corona | None, Corona | None, bool | None]:
         """(hole-free k-corona patch or None, k-corona patch with holes allowed in its outer
-        corona or None, decided) for exactly ``k`` coronas."""
+        corona or None, decided) for exactly ``k`` coronas; undecided when ``time_limit`` (a
+        budget, or CPU seconds) is spent."""
         if k == 0:
             kern = Corona(self.levels[0].copy(), np.zeros(1, dtype=np.int64), False)
             return kern, kern, True
@@ -526,13 +528,12 @@ class HeeschSolver:
         with gc_paused():
             clauses, table = self._encode(k)
         hf = table["top"] + 1  # selector: the outermost corona is hole-free too
-        deadline = None if time_limit is None else time.monotonic() + time_limit
+        budget = Budget.of(time_limit)
         with IncrementalSolver(clauses, solver=self.solver) as s:
             with_holes: Corona | None = None
             assume: list[int] = []
             while True:
-                left = None if deadline is None else max(0.01, deadline - time.monotonic())
-                ans = s.solve(assumptions=assume, time_limit=left)
+                ans = s.solve(assumptions=assume, time_limit=budget)
                 self.sat_calls += 1
                 self.solve_seconds += ans.seconds
                 if ans.satisfiable is None:
@@ -553,7 +554,7 @@ class HeeschSolver:
 
 
 def heesch(grid: Grid, cells: np.ndarray, *, max_level: int = 6, solver: str = DEFAULT_SAT_SOLVER,
-           time_limit: float | None = None, start: int = 1, hs: HeeschSolver | None = None,
+           time_limit: Budget | float | None = None, start: int = 1, hs: HeeschSolver | None = None,
            best: Corona | None = None) -> HeeschResult:
     """Hc and Hh of a hole-free polyform, trying 1..max_level coronas; ``decided`` only with a
     proof that it does not tile.
@@ -564,21 +565,22 @@ def heesch(grid: Grid, cells: np.ndarray, *, max_level: int = 6, solver: str = D
     which no patch exists even with holes (the formula without hole clauses, which the coronas
     of any tiling satisfy), so after a holey level the search goes on, without hole checks,
     until such a level or ``max_level``. Undecided (``decided=False``) when ``max_level``
-    coronas exist or the time limit expires first; ``hc``/``hh`` then hold Kaplan's values if
+    coronas exist or the time limit (a :class:`Budget`, or CPU seconds) is spent first; ``hc``/``hh`` then hold Kaplan's values if
     they were found (the polyform may still tile).
     """
     if not 0 <= max_level <= MAX_LEVEL_LIMIT:
         raise ParameterError(f"max_level must be between 0 and {MAX_LEVEL_LIMIT}, got {max_level}")
+    budget = Budget.of(time_limit)
     if hs is not None:
-        return _heesch(hs, max_level, time_limit, start, best)
+        return _heesch(hs, max_level, budget, start, best)
     hs = HeeschSolver(grid, cells, solver=solver)
     try:
-        return _heesch(hs, max_level, time_limit, start, best)
+        return _heesch(hs, max_level, budget, start, best)
     finally:
         hs.close()
 
 
-def _heesch(hs: HeeschSolver, max_level: int, time_limit: float | None, start: int, best: Corona | None) -> HeeschResult:
+def _heesch(hs: HeeschSolver, max_level: int, budget: Budget | None, start: int, best: Corona | None) -> HeeschResult:
     """:func:`heesch` on a solver's levels (its ladder left open for the caller's next call)."""
     t0 = time.monotonic()
     best = best or Corona(hs.levels[0].copy(), np.zeros(1, dtype=np.int64), False)  # the kernel
@@ -588,26 +590,25 @@ def _heesch(hs: HeeschSolver, max_level: int, time_limit: float | None, start: i
         return HeeschResult(hc, hh, hcw, hhw, surrounded, decided, reason, hs.sat_calls, time.monotonic() - t0)
 
     for k in range(start, max_level + 1):
-        left = None if time_limit is None else time_limit - (time.monotonic() - t0)
-        if left is not None and left <= 0:
-            return result(False, f"time limit after {k - 1} coronas", k - 1)
+        if budget is not None and budget.spent():
+            return result(False, f"time limit ({budget}) spent after {k - 1} coronas", k - 1)
         answer = ok = None
         try:  # the proof question (holes allowed) once Kaplan's numbers are known, else coronas
             lad = hs.ladder_at(k)
             if lad is None:  # levels asked out of order: a formula of its own
                 if hs.kaplan:
-                    ok = hs.surrounds(k, time_limit=left)
+                    ok = hs.surrounds(k, time_limit=budget)
                 else:
-                    answer = hs.corona(k, time_limit=left)
+                    answer = hs.corona(k, time_limit=budget)
             elif hs.kaplan:
-                ok = False if lad.empty else lad.solve([], left).satisfiable
+                ok = False if lad.empty else lad.solve([], budget).satisfiable
             else:
-                answer = lad.corona(False, left)
+                answer = lad.corona(False, budget)
         except limits.LimitError as exc:  # a bound like the time limit: undecided, with the reason
             return result(False, f"{k} coronas: {exc}", k - 1)
         if answer is None:
             if ok is None:
-                return result(False, f"time limit while looking for {k} coronas with holes", k - 1)
+                return result(False, f"time limit ({budget}) spent while looking for {k} coronas with holes", k - 1)
             if not ok:
                 hc, hh = hs.kaplan[:2]
                 return result(True, f"{hh} corona{'s' if hh != 1 else ''} only with a hole in the outermost corona; "
@@ -615,7 +616,7 @@ def _heesch(hs: HeeschSolver, max_level: int, time_limit: float | None, start: i
             continue
         free, holey, decided = answer
         if decided is None:
-            return result(False, f"time limit while looking for {k} coronas", k - 1)
+            return result(False, f"time limit ({budget}) spent while looking for {k} coronas", k - 1)
         if free is not None:
             best = free
             continue
@@ -818,7 +819,7 @@ class CoronaLadder:
         self.pending = CNF()
         return self.solver
 
-    def solve(self, assumptions: list[int], time_limit: float | None):
+    def solve(self, assumptions: list[int], time_limit: Budget | float | None):
         s = self._flush()
         ans = s.solve(assumptions=assumptions, time_limit=time_limit)
         self.hs.sat_calls += 1
@@ -849,19 +850,18 @@ class CoronaLadder:
             out.append([*(-around).tolist(), *inside.tolist()])
         return out
 
-    def corona(self, hole_free_only: bool, time_limit: float | None) -> tuple[Corona | None, Corona | None, bool | None]:
+    def corona(self, hole_free_only: bool, time_limit: Budget | float | None) -> tuple[Corona | None, Corona | None, bool | None]:
         """(hole-free patch, patch with holes, decided) for the current ``k`` (see
         :meth:`HeeschSolver.corona`); with ``hole_free_only`` the holey patch is not kept apart
         (the hole clauses are asserted for this level from the first model on)."""
         if self.empty:
             return None, None, True
         sel = self._vars(1)[0]
-        deadline = None if time_limit is None else time.monotonic() + time_limit
+        budget = Budget.of(time_limit)
         with_holes: Corona | None = None
         assume: list[int] = [int(sel)] if hole_free_only else []
         while True:
-            left = None if deadline is None else max(0.01, deadline - time.monotonic())
-            ans = self.solve(assume, left)
+            ans = self.solve(assume, budget)
             if ans.satisfiable is None:
                 return None, with_holes, None
             if not ans.satisfiable:
@@ -879,7 +879,7 @@ class CoronaLadder:
 
 
 def hole_free_heesch(grid: Grid, cells: np.ndarray, *, max_level: int = 6, solver: str = HC_SOLVER,
-                     time_limit: float | None = None) -> HeeschResult:
+                     time_limit: Budget | float | None = None) -> HeeschResult:
     """Kaplan's hole-free Heesch number Hc alone (heesch-sat's default mode, without ``-hh``):
     coronas k = 1, 2, ... until a level with no hole-free k-corona patch, in one incremental
     solver (:class:`CoronaLadder`). ``hh`` is None (not asked) and ``decided`` stays False:
@@ -887,6 +887,7 @@ def hole_free_heesch(grid: Grid, cells: np.ndarray, *, max_level: int = 6, solve
     if not 0 <= max_level <= MAX_LEVEL_LIMIT:
         raise ParameterError(f"max_level must be between 0 and {MAX_LEVEL_LIMIT}, got {max_level}")
     t0 = time.monotonic()
+    budget = Budget.of(time_limit)
     hs = HeeschSolver(grid, cells, solver=solver)
     best = Corona(hs.levels[0].copy(), np.zeros(1, dtype=np.int64), False)
     hs.drop_enclosing()
@@ -897,19 +898,20 @@ def hole_free_heesch(grid: Grid, cells: np.ndarray, *, max_level: int = 6, solve
     ladder = CoronaLadder(hs)
     try:
         for k in range(1, max_level + 1):
-            left = None if time_limit is None else time_limit - (time.monotonic() - t0)
-            if left is not None and left <= 0:
-                return HeeschResult(None, None, best, None, k - 1, False, f"time limit after {k - 1} coronas",
-                                    hs.sat_calls, time.monotonic() - t0)
+            if budget is not None and budget.spent():
+                return HeeschResult(None, None, best, None, k - 1, False,
+                                    f"time limit ({budget}) spent after {k - 1} coronas", hs.sat_calls,
+                                    time.monotonic() - t0)
             try:
                 ladder.add_level()
             except limits.LimitError as exc:
                 return HeeschResult(None, None, best, None, k - 1, False, f"{k} coronas: {exc}", hs.sat_calls,
                                     time.monotonic() - t0)
-            free, _, done = ladder.corona(True, left)
+            free, _, done = ladder.corona(True, budget)
             if done is None:
-                return HeeschResult(None, None, best, None, k - 1, False, f"time limit while looking for {k} coronas",
-                                    hs.sat_calls, time.monotonic() - t0)
+                return HeeschResult(None, None, best, None, k - 1, False,
+                                    f"time limit ({budget}) spent while looking for {k} coronas", hs.sat_calls,
+                                    time.monotonic() - t0)
             if free is None:
                 return HeeschResult(k - 1, None, best, None, k - 1, False,
                                     f"no hole-free {k}-corona patch (Hc only: not a proof that it cannot tile)",

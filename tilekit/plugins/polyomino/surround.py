@@ -37,6 +37,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from tilekit.budget import Budget
 from tilekit.jit import njit
 from tilekit.lattice import _M, _OFF
 from tilekit.plugins.polyomino.heesch import HeeschSolver
@@ -217,9 +218,11 @@ class SurroundTest:
         self.pos = np.empty(G, dtype=np.int64)
         self.pos[self.gl.ravel()] = np.tile(np.arange(self.S), forms.J)
 
-    def run(self, time_limit: float | None = None) -> SurroundResult:
-        """Decide whether the polyform tiles isohedrally (see the module docstring)."""
+    def run(self, time_limit: Budget | float | None = None) -> SurroundResult:
+        """Decide whether the polyform tiles isohedrally (see the module docstring); undecided
+        when ``time_limit`` (a :class:`Budget`, or CPU seconds) is spent."""
         t0 = time.monotonic()
+        budget = Budget.of(time_limit)
         hs = self.hs
         lad = hs.ladder_at(1)
         if lad is None or lad.k != 1:
@@ -264,11 +267,10 @@ class SurroundTest:
                         cnf.add([-sel, -int(h[k]), -int(h[q]), int(h[r])])
         models = 0
         while True:
-            left = None if time_limit is None else time_limit - (time.monotonic() - t0)
-            if models >= MAX_MODELS or (left is not None and left <= 0):
+            if models >= MAX_MODELS or (budget is not None and budget.spent()):
                 cnf.add([-sel])
                 return SurroundResult(None, None, models, time.monotonic() - t0)
-            ans = lad.solve([sel], left)
+            ans = lad.solve([sel], budget)
             if ans.satisfiable is None:
                 cnf.add([-sel])
                 return SurroundResult(None, None, models, time.monotonic() - t0)
@@ -341,6 +343,6 @@ class SurroundTest:
         return tt if tt.k == 1 else None
 
 
-def isohedral_surround(hs: HeeschSolver, time_limit: float | None = None) -> SurroundResult:
+def isohedral_surround(hs: HeeschSolver, time_limit: Budget | float | None = None) -> SurroundResult:
     """:meth:`SurroundTest.run` on a polyform's :class:`HeeschSolver` before its coronas grow."""
     return SurroundTest(hs).run(time_limit)

@@ -16,11 +16,11 @@ polyomino classification records for an anisohedral tile.
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass
 
 import numpy as np
 
+from tilekit.budget import Budget
 from tilekit.jit import njit
 from tilekit.lattice import Grid
 from tilekit.plugins.polyomino.isohedral import _hnf_add
@@ -184,9 +184,9 @@ class TorusSearch:
         clauses.append(var[anchor].tolist())
         return clauses, var, meta
 
-    def cover(self, lattice: tuple[int, int, int], time_limit: float | None = None) -> np.ndarray | None | bool:
+    def cover(self, lattice: tuple[int, int, int], time_limit: Budget | float | None = None) -> np.ndarray | None | bool:
         """Placements (j, u0, v0) of one exact cover of the torus, False if none exists,
-        None if the time limit expired."""
+        None if the time limit (a :class:`Budget`, or CPU seconds) is spent."""
         with gc_paused():
             formula = self._formula(lattice)
         if formula is False:
@@ -201,20 +201,20 @@ class TorusSearch:
         used = ans.values(var)
         return meta[used]
 
-    def others(self, first: np.ndarray, limit: int, time_limit: float | None = None):
+    def others(self, first: np.ndarray, limit: int, time_limit: Budget | float | None = None):
         """More covers of the torus of the last :meth:`cover` call (each differing from all
-        before it), at most ``limit``; yields placement arrays like :meth:`cover`."""
+        before it), at most ``limit``, until ``time_limit`` (a budget, or CPU seconds) is spent;
+        yields placement arrays like :meth:`cover`."""
         clauses, var, meta = self._last
         index = {tuple(r): int(v) for r, v in zip(meta.tolist(), var.tolist())}
-        t0 = time.monotonic()
+        budget = Budget.of(time_limit)
         with IncrementalSolver(clauses, solver=self.solver) as s:
             chosen = first
             for _ in range(limit):
                 s.add([-index[tuple(r)] for r in chosen.tolist()])
-                left = None if time_limit is None else time_limit - (time.monotonic() - t0)
-                if left is not None and left <= 0:
+                if budget is not None and budget.spent():
                     return
-                ans = s.solve(time_limit=left)
+                ans = s.solve(time_limit=budget)
                 self.sat_calls += 1
                 if not ans.satisfiable:
                     return
@@ -300,23 +300,22 @@ class TorusSearch:
             out.append(lat)
         return out
 
-    def search(self, m_range, *, want_k: int = 2, time_limit: float | None = None, alternatives: int = 64):
+    def search(self, m_range, *, want_k: int = 2, time_limit: Budget | float | None = None, alternatives: int = 64):
         """Tilings with m tiles per unit for m in ``m_range``: yields (m, TorusTiling) for each
         lattice that has a cover (the least k among up to ``alternatives`` further covers of
         that torus); stops after a tiling with ``k <= want_k``. Yields (m, None) when the
-        time limit expires."""
-        t0 = time.monotonic()
+        time limit (a :class:`Budget`, or CPU seconds) is spent."""
+        budget = Budget.of(time_limit)
         n = self.forms.n
         for m in m_range:
             if (m * n) % self.R:
                 continue
             N = m * n // self.R
             for lat in self.lattices(N):
-                left = None if time_limit is None else time_limit - (time.monotonic() - t0)
-                if left is not None and left <= 0:
+                if budget is not None and budget.spent():
                     yield m, None
                     return
-                got = self.cover(lat, left)
+                got = self.cover(lat, budget)
                 if got is None:
                     yield m, None
                     return
@@ -325,7 +324,7 @@ class TorusSearch:
                 tt = self.classes(lat, got)
                 if tt.k > want_k and alternatives:
                     # another cover of the same torus may have fewer transitivity classes
-                    for other in self.others(got, alternatives, left):
+                    for other in self.others(got, alternatives, budget):
                         t2 = self.classes(lat, other)
                         if t2.k < tt.k:
                             tt = t2

@@ -85,7 +85,8 @@ def wang_group() -> None:
               help="Refuse grids of more than N cells.")
 @click.option("--time-limit", type=FiniteFloat(limits.MAX_SOLVER_SECONDS, min=1e-3),
               default=limits.DEFAULT_SOLVER_SECONDS, show_default=True,
-              help="Seconds the exact solver may take when the set has no direct fill (then a one-line error).")
+              help="CPU seconds the exact (SAT) solver may take when the set has no direct fill "
+                   "(then a one-line error).")
 def render_command(set_name: str, out: str, rows: int, cols: int, seed: int, method: str, texture: str | None,
                    size: int, max_tiles: int, time_limit: float) -> None:
     """Fill a ROWS x COLS grid with SET and draw it.
@@ -115,7 +116,8 @@ def render_command(set_name: str, out: str, rows: int, cols: int, seed: int, met
 @click.option("--fix", "fixes", multiple=True, metavar="ROW,COL=TILE", help="Fix a tile (index or name); repeatable.")
 @click.option("--time-limit", type=FiniteFloat(limits.MAX_SOLVER_SECONDS, min=1e-3),
               default=limits.DEFAULT_SOLVER_SECONDS, show_default=True,
-              help="Seconds before the solver gives up with a one-line error.")
+              help="CPU seconds the SAT solver (--method sat) may take, wall-clock seconds for builder and "
+                   "backtrack, before it gives up with a one-line error.")
 @click.option("-o", "--output", "out", type=OUTPUT, help="Also draw the tiling found (.svg/.png).")
 @click.option("--max-tiles", type=POSITIVE, default=limits.MAX_SOLVE_CELLS, show_default=True,
               help="Refuse grids of more than N cells.")

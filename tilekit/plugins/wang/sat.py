@@ -26,6 +26,7 @@ from typing import Any
 
 import numpy as np
 
+from tilekit.budget import Budget
 from tilekit.errors import ParameterError, SolverLimit
 from tilekit.limits import (
     DEFAULT_SOLVER_SECONDS,
@@ -268,7 +269,7 @@ def sat_solve(
     torus: bool = False,
     fixed: Mapping[Any, Any] | None = None,
     solver: str = DEFAULT_SAT_SOLVER,
-    time_limit: float | None = DEFAULT_SOLVER_SECONDS,
+    time_limit: Budget | float | None = DEFAULT_SOLVER_SECONDS,
     max_variables: float = MAX_SAT_VARIABLES,
 ) -> SolveResult:
     """Decide whether ``tileset`` tiles a rows x cols rectangle (or torus) with ``fixed`` tiles.
@@ -276,8 +277,8 @@ def sat_solve(
     The question is refused before its clauses are made when it has more than
     ``max_variables`` variables or would not fit in memory (:func:`check_sat_size`).
     A tiling found is checked by the independent :func:`check_grid` before it is returned.
-    After ``time_limit`` seconds (default ``limits.DEFAULT_SOLVER_SECONDS``; None: no limit)
-    the solver is interrupted (or, for CaDiCaL, which python-sat cannot interrupt, run in a
+    After ``time_limit`` CPU seconds (a :class:`tilekit.budget.Budget` or a number; default
+    ``limits.DEFAULT_SOLVER_SECONDS``; None: no limit) the solver is interrupted (or, for CaDiCaL, which python-sat cannot interrupt, run in a
     child process that is killed) and :class:`SolverLimit` raised.
     """
     check_solver(solver)
@@ -288,11 +289,12 @@ def sat_solve(
     cnf = CNF(top=enc.top)
     enc.blocks(cnf)
     assumptions = [int(enc.x(i, j, t)) for (i, j), t in fixed_n.items()]
-    answer = solve(cnf, assumptions, solver=solver, time_limit=time_limit)
+    budget = Budget.of(time_limit)
+    answer = solve(cnf, assumptions, solver=solver, time_limit=budget)
     stats = {"variables": cnf.top, "clauses": len(cnf), "literals": cnf.literals(), "solver": solver, **answer.stats}
     seconds = time.perf_counter() - start
     if answer.satisfiable is None:
-        raise no_answer(solver, tileset, rows, cols, torus, f"{time_limit:g} s", "raise the time limit (--time-limit S)")
+        raise no_answer(solver, tileset, rows, cols, torus, str(budget), "raise the time limit (--time-limit S)")
     grid = None
     if answer.satisfiable:
         grid = enc.decode(answer.model)

@@ -304,7 +304,8 @@ def solve(
     'builder' or 'backtrack'. Every tiling returned has passed the independent
     checker; "does not tile" is a proof (exhausted search or an UNSAT answer). The call
     ends with a one-line :class:`SolverLimit` after ``time_limit`` seconds (default
-    ``limits.DEFAULT_SOLVER_SECONDS``; None: no limit).
+    ``limits.DEFAULT_SOLVER_SECONDS``; None: no limit): CPU seconds for 'sat'
+    (:mod:`tilekit.budget`), wall-clock seconds for the builder and the backtracking search.
     """
     if method == "sat":
         return sat_solve(tileset, rows, cols, torus, fixed, time_limit=time_limit, solver=options.pop("solver", DEFAULT_SAT_SOLVER), **options)

@@ -195,7 +195,7 @@ class WangTiling(Tiling):
         return "\n".join([
             "--set seed=N           the fill's random seed",
             "--set method=M         " + ", ".join(FILL_METHODS),
-            f"--set time_limit=S     seconds for the exact solver (default {DEFAULT_SOLVER_SECONDS:g})",
+            f"--set time_limit=S     CPU seconds for the exact (SAT) solver (default {DEFAULT_SOLVER_SECONDS:g})",
         ])
 
     def configure(self, **options: Any) -> WangTiling:
