@@ -20,6 +20,8 @@ import pytest
 import shapely
 from cliutil import assert_one_line_error
 from family_cli import family_cli
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from tilekit.edgeshapes import FLIP, ROFL, ROT, apply_unit
 from tilekit.errors import ParameterError, ParseError
@@ -111,6 +113,31 @@ def test_every_edge_equals_its_partner_reversed(case):
         assert all((tuple(np.round(p[-1], 6)), tuple(np.round(p[0], 6))) in ends for p in tiles[central])
     # the shapes really bend the edges (not all straight)
     assert any(np.abs(c[:, 1]).max() > 0.05 for c in t.edge_curves())
+
+
+shape_point = st.tuples(st.floats(0.05, 0.95), st.floats(-0.25, 0.25))
+
+
+@settings(max_examples=10, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.lists(st.lists(shape_point, min_size=1, max_size=3), min_size=3, max_size=3),
+       st.sampled_from([("3.4.3.4", "rotations", None), ("3.6.6", "rotations", None), ("3.3.3.5", "full", None),
+                        ("3.3.3.3.4", "full", None), ("7.7.7", "rotations", 1.0), ("3.14.14", "rotations", 1.0)]))
+def test_random_shapes_still_tile(polylines, case) -> None:
+    """Any shapes: the tile either still tiles (validate) or is refused in one line."""
+    config, group, radius = case
+    owners = sorted(LavesTiling(config, group=group, edges={}, radius=radius).edge_shapes)
+    edges = {lab: ":".join(f"{x},{y}" for x, y in sorted(pts)) for lab, pts in zip(owners, polylines)}
+    try:
+        t = LavesTiling(config, group=group, edges=edges, radius=radius)
+    except ParameterError as exc:
+        assert "\n" not in str(exc) and ("simple" in str(exc) or "hemisphere" in str(exc)), str(exc)
+        return
+    patch = t.patch()
+    if t.hyperbolic:
+        report = patch.validate(shapely.Point(0, 0).buffer(math.tanh(0.2), 32))
+    else:
+        report = patch.validate()
+    assert report.ok, (config, edges)
 
 
 @pytest.mark.parametrize("case", [CASES[1], CASES[2], CASES[4]], ids=lambda c: c[0])
