@@ -231,3 +231,37 @@ def test_cli_renders_shaped_laves_tiles(cli):
                               'edges={"a": "0.5,0.9:0.5,-0.9"}', "-o", "x.svg"), "cross")
     assert_one_line_error(cli("render", "[3.4.3.4]", "--set", f"edges={edges}", "-o", "x.svg"),
                           "none (all I: straight)")
+
+
+@pytest.mark.parametrize("config, group, colours", [("3.6.6", "rotations", 3), ("3.3.3.5", "full", 2),
+                                                    ("3.4.3.4", "rotations", 1), ("3.3.3.3.5", "full", 1)])
+def test_shaped_tiles_take_a_perfect_colouring_where_one_exists(config, group, colours):
+    """The colour is a homomorphism onto an abelian group, zero on the tile's symmetries: every
+    symmetry of the tiling (each placing element, acting on the left) shifts all colours by one
+    constant, and across each edge the colour moves by the homomorphism's value on its hop. 332 (A4) maps
+    onto Z3; the rotation groups 432 with a half-turn in the tile's stabiliser (S4's transpositions
+    are odd) and 532 (A5, perfect) have no nontrivial abelian quotient allowed: one colour."""
+    t = LavesTiling(config, group=group, edges={})
+    patch = t.patch()
+    (a, b), _phi = t.perfect_colouring
+    assert a * b == colours == len(set(patch.colour.tolist()))
+    centres = patch.transform[:, :, 2]
+    def tile_at(points):
+        d = np.abs(points[:, None, :] - centres[None]).max(axis=2)
+        assert (d.min(axis=1) < 1e-9).all()
+        return d.argmin(axis=1)
+    elems = patch.transform @ np.linalg.inv(t.frame)             # the group's elements placing the tiles
+    for e in elems:
+        moved = tile_at(centres @ e.T)
+        shift = {((patch.colour[m] // b - c // b) % a, (patch.colour[m] % b - c % b) % b)
+                 for c, m in zip(patch.colour.tolist(), moved.tolist())}
+        assert len(shift) == 1
+    # across edge i the colour moves by φ_i (the homomorphism's value on the hop): neighbours
+    # differ exactly across the edges where it is nonzero (Z3 has no element of order 2 for an
+    # S edge's half-turn, so those neighbours share a colour)
+    (a, b), phi = t.perfect_colouring
+    for hop, f in zip(t.motions, phi):
+        across = tile_at((patch.transform @ hop)[:, :, 2])
+        c, d = patch.colour, patch.colour[across]
+        assert (((d // b - c // b) % a == f // b) & ((d % b - c % b) % b == f % b)).all()
+    assert colours == 1 or any(phi)

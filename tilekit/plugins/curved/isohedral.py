@@ -296,6 +296,67 @@ def add_colours(c: np.ndarray, phi: np.ndarray, quotient: tuple[int, int]) -> np
 # --------------------------------------------------------------------------- the tiling
 
 
+def hops(frames: np.ndarray, symbol: IncidenceSymbol) -> np.ndarray:
+    """(p, 3, 3): the hop H_i = F_i O F_j⁻¹ carries the tile onto its neighbour across edge i,
+    presenting its edge j there (F the edges' frames, :func:`.shaped.edge_frames`; j and O from
+    the symbol: O the half-turn for a direct hop, the mirror in the edge's line for an opposite
+    one)."""
+    inv = np.linalg.inv(frames)
+    table = symbol_table(symbol)
+    out = []
+    for i in range(len(frames)):
+        o = _ROT3 if (table.orientation[i] == ROT).all() else _ROFL3
+        out.append(frames[i] @ o @ inv[int(table.partner[i])])
+    return np.array(out)
+
+
+def hop_words(symbol: IncidenceSymbol, motions: np.ndarray, g: model.Geometry, bound: float, sep: float
+              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(tiles (n, 3, 3), their words (n, classes), relations (r, classes)): breadth first over
+    the hops ``motions`` from the tile (centred at the pole) to every tile whose centre is within
+    ``bound`` (the sphere: all), each tile with the signed counts of its word's colour classes
+    (:func:`colour_classes`); where two words reach one tile (centres welded at ``sep``, the
+    least distance between two tiles' centres), their difference is a relation row."""
+    edge_class, edge_sign, order2 = colour_classes(symbol)
+    n, p = len(order2), len(symbol.edges)
+    step = np.zeros((p, n), dtype=np.int64)
+    step[np.arange(p), edge_class] = edge_sign
+    mats, words = np.eye(3)[None], np.zeros((1, n), dtype=np.int64)
+    layer, layer_w = mats, words
+    rows = []
+    while len(layer):
+        cand = np.matmul(layer[:, None], motions[None]).reshape(-1, 3, 3)
+        cw = (layer_w[:, None, :] + step[None]).reshape(-1, n)
+        if math.isfinite(bound):
+            inside = g.acos(cand[:, 2, 2]) <= bound
+            cand, cw = cand[inside], cw[inside]
+        allm, allw = np.concatenate([mats, cand]), np.concatenate([words, cw])
+        key = allm[:, :, 2] if g.sign > 0 else allm[:, :2, 2]
+        rep = wythoff.weld(key, sep)
+        dup = np.flatnonzero(rep != np.arange(len(allm)))
+        rows.append(allw[dup] - allw[rep[dup]])
+        new = np.flatnonzero(rep == np.arange(len(allm)))
+        new = new[new >= len(mats)]
+        layer, layer_w = allm[new], allw[new]
+        mats, words = np.concatenate([mats, layer]), np.concatenate([words, layer_w])
+    out = np.concatenate(rows) if rows else np.zeros((0, n), dtype=np.int64)
+    return mats, words, np.unique(out, axis=0)
+
+
+def word_colours(symbol: IncidenceSymbol, words: np.ndarray, quotient: tuple[int, int], phi: tuple[int, ...]
+                 ) -> np.ndarray:
+    """Colour indices (of Z_a × Z_b, index x·b + y) of tiles reached by words of colour classes
+    (:func:`hop_words`): each class's value read back from φ on its edges, summed along the word."""
+    a, b = quotient
+    edge_class, edge_sign, order2 = colour_classes(symbol)
+    value = np.zeros((len(order2), 2), dtype=np.int64)
+    for i, c in enumerate(edge_class):
+        value[c] = ((edge_sign[i] * (phi[i] // b)) % a, (edge_sign[i] * (phi[i] % b)) % b)
+    x = (words @ value[:, 0]) % a
+    y = (words @ value[:, 1]) % b
+    return x * b + y
+
+
 class CurvedIsohedralTiling(CurvedTiling):
     """Copies of one deformable tile filling the sphere or the hyperbolic plane (see the module).
 
@@ -383,14 +444,7 @@ class CurvedIsohedralTiling(CurvedTiling):
         """(p, 3, 3): the hop H_i = F_i O F_j⁻¹ carries the tile onto its neighbour across edge
         i, presenting its edge j there (O the half-turn for a direct hop, the mirror in the
         edge's line for an opposite one)."""
-        f = self.frames
-        inv = np.linalg.inv(f)
-        table = symbol_table(self.symbol)
-        out = []
-        for i in range(self.p):
-            o = _ROT3 if (table.orientation[i] == ROT).all() else _ROFL3
-            out.append(f[i] @ o @ inv[int(table.partner[i])])
-        return np.array(out)
+        return hops(self.frames, self.symbol)
 
     @cached_property
     def tile_symmetries(self) -> np.ndarray:
@@ -401,38 +455,11 @@ class CurvedIsohedralTiling(CurvedTiling):
                          for shift, reflect in self.symbol.tile_symmetries()])
 
     def relations(self) -> np.ndarray:
-        """Relations among the colour classes' values (:func:`colour_classes`): breadth first
-        over hops from the tile to every tile within two circumradii (the tiles round the
-        tile's vertices, whose cycles give the group's relations with the classes' own), each
-        tile with the signed class counts of its word; where two words reach one tile, their
-        difference is a row."""
-        g = self.polygon.geometry
-        edge_class, edge_sign, order2 = colour_classes(self.symbol)
-        n = len(order2)
-        step = np.zeros((self.p, n), dtype=np.int64)
-        step[np.arange(self.p), edge_class] = edge_sign
+        """Relations among the colour classes' values (:func:`hop_words`, with the tiles within
+        two circumradii: the tiles round the tile's vertices, whose cycles give the group's
+        relations with the classes' own)."""
         bound = math.inf if not self.hyperbolic else 2 * self.polygon.circumradius + 1e-9
-        sep = 2 * self.polygon.inradius
-        mats, words = np.eye(3)[None], np.zeros((1, n), dtype=np.int64)
-        layer, layer_w = mats, words
-        rows = []
-        while len(layer):
-            cand = np.matmul(layer[:, None], self.motions[None]).reshape(-1, 3, 3)
-            cw = (layer_w[:, None, :] + step[None]).reshape(-1, n)
-            if math.isfinite(bound):
-                inside = g.acos(cand[:, 2, 2]) <= bound
-                cand, cw = cand[inside], cw[inside]
-            allm, allw = np.concatenate([mats, cand]), np.concatenate([words, cw])
-            key = allm[:, :, 2] if g.sign > 0 else allm[:, :2, 2]
-            rep = wythoff.weld(key, sep)
-            dup = np.flatnonzero(rep != np.arange(len(allm)))
-            rows.append(allw[dup] - allw[rep[dup]])
-            new = np.flatnonzero(rep == np.arange(len(allm)))
-            new = new[new >= len(mats)]
-            layer, layer_w = allm[new], allw[new]
-            mats, words = np.concatenate([mats, layer]), np.concatenate([words, layer_w])
-        out = np.concatenate(rows) if rows else np.zeros((0, n), dtype=np.int64)
-        return np.unique(out, axis=0)
+        return hop_words(self.symbol, self.motions, self.polygon.geometry, bound, 2 * self.polygon.inradius)[2]
 
     def _prototile(self, shapes: Mapping[str, EdgeShape]) -> ModelPrototile:
         g = self.polygon.geometry

@@ -43,6 +43,7 @@ from tilekit.edgeshapes import EdgeShape
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.incidence import IncidenceSymbol, edge_curves
 from tilekit.plugins.curved import model, notation, wythoff
+from tilekit.plugins.curved.isohedral import colouring, hop_words, hops, word_colours
 from tilekit.plugins.curved.orbifold import (
     _first_of_each,
     _local_elements,
@@ -332,6 +333,39 @@ class LavesTiling(UniformTiling):
         return ModelPrototile(flat, name=f"[{self.configuration}] tile", points=pts, sign=sp.sign, view=view,
                               plane=self.plane, corners=tuple(range(len(pts))), triangles=triangles)
 
+    @cached_property
+    def motions(self) -> np.ndarray:
+        """(k, 3, 3): the hops across the tile's edges in its own frame (:func:`.isohedral.hops`
+        on :attr:`tile_symbol`): the neighbour across edge i is the tile moved by ``motions[i]``."""
+        return hops(self.frames, self.tile_symbol)
+
+    @cached_property
+    def perfect_colouring(self) -> tuple[tuple[int, int], tuple[int, ...]]:
+        """((a, b), φ per edge's hop): the least perfect colouring of the tiles (a homomorphism of
+        the group onto Z_b or Z_a × Z_b, zero on the tile's symmetries; :func:`.isohedral.colouring`,
+        with the relations read round the tile's corners), as the curved isohedral tiles take."""
+        geom = model.Geometry(self.construction.space.sign)
+        bound = 2 * self.circumradius + 1e-9 if self.hyperbolic else math.inf
+        relations = hop_words(self.tile_symbol, self.motions, geom, bound, self.construction.edge_length)[2]
+        return colouring(self.tile_symbol, relations)
+
+    def _colours(self, mats: np.ndarray) -> np.ndarray:
+        """The perfect colouring's colour of each tile (transforms ``mats``): the tiles reached
+        breadth first by hops from the central tile, matched to ``mats`` by their centres."""
+        geom = model.Geometry(self.construction.space.sign)
+        local = np.linalg.inv(self.frame) @ mats                    # the tiles in the central tile's frame
+        bound = math.inf
+        if self.hyperbolic:
+            bound = float(geom.acos(local[:, 2, 2]).max()) + 1e-9
+        reached, words, _ = hop_words(self.tile_symbol, self.motions, geom, bound, self.construction.edge_length)
+        key = np.concatenate([reached, local])[:, :, 2]
+        rep = wythoff.weld(key if geom.sign > 0 else key[:, :2], self.construction.edge_length)[len(reached):]
+        if (rep >= len(reached)).any():
+            raise GeometryError(f"[{self.configuration}]: a tile of the patch is not reached by the hops across "
+                                "its edges")
+        quotient, phi = self.perfect_colouring
+        return word_colours(self.tile_symbol, words, quotient, phi)[rep]
+
     # -- the Tiling interface ------------------------------------------------------------
     @cached_property
     def _proto(self) -> ModelPrototile:
@@ -408,10 +442,15 @@ class LavesTiling(UniformTiling):
         """Every tile (sphere) or every tile whose centre (a vertex of the uniform tiling) lies
         within the radius plus the tile's circumradius, less those whose outline misses
         ``region``; colour: the tile's handedness (0 placed by a rotation, 1 by a reflection:
-        the two halves of an omnitruncation's dual, all 0 where the tile has a mirror)."""
+        the two halves of an omnitruncation's dual, all 0 where the tile has a mirror); with
+        shaped edges the least perfect colouring (:attr:`perfect_colouring`), as the curved
+        isohedral tiles are coloured."""
         elems = self.group_elements()
         mats = elems @ self.frame
-        colour = (np.linalg.det(mats) < 0).astype(np.int64)
+        if self.edge_shapes is not None:
+            colour = self._colours(mats)
+        else:
+            colour = (np.linalg.det(mats) < 0).astype(np.int64)
         patch = ModelPatch([self._proto], np.zeros(len(mats), dtype=np.int64), mats, colour=colour)
         return clipped(patch, region)
 
