@@ -21,6 +21,8 @@ on its partner as the unit-segment image the symbol names (:func:`tilekit.incide
 Neighbouring tiles share their edges point for point, and the tile is the geodesic polygon
 through those points (straight in the Klein model), so the deformed tiles tile exactly as the
 polygons do; a tile whose boundary crosses itself is refused (default shapes are damped first).
+The outline code (frames, charts, the crossing check) is :mod:`.shaped`, and the hops, words and
+colourings here colour the shaped Laves tiles too (laves.py).
 
 Colours: a homomorphism φ: Γ → Z_k (or Z_a × Z_b), zero on the tile symmetries, one value per
 pair of adjacent labels (:func:`colour_classes`), constrained by the relations found round the

@@ -100,8 +100,9 @@ class LavesTiling(UniformTiling):
     SPEC_WHAT = "curved Laves"
 
     def __init__(self, configuration: str | None = None, *, symbol: str | None = None, group: str = "full",
-                 edges: Mapping[str, EdgeShape | str] | str | None = None, radius: float | None = None, samples: int = DEFAULT_SAMPLES, plane: str = "poincare",
-                 geometry: str | None = None, name: str = "", title: str = "") -> None:
+                 edges: Mapping[str, EdgeShape | str] | str | None = None, radius: float | None = None,
+                 samples: int = DEFAULT_SAMPLES, plane: str = "poincare", geometry: str | None = None,
+                 name: str = "", title: str = "") -> None:
         self.group = _check_group(group)
         super().__init__(None if configuration is None else _configuration(configuration), symbol=symbol,
                          radius=radius, samples=samples, plane=plane, geometry=geometry, name=name, title=title)
