@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import functools
 import re
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from itertools import permutations
 
@@ -206,12 +206,12 @@ class IncidenceSymbol:
 
     def _relabelled(self, seq: list[Edge]) -> IncidenceSymbol:
         """Rename labels a, b, ... in order of appearance and redraw arrows so that each
-        label's first edge points counter-clockwise (Step 1 of §5.2's derivation).
+        label's first edge points counter-clockwise (Step 1 of §5.2's derivation)."""
+        return self._renamed(seq, *self._relabelling(seq))
 
-        Reversing the arrows of a label x negates its signs around the tile; the adjacency
-        sign between x and a different label y flips too (arrows that opposed now agree),
-        while a label adjacent to itself keeps its adjacency sign.
-        """
+    @staticmethod
+    def _relabelling(seq: list[Edge]) -> tuple[dict[str, str], set[str]]:
+        """(new name per label, labels whose arrows are reversed) for :meth:`_relabelled`."""
         names: dict[str, str] = {}
         flipped: set[str] = set()
         for lab, sg in seq:
@@ -219,6 +219,16 @@ class IncidenceSymbol:
                 names[lab] = LABELS[len(names)]
                 if sg < 0:
                     flipped.add(lab)
+        return names, flipped
+
+    def _renamed(self, seq: list[Edge], names: dict[str, str], flipped: set[str]) -> IncidenceSymbol:
+        """The edges ``seq`` (this symbol's, in some order) renamed by ``names`` with the arrows
+        of the labels in ``flipped`` reversed.
+
+        Reversing the arrows of a label x negates its signs around the tile; the adjacency
+        sign between x and a different label y flips too (arrows that opposed now agree),
+        while a label adjacent to itself keeps its adjacency sign.
+        """
         adj = self.adjacent_map()
         edges = tuple((names[lab], -sg if lab in flipped else sg) for lab, sg in seq)
         labels = []
@@ -232,6 +242,27 @@ class IncidenceSymbol:
                 t = -t
             adjacency.append((names[other], t))
         return IncidenceSymbol(edges, tuple(adjacency))
+
+    def canonical_labelling(self) -> IncidenceSymbol:
+        """This symbol in its own edge order (edge i stays edge i) with the labels and arrows of
+        its canonical form (:meth:`canonical`), so that a label of the canonical symbol names the
+        same edges here; read clockwise, the canonical form's arrows show as '-' here."""
+        n = len(self.edges)
+        best: tuple[IncidenceSymbol, dict[str, str], set[str]] | None = None
+        for direction in (1, -1):
+            seq = list(self.edges) if direction == 1 else [(lab, -sg) for lab, sg in reversed(self.edges)]
+            for start in range(n):
+                rot = seq[start:] + seq[:start]
+                names, flipped = self._relabelling(rot)
+                sym = self._renamed(rot, names, flipped)
+                if best is None or sym.sort_key() < best[0].sort_key():
+                    # read clockwise every sign is negated, and negated back when the arrows are
+                    # read counter-clockwise again: the same labels' arrows are reversed
+                    best = (sym, names, flipped)
+        if best is None:
+            return self
+        _, names, flipped = best
+        return self._renamed(list(self.edges), names, flipped)
 
     def sort_key(self) -> tuple:
         # order: letters, then '+' before '-' before no sign (as Grünbaum and Shephard list them)
@@ -325,11 +356,12 @@ def symbol_table(symbol: IncidenceSymbol) -> SymbolTable:
     return SymbolTable(np.array(partner, dtype=np.int64), np.array(orientation))
 
 
-def shape_classes(symbol: IncidenceSymbol) -> list[str]:
-    """Labels that own a fundamental shape: one per pair of adjacent labels, I edges excluded."""
+def shape_classes(symbol: IncidenceSymbol, order: Sequence[str] | None = None) -> list[str]:
+    """Labels that own a fundamental shape: one per pair of adjacent labels, I edges excluded;
+    of a pair, the first in ``order`` (default: the symbol's order of first appearance)."""
     out: list[str] = []
     adj = symbol.adjacent_map()
-    for lab in symbol.labels:
+    for lab in (symbol.labels if order is None else order):
         if symbol.label_kind(lab) == "I":
             continue
         other = adj[lab][0]
@@ -344,15 +376,17 @@ def unit_orientation(symbol: IncidenceSymbol, i: int) -> np.ndarray:
     return FLIP if symbol.edges[i][1] < 0 else IDENTITY
 
 
-def label_curves(symbol: IncidenceSymbol, shapes: Mapping[str, EdgeShape]) -> dict[str, np.ndarray]:
+def label_curves(symbol: IncidenceSymbol, shapes: Mapping[str, EdgeShape],
+                 order: Sequence[str] | None = None) -> dict[str, np.ndarray]:
     """Levels 1 and 2 of the edge model: the curve of every label on the unit segment, from
     (0,0) to (1,0); a label adjacent to another takes the image of that one's curve under the
-    hop between them (so the two tiles share the edge point for point)."""
+    hop between them (so the two tiles share the edge point for point); ``order`` picks each
+    pair's owner as :func:`shape_classes` does."""
     table = symbol_table(symbol)
     curves: dict[str, np.ndarray] = {
         lab: complete("I", None) for lab in symbol.labels if symbol.label_kind(lab) == "I"
     }
-    for rep in shape_classes(symbol):
+    for rep in shape_classes(symbol, order):
         kind = symbol.label_kind(rep)
         base = complete(kind, shapes.get(rep))
         curves[rep] = base
@@ -367,7 +401,9 @@ def label_curves(symbol: IncidenceSymbol, shapes: Mapping[str, EdgeShape]) -> di
     return curves
 
 
-def edge_curves(symbol: IncidenceSymbol, shapes: Mapping[str, EdgeShape]) -> list[np.ndarray]:
-    """Each edge's curve on the unit segment, in the tile's traversal direction."""
-    curves = label_curves(symbol, shapes)
+def edge_curves(symbol: IncidenceSymbol, shapes: Mapping[str, EdgeShape],
+                order: Sequence[str] | None = None) -> list[np.ndarray]:
+    """Each edge's curve on the unit segment, in the tile's traversal direction (``order``: as
+    for :func:`label_curves`)."""
+    curves = label_curves(symbol, shapes, order)
     return [apply_unit(unit_orientation(symbol, i), curves[lab]) for i, (lab, _) in enumerate(symbol.edges)]

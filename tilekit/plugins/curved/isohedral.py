@@ -21,6 +21,8 @@ on its partner as the unit-segment image the symbol names (:func:`tilekit.incide
 Neighbouring tiles share their edges point for point, and the tile is the geodesic polygon
 through those points (straight in the Klein model), so the deformed tiles tile exactly as the
 polygons do; a tile whose boundary crosses itself is refused (default shapes are damped first).
+The outline code (frames, charts, the crossing check) is :mod:`.shaped`, and the hops, words and
+colourings here colour the shaped Laves tiles too (laves.py).
 
 Colours: a homomorphism φ: Γ → Z_k (or Z_a × Z_b), zero on the tile symmetries, one value per
 pair of adjacent labels (:func:`colour_classes`), constrained by the relations found round the
@@ -47,7 +49,6 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import shapely
 
 from tilekit.edgeshapes import ROT, EdgeShape
 from tilekit.errors import GeometryError, ParameterError, ParseError
@@ -55,6 +56,7 @@ from tilekit.files import read_text
 from tilekit.incidence import LABELS, IncidenceSymbol, edge_curves, shape_classes, symbol_table
 from tilekit.plugins.curved import delaney, model, wythoff
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
+from tilekit.plugins.curved.shaped import edge_frames, first_simple, parse_edges, shaped_outline
 from tilekit.plugins.curved.tiling import (
     MAX_RADIUS,
     PLANES,
@@ -63,7 +65,6 @@ from tilekit.plugins.curved.tiling import (
     clipped,
     spec_table,
 )
-from tilekit.polygon import ear_clip, signed_area
 
 FAMILY = "curved-isohedral"
 #: Chart points per segment of an edge's curve (the curve is subdivided on the unit segment
@@ -88,13 +89,6 @@ _SPEC_KEYS = set(_OPTIONS) - {"geometry"} | {"name", "title"}
 _ROT3 = np.diag([-1.0, -1.0, 1.0])
 _ROFL3 = np.diag([1.0, -1.0, 1.0])   # the mirror in the edge's line (the unit segment's ROFL)
 _FLIP3 = np.diag([-1.0, 1.0, 1.0])   # the mirror in its perpendicular bisector (FLIP)
-#: Default shapes: an S edge's half (completed by the half-turn) and a J edge's whole curve.
-DEFAULT_S = "0.18,0.16:0.34,0.14"
-DEFAULT_J = "0.25,0.16:0.55,-0.12:0.8,0.06"
-#: Factors the default shapes are tried at, in turn, until the tile is simple.
-DEFAULT_DAMPING = (1.0, 0.5, 0.25, 0.125)
-#: A U edge's half (completed by the mirror in the perpendicular bisector).
-DEFAULT_U = "0.2,0.12:0.36,-0.06"
 
 
 # --------------------------------------------------------------------------- the pairing
@@ -304,54 +298,65 @@ def add_colours(c: np.ndarray, phi: np.ndarray, quotient: tuple[int, int]) -> np
 # --------------------------------------------------------------------------- the tiling
 
 
-def _edge_frames(poly: model.RegularPolygon) -> np.ndarray:
-    """(p, 3, 3): F_i takes the pole to edge i's midpoint, the x axis along the edge (towards
-    vertex i + 1)."""
-    g = poly.geometry
-    out = np.empty((poly.p, 3, 3))
-    for i in range(poly.p):
-        out[i] = g.rotation((2 * i + 1) * math.pi / poly.p) @ g.translation(poly.inradius) @ g.rotation(math.pi / 2)
-    return out
+def hops(frames: np.ndarray, symbol: IncidenceSymbol) -> np.ndarray:
+    """(p, 3, 3): the hop H_i = F_i O F_j⁻¹ carries the tile onto its neighbour across edge i,
+    presenting its edge j there (F the edges' frames, :func:`.shaped.edge_frames`; j and O from
+    the symbol: O the half-turn for a direct hop, the mirror in the edge's line for an opposite
+    one)."""
+    inv = np.linalg.inv(frames)
+    table = symbol_table(symbol)
+    out = []
+    for i in range(len(frames)):
+        o = _ROT3 if (table.orientation[i] == ROT).all() else _ROFL3
+        out.append(frames[i] @ o @ inv[int(table.partner[i])])
+    return np.array(out)
 
 
-def _chart(g: model.Geometry, frame: np.ndarray, length: float, uv: np.ndarray) -> np.ndarray:
-    """Unit-segment points (m, 2) onto the surface through the edge's chart (see the module)."""
-    u, v = (uv[:, 0] - 0.5) * length, uv[:, 1] * length
-    pts = g.point(np.hypot(u, v), np.arctan2(v, u))
-    return pts @ frame.T
+def hop_words(symbol: IncidenceSymbol, motions: np.ndarray, g: model.Geometry, bound: float, sep: float
+              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(tiles (n, 3, 3), their words (n, classes), relations (r, classes)): breadth first over
+    the hops ``motions`` from the tile (centred at the pole) to every tile whose centre is within
+    ``bound`` (the sphere: all), each tile with the signed counts of its word's colour classes
+    (:func:`colour_classes`); where two words reach one tile (centres welded at ``sep``, the
+    least distance between two tiles' centres), their difference is a relation row."""
+    edge_class, edge_sign, order2 = colour_classes(symbol)
+    n, p = len(order2), len(symbol.edges)
+    step = np.zeros((p, n), dtype=np.int64)
+    step[np.arange(p), edge_class] = edge_sign
+    mats, words = np.eye(3)[None], np.zeros((1, n), dtype=np.int64)
+    layer, layer_w = mats, words
+    rows = []
+    while len(layer):
+        cand = np.matmul(layer[:, None], motions[None]).reshape(-1, 3, 3)
+        cw = (layer_w[:, None, :] + step[None]).reshape(-1, n)
+        if math.isfinite(bound):
+            inside = g.acos(cand[:, 2, 2]) <= bound
+            cand, cw = cand[inside], cw[inside]
+        allm, allw = np.concatenate([mats, cand]), np.concatenate([words, cw])
+        key = allm[:, :, 2] if g.sign > 0 else allm[:, :2, 2]
+        rep = wythoff.weld(key, sep)
+        dup = np.flatnonzero(rep != np.arange(len(allm)))
+        rows.append(allw[dup] - allw[rep[dup]])
+        new = np.flatnonzero(rep == np.arange(len(allm)))
+        new = new[new >= len(mats)]
+        layer, layer_w = allm[new], allw[new]
+        mats, words = np.concatenate([mats, layer]), np.concatenate([words, layer_w])
+    out = np.concatenate(rows) if rows else np.zeros((0, n), dtype=np.int64)
+    return mats, words, np.unique(out, axis=0)
 
 
-#: Unit-segment points closer than this to the chord of their neighbours are dropped (and
-#: repeated points merged): they change the shape invisibly but leave slivers that no
-#: triangulation or validation can tell from an overlap.
-FLAT = 1e-6
-
-
-def _clean(curve: np.ndarray) -> np.ndarray:
-    """The curve without repeated points and without points within FLAT of the chord between
-    their neighbours (decided for every point at once, so an edge and its partner, images
-    under an isometry of the unit segment, keep the same points)."""
-    keep = np.ones(len(curve), dtype=bool)
-    keep[1:] = np.abs(np.diff(curve, axis=0)).max(axis=1) > 1e-12
-    c = curve[keep]
-    if len(c) < 3:
-        return np.array([curve[0], curve[-1]])
-    a, b, m = c[:-2], c[2:], c[1:-1]
-    d = b - a
-    length = np.hypot(d[:, 0], d[:, 1])
-    t = np.clip(((m - a) * d).sum(axis=1) / np.maximum(length, 1e-300) ** 2, 0.0, 1.0)
-    near = np.hypot(*(a + t[:, None] * d - m).T) < FLAT
-    return c[np.concatenate([[True], ~near, [True]])]
-
-
-def _densify(curve: np.ndarray, samples: int) -> np.ndarray:
-    """The curve's segments each cut into ``samples`` pieces (end point kept)."""
-    if samples <= 1:
-        return curve
-    t = np.arange(samples) / samples
-    a, b = curve[:-1], curve[1:]
-    pts = a[:, None, :] + t[None, :, None] * (b - a)[:, None, :]
-    return np.vstack([pts.reshape(-1, 2), curve[-1:]])
+def word_colours(symbol: IncidenceSymbol, words: np.ndarray, quotient: tuple[int, int], phi: tuple[int, ...]
+                 ) -> np.ndarray:
+    """Colour indices (of Z_a × Z_b, index x·b + y) of tiles reached by words of colour classes
+    (:func:`hop_words`): each class's value read back from φ on its edges, summed along the word."""
+    a, b = quotient
+    edge_class, edge_sign, order2 = colour_classes(symbol)
+    value = np.zeros((len(order2), 2), dtype=np.int64)
+    for i, c in enumerate(edge_class):
+        value[c] = ((edge_sign[i] * (phi[i] // b)) % a, (edge_sign[i] * (phi[i] % b)) % b)
+    x = (words @ value[:, 0]) % a
+    y = (words @ value[:, 1]) % b
+    return x * b + y
 
 
 class CurvedIsohedralTiling(CurvedTiling):
@@ -410,39 +415,15 @@ class CurvedIsohedralTiling(CurvedTiling):
         self.asked_colours = colours is not None
         self.name = name or f"{FAMILY}-{self.p}-{self.q}"
         self.title = title
-        given = edges or {}
-        # the default shapes bend less, halved up to three times, until the tile is simple
-        # (an edge shape given is never changed: a crossing is its one-line error)
-        for damp in DEFAULT_DAMPING:
-            self.edge_shapes = self._shapes(given, damp)
-            try:
-                self._proto = self._prototile()
-                break
-            except ParameterError:
-                if damp == DEFAULT_DAMPING[-1] or set(shape_classes(self.symbol)) <= set(given):
-                    raise
+        # the default shapes bend less where the corners are sharp (angle 2π/q), halved until
+        # the tile is simple (an edge shape given is never changed: a crossing is its error)
+        self.edge_shapes, self._proto = first_simple(
+            self.symbol, edges or {}, f"{{{self.p},{self.q}}} with {self._what()}", min(1.0, 4.0 / self.q),
+            self._prototile)
 
     # -- shapes ------------------------------------------------------------------------
     def _label(self, i: int) -> str:
         return self.pairing.labels[i] if self.pairing is not None else self.symbol.edges[i][0]
-
-    def _shapes(self, edges: Mapping[str, Any], damp: float = 1.0) -> dict[str, EdgeShape]:
-        if not isinstance(edges, Mapping):
-            raise ParameterError(f"edges must map edge letters to shapes, got {type(edges).__name__}")
-        owners = shape_classes(self.symbol)
-        out: dict[str, EdgeShape] = {}
-        for lab, shape in edges.items():
-            if lab not in owners:
-                raise ParameterError(f"{{{self.p},{self.q}}} with {self._what()} has no shaped edge {str(lab)[:10]!r}; "
-                                     f"its shaped edges are {', '.join(sorted(owners)) or 'none (all I: straight)'}")
-            out[lab] = shape if isinstance(shape, EdgeShape) else EdgeShape.parse(str(shape))
-        # the defaults bend less where the corners are sharp (angle 2π/q), so the tile stays simple
-        scale = min(1.0, 4.0 / self.q) * damp
-        for lab in owners:
-            kind = self.symbol.label_kind(lab)
-            base = EdgeShape.parse(DEFAULT_J if kind == "J" else DEFAULT_S if kind == "S" else DEFAULT_U)
-            out.setdefault(lab, EdgeShape(base.points * np.array([1.0, scale])))
-        return out
 
     def _what(self) -> str:
         return f"pairing '{self.pairing}'" if self.pairing is not None else f"incidence symbol {self.symbol}"
@@ -456,21 +437,16 @@ class CurvedIsohedralTiling(CurvedTiling):
 
     @cached_property
     def frames(self) -> np.ndarray:
-        return _edge_frames(self.polygon)
+        """(p, 3, 3): each edge's frame at its midpoint, the x axis along the edge
+        (:func:`.shaped.edge_frames`)."""
+        return edge_frames(self.polygon.geometry.sign, self.polygon.vertices())
 
     @cached_property
     def motions(self) -> np.ndarray:
         """(p, 3, 3): the hop H_i = F_i O F_j⁻¹ carries the tile onto its neighbour across edge
         i, presenting its edge j there (O the half-turn for a direct hop, the mirror in the
         edge's line for an opposite one)."""
-        f = self.frames
-        inv = np.linalg.inv(f)
-        table = symbol_table(self.symbol)
-        out = []
-        for i in range(self.p):
-            o = _ROT3 if (table.orientation[i] == ROT).all() else _ROFL3
-            out.append(f[i] @ o @ inv[int(table.partner[i])])
-        return np.array(out)
+        return hops(self.frames, self.symbol)
 
     @cached_property
     def tile_symmetries(self) -> np.ndarray:
@@ -481,81 +457,21 @@ class CurvedIsohedralTiling(CurvedTiling):
                          for shift, reflect in self.symbol.tile_symmetries()])
 
     def relations(self) -> np.ndarray:
-        """Relations among the colour classes' values (:func:`colour_classes`): breadth first
-        over hops from the tile to every tile within two circumradii (the tiles round the
-        tile's vertices, whose cycles give the group's relations with the classes' own), each
-        tile with the signed class counts of its word; where two words reach one tile, their
-        difference is a row."""
-        g = self.polygon.geometry
-        edge_class, edge_sign, order2 = colour_classes(self.symbol)
-        n = len(order2)
-        step = np.zeros((self.p, n), dtype=np.int64)
-        step[np.arange(self.p), edge_class] = edge_sign
+        """Relations among the colour classes' values (:func:`hop_words`, with the tiles within
+        two circumradii: the tiles round the tile's vertices, whose cycles give the group's
+        relations with the classes' own)."""
         bound = math.inf if not self.hyperbolic else 2 * self.polygon.circumradius + 1e-9
-        sep = 2 * self.polygon.inradius
-        mats, words = np.eye(3)[None], np.zeros((1, n), dtype=np.int64)
-        layer, layer_w = mats, words
-        rows = []
-        while len(layer):
-            cand = np.matmul(layer[:, None], self.motions[None]).reshape(-1, 3, 3)
-            cw = (layer_w[:, None, :] + step[None]).reshape(-1, n)
-            if math.isfinite(bound):
-                inside = g.acos(cand[:, 2, 2]) <= bound
-                cand, cw = cand[inside], cw[inside]
-            allm, allw = np.concatenate([mats, cand]), np.concatenate([words, cw])
-            key = allm[:, :, 2] if g.sign > 0 else allm[:, :2, 2]
-            rep = wythoff.weld(key, sep)
-            dup = np.flatnonzero(rep != np.arange(len(allm)))
-            rows.append(allw[dup] - allw[rep[dup]])
-            new = np.flatnonzero(rep == np.arange(len(allm)))
-            new = new[new >= len(mats)]
-            layer, layer_w = allm[new], allw[new]
-            mats, words = np.concatenate([mats, layer]), np.concatenate([words, layer_w])
-        out = np.concatenate(rows) if rows else np.zeros((0, n), dtype=np.int64)
-        return np.unique(out, axis=0)
+        return hop_words(self.symbol, self.motions, self.polygon.geometry, bound, 2 * self.polygon.inradius)[2]
 
-    def _prototile(self) -> ModelPrototile:
+    def _prototile(self, shapes: Mapping[str, EdgeShape]) -> ModelPrototile:
         g = self.polygon.geometry
-        length = self.polygon.edge_length
-        parts, edge_of = [], []
-        for i, curve in enumerate(self.edge_curves()):
-            pts = _chart(g, self.frames[i], length, _densify(_clean(curve), self.samples))[:-1]
-            parts.append(pts)
-            edge_of += [i] * len(pts)
-        pts = np.vstack(parts)
-        flat = model.klein(pts) if g.sign < 0 else pts[:, :2] / pts[:, 2:3]  # Klein / gnomonic: geodesics straight
-        if g.sign > 0 and (pts[:, 2] <= 1e-3).any():
-            raise ParameterError(f"the edge shapes carry the tile of {{{self.p},{self.q}}} past the hemisphere round "
-                                 "its centre; use smaller deflections")
-        ring = shapely.LinearRing(flat)
-        if not ring.is_simple or signed_area(flat) <= 0:
-            raise ParameterError(self._crossing_message(flat, np.array(edge_of)))
-        tris = ear_clip(flat)
-        index = {tuple(v): k for k, v in enumerate(flat.tolist())}
-        triangles = np.array([[index[tuple(v)] for v in t.tolist()] for t in tris], dtype=np.int64)
+        lengths = [self.polygon.edge_length] * self.p
+        pts, triangles = shaped_outline(g, self.frames, lengths, edge_curves(self.symbol, shapes), self.samples,
+                                        f"{{{self.p},{self.q}}}", self._label)
         view = model.view_rotation() if g.sign > 0 else None
         shown = model.project(pts, self.plane) if g.sign < 0 else model.orthographic(pts @ view.T)
         return ModelPrototile(shown, name=f"{{{self.p},{self.q}}} tile", points=pts, sign=g.sign, view=view,
                               plane=self.plane, corners=tuple(range(len(pts))), triangles=triangles)
-
-    def _crossing_message(self, flat: np.ndarray, edge_of: np.ndarray) -> str:
-        lines = []
-        for i in range(self.p):
-            sel = np.flatnonzero(edge_of == i)
-            seg = np.vstack([flat[sel], flat[(sel[-1] + 1) % len(flat)][None]])
-            lines.append(shapely.LineString(seg))
-        for i in range(self.p):
-            if not lines[i].is_simple:
-                return (f"the shape of edge {i + 1} ({self._label(i)!r}) crosses itself: the tile must stay "
-                        "a simple polygon")
-            for j in range(i + 1, self.p):
-                inter = lines[i].intersection(lines[j])
-                adjacent = (j == i + 1) or (i == 0 and j == self.p - 1)
-                if not inter.is_empty and (not adjacent or inter.geom_type != "Point"):
-                    return (f"the shapes of edges {i + 1} ({self._label(i)!r}) and {j + 1} "
-                            f"({self._label(j)!r}) cross: the tile must stay a simple polygon; use smaller "
-                            "deflections")
-        return "the edge shapes turn the tile inside out: the tile must stay a simple counter-clockwise polygon"
 
     # -- the Tiling interface ------------------------------------------------------------
     @property
@@ -668,11 +584,8 @@ class CurvedIsohedralTiling(CurvedTiling):
     def configure(self, **options: Any) -> CurvedIsohedralTiling:
         self.check_options(options)
         spec = self.spec()
-        if "edges" in options and isinstance(options["edges"], str):
-            try:
-                options["edges"] = json.loads(options["edges"])
-            except json.JSONDecodeError:
-                raise ParseError("edges must be JSON like '{\"a\": \"0.2,0.1:0.4,0.1\"}'") from None
+        if "edges" in options:
+            options["edges"] = parse_edges(options["edges"])
         if {"p", "q"} & set(options):
             if "pairing" not in options and "symbol" not in options:
                 spec.pop("pairing", None)

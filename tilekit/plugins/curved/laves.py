@@ -18,6 +18,16 @@ rotations split the tiles into two mirror-image orbits — the snub's dual is th
 The symbol is the one under the construction's group, which is the tiling's full group except
 where Wythoff's construction gives the tiling only on a subgroup (the antiprisms, | 2 2 n on
 22n, whose full group is 2*n): ``symmetry_group`` then names the larger group.
+
+Escher-like tiles (§7.3): ``edges`` shapes the tile's edges as the curved isohedral tiles' option
+does (a fundamental shape per label of the incidence symbol, EdgeShape text on the unit segment:
+a J edge any curve, an S edge's half completed by the half-turn about its midpoint, I edges
+straight; labels not named take the default shapes, damped until the tile is simple). The curves
+go onto the tile through each edge's chart and onto the neighbours as the symbol's hops carry
+them (:mod:`.shaped`, shared with isohedral.py), so every edge coincides with its partner.
+Under the full group every edge is an I edge (it lies on a mirror), so shapes need
+``group=rotations`` (or a snub's dual), whose tiles are chiral: no hop or tile symmetry
+reverses orientation, and the Laves tiles have no U edges (a U edge needs a mirror of the tile).
 """
 
 from __future__ import annotations
@@ -29,9 +39,11 @@ from typing import Any
 
 import numpy as np
 
+from tilekit.edgeshapes import EdgeShape
 from tilekit.errors import GeometryError, ParameterError, ParseError
-from tilekit.incidence import IncidenceSymbol
+from tilekit.incidence import IncidenceSymbol, edge_curves
 from tilekit.plugins.curved import model, notation, wythoff
+from tilekit.plugins.curved.isohedral import colouring, hop_words, hops, word_colours
 from tilekit.plugins.curved.orbifold import (
     _first_of_each,
     _local_elements,
@@ -41,6 +53,7 @@ from tilekit.plugins.curved.orbifold import (
     construction_stabiliser,
 )
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
+from tilekit.plugins.curved.shaped import edge_frames, first_simple, parse_edges, shaped_outline
 from tilekit.plugins.curved.tiling import DEFAULT_SAMPLES, clipped
 from tilekit.plugins.curved.uniform import DEFAULT_FACES, MAX_RADIUS, UniformTiling
 
@@ -53,7 +66,7 @@ LAVES_BYTES_PER_TILE = 5000
 #: The groups a Laves tiling may be taken under: the construction's (``full``) or its rotations.
 GROUPS = ("full", "rotations")
 
-_OPTIONS = ("configuration", "symbol", "group", "radius", "samples", "plane", "geometry")
+_OPTIONS = ("configuration", "symbol", "group", "edges", "radius", "samples", "plane", "geometry")
 #: ``laves: true`` tells a Laves spec from a uniform tiling's in the curved family.
 _SPEC_KEYS = set(_OPTIONS) | {"laves", "name", "title"}
 
@@ -80,12 +93,16 @@ class LavesTiling(UniformTiling):
     OPTIONS = _OPTIONS
     bytes_per_tile = LAVES_BYTES_PER_TILE
     DEFINING = ("configuration", "symbol", "group")
+    #: Set by __init__: the fundamental shape per label when ``edges`` was given, else None
+    #: (the straight geodesic tile).
+    edge_shapes: dict[str, EdgeShape] | None
     SPEC_KEYS = tuple(sorted(_SPEC_KEYS))
     SPEC_WHAT = "curved Laves"
 
     def __init__(self, configuration: str | None = None, *, symbol: str | None = None, group: str = "full",
-                 radius: float | None = None, samples: int = DEFAULT_SAMPLES, plane: str = "poincare",
-                 geometry: str | None = None, name: str = "", title: str = "") -> None:
+                 edges: Mapping[str, EdgeShape | str] | str | None = None, radius: float | None = None,
+                 samples: int = DEFAULT_SAMPLES, plane: str = "poincare", geometry: str | None = None,
+                 name: str = "", title: str = "") -> None:
         self.group = _check_group(group)
         super().__init__(None if configuration is None else _configuration(configuration), symbol=symbol,
                          radius=radius, samples=samples, plane=plane, geometry=geometry, name=name, title=title)
@@ -94,6 +111,15 @@ class LavesTiling(UniformTiling):
                                  "two tile orbits (the tile and its mirror image), so it is not isohedral; "
                                  "group=rotations applies to the duals of vertex, edge and snub forms (the chiral "
                                  "dual of an omnitruncation is the snub's, e.g. [3.3.3.3.4])")
+        self.given_edges = parse_edges(edges) if edges is not None else None
+        self.edge_shapes = None
+        if self.given_edges is not None:
+            # the default shapes bend less where the most tiles meet at a corner (angle 2π/q at
+            # the sharpest), halved until the tile is simple; shapes given are never changed
+            what = f"[{self.configuration}] under group {self.group} (incidence symbol {self.incidence_symbol})"
+            self.edge_shapes, self._shaped = first_simple(
+                self.tile_symbol, self.given_edges, what, min(1.0, 4.0 / max(self.valences)), self._shaped_tile,
+                self.label_order)
 
     def euclidean_message(self) -> str:
         dotted = wythoff.uniform_configuration(self.symbol)
@@ -187,6 +213,13 @@ class LavesTiling(UniformTiling):
     @cached_property
     def incidence_symbol(self) -> IncidenceSymbol:
         """The tile's incidence symbol under the group (canonical form)."""
+        return self.tile_symbol.canonical()
+
+    @cached_property
+    def tile_symbol(self) -> IncidenceSymbol:
+        """The incidence symbol read from the tile's edge 0 (corner 0 to corner 1) counter-
+        clockwise, edge i the tile's edge i, with the labels of the canonical form
+        (:attr:`incidence_symbol`): the labels ``edges`` names."""
         corners, pair = self._local
         k = len(corners)
         sp = self.construction.space
@@ -267,11 +300,78 @@ class LavesTiling(UniformTiling):
         adj = tuple((letters[adjacency[lab][0]], adjacency[lab][1]) for lab in sorted(adjacency))
         sym = IncidenceSymbol(edges, adj)
         sym.check()
-        return sym.canonical()
+        return sym.canonical_labelling()
+
+    # -- shaped edges (Escher-like tiles) -------------------------------------------------
+    @cached_property
+    def frames(self) -> np.ndarray:
+        """(k, 3, 3): each edge's frame at its midpoint, the x axis along the edge
+        (:func:`.shaped.edge_frames`)."""
+        return edge_frames(self.construction.space.sign, self.corners)
+
+    def edge_curves(self) -> list[np.ndarray]:
+        """Each edge's curve on the unit segment, (0,0) to (1,0), in the tile's counter-clockwise
+        direction (:func:`tilekit.incidence.edge_curves` on :attr:`tile_symbol`); straight
+        without ``edges``."""
+        if self.edge_shapes is None:
+            return [np.array([[0.0, 0.0], [1.0, 0.0]])] * len(self.corners)
+        return edge_curves(self.tile_symbol, self.edge_shapes, self.label_order)
+
+    @property
+    def label_order(self) -> list[str]:
+        """The labels in the canonical symbol's order: of two adjacent labels, the first owns
+        the pair's shape, as in :attr:`incidence_symbol`."""
+        return self.incidence_symbol.labels
+
+    def _shaped_tile(self, shapes: Mapping[str, EdgeShape]) -> ModelPrototile:
+        sp = self.construction.space
+        geom = model.Geometry(sp.sign)
+        curves = edge_curves(self.tile_symbol, shapes, self.label_order)
+        pts, triangles = shaped_outline(geom, self.frames, self.edge_lengths, curves, self.samples,
+                                        f"[{self.configuration}]", lambda i: self.tile_symbol.edges[i][0])
+        view = model.view_rotation() if sp.sign > 0 else None
+        flat = model.project(pts, self.plane) if sp.sign < 0 else model.orthographic(pts @ view.T)
+        return ModelPrototile(flat, name=f"[{self.configuration}] tile", points=pts, sign=sp.sign, view=view,
+                              plane=self.plane, corners=tuple(range(len(pts))), triangles=triangles)
+
+    @cached_property
+    def motions(self) -> np.ndarray:
+        """(k, 3, 3): the hops across the tile's edges in its own frame (:func:`.isohedral.hops`
+        on :attr:`tile_symbol`): the neighbour across edge i is the tile moved by ``motions[i]``."""
+        return hops(self.frames, self.tile_symbol)
+
+    @cached_property
+    def perfect_colouring(self) -> tuple[tuple[int, int], tuple[int, ...]]:
+        """((a, b), φ per edge's hop): the least perfect colouring of the tiles (a homomorphism of
+        the group onto Z_b or Z_a × Z_b, zero on the tile's symmetries; :func:`.isohedral.colouring`,
+        with the relations read round the tile's corners), as the curved isohedral tiles take."""
+        geom = model.Geometry(self.construction.space.sign)
+        bound = 2 * self.circumradius + 1e-9 if self.hyperbolic else math.inf
+        relations = hop_words(self.tile_symbol, self.motions, geom, bound, self.construction.edge_length)[2]
+        return colouring(self.tile_symbol, relations)
+
+    def _colours(self, mats: np.ndarray) -> np.ndarray:
+        """The perfect colouring's colour of each tile (transforms ``mats``): the tiles reached
+        breadth first by hops from the central tile, matched to ``mats`` by their centres."""
+        geom = model.Geometry(self.construction.space.sign)
+        local = np.linalg.inv(self.frame) @ mats                    # the tiles in the central tile's frame
+        bound = math.inf
+        if self.hyperbolic:
+            bound = float(geom.acos(local[:, 2, 2]).max()) + 1e-9
+        reached, words, _ = hop_words(self.tile_symbol, self.motions, geom, bound, self.construction.edge_length)
+        key = np.concatenate([reached, local])[:, :, 2]
+        rep = wythoff.weld(key if geom.sign > 0 else key[:, :2], self.construction.edge_length)[len(reached):]
+        if (rep >= len(reached)).any():
+            raise GeometryError(f"[{self.configuration}]: a tile of the patch is not reached by the hops across "
+                                "its edges")
+        quotient, phi = self.perfect_colouring
+        return word_colours(self.tile_symbol, words, quotient, phi)[rep]
 
     # -- the Tiling interface ------------------------------------------------------------
     @cached_property
     def _proto(self) -> ModelPrototile:
+        if self.edge_shapes is not None:
+            return self._shaped
         sp = self.construction.space
         geom = model.Geometry(sp.sign)
         v = self.corners
@@ -343,10 +443,15 @@ class LavesTiling(UniformTiling):
         """Every tile (sphere) or every tile whose centre (a vertex of the uniform tiling) lies
         within the radius plus the tile's circumradius, less those whose outline misses
         ``region``; colour: the tile's handedness (0 placed by a rotation, 1 by a reflection:
-        the two halves of an omnitruncation's dual, all 0 where the tile has a mirror)."""
+        the two halves of an omnitruncation's dual, all 0 where the tile has a mirror); with
+        shaped edges the least perfect colouring (:attr:`perfect_colouring`), as the curved
+        isohedral tiles are coloured."""
         elems = self.group_elements()
         mats = elems @ self.frame
-        colour = (np.linalg.det(mats) < 0).astype(np.int64)
+        if self.edge_shapes is not None:
+            colour = self._colours(mats)
+        else:
+            colour = (np.linalg.det(mats) < 0).astype(np.int64)
         patch = ModelPatch([self._proto], np.zeros(len(mats), dtype=np.int64), mats, colour=colour)
         return clipped(patch, region)
 
@@ -416,23 +521,35 @@ class LavesTiling(UniformTiling):
             "--set configuration=C       the dual's vertex configuration, e.g. 3.4.3.4 (or [3.4.3.4], V3.4.3.4)",
             "--set symbol=S              instead: the dual's Wythoff symbol, e.g. '2 3 | 7'",
             "--set group=G               full (default: the construction's group) or rotations (chiral tiles)",
+            "--set edges=JSON            edge shapes by label of the incidence symbol, e.g. "
+            "'{\"a\": \"0.2,0.1:0.4,0.1\"}' (EdgeShape text; {} the default shapes)",
             *own,
         ])
 
     def carried(self, options: Mapping[str, Any]) -> dict[str, Any]:
-        return {"group": options.get("group", self.group)}
+        """group, and the edge shapes unless the tile changes (its labels name other edges)."""
+        kept = None if set(self.DEFINING) & set(options) else self.spec_edges()
+        return {"group": options.get("group", self.group), "edges": options.get("edges", kept)}
+
+    def spec_edges(self) -> dict[str, str] | None:
+        """The shapes as EdgeShape text per label (None: the straight tile)."""
+        if self.edge_shapes is None:
+            return None
+        return {k: v.to_text() for k, v in sorted(self.edge_shapes.items())}
 
     def defining_spec(self) -> dict[str, Any]:
         out: dict[str, Any] = {"laves": True, **super().defining_spec()}
         if self.group != "full":
             out["group"] = self.group
+        if self.edge_shapes is not None:
+            out["edges"] = self.spec_edges()
         return out
 
     @classmethod
     def spec_options(cls, spec: Mapping[str, Any]) -> dict[str, Any]:
         if spec.get("laves", True) is not True:
             raise ParseError(f"curved Laves spec: laves must be true, got {str(spec.get('laves'))[:20]}")
-        return {"group": spec.get("group", "full")}
+        return {"group": spec.get("group", "full"), "edges": spec.get("edges")}
 
 
 def _reflect_across(sp: wythoff.Space, g: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
