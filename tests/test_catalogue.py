@@ -690,8 +690,10 @@ class _UpgradePlugin(testkit.GridPlugin):
         return out
 
 
-def test_changed_plugins_refresh_shipped_records_keeping_search_results(url, monkeypatch):
-    """Upgrading tilekit or a plugin must update shipped records without losing what searches added."""
+def test_changed_plugins_refresh_shipped_records_keeping_search_results(db_url, monkeypatch):
+    """Upgrading tilekit or a plugin must update shipped records without losing what searches
+    added (on both backends: PostgreSQL enforces the meta table's value length)."""
+    url = db_url
     before = testkit.isolated_pm(monkeypatch, testkit.GridPlugin())
     cat = open_catalogue(url, pm=before)
     assert cat.refresh_shipped() is None  # unchanged plugins: nothing to do
@@ -714,6 +716,22 @@ def test_changed_plugins_refresh_shipped_records_keeping_search_results(url, mon
     assert cat.get("new-in-upgrade").name == "new-in-upgrade"
     assert cat.get("search-result").name == "search-result"  # never dropped
     assert cat.refresh_shipped() is None
+
+
+def test_a_meta_value_longer_than_its_column_is_split_over_rows(cat):
+    """catalogue_meta.value holds 400 characters (PostgreSQL enforces it): the shipped property
+    keys of every family are longer, so they are written over numbered rows and read back whole."""
+    from tilekit.catalogue.core import _read_long_meta, _write_long_meta
+
+    text = "".join(chr(ord("a") + i % 26) for i in range(1234))
+    with cat.engine.begin() as conn:
+        _write_long_meta(conn, "long_test", text)
+    with cat.engine.begin() as conn:
+        assert _read_long_meta(conn, "long_test") == text
+        _write_long_meta(conn, "long_test", "short")  # fewer rows than before: none left over
+    with cat.engine.connect() as conn:
+        assert _read_long_meta(conn, "long_test") == "short"
+        assert _read_long_meta(conn, "absent") is None
 
 
 def test_a_resumed_run_is_not_finished_until_it_finishes_again(cat):

@@ -64,8 +64,25 @@ _STEP_MS = 50
 #: Alembic keeps its migration context in module globals: one migration at a time per process.
 _MIGRATION_LOCK = threading.RLock()
 
-#: catalogue_meta key: the property keys each family shipped at the last seeding (JSON)
+#: catalogue_meta key: the property keys each family shipped at the last seeding (JSON, in
+#: rows ``shipped_property_keys.0``, ``.1``, ...: a value column holds 400 characters)
 SHIPPED_KEYS_KEY = "shipped_property_keys"
+
+
+def _read_long_meta(conn: Connection, key: str) -> str | None:
+    """A catalogue_meta value that :func:`_write_long_meta` split over numbered rows."""
+    rows = conn.execute(sa.select(META.c.key, META.c.value).where(META.c.key.startswith(key + "."))).all()
+    parts = sorted((int(k.rsplit(".", 1)[1]), v) for k, v in rows if k.rsplit(".", 1)[1].isdigit())
+    return "".join(v for _, v in parts) if parts else None
+
+
+def _write_long_meta(conn: Connection, key: str, text: str) -> None:
+    """Store ``text`` under ``key`` in rows ``key.0``, ``key.1``, ... of at most the value
+    column's length each (PostgreSQL enforces it; SQLite would not)."""
+    width = META.c.value.type.length
+    conn.execute(sa.delete(META).where(META.c.key.startswith(key + ".")))
+    conn.execute(sa.insert(META), [{"key": f"{key}.{i}", "value": text[j:j + width]}
+                                   for i, j in enumerate(range(0, max(len(text), 1), width))])
 
 
 #: Names offered as suggestions at most (a catalogue of a million results is not read for them).
@@ -312,8 +329,7 @@ class Catalogue(RunsMixin, ResultsMixin, TilingReader):
             # longer carries (renamed or dropped by the plugin) goes; any other key on the old
             # row was added by a search and stays (a catalogue from before this was recorded
             # keeps every old key once)
-            was_shipped = json.loads(conn.execute(
-                sa.select(META.c.value).where(META.c.key == SHIPPED_KEYS_KEY)).scalar() or "{}")
+            was_shipped = json.loads(_read_long_meta(conn, SHIPPED_KEYS_KEY) or "{}")
             shipped: dict[str, set[str]] = {}
             merged = []
             for rec in records:
@@ -332,10 +348,9 @@ class Catalogue(RunsMixin, ResultsMixin, TilingReader):
                     )
                 merged.append(rec)
             result = upsert(conn, merged, replace=True)
-            conn.execute(sa.delete(META).where(META.c.key.in_([SEED_KEY, SHIPPED_KEYS_KEY])))
+            conn.execute(sa.delete(META).where(META.c.key == SEED_KEY))
             conn.execute(sa.insert(META).values(key=SEED_KEY, value=fingerprint))
-            conn.execute(sa.insert(META).values(
-                key=SHIPPED_KEYS_KEY, value=json.dumps({f: sorted(k) for f, k in sorted(shipped.items())})))
+            _write_long_meta(conn, SHIPPED_KEYS_KEY, json.dumps({f: sorted(k) for f, k in sorted(shipped.items())}))
             self._remember_result_families(conn, fingerprint)
             return result
 
