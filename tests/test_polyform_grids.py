@@ -284,8 +284,9 @@ def test_polyiamonds_9_classified_as_myers():
 def test_polyiamonds_13_classified_as_myers():
     """All 9,235 free 13-iamonds (A000577(13)): 2,495 tile (A071332), 97 of them only
     anisohedrally (A075224), 6,290 hole-free ones do not tile (A071334) and 450 have holes
-    (A070764), nothing undecided at the default bounds (300 CPU seconds a form). About 0.3 CPU
-    hours (the stored run, docs/benchmarks.md)."""
+    (A070764), nothing undecided at the default bounds (300 CPU seconds a form). The stored run
+    of the same classification took 0.12 CPU hours (docs/benchmarks.md); this test also draws
+    and validates every torus witness."""
     assert _classified(TRIANGULAR, 13) == _expected(13, A071332, A075223, A075224, A071334, A070764)
 
 
