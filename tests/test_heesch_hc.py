@@ -160,3 +160,21 @@ def test_the_corona_1_local_test_keeps_every_patch(grid, n, settles):
             assert ok == (bool(keep.any()) and pruned.surrounds(1))
             settled += not keep.any()
     assert (settled > 0) == settles  # on the 6-kites it settles some forms alone
+
+
+def test_hole_clauses_name_the_copies_around_and_inside_each_hole():
+    """``hole_clauses``: monomino copies on the 8 squares around (1, 1) leave it a hole; its
+    clause forbids the copies on its 4 edge neighbours (the kernel, y = 0, is always there and
+    left out), in the model's order, or asks for a candidate covering the hole, by variable.
+    Without a copy on one edge neighbour the square is no hole and there is no clause."""
+    from tilekit.lattice import pack
+    from tilekit.plugins.polyomino.heesch import cover_index, hole_clauses
+
+    ring = [(3, 1), (3, 3), (1, 3), (-1, 3), (-1, 1), (-1, -1), (1, -1), (3, -1)]  # fine coordinates, period 2
+    cells = pack(np.array(ring))[:, None]
+    ys = np.array([0, 11, 12, 13, 14, 15, 16, 17])  # the kernel at (3, 1)
+    cand = np.concatenate([cells[1:], pack(np.array([[1, 1], [1, 1], [9, 9]]))[:, None]])
+    index = cover_index(cand, np.array([11, 12, 13, 14, 15, 16, 17, 30, 20, 21]))
+    assert hole_clauses(SQUARE, cells, ys, index) == [[-12, -14, -16, 20, 30]]
+    opened = np.arange(8) != 6  # without the copy on (1, -1) the empty square reaches the outside
+    assert hole_clauses(SQUARE, cells[opened], ys[opened], index) == []

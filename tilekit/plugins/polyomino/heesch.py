@@ -159,29 +159,34 @@ def _support(col, hcol, ncells):  # pragma: no cover - compiled
     for p in range(m):
         for k in range(n):
             inc[p, col[p, k]] = True
+    # per cell, the copies covering it (CSR, in copy order): overlaps are read from these lists,
+    # O(m n c) for c copies a cell, not O(m^2 n) over all pairs
+    cstart = np.zeros(ncells + 1, np.int64)
+    for p in range(m):
+        for k in range(n):
+            cstart[col[p, k] + 1] += 1
+    for c in range(ncells):
+        cstart[c + 1] += cstart[c]
+    fill = cstart[:-1].copy()
+    cov = np.empty(m * n, np.int64)
+    for p in range(m):
+        for k in range(n):
+            c = col[p, k]
+            cov[fill[c]] = p
+            fill[c] += 1
     overlap = np.zeros((m, m), np.bool_)
     for p in range(m):
-        for q in range(p, m):
-            for k in range(n):
-                if inc[q, col[p, k]]:
-                    overlap[p, q] = True
-                    overlap[q, p] = True
-                    break
+        for k in range(n):
+            c = col[p, k]
+            for i in range(cstart[c], cstart[c + 1]):
+                overlap[p, cov[i]] = True
     # per halo cell, the copies covering it (CSR)
     start = np.zeros(H + 1, np.int64)
     for h in range(H):
-        c = 0
-        for p in range(m):
-            if inc[p, hcol[h]]:
-                c += 1
-        start[h + 1] = start[h] + c
+        start[h + 1] = start[h] + cstart[hcol[h] + 1] - cstart[hcol[h]]
     cover = np.zeros(start[H], np.int64)
     for h in range(H):
-        c = start[h]
-        for p in range(m):
-            if inc[p, hcol[h]]:
-                cover[c] = p
-                c += 1
+        cover[start[h]:start[h + 1]] = cov[cstart[hcol[h]]:cstart[hcol[h] + 1]]
     alive = np.ones(m, np.bool_)
     changed = True
     while changed:
@@ -284,6 +289,43 @@ def first_corona_rows(grid: Grid, cells: np.ndarray) -> np.ndarray:
     # the grid's tables are cached where they are defined (vertex_neighbour_table, Grid.type_table)
     return _first_corona(np.ascontiguousarray(cells, dtype=np.int64).reshape(-1, 2), grid.group.astype(np.int64),
                          np.int64(grid.period), vertex_neighbour_table(grid), grid.type_table)
+
+
+def cover_index(cells: np.ndarray, ys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Every cell of candidate copies ``cells`` (m, n packed keys) with the variable ``ys`` (m,)
+    of its copy, sorted by key (then by variable): the index :func:`hole_clauses` looks holes up in."""
+    flat = cells.ravel()
+    y = np.repeat(ys, cells.shape[1])
+    order = np.lexsort((y, flat))
+    return flat[order], y[order]
+
+
+def hole_clauses(grid: Grid, cells: np.ndarray, ys: np.ndarray, index: tuple[np.ndarray, np.ndarray]) -> list[list[int]]:
+    """The clauses forbidding each hole of a model's patch: not all of the copies around the
+    hole, or some candidate copy covering one of its cells. ``cells`` (m, n) are the packed
+    cells of the model's copies and ``ys`` their variables (0 for the kernel, which is always
+    there and left out); ``index`` is :func:`cover_index` over every candidate copy. Each
+    clause lists the copies around in the model's order, then the copies inside by variable;
+    empty when the patch has no hole. Copies of a model do not overlap, so a cell is one
+    copy's: the lookups are sorted searches, not a set test per hole."""
+    holes = holes_of(grid, cells.ravel())
+    if not holes:
+        return []
+    flat = cells.ravel()
+    order = np.argsort(flat, kind="stable")
+    sk, row = flat[order], order // cells.shape[1]
+    ck, cy = index
+    out = []
+    for hole in holes:
+        hx = unpack(hole)
+        ring = pack(hx[:, None, :] + grid.neighbours[grid.cell_type(hx)]).ravel()
+        pos = np.minimum(np.searchsorted(sk, ring), len(sk) - 1)
+        rows = np.unique(row[pos[sk[pos] == ring]])
+        around = ys[rows]
+        lo, hi = np.searchsorted(ck, hole, "left"), np.searchsorted(ck, hole, "right")
+        inside = np.unique(np.concatenate([cy[a:b] for a, b in zip(lo.tolist(), hi.tolist())]))
+        out.append([*(-around[around != 0]).tolist(), *inside.tolist()])
+    return out
 
 
 class HeeschSolver:
@@ -489,19 +531,13 @@ class HeeschSolver:
 
     # -- solving ----------------------------------------------------------------------------
     def _holes(self, table: dict, used: np.ndarray) -> list[list[int]]:
-        """The clauses forbidding each hole of the model's patch (``used``: which y are true):
-        not all of the copies around the hole (at their levels), or some copy covering one of
-        its cells. Empty when the patch has no hole."""
-        cells = table["cells"][used]
-        keys = np.concatenate([self.kernel_keys, cells.ravel()])
-        out = []
-        for hole in holes_of(self.grid, keys):
-            hx = unpack(hole)
-            ring = pack(hx[:, None, :] + self.grid.neighbours[self.grid.cell_type(hx)]).ravel()
-            around = table["yvar"][used][np.isin(cells, ring).any(axis=1)]  # the kernel is always there
-            inside = table["yvar"][np.isin(table["cells"], hole).any(axis=1)]
-            out.append([*(-around).tolist(), *inside.tolist()])
-        return out
+        """The clauses forbidding each hole of the model's patch (``used``: which y are true),
+        :func:`hole_clauses` over this formula's copies."""
+        if "index" not in table:
+            table["index"] = cover_index(table["cells"], table["yvar"])
+        cells = np.concatenate([self.kernel_keys[None, :], table["cells"][used]])
+        ys = np.concatenate([[0], table["yvar"][used]])
+        return hole_clauses(self.grid, cells, ys, table["index"])
 
     def surrounds(self, k: int, *, time_limit: Budget | float | None = None) -> bool | None:
         """Whether k coronas exist with holes allowed (no hole checks: the coronas of any
@@ -701,6 +737,8 @@ class CoronaLadder:
         grid = hs.grid
         #: per cell type, the offsets of the cells sharing a vertex with it
         self.around = _vertex_neighbours(grid)
+        #: (k, :func:`cover_index` of the candidate copies of levels 1..k), made on the first hole
+        self.index: tuple[int, tuple[np.ndarray, np.ndarray]] | None = None
 
     def _vertex_pairs(self, keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(c, d) for every cell c of ``keys`` and every cell d sharing a vertex with it,
@@ -838,17 +876,12 @@ class CoronaLadder:
         return np.concatenate(rows), np.concatenate(lv), np.concatenate(cells), np.concatenate(ys)
 
     def hole_clauses(self, cells: np.ndarray, ys: np.ndarray) -> list[list[int]]:
-        """As :meth:`HeeschSolver._holes`, over the copies of every level (the kernel, y = 0,
-        is always there and left out of the clauses)."""
-        grid = self.hs.grid
-        out = []
-        for hole in holes_of(grid, cells.ravel()):
-            hx = unpack(hole)
-            ring = pack(hx[:, None, :] + grid.neighbours[grid.cell_type(hx)]).ravel()
-            around = ys[np.isin(cells, ring).any(axis=1) & (ys != 0)]
-            inside = np.concatenate([self.y[i][np.isin(self.cells[i], hole).any(axis=1)] for i in range(1, self.k + 1)])
-            out.append([*(-around).tolist(), *inside.tolist()])
-        return out
+        """:func:`hole_clauses` over the copies of every level (the kernel, y = 0, is always
+        there and left out of the clauses); the candidates' index is made once per ``k``."""
+        if self.index is None or self.index[0] != self.k:
+            self.index = (self.k, cover_index(np.concatenate(self.cells[1:self.k + 1]),
+                                              np.concatenate(self.y[1:self.k + 1])))
+        return hole_clauses(self.hs.grid, cells, ys, self.index[1])
 
     def corona(self, hole_free_only: bool, time_limit: Budget | float | None) -> tuple[Corona | None, Corona | None, bool | None]:
         """(hole-free patch, patch with holes, decided) for the current ``k`` (see
