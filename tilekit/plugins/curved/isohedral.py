@@ -468,10 +468,8 @@ class CurvedIsohedralTiling(CurvedTiling):
         lengths = [self.polygon.edge_length] * self.p
         pts, triangles = shaped_outline(g, self.frames, lengths, edge_curves(self.symbol, shapes), self.samples,
                                         f"{{{self.p},{self.q}}}", self._label)
-        view = model.view_rotation() if g.sign > 0 else None
-        shown = model.project(pts, self.plane) if g.sign < 0 else model.orthographic(pts @ view.T)
-        return ModelPrototile(shown, name=f"{{{self.p},{self.q}}} tile", points=pts, sign=g.sign, view=view,
-                              plane=self.plane, corners=tuple(range(len(pts))), triangles=triangles)
+        return ModelPrototile.on_model(pts, sign=g.sign, name=f"{{{self.p},{self.q}}} tile", plane=self.plane,
+                                       corners=tuple(range(len(pts))), triangles=triangles)
 
     # -- the Tiling interface ------------------------------------------------------------
     @property

@@ -41,7 +41,7 @@ import numpy as np
 
 from tilekit.edgeshapes import EdgeShape
 from tilekit.errors import GeometryError, ParameterError, ParseError
-from tilekit.incidence import IncidenceSymbol, edge_curves
+from tilekit.incidence import LABELS, IncidenceSymbol, edge_curves
 from tilekit.plugins.curved import model, notation, wythoff
 from tilekit.plugins.curved.isohedral import colouring, hop_words, hops, word_colours
 from tilekit.plugins.curved.orbifold import (
@@ -295,9 +295,8 @@ class LavesTiling(UniformTiling):
                 # arrows point in opposite directions (§5.2)
                 theirs = signs[j] * along
                 adjacency[lab] = (other, 1 if theirs != signs[i] else -1)  # type: ignore[assignment]
-        letters = "abcdefghijklmnopqrstuvwxyz"
-        edges = tuple((letters[lab], sg) for lab, sg in zip(labels, signs))  # type: ignore[index]
-        adj = tuple((letters[adjacency[lab][0]], adjacency[lab][1]) for lab in sorted(adjacency))
+        edges = tuple((LABELS[lab], sg) for lab, sg in zip(labels, signs))  # type: ignore[index]
+        adj = tuple((LABELS[adjacency[lab][0]], adjacency[lab][1]) for lab in sorted(adjacency))
         sym = IncidenceSymbol(edges, adj)
         sym.check()
         return sym.canonical_labelling()
@@ -329,10 +328,8 @@ class LavesTiling(UniformTiling):
         curves = edge_curves(self.tile_symbol, shapes, self.label_order)
         pts, triangles = shaped_outline(geom, self.frames, self.edge_lengths, curves, self.samples,
                                         f"[{self.configuration}]", lambda i: self.tile_symbol.edges[i][0])
-        view = model.view_rotation() if sp.sign > 0 else None
-        flat = model.project(pts, self.plane) if sp.sign < 0 else model.orthographic(pts @ view.T)
-        return ModelPrototile(flat, name=f"[{self.configuration}] tile", points=pts, sign=sp.sign, view=view,
-                              plane=self.plane, corners=tuple(range(len(pts))), triangles=triangles)
+        return ModelPrototile.on_model(pts, sign=sp.sign, name=f"[{self.configuration}] tile", plane=self.plane,
+                                       corners=tuple(range(len(pts))), triangles=triangles)
 
     @cached_property
     def motions(self) -> np.ndarray:
@@ -380,10 +377,8 @@ class LavesTiling(UniformTiling):
             pair = np.array([v[i], v[(i + 1) % len(v)]])
             parts.append(model.sample_edges(geom, pair, float(self.edge_lengths[i]), self.samples)[: self.samples])
         pts = np.concatenate(parts)
-        view = model.view_rotation() if sp.sign > 0 else None
-        flat = model.project(pts, self.plane) if sp.sign < 0 else model.orthographic(pts @ view.T)
-        return ModelPrototile(flat, name=f"[{self.configuration}] tile", points=pts, sign=sp.sign, view=view,
-                              plane=self.plane, corners=tuple(range(0, len(pts), self.samples)))
+        return ModelPrototile.on_model(pts, sign=sp.sign, name=f"[{self.configuration}] tile", plane=self.plane,
+                                       corners=tuple(range(0, len(pts), self.samples)))
 
     @property
     def prototiles(self) -> list[ModelPrototile]:

@@ -44,6 +44,16 @@ class ModelPrototile(Prototile):
     #: corners are all of ``points``); None: the tile is convex, fanned from its centre
     triangles: np.ndarray | None = None
 
+    @classmethod
+    def on_model(cls, points: np.ndarray, *, sign: int, name: str, corners: tuple[int, ...], plane: str = "poincare",
+                 triangles: np.ndarray | None = None) -> ModelPrototile:
+        """The prototile whose boundary on the model is ``points``: the outline is their drawing
+        (the disc model's ``plane``, or the sphere's orthographic view under the default rotation)."""
+        view = model.view_rotation() if sign > 0 else None
+        flat = model.project(points, plane) if sign < 0 else model.orthographic(points @ view.T)
+        return cls(flat, name=name, points=points, sign=sign, view=view, plane=plane, corners=corners,
+                   triangles=triangles)
+
     def project(self, pts: np.ndarray) -> np.ndarray:
         """Model points (..., 3) to the drawing plane (..., 2)."""
         if self.sign < 0:

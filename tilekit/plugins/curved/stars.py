@@ -392,8 +392,8 @@ def prototiles(star: Star, samples: int = 1, plane: str = "poincare") -> list:
     for n in sorted(set(star.cfg)):
         v = G.point(star.circumradius(n), 2 * np.pi * np.arange(n) / n)
         pts = model.sample_edges(G, v, star.edge, samples)
-        out.append(ModelPrototile(model.project(pts, plane), name=_polygon(n), points=pts, sign=-1, plane=plane,
-                                  corners=tuple(range(0, len(pts), max(1, samples)))))
+        out.append(ModelPrototile.on_model(pts, sign=-1, name=_polygon(n), plane=plane,
+                                           corners=tuple(range(0, len(pts), max(1, samples)))))
     return out
 
 

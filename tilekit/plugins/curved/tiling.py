@@ -200,14 +200,11 @@ class RegularTiling(CurvedTiling):
         self.name = name or f"{self.kind}-{self.p}-{self.q}"
         self.title = title
         sign = 1 if self.kind == model.SPHERE else -1
-        view = model.view_rotation() if sign > 0 else None
         pts = self.polygon.outline(self.samples)
-        flat = model.project(pts, plane) if sign < 0 else model.orthographic(pts @ view.T)
         # the outline the core sees is the central tile in the drawing plane; the model
         # points are what the transforms act on
-        self._proto = ModelPrototile(flat, name=f"{{{self.p},{self.q}}}", points=pts, sign=sign, view=view,
-                                     plane=plane,
-                                     corners=tuple(range(0, len(pts), self.samples)))
+        self._proto = ModelPrototile.on_model(pts, sign=sign, name=f"{{{self.p},{self.q}}}", plane=plane,
+                                              corners=tuple(range(0, len(pts), self.samples)))
 
     # -- the Tiling interface ------------------------------------------------------
     @property

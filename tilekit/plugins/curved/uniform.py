@@ -147,14 +147,10 @@ class UniformTiling(CurvedTiling):
     @cached_property
     def _protos(self) -> list[ModelPrototile]:
         sp = self.construction.space
-        view = model.view_rotation() if sp.sign > 0 else None
-        out = []
-        for face in self.construction.face_types:
-            pts = _outline(sp, face.sides, face.circumradius, self.samples)
-            flat = model.project(pts, self.plane) if sp.sign < 0 else model.orthographic(pts @ view.T)
-            out.append(ModelPrototile(flat, name=_polygon(face.sides), points=pts, sign=sp.sign, view=view,
-                                      plane=self.plane, corners=tuple(range(0, len(pts), self.samples))))
-        return out
+        return [ModelPrototile.on_model(pts, sign=sp.sign, name=_polygon(face.sides), plane=self.plane,
+                                        corners=tuple(range(0, len(pts), self.samples)))
+                for face in self.construction.face_types
+                for pts in [_outline(sp, face.sides, face.circumradius, self.samples)]]
 
     # -- the Tiling interface ------------------------------------------------------
     @property
