@@ -47,10 +47,20 @@ class ModelPrototile(Prototile):
     @classmethod
     def on_model(cls, points: np.ndarray, *, sign: int, name: str, corners: tuple[int, ...], plane: str = "poincare",
                  triangles: np.ndarray | None = None) -> ModelPrototile:
-        """The prototile whose boundary on the model is ``points``: the outline is their drawing
-        (the disc model's ``plane``, or the sphere's orthographic view under the default rotation)."""
+        """The prototile whose boundary on the model is ``points`` (centred at the pole): the
+        outline is their drawing in the disc model's ``plane``; on the sphere, the gnomonic
+        projection from the centre where the tile lies within the open hemisphere round it
+        (geodesics are straight there, so the outline is simple exactly when the geodesic polygon
+        through the points is, as shaped tiles are checked: the tilted view of the patch, ``view``,
+        folds a tile that reaches past its horizon, and chords of an orthographic view can cross
+        where the arcs do not), else the view straight down the pole."""
         view = model.view_rotation() if sign > 0 else None
-        flat = model.project(points, plane) if sign < 0 else model.orthographic(points @ view.T)
+        if sign < 0:
+            flat = model.project(points, plane)
+        elif (points[:, 2] > 1e-6).all():
+            flat = points[:, :2] / points[:, 2:3]
+        else:
+            flat = model.orthographic(points)
         return cls(flat, name=name, points=points, sign=sign, view=view, plane=plane, corners=corners,
                    triangles=triangles)
 
