@@ -30,7 +30,7 @@ from tilekit.catalogue import Catalogue, auto_type, lease_seconds, open_catalogu
 from tilekit.errors import NotFoundError, ParameterError, SearchError, TilekitError
 from tilekit.limits import refuse_over_memory
 from tilekit.plugins import ChunkResult, Search, get_plugin_manager, get_search
-from tilekit.signals import Terminated, sigterm_raises
+from tilekit.signals import Terminated, deferred, sigterm_raises
 
 __all__ = ["EXECUTORS", "Terminated", "describe_params", "run_search", "validate_params", "work"]
 
@@ -251,7 +251,8 @@ def _patiently(call: Callable[..., Any], *args: Any, **kwargs: Any) -> Any:
     pause = POLL_SECONDS
     while True:
         try:
-            return call(*args, **kwargs)
+            with deferred():  # a signal waits for the write to end: no lock is left held
+                return call(*args, **kwargs)
         except TilekitError as exc:
             if not _locked(exc) or time.monotonic() + pause > deadline:
                 raise

@@ -54,6 +54,7 @@ from tilekit.plugins import (
     normalise,
 )
 from tilekit.resources import migrations_dir
+from tilekit.signals import checkpoint
 
 #: SQLite waits this long (ms) for a lock held by another writer before giving up.
 BUSY_TIMEOUT_MS = 30_000
@@ -575,7 +576,11 @@ def _begin_immediate(conn: Connection) -> None:
 
     conn.exec_driver_sql(f"PRAGMA busy_timeout = {_STEP_MS}")
     try:
-        _retry_locked(lambda: conn.exec_driver_sql("BEGIN IMMEDIATE"), OperationalError)
+        def begin() -> None:
+            checkpoint()  # a deferred Ctrl-C acts here: no lock is held yet
+            conn.exec_driver_sql("BEGIN IMMEDIATE")
+
+        _retry_locked(begin, OperationalError)
     finally:
         conn.exec_driver_sql(f"PRAGMA busy_timeout = {BUSY_TIMEOUT_MS}")
 
