@@ -42,7 +42,7 @@ import numpy as np
 from tilekit.edgeshapes import EdgeShape
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.incidence import LABELS, IncidenceSymbol, edge_curves
-from tilekit.plugins.curved import model, notation, wythoff
+from tilekit.plugins.curved import delaney, model, notation, wythoff
 from tilekit.plugins.curved.isohedral import colouring, hop_words, hops, word_colours
 from tilekit.plugins.curved.orbifold import (
     _first_of_each,
@@ -51,6 +51,7 @@ from tilekit.plugins.curved.orbifold import (
     _star,
     _unique,
     construction_stabiliser,
+    vertex_stabiliser,
 )
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
 from tilekit.plugins.curved.shaped import edge_frames, first_simple, parse_edges, shaped_outline
@@ -132,13 +133,24 @@ class LavesTiling(UniformTiling):
 
     @property
     def rotations_only(self) -> bool:
+        """Whether the group the tiles are taken under has rotations only: ``group=rotations``,
+        or a full group without mirrors (a snub's, pqr)."""
+        return self.group == "rotations" or not self.symmetry.group.mirrors
+
+    @property
+    def construction_rotations(self) -> bool:
+        """Whether the tiles are placed by the construction's rotations only (a snub's group,
+        or ``group=rotations``): the construction's group is vertex-transitive either way."""
         return self.group == "rotations" or self.symbol.form == "snub"
 
     @cached_property
     def _local(self) -> tuple[np.ndarray, np.ndarray]:
         """(corners (k, 3): the centres of the faces at G, counter-clockwise round G starting
         with the first face of the star; L·L: the group's elements near G, proper ones first
-        under group='rotations' only proper ones)."""
+        under group='rotations' only proper ones). Where the tiling's group is larger than the
+        construction's (an antiprism's dual: 2*n against 22n), L·L times the tiling's
+        stabiliser of G (:func:`.orbifold.vertex_stabiliser`), so the symbol is the one under
+        the tiling's whole group."""
         c = self.construction
         local = _local_elements(c)
         frames, _sides = _star(c, local)
@@ -151,6 +163,9 @@ class LavesTiling(UniformTiling):
         order = np.argsort(angle, kind="stable")
         corners = centres[order]
         pair = np.matmul(local[:, None], local[None]).reshape(-1, 3, 3)
+        if self.symmetry.index > 1:
+            stab = vertex_stabiliser(c)
+            pair = _unique(np.matmul(pair[:, None], stab[None]).reshape(-1, 3, 3))
         det = np.linalg.det(pair)
         pair = pair[np.argsort(det < 0, kind="stable")]  # proper elements first
         if self.rotations_only:
@@ -419,7 +434,7 @@ class LavesTiling(UniformTiling):
         cells = c.cells(None if reach is None else reach + float(c.space.distance(g, pole)) + c.cell_radius)
         stab = c.stabiliser
         n = c.orders[c.cell_corner]
-        if self.rotations_only:
+        if self.construction_rotations:
             stab = stab[:n]
         # one element of the cell corner's group per image of G (G at the cell corner: just one),
         # proper ones first, so a cell brings each of its vertices once
@@ -465,9 +480,23 @@ class LavesTiling(UniformTiling):
         return {len(self.symbol.configuration or ()): self.faces}
 
     def group_notation(self) -> str:
-        """The group placing the tiles, in orbifold notation (*pqr, or pqr: its rotations)."""
-        digits = "".join(str(n) for n in sorted(self.symbol.orders, reverse=True))
-        return digits if self.rotations_only else "*" + digits
+        """The group the tiles and their incidence symbol are taken under, in orbifold notation:
+        the tiling's symmetry group (``group=full``: *pqr, 2*n for an antiprism's dual) or its
+        rotation subgroup (pqr, 22n)."""
+        full = self.symmetry.group
+        return (full.rotations() if self.group == "rotations" else full).notation
+
+    @cached_property
+    def delaney_symbol(self) -> delaney.Delaney:
+        """The Delaney symbol of :attr:`tile_symbol` on the tile's topology (corner valences
+        :attr:`valences`; :func:`.delaney.check_on`): it closes round every vertex, so the symbol
+        tiles, and its orbifold (:meth:`symbol_orbifold`) is read from the combinatorics alone."""
+        return delaney.check_on(self.tile_symbol, len(self.corners), self.valences)
+
+    def symbol_orbifold(self) -> str:
+        """The orbifold of the symbol's group read off its Delaney symbol (an independent
+        reading of :meth:`group_notation`, which comes from the geometry)."""
+        return delaney.orbifold_symbol(self.delaney_symbol, self.valences)
 
     def properties(self) -> dict[str, Any]:
         cfg = self.symbol.configuration or ()
@@ -484,7 +513,10 @@ class LavesTiling(UniformTiling):
             "dual_configuration": self.configuration,
             "wythoff_symbol": str(self.symbol),
             "group": self.group,
-            "construction_group": self.group_notation(),
+            # Wythoff's construction's group (as the uniform records store it); the tiles and their
+            # symbol are taken under symbol_group: the tiling's whole group or its rotations
+            "construction_group": self.symbol.group,
+            "symbol_group": self.group_notation(),
             "sides": [len(cfg)],
             "valences": ".".join(map(str, self.valences)),
             # the symbol under the construction's group (as the isohedral families store it: the
@@ -494,7 +526,7 @@ class LavesTiling(UniformTiling):
             "edge_kinds": sym.edge_kinds(),
             "tile_symmetry": len(self.stabiliser),
             # the tiling's full group: the uniform tiling's (orbifold.py), which is the construction's
-            # for every shipped record (an antiprism's dual has 2*n, its construction 22n)
+            # except for the antiprisms' duals (2*n, made on 22n; [3.3.3.3] is the cube, *432)
             "symmetry_group": self.symmetry.notation,
             "orbifold": self.symmetry.notation,
         }
