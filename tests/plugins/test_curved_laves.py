@@ -343,6 +343,30 @@ def test_trapezohedra_under_their_full_group(n):
     assert delaney.euler_characteristic(t.delaney_symbol, t.valences) == Fraction(2, 4 * n)
 
 
+@pytest.mark.parametrize("n", [4, 5, 6, 9])
+def test_trapezohedron_group_as_matrices(n):
+    """2*n = D_nd as O(3) matrices: 4n elements, closed under products; 2n rotations (22n, the
+    construction's group), n mirrors (det −1, trace 1) and n rotary reflections, among them
+    S_2n, the rotation by π/n followed by the reflection in the plane across its axis
+    (trace 2cos(π/n) − 1), of order 2n."""
+    t = LavesTiling(f"3.3.3.{n}")
+    g = t.group_matrices()
+    assert len(g) == 4 * n
+    prod = np.matmul(g[:, None], g[None]).reshape(-1, 9)
+    assert np.abs(prod[:, None, :] - g.reshape(1, -1, 9)).max(axis=2).min(axis=1).max() < 1e-9  # closed
+    det, trace = np.linalg.det(g), np.trace(g, axis1=1, axis2=2)
+    assert (det > 0).sum() == 2 * n
+    assert ((det < 0) & (np.abs(trace - 1) < 1e-9)).sum() == n
+    s2n = g[(det < 0) & (np.abs(trace - (2 * math.cos(math.pi / n) - 1)) < 1e-9)]
+    assert len(s2n) == 2  # S_2n and its inverse
+    powers = [np.linalg.matrix_power(s2n[0], k) for k in range(1, 2 * n + 1)]
+    assert np.allclose(powers[-1], np.eye(3)) and not any(np.allclose(m, np.eye(3)) for m in powers[:-1])
+    rot = LavesTiling(f"3.3.3.{n}", group="rotations").group_matrices()
+    assert len(rot) == 2 * n and (np.linalg.det(rot) > 0).all()
+    cube = LavesTiling("3.4.3.4").group_matrices()
+    assert len(cube) == 48  # *432 (Conway, Burgiel, Goodman-Strauss)
+
+
 @pytest.mark.parametrize("n", [4, 5, 11])
 def test_trapezohedra_rotations_are_the_construction_group(n):
     """group=rotations is the rotation subgroup of 2*n, 22n (Wythoff's group for the snub):
@@ -376,13 +400,13 @@ def test_the_delaney_reading_agrees_with_the_geometry_on_every_record():
     """Independent readings of one group: the orbifold the geometry finds (orbifold.py, the
     tiling's symmetries) and the one the tile's incidence symbol gives on its topology
     (delaney.py, combinatorics only), on every shipped Laves record; on the sphere the
-    group's order 2/χ is the faces times the tile's symmetries."""
+    group's order 2/χ is the faces times the tile's symmetries, and the number of its matrices."""
     for r in laves_records():
         t = LavesTiling(r.properties["dual_configuration"], group=r.properties["group"])
         assert t.symbol_orbifold() == r.properties["symbol_group"], r.name
         if not t.hyperbolic:
             chi = delaney.euler_characteristic(t.delaney_symbol, t.valences)
-            assert 2 / chi == r.properties["faces"] * r.properties["tile_symmetry"], r.name
+            assert 2 / chi == r.properties["faces"] * r.properties["tile_symmetry"] == len(t.group_matrices()), r.name
 
 
 def test_delaney_refuses_a_symbol_that_does_not_fit_the_valences():

@@ -380,6 +380,15 @@ class LavesTiling(UniformTiling):
         keep = wythoff.dedup(c._key_points(pts), c.edge_length)
         return elems[keep]
 
+    def group_matrices(self) -> np.ndarray:
+        """(|Γ|, 3, 3): every element of the group the tiles are taken under (the tiling's whole
+        group, or its rotations), on the sphere, as O(3) matrices: the element placing each tile
+        times the tile's stabiliser (a coset each). The trapezohedra's 2*n holds the 22n that
+        Wythoff's construction gives and as many elements again: n mirrors and n rotary reflections."""
+        if self.hyperbolic:
+            raise ParameterError(f"[{self.configuration}] tiles the hyperbolic plane: its group is infinite")
+        return _unique(np.matmul(self.group_elements()[:, None], self.stabiliser[None]).reshape(-1, 3, 3))
+
     def patch(self, region: Any = None) -> ModelPatch:
         """Every tile (sphere) or every tile whose centre (a vertex of the uniform tiling) lies
         within the radius plus the tile's circumradius, less those whose outline misses
