@@ -28,9 +28,10 @@ def curved_isohedral_records() -> list:
 
 
 def curved_laves_records() -> list:
-    from tilekit.plugins.curved import laves_records
+    """The curved family's Laves records: the Wythoffian duals and the vertex-star tilings' duals."""
+    from tilekit.plugins.curved import laves_records, star_laves_records
 
-    return laves_records()
+    return laves_records() + star_laves_records()
 
 
 @pytest.fixture(scope="module")
@@ -207,7 +208,7 @@ def test_keys_lists_key_type_families_and_example(cli):
     assert sides["aliases"] == ["polygons", "edges", "tile_vertices"]
     assert infos["aperiodic"]["type"] == "bool" and "known_aperiodic" in infos["aperiodic"]["aliases"]
     # the planar types, the curved ones on {p,q} (tilekit.plugins.curved.isohedral_records) and the
-    # curved family's Laves tilings (laves_records) share the key
+    # curved family's Laves tilings (laves_records, star_laves_records) share the key
     assert infos["edge_kinds"]["families"] == ["curved", "curved-isohedral", "isohedral"]
     assert infos["edge_kinds"]["tilings"] == 93 + len(curved_isohedral_records()) + len(curved_laves_records())
     # every example runs as a filter

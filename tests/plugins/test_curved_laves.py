@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 from collections import Counter
+from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -28,6 +29,7 @@ from test_uniform import ARCHIMEDEAN, assert_peak_within_bound, vertex_table
 from tilekit.errors import ParameterError, ParseError
 from tilekit.incidence import IncidenceSymbol
 from tilekit.plugins.curved import (
+    delaney,
     laves_configuration,
     laves_records,
     layers,
@@ -167,7 +169,8 @@ def test_rotation_group_makes_chiral_tiles(config, kinds):
     if not full.hyperbolic:
         assert len(rot.patch()) == len(full.patch()) == full.faces
         assert rot.patch().validate().ok
-    assert rot.properties()["construction_group"] == full.properties()["construction_group"].lstrip("*")
+    assert rot.properties()["symbol_group"] == full.properties()["symbol_group"].lstrip("*")
+    assert rot.properties()["construction_group"] == full.properties()["construction_group"]  # Wythoff's *pqr
 
 
 def test_records_names_and_spec_round_trip():
@@ -181,10 +184,12 @@ def test_records_names_and_spec_round_trip():
     # every shipped full-group record's incidence symbol is under the tiling's whole group
     for r in recs.values():
         if r.properties["group"] == "full":
-            assert r.properties["construction_group"] == r.properties["symmetry_group"], r.name
-    # an antiprism's dual: the construction gives the trapezohedron on 22n, its group is 2*n
-    trapezohedron = LavesTiling("3.3.3.5").properties()
-    assert (trapezohedron["construction_group"], trapezohedron["symmetry_group"]) == ("522", "2*5")
+            assert r.properties["symbol_group"] == r.properties["symmetry_group"], r.name
+    # an antiprism's dual: the construction gives the trapezohedron on 22n, the symbol is under 2*n
+    trapezohedron = recs["pentagonal-trapezohedron"].properties
+    assert (trapezohedron["construction_group"], trapezohedron["symmetry_group"], trapezohedron["symbol_group"]) \
+        == ("522", "2*5", "2*5")
+    assert recs["pentagonal-trapezohedron-rotations"].properties["symbol_group"] == "225"
     t = LavesTiling("[3.14.14]", radius=2.0, samples=3, group="rotations")
     again = LavesTiling.from_spec(t.spec())
     assert again.spec() == t.spec() and again.configuration == "3.14.14"
@@ -301,3 +306,134 @@ def test_the_viewers_rebasing_symmetries_keep_the_tiling():
             moved = pts @ g.T
             gap = np.abs(moved[:, None, :] - pool[None, :, :]).max(axis=2).min(axis=1)
             assert gap.max() < 1e-7
+
+
+# ------------------------------------------------------------------ the antiprisms' duals under 2*n
+
+
+@pytest.mark.parametrize("n", range(4, 25))
+def test_trapezohedra_under_their_full_group(n):
+    """The dual of the antiprism 3.3.3.n is the n-gonal trapezohedron: 2n kites, 4n edges,
+    2n + 2 vertices (Cromwell, *Polyhedra*, 1997, ch. 2). Its group is 2*n (D_nd, order 4n),
+    which Wythoff's construction (| 2 2 n on 22n) does not give whole: the kites are taken under
+    it, so the kite has its mirror (one reflection among its tile symmetries), the long edges
+    lie on mirrors (I) and the short ones on half-turn axes (S), and 4n = faces × |tile symmetry|."""
+    t = LavesTiling(f"3.3.3.{n}")
+    props = t.properties()
+    patch = t.patch()
+    assert t.faces == len(patch) == props["faces"] == 2 * n
+    table = vertex_table(patch)
+    assert len(table) == props["vertices"] == 2 * n + 2
+    assert Counter(len(sizes) for _, sizes, _ in table) == Counter({n: 2, 3: 2 * n})
+    assert t.faces - 4 * n + len(table) == 2  # Euler
+    assert patch.validate().ok
+    assert props["symmetry_group"] == props["orbifold"] == props["symbol_group"] == f"2*{n}"
+    assert props["construction_group"] == t.symbol.group and t.symbol.form == "snub"
+    assert t.symmetry.group.order() == 4 * n == t.faces * props["tile_symmetry"]
+    sym = t.incidence_symbol
+    assert sorted(sym.edge_kinds()) == ["I", "I", "S", "S"]
+    assert sorted(reflect for _, reflect in sym.tile_symmetries()) == [False, True]  # the kite's mirror
+    # the kite: the two edges at the n-valent corner (I) are equal, as are the two others (S)
+    k = t.valences.index(n)
+    lengths = np.roll(t.edge_lengths, -k)
+    assert abs(lengths[0] - lengths[3]) < 1e-12 and abs(lengths[1] - lengths[2]) < 1e-12
+    assert [t.tile_symbol.label_kind(t.tile_symbol.edges[(k + i) % 4][0]) for i in range(4)] == list("ISSI")
+    # the Delaney symbol on the kite's topology (corner valences n, 3, 3, 3) closes and reads 2*n
+    assert t.symbol_orbifold() == f"2*{n}"
+    assert delaney.euler_characteristic(t.delaney_symbol, t.valences) == Fraction(2, 4 * n)
+
+
+@pytest.mark.parametrize("n", [4, 5, 6, 9])
+def test_trapezohedron_group_as_matrices(n):
+    """2*n = D_nd as O(3) matrices: 4n elements, closed under products; 2n rotations (22n, the
+    construction's group), n mirrors (det −1, trace 1) and n rotary reflections, among them
+    S_2n, the rotation by π/n followed by the reflection in the plane across its axis
+    (trace 2cos(π/n) − 1), of order 2n."""
+    t = LavesTiling(f"3.3.3.{n}")
+    g = t.group_matrices()
+    assert len(g) == 4 * n
+    prod = np.matmul(g[:, None], g[None]).reshape(-1, 9)
+    assert np.abs(prod[:, None, :] - g.reshape(1, -1, 9)).max(axis=2).min(axis=1).max() < 1e-9  # closed
+    det, trace = np.linalg.det(g), np.trace(g, axis1=1, axis2=2)
+    assert (det > 0).sum() == 2 * n
+    assert ((det < 0) & (np.abs(trace - 1) < 1e-9)).sum() == n
+    s2n = g[(det < 0) & (np.abs(trace - (2 * math.cos(math.pi / n) - 1)) < 1e-9)]
+    assert len(s2n) == 2  # S_2n and its inverse
+    powers = [np.linalg.matrix_power(s2n[0], k) for k in range(1, 2 * n + 1)]
+    assert np.allclose(powers[-1], np.eye(3)) and not any(np.allclose(m, np.eye(3)) for m in powers[:-1])
+    rot = LavesTiling(f"3.3.3.{n}", group="rotations").group_matrices()
+    assert len(rot) == 2 * n and (np.linalg.det(rot) > 0).all()
+    cube = LavesTiling("3.4.3.4").group_matrices()
+    assert len(cube) == 48  # *432 (Conway, Burgiel, Goodman-Strauss)
+
+
+@pytest.mark.parametrize("n", [4, 5, 11])
+def test_trapezohedra_rotations_are_the_construction_group(n):
+    """group=rotations is the rotation subgroup of 2*n, 22n (Wythoff's group for the snub):
+    chiral kites, no tile symmetry, S and J edges, 2n = faces × 1."""
+    full, rot = LavesTiling(f"3.3.3.{n}"), LavesTiling(f"3.3.3.{n}", group="rotations")
+    props = rot.properties()
+    assert props["symbol_group"] == rot.symbol_orbifold() == full.symmetry.group.rotations().notation
+    assert full.symmetry.group.rotations().order() == 2 * n == rot.faces * props["tile_symmetry"]
+    assert sorted(rot.incidence_symbol.edge_kinds()) == ["J", "J", "S", "S"]
+    assert props["incidence_symbol"] == "[a+b+c+d+; a+b+d+c+]"
+    assert rot.patch().validate().ok and len(rot.patch()) == 2 * n
+
+
+def test_the_trigonal_trapezohedron_is_the_cube():
+    """n = 3: the antiprism | 2 2 3 is the octahedron, so its dual is the cube, whose group *432
+    (order 48 = 6 faces × 8 symmetries of the square) is larger than 2*3: taken under the
+    tiling's whole group the tile is the square with all its symmetries, as [3.3.3.3] (4 | 2 3) gives."""
+    t = LavesTiling(symbol="| 2 2 3")
+    cube = LavesTiling("3.3.3.3")
+    assert str(cube.symbol) == "4 | 2 3" and t.symbol.form == "snub"
+    for x in (t, cube):
+        props = x.properties()
+        assert (props["faces"], props["vertices"], props["symmetry_group"]) == (6, 8, "*432")
+        assert (props["incidence_symbol"], props["tile_symmetry"]) == ("[aaaa; a]", 8)
+        assert x.symbol_orbifold() == "*432" and x.patch().validate().ok
+    assert t.symmetry.index == 8  # 223 (order 6) in *432 (order 48)
+    assert LavesTiling(symbol="| 2 2 3", group="rotations").properties()["symbol_group"] == "432"
+
+
+def test_the_delaney_reading_agrees_with_the_geometry_on_every_record():
+    """Independent readings of one group: the orbifold the geometry finds (orbifold.py, the
+    tiling's symmetries) and the one the tile's incidence symbol gives on its topology
+    (delaney.py, combinatorics only), on every shipped Laves record; on the sphere the
+    group's order 2/χ is the faces times the tile's symmetries, and the number of its matrices."""
+    for r in laves_records():
+        t = LavesTiling(r.properties["dual_configuration"], group=r.properties["group"])
+        assert t.symbol_orbifold() == r.properties["symbol_group"], r.name
+        if not t.hyperbolic:
+            chi = delaney.euler_characteristic(t.delaney_symbol, t.valences)
+            assert 2 / chi == r.properties["faces"] * r.properties["tile_symmetry"] == len(t.group_matrices()), r.name
+
+
+def test_delaney_refuses_a_symbol_that_does_not_fit_the_valences():
+    """The kite's symbol tiles the topology with valences n, 3, 3, 3 at its corners in that
+    order, not one whose n-valent corner sits where the mirror does not fix a corner."""
+    kite = IncidenceSymbol.parse("[a+a-b+b-; a+b-]")
+    assert delaney.orbifold_symbol(delaney.check_on(kite, 4, (3, 3, 3, 5)), (3, 3, 3, 5)) == "2*5"
+    with pytest.raises(ParameterError) as err:
+        delaney.check_on(kite, 4, (5, 3, 3, 3))
+    assert "does not tile the 4-gon with corner valences 5.3.3.3" in str(err.value) and "\n" not in str(err.value)
+    with pytest.raises(ParameterError, match="3 corner valences given for a 4-gon"):
+        delaney.check_on(kite, 4, (3, 3, 5))
+
+
+def test_shaped_trapezohedron_under_its_full_group():
+    """Under 2*n the short edges are S edges and take shapes (the long ones stay straight on
+    their mirrors); the kites still tile, and the least perfect colouring splits the top n
+    kites from the bottom n (the half-turns swap them, the mirrors keep them)."""
+    t = LavesTiling("3.3.3.6", edges={"a": "0.2,0.1:0.35,0.08"})
+    assert sorted(t.edge_shapes) == ["a"] and t.incidence_symbol.edge_kinds() == "SSII"
+    patch = t.patch()
+    assert patch.validate().ok and len(patch) == 12
+    assert Counter(patch.colour.tolist()) == Counter({0: 6, 1: 6})
+    # each colour's six kites are those round one of the two 6-valent apices
+    corners = [{tuple(v) for v in np.round(face, 7)} for face in patch.vertex_lists()]
+    for colour in (0, 1):
+        members = [c for c, k in zip(corners, patch.colour.tolist()) if k == colour]
+        assert len(set.intersection(*members)) == 1
+    with pytest.raises(ParameterError, match="its shaped edges are a"):
+        LavesTiling("3.3.3.6", edges={"b": "0.2,0.1"})

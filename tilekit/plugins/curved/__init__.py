@@ -58,6 +58,7 @@ _LAZY = {
     "RegularTiling": "tilekit.plugins.curved.tiling",
     "UniformTiling": "tilekit.plugins.curved.uniform",
     "LavesTiling": "tilekit.plugins.curved.laves",
+    "StarLavesTiling": "tilekit.plugins.curved.starlaves",
     "euclidean_tiling": "tilekit.plugins.curved.uniform",
     "ModelPatch": "tilekit.plugins.curved.patch",
     "ModelPrototile": "tilekit.plugins.curved.patch",
@@ -68,9 +69,9 @@ _LAZY = {
 }
 __getattr__, __dir__ = lazy_exports(__name__, _LAZY)
 
-__all__ = ["CURVED", "CURVED_ISOHEDRAL", "CurvedIsohedralTiling", "HYPERBOLIC", "LavesTiling", "SPHERICAL", "ModelPatch", "ModelPrototile", "RegularPolygon", "RegularTiling",
+__all__ = ["CURVED", "CURVED_ISOHEDRAL", "CurvedIsohedralTiling", "HYPERBOLIC", "LavesTiling", "SPHERICAL", "StarLavesTiling", "ModelPatch", "ModelPrototile", "RegularPolygon", "RegularTiling",
            "UniformTiling", "curved_records", "euclidean_tiling", "hyperbolic_layers", "laves_configuration", "laves_records",
-           "layer_counts",
+           "layer_counts", "star_laves_records",
            "regular", "uniform_records", "uniform_tiling"]
 
 #: The records' data file (one [[tiling]] table each: name, title, p, q, aliases, oeis).
@@ -97,6 +98,11 @@ def uniform_tiling(configuration: str | None = None, **options: Any) -> UniformT
 
 
 def _uniform_from_spec(spec: Mapping[str, Any]) -> Any:
+    # measured start-up cost: as in regular()
+    if isinstance(spec, Mapping) and "laves" in spec and "pairing" in spec:  # a vertex-star tiling's dual
+        from tilekit.plugins.curved.starlaves import StarLavesTiling
+
+        return StarLavesTiling.from_spec(spec)
     # measured start-up cost: as in regular()
     if isinstance(spec, Mapping) and "laves" in spec:  # a Laves tiling, the dual of a uniform one (laves.py)
         from tilekit.plugins.curved.laves import LavesTiling
@@ -339,6 +345,23 @@ def laves_records() -> list[CatalogueRecord]:
     return out
 
 
+def star_laves_records() -> list[CatalogueRecord]:
+    """The duals of the vertex-star records (catalogue/curved/stars.toml): one Laves record
+    ``[3^3.6^2]`` per non-Wythoffian uniform tiling, under its whole group (starlaves.py)."""
+    # measured start-up cost: NumPy and the construction (records are built only when seeding)
+    from tilekit.plugins.curved.starlaves import StarLavesTiling
+
+    out = []
+    for cfg, pairing in _star_configurations():
+        dotted, exp = notation.dotted(cfg), notation.exponent(cfg)
+        t = StarLavesTiling(dotted, pairing=pairing)
+        out.append(CatalogueRecord(family=CURVED, name=t.name, spec=t.spec(), properties=t.properties(),
+                                   title=f"[{exp}]: Laves tiling of the hyperbolic plane, dual of the non-Wythoffian "
+                                         f"uniform tiling {dotted}",
+                                   aliases=sorted({f"[{dotted}]", f"V{dotted}", f"V{exp}"} - {t.name})))
+    return out
+
+
 @tilekit.hookimpl
 def tilekit_families() -> list[Family]:
     return [
@@ -387,7 +410,8 @@ def tilekit_families() -> list[Family]:
 
 @tilekit.hookimpl
 def tilekit_catalogue_records() -> list[CatalogueRecord]:
-    return curved_records() + uniform_records() + star_records() + laves_records() + isohedral_records()
+    return (curved_records() + uniform_records() + star_records() + laves_records() + star_laves_records()
+            + isohedral_records())
 
 
 @tilekit.hookimpl
@@ -441,6 +465,8 @@ def _resolve_laves(name: str) -> list[str] | None:
     from tilekit.plugins.curved import wythoff
 
     dotted = notation.dotted(cfg)
+    if cfg in dict(_star_configurations()):  # a non-Wythoffian uniform tiling's dual (starlaves.py)
+        return [f"dual_configuration={dotted}", "group=full"]
     if not wythoff.symbols_for(cfg):
         raise ParameterError(f"[{dotted}]: no uniform tiling by Wythoff's construction has the vertex configuration "
                              f"{dotted}, so it has no Laves dual here; e.g. [3.4.3.4], [4.6.10], [4.6.14]")

@@ -18,12 +18,17 @@ The same rule decides the planar family's types: an edge whose stabiliser in Γ 
 in its own line is straight (I), the mirror in its perpendicular bisector U, the half-turn
 about its midpoint S, nothing J (:meth:`tilekit.incidence.IncidenceSymbol.label_kind`).
 
+**Non-regular topologies.** Every function taking q also takes the valences of the tile's
+corners instead (a tuple, corner k the start of edge k): m12 of a chamber is then its corner's
+valence, as for a Laves tile ([3.3.3.n]'s kite has corners of valence n, 3, 3, 3); a single q is
+{p, q}'s. The conditions and the orbifold below are unchanged, read with that m12.
+
 **The orbifold** of Γ is read off D: an orbit of <s_i, s_j> with v = m_ij / r_ij > 1 (m01 = p,
-m12 = q, m02 = 2) is a corner v when some chamber of it is fixed by s_i or s_j (it lies on a
+m12 = q or the corner's valence, m02 = 2) is a corner v when some chamber of it is fixed by s_i or s_j (it lies on a
 mirror), else a cone point v; mirror boundaries are the cycles of chamber sides fixed by an
 s_i, walked round their corners; the underlying surface is orientable exactly when D is
 two-coloured by its non-fixing s_i; handles (o) or cross-caps (x) make up Conway's
-characteristic χ = |D|(1/p + 1/q − 1/2)/2.
+characteristic χ = Σ_D (1/p + 1/m12 − 1/2)/2 (|D|(1/p + 1/q − 1/2)/2 on {p, q}).
 """
 
 from __future__ import annotations
@@ -38,6 +43,9 @@ from tilekit.errors import ParameterError, ParseError
 from tilekit.incidence import IncidenceSymbol, symbol_table
 from tilekit.limits import refuse_over
 from tilekit.symmetry.names import orbifold_symbol as orbifold_text
+
+#: q of {p, q}, or the valences of the tile's corners in order (a non-regular topology).
+Valence = int | tuple[int, ...]
 
 #: The largest p whose types :func:`enumerate_types` lists: the edge-orbit pairings it tries
 #: grow about fivefold with each edge (p = 10 takes seconds, p = 13 minutes), and its labels
@@ -132,28 +140,54 @@ def delaney(symbol: IncidenceSymbol) -> Delaney:
     return Delaney(p, (tuple(s0), tuple(s1), tuple(s2)), tuple(orbit_of))
 
 
-def check_on(symbol: IncidenceSymbol, p: int, q: int) -> Delaney:
-    """The symbol's Delaney symbol when it tiles {p, q} (else a one-line ParameterError naming
-    the vertex whose cycle does not close)."""
+def _corner(d: Delaney, x: int) -> int:
+    """The tile's corner at which the chambers of orbit x lie (chamber 2i + e: corner i + e)."""
+    c = d.orbit_of.index(x)
+    return (c // 2 + c % 2) % d.p
+
+
+def _m12(d: Delaney, q: Valence, x: int) -> int:
+    """m12 of orbit x: q on {p, q}, else the valence of the orbit's corner."""
+    return q if isinstance(q, int) else q[_corner(d, x)]
+
+
+def _where(p: int, q: Valence) -> str:
+    return f"{{{p},{q}}}" if isinstance(q, int) else f"the {p}-gon with corner valences {'.'.join(map(str, q))}"
+
+
+def check_on(symbol: IncidenceSymbol, p: int, q: Valence) -> Delaney:
+    """The symbol's Delaney symbol when it tiles {p, q} (q an int) or the topology whose tile
+    has corners of the valences q (a tuple of p; else a one-line ParameterError naming the
+    vertex whose cycle does not close)."""
     if len(symbol.edges) != p:
-        raise ParameterError(f"incidence symbol {symbol} has {len(symbol.edges)} edges; the tile of {{{p},{q}}} is a "
-                             f"{p}-gon")
+        raise ParameterError(f"incidence symbol {symbol} has {len(symbol.edges)} edges; the tile of {_where(p, q)} "
+                             f"is a {p}-gon")
+    if not isinstance(q, int) and len(q) != p:
+        raise ParameterError(f"incidence symbol {symbol}: {len(q)} corner valences given for a {p}-gon")
     d = delaney(symbol)
     for x in range(len(d)):
         r = d.r(1, 2, x)
-        if q % r:
-            vertex = (d.orbit_of.index(x) // 2 + d.orbit_of.index(x) % 2) % p
-            raise ParameterError(f"incidence symbol {symbol} does not tile {{{p},{q}}}: round vertex {vertex + 1} of "
-                                 f"the tile the edges close after {r} corners, which does not divide q = {q}")
+        m = _m12(d, q, x)
+        if m % r:
+            vertex = _corner(d, x)
+            name = f"q = {m}" if isinstance(q, int) else f"its valence {m}"
+            raise ParameterError(f"incidence symbol {symbol} does not tile {_where(p, q)}: round vertex {vertex + 1} "
+                                 f"of the tile the edges close after {r} corners, which does not divide {name}")
+        # the orbit round a vertex of the tiling meets corners of one valence only
+        if not isinstance(q, int) and any(q[_corner(d, y)] != m for y in d.orbit(1, 2, x)):
+            raise ParameterError(f"incidence symbol {symbol} does not tile {_where(p, q)}: it glues corner "
+                                 f"{_corner(d, x) + 1} to a corner of another valence")
     return d
 
 
-def _pair_order(d: Delaney, q: int, i: int, j: int) -> int:
-    """m_ij: p for sides 0, 1 (at the tile's centre), q for 1, 2 (at a vertex), 2 for 0, 2."""
-    return {(0, 1): d.p, (1, 2): q, (0, 2): 2}[(min(i, j), max(i, j))]
+def _pair_order(d: Delaney, q: Valence, i: int, j: int, x: int) -> int:
+    """m_ij at orbit x: p for sides 0, 1 (at the tile's centre), q or the corner's valence for
+    1, 2 (at a vertex), 2 for 0, 2."""
+    pair = (min(i, j), max(i, j))
+    return d.p if pair == (0, 1) else 2 if pair == (0, 2) else _m12(d, q, x)
 
 
-def _boundaries(d: Delaney, q: int) -> list[list[int]]:
+def _boundaries(d: Delaney, q: Valence) -> list[list[int]]:
     """The mirror boundaries: each the cyclic list of corner orders met walking round it (the
     chamber sides fixed by an s_i, joined where two meet round a vertex of the chambers)."""
     s = d.s
@@ -173,7 +207,7 @@ def _boundaries(d: Delaney, q: int) -> list[list[int]]:
             while s[other][e] != e:
                 e = s[other][e]
                 other = i if other == k else k
-            v = _pair_order(d, q, i, k) // d.r(i, k, x)
+            v = _pair_order(d, q, i, k, x) // d.r(i, k, x)
             if v > 1:
                 ring.append(v)
             cur, j = (e, other), 3 - other - j
@@ -183,7 +217,7 @@ def _boundaries(d: Delaney, q: int) -> list[list[int]]:
     return out
 
 
-def orbifold_symbol(d: Delaney, q: int) -> str:
+def orbifold_symbol(d: Delaney, q: Valence) -> str:
     """Conway's orbifold symbol of the group of the Delaney symbol (see the module): o's, cone
     orders largest first, each mirror boundary ``*`` with its corners, x's."""
     cones: list[int] = []
@@ -194,7 +228,7 @@ def orbifold_symbol(d: Delaney, q: int) -> str:
                 continue
             orb = d.orbit(i, j, x)
             done |= {(i, j, y) for y in orb}
-            v = _pair_order(d, q, i, j) // d.r(i, j, x)
+            v = _pair_order(d, q, i, j, x) // d.r(i, j, x)
             if v > 1 and not any(d.s[i][y] == y or d.s[j][y] == y for y in orb):
                 cones.append(v)
     rings = []
@@ -229,9 +263,11 @@ def orbifold_symbol(d: Delaney, q: int) -> str:
     return orbifold_text(cones, rings, genus // 2 if orientable else 0, 0 if orientable else genus)
 
 
-def euler_characteristic(d: Delaney, q: int) -> Fraction:
-    """Conway's orbifold characteristic of the group: |D|(1/p + 1/q − 1/2)/2 (2/|Γ| on the sphere)."""
-    return Fraction(len(d)) * (Fraction(1, d.p) + Fraction(1, q) - Fraction(1, 2)) / 2
+def euler_characteristic(d: Delaney, q: Valence) -> Fraction:
+    """Conway's orbifold characteristic of the group: Σ_D (1/p + 1/m12 − 1/2)/2, |D|(1/p + 1/q −
+    1/2)/2 on {p, q} (2/|Γ| on the sphere)."""
+    return sum((Fraction(1, d.p) + Fraction(1, _m12(d, q, x)) - Fraction(1, 2) for x in range(len(d))),
+               Fraction(0)) / 2
 
 
 # --------------------------------------------------------------------------- enumeration

@@ -15,9 +15,12 @@ across the edge brings onto it. ``group='rotations'`` takes the rotation subgrou
 without mirror symmetry, as Escher-like tiles want: their edges may be chiral), which is
 isohedral unless the generator's stabiliser is trivial (the omnitruncations' duals: the
 rotations split the tiles into two mirror-image orbits — the snub's dual is the chiral one).
-The symbol is the one under the construction's group, which is the tiling's full group except
-where Wythoff's construction gives the tiling only on a subgroup (the antiprisms, | 2 2 n on
-22n, whose full group is 2*n): ``symmetry_group`` then names the larger group.
+The symbol is the one under the tiling's whole group, which is the construction's except where
+Wythoff's construction gives the tiling only on a subgroup (the antiprisms, | 2 2 n on 22n,
+whose whole group is 2*n; | 2 2 3, the octahedron, has *432): the elements fixing G then come
+from the uniform tiling's vertex stabiliser (:func:`.orbifold.vertex_stabiliser`), so the
+trapezohedra's kites keep their mirror. :func:`symbol_from_group` reads the symbol from any
+such group, and the vertex-star tilings' duals (starlaves.py) use it too.
 
 Escher-like tiles (§7.3): ``edges`` shapes the tile's edges as the curved isohedral tiles' option
 does (a fundamental shape per label of the incidence symbol, EdgeShape text on the unit segment:
@@ -25,15 +28,16 @@ a J edge any curve, an S edge's half completed by the half-turn about its midpoi
 straight; labels not named take the default shapes, damped until the tile is simple). The curves
 go onto the tile through each edge's chart and onto the neighbours as the symbol's hops carry
 them (:mod:`.shaped`, shared with isohedral.py), so every edge coincides with its partner.
-Under the full group every edge is an I edge (it lies on a mirror), so shapes need
+Under a kaleidoscope's group *pqr every edge is an I edge (it lies on a mirror), so shapes need
 ``group=rotations`` (or a snub's dual), whose tiles are chiral: no hop or tile symmetry
-reverses orientation, and the Laves tiles have no U edges (a U edge needs a mirror of the tile).
+reverses orientation; a trapezohedron under 2*n shapes its two S edges. The Laves tiles have no
+U edges (a U edge needs a mirror of the tile through an edge's midpoint).
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from functools import cached_property
 from typing import Any
 
@@ -42,7 +46,7 @@ import numpy as np
 from tilekit.edgeshapes import EdgeShape
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.incidence import LABELS, IncidenceSymbol, edge_curves
-from tilekit.plugins.curved import model, notation, wythoff
+from tilekit.plugins.curved import delaney, model, notation, wythoff
 from tilekit.plugins.curved.isohedral import colouring, hop_words, hops, word_colours
 from tilekit.plugins.curved.orbifold import (
     _first_of_each,
@@ -51,6 +55,7 @@ from tilekit.plugins.curved.orbifold import (
     _star,
     _unique,
     construction_stabiliser,
+    vertex_stabiliser,
 )
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
 from tilekit.plugins.curved.shaped import edge_frames, first_simple, parse_edges, shaped_outline
@@ -132,13 +137,24 @@ class LavesTiling(UniformTiling):
 
     @property
     def rotations_only(self) -> bool:
+        """Whether the group the tiles are taken under has rotations only: ``group=rotations``,
+        or a full group without mirrors (a snub's, pqr)."""
+        return self.group == "rotations" or not self.symmetry.group.mirrors
+
+    @property
+    def construction_rotations(self) -> bool:
+        """Whether the tiles are placed by the construction's rotations only (a snub's group,
+        or ``group=rotations``): the construction's group is vertex-transitive either way."""
         return self.group == "rotations" or self.symbol.form == "snub"
 
     @cached_property
     def _local(self) -> tuple[np.ndarray, np.ndarray]:
         """(corners (k, 3): the centres of the faces at G, counter-clockwise round G starting
         with the first face of the star; L·L: the group's elements near G, proper ones first
-        under group='rotations' only proper ones)."""
+        under group='rotations' only proper ones). Where the tiling's group is larger than the
+        construction's (an antiprism's dual: 2*n against 22n), L·L times the tiling's
+        stabiliser of G (:func:`.orbifold.vertex_stabiliser`), so the symbol is the one under
+        the tiling's whole group."""
         c = self.construction
         local = _local_elements(c)
         frames, _sides = _star(c, local)
@@ -151,6 +167,9 @@ class LavesTiling(UniformTiling):
         order = np.argsort(angle, kind="stable")
         corners = centres[order]
         pair = np.matmul(local[:, None], local[None]).reshape(-1, 3, 3)
+        if self.symmetry.index > 1:
+            stab = vertex_stabiliser(c)
+            pair = _unique(np.matmul(pair[:, None], stab[None]).reshape(-1, 3, 3))
         det = np.linalg.det(pair)
         pair = pair[np.argsort(det < 0, kind="stable")]  # proper elements first
         if self.rotations_only:
@@ -221,85 +240,14 @@ class LavesTiling(UniformTiling):
         clockwise, edge i the tile's edge i, with the labels of the canonical form
         (:attr:`incidence_symbol`): the labels ``edges`` names."""
         corners, pair = self._local
-        k = len(corners)
         sp = self.construction.space
         g = self.construction.generator
 
-        # the tile's symmetries as edge maps: edge i (corner i to i + 1) goes to edge j forwards
-        # (+1: start to start) or backwards (−1)
-        def edge_map(m: np.ndarray, i: int, target: np.ndarray) -> tuple[int, int]:
-            a, b = index_in(target, m @ corners[i]), index_in(target, m @ corners[(i + 1) % k])
-            if a < 0 or b < 0:
-                return -1, 0
-            if b == (a + 1) % k:
-                return a, 1
-            if a == (b + 1) % k:
-                return b, -1
-            return -1, 0
+        def hop(a: np.ndarray, b: np.ndarray) -> np.ndarray | None:
+            found = pair[_same(pair @ g, _reflect_across(sp, g, a, b))]
+            return found[0] if len(found) else None
 
-        def index_in(target: np.ndarray, pt: np.ndarray) -> int:
-            hit = np.flatnonzero(_same(target, pt))
-            return int(hit[0]) if len(hit) else -1
-
-        labels: list[int | None] = [None] * k
-        signs = [0] * k
-        next_label = 0
-        for i in range(k):
-            if labels[i] is not None:
-                continue
-            lab = next_label
-            next_label += 1
-            undirected = False
-            images: dict[int, int] = {}
-            for s in self.stabiliser:
-                j, sense = edge_map(s, i, corners)
-                if j < 0:
-                    raise GeometryError(f"[{self.configuration}]: a symmetry of the tile does not map its edges")
-                if j == i and sense < 0:
-                    undirected = True
-                images.setdefault(j, sense)
-            for j, sense in images.items():
-                labels[j] = lab
-                signs[j] = 0 if undirected else sense
-        # adjacency: the element carrying G to its neighbour across edge i carries some edge j
-        # of the central tile onto edge i
-        first = {}
-        for i in range(k):
-            first.setdefault(labels[i], i)
-        adjacency: dict[int, tuple[int, int]] = {}
-        for lab, i in first.items():
-            a, b = corners[i], corners[(i + 1) % k]
-            neighbour = _reflect_across(sp, g, a, b)
-            hop = pair[_same(pair @ g, neighbour)]
-            if not len(hop):
-                raise GeometryError(f"[{self.configuration}]: no element of the group carries the tile across "
-                                    f"its edge {i + 1}")
-            h = hop[0]
-            found = None
-            for j in range(k):
-                aj, bj = h @ corners[j], h @ corners[(j + 1) % k]
-                if _same(aj[None], b)[0] and _same(bj[None], a)[0]:
-                    found = (j, -1)  # the neighbour's edge j runs from b to a: against edge i
-                elif _same(aj[None], a)[0] and _same(bj[None], b)[0]:
-                    found = (j, 1)
-                if found:
-                    break
-            if found is None:
-                raise GeometryError(f"[{self.configuration}]: the neighbour across edge {i + 1} does not share it")
-            j, along = found
-            other = labels[j]
-            if signs[i] == 0:
-                adjacency[lab] = (other, 0)  # type: ignore[assignment]
-            else:
-                # the neighbour's arrow on the shared edge, as a sign along edge i; + when the two
-                # arrows point in opposite directions (§5.2)
-                theirs = signs[j] * along
-                adjacency[lab] = (other, 1 if theirs != signs[i] else -1)  # type: ignore[assignment]
-        edges = tuple((LABELS[lab], sg) for lab, sg in zip(labels, signs))  # type: ignore[index]
-        adj = tuple((LABELS[adjacency[lab][0]], adjacency[lab][1]) for lab in sorted(adjacency))
-        sym = IncidenceSymbol(edges, adj)
-        sym.check()
-        return sym.canonical_labelling()
+        return symbol_from_group(corners, self.stabiliser, hop, f"[{self.configuration}]")
 
     # -- shaped edges (Escher-like tiles) -------------------------------------------------
     @cached_property
@@ -392,10 +340,8 @@ class LavesTiling(UniformTiling):
         return 1.0 / (stab * wythoff.triangle_area(self.symbol.orders))
 
     def _radius(self) -> float:
-        if self.radius is not None:
-            return self.radius
-        r = math.acosh(1 + DEFAULT_FACES / (2 * math.pi * self.tiles_per_area()))
-        return float(min(MAX_RADIUS, max(0.0, r - self.circumradius)))
+        return self.radius if self.radius is not None else default_radius(self.tiles_per_area(), self.circumradius,
+                                                                          DEFAULT_FACES, MAX_RADIUS)
 
     def estimate_tiles(self, region: Any = None) -> float:
         """The sphere's face count; hyperbolic: tiles per area times the disc's area, the disc
@@ -419,7 +365,7 @@ class LavesTiling(UniformTiling):
         cells = c.cells(None if reach is None else reach + float(c.space.distance(g, pole)) + c.cell_radius)
         stab = c.stabiliser
         n = c.orders[c.cell_corner]
-        if self.rotations_only:
+        if self.construction_rotations:
             stab = stab[:n]
         # one element of the cell corner's group per image of G (G at the cell corner: just one),
         # proper ones first, so a cell brings each of its vertices once
@@ -433,6 +379,15 @@ class LavesTiling(UniformTiling):
             elems, pts = elems[near], pts[near]
         keep = wythoff.dedup(c._key_points(pts), c.edge_length)
         return elems[keep]
+
+    def group_matrices(self) -> np.ndarray:
+        """(|Γ|, 3, 3): every element of the group the tiles are taken under (the tiling's whole
+        group, or its rotations), on the sphere, as O(3) matrices: the element placing each tile
+        times the tile's stabiliser (a coset each). The trapezohedra's 2*n holds the 22n that
+        Wythoff's construction gives and as many elements again: n mirrors and n rotary reflections."""
+        if self.hyperbolic:
+            raise ParameterError(f"[{self.configuration}] tiles the hyperbolic plane: its group is infinite")
+        return _unique(np.matmul(self.group_elements()[:, None], self.stabiliser[None]).reshape(-1, 3, 3))
 
     def patch(self, region: Any = None) -> ModelPatch:
         """Every tile (sphere) or every tile whose centre (a vertex of the uniform tiling) lies
@@ -465,9 +420,23 @@ class LavesTiling(UniformTiling):
         return {len(self.symbol.configuration or ()): self.faces}
 
     def group_notation(self) -> str:
-        """The group placing the tiles, in orbifold notation (*pqr, or pqr: its rotations)."""
-        digits = "".join(str(n) for n in sorted(self.symbol.orders, reverse=True))
-        return digits if self.rotations_only else "*" + digits
+        """The group the tiles and their incidence symbol are taken under, in orbifold notation:
+        the tiling's symmetry group (``group=full``: *pqr, 2*n for an antiprism's dual) or its
+        rotation subgroup (pqr, 22n)."""
+        full = self.symmetry.group
+        return (full.rotations() if self.group == "rotations" else full).notation
+
+    @cached_property
+    def delaney_symbol(self) -> delaney.Delaney:
+        """The Delaney symbol of :attr:`tile_symbol` on the tile's topology (corner valences
+        :attr:`valences`; :func:`.delaney.check_on`): it closes round every vertex, so the symbol
+        tiles, and its orbifold (:meth:`symbol_orbifold`) is read from the combinatorics alone."""
+        return delaney.check_on(self.tile_symbol, len(self.corners), self.valences)
+
+    def symbol_orbifold(self) -> str:
+        """The orbifold of the symbol's group read off its Delaney symbol (an independent
+        reading of :meth:`group_notation`, which comes from the geometry)."""
+        return delaney.orbifold_symbol(self.delaney_symbol, self.valences)
 
     def properties(self) -> dict[str, Any]:
         cfg = self.symbol.configuration or ()
@@ -484,7 +453,10 @@ class LavesTiling(UniformTiling):
             "dual_configuration": self.configuration,
             "wythoff_symbol": str(self.symbol),
             "group": self.group,
-            "construction_group": self.group_notation(),
+            # Wythoff's construction's group (as the uniform records store it); the tiles and their
+            # symbol are taken under symbol_group: the tiling's whole group or its rotations
+            "construction_group": self.symbol.group,
+            "symbol_group": self.group_notation(),
             "sides": [len(cfg)],
             "valences": ".".join(map(str, self.valences)),
             # the symbol under the construction's group (as the isohedral families store it: the
@@ -494,7 +466,7 @@ class LavesTiling(UniformTiling):
             "edge_kinds": sym.edge_kinds(),
             "tile_symmetry": len(self.stabiliser),
             # the tiling's full group: the uniform tiling's (orbifold.py), which is the construction's
-            # for every shipped record (an antiprism's dual has 2*n, its construction 22n)
+            # except for the antiprisms' duals (2*n, made on 22n; [3.3.3.3] is the cube, *432)
             "symmetry_group": self.symmetry.notation,
             "orbifold": self.symmetry.notation,
         }
@@ -545,6 +517,98 @@ class LavesTiling(UniformTiling):
         if spec.get("laves", True) is not True:
             raise ParseError(f"curved Laves spec: laves must be true, got {str(spec.get('laves'))[:20]}")
         return {"group": spec.get("group", "full"), "edges": spec.get("edges")}
+
+
+def default_radius(tiles_per_area: float, circumradius: float, tiles: int, max_radius: float) -> float:
+    """The radius of a hyperbolic Laves patch of about ``tiles`` tiles: the disc holding that
+    many, less the tile's circumradius (tiles reaching into the disc are drawn too), within 0..max_radius."""
+    r = math.acosh(1 + tiles / (2 * math.pi * tiles_per_area))
+    return float(min(max_radius, max(0.0, r - circumradius)))
+
+
+def symbol_from_group(corners: np.ndarray, stabiliser: np.ndarray,
+                      hop: Callable[[np.ndarray, np.ndarray], np.ndarray | None], what: str) -> IncidenceSymbol:
+    """The incidence symbol (§5.3.1) of a tile with these corners (k, 3), counter-clockwise, in
+    an isohedral tiling whose group's elements fixing the tile are ``stabiliser`` and where
+    ``hop(a, b)`` is an element carrying the tile onto its neighbour across the edge from corner
+    a to corner b (None: none found), read from edge 0 (corner 0 to 1), edge i the tile's edge i,
+    labels in canonical order: edges related by the stabiliser share a label (one reversed onto
+    itself is undirected), and each label meets the edge the hop carries onto it. Shared by
+    the Laves tilings of Wythoff's construction and of the vertex-star tilings (starlaves.py)."""
+    k = len(corners)
+
+    # the tile's symmetries as edge maps: edge i (corner i to i + 1) goes to edge j forwards
+    # (+1: start to start) or backwards (−1)
+    def edge_map(m: np.ndarray, i: int, target: np.ndarray) -> tuple[int, int]:
+        a, b = index_in(target, m @ corners[i]), index_in(target, m @ corners[(i + 1) % k])
+        if a < 0 or b < 0:
+            return -1, 0
+        if b == (a + 1) % k:
+            return a, 1
+        if a == (b + 1) % k:
+            return b, -1
+        return -1, 0
+
+    def index_in(target: np.ndarray, pt: np.ndarray) -> int:
+        hit = np.flatnonzero(_same(target, pt))
+        return int(hit[0]) if len(hit) else -1
+
+    labels: list[int | None] = [None] * k
+    signs = [0] * k
+    next_label = 0
+    for i in range(k):
+        if labels[i] is not None:
+            continue
+        lab = next_label
+        next_label += 1
+        undirected = False
+        images: dict[int, int] = {}
+        for s in stabiliser:
+            j, sense = edge_map(s, i, corners)
+            if j < 0:
+                raise GeometryError(f"{what}: a symmetry of the tile does not map its edges")
+            if j == i and sense < 0:
+                undirected = True
+            images.setdefault(j, sense)
+        for j, sense in images.items():
+            labels[j] = lab
+            signs[j] = 0 if undirected else sense
+    # adjacency: the element carrying the tile to its neighbour across edge i carries some edge
+    # j of the tile onto edge i
+    first = {}
+    for i in range(k):
+        first.setdefault(labels[i], i)
+    adjacency: dict[int, tuple[int, int]] = {}
+    for lab, i in first.items():
+        a, b = corners[i], corners[(i + 1) % k]
+        h = hop(a, b)
+        if h is None:
+            raise GeometryError(f"{what}: no element of the group carries the tile across its edge {i + 1}")
+        found = None
+        for j in range(k):
+            aj, bj = h @ corners[j], h @ corners[(j + 1) % k]
+            if _same(aj[None], b)[0] and _same(bj[None], a)[0]:
+                found = (j, -1)  # the neighbour's edge j runs from b to a: against edge i
+            elif _same(aj[None], a)[0] and _same(bj[None], b)[0]:
+                found = (j, 1)
+            if found:
+                break
+        if found is None:
+            raise GeometryError(f"{what}: the neighbour across edge {i + 1} does not share it")
+        j, along = found
+        other = labels[j]
+        if signs[i] == 0:
+            adjacency[lab] = (other, 0)  # type: ignore[assignment]
+        else:
+            # the neighbour's arrow on the shared edge, as a sign along edge i; + when the two
+            # arrows point in opposite directions (§5.2)
+            theirs = signs[j] * along
+            adjacency[lab] = (other, 1 if theirs != signs[i] else -1)  # type: ignore[assignment]
+    edges = tuple((LABELS[lab], sg) for lab, sg in zip(labels, signs))  # type: ignore[index]
+    adj = tuple((LABELS[adjacency[lab][0]], adjacency[lab][1]) for lab in sorted(adjacency))
+    sym = IncidenceSymbol(edges, adj)
+    sym.check()
+    return sym.canonical_labelling()
 
 
 def _reflect_across(sp: wythoff.Space, g: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -69,6 +69,15 @@ class OrbifoldGroup:
             chi -= 1 + sum((Fraction(n - 1, 2 * n) for n in self.corners), Fraction(0))
         return chi
 
+    def rotations(self) -> OrbifoldGroup:
+        """The rotation subgroup (index 2 when there are mirrors): the orientable double cover
+        of a disc with cone points and one mirror boundary, each cone point twice and each
+        corner once as a cone point (*pqr: pqr, 2*n: 22n). The groups here contain a triangle
+        group, so they have no handles, cross-caps or second boundary (see the module)."""
+        if not self.mirrors:
+            return self
+        return OrbifoldGroup(self.cones * 2 + self.corners, (), False)
+
     def order(self) -> int:
         """The group's order (a group of the sphere: 2/χ)."""
         chi = self.euler_characteristic
@@ -180,16 +189,23 @@ def symbol_symmetry(symbol: wythoff.Symbol) -> UniformSymmetry | None:
     return None
 
 
-def uniform_symmetry(construction: wythoff.Construction) -> UniformSymmetry:
-    """The full symmetry group of the construction's tiling (see the module). When the vertex
-    star has no more symmetry than the generator's stabiliser in the construction's group,
-    the full group's vertex stabiliser can be no larger, so the group is the construction's
-    (most tilings: nothing else is computed)."""
-    c = construction
+@dataclass(frozen=True)
+class _VertexSearch:
+    """What the stabiliser search of :func:`uniform_symmetry` finds near the generator v0:
+    ``local`` (L), ``pair`` (L·L moving v0 at most two face circumradii), the faces at v0
+    (``frames``), its neighbours ``nbrs``, and ``stab`` (the full group's elements fixing v0)."""
+
+    local: np.ndarray
+    pair: np.ndarray
+    frames: np.ndarray
+    nbrs: np.ndarray
+    stab: np.ndarray
+
+
+def _vertex_search(c: wythoff.Construction) -> _VertexSearch:
+    """The isometries fixing v0 that keep the second corona (see the module), checked against
+    the construction's own stabiliser of v0."""
     own = construction_stabiliser(c.symbol)
-    quick = symbol_symmetry(c.symbol)
-    if quick is not None:
-        return quick
     sp, v0 = c.space, c.generator
     e = c.edge_length
     local = _local_elements(c)
@@ -238,6 +254,34 @@ def uniform_symmetry(construction: wythoff.Construction) -> UniformSymmetry:
                             f"construction's ({g_stab})")
     if g_stab != own:
         raise GeometryError(f"{c.symbol}: the generator's stabiliser has {g_stab} elements, not {own}")
+    return _VertexSearch(local, pair, frames, nbrs, stab_m)
+
+
+def vertex_stabiliser(construction: wythoff.Construction) -> np.ndarray:
+    """(s, 3, 3): the tiling's symmetries fixing the generator vertex v0, as O(3) or O(2,1)
+    matrices: the construction's own (L's elements fixing v0) when the symbol decides the
+    group (:func:`symbol_symmetry`), else the search's (an antiprism's: the mirror through v0
+    that 2*n adds to 22n)."""
+    c = construction
+    if symbol_symmetry(c.symbol) is not None:
+        local = _local_elements(c)
+        return _unique(local[_same(local @ c.generator, c.generator)])
+    return _vertex_search(c).stab
+
+
+def uniform_symmetry(construction: wythoff.Construction) -> UniformSymmetry:
+    """The full symmetry group of the construction's tiling (see the module). When the vertex
+    star has no more symmetry than the generator's stabiliser in the construction's group,
+    the full group's vertex stabiliser can be no larger, so the group is the construction's
+    (most tilings: nothing else is computed)."""
+    c = construction
+    quick = symbol_symmetry(c.symbol)
+    if quick is not None:
+        return quick
+    sp, v0 = c.space, c.generator
+    found = _vertex_search(c)
+    pair, frames, nbrs, stab_m = found.pair, found.frames, found.nbrs, found.stab
+    g_stab = construction_stabiliser(c.symbol)
     if len(stab_m) == g_stab:  # no symmetry beyond the construction's group: *pqr or pqr
         return UniformSymmetry(_construction_group(c.symbol, c.orders), len(stab_m), 1)
     # feature points: v0, the centres of its faces, the midpoints of its edges; the elements

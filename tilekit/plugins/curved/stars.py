@@ -46,7 +46,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Any
@@ -233,12 +233,10 @@ def star_symmetries(star: Star) -> list[tuple[np.ndarray, tuple[int, ...]]]:
     return out
 
 
-def consistent(star: Star, pairing: Pairing, returns: list[np.ndarray]) -> bool:
-    """Whether every motion of the pairing's group that fixes the pole maps S onto itself:
-    the group H made from the face walks' ``returns`` (:func:`closes`) and, for each s in H
-    and each edge i, g_{s(i)}^{-1} s g_i (which fixes the pole) must lie in S's symmetry
-    group; else two different stars would be put at one vertex. Necessary for a tiling (a
-    symmetry fixing a vertex keeps its star)."""
+def _symmetry_lookup(star: Star, pairing: Pairing) -> tuple[list[tuple[np.ndarray, tuple[int, ...]]], np.ndarray,
+                                                             list[np.ndarray], list[np.ndarray], Callable[[np.ndarray], int]]:
+    """(S's symmetries with their edge permutations, their matrices, the pairing's motions g_i,
+    their inverses, which: a motion's index among S's symmetries or −1)."""
     sym = star_symmetries(star)
     mats = np.array([m for m, _ in sym])
     gens = [star.generator(i, j, s) for i, (j, s) in enumerate(pairing)]
@@ -248,6 +246,16 @@ def consistent(star: Star, pairing: Pairing, returns: list[np.ndarray]) -> bool:
         hit = np.flatnonzero(np.abs(mats - h).max(axis=(1, 2)) < 1e-6)
         return int(hit[0]) if len(hit) else -1
 
+    return sym, mats, gens, inv, which
+
+
+def consistent(star: Star, pairing: Pairing, returns: list[np.ndarray]) -> bool:
+    """Whether every motion of the pairing's group that fixes the pole maps S onto itself:
+    the group H made from the face walks' ``returns`` (:func:`closes`) and, for each s in H
+    and each edge i, g_{s(i)}^{-1} s g_i (which fixes the pole) must lie in S's symmetry
+    group; else two different stars would be put at one vertex. Necessary for a tiling (a
+    symmetry fixing a vertex keeps its star)."""
+    sym, mats, gens, inv, which = _symmetry_lookup(star, pairing)
     found = {0}  # the identity (r = 0 is always a symmetry)
     todo = [0]
 
@@ -297,6 +305,28 @@ def closes(star: Star, pairing: Pairing) -> bool:
             return False
         returns.append(h)
     return consistent(star, pairing, returns)
+
+
+def tiling_stabiliser(star: Star, pairing: Pairing) -> np.ndarray:
+    """(s, 3, 3): the symmetries of the pairing's tiling that fix the pole, the whole group's
+    (not only those of the group the pairing's motions generate): the largest set X of S's
+    symmetries with g_{s(i)}⁻¹ s g_i in X for every s in X and edge i, found by striking out
+    from all of S's symmetries until nothing changes. Each s in X carries the star at w_i,
+    g_i(S), onto g_{s(i)}(S), the star there, with g_{s(i)}⁻¹ s g_i in X again at w_{s(i)}, so
+    by induction out from the pole s keeps every star: it is a symmetry; and every symmetry
+    fixing the pole lies in X (as in :func:`consistent`). The pairing must close
+    (:func:`closes`)."""
+    sym, mats, gens, inv, which = _symmetry_lookup(star, pairing)
+    alive = set(range(len(sym)))
+    changed = True
+    while changed:
+        changed = False
+        for k in sorted(alive):
+            m, perm = sym[k]
+            if any(which(inv[perm[i]] @ m @ gens[i]) not in alive for i in range(len(gens))):
+                alive.discard(k)
+                changed = True
+    return mats[sorted(alive)]
 
 
 def develop(star: Star, pairing: Pairing, radius: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
