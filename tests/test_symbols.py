@@ -63,7 +63,13 @@ def test_issue_example_finds_ih16(cli):
     assert shown_name(cli, "[a+b+c+c-b-a-; a-c+b+]") == "IH16"
     # a-> c, c -> a: the same type (Kaplan §5.2, Figure 5.4's IH16)
     assert shown_name(cli, "[c+b+a+a-b-c-; c-a+b+]") == "IH16"
-    assert listed(cli, "--where", "incidence_symbol=[c+b+a+a-b-c-; c-a+b+]") == ["IH16"]
+    assert listed(cli, "--family", "isohedral", "--where", "incidence_symbol=[c+b+a+a-b-c-; c-a+b+]") == ["IH16"]
+    # the symbol is topological: in the hyperbolic plane the hexagonal duals of the vertex-star
+    # tilings 3.6.3.6.p.6 (and kin) carry it too, and only they
+    r = cli.run("list", "--format", "json", "--where", "incidence_symbol=[c+b+a+a-b-c-; c-a+b+]")
+    others = [e for e in json.loads(r.stdout) if e["name"] != "IH16"]
+    assert others and all((e["family"], e["geometry"], e["laves"], e["sides"]) == ("curved", "hyperbolic", True, [6])
+                          for e in others), others
 
 
 def test_every_relabelled_symbol_finds_its_type(cat):
