@@ -107,6 +107,8 @@ def test_laves_records_under_rotations_edit_and_full_groups_say_why_not(client):
     assert body["geometry"] == "hyperbolic"
     sphere = client.get("/api/curved/edit/pentagonal-icositetrahedron").json()   # a snub's dual: chiral already
     assert sphere["geometry"] == "spherical" and len(sphere["sizes"]) == 24      # its 24 faces
+    # coloured by its perfect colouring: the rotation group 432 (S4) onto Z2, 12 tiles a colour
+    assert np.bincount(sphere["colour"]).tolist() == [12, 12]
     full = client.get("/api/curved/edit/%5B7%5E3%5D")
     assert full.status_code == 400 and "I edge" in full.json()["error"]
     page = client.get("/curved/edit/%5B7%5E3%5D")

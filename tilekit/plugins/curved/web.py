@@ -108,8 +108,11 @@ def view_data(tiling: Any, max_tiles: int) -> dict[str, Any]:
     out["points"] = np.round(flat.reshape(-1), 10).tolist()
     # colour by the kind of face, which the symmetries keep (a layer colouring would jump when
     # the view is rebased); an isohedral tiling by its perfect colouring, whose rebasing
-    # symmetries keep the colours (CurvedIsohedralTiling.symmetries)
-    out["colour"] = (patch.colour if tiling.family == CURVED_ISOHEDRAL else kinds).tolist()
+    # symmetries keep the colours (CurvedIsohedralTiling.symmetries); a shaped Laves tiling of
+    # the sphere (never rebased) by its perfect colouring too
+    perfect = tiling.family == CURVED_ISOHEDRAL or (
+        not hyperbolic and getattr(tiling, "edge_shapes", None) is not None and patch.colour is not None)
+    out["colour"] = (patch.colour if perfect else kinds).tolist()
     if hyperbolic:
         sym = symmetries(tiling, SYMMETRY_REACH)
         out["symmetries"] = np.round(sym.reshape(-1), 12).tolist()
@@ -253,27 +256,33 @@ def edge_query(tiling: Any) -> list[str]:
     return [f"{label}={shape.to_text(exact=True)}" for label, shape in tiling.edge_shapes.items()]
 
 
+def edge_classes(tiling: Any) -> list[dict[str, Any]]:
+    """Per shape class of an editable tiling's symbol (:func:`shape_symbol`): its label, kind
+    (J, U, S), smoothness, control points and the tile's edges it shapes (1-based, its partner's
+    included): what the edge widgets start from."""
+    from tilekit.incidence import shape_classes  # optional: as in shape_symbol
+
+    symbol, order = shape_symbol(tiling)  # type: ignore[misc]
+    adj = symbol.adjacent_map()
+    out = []
+    for label in shape_classes(symbol, order):
+        shape = tiling.edge_shapes[label]
+        pair = {label, adj[label][0]}
+        out.append({"label": label, "kind": symbol.label_kind(label), "smooth": shape.smooth,
+                    "points": shape.points.tolist(),
+                    "tile_edges": [i + 1 for i, (lab, _) in enumerate(symbol.edges) if lab in pair]})
+    return out
+
+
 def edit_data(name: str, tiling: Any, max_tiles: int) -> dict[str, Any]:
     """The viewer's data (:func:`view_data`) of the record ``name`` shaped as ``tiling``, with
-    ``edges``: per shape class its label, kind (J, U, S), control points and the tile's edges it
-    shapes (1-based, its partner's included); ``query``: the editor's query of the tiling (one
+    ``edges`` (:func:`edge_classes`), ``query``: the editor's query of the tiling (one
     ``LABEL=SHAPE`` per class); ``link`` the editor's URL, ``svg`` the render API's download and
     ``cli`` the command that renders it (each reopens exactly this tiling)."""
     import shlex  # optional: only the editor's command line needs it
 
-    symbol, order = shape_symbol(tiling)  # type: ignore[misc]
-    from tilekit.incidence import shape_classes  # optional: as in shape_symbol
-
-    adj = symbol.adjacent_map()
     out = view_data(tiling, min(EDIT_FACES, max_tiles))
-    classes = []
-    for label in shape_classes(symbol, order):
-        shape = tiling.edge_shapes[label]
-        pair = {label, adj[label][0]}
-        classes.append({"label": label, "kind": symbol.label_kind(label), "smooth": shape.smooth,
-                        "points": shape.points.tolist(),
-                        "tile_edges": [i + 1 for i, (lab, _) in enumerate(symbol.edges) if lab in pair]})
-    out["edges"] = classes
+    out["edges"] = edge_classes(tiling)
     out["query"] = edge_query(tiling)
     query = _query_text(out["query"])
     out["link"] = f"/curved/edit/{name_path(name)}?{query}"
@@ -333,8 +342,7 @@ def edit_page(request: Any, web: Any) -> str:
         notice = web.one_line(exc)
         tiling = edited(base, {})
     edges = edge_query(tiling)
-    info = {"name": name, "edges": [{"label": lab, "kind": found[0].label_kind(lab), "points": s.points.tolist(),
-                                     "smooth": s.smooth} for lab, s in tiling.edge_shapes.items()]}
+    info = {"name": name, "edges": edge_classes(tiling)}
     how = ("Drag a handle in an edge's widget to reshape that edge class; the tiling is rebuilt on the server "
            "(the family's edges option) and redrawn. Drag the picture to move the view"
            + (" (a hyperbolic translation)." if tiling.hyperbolic else " (a rotation of the sphere)."))
