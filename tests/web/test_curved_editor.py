@@ -89,6 +89,7 @@ def test_cli_command_renders_the_edited_tiling(client, tmp_path, monkeypatch):
     ("edge=z=0.3,0.1", "shaped edges are a, c"),                          # no such shape class
     ("edge=a=0.3,0.1&edge=a=0.2,0.1", "given twice"),
     ("colour=3", "unknown editor option"),
+    ("edge=c=" + ":".join(f"{k / 18:.4f},0.01" for k in range(1, 18)), "at most 16"),  # bounded work per edit
 ])
 def test_bad_edits_are_400_with_one_line(client, query, words):
     answer = client.get(f"/api/curved/edit/{IH}?{query}")

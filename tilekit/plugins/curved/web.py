@@ -73,10 +73,12 @@ def symmetries(tiling: Any, reach: float) -> np.ndarray:
     return mats[mats[:, 2, 2] <= math.cosh(reach) * (1 + 1e-12)]
 
 
-def view_data(tiling: Any, max_tiles: int) -> dict[str, Any]:
+def view_data(tiling: Any, max_tiles: int, sizer: Any = None) -> dict[str, Any]:
     """What the viewer draws: per face its corners (hyperbolic) or sampled outline (sphere)
     on the model, flat, with the faces' sizes and colours (by kind of face); for a hyperbolic tiling the
-    patch's radius and the symmetries for rebasing (row-major 3x3 each)."""
+    patch's radius and the symmetries for rebasing (row-major 3x3 each). The radius is chosen
+    by ``sizer``'s face estimates (default the tiling's own): the editor passes the record, whose
+    estimates are the shaped tiling's (they depend on the group only) and cost no tile rebuilt."""
 
     if getattr(tiling, "family", "") not in FAMILIES:
         raise ParameterError(f"{tiling.name} is a {getattr(tiling, 'family', '?')} tiling; the curved-space viewer "
@@ -85,7 +87,7 @@ def view_data(tiling: Any, max_tiles: int) -> dict[str, Any]:
     out: dict[str, Any] = {"name": tiling.name, "geometry": HYPERBOLIC if hyperbolic else SPHERICAL,
                            "palette": list(DEFAULT_PALETTE)}
     if hyperbolic:
-        radius = _radius_for(tiling, min(VIEW_FACES, max_tiles))
+        radius = _radius_for(tiling if sizer is None else sizer, min(VIEW_FACES, max_tiles))
         tiling = tiling.configure(radius=radius)
         out["radius"] = radius
     else:
@@ -193,6 +195,14 @@ def tiling_links(name: str, tiling: Any) -> list[tuple[str, str]]:
 EDIT_FACES = 500
 #: The range of a handle, as the edge widget clamps it: x in [-0.5, 1.5], y in [-1, 1] on the
 #: unit segment (the API refuses a point outside it).
+#: Model points the editor sends at most (three numbers each: about 6 MB of JSON), and the
+#: fewest faces it draws of a hyperbolic tiling: a tile of more outline points than that allows
+#: (edges of many points) is refused with a one-line error rather than sent.
+EDIT_POINTS = 250_000
+EDIT_MIN_FACES = 40
+#: Points a shape may have between its ends in the editor (a request rebuilds the tile up to
+#: three times, and the tile's triangulation grows faster than its outline's points squared).
+EDIT_MAX_POINTS = 16
 EDIT_X = (-0.5, 1.5)
 EDIT_Y = (-1.0, 1.0)
 
@@ -241,6 +251,10 @@ def edited(tiling: Any, raw: Any) -> Any:
     shapes = parse_edges(list(edges))
     for label, shape in shapes.items():
         pts = shape.points
+        inner = len(shape.path()) - 2
+        if inner > EDIT_MAX_POINTS:
+            raise ParameterError(f"edge {label!r} has {inner} points between its ends{' once flattened' if shape.smooth else ''}; "
+                                 f"the editor takes at most {EDIT_MAX_POINTS}")
         if not ((pts[:, 0] >= EDIT_X[0]) & (pts[:, 0] <= EDIT_X[1]) & (pts[:, 1] >= EDIT_Y[0])
                 & (pts[:, 1] <= EDIT_Y[1])).all():
             raise ParameterError(f"edge {label!r}: the editor takes points with x in [{EDIT_X[0]:g}, {EDIT_X[1]:g}] "
@@ -274,14 +288,21 @@ def edge_classes(tiling: Any) -> list[dict[str, Any]]:
     return out
 
 
-def edit_data(name: str, tiling: Any, max_tiles: int) -> dict[str, Any]:
-    """The viewer's data (:func:`view_data`) of the record ``name`` shaped as ``tiling``, with
+def edit_data(name: str, tiling: Any, max_tiles: int, record: Any = None) -> dict[str, Any]:
+    """The viewer's data (:func:`view_data`, the patch's radius sized on ``record``, the tiling
+    before its edit, when given) of the record ``name`` shaped as ``tiling``, with
     ``edges`` (:func:`edge_classes`), ``query``: the editor's query of the tiling (one
     ``LABEL=SHAPE`` per class); ``link`` the editor's URL, ``svg`` the render API's download and
     ``cli`` the command that renders it (each reopens exactly this tiling)."""
     import shlex  # optional: only the editor's command line needs it
 
-    out = view_data(tiling, min(EDIT_FACES, max_tiles))
+    per_tile = len(tiling.prototiles[0].points)
+    faces = min(EDIT_FACES, max_tiles, EDIT_POINTS // per_tile)
+    least = EDIT_MIN_FACES if tiling.hyperbolic else math.ceil(tiling.estimate_tiles())
+    if faces < least:
+        raise ParameterError(f"the shaped tile has {per_tile:,} outline points, and {least} tiles of it are over the "
+                             f"editor's {EDIT_POINTS:,} points; give the edges fewer points")
+    out = view_data(tiling, faces, record)
     out["edges"] = edge_classes(tiling)
     out["query"] = edge_query(tiling)
     query = _query_text(out["query"])
@@ -303,7 +324,7 @@ def edit_api(request: Any, web: Any) -> dict[str, Any]:
     from tilekit.web.service import query_options
 
     name, base = _edit_target(request, web)
-    return edit_data(name, edited(base, query_options(request.query_params.multi_items())), web.max_tiles)
+    return edit_data(name, edited(base, query_options(request.query_params.multi_items())), web.max_tiles, base)
 
 
 def _query_text(edges: list[str]) -> str:
