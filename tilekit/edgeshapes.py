@@ -98,8 +98,13 @@ class EdgeShape:
         segs = [b @ self.points[i : i + 4] for i in range(0, len(self.points) - 1, 3)]
         return np.vstack(segs + [self.points[-1:]])
 
-    def to_text(self) -> str:
-        body = ":".join(f"{x:.12g},{y:.12g}" for x, y in self.points)
+    def to_text(self, exact: bool = False) -> str:
+        """The text :meth:`parse` reads: 12 significant digits, or with ``exact`` the shortest
+        text that reads back as the same doubles (links that must reopen a shape exactly)."""
+        def num(v: float) -> str:
+            return repr(v).removesuffix(".0") if exact else f"{v:.12g}"
+
+        body = ":".join(f"{num(x)},{num(y)}" for x, y in self.points.tolist())
         return ("bezier:" if self.smooth else "") + body
 
     @classmethod
@@ -125,11 +130,12 @@ class EdgeShape:
         return cls(np.array(pts), smooth)
 
 
-_EDGE_OPTION = re.compile(r"^\s*([a-z])\s*=\s*(.+)$")
+_EDGE_OPTION = re.compile(r"^\s*([a-zA-Z])\s*=\s*(.+)$")
 
 
 def parse_edge_option(text: str) -> tuple[str, EdgeShape]:
-    """'b=0,0:0.3,0.2:1,0' -> ('b', EdgeShape) as the CLI's --edge passes it."""
+    """'b=0,0:0.3,0.2:1,0' -> ('b', EdgeShape) as the CLI's --edge passes it (a label a-z, or A-Z
+    as the curved family's incidence symbols use past 26 edges)."""
     m = _EDGE_OPTION.match(text)
     if not m:
         raise ParseError(f"edge option {text!r} is not 'LABEL=x,y:x,y:...' (e.g. b=0,0:0.3,0.2:1,0)")

@@ -24,6 +24,8 @@ PAGES = [
      "&edge=b=0.25,-0.1:0.5,-0.1:0.6,0.1:0.8,0.05&edge=c=0.2,0.1:0.4,0.1:0.6,0.1:0.8,0.05"
      "&set=split=0.4,3.6;0,0:0.3,0.15:0.7,-0.1:1,0", "#editor[data-state=ok]"),
     ("web-penrose.png", "/penrose", "#penrose[data-state=ok]"),
+    ("web-curved-editor.png", "/curved/edit/curved-ih-5-4-5?edge=a=0,0:0.2,0.12:0.36,0.02:1,0"
+     "&edge=c=0,0:0.22,0.18:0.5,-0.16:0.8,0.1:1,0", "#curved[data-state=ok]"),
     ("web-run.png", "/runs/2?limit=12", None),
     # a catalogue with the polyominoes classified to 8 cells (run 2): a non-tiler's record
     ("web-polyform.png", "/tiling/.x...%2F.x...%2Fxx...%2F.xxxx", None),
@@ -46,6 +48,19 @@ def shape_edges(page) -> None:
     page.wait_for_selector("#editor[data-state=ok]", timeout=20000)
 
 
+def drag_curved_handle(page) -> None:
+    """Drag the curved tile editor's first handle of edge c up, as a user would."""
+    handle = page.locator("#edge-c .handle").first
+    box = handle.bounding_box()
+    x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+    page.mouse.move(x, y)
+    page.mouse.down()
+    page.mouse.move(x + 6, y - 14, steps=4)
+    page.mouse.up()
+    page.wait_for_timeout(1500)
+    page.wait_for_function("() => !document.querySelector('#curved').dataset.busy", timeout=20000)
+
+
 def main(base: str, only: list[str]) -> None:
     with sync_playwright() as p:
         browser = p.chromium.launch(executable_path="/usr/bin/chromium", args=FLAGS, headless=True)
@@ -58,10 +73,13 @@ def main(base: str, only: list[str]) -> None:
                 page.wait_for_selector(ready, timeout=20000)
             if name == "web-editor.png":
                 shape_edges(page)
+            if name == "web-curved-editor.png":
+                drag_curved_handle(page)
             page.evaluate("window.scrollTo(0, 0)")
             page.wait_for_timeout(300)
-            # the split panel is below the edge widgets: the whole page
-            page.screenshot(path=str(HERE / name), full_page=name == "web-editor-split.png")
+            # the split panel is below the edge widgets, the curved editor's links below the disc:
+            # the whole page
+            page.screenshot(path=str(HERE / name), full_page=name in ("web-editor-split.png", "web-curved-editor.png"))
             print("wrote", HERE / name)
         browser.close()
 

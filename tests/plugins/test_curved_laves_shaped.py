@@ -196,7 +196,9 @@ def test_spec_and_configure_keep_the_shapes():
     ({"group": "rotations", "edges": {"c": J_SHAPE}}, "has no shaped edge 'c'; its shaped edges are a"),
     ({"edges": {"a": J_SHAPE}}, "its shaped edges are none (all I: straight)"),
     ({"group": "rotations", "edges": '{"a": 3'}, "edges must be JSON"),
-    ({"group": "rotations", "edges": ["a"]}, "edges must map edge letters to shapes"),
+    ({"group": "rotations", "edges": 3}, "edges must map edge letters to shapes"),
+    ({"group": "rotations", "edges": ["a"]}, "is not 'LABEL=x,y:x,y:...'"),       # the --edge / edge= list form
+    ({"group": "rotations", "edges": ["a=0.2,0.1", "a=0.3,0.1"]}, "edge 'a' is given twice"),
     ({"group": "rotations", "edges": {"a": "0.3,x"}}, "is not points"),
 ])
 def test_bad_shapes_are_one_line(kwargs, needle):

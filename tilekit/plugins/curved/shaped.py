@@ -23,7 +23,7 @@ from typing import Any, TypeVar
 import numpy as np
 import shapely
 
-from tilekit.edgeshapes import EdgeShape
+from tilekit.edgeshapes import EdgeShape, parse_edge_option
 from tilekit.errors import ParameterError, ParseError
 from tilekit.incidence import IncidenceSymbol, shape_classes
 from tilekit.plugins.curved import model
@@ -154,10 +154,22 @@ DEFAULT_DAMPING = (1.0, 0.5, 0.25, 0.125)
 
 
 def parse_edges(edges: Any) -> Mapping[str, Any]:
-    """The ``edges`` option: a mapping of labels to shapes, or its JSON text (as ``--set
-    edges='{"a": "0.2,0.1:0.4,0.1"}'`` passes it); None is no shapes given."""
+    """The ``edges`` option: a mapping of labels to shapes, its JSON text (as ``--set
+    edges='{"a": "0.2,0.1:0.4,0.1"}'`` passes it), or a list of ``LABEL=SHAPE`` texts (as
+    ``--edge a=0.2,0.1:0.4,0.1`` and the web API's ``edge=`` pass them, one per label); None is
+    no shapes given."""
     if edges is None:
         return {}
+    if isinstance(edges, list | tuple):
+        out: dict[str, Any] = {}
+        for item in edges:
+            if not isinstance(item, str):
+                raise ParameterError(f"edges must be 'LABEL=x,y:x,y:...' texts, got {type(item).__name__}")
+            label, shape = parse_edge_option(item)
+            if label in out:
+                raise ParameterError(f"edge {label!r} is given twice; give one shape per label")
+            out[label] = shape
+        return out
     if isinstance(edges, str):
         try:
             edges = json.loads(edges)

@@ -230,7 +230,7 @@ along the boundary and the path's points; double-click a point to remove it.</p>
 </div>
 <div class="view" id="view"></div>
 </div>"""
-    return web.page(f"editor {info['name']}", body, scripts=[f"plugins/{STATIC}/editor.js"])
+    return web.page(f"editor {info['name']}", body, scripts=["edgewidget.js", f"plugins/{STATIC}/editor.js"])
 
 
 # --------------------------------------------------------------------------- views

@@ -8,6 +8,11 @@
 // screen's centre. The wheel and a two-finger pinch magnify the picture (a Euclidean zoom of
 // the drawing, 1x to 16x, by the SVG's viewBox) about the point under the pointer or between
 // the fingers, which stays where it is; the reset button restores view and zoom.
+// The tile editor (editor.js) changes data-src and sends the "curved-reload" event: the patch
+// is fetched again (the newest request wins) and redrawn in the same view and zoom; each
+// patch drawn is announced by a "curved-loaded" event carrying the payload, a refusal by
+// "curved-refused" (the last patch stays on screen). With data-mark-home the face placed by
+// the identity (the prototile) is drawn with a heavier outline.
 (function () {
   "use strict";
   const root = document.getElementById("curved");
@@ -166,11 +171,12 @@
     setBox();
   }
   function inside(p) { return p[0] * p[0] + p[1] * p[1] < (hyper ? 0.9999 : 1); }
-  function build() {
+  function build(keep) {
     svg = document.createElementNS(NS, "svg");
     svg.setAttribute("id", "disc");
     svg.style.touchAction = "none"; // pinches reach the page's handlers, not the browser's zoom
-    zoom = 1; centre = [0, 0]; setBox();
+    if (!keep) { zoom = 1; centre = [0, 0]; }
+    setBox();
     const rim = document.createElementNS(NS, "circle");
     Object.entries({ cx: 0, cy: 0, r: 1, fill: hyper ? "#f8f8f8" : "#eef2f6", stroke: "#222", "stroke-width": 0.004 })
       .forEach(function (kv) { rim.setAttribute(kv[0], kv[1]); });
@@ -182,6 +188,9 @@
       el.setAttribute("stroke-width", "0.003");
       el.setAttribute("stroke-linejoin", "round");
       el.dataset.face = String(f);
+      if (root.dataset.markHome !== undefined && f === data.home) {
+        el.setAttribute("stroke-width", "0.009"); el.setAttribute("class", "home");
+      }
       svg.appendChild(el);
       return el;
     });
@@ -238,28 +247,36 @@
       root.dataset.renders = String(Number(root.dataset.renders || 0) + 1);
     }, { passive: false });
   }
+  let loads = 0;
   function load() {
+    const mine = ++loads, keep = data !== null;
     fetch(root.dataset.src).then(function (r) {
       return r.json().then(function (body) {
         if (!r.ok) throw new Error(body.error || ("HTTP " + r.status));
         return body;
       });
     }).then(function (body) {
+      if (mine !== loads) return; // a newer request was sent
       data = body;
       hyper = body.geometry === "hyperbolic";
       syms = [];
       for (let i = 0; hyper && i < body.symmetries.length; i += 9) syms.push(body.symmetries.slice(i, i + 9));
-      V = hyper ? eye() : [1, 0, 0, 0, 0.906307787, -0.422618262, 0, 0.422618262, 0.906307787];
-      build();
+      if (!keep) V = hyper ? eye() : [1, 0, 0, 0, 0.906307787, -0.422618262, 0, 0.422618262, 0.906307787];
+      build(keep);
       draw();
+      errorBox.textContent = "";
       status.textContent = body.sizes.length + " faces" +
         (hyper ? " within hyperbolic distance " + body.radius.toFixed(2) + " of the patch's centre" : "");
       root.dataset.state = "ok";
+      root.dispatchEvent(new CustomEvent("curved-loaded", { detail: body }));
     }).catch(function (err) {
+      if (mine !== loads) return;
       errorBox.textContent = String(err.message || err);
       root.dataset.state = "error";
+      root.dispatchEvent(new CustomEvent("curved-refused", { detail: String(err.message || err) }));
     });
   }
+  root.addEventListener("curved-reload", load);
   document.getElementById("reset").addEventListener("click", function () {
     V = hyper ? eye() : [1, 0, 0, 0, 0.906307787, -0.422618262, 0, 0.422618262, 0.906307787];
     if (svg) { zoom = 1; centre = [0, 0]; setBox(); }
