@@ -37,6 +37,7 @@ proof (a hole, or a level at which no corona exists), and ``undecided`` otherwis
 
 from __future__ import annotations
 
+import functools
 import json
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -142,9 +143,16 @@ def check_torus_cost(grid: Grid, cells: int, torus_tiles: int, escalate_torus_ti
     bounds (:func:`torus.torus_cost`); over :data:`MAX_TORUS_CLAUSES` clauses, or a largest
     torus formula over the memory available, a one-line LimitError naming the estimate, the
     limit and the options that lower it, before any search starts."""
-    most = max(torus_tiles, escalate_torus_tiles or 0)
+    return _checked_torus_cost(grid.name, cells, max(torus_tiles, escalate_torus_tiles or 0),
+                               "--escalate-torus-tiles" if escalate_torus_tiles else "--torus-tiles")
+
+
+@functools.lru_cache(maxsize=256)
+def _checked_torus_cost(grid_name: str, cells: int, most: int, option: str) -> TorusCost:
+    """:func:`check_torus_cost`, once per process for each size and bound that passes (it runs
+    for every form classified: the memory check alone reads /proc, a quarter of a millisecond)."""
+    grid = GRIDS[grid_name]
     cost = torus_cost(grid, cells, most)
-    option = "--escalate-torus-tiles" if escalate_torus_tiles else "--torus-tiles"
     hint = (f"the tori of one {cells}-cell form on the {grid.name} grid up to {most} tiles per unit "
             f"({cost.tori:,} tori, about {cost.cpu_seconds / 3600:.2g} CPU hours); ask for fewer with {option}")
     refuse_over("SAT clauses", cost.clauses, MAX_TORUS_CLAUSES, hint=hint)
