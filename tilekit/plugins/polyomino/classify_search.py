@@ -152,13 +152,13 @@ def run_chunk(params: dict[str, Any], chunk: dict[str, Any]):
                                                  with_symmetry=True)
     keep = [i for i, c in enumerate(polys) if len(c) >= lo]
     # the boundary-word test of the whole chunk in one compiled call (isohedral.analyse_many)
-    t0 = time.monotonic()
+    t0 = time.process_time()
     plain = [polys[i] for i in keep if not hole_flags[i]]
     analysed = iter(analyse_many(grid, plain))
-    bulk = (time.monotonic() - t0) / max(1, len(keep))
+    bulk = (time.process_time() - t0) / max(1, len(keep))
     for i in keep:
         cells, holey, mask = polys[i], hole_flags[i], int(masks[i])
-        t0 = time.monotonic() - bulk
+        t0 = time.process_time() - bulk
         analysis = None if holey else next(analysed)
         c = classify(grid, cells, analysis, has_holes=bool(holey), **bounds)
         hc = len(holes(grid, cells)) if holey else 0
@@ -167,7 +167,7 @@ def run_chunk(params: dict[str, Any], chunk: dict[str, Any]):
         cells = cells[np.lexsort((cells[:, 0], cells[:, 1]))]
         row = make_row(cells, bool(holey), hc, analysis, code=encode(grid, cells, is_canonical=True),
                        symmetry=symmetry_from_mask(grid, mask), grid=grid)
-        tally.add(row | c.columns(), len(cells), c, bool(holey), time.monotonic() - t0)
+        tally.add(row | c.columns(), len(cells), c, bool(holey), time.process_time() - t0)
     return tally.result()
 
 
@@ -202,7 +202,9 @@ class _Tally:
 
 
 def summarize(params: dict[str, Any], results: list[dict[str, Any]]) -> dict[str, Any]:
-    """The bounds of the run (the per-size tallies are the summed counts)."""
+    """The bounds of the run (the per-size tallies are the summed counts; ``seconds_N`` is the
+    CPU seconds of the size-N forms, the process's: runs stored before 2026-12-04 hold wall-clock
+    seconds under the same key)."""
     b = _bounds(params)
     return {"max_cells": int(params["max_cells"]), "max_level": b["max_level"], "torus_tiles": b["torus_tiles"],
             "escalate_torus_tiles": b["escalate_torus_tiles"], "grid": str(params.get("grid") or "square")}
