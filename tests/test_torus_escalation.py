@@ -184,8 +184,8 @@ def test_codes_classify_the_named_forms_only(tmp_path):
 
 @pytest.mark.exhaustive
 def test_the_13_omino_with_20_tiles_per_unit():
-    """The one 13-omino the default bound leaves undecided tiles with 20 tiles per unit (about
-    12 CPU minutes, 707 s through the CLI: marked exhaustive). Through the public API with the
+    """The one 13-omino the default bound leaves undecided tiles with 20 tiles per unit (10-12 CPU
+    minutes: 578 s here, 707 s through the CLI; marked exhaustive). Through the public API with the
     escalation: a tiler, k = 5, pgg; its tiling exact over a region and 5-isohedral by
     tilekit.symmetry (A075206(13) = 431 counts it)."""
     poly = tilekit.polyomino(TWENTY)
