@@ -10,6 +10,7 @@ import shapely
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
+from tilekit.budget import Budget
 from tilekit.builder import PatchBuilder, VertexView, build_patch, labels_match
 from tilekit.errors import ParameterError
 from tilekit.geometry import regular_polygon
@@ -71,10 +72,16 @@ def test_node_and_time_limits_are_honoured():
     assert res.status == "limit" and res.patch is None
     assert res.stats.nodes == 40
     assert "node limit" in res.stats.reason
+    # the time limit is CPU seconds of the calling thread (tilekit.budget), not wall-clock time
     res = build_patch(tri, radius=500.0, max_seconds=0.05)
     assert res.status == "limit" and res.patch is None
-    assert "time limit" in res.stats.reason
-    assert res.stats.seconds < 5.0
+    assert res.stats.reason.startswith("gave up at the time limit (0.05 CPU seconds) (largest patch")
+    budget = Budget(0.05)
+    res = build_patch(tri, radius=500.0, max_seconds=budget)
+    assert res.status == "limit" and budget.spent() and 0.05 <= budget.used() < 1.0
+    spent = Budget(0.0)
+    res = build_patch(tri, radius=500.0, max_seconds=spent)
+    assert res.status == "limit" and (res.stats.nodes, res.stats.max_tiles) == (1, 1)  # one candidate tried after the seed
 
 
 def test_deterministic():

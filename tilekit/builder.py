@@ -32,6 +32,7 @@ from typing import Any, Protocol
 
 import numpy as np
 
+from tilekit.budget import Budget
 from tilekit.errors import GeometryError, ParameterError
 from tilekit.geometry import Affine, snap_noise
 from tilekit.limits import DEFAULT_SOLVER_SECONDS
@@ -248,9 +249,8 @@ class _Run:
     periodic: bool
     stats: BuildStats
     started: float
-    deadline: float | None
+    budget: Budget | None
     max_nodes: int
-    max_seconds: float | None
 
     def goal_text(self) -> str:
         if self.tiles is not None:
@@ -260,15 +260,15 @@ class _Run:
         return "every edge the fill predicate asks for" if self.fill is not None else "a closed torus"
 
     def over_budget(self, strict: bool) -> bool:
-        """Node or time budget spent. Between failed candidates the clock is read every 64
+        """Node or CPU-time budget spent. Between failed candidates the clock is read every 64
         nodes only (``strict=False``); after a placement, always."""
         if self.stats.nodes >= self.max_nodes:
             return True
-        if self.deadline is None:
+        if self.budget is None:
             return False
         if not strict and (self.stats.nodes & 63) != 0:
             return False
-        return time.perf_counter() > self.deadline
+        return self.budget.spent()
 
 
 Edge = tuple[int, int]
@@ -937,15 +937,17 @@ class PatchBuilder:
         seed: int = 0,
         seed_transform: np.ndarray | None = None,
         max_nodes: int = 1_000_000,
-        max_seconds: float | None = DEFAULT_SOLVER_SECONDS,
+        max_seconds: Budget | float | None = DEFAULT_SOLVER_SECONDS,
     ) -> BuildResult:
         """Grow a patch from prototile ``seed`` (placed by ``seed_transform``, default the
         identity) until it has ``tiles`` tiles, or covers the disc of ``radius`` round the
         seed's centroid, or has no open edge that ``fill(edge)`` accepts (``edge`` as for a
         callable order, plus ``tile`` and ``prototile`` of the tile that owns it: e.g. "every
         edge inside this box", or "every edge of the seed" for a first corona). Stops at
-        ``max_nodes`` candidate placements or ``max_seconds`` (default
-        ``limits.DEFAULT_SOLVER_SECONDS``; None: no time limit).
+        ``max_nodes`` candidate placements or ``max_seconds`` CPU seconds of the calling thread
+        (a number, or a :class:`tilekit.budget.Budget` shared with other work; default
+        ``limits.DEFAULT_SOLVER_SECONDS``; None: no time limit), so that the result does not
+        depend on the machine's load; ``stats.seconds`` is the wall-clock time the call took.
 
         With a ``period`` the goal may be left out: it is then a closed torus (every open
         edge of the representatives filled, so their lattice images tile the plane and the
@@ -954,8 +956,8 @@ class PatchBuilder:
         the representatives (one tile per orbit). A radius goal needs the plane."""
         self._check_goal(tiles, radius, fill, seed, max_nodes)
         started = time.perf_counter()
-        run = _Run(tiles, radius, fill, self.period is not None, BuildStats(), started,
-                   None if max_seconds is None else started + max_seconds, max_nodes, max_seconds)
+        run = _Run(tiles, radius, fill, self.period is not None, BuildStats(), started, Budget.of(max_seconds),
+                   max_nodes)
         self._reset(radius, fill)
         failed = self._place_seed(seed, seed_transform, run)
         return failed if failed is not None else self._search(run)
@@ -1049,7 +1051,7 @@ class PatchBuilder:
                 run.stats.backtracks += 1
                 state = "try"
             else:  # "limit"
-                return self._give_up(run.stats, run.started, run.max_nodes, run.max_seconds)
+                return self._give_up(run.stats, run.started, run.max_nodes, run.budget)
 
     def _choose_step(self, run: _Run, stack: list[list[Any]]) -> BuildResult | None:
         """Finish (goal met, or no edge left in the plane), or push the next edge's candidates."""
@@ -1117,9 +1119,9 @@ class PatchBuilder:
             )
         return BuildResult("exhausted", None, stats)
 
-    def _give_up(self, stats: BuildStats, started: float, max_nodes: int, max_seconds: float | None) -> BuildResult:
+    def _give_up(self, stats: BuildStats, started: float, max_nodes: int, budget: Budget | None) -> BuildResult:
         stats.seconds = time.perf_counter() - started
-        which = f"node limit {max_nodes}" if stats.nodes >= max_nodes else f"time limit {max_seconds:g} s"
+        which = f"node limit {max_nodes}" if stats.nodes >= max_nodes else f"time limit ({budget})"
         stats.reason = f"gave up at the {which} (largest patch {stats.max_tiles} tiles)"
         return BuildResult("limit", None, stats)
 

@@ -101,8 +101,8 @@ MAX_IMAGE_BYTES = 256 << 20
 
 #: Seconds one solver or builder call runs when its caller gives no budget of its own
 #: (``wang solve --time-limit``, ``wang render --time-limit``, PatchBuilder.build's
-#: max_seconds): CPU seconds for a SAT solver (tilekit.budget), wall-clock seconds for the
-#: builder; it ends with a one-line SolverLimit naming the option that raises it.
+#: max_seconds): CPU seconds (tilekit.budget) for a SAT solver, the builder and the Wang
+#: backtracking search alike; it ends with a one-line SolverLimit naming the option that raises it.
 DEFAULT_SOLVER_SECONDS = 60.0
 #: The largest time budget an option accepts (seconds; a finite number, about 115 days).
 MAX_SOLVER_SECONDS = 1e7

@@ -177,6 +177,37 @@ def test_limits_raise_solver_limit():
             sat_solve(kari, 70, 70, solver=solver, time_limit=0.3)
 
 
+def test_time_limits_are_cpu_seconds_for_every_method():
+    """The builder and the backtracking search count CPU seconds of the calling thread, as the
+    SAT solver does (tilekit.budget): a budget that runs out ends the search with the one-line
+    SolverLimit naming what was used and the limit, whatever the machine's load; a Budget
+    given is the one spent. (Jeandel-Rao has no torus; 20 x 20 and 8 x 8 are far from
+    exhausted in 0.3 s; Kari 70 x 70 as above.)"""
+    from tilekit.budget import Budget
+
+    jr, kari = get_tileset("jeandel-rao"), get_tileset("kari-14")
+    for call, ts, n, torus in ((backtrack_solve, jr, 20, True), (backtrack_solve, kari, 70, False),
+                               (builder_solve, jr, 8, True)):
+        budget = Budget(0.3)
+        with pytest.raises(SolverLimit, match=r"CPU seconds \(time limit: 0\.3 CPU seconds\); raise the time limit"):
+            call(ts, n, n, torus=torus, max_nodes=None, time_limit=budget)
+        assert budget.spent() and 0.3 <= budget.used() < 1.5
+    with pytest.raises(SolverLimit, match=r"backtracking gave no answer .* within \d+ placements and 0\.\d+ CPU"):
+        solve(jr, 20, 20, torus=True, method="backtrack", time_limit=0.2, max_nodes=None)
+
+
+def test_wang_procedure_total_limit_is_cpu_seconds():
+    """Wang's procedure's total limit is a CPU budget; each call gets a share of what is left
+    (its CPU counts in the total), so the procedure ends in one line after about that much CPU
+    (Jeandel-Rao, aperiodic, never answers)."""
+    import time
+
+    start = time.process_time()
+    with pytest.raises(SolverLimit, match=r"CPU seconds"):
+        wang_procedure(get_tileset("jeandel-rao"), 30, method="backtrack", time_limit=None, total_limit=0.2)
+    assert 0.2 <= time.process_time() - start < 1.5
+
+
 def test_other_sat_solvers_give_the_same_answers():
     ts = get_tileset("kari-14")
     for solver in ("glucose4", "minisat22"):

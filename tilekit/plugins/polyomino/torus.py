@@ -28,6 +28,74 @@ from tilekit.plugins.polyomino.placements import Forms
 from tilekit.sat import DEFAULT_SAT_SOLVER, IncrementalSolver, gc_paused, solve
 from tilekit.symmetry.orbits import union_find
 
+#: CPU seconds per clause of a torus formula, encoding and solving together, for the estimate
+#: of :func:`torus_cost`: the 13-omino ``...x/.xxx/xxx./.xxx/.xxx`` took 582 CPU seconds for
+#: its tori of 13..20 tiles per unit (docs/benchmarks.md, the n = 13 run), 5.1e7 clauses by
+#: the estimate. Unsatisfiable tori dominate; a satisfiable one can be much quicker.
+TORUS_CPU_PER_CLAUSE = 1.1e-5
+
+
+def sublattice_count(N: int) -> int:
+    """How many sublattices of Z^2 have index N: the sum of N's divisors, sigma(N) (one HNF
+    basis (a, b), (0, d) per divisor a and residue b < d = N / a, :func:`sublattices`)."""
+    total, a = 0, 1
+    while a * a <= N:
+        if N % a == 0:
+            total += a + (N // a if a * a != N else 0)
+        a += 1
+    return total
+
+
+@dataclass(frozen=True)
+class TorusCost:
+    """What the tori of one form up to ``tiles`` tiles per unit cost, estimated before any is
+    built (:func:`torus_cost`)."""
+
+    tiles: int
+    sublattices: int  # every period lattice of the indices tried (exact)
+    tori: int  # those left up to the grid's point group (an estimate: sublattices / (|G| / 2))
+    clauses: int  # over all tori (at most: every orientation's every translate is a placement)
+    largest_clauses: int  # of the largest torus formula
+    largest_variables: int
+
+    @property
+    def cpu_seconds(self) -> float:
+        """The CPU time it would take at :data:`TORUS_CPU_PER_CLAUSE`."""
+        return self.clauses * TORUS_CPU_PER_CLAUSE
+
+
+def formula_size(grid: Grid, cells: int, N: int, orientations: int | None = None) -> tuple[int, int]:
+    """(variables, clauses) of the exact-cover formula of a torus of index N (N translational
+    units) for a form of ``cells`` cells with ``orientations`` copies (default: as many as the
+    grid's point group has elements): P = orientations * N placements of ``cells`` cells each on
+    R * N torus cells (R cell types); one clause per cell that some copy covers, three for each
+    further copy on it (the ladder) and the anchor — equal to :meth:`TorusSearch._formula`'s when
+    no placement is dropped (an asymmetric form on a torus it does not wrap onto itself)."""
+    J = len(grid.group) if orientations is None else orientations
+    R = len(grid.roots)
+    P = J * N
+    return P + P * cells - R * N, 3 * P * cells - 3 * R * N + 1
+
+
+def torus_cost(grid: Grid, cells: int, tiles: int, least: int = 2) -> TorusCost:
+    """The estimated cost of searching the tori with ``least``..``tiles`` tiles per unit for a
+    form of ``cells`` cells on ``grid``: the sublattices (exact), the tori up to the point group
+    (``-1`` maps every lattice onto itself, so an orbit has at most |G| / 2 lattices) and the
+    clauses (:func:`formula_size`, the most orientations). Arithmetic only: no lattice is built."""
+    R = len(grid.roots)
+    h = max(1, len(grid.group) // 2)
+    subs = tori = clauses = big_c = big_v = 0
+    for m in range(max(2, least), tiles + 1):
+        if (m * cells) % R:
+            continue
+        N = m * cells // R
+        s = sublattice_count(N)
+        t = -(-s // h)
+        v, c = formula_size(grid, cells, N)
+        subs, tori, clauses = subs + s, tori + t, clauses + t * c
+        big_c, big_v = max(big_c, c), max(big_v, v)
+    return TorusCost(tiles, subs, tori, clauses, big_c, big_v)
+
 
 def sublattices(N: int):
     """HNF triples ``(a, b, d)`` of every sublattice of Z^2 of index N (basis (a, b), (0, d))."""

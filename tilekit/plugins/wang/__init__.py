@@ -195,7 +195,7 @@ PERIODICITY = Search(
         SearchParam("set", str, None, "a shipped Wang set name or a .wang file", required=True),
         SearchParam("max_m", int, 8, "largest m to try", min=1, max=64),
         SearchParam("method", str, "sat", "solver for the tori and squares", choices=("sat", "builder", "backtrack")),
-        SearchParam("time_limit", float, DEFAULT_SOLVER_SECONDS, "CPU seconds per SAT solver call (wall-clock seconds for builder and backtrack)", min=0.01, max=86_400.0),
+        SearchParam("time_limit", float, DEFAULT_SOLVER_SECONDS, "CPU seconds per solver call (SAT, builder or backtrack)", min=0.01, max=86_400.0),
     ),
     chunks=periodicity_chunks,
     run_chunk=periodicity_run_chunk,

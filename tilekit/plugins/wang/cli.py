@@ -116,8 +116,8 @@ def render_command(set_name: str, out: str, rows: int, cols: int, seed: int, met
 @click.option("--fix", "fixes", multiple=True, metavar="ROW,COL=TILE", help="Fix a tile (index or name); repeatable.")
 @click.option("--time-limit", type=FiniteFloat(limits.MAX_SOLVER_SECONDS, min=1e-3),
               default=limits.DEFAULT_SOLVER_SECONDS, show_default=True,
-              help="CPU seconds the SAT solver (--method sat) may take, wall-clock seconds for builder and "
-                   "backtrack, before it gives up with a one-line error.")
+              help="CPU seconds the solver (sat, builder or backtrack) may take before it gives up with a "
+                   "one-line error.")
 @click.option("-o", "--output", "out", type=OUTPUT, help="Also draw the tiling found (.svg/.png).")
 @click.option("--max-tiles", type=POSITIVE, default=limits.MAX_SOLVE_CELLS, show_default=True,
               help="Refuse grids of more than N cells.")

@@ -28,6 +28,7 @@ from typing import Any
 
 import numpy as np
 
+from tilekit.budget import Budget
 from tilekit.builder import PatchBuilder
 from tilekit.errors import ParameterError, SolverLimit
 from tilekit.limits import (
@@ -60,17 +61,19 @@ def backtrack_solve(
     torus: bool = False,
     fixed: Mapping[Any, Any] | None = None,
     max_nodes: int | None = 10_000_000,
-    time_limit: float | None = DEFAULT_SOLVER_SECONDS,
+    time_limit: Budget | float | None = DEFAULT_SOLVER_SECONDS,
 ) -> SolveResult:
     """Depth-first search in scanline order with an explicit stack (no recursion limit).
 
     Cell k = i * cols + j takes the tiles whose N and W colours match the tiles above and to
     the left (on a torus, the last column must also match the first and the last row the
     first row). Exhausting the stack proves that no tiling exists. Raises
-    :class:`SolverLimit` at ``max_nodes`` tile placements or ``time_limit`` seconds.
+    :class:`SolverLimit` at ``max_nodes`` tile placements or ``time_limit`` CPU seconds of the
+    calling thread (a number or a :class:`tilekit.budget.Budget`).
     """
     rows, cols, fixed_n = prepare_question(tileset, rows, cols, fixed, torus)
     start = time.perf_counter()
+    budget = Budget.of(time_limit)
     tiles = tileset.tiles.tolist()
     T = len(tiles)
     # candidates by (north colour or None, west colour or None)
@@ -107,7 +110,6 @@ def backtrack_solve(
         return cand
 
     nodes = 0
-    deadline = None if time_limit is None else start + time_limit
     stack: list[tuple[list[int], int]] = [(candidates(0), 0)]
     k = 0
     found = False
@@ -121,9 +123,9 @@ def backtrack_solve(
         grid[k] = cand[pos]
         nodes += 1
         if max_nodes is not None and nodes > max_nodes or (
-            deadline is not None and (nodes & 1023) == 0 and time.perf_counter() > deadline
+            budget is not None and (nodes & 1023) == 0 and budget.spent()
         ):
-            spent = f"{nodes - 1} placements / {time.perf_counter() - start:.3g} s"
+            spent = _spent(f"{nodes - 1} placements", budget)
             raise no_answer("backtracking", tileset, rows, cols, torus, spent, _ADVICE)
         if k == cells - 1:
             found = True
@@ -204,7 +206,7 @@ def builder_solve(
     torus: bool = False,
     fixed: Mapping[Any, Any] | None = None,
     max_nodes: int | None = 2_000_000,
-    time_limit: float | None = DEFAULT_SOLVER_SECONDS,
+    time_limit: Budget | float | None = DEFAULT_SOLVER_SECONDS,
 ) -> SolveResult:
     """Decide the rectangle or torus question with :class:`tilekit.builder.PatchBuilder`.
 
@@ -213,6 +215,8 @@ def builder_solve(
     exhausted. A rectangle is the builder's fill goal "every open edge inside the rectangle";
     a torus is the builder's periodic mode with lattice ((cols, 0), (0, rows)) and its goal
     of a closed torus. The patch found is converted back to a grid and checked independently.
+    ``time_limit``: CPU seconds of the calling thread for all the runs together (a number or a
+    :class:`tilekit.budget.Budget`).
     """
 
     rows, cols, fixed_n = prepare_question(tileset, rows, cols, fixed, torus)
@@ -220,6 +224,7 @@ def builder_solve(
                        BUILDER_BYTES_PER_TORUS_TILE if torus else BUILDER_BYTES_PER_TILE,
                        hint="use method='sat' or a smaller grid")
     start = time.perf_counter()
+    budget = Budget.of(time_limit)
     top = float(rows)
 
     def inside(edge: Mapping[str, Any]) -> bool:
@@ -240,17 +245,16 @@ def builder_solve(
     corner[1, 2] = rows - 1
     nodes = 0
     for seed in seeds:
-        budget = None if max_nodes is None else max_nodes - nodes
-        remaining = None if time_limit is None else time_limit - (time.perf_counter() - start)
-        if (budget is not None and budget < 1) or (remaining is not None and remaining <= 0):
-            raise _limit_message(tileset, rows, cols, torus, nodes, start)
+        left = None if max_nodes is None else max_nodes - nodes
+        if (left is not None and left < 1) or (budget is not None and budget.spent()):
+            raise _limit_message(tileset, rows, cols, torus, nodes, budget)
         result = builder.build(
             fill=None if torus else inside, seed=seed, seed_transform=corner,
-            max_nodes=budget if budget is not None else 10**12, max_seconds=remaining,
+            max_nodes=left if left is not None else 10**12, max_seconds=budget,
         )
         nodes += result.stats.nodes
         if result.status == "limit":
-            raise _limit_message(tileset, rows, cols, torus, nodes, start)
+            raise _limit_message(tileset, rows, cols, torus, nodes, budget)
         if result.status == "complete":
             grid = patch_to_grid(result.patch, rows, cols, torus)
             check_grid(grid, tileset, torus=torus, fixed=fixed_n)
@@ -263,9 +267,14 @@ def builder_solve(
 _ADVICE = "raise the time limit (--time-limit S) or max_nodes, or use method='sat'"
 
 
-def _limit_message(tileset: WangTileSet, rows: int, cols: int, torus: bool, nodes: int, start: float) -> SolverLimit:
-    spent = f"{nodes} nodes / {time.perf_counter() - start:.3g} s"
-    return no_answer("the patch builder", tileset, rows, cols, torus, spent, _ADVICE)
+def _spent(work: str, budget: Budget | None) -> str:
+    """What a search used when it gave up: its work and, with a budget, the CPU seconds."""
+    return work if budget is None else f"{work} and {budget.used():.3g} CPU seconds (time limit: {budget})"
+
+
+def _limit_message(tileset: WangTileSet, rows: int, cols: int, torus: bool, nodes: int,
+                   budget: Budget | None) -> SolverLimit:
+    return no_answer("the patch builder", tileset, rows, cols, torus, _spent(f"{nodes} nodes", budget), _ADVICE)
 
 
 def patch_to_grid(patch: Any, rows: int, cols: int, torus: bool = False) -> np.ndarray:
@@ -295,7 +304,7 @@ def solve(
     torus: bool = False,
     fixed: Mapping[Any, Any] | None = None,
     method: str = "sat",
-    time_limit: float | None = DEFAULT_SOLVER_SECONDS,
+    time_limit: Budget | float | None = DEFAULT_SOLVER_SECONDS,
     **options: Any,
 ) -> SolveResult:
     """Does ``tileset`` tile a rows x cols rectangle (or torus) with the ``fixed`` tiles?
@@ -303,9 +312,9 @@ def solve(
     ``fixed`` maps (row, column) to a tile index or name. ``method`` is 'sat' (default),
     'builder' or 'backtrack'. Every tiling returned has passed the independent
     checker; "does not tile" is a proof (exhausted search or an UNSAT answer). The call
-    ends with a one-line :class:`SolverLimit` after ``time_limit`` seconds (default
-    ``limits.DEFAULT_SOLVER_SECONDS``; None: no limit): CPU seconds for 'sat'
-    (:mod:`tilekit.budget`), wall-clock seconds for the builder and the backtracking search.
+    ends with a one-line :class:`SolverLimit` after ``time_limit`` CPU seconds (a number or a
+    :class:`tilekit.budget.Budget`; default ``limits.DEFAULT_SOLVER_SECONDS``; None: no limit),
+    for every method: the calling thread's, and a SAT solver's forked process's.
     """
     if method == "sat":
         return sat_solve(tileset, rows, cols, torus, fixed, time_limit=time_limit, solver=options.pop("solver", DEFAULT_SAT_SOLVER), **options)
@@ -379,7 +388,8 @@ def wang_procedure(
     For each m, first an m x m torus (found: periodic, stop), then the m x m square (no
     tiling: does not tile, stop). ``time_limit`` bounds each single solver call (default
     ``limits.DEFAULT_SOLVER_SECONDS``), ``total_limit`` the whole procedure: past it, the
-    calls left end in a SolverLimit.
+    calls left end in a SolverLimit. Both are CPU seconds (:mod:`tilekit.budget`): each call's
+    budget is a share of the total's, so a forked solver's CPU counts in both.
     """
     try:
         max_m = int(max_m)
@@ -391,14 +401,15 @@ def wang_procedure(
     began = time.perf_counter()
     steps: list[dict[str, Any]] = []
 
-    def budget() -> float | None:
-        if total_limit is None:
+    total = Budget.of(total_limit)
+
+    def budget() -> Budget | float | None:
+        if total is None:
             return time_limit
-        left = total_limit - (time.perf_counter() - began)
+        left = total.remaining()
         if left <= 0:
-            raise SolverLimit(f"Wang's procedure for set {tileset.name!r} ran out of its {total_limit:g} s "
-                              f"before m = {m}")
-        return left if time_limit is None else min(time_limit, left)
+            raise SolverLimit(f"Wang's procedure for set {tileset.name!r} ran out of its {total} before m = {m}")
+        return total.share(1.0 if time_limit is None or time_limit >= left else time_limit / left)
 
     for m in range(start_m, max_m + 1):
         tor = solve(tileset, m, m, torus=True, method=method, time_limit=budget())
