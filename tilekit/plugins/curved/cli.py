@@ -1,5 +1,5 @@
 """The curved family's command: ``tilekit sphere-mesh``, a printable sphere (STL, or OBJ with
-coloured tiles) from a catalogue tiling of the sphere.
+coloured tiles; tiles of chosen colour classes optionally in relief) from a catalogue tiling of the sphere.
 
 Only click and the core's cheap cli_types are loaded at the top, so ``tilekit --help``, which
 adds this command, does not import NumPy.
@@ -34,7 +34,8 @@ DEFAULT_RINGS, MAX_RINGS = 4, 32
 def sphere_mesh_command(ctx: click.Context, name: str, out: str, size_mm: float, rings: int,
                         relief_mm: float | None, raise_colours: tuple[int, ...], settings: tuple[str, ...]) -> None:
     """Write a tiling of the sphere as a printable mesh: one closed surface of triangles (every
-    edge in two), the tiles' boundaries on it; .obj colours the tiles by kind.
+    edge in two), the tiles' boundaries on it; .obj colours the tiles by kind; --relief-mm
+    raises the tiles of colour class 0 (or --raise-colour) with vertical walls.
 
     \b
     Examples:
