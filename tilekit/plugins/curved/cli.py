@@ -1,5 +1,5 @@
 """The curved family's command: ``tilekit sphere-mesh``, a printable sphere (STL, or OBJ with
-coloured tiles) from a catalogue tiling of the sphere.
+coloured tiles; tiles of chosen colour classes optionally in relief) from a catalogue tiling of the sphere.
 
 Only click and the core's cheap cli_types are loaded at the top, so ``tilekit --help``, which
 adds this command, does not import NumPy.
@@ -23,18 +23,25 @@ DEFAULT_RINGS, MAX_RINGS = 4, 32
               help="The sphere's diameter in millimetres.")
 @click.option("--rings", type=BoundedInt(1, MAX_RINGS), default=DEFAULT_RINGS, show_default=True,
               help="Rings of triangles from each tile's centre to its outline (how closely the mesh follows the sphere).")
+@click.option("--relief-mm", type=float, default=None,
+              help="Raise the tiles of the colour classes --raise-colour (default 0, the first colour) this many mm "
+                   "above the ball, with vertical walls: 0 < relief <= a quarter of --size-mm.")
+@click.option("--raise-colour", "raise_colours", type=int, multiple=True, metavar="CLASS",
+              help="A colour class to raise with --relief-mm (repeatable; default 0).")
 @click.option("--set", "settings", multiple=True, metavar="KEY=VALUE",
               help="A tiling option, e.g. samples=16 (points per edge of the outline).")
 @click.pass_context
 def sphere_mesh_command(ctx: click.Context, name: str, out: str, size_mm: float, rings: int,
-                        settings: tuple[str, ...]) -> None:
+                        relief_mm: float | None, raise_colours: tuple[int, ...], settings: tuple[str, ...]) -> None:
     """Write a tiling of the sphere as a printable mesh: one closed surface of triangles (every
-    edge in two), the tiles' boundaries on it; .obj colours the tiles by kind.
+    edge in two), the tiles' boundaries on it; .obj colours the tiles by kind; --relief-mm
+    raises the tiles of colour class 0 (or --raise-colour) with vertical walls.
 
     \b
     Examples:
       tilekit sphere-mesh truncated-icosahedron -o ball.stl --size-mm 80
       tilekit sphere-mesh 3.4.4.4 -o rhombicuboctahedron.obj
+      tilekit sphere-mesh 3.4.3.4 -o relief.stl --relief-mm 3
     """
     # start-up cost: the mesh writer loads NumPy, only when the command runs
     from tilekit.plugins.curved.mesh import write_mesh
@@ -45,5 +52,8 @@ def sphere_mesh_command(ctx: click.Context, name: str, out: str, size_mm: float,
     options = parse_settings(settings)
     if options:
         tiling = tiling.configure(**options)
-    tiles, triangles = write_mesh(tiling, out, size_mm=size_mm, rings=rings)
+    if raise_colours and relief_mm is None:
+        raise click.UsageError("--raise-colour chooses the tiles --relief-mm raises: give --relief-mm too")
+    tiles, triangles = write_mesh(tiling, out, size_mm=size_mm, rings=rings, relief_mm=relief_mm,
+                                  raise_colours=raise_colours or (0,))
     click.echo(f"wrote {out} ({tiles} tiles, {triangles} triangles)")

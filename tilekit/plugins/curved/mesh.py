@@ -7,6 +7,13 @@ centre and the outline (its ``samples`` points per edge, placed symmetrically so
 sample a shared edge at the same points), each ring's points pushed onto the sphere; the
 tiles' shared boundary points are welded on a grid (a cluster of float-equal points is one
 vertex), so the mesh is closed and every edge has exactly two triangles.
+
+Relief (:func:`raise_tiles`): the tiles of chosen colour classes are lifted radially to
+radius 1 + h, with vertical walls (in the planes through the centre and each boundary edge)
+where a raised tile meets a lower one. Every boundary vertex gets one copy per sector of
+equal-height tiles round it and one mid-height vertex on its wall line, so the mesh stays one
+closed, consistently oriented surface (every edge in exactly two triangles) even where raised
+tiles touch only at a corner, as on a 2-coloured octahedron.
 """
 
 from __future__ import annotations
@@ -58,17 +65,91 @@ def sphere_mesh(patch: Any, rings: int = DEFAULT_RINGS) -> tuple[np.ndarray, np.
         placed = model.apply(patch.transform[idx], local)       # (m, P, 3)
         m, p = placed.shape[:2]
         pts_all.append(placed.reshape(-1, 3))
-        tris_all.append((local_tris[None] + base + p * np.arange(m)[:, None, None]).reshape(-1, 3))
+        placed_tris = np.repeat(local_tris[None], m, axis=0)     # (m, t, 3)
+        mirrored = np.linalg.det(patch.transform[idx]) < 0       # a reflection reverses the winding
+        placed_tris[mirrored] = placed_tris[mirrored][..., ::-1]
+        tris_all.append((placed_tris + base + p * np.arange(m)[:, None, None]).reshape(-1, 3))
         owner_all.append(np.repeat(idx, len(local_tris)))
         base += m * p
     pts = np.concatenate(pts_all)
     tris = np.concatenate(tris_all)
-    if len(tris) > MAX_TRIANGLES:
-        raise ParameterError(f"this mesh would have {len(tris):,} triangles, over the limit of {MAX_TRIANGLES:,}: "
-                             "use fewer rings (--rings) or samples (--set samples=N)")
+    _check_size(len(tris))
     vid = weld(pts, sep)
     used, new = np.unique(vid, return_inverse=True)
     return pts[used], new.reshape(-1)[tris], np.concatenate(owner_all)
+
+
+def _check_size(triangles: int) -> None:
+    if triangles > MAX_TRIANGLES:
+        raise ParameterError(f"this mesh would have {triangles:,} triangles, over the limit of {MAX_TRIANGLES:,}: "
+                             "use fewer rings (--rings) or samples (--set samples=N)")
+
+
+def raise_tiles(vertices: np.ndarray, triangles: np.ndarray, owner: np.ndarray, raised: np.ndarray,
+                height: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The closed mesh of :func:`sphere_mesh` with the tiles where ``raised`` (bool per tile) lifted
+    to radius 1 + ``height``, and vertical walls where a raised tile meets a lower one; returns
+    (vertices, triangles, owner) as sphere_mesh does (a wall belongs to its raised tile)."""
+    nv = len(vertices)
+    up = raised[owner]                                            # (T,) per triangle
+    # half-edges a -> b of each triangle and the twin b -> a across it (the mesh is closed)
+    a = triangles.reshape(-1)
+    b = np.roll(triangles, -1, axis=1).reshape(-1)
+    tri_of = np.repeat(np.arange(len(triangles)), 3)
+    key = a * nv + b
+    order = np.argsort(key)
+    twin = order[np.searchsorted(key[order], b * nv + a)]
+    # corners: one node per (tile, vertex); nodes of equal-height tiles across an edge are joined
+    corner_key = np.concatenate([owner[tri_of] * nv + a, owner[tri_of] * nv + b])
+    nodes, node_of = np.unique(corner_key, return_inverse=True)
+    node_a, node_b = node_of[:len(a)], node_of[len(a):]
+    same = (up[tri_of] == up[tri_of[twin]]) & (owner[tri_of] != owner[tri_of[twin]])
+    # the twin's node at a is its node_b (it runs b -> a), its node at b its node_a
+    pairs = np.concatenate([np.stack([node_a[same], node_b[twin[same]]], axis=1),
+                            np.stack([node_b[same], node_a[twin[same]]], axis=1)])
+    label = np.arange(len(nodes))
+    while True:                                                   # label propagation: sectors are small
+        low = np.minimum(label[pairs[:, 0]], label[pairs[:, 1]])
+        new = label.copy()
+        np.minimum.at(new, pairs[:, 0], low)
+        np.minimum.at(new, pairs[:, 1], low)
+        new = new[new]
+        if np.array_equal(new, label):
+            break
+        label = new
+    sector, vert_of_node = np.unique(label, return_inverse=True)
+    node_vid = nodes % nv
+    node_up = raised[nodes // nv]
+    out = vertices[node_vid[sector]] * np.where(node_up[sector], 1.0 + height, 1.0)[:, None]
+    new_tris = vert_of_node[node_a].reshape(-1, 3)                # the same corners, now per sector
+    # walls: a raised half-edge a -> b whose twin is low; the wall's vertical sides pass through one
+    # mid-height vertex per boundary vertex, shared by all the walls meeting there
+    wall = np.flatnonzero(up[tri_of] & ~up[tri_of[twin]])
+    wa, wb = a[wall], b[wall]
+    mids, mid_of = np.unique(np.concatenate([wa, wb]), return_inverse=True)
+    m_a, m_b = len(out) + mid_of[:len(wall)], len(out) + mid_of[len(wall):]
+    out = np.concatenate([out, vertices[mids] * (1.0 + height / 2)])
+    top_a, top_b = vert_of_node[node_a[wall]], vert_of_node[node_b[wall]]
+    bot_a, bot_b = vert_of_node[node_b[twin[wall]]], vert_of_node[node_a[twin[wall]]]
+    walls = np.concatenate([np.stack(q, axis=1) for q in ((top_b, top_a, m_a), (top_b, m_a, m_b),
+                                                          (m_b, m_a, bot_a), (m_b, bot_a, bot_b))])
+    _check_size(len(new_tris) + len(walls))
+    return (out, np.concatenate([new_tris, walls]),
+            np.concatenate([owner, np.tile(owner[tri_of[wall]], 4)]))
+
+
+def relief_mask(colour: np.ndarray, classes: tuple[int, ...] | list[int]) -> np.ndarray:
+    """Per tile: is its colour class one of ``classes``? (Bad classes are one-line errors.)"""
+    present = sorted(set(colour.tolist()))
+    bad = [c for c in classes if c not in present]
+    if bad or not classes:
+        raise ParameterError(f"colour class {bad[0] if bad else '(none)'} is not one of this tiling's colour classes "
+                             f"{', '.join(map(str, present))}: raise one or more of them")
+    raised = np.isin(colour, list(classes))
+    if raised.all():
+        raise ParameterError(f"raising colour classes {', '.join(map(str, classes))} lifts every tile (a larger ball, "
+                             f"no relief): raise some of the classes {', '.join(map(str, present))}, not all")
+    return raised
 
 
 def write_stl(path: str | Path, vertices: np.ndarray, triangles: np.ndarray, radius_mm: float) -> None:
@@ -112,9 +193,12 @@ def write_obj(path: str | Path, vertices: np.ndarray, triangles: np.ndarray, kin
 
 
 def write_mesh(tiling: Any, path: str | Path, size_mm: float = 60.0, rings: int = DEFAULT_RINGS,
-               palette: list[str] | None = None) -> tuple[int, int]:
+               palette: list[str] | None = None, relief_mm: float | None = None,
+               raise_colours: tuple[int, ...] = (0,)) -> tuple[int, int]:
     """Write a spherical tiling as a printable sphere of diameter ``size_mm`` (.stl or .obj by
-    the suffix); returns (tiles, triangles)."""
+    the suffix); returns (tiles, triangles). With ``relief_mm`` the tiles of the colour classes
+    ``raise_colours`` (default the first) stand that far above the ball, 0 < relief_mm <= a
+    quarter of size_mm (half the radius)."""
     # start-up cost: the SVG writer's module, only for its palette
     from tilekit.plugins.curved.render import DEFAULT_PALETTE
 
@@ -124,10 +208,28 @@ def write_mesh(tiling: Any, path: str | Path, size_mm: float = 60.0, rings: int 
     if getattr(tiling, "hyperbolic", True):
         raise ParameterError(f"{getattr(tiling, 'name', 'this tiling')} is not a tiling of the sphere: a printable "
                              "mesh is made for spherical tilings (e.g. icosahedron, 3.4.4.4)")
+    if relief_mm is not None:
+        relief_mm = check_relief(relief_mm, size_mm)
     patch = tiling.patch()
     vertices, triangles, owner = sphere_mesh(patch, rings)
+    if relief_mm is not None:
+        raised = relief_mask(patch.colour, tuple(raise_colours))
+        vertices, triangles, owner = raise_tiles(vertices, triangles, owner, raised, relief_mm / (size_mm / 2))
     if suffix == ".stl":
         write_stl(path, vertices, triangles, size_mm / 2)
     else:
         write_obj(path, vertices, triangles, patch.colour[owner], size_mm / 2, list(palette or DEFAULT_PALETTE))
     return len(patch), len(triangles)
+
+
+def check_relief(relief_mm: Any, size_mm: float) -> float:
+    """The relief height as a float, or a one-line error naming the valid range."""
+    limit = size_mm / 4
+    try:
+        h = float(relief_mm)
+    except (TypeError, ValueError):
+        h = float("nan")
+    if isinstance(relief_mm, bool) or not 0 < h <= limit:      # NaN fails both comparisons
+        raise ParameterError(f"relief must be a height in mm with 0 < relief <= {limit:g} (half the radius of a "
+                             f"{size_mm:g} mm sphere), got {str(relief_mm)[:20]}")
+    return h
