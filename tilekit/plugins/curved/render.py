@@ -244,13 +244,10 @@ def curved_svg(tiling: Any, patch: Any, palette: Any = None, stroke: str = "#222
         raise ParameterError("--vectors: a curved tiling has no translation vectors to draw")
     pal = list(palette) if palette else list(DEFAULT_PALETTE)
     first = patch.prototiles[0] if len(patch.prototiles) else None
-    plane = getattr(tiling, "plane", "poincare")
-    if getattr(first, "sign", -1) > 0 and isinstance(plane, str) and plane.startswith("stereographic"):
-        # start-up cost: the option's parser lives with the tilings (tiling.py imports this module)
-        from tilekit.plugins.curved.tiling import stereographic_pole
-
-        return stereographic_svg(patch, stereographic_pole(plane), pal, stroke, stroke_width, region, width, height,
-                                 stroke_width_px, size, background)
+    pole = getattr(tiling, "pole", None)
+    if getattr(first, "sign", -1) > 0 and pole is not None:
+        return stereographic_svg(patch, pole, pal, stroke, stroke_width, region, width, height, stroke_width_px,
+                                 size, background)
     view = model.PLANE_VIEWS.get(getattr(first, "plane", "poincare"), (-1.0, -1.0, 1.0, 1.0))
     if getattr(first, "sign", -1) > 0:
         view = (-1.0, -1.0, 1.0, 1.0)

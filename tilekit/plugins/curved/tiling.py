@@ -172,10 +172,18 @@ class CurvedTiling(Tiling):
     def hyperbolic(self) -> bool:
         return self.kind == model.HYPERBOLIC
 
+    @property
+    def pole(self) -> int | None:
+        """The tile K from whose centre a sphere's stereographic view projects (the SVG draws
+        that view when this is not None), None in the other views."""
+        if self.hyperbolic or not self.plane.startswith("stereographic"):
+            return None
+        return stereographic_pole(self.plane)
+
     def default_region(self) -> BaseGeometry:
-        if not self.hyperbolic and self.plane.startswith("stereographic"):
+        if self.pole is not None:
             # the stereographic picture's square: the pole tile's boundary holds every other tile
-            e = stereographic_paths(self.patch(), stereographic_pole(self.plane))[1]
+            e = stereographic_paths(self.patch(), self.pole)[1]
             return shapely.box(-e, -e, e, e)
         return shapely.box(*model.PLANE_VIEWS.get(self.plane, (-1.0, -1.0, 1.0, 1.0)))
 
@@ -310,7 +318,7 @@ class RegularTiling(CurvedTiling):
         check_chunk_tiles(chunk_tiles)
         self._check_size(self.estimate_tiles(region))
         # a sphere's stereographic view is drawn whole (clipped: the region frames the picture)
-        reg = None if not self.hyperbolic and self.plane.startswith("stereographic") else clip_region(region)
+        reg = None if self.pole is not None else clip_region(region)
         for k, t in self.layers():
             for lo in range(0, len(t), chunk_tiles):
                 part = t[lo:lo + chunk_tiles]
