@@ -6,7 +6,8 @@ edge half-turns, the projections), ``layers`` (exact layers: the hyperbolic boun
 automaton, the sphere's breadth-first faces), ``kernels`` (the automaton's compiled step),
 ``patch`` (ModelPrototile, ModelPatch: transforms on the model, outlines projected,
 validation in the Klein model and on the sphere), ``tiling`` (RegularTiling), ``render``
-(the Poincaré disc with true arcs; the sphere in orthographic view). The records are
+(the Poincaré disc with true arcs; the sphere in orthographic view, or stereographic with
+true arcs). The records are
 ``catalogue/curved/regular.toml``.
 
 The third family, ``curved``, holds the uniform tilings of the sphere and the hyperbolic
@@ -370,7 +371,8 @@ def tilekit_families() -> list[Family]:
             summary="Regular tilings {p,q} of the sphere: the five Platonic solids (§3.6.2)",
             from_spec=_from_spec(SPHERICAL),
             description=("p-gons, q at each vertex, (p-2)(q-2) < 4; the faces by breadth-first search over the "
-                         "edge half-turns, drawn in orthographic projection. Options: p, q, samples."),
+                         "edge half-turns, drawn in orthographic projection or (plane=stereographic[:K]) stereographic "
+                         "projection from a tile's centre. Options: p, q, samples, plane."),
         ),
         Family(
             name=HYPERBOLIC,

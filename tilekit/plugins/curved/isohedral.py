@@ -58,10 +58,11 @@ from tilekit.plugins.curved import delaney, model, wythoff
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
 from tilekit.plugins.curved.shaped import edge_frames, first_simple, parse_edges, shaped_outline
 from tilekit.plugins.curved.tiling import (
+    DRAWING_HELP,
     MAX_RADIUS,
-    PLANES,
     CurvedTiling,
     _number,
+    check_plane,
     clipped,
     spec_table,
 )
@@ -398,11 +399,7 @@ class CurvedIsohedralTiling(CurvedTiling):
             self.pairing = None
             self.symbol = parsed
         self.delaney = delaney.check_on(self.symbol, self.p, self.q)
-        if not isinstance(plane, str) or plane not in PLANES:
-            raise ParameterError(f"plane must be one of {', '.join(PLANES)}, got {str(plane)[:40]}")
-        if plane != "poincare" and self.kind == model.SPHERE:
-            raise ParameterError("plane applies to hyperbolic tilings; a sphere is drawn in orthographic view")
-        self.plane = plane
+        self.plane = check_plane(plane, self.kind == model.SPHERE)
         self.samples = int(_number("samples", samples, 1, MAX_SAMPLES, True))
         if radius is not None and self.kind == model.SPHERE:
             raise ParameterError("radius applies to hyperbolic tilings; a tiling of the sphere is drawn whole")
@@ -576,7 +573,7 @@ class CurvedIsohedralTiling(CurvedTiling):
             f"--set samples=N             chart points per segment of an edge curve (1..{MAX_SAMPLES}, default "
             f"{DEFAULT_SAMPLES})",
             f"--set colours=K             the perfect colouring's colour count (2..{MAX_COLOURS}; default the least)",
-            "--set plane=P               the hyperbolic drawing plane: poincare (default), klein or halfplane",
+            *DRAWING_HELP[1:],
         ])
 
     def configure(self, **options: Any) -> CurvedIsohedralTiling:

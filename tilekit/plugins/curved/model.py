@@ -1,7 +1,8 @@
 """The two curved geometries of §3.6.2 as 3x3 matrices: the sphere (points on S², the group
 O(3)) and the hyperbolic plane (points on the hyperboloid x² + y² − t² = −1, t > 0, the
 Lorentz group O(2,1)); the regular p-gon of the tiling {p, q} and its edge half-turns; the
-projections a picture needs (Poincaré disc, Klein disc, orthographic view of the sphere).
+projections a picture needs (Poincaré disc, Klein disc, orthographic and stereographic views of
+the sphere).
 
 A {p, q} tile is centred at the pole (0, 0, 1) of either model with vertex k at angle
 2πk/p. Its circumradius ρ comes from the right triangle of the (p, q, 2) triangle group
@@ -245,6 +246,26 @@ def poincare_to_klein(xy: np.ndarray) -> np.ndarray:
 def orthographic(points: np.ndarray) -> np.ndarray:
     """Sphere points (..., 3) seen from far along +z: (x, y)."""
     return points[..., :2]
+
+
+def stereographic(points: np.ndarray) -> np.ndarray:
+    """Sphere points (..., 3) projected from the south pole (0, 0, −1) onto the plane z = 0:
+    (x, y) / (1 + z). Conformal; circles on the sphere go to circles (great circles through the
+    south pole to lines through the origin), the north pole to the origin, the equator to the
+    unit circle."""
+    return points[..., :2] / (1.0 + points[..., 2:3])
+
+
+def pole_rotation(transform: np.ndarray) -> np.ndarray:
+    """A rotation of the sphere taking the centre of the tile placed by ``transform`` (the image
+    of the north pole) to the south pole, so that :func:`stereographic` projects from it: the
+    inverse of the tile's motion, then the half-turn about the x axis (a reflection placing the
+    tile is followed by the mirror x -> −x, which fixes the poles, so the picture is not
+    mirrored)."""
+    m = np.diag([1.0, -1.0, -1.0]) @ np.asarray(transform, dtype=float).T
+    if np.linalg.det(m) < 0:
+        m = np.diag([-1.0, 1.0, 1.0]) @ m
+    return m
 
 
 def view_rotation(tilt_deg: float = 25.0, turn_deg: float = 20.0) -> np.ndarray:

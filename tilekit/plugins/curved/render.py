@@ -1,7 +1,9 @@
 """SVG of curved tilings: the Poincaré disc with every edge the true circular arc (a geodesic
 is an arc of a circle orthogonal to the unit circle, or a diameter), the Klein disc with
 straight edges, and the sphere in orthographic projection, the far side faint behind the
-near side.
+near side, or in stereographic projection from a tile's centre, every edge the true arc
+through its projected ends and midpoint (a great circle goes to a circle, or to a line
+through the origin when it passes through the pole), the pole's tile drawn as the outside.
 
 One ``<path>`` per colour; coordinates are the model plane's (the disc's radius is 1, y up),
 so the picture is resolution independent and a PNG is cairosvg's rasterization of it.
@@ -13,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from tilekit.errors import ParameterError
+from tilekit.errors import GeometryError, ParameterError
 from tilekit.geometry import as_region
 from tilekit.plugins.curved import model
 
@@ -69,6 +71,97 @@ def halfplane_arc_commands(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.where(straight, line, arc)
 
 
+def circle_through(a: np.ndarray, m: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The circles through three points a, m, b (each (n, 2)): centres (n, 2), radii (n,) and
+    a mask of the triples that are collinear (m within 1e-9 of |ab| of the line ab: drawn as a
+    segment, centre and radius then meaningless)."""
+    u, w = m - a, b - a
+    cross = u[:, 0] * w[:, 1] - u[:, 1] * w[:, 0]
+    ww = (w * w).sum(axis=1)
+    straight = np.abs(cross) <= 1e-9 * ww
+    d = np.where(straight, 1.0, 2.0 * cross)
+    uu = (u * u).sum(axis=1)
+    # the centre c = a + x with 2 x.u = |u|^2 and 2 x.w = |w|^2
+    cx = (uu * w[:, 1] - ww * u[:, 1]) / d
+    cy = (ww * u[:, 0] - uu * w[:, 0]) / d
+    centre = a + np.stack([cx, cy], axis=1)
+    return centre, np.hypot(cx, cy), straight
+
+
+def three_point_arc_commands(a: np.ndarray, m: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """SVG commands from a through m to b (each (n, 2), y flipped for SVG): the circle through
+    the three points as two arcs, a to m and m to b, 'A r r 0 0 s mx my A r r 0 0 s x y' (each
+    under half a turn, so the small-arc flag is right and the end points fix the centre well
+    even where the whole arc is near a half circle), or 'L x y' where they are collinear."""
+    _, r, straight = circle_through(a, m, b)
+    u, w = m - a, b - m
+    ccw = u[:, 0] * w[:, 1] - u[:, 1] * w[:, 0] > 0
+    sweep = np.where(ccw, "0", "1")  # y is flipped: counter-clockwise in the model plane is sweep 0
+    rs = _fmt(r)
+    head = np.char.add(np.char.add(np.char.add(np.char.add("A", rs), " "), rs), " 0 0 ")
+    head = np.char.add(np.char.add(head, sweep), " ")
+    x, y, mx, my = _fmt(b[:, 0]), _fmt(-b[:, 1]), _fmt(m[:, 0]), _fmt(-m[:, 1])
+    arc = np.char.add(np.char.add(np.char.add(np.char.add(head, mx), " "), my), " ")
+    arc = np.char.add(np.char.add(np.char.add(np.char.add(arc, head), x), " "), y)
+    line = np.char.add(np.char.add(np.char.add("L", x), " "), y)
+    return np.where(straight, line, arc)
+
+
+def stereographic_edges(patch: Any, pole: int) -> list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]:
+    """The patch's tiles in the stereographic view from the centre of tile ``pole``: per
+    prototile, (tile indices, projected corners (n, k, 2), projected edge midpoints (n, k, 2),
+    corners on the turned sphere (n, k, 3)). Consecutive corners are joined by a geodesic (a
+    shaped tile is the geodesic polygon through its points), and the midpoint is that
+    geodesic's; a tile placed by a reflection is read backwards, so every tile runs
+    counter-clockwise seen from outside the sphere."""
+    n = len(patch)
+    if isinstance(pole, bool) or not isinstance(pole, (int, np.integer)) or not 0 <= pole < n:
+        raise ParameterError(f"plane stereographic:{pole}: the pole must be the centre of one of the {n} tiles, "
+                             f"K in 0..{n - 1}")
+    rot = model.pole_rotation(patch.transform[pole])
+    out = []
+    for _, idx, pr in patch.parts():
+        corners = pr.points[list(pr.corners or range(len(pr.points)))]
+        v = model.apply(rot @ patch.transform[idx], corners)                      # (n, k, 3)
+        mirrored = np.linalg.det(patch.transform[idx]) < 0
+        v[mirrored] = v[mirrored, ::-1]
+        mid = v + np.roll(v, -1, axis=1)
+        mid /= np.linalg.norm(mid, axis=-1, keepdims=True)
+        out.append((idx, model.stereographic(v), model.stereographic(mid), v))
+    return out
+
+
+def stereographic_paths(patch: Any, pole: int) -> tuple[np.ndarray, float]:
+    """One closed SVG subpath per tile of the stereographic view (edges as true arcs), the pole's
+    tile's being its boundary only (it is drawn as the outside), and the half-width of a square
+    about the origin holding the pole tile's boundary, hence every other tile."""
+    paths = np.empty(len(patch), dtype=object)
+    extent = 0.0
+    for idx, flat, mid, v in stereographic_edges(patch, pole):
+        n, k = flat.shape[:2]
+        nxt = np.roll(flat, -1, axis=1)
+        cmds = three_point_arc_commands(flat.reshape(-1, 2), mid.reshape(-1, 2), nxt.reshape(-1, 2)).reshape(n, k)
+        out = np.char.add(np.char.add(np.char.add("M", _fmt(flat[:, 0, 0])), " "), _fmt(-flat[:, 0, 1]))
+        for j in range(k):
+            out = np.char.add(np.char.add(out, " "), cmds[:, j])
+        paths[idx] = np.char.add(out, " Z")
+        at = np.flatnonzero(idx == pole)
+        if len(at):
+            # the pole tile's edges sampled along their geodesics: its boundary's farthest point
+            a, b = v[at[0]], np.roll(v[at[0]], -1, axis=0)
+            s = np.linspace(0.0, 1.0, 33)[:, None, None]
+            pts = (1 - s) * a[None] + s * b[None]
+            pts /= np.linalg.norm(pts, axis=-1, keepdims=True)
+            flat_pts = model.stereographic(pts).reshape(-1, 2)
+            x, y = flat_pts[:, 0], flat_pts[:, 1]
+            # it runs clockwise in the plane when its tile holds the pole (the tile is outside it)
+            if 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y)) >= 0:
+                raise GeometryError(f"plane stereographic:{pole}: tile {pole} does not hold its own centre "
+                                    "(a shaped tile bent past it); take another tile as the pole")
+            extent = float(np.abs(flat_pts).max())
+    return paths, extent
+
+
 def _polygon_paths(vertices: np.ndarray, arcs: bool | str) -> np.ndarray:
     """One closed SVG subpath per polygon (n, k, 2): arcs between vertices (``arcs`` True or
     'poincare': the disc's; 'halfplane': the half-plane's), or straight lines."""
@@ -88,20 +181,11 @@ def _polygon_paths(vertices: np.ndarray, arcs: bool | str) -> np.ndarray:
     return np.char.add(out, "Z")
 
 
-def curved_svg(tiling: Any, patch: Any, palette: Any = None, stroke: str = "#222", stroke_width: float | None = None,
-               region: Any = None, width: int | None = None, height: int | None = None,
-               stroke_width_px: float | None = None, labels: bool = False, vectors: Any = None, size: int = 800,
-               background: str | None = "#ffffff", **_ignored: Any) -> str:
-    """SVG text for a patch of a :class:`RegularTiling` (see the module)."""
-    if labels:
-        raise ParameterError("--labels: regular tilings carry no edge labels")
-    if vectors:
-        raise ParameterError("--vectors: a curved tiling has no translation vectors to draw")
-    pal = list(palette) if palette else list(DEFAULT_PALETTE)
-    first = patch.prototiles[0] if len(patch.prototiles) else None
-    view = model.PLANE_VIEWS.get(getattr(first, "plane", "poincare"), (-1.0, -1.0, 1.0, 1.0))
-    if getattr(first, "sign", -1) > 0:
-        view = (-1.0, -1.0, 1.0, 1.0)
+def _open_svg(view: tuple[float, float, float, float], region: Any, width: int | None, height: int | None,
+              size: int, stroke_width: float | None, stroke_width_px: float | None,
+              background: str | None) -> tuple[list[str], float, tuple[float, float, float, float]]:
+    """The SVG's opening lines (the element and the background) for ``view`` (x0, y0, x1, y1)
+    or ``region``'s bounds, padded by 1 %; the stroke width in model units; the padded box."""
     x0, y0, x1, y1 = as_region(region).bounds if region is not None else view
     pad = 0.01 * max(x1 - x0, y1 - y0)
     x0, y0, x1, y1 = x0 - pad, y0 - pad, x1 + pad, y1 + pad
@@ -119,10 +203,60 @@ def curved_svg(tiling: Any, patch: Any, palette: Any = None, stroke: str = "#222
            f'viewBox="{x0:.6f} {-y1:.6f} {w:.6f} {h:.6f}">']
     if background:
         out.append(f'<rect x="{x0:.6f}" y="{-y1:.6f}" width="{w:.6f}" height="{h:.6f}" fill="{background}"/>')
+    return out, sw, (x0, y0, x1, y1)
+
+
+def stereographic_svg(patch: Any, pole: int, palette: list[str], stroke: str = "#222",
+                      stroke_width: float | None = None, region: Any = None, width: int | None = None,
+                      height: int | None = None, stroke_width_px: float | None = None, size: int = 800,
+                      background: str | None = "#ffffff") -> str:
+    """SVG of a spherical patch in stereographic projection from the centre of tile ``pole``
+    (:func:`stereographic_edges`): the antipode of that centre at the origin, every edge the
+    true circular arc (a line through its ends where the great circle passes through the pole).
+    The pole's tile, which holds the projection's centre, is the outside: the picture's square
+    (just holding its boundary, or ``region``) less that boundary, filled even-odd, its own
+    ``<path data-tile="outside">``; every other tile is one closed subpath of its colour's path."""
+    paths, extent = stereographic_paths(patch, pole)
+    e = extent
+    out, sw, (x0, y0, x1, y1) = _open_svg((-e, -e, e, e), region, width, height, size, stroke_width,
+                                          stroke_width_px, background)
+    frame = f"M{x0:.7f} {-y0:.7f} L{x1:.7f} {-y0:.7f} L{x1:.7f} {-y1:.7f} L{x0:.7f} {-y1:.7f} Z"
+    colour = patch.colour
+    out.append(f'<path data-tile="outside" fill="{palette[int(colour[pole]) % len(palette)]}" fill-rule="evenodd" '
+               f'stroke="{stroke}" stroke-width="{sw:.6g}" stroke-linejoin="round" d="{frame} {paths[pole]}"/>')
+    rest = np.arange(len(patch)) != pole
+    for c in np.unique(colour[rest]):
+        sel = rest & (colour == c)
+        out.append(f'<path fill="{palette[int(c) % len(palette)]}" stroke="{stroke}" stroke-width="{sw:.6g}" '
+                   f'stroke-linejoin="round" d="{" ".join(paths[sel].tolist())}"/>')
+    out.append("</svg>")
+    return "\n".join(out)
+
+
+def curved_svg(tiling: Any, patch: Any, palette: Any = None, stroke: str = "#222", stroke_width: float | None = None,
+               region: Any = None, width: int | None = None, height: int | None = None,
+               stroke_width_px: float | None = None, labels: bool = False, vectors: Any = None, size: int = 800,
+               background: str | None = "#ffffff", **_ignored: Any) -> str:
+    """SVG text for a patch of a :class:`RegularTiling` (see the module)."""
+    if labels:
+        raise ParameterError("--labels: regular tilings carry no edge labels")
+    if vectors:
+        raise ParameterError("--vectors: a curved tiling has no translation vectors to draw")
+    pal = list(palette) if palette else list(DEFAULT_PALETTE)
+    first = patch.prototiles[0] if len(patch.prototiles) else None
+    pole = getattr(tiling, "pole", None)
+    if getattr(first, "sign", -1) > 0 and pole is not None:
+        return stereographic_svg(patch, pole, pal, stroke, stroke_width, region, width, height, stroke_width_px,
+                                 size, background)
+    view = model.PLANE_VIEWS.get(getattr(first, "plane", "poincare"), (-1.0, -1.0, 1.0, 1.0))
+    if getattr(first, "sign", -1) > 0:
+        view = (-1.0, -1.0, 1.0, 1.0)
+    out, sw, (x0, y0, x1, y1) = _open_svg(view, region, width, height, size, stroke_width, stroke_width_px,
+                                          background)
     proto = patch.prototiles[0] if len(patch.prototiles) else None
     hyper = proto is None or proto.sign < 0
     if hyper and getattr(proto, "plane", "poincare") == "halfplane":
-        out.append(f'<rect x="{x0:.6f}" y="{-y1:.6f}" width="{w:.6f}" height="{max(y1, 0.0):.6f}" fill="#f8f8f8"/>')
+        out.append(f'<rect x="{x0:.6f}" y="{-y1:.6f}" width="{x1 - x0:.6f}" height="{max(y1, 0.0):.6f}" fill="#f8f8f8"/>')
         out.append(f'<line x1="{x0:.6f}" y1="0" x2="{x1:.6f}" y2="0" stroke="{stroke}" stroke-width="{sw:.6g}"/>')
     elif hyper:
         out.append(f'<circle cx="0" cy="0" r="1" fill="#f8f8f8" stroke="{stroke}" stroke-width="{sw:.6g}"/>')

@@ -30,7 +30,7 @@ from tilekit.limits import (
 )
 from tilekit.plugins.curved import layers, model
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
-from tilekit.plugins.curved.render import curved_svg
+from tilekit.plugins.curved.render import curved_svg, stereographic_paths
 from tilekit.tiling import Patch, Tiling
 
 #: Layers of a hyperbolic patch when neither depth nor radius is given.
@@ -55,7 +55,8 @@ PLANES = ("poincare", "klein", "halfplane")
 DRAWING_HELP = (
     f"--set samples=N             points per edge of exported outlines (1..{MAX_SAMPLES}, default "
     f"{DEFAULT_SAMPLES}); SVG draws true arcs",
-    "--set plane=P               the hyperbolic drawing plane: poincare (default), klein or halfplane",
+    "--set plane=P               the hyperbolic drawing plane: poincare (default), klein or halfplane; the "
+    "sphere's view: orthographic (default), stereographic or stereographic:K (from tile K's centre)",
 )
 
 _PALETTE = ("#f4d35e", "#ee964b", "#f95738", "#0d3b66", "#5aa9e6", "#7fc8f8", "#c1e1c1", "#a3c4bc")
@@ -74,15 +75,52 @@ def _number(name: str, value: Any, lo: float, hi: float, integer: bool) -> float
     return int(f) if integer else f
 
 
+#: The sphere's views (``--set plane=...``): orthographic (the default, stored as the default
+#: plane's name) or stereographic from the centre of tile K (``stereographic:K``, default 0).
+SPHERE_PLANES = ("orthographic", "stereographic")
+_SPHERE_HELP = "orthographic (default), stereographic or stereographic:K (from the centre of tile K)"
+
+
+def check_plane(plane: Any, spherical: bool) -> str:
+    """The drawing plane checked: a hyperbolic tiling's of :data:`PLANES`; a sphere's of
+    :data:`SPHERE_PLANES`, 'orthographic' stored as 'poincare' (the default, so specs omit it)
+    and 'stereographic:K' as 'stereographic' when K is 0 (:func:`stereographic_pole` reads K);
+    one-line ParameterErrors."""
+    text = plane.strip() if isinstance(plane, str) else None
+    head = None if text is None else text.split(":", 1)[0].strip()
+    if head not in PLANES + SPHERE_PLANES or (":" in (text or "") and head != "stereographic"):
+        raise ParameterError(f"plane must be one of {', '.join(PLANES)} (hyperbolic) or {_SPHERE_HELP} (sphere), "
+                             f"got {str(plane)[:40]}")
+    if spherical:
+        if head in PLANES and head != "poincare":
+            raise ParameterError(f"plane applies to hyperbolic tilings ({', '.join(PLANES)}); a sphere is drawn "
+                                 f"{_SPHERE_HELP}, got {text}")
+        if head != "stereographic":
+            return "poincare"
+        k = stereographic_pole(text)
+        return "stereographic" if k == 0 else f"stereographic:{k}"
+    if head in SPHERE_PLANES:
+        raise ParameterError(f"plane {head} applies to tilings of the sphere; a hyperbolic tiling is drawn in "
+                             f"{', '.join(PLANES)}")
+    return head
+
+
+def stereographic_pole(plane: str) -> int:
+    """K of a sphere's plane 'stereographic:K' (0 for 'stereographic'): the tile whose centre is
+    the projection's pole; a one-line ParameterError for anything but an integer 0..MAX_TILES."""
+    _, sep, k = plane.partition(":")
+    if not k.strip():
+        if sep:
+            raise ParameterError(f"plane stereographic:K needs a tile number K (0, 1, ...), got {plane[:40]}")
+        return 0
+    return int(_number("the stereographic pole's tile K", k.strip(), 0, MAX_TILES, True))
+
+
 def drawing_options(plane: Any, samples: Any, spherical: bool) -> tuple[str, int]:
     """``plane`` and ``samples`` checked (the regular and the uniform tilings take both): a
-    hyperbolic drawing plane of :data:`PLANES` (the sphere has its orthographic view only) and
-    1..MAX_SAMPLES points per edge; one-line ParameterErrors."""
-    if not isinstance(plane, str) or plane not in PLANES:
-        raise ParameterError(f"plane must be one of {', '.join(PLANES)}, got {str(plane)[:40]}")
-    if plane != "poincare" and spherical:
-        raise ParameterError("plane applies to hyperbolic tilings; a sphere is drawn in orthographic view")
-    return plane, int(_number("samples", samples, 1, MAX_SAMPLES, True))
+    drawing plane (:func:`check_plane`) and 1..MAX_SAMPLES points per edge; one-line
+    ParameterErrors."""
+    return check_plane(plane, spherical), int(_number("samples", samples, 1, MAX_SAMPLES, True))
 
 
 def drawing_spec(out: dict[str, Any], tiling: Any, default_name: str) -> dict[str, Any]:
@@ -134,8 +172,20 @@ class CurvedTiling(Tiling):
     def hyperbolic(self) -> bool:
         return self.kind == model.HYPERBOLIC
 
+    @property
+    def pole(self) -> int | None:
+        """The tile K from whose centre a sphere's stereographic view projects (the SVG draws
+        that view when this is not None), None in the other views."""
+        if self.hyperbolic or not self.plane.startswith("stereographic"):
+            return None
+        return stereographic_pole(self.plane)
+
     def default_region(self) -> BaseGeometry:
-        return shapely.box(*model.PLANE_VIEWS[self.plane])
+        if self.pole is not None:
+            # the stereographic picture's square: the pole tile's boundary holds every other tile
+            e = stereographic_paths(self.patch(), self.pole)[1]
+            return shapely.box(-e, -e, e, e)
+        return shapely.box(*model.PLANE_VIEWS.get(self.plane, (-1.0, -1.0, 1.0, 1.0)))
 
     def render_svg(self, patch: Patch, **options: Any) -> str:
         return curved_svg(self, patch, **options)
@@ -173,7 +223,12 @@ def clip_region(region: Any) -> BaseGeometry | None:
 
 
 def clipped(patch: ModelPatch, region: Any) -> ModelPatch:
-    """``patch`` less the tiles whose projected outline misses ``region`` (see :func:`clip_region`)."""
+    """``patch`` less the tiles whose projected outline misses ``region`` (see :func:`clip_region`);
+    a sphere's patch in the stereographic view whole (the region frames its picture only: the
+    outlines are the orthographic view's)."""
+    first = patch.prototiles[0] if len(patch.prototiles) else None
+    if getattr(first, "sign", -1) > 0 and getattr(first, "plane", "").startswith("stereographic"):
+        return patch
     reg = clip_region(region)
     return patch.subset(patch.clip_index(reg)) if reg is not None and len(patch) else patch
 
@@ -262,7 +317,8 @@ class RegularTiling(CurvedTiling):
         None: the whole disc or sphere) are left out. Colour: the layer number."""
         check_chunk_tiles(chunk_tiles)
         self._check_size(self.estimate_tiles(region))
-        reg = clip_region(region)
+        # a sphere's stereographic view is drawn whole (clipped: the region frames the picture)
+        reg = None if self.pole is not None else clip_region(region)
         for k, t in self.layers():
             for lo in range(0, len(t), chunk_tiles):
                 part = t[lo:lo + chunk_tiles]
@@ -341,7 +397,8 @@ class RegularTiling(CurvedTiling):
             f"--set samples=N             points per edge of exported outlines (1..{MAX_SAMPLES}, default "
             f"{DEFAULT_SAMPLES}); SVG draws true arcs",
             "--set plane=P                the hyperbolic drawing plane: poincare (default; edges are arcs), "
-            "klein (edges are chords) or halfplane (the upper half-plane; edges are half-circles)",
+            "klein (edges are chords) or halfplane (the upper half-plane; edges are half-circles); the sphere: "
+            "orthographic (default) or stereographic[:K] (from the centre of tile K, default 0; edges are arcs)",
             "--region x0,y0,x1,y1        the part of the disc (or the sphere's picture) to keep",
         ])
 
