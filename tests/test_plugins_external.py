@@ -1,9 +1,11 @@
 """A third-party family as a pip package: install tests/data/tilekit-demo-family, find it.
 
 The package (a running-bond brick wall family, the example of docs/plugins.md) is
-pip-installed into this interpreter's environment from a temporary copy, discovered through
-the ``tilekit`` entry-point group by ``tilekit families`` and by a fresh catalogue, and
-uninstalled again when the test ends.
+pip-installed from a temporary copy into a folder of its own that this interpreter and its
+subprocesses put on their path (``pip install --target``: not into the shared environment, where
+a test in another worker starting ``tilekit serve`` found it half uninstalled), discovered
+through the ``tilekit`` entry-point group by ``tilekit families`` and by a fresh catalogue, and
+gone again when the test ends.
 """
 
 from __future__ import annotations
@@ -53,20 +55,25 @@ def _forget() -> None:
 
 @pytest.fixture
 def demo_installed(tmp_path, monkeypatch):
-    """pip-install a copy of the demo package; uninstall it afterwards."""
+    """pip-install a copy of the demo package into a folder on this process's and its
+    subprocesses' path; take it away afterwards."""
     monkeypatch.delenv("TILEKIT_PLUGINS", raising=False)
     monkeypatch.delenv("TILEKIT_CATALOGUE", raising=False)
     source = tmp_path / "tilekit-demo-family"
     shutil.copytree(DEMO, source, ignore=shutil.ignore_patterns("build", "*.egg-info", "__pycache__"))
-    done = _pip("install", "--no-deps", "--quiet", *_build_options(), str(source))
+    site = tmp_path / "site"
+    done = _pip("install", "--no-deps", "--quiet", "--target", str(site), *_build_options(), str(source))
     assert done.returncode == 0, done.stderr[-2000:]
+    assert (site / "tilekit_demo_family" / "static" / "bricks.js").is_file()  # package data installed
+    monkeypatch.syspath_prepend(str(site))
+    monkeypatch.setenv("PYTHONPATH", os.pathsep.join(filter(None, [str(site), os.environ.get("PYTHONPATH")])))
     _forget()
     try:
         yield
     finally:
-        gone = _pip("uninstall", "--yes", DIST)
+        monkeypatch.undo()
+        shutil.rmtree(site)
         _forget()
-        assert gone.returncode == 0, gone.stderr[-2000:]
         with pytest.raises(PackageNotFoundError):
             distribution(DIST)
 

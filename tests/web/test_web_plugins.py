@@ -134,3 +134,30 @@ def test_chromium_opens_the_plugin_page_from_the_menu(browser, demo_server):
         assert errors == []
     finally:
         context.close()
+
+
+def test_a_plugin_naming_a_missing_static_folder_is_one_plugin_error(tmp_path):
+    """A plugin whose tilekit_web_static names no folder (a package installed without its data,
+    or half uninstalled) stops the app with one line naming the plugin and the folder, not
+    Starlette's RuntimeError from deep inside the app's construction."""
+    import tilekit
+    from tilekit import open_catalogue
+    from tilekit.errors import PluginError
+    from tilekit.plugins import make_plugin_manager
+    from tilekit.web import create_app
+
+    missing = tmp_path / "gone" / "static"
+
+    class NoStatic:
+        @tilekit.hookimpl
+        def tilekit_web_static(self):
+            return [("nostatic", missing)]
+
+    pm = make_plugin_manager(extra_plugins=[NoStatic()])
+    cat = open_catalogue(f"sqlite:///{tmp_path / 'c.sqlite'}", pm=pm, seed=False)
+    try:
+        with pytest.raises(PluginError) as err:
+            create_app(catalogue=cat)
+    finally:
+        cat.close()
+    assert "\n" not in str(err.value) and "'nostatic'" in str(err.value) and str(missing) in str(err.value)

@@ -28,7 +28,7 @@ from starlette.staticfiles import StaticFiles
 
 import tilekit.api
 from tilekit.catalogue import open_catalogue, run_json
-from tilekit.errors import NotFoundError, ParameterError, TilekitError
+from tilekit.errors import NotFoundError, ParameterError, PluginError, TilekitError
 from tilekit.limits import refuse_over_memory
 from tilekit.plugins import WebRoute, families, get_plugin_manager
 from tilekit.web import api, executor, pages
@@ -213,6 +213,10 @@ def create_app(catalogue_url: str | None = None, *, writable: bool = False, max_
     plugin_routes = [r for rs in hook.tilekit_web_routes(web=state) for r in (rs or [])]
     nav = _nav([link for links in reversed(hook.tilekit_web_menu_links(web=state)) for link in (links or [])])
     statics = [item for items in hook.tilekit_web_static() for item in (items or [])]
+    for name, folder in statics:
+        if not Path(folder).is_dir():  # Starlette would raise deep inside the app's construction
+            raise PluginError(f"plugin static files {name!r}: folder {folder} does not exist "
+                              "(tilekit_web_static must name a folder of the installed package)")
 
     def _html(text: str, status: int = 200) -> HTMLResponse:
         return HTMLResponse(text.replace(pages.NAV_SLOT, nav), status_code=status)
