@@ -35,6 +35,7 @@ from tilekit.plugins.curved.stars import (
     MAX_RADIUS,
     STAR_BYTES_PER_TILE,
     StarTiling,
+    configured,
     develop,
     format_pairing,
     tiling_stabiliser,
@@ -200,13 +201,7 @@ class StarLavesTiling(CurvedTiling):
                           *self.uniform.options_help().splitlines()[1:]])
 
     def configure(self, **options: Any) -> StarLavesTiling:
-        self.check_options(options)
-        same = "configuration" not in options
-        pairing = options.get("pairing", format_pairing(self.pairing) if same else None)
-        return StarLavesTiling(options.get("configuration", self.configuration), pairing=pairing,
-                               radius=options.get("radius", self.radius), samples=options.get("samples", self.samples),
-                               plane=options.get("plane", self.plane), name=self.name if same else "",
-                               title=self.title if same else "")
+        return configured(self, options)
 
     def spec(self) -> dict[str, Any]:
         return drawing_spec({"laves": True, "configuration": self.configuration,

@@ -515,6 +515,18 @@ _OPTIONS = ("configuration", "pairing", "radius", "samples", "plane")
 _SPEC_KEYS = set(_OPTIONS) | {"name", "title"}
 
 
+def configured(tiling: Any, options: dict[str, Any]) -> Any:
+    """``tiling`` (a :class:`StarTiling` or its dual) with ``options``, of its own class: a new
+    configuration drops the pairing, name and title, which belong to the old one."""
+    tiling.check_options(options)
+    same = "configuration" not in options
+    pairing = options.get("pairing", format_pairing(tiling.pairing) if same else None)
+    return type(tiling)(options.get("configuration", tiling.configuration), pairing=pairing,
+                        radius=options.get("radius", tiling.radius), samples=options.get("samples", tiling.samples),
+                        plane=options.get("plane", tiling.plane), name=tiling.name if same else "",
+                        title=tiling.title if same else "")
+
+
 class StarTiling(CurvedTiling):
     """A uniform tiling of the hyperbolic plane developed from its vertex star by a pairing
     of the star's edges (see the module): ``configuration`` (e.g. 3.3.3.6.6), ``pairing``
@@ -612,13 +624,7 @@ class StarTiling(CurvedTiling):
         ])
 
     def configure(self, **options: Any) -> StarTiling:
-        self.check_options(options)
-        same = "configuration" not in options
-        pairing = options.get("pairing", format_pairing(self.pairing) if same else None)
-        return StarTiling(options.get("configuration", self.configuration), pairing=pairing,
-                          radius=options.get("radius", self.radius), samples=options.get("samples", self.samples),
-                          plane=options.get("plane", self.plane), name=self.name if same else "",
-                          title=self.title if same else "")
+        return configured(self, options)
 
     def spec(self) -> dict[str, Any]:
         return drawing_spec({"configuration": self.configuration, "pairing": format_pairing(self.pairing)}, self,

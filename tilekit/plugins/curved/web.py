@@ -17,18 +17,26 @@ plugin's contribution."""
 
 from __future__ import annotations
 
+import json
 import math
+import shlex
 from pathlib import Path
 from typing import Any
+from urllib.parse import quote
 
 import numpy as np
 
-from tilekit.errors import ParameterError
+from tilekit.errors import ParameterError, TilekitError
+from tilekit.incidence import shape_classes
 from tilekit.plugins import WebRoute
 from tilekit.plugins.curved import CURVED, CURVED_ISOHEDRAL, HYPERBOLIC, SPHERICAL, regular
+from tilekit.plugins.curved.isohedral import CurvedIsohedralTiling
+from tilekit.plugins.curved.laves import LavesTiling
 from tilekit.plugins.curved.model import check_pq
 from tilekit.plugins.curved.render import DEFAULT_PALETTE
+from tilekit.plugins.curved.shaped import parse_edges
 from tilekit.web.pages import esc, name_path
+from tilekit.web.service import query_options
 
 #: The name this plugin's static files are served under (/static/plugins/curved/).
 STATIC = "curved"
@@ -211,11 +219,6 @@ def shape_symbol(tiling: Any) -> tuple[Any, Any] | str:
     """(incidence symbol, label order) whose shape classes ``edges`` names for an editable
     tiling (a curved-isohedral one; a curved Laves one under its rotations or a snub's dual), or
     the one-line reason it has nothing to edit."""
-    # optional: the editor's engines, loaded when an editor page or its API is asked for
-    from tilekit.incidence import shape_classes
-    from tilekit.plugins.curved.isohedral import CurvedIsohedralTiling
-    from tilekit.plugins.curved.laves import LavesTiling
-
     if isinstance(tiling, CurvedIsohedralTiling):
         symbol, order = tiling.symbol, None
     elif isinstance(tiling, LavesTiling):
@@ -236,8 +239,6 @@ def edited(tiling: Any, raw: Any) -> Any:
     ``edge=LABEL=SHAPE``, repeated; the family's ``edges`` text per label), the others at the
     family's defaults; every point within EDIT_X x EDIT_Y. One-line errors: a key other than
     edge, a malformed shape, an unknown label, a point out of range, a tile that crosses itself."""
-    from tilekit.plugins.curved.shaped import parse_edges  # optional: as in shape_symbol
-
     found = shape_symbol(tiling)
     if isinstance(found, str):
         raise ParameterError(found)
@@ -274,8 +275,6 @@ def edge_classes(tiling: Any) -> list[dict[str, Any]]:
     """Per shape class of an editable tiling's symbol (:func:`shape_symbol`): its label, kind
     (J, U, S), smoothness, control points and the tile's edges it shapes (1-based, its partner's
     included): what the edge widgets start from."""
-    from tilekit.incidence import shape_classes  # optional: as in shape_symbol
-
     symbol, order = shape_symbol(tiling)  # type: ignore[misc]
     adj = symbol.adjacent_map()
     out = []
@@ -294,8 +293,6 @@ def edit_data(name: str, tiling: Any, max_tiles: int, record: Any = None) -> dic
     ``edges`` (:func:`edge_classes`), ``query``: the editor's query of the tiling (one
     ``LABEL=SHAPE`` per class); ``link`` the editor's URL, ``svg`` the render API's download and
     ``cli`` the command that renders it (each reopens exactly this tiling)."""
-    import shlex  # optional: only the editor's command line needs it
-
     per_tile = len(tiling.prototiles[0].points)
     faces = min(EDIT_FACES, max_tiles, EDIT_POINTS // per_tile)
     least = EDIT_MIN_FACES if tiling.hyperbolic else math.ceil(tiling.estimate_tiles())
@@ -320,28 +317,18 @@ def _edit_target(request: Any, web: Any) -> tuple[str, Any]:
 
 def edit_api(request: Any, web: Any) -> dict[str, Any]:
     """/api/curved/edit/NAME?edge=..: the editor's data, or a 400 with the one-line reason."""
-    # optional: the web helpers' query parser, the one /api/render and the planar editor read
-    from tilekit.web.service import query_options
-
     name, base = _edit_target(request, web)
     return edit_data(name, edited(base, query_options(request.query_params.multi_items())), web.max_tiles, base)
 
 
 def _query_text(edges: list[str]) -> str:
     """``edge=..&edge=..`` with the shapes' , : = left readable."""
-    from urllib.parse import quote  # optional: only the editor's links need it
-
     return "&".join("edge=" + quote(e, safe=",:=") for e in edges)
 
 
 def edit_page(request: Any, web: Any) -> str:
     """The tile editor of one record: /curved/edit/NAME?edge=LABEL=SHAPE&... (a refused query
     shows its one line and the record's shapes)."""
-    import json  # optional: the page's data
-
-    from tilekit.errors import TilekitError  # optional: as above
-    from tilekit.web.service import query_options  # optional: as in edit_api
-
     name, base = _edit_target(request, web)
     heading = f'<a href="/tiling/{esc(name_path(name))}">{esc(name)}</a>'
     found = shape_symbol(base)
