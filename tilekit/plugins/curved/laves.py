@@ -51,10 +51,10 @@ from tilekit.plugins.curved.isohedral import colouring, hop_words, hops, word_co
 from tilekit.plugins.curved.orbifold import (
     _first_of_each,
     _local_elements,
-    _same,
     _star,
     _unique,
     construction_stabiliser,
+    same_point,
     vertex_stabiliser,
 )
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
@@ -226,7 +226,7 @@ class LavesTiling(UniformTiling):
         """(s, 3, 3): the group's elements fixing G (the tile's symmetries in the group)."""
         _, pair = self._local
         g = self.construction.generator
-        fix = _same(pair @ g, g)
+        fix = same_point(pair @ g, g)
         return _unique(pair[fix])
 
     @cached_property
@@ -244,7 +244,7 @@ class LavesTiling(UniformTiling):
         g = self.construction.generator
 
         def hop(a: np.ndarray, b: np.ndarray) -> np.ndarray | None:
-            found = pair[_same(pair @ g, _reflect_across(sp, g, a, b))]
+            found = pair[same_point(pair @ g, _reflect_across(sp, g, a, b))]
             return found[0] if len(found) else None
 
         return symbol_from_group(corners, self.stabiliser, hop, f"[{self.configuration}]")
@@ -550,7 +550,7 @@ def symbol_from_group(corners: np.ndarray, stabiliser: np.ndarray,
         return -1, 0
 
     def index_in(target: np.ndarray, pt: np.ndarray) -> int:
-        hit = np.flatnonzero(_same(target, pt))
+        hit = np.flatnonzero(same_point(target, pt))
         return int(hit[0]) if len(hit) else -1
 
     labels: list[int | None] = [None] * k
@@ -587,9 +587,9 @@ def symbol_from_group(corners: np.ndarray, stabiliser: np.ndarray,
         found = None
         for j in range(k):
             aj, bj = h @ corners[j], h @ corners[(j + 1) % k]
-            if _same(aj[None], b)[0] and _same(bj[None], a)[0]:
+            if same_point(aj[None], b)[0] and same_point(bj[None], a)[0]:
                 found = (j, -1)  # the neighbour's edge j runs from b to a: against edge i
-            elif _same(aj[None], a)[0] and _same(bj[None], b)[0]:
+            elif same_point(aj[None], a)[0] and same_point(bj[None], b)[0]:
                 found = (j, 1)
             if found:
                 break

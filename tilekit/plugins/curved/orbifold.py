@@ -104,7 +104,7 @@ def _inverse(m: np.ndarray) -> np.ndarray:
     return np.linalg.inv(m)
 
 
-def _same(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+def same_point(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Whether model points a and b (broadcast) are one point: their coordinates agree to
     _TOL of their size (arccosh of a near −1 inner product loses half the digits)."""
     scale = np.maximum(1.0, np.maximum(np.abs(a).max(axis=-1), np.abs(b).max(axis=-1)))
@@ -140,7 +140,7 @@ def _unique(m: np.ndarray) -> np.ndarray:
 
 def _first_of_each(points: np.ndarray) -> np.ndarray:
     """Indices of the first of each group of equal points (n, 3)."""
-    same = _same(points[:, None, :], points[None, :, :])
+    same = same_point(points[:, None, :], points[None, :, :])
     return np.flatnonzero(~np.triu(same, 1).any(axis=0))
 
 
@@ -248,7 +248,7 @@ def _vertex_search(c: wythoff.Construction) -> _VertexSearch:
             if (rep < n).all() and (all_sides[np.minimum(rep, n - 1)] == all_sides).all():
                 stab.append(s)
     stab_m = np.array(stab)
-    g_stab = _distinct(local[_same(local @ v0, v0)])
+    g_stab = _distinct(local[same_point(local @ v0, v0)])
     if len(stab_m) % g_stab:
         raise GeometryError(f"{c.symbol}: the vertex stabiliser ({len(stab_m)}) is not a multiple of the "
                             f"construction's ({g_stab})")
@@ -265,7 +265,7 @@ def vertex_stabiliser(construction: wythoff.Construction) -> np.ndarray:
     c = construction
     if symbol_symmetry(c.symbol) is not None:
         local = _local_elements(c)
-        return _unique(local[_same(local @ c.generator, c.generator)])
+        return _unique(local[same_point(local @ c.generator, c.generator)])
     return _vertex_search(c).stab
 
 
@@ -295,8 +295,8 @@ def uniform_symmetry(construction: wythoff.Construction) -> UniformSymmetry:
         if orbit_of[i] >= 0:
             continue
         img = full @ points[i]
-        orbit_of[(_same(img[:, None, :], points[None, :, :]).any(axis=0)) & (orbit_of < 0)] = i
-        fix = _same(img, points[i])
+        orbit_of[(same_point(img[:, None, :], points[None, :, :]).any(axis=0)) & (orbit_of < 0)] = i
+        fix = same_point(img, points[i])
         rot = _distinct(full[fix & (det > 0)])
         refl = bool((fix & (det < 0)).any())
         mirrors |= refl

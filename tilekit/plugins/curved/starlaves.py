@@ -28,7 +28,7 @@ from tilekit.errors import ParseError
 from tilekit.incidence import IncidenceSymbol
 from tilekit.plugins.curved import delaney, model, notation, wythoff
 from tilekit.plugins.curved.laves import default_radius, symbol_from_group
-from tilekit.plugins.curved.orbifold import _same
+from tilekit.plugins.curved.orbifold import same_point
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
 from tilekit.plugins.curved.stars import (
     DEFAULT_FACES,
@@ -112,7 +112,7 @@ class StarLavesTiling(CurvedTiling):
         d = len(gens)
 
         def hop(a: np.ndarray, _b: np.ndarray) -> np.ndarray:
-            i = int(np.flatnonzero(_same(self.corners, a))[0])
+            i = int(np.flatnonzero(same_point(self.corners, a))[0])
             return gens[(i + 1) % d]  # the tile's edge i crosses the star's edge i + 1
 
         return symbol_from_group(self.corners, self.stabiliser, hop, f"[{self.configuration}]")
