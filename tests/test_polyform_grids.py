@@ -4,15 +4,20 @@ against Myers' and Kaplan's published counts.
 Oracles (OEIS, offset 1; Joseph Myers' polyform tiling data):
 A075214 polyhexes that tile isohedrally, A075215 anisohedral polyhexes, A070766 polyhexes that
 tile, A070768 hole-free polyhexes that do not tile; A075223 / A075224 / A071332 / A071334 the
-same for polyiamonds, A070764 polyiamonds with holes. The polyiamond terms for n = 13 to 15 are
+same for polyiamonds, A070764 polyiamonds with holes. The polyiamond terms for n = 13 to 16 are
 read from the OEIS data files (github.com/oeis/oeisdata, seq/A071/A071332.seq,
 seq/A075/A075223.seq, seq/A075/A075224.seq, seq/A071/A071334.seq, seq/A070/A070764.seq,
-seq/A000/A000577.seq): 2,495 / 6,354 / 12,908 tile, 2,398 / 6,073 / 12,628 isohedral, 97 / 281 /
-280 anisohedral, 6,290 / 18,099 / 54,808 hole-free non-tilers, 450 / 1,713 / 6,267 with holes, of
-9,235 / 26,166 / 73,983 free forms (the n = 15 run that reproduces them: docs/benchmarks.md).
+seq/A000/A000577.seq): 2,495 / 6,354 / 12,908 / 30,261 tile, 2,398 / 6,073 / 12,628 / 29,918
+isohedral, 97 / 281 / 280 / 343 anisohedral, 6,290 / 18,099 / 54,808 / 159,048 hole-free
+non-tilers, 450 / 1,713 / 6,267 / 21,988 with holes, of 9,235 / 26,166 / 73,983 / 211,297 free
+forms (the n = 15 and 16 runs that reproduce them: docs/benchmarks.md, checked against these
+lists by test_the_stored_runs_in_the_docs_equal_myers).
 """
 
 from __future__ import annotations
+
+import re
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -22,15 +27,15 @@ from tilekit.plugins.polyomino.isohedral import _template_arrays, analyse, perio
 
 # n = 1.. ; the sequences' first terms
 A075214 = [1, 1, 3, 7, 22, 76, 290, 1018, 3715]  # isohedral polyhexes
-A075223 = [1, 1, 1, 3, 4, 12, 23, 66, 133, 316, 514, 1987, 2398, 6073, 12628]  # isohedral polyiamonds
+A075223 = [1, 1, 1, 3, 4, 12, 23, 66, 133, 316, 514, 1987, 2398, 6073, 12628, 29918]  # isohedral polyiamonds
 A070766 = [1, 1, 3, 7, 22, 77, 294, 1054, 3788]  # polyhexes that tile
 A075215 = [0, 0, 0, 0, 0, 1, 4, 36, 73]  # anisohedral polyhexes
 A070768 = [0, 0, 0, 0, 0, 4, 37, 381, 2717]  # hole-free polyhexes that do not tile
 A038144 = [0, 0, 0, 0, 0, 1, 2, 13, 67]  # polyhexes with holes
-A071332 = [1, 1, 1, 3, 4, 12, 23, 66, 139, 341, 567, 2034, 2495, 6354, 12908]  # polyiamonds that tile
-A075224 = [0, 0, 0, 0, 0, 0, 0, 0, 6, 25, 53, 47, 97, 281, 280]  # anisohedral polyiamonds
-A071334 = [0, 0, 0, 0, 0, 0, 1, 0, 20, 103, 594, 1192, 6290, 18099, 54808]  # hole-free polyiamonds that do not tile
-A070764 = [0, 0, 0, 0, 0, 0, 0, 0, 1, 4, 25, 108, 450, 1713, 6267]  # polyiamonds with holes
+A071332 = [1, 1, 1, 3, 4, 12, 23, 66, 139, 341, 567, 2034, 2495, 6354, 12908, 30261]  # polyiamonds that tile
+A075224 = [0, 0, 0, 0, 0, 0, 0, 0, 6, 25, 53, 47, 97, 281, 280, 343]  # anisohedral polyiamonds
+A071334 = [0, 0, 0, 0, 0, 0, 1, 0, 20, 103, 594, 1192, 6290, 18099, 54808, 159048]  # hole-free polyiamonds that do not tile
+A070764 = [0, 0, 0, 0, 0, 0, 0, 0, 1, 4, 25, 108, 450, 1713, 6267, 21988]  # polyiamonds with holes
 
 
 def _free_forms(grid, n):
@@ -104,7 +109,7 @@ def _hole_free(grid, n):
 
 
 A000228 = [1, 1, 3, 7, 22, 82, 333, 1448]  # free polyhexes (FACTS.md)
-A000577 = [1, 1, 1, 3, 4, 12, 24, 66, 160, 448, 1186, 3334, 9235, 26166, 73983]  # free polyiamonds (FACTS.md; 13-15: OEIS)
+A000577 = [1, 1, 1, 3, 4, 12, 24, 66, 160, 448, 1186, 3334, 9235, 26166, 73983, 211297]  # free polyiamonds (FACTS.md; 13-16: OEIS)
 A057786 = [1, 2, 4, 10, 27, 85, 262]  # free polykites (FACTS.md)
 
 
@@ -178,9 +183,49 @@ def test_isohedral_14_iamonds_equal_a075223():
 def test_the_polyiamond_sequences_add_up():
     """Myers' polyiamond counts as transcribed above are consistent: every tiler is isohedral or
     anisohedral, and every free form tiles, is a hole-free non-tiler, or has holes."""
-    for n in range(1, 16):
+    for n in range(1, 17):
         assert A071332[n - 1] == A075223[n - 1] + A075224[n - 1]
         assert A000577[n - 1] == A071332[n - 1] + A071334[n - 1] + A070764[n - 1]
+
+
+#: The stored runs' count tables in docs/benchmarks.md, by the free-form column's sequence:
+#: (free, tile, isohedral, anisohedral, hole-free non-tilers, with holes) per grid.
+_STORED = {"A000577": (A000577, A071332, A075223, A075224, A071334, A070764),
+           "A000228": (A000228, A070766, A075214, A075215, A070768, A038144)}
+
+
+def _stored_run_rows():
+    """Every row of the docs' stored-run tables (header ``| n | free (A...) | tile ...``) as
+    (sequence name, n, [free, tile, isohedral, anisohedral, hole-free non-tilers, holes],
+    [Hc counts], [Hh counts])."""
+    text = (Path(__file__).resolve().parents[1] / "docs" / "benchmarks.md").read_text()
+    rows, seq = [], None
+    for line in text.splitlines():
+        head = re.match(r"\| n \| free \((A\d{6})\) \| tile", line)
+        if head:
+            seq = head.group(1)
+            continue
+        if seq and line.startswith("|---"):
+            continue
+        cells = [c.strip() for c in line.strip().strip("|").split("|")] if seq and line.startswith("| ") else None
+        if not cells:
+            seq = None
+            continue
+        nums = [int(re.match(r"[\d,]+", c).group(0).replace(",", "")) for c in cells[:7]]
+        heesch = [[int(x.replace(",", "")) for x in c.split(" / ")] for c in cells[7:9]]
+        rows.append((seq, nums[0], nums[1:], *heesch))
+    return rows
+
+
+def test_the_stored_runs_in_the_docs_equal_myers():
+    """The count tables of the stored classification runs in docs/benchmarks.md (polyiamonds
+    n = 10 to 16, and any polyhex table) state Myers' counts, column by column (the OEIS terms above),
+    and each Heesch column (Hc, Hh) sums to the hole-free non-tilers."""
+    rows = _stored_run_rows()
+    assert {(seq, n) for seq, n, *_ in rows} >= {("A000577", 15), ("A000577", 16)}
+    for seq, n, counts, hc, hh in rows:
+        assert counts == [s[n - 1] for s in _STORED[seq]], (seq, n)
+        assert sum(hc) == sum(hh) == counts[4], (seq, n)
 
 
 def test_templates_follow_the_grid_turns():
