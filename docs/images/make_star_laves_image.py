@@ -9,35 +9,22 @@ Run: python docs/images/make_star_laves_image.py
 
 from __future__ import annotations
 
-import re
-from pathlib import Path
-
-import cairosvg
+# the panels side by side: the isohedral image's helper (this folder is the script's path)
+from make_curved_isohedral_image import _strip
 
 from tilekit.plugins.curved.starlaves import StarLavesTiling
 
-HERE = Path(__file__).resolve().parent
-PANEL = 360
 RADIUS = 3.5
 
 
 def main() -> None:
-    panels = [
+    _strip([
         StarLavesTiling("[3^3.6^2]", group="rotations", radius=RADIUS,
                         edges={"a": "0.2,0.12:0.35,0.1", "c": "0.3,0.14:0.6,-0.1:0.8,0.05"}),
         StarLavesTiling("[3.6.3.6.6]", group="rotations", radius=RADIUS,
                         edges={"b": "0.25,0.14:0.5,-0.1:0.75,0.06", "d": "0.3,-0.12:0.6,0.1"}),
         StarLavesTiling("[4^2.6^2]", group="rotations", radius=RADIUS, edges={"b": "0.3,-0.14:0.65,0.12"}),
-    ]
-    parts = []
-    x = 0
-    for t in panels:
-        svg = t.render_svg(t.patch(t.default_region()), height=PANEL, stroke_width_px=0.6)
-        width = int(re.search(r'width="(\d+)"', svg).group(1))
-        parts.append(re.sub(r"^<svg ", f'<svg x="{x}" y="0" ', svg, count=1))
-        x += width
-    doc = f'<svg xmlns="http://www.w3.org/2000/svg" width="{x}" height="{PANEL}">' + "".join(parts) + "</svg>"
-    cairosvg.svg2png(bytestring=doc.encode(), write_to=str(HERE / "star-laves-escher.png"))
+    ], "star-laves-escher.png")
 
 
 if __name__ == "__main__":

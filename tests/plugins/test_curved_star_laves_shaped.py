@@ -22,6 +22,9 @@ import pytest
 import shapely
 from cliutil import assert_one_line_error
 from family_cli import family_cli
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from test_curved_isohedral_symmetric import assert_tiles_or_refused
 
 from tilekit.errors import ParameterError
 from tilekit.plugins.curved import _star_configurations, delaney, model, notation
@@ -80,6 +83,22 @@ def test_shaped_patch_validates_and_edges_meet_their_partners(case):
     for pts in _edges_on_surface(t, patch.transform[central]):  # the central tile: every edge has a partner
         assert len(by_ends[frozenset((tuple(np.round(pts[0], 6)), tuple(np.round(pts[-1], 6))))]) == 2
     assert any(np.abs(c[:, 1]).max() > 0.03 for c in t.edge_curves())  # the edges really bend
+
+
+shape_point = st.tuples(st.floats(0.05, 0.95), st.floats(-0.25, 0.25))
+
+
+@settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.lists(st.lists(shape_point, min_size=1, max_size=3), min_size=4, max_size=4),
+       st.sampled_from([("3.3.3.6.6", "rotations"), ("3.3.3.6.6", "full"), ("4.4.6.6", "rotations"),
+                        ("3.6.3.6.6", "rotations"), ("3.3.3.3.4.4", "full")]))
+def test_random_shapes_still_tile(polylines, case) -> None:
+    """Any shapes on the labels that take one: the tile still tiles (validate on a disc) or is
+    refused in one line."""
+    config, group = case
+    owners = sorted(StarLavesTiling(config, group=group, edges={}, radius=1.0).edge_shapes)
+    edges = {lab: ":".join(f"{x},{y}" for x, y in sorted(pts)) for lab, pts in zip(owners, polylines)}
+    assert_tiles_or_refused(lambda: StarLavesTiling(config, group=group, edges=edges, radius=1.0), 0.2)
 
 
 @pytest.mark.parametrize("config, full, rotations", [
