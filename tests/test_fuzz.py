@@ -455,6 +455,8 @@ def _spec_bases() -> dict[str, list[dict]]:
         "curved": [{"configuration": "3.4.4.4"}, {"symbol": "2 3 | 7", "radius": 1.5, "samples": 2},
                    {"configuration": "3.3.4.3.5", "plane": "halfplane", "radius": 1.0, "geometry": "hyperbolic"},
                    {"configuration": "3.3.3.6.6", "pairing": "0- 1+ 2+ 3- 4+", "radius": 1.5},
+                   {"laves": True, "configuration": "3.3.3.6.6", "pairing": "0- 1+ 2+ 3- 4+", "group": "rotations",
+                    "radius": 1.0, "edges": {"c": "0.3,0.1:0.6,-0.08"}},
                    {"laves": True, "configuration": "3.4.3.4"},
                    {"laves": True, "configuration": "4.6.14", "radius": 1.5, "samples": 2},
                    {"laves": True, "symbol": "2 3 | 7", "group": "rotations", "radius": 1.0, "plane": "klein"}],

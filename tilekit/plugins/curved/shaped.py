@@ -180,6 +180,12 @@ def parse_edges(edges: Any) -> Mapping[str, Any]:
     return edges
 
 
+def edges_text(shapes: Mapping[str, EdgeShape] | None) -> dict[str, str] | None:
+    """The ``edges`` option's value that gives ``shapes`` back: EdgeShape text per label, in
+    label order (None, no shapes: the straight tile), as a spec stores it."""
+    return None if shapes is None else {k: v.to_text() for k, v in sorted(shapes.items())}
+
+
 def label_shapes(symbol: IncidenceSymbol, edges: Mapping[str, Any], what: str, scale: float,
                  order: Sequence[str] | None = None) -> dict[str, EdgeShape]:
     """A fundamental shape per label that owns one (:func:`tilekit.incidence.shape_classes`):

@@ -517,14 +517,16 @@ _SPEC_KEYS = set(_OPTIONS) | {"name", "title"}
 
 def configured(tiling: Any, options: dict[str, Any]) -> Any:
     """``tiling`` (a :class:`StarTiling` or its dual) with ``options``, of its own class: a new
-    configuration drops the pairing, name and title, which belong to the old one."""
+    configuration drops the pairing, and an option of the class's ``DEFINING`` the name and
+    title, which belong to the old one; the class's own options (its ``carried``) pass on."""
     tiling.check_options(options)
     same = "configuration" not in options
     pairing = options.get("pairing", format_pairing(tiling.pairing) if same else None)
+    named = not (set(tiling.DEFINING) & set(options))
     return type(tiling)(options.get("configuration", tiling.configuration), pairing=pairing,
                         radius=options.get("radius", tiling.radius), samples=options.get("samples", tiling.samples),
-                        plane=options.get("plane", tiling.plane), name=tiling.name if same else "",
-                        title=tiling.title if same else "")
+                        plane=options.get("plane", tiling.plane), name=tiling.name if named else "",
+                        title=tiling.title if named else "", **tiling.carried(options))
 
 
 class StarTiling(CurvedTiling):
@@ -535,6 +537,8 @@ class StarTiling(CurvedTiling):
     streams = False
     bytes_per_tile = STAR_BYTES_PER_TILE
     OPTIONS = _OPTIONS
+    #: Options that name another tiling: configure() keeps the name and title without them.
+    DEFINING: tuple[str, ...] = ("configuration",)
 
     def __init__(self, configuration: str, *, pairing: str | None = None, radius: float | None = None,
                  samples: int = DEFAULT_SAMPLES, plane: str = "poincare", name: str = "", title: str = "") -> None:
@@ -625,6 +629,10 @@ class StarTiling(CurvedTiling):
 
     def configure(self, **options: Any) -> StarTiling:
         return configured(self, options)
+
+    def carried(self, options: Mapping[str, Any]) -> dict[str, Any]:
+        """A subclass's own options for configure(): none here."""
+        return {}
 
     def spec(self) -> dict[str, Any]:
         return drawing_spec({"configuration": self.configuration, "pairing": format_pairing(self.pairing)}, self,
