@@ -210,3 +210,19 @@ def test_cli_lists_types_and_renders_under_a_subgroup(cli):
 ])
 def test_cli_bad_input_is_one_line(cli, args, needle):
     assert_one_line_error(cli(*args), needle)
+
+
+@pytest.mark.slow   # every spherical Laves record's subgroups: about 18 s on the loaded 2-core machine
+def test_no_two_types_of_a_topology_share_a_symbol_or_an_orbifold():
+    """On every spherical Laves record (the 13 Catalan solids, the trapezohedra n = 3..24) and
+    the bipyramids n = 3..8: no two face-transitive classes share an orbifold name (none is
+    numbered #k) or an incidence symbol (same_symbol is empty). The combinatorial automorphisms
+    of these topologies are their symmetries, so equal symbols would mean conjugate groups; the
+    list holds them apart when they are not, and here it never has to."""
+    configs = ["3.6.6", "3.4.3.4", "3.8.8", "4.6.6", "3.4.4.4", "4.6.8", "3.3.3.3.4", "3.5.3.5", "3.10.10", "5.6.6",
+               "3.4.5.4", "4.6.10", "3.3.3.3.5"]
+    configs += [f"3.3.3.{n}" for n in range(3, 25)] + [f"4.4.{n}" for n in range(3, 9)]
+    for config in configs:
+        types = isohedral_types(LavesTiling(config))
+        assert not any("#" in t.group or t.same_symbol for t in types), config
+        assert len({t.incidence_symbol for t in types}) == len(types)
