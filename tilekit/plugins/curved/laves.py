@@ -699,7 +699,9 @@ def _subgroups_of(symbol_text: str) -> tuple[tuple[str, np.ndarray], ...]:
         classes.setdefault(subgroups.conjugacy_key(table, inv, sub), sub)
     named: dict[str, list[np.ndarray]] = {}
     for sub in classes.values():
-        named.setdefault(subgroups.orbifold_name(mats[sub]), []).append(mats[sub])
+        m = mats[sub]
+        m.setflags(write=False)  # shared by every tiling under that group (the cache's copy)
+        named.setdefault(subgroups.orbifold_name(m), []).append(m)
     out = []
     for name, subs in sorted(named.items(), key=lambda kv: (-len(kv[1][0]), kv[0])):
         # two classes with one orbifold (not met on the Laves topologies, checked by the tests): numbered
