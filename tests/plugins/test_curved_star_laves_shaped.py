@@ -170,11 +170,13 @@ BAD = [
     ({"configuration": "3.3.3.6.6", "edges": {"b": J_SHAPE}}, "has no shaped edge 'b'; its shaped edges are a"),
     ({"configuration": "3.3.3.6.6", "group": "rotations", "edges": {"c": "0.5,0.9:0.5,-0.9"}}, "simple polygon"),
     ({"configuration": "3.3.3.6.6", "group": "mirrors"}, "group must be one of full, rotations"),
+    # an orbifold names a subgroup of a spherical Laves tiling's finite group only (laves.py)
+    ({"configuration": "3.3.3.6.6", "group": "3222"}, "group must be one of full, rotations for a vertex-star dual"),
     ({"configuration": "3.4.4.6.4", "group": "rotations"}, "under the rotations of its group 3*32 has two tile orbits"),
 ]
 
 
-@pytest.mark.parametrize("kwargs, needle", BAD, ids=[b[1][:24] for b in BAD])
+@pytest.mark.parametrize("kwargs, needle", BAD, ids=[b[1][:24] + str(i) for i, b in enumerate(BAD)])
 def test_bad_groups_and_labels_are_one_line(kwargs, needle):
     message = ""
     try:

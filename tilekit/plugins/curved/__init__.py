@@ -497,9 +497,10 @@ def tilekit_normalise(key: str, value: str) -> tuple[str, str] | None:
 def tilekit_cli_commands(cli: Any) -> None:
     # curved/cli.py imports only click and the core's cli_types at its top (the mesh code
     # imports NumPy when the command runs); measured start-up cost: a few milliseconds
-    from tilekit.plugins.curved.cli import sphere_mesh_command
+    from tilekit.plugins.curved.cli import laves_types_command, sphere_mesh_command
 
     cli.add_command(sphere_mesh_command)
+    cli.add_command(laves_types_command)
 
 
 # the curved-space viewer (/curved/NAME, /curved?p=7&q=3): web.py, imported when a web app is made

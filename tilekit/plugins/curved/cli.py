@@ -57,3 +57,33 @@ def sphere_mesh_command(ctx: click.Context, name: str, out: str, size_mm: float,
     tiles, triangles = write_mesh(tiling, out, size_mm=size_mm, rings=rings, relief_mm=relief_mm,
                                   raise_colours=raise_colours or (0,))
     click.echo(f"wrote {out} ({tiles} tiles, {triangles} triangles)")
+
+
+@click.command(name="laves-types")
+@click.argument("name")
+@click.pass_context
+def laves_types_command(ctx: click.Context, name: str) -> None:
+    """List the isohedral types of a spherical Laves tiling's topology: one per subgroup of its
+    symmetry group (up to conjugacy) that is transitive on its faces, with the tile's incidence
+    symbol under that group, the tile's symmetries in it and its edge kinds. Each group is a
+    value of --set group=... for tilekit render.
+
+    \b
+    Examples:
+      tilekit laves-types '[3^4]'
+      tilekit laves-types rhombic-dodecahedron
+    """
+    # start-up cost: the group code loads NumPy, only when the command runs
+    from tilekit.errors import ParameterError
+    from tilekit.plugins.curved.laves import LavesTiling, isohedral_types
+    from tilekit.text import text_table
+
+    tiling = ctx.find_root().obj.catalogue().tiling(name)
+    if not isinstance(tiling, LavesTiling):
+        raise ParameterError(f"{name} is not a Laves tiling of the curved family; laves-types takes one such as "
+                             "[3.4.3.4], V4.6.6 or rhombic-dodecahedron")
+    types = isohedral_types(tiling)
+    rows = [(t.group, t.order, t.incidence_symbol, t.tile_symmetry, t.edge_kinds, ", ".join(t.same_symbol) or "-")
+            for t in types]
+    click.echo(f"[{tiling.configuration}]: {tiling.faces} faces, {len(types)} isohedral types")
+    click.echo(text_table(["group", "order", "incidence symbol", "tile symmetry", "edges", "same symbol"], rows))

@@ -30,15 +30,29 @@ go onto the tile through each edge's chart and onto the neighbours as the symbol
 them (:mod:`.shaped`, shared with isohedral.py), so every edge coincides with its partner.
 Under a kaleidoscope's group *pqr every edge is an I edge (it lies on a mirror), so shapes need
 ``group=rotations`` (or a snub's dual), whose tiles are chiral: no hop or tile symmetry
-reverses orientation; a trapezohedron under 2*n shapes its two S edges. The Laves tiles have no
-U edges (a U edge needs a mirror of the tile through an edge's midpoint).
+reverses orientation; a trapezohedron under 2*n shapes its two S edges. Under the whole group or
+its rotations the Laves tiles have no U edges (a U edge needs a mirror of the tile through an
+edge's midpoint).
+
+Isohedral types (issue 35, item 3; Grünbaum and Shephard's spherical isohedral tilings): on the
+sphere a Laves topology is isohedral under every subgroup H of its whole group that is
+transitive on its faces, and each H gives a type of its own, its incidence symbol read from H's
+elements alone and its edges free as H allows. :func:`face_transitive_subgroups` finds them
+(:mod:`.subgroups`: every subgroup of the finite group from its Cayley table, one per conjugacy
+class, named by orbifold symbol), :func:`isohedral_types` lists the types, and ``group=<orbifold>``
+(e.g. the cube ``| 2 2 3`` under ``332``: a square with a half-turn only, J edges; under ``3*2`` the
+square's mirrors through its edge midpoints make U edges) places the tile by H: one element of H
+per tile, the symbol and the shaped edges under H, so shaped edges still meet their partners.
+The hyperbolic Laves tilings' groups are infinite: only ``full`` and ``rotations`` there.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
-from functools import cached_property
+from dataclasses import dataclass
+from fractions import Fraction
+from functools import cached_property, lru_cache
 from typing import Any
 
 import numpy as np
@@ -46,7 +60,7 @@ import numpy as np
 from tilekit.edgeshapes import EdgeShape
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.incidence import LABELS, IncidenceSymbol, edge_curves
-from tilekit.plugins.curved import delaney, model, notation, wythoff
+from tilekit.plugins.curved import delaney, model, notation, subgroups, wythoff
 from tilekit.plugins.curved.isohedral import colouring, hop_words, hops, word_colours
 from tilekit.plugins.curved.orbifold import (
     _first_of_each,
@@ -68,8 +82,12 @@ from tilekit.plugins.curved.uniform import DEFAULT_FACES, MAX_RADIUS, UniformTil
 #: patches of 2·10^3 to 3·10^4 tiles (tests/plugins/test_curved_laves.py keeps it a bound).
 LAVES_BYTES_PER_TILE = 5000
 
-#: The groups a Laves tiling may be taken under: the construction's (``full``) or its rotations.
+#: The groups a Laves tiling may be taken under by name: the construction's (``full``) or its
+#: rotations; on the sphere also any face-transitive subgroup by its orbifold symbol
+#: (:func:`face_transitive_subgroups`).
 GROUPS = ("full", "rotations")
+#: The characters of an orbifold symbol as a group option spells it (``×`` is read as ``x``).
+_ORBIFOLD_CHARS = set("0123456789,*xo#")
 
 _OPTIONS = ("configuration", "symbol", "group", "edges", "radius", "samples", "plane", "geometry")
 #: ``laves: true`` tells a Laves spec from a uniform tiling's in the curved family.
@@ -85,9 +103,13 @@ def _configuration(text: Any) -> str:
 
 
 def _check_group(group: Any) -> str:
-    if not isinstance(group, str) or group not in GROUPS:
-        raise ParameterError(f"group must be one of {', '.join(GROUPS)}, got {str(group)[:40]}")
-    return group
+    """full, rotations, or an orbifold symbol (checked against the topology once it is known)."""
+    if isinstance(group, str):
+        text = group.strip().replace("×", "x")
+        if text in GROUPS or (text and len(text) <= 20 and set(text) <= _ORBIFOLD_CHARS):
+            return text
+    raise ParameterError(f"group must be one of full, rotations or (on the sphere) the orbifold symbol of a "
+                         f"face-transitive subgroup such as 332, got {str(group)[:40]}")
 
 
 class LavesTiling(UniformTiling):
@@ -111,6 +133,18 @@ class LavesTiling(UniformTiling):
         self.group = _check_group(group)
         super().__init__(None if configuration is None else _configuration(configuration), symbol=symbol,
                          radius=radius, samples=samples, plane=plane, geometry=geometry, name=name, title=title)
+        #: (|H|, 3, 3) the subgroup H named by an orbifold ``group``, else None (full, rotations)
+        self.subgroup: np.ndarray | None = None
+        if self.group not in GROUPS:
+            if self.hyperbolic:
+                raise ParameterError(f"[{self.configuration}] tiles the hyperbolic plane, whose group is infinite: "
+                                     f"group must be full or rotations there, got {self.group}")
+            subs = face_transitive_subgroups(self.symbol)
+            if self.group not in subs:
+                raise ParameterError(f"[{self.configuration}]: {self.group} is not a subgroup of "
+                                     f"{self.symmetry.notation} transitive on its {self.faces} faces; valid groups: "
+                                     f"{', '.join(subs)} (or full, rotations)")
+            self.subgroup = subs[self.group]
         if self.group == "rotations" and self.symbol.form == "omni":
             raise ParameterError(f"[{self.configuration}] under the rotation group {self.symbol.group.lstrip('*')} has "
                                  "two tile orbits (the tile and its mirror image), so it is not isohedral; "
@@ -133,12 +167,14 @@ class LavesTiling(UniformTiling):
 
     def default_name(self) -> str:
         base = f"[{notation.exponent(self.symbol.configuration or ())}]"
-        return base if self.group == "full" else f"{base}-rotations"
+        return base if self.group == "full" else f"{base}-{self.group}"
 
     @property
     def rotations_only(self) -> bool:
         """Whether the group the tiles are taken under has rotations only: ``group=rotations``,
-        or a full group without mirrors (a snub's, pqr)."""
+        or a full group without mirrors (a snub's, pqr), or a subgroup of proper motions."""
+        if self.subgroup is not None:
+            return bool((np.linalg.det(self.subgroup) > 0).all())
         return self.group == "rotations" or not self.symmetry.group.mirrors
 
     @property
@@ -154,7 +190,7 @@ class LavesTiling(UniformTiling):
         under group='rotations' only proper ones). Where the tiling's group is larger than the
         construction's (an antiprism's dual: 2*n against 22n), L·L times the tiling's
         stabiliser of G (:func:`.orbifold.vertex_stabiliser`), so the symbol is the one under
-        the tiling's whole group."""
+        the tiling's whole group. Under a subgroup H (an orbifold ``group``): H's elements, all of them."""
         c = self.construction
         local = _local_elements(c)
         frames, _sides = _star(c, local)
@@ -166,6 +202,9 @@ class LavesTiling(UniformTiling):
         angle = np.mod(np.arctan2(at_pole[:, 1], at_pole[:, 0]), 2 * np.pi)
         order = np.argsort(angle, kind="stable")
         corners = centres[order]
+        if self.subgroup is not None:
+            sub = self.subgroup
+            return corners, sub[np.argsort(np.linalg.det(sub) < 0, kind="stable")]
         pair = np.matmul(local[:, None], local[None]).reshape(-1, 3, 3)
         if self.symmetry.index > 1:
             stab = vertex_stabiliser(c)
@@ -357,6 +396,9 @@ class LavesTiling(UniformTiling):
         plus the circumradius (the disc of the radius is covered)."""
         c = self.construction
         self._check_size(self.estimate_tiles())
+        if self.subgroup is not None:  # H's elements, one per image of G (transitive: every tile)
+            _, sub = self._local
+            return sub[_first_of_each(sub @ c.generator)]
         reach = None
         if self.hyperbolic:
             reach = self._radius() + self.circumradius
@@ -387,6 +429,8 @@ class LavesTiling(UniformTiling):
         Wythoff's construction gives and as many elements again: n mirrors and n rotary reflections."""
         if self.hyperbolic:
             raise ParameterError(f"[{self.configuration}] tiles the hyperbolic plane: its group is infinite")
+        if self.subgroup is not None:
+            return self.subgroup
         return _unique(np.matmul(self.group_elements()[:, None], self.stabiliser[None]).reshape(-1, 3, 3))
 
     def patch(self, region: Any = None) -> ModelPatch:
@@ -422,7 +466,9 @@ class LavesTiling(UniformTiling):
     def group_notation(self) -> str:
         """The group the tiles and their incidence symbol are taken under, in orbifold notation:
         the tiling's symmetry group (``group=full``: *pqr, 2*n for an antiprism's dual) or its
-        rotation subgroup (pqr, 22n)."""
+        rotation subgroup (pqr, 22n), or the subgroup an orbifold ``group`` names."""
+        if self.subgroup is not None:
+            return self.group
         full = self.symmetry.group
         return (full.rotations() if self.group == "rotations" else full).notation
 
@@ -487,7 +533,8 @@ class LavesTiling(UniformTiling):
         return "\n".join([
             "--set configuration=C       the dual's vertex configuration, e.g. 3.4.3.4 (or [3.4.3.4], V3.4.3.4)",
             "--set symbol=S              instead: the dual's Wythoff symbol, e.g. '2 3 | 7'",
-            "--set group=G               full (default: the construction's group) or rotations (chiral tiles)",
+            "--set group=G               full (default: the tiling's group), rotations (chiral tiles), or on the "
+            "sphere a face-transitive subgroup's orbifold symbol, e.g. 332 (tilekit laves-types NAME lists them)",
             "--set edges=JSON            edge shapes by label of the incidence symbol, e.g. "
             "'{\"a\": \"0.2,0.1:0.4,0.1\"}' (EdgeShape text; {} the default shapes)",
             *own,
@@ -617,3 +664,74 @@ def _reflect_across(sp: wythoff.Space, g: np.ndarray, a: np.ndarray, b: np.ndarr
     are one edge length from the crossing point)."""
     f, w = sp.mirror(a, b, g)
     return (np.eye(3) - 2.0 * np.outer(w, f)) @ g
+
+
+# -- isohedral types under the subgroups (issue 35, item 3) -----------------------------------
+
+@dataclass(frozen=True)
+class IsohedralType:
+    """One isohedral type of a spherical Laves topology: the face-transitive subgroup H it is
+    taken under (``group``, its orbifold symbol; ``order`` |H|), the tile's incidence symbol under
+    H (canonical), the tile's symmetries in H (``tile_symmetry``: |H| / faces), its edge kinds,
+    and the other groups whose type has the same incidence symbol (``same_symbol``: a symbol
+    alone does not tell them apart, so they are listed, not merged)."""
+
+    group: str
+    order: int
+    incidence_symbol: str
+    tile_symmetry: int
+    edge_kinds: str
+    same_symbol: tuple[str, ...]
+
+
+@lru_cache(maxsize=64)
+def _subgroups_of(symbol_text: str) -> tuple[tuple[str, np.ndarray], ...]:
+    full = LavesTiling(symbol=symbol_text)
+    mats = full.group_matrices()
+    table = subgroups.cayley_table(mats)
+    inv = subgroups.inverses(table)
+    g = full.construction.generator
+    fixing = np.flatnonzero(same_point(mats @ g, g))
+    classes: dict[bytes, np.ndarray] = {}
+    for sub in subgroups.subgroups(table):
+        if len(sub) != full.faces * len(np.intersect1d(sub, fixing)):
+            continue  # not transitive on the faces: |H| / |H ∩ Stab(G)| is the orbit of G's tile
+        classes.setdefault(subgroups.conjugacy_key(table, inv, sub), sub)
+    named: dict[str, list[np.ndarray]] = {}
+    for sub in classes.values():
+        m = mats[sub]
+        m.setflags(write=False)  # shared by every tiling under that group (the cache's copy)
+        named.setdefault(subgroups.orbifold_name(m), []).append(m)
+    out = []
+    for name, subs in sorted(named.items(), key=lambda kv: (-len(kv[1][0]), kv[0])):
+        # two classes with one orbifold (not met on the Laves topologies, checked by the tests): numbered
+        out += [(name if len(subs) == 1 else f"{name}#{k + 1}", m) for k, m in enumerate(subs)]
+    return tuple(out)
+
+
+def face_transitive_subgroups(symbol: wythoff.Symbol) -> dict[str, np.ndarray]:
+    """The subgroups H of a spherical Laves tiling's whole group (the one ``group=full`` takes,
+    as O(3) matrices in the construction's frame) that act transitively on its faces, one per
+    conjugacy class in that group, by orbifold symbol (:func:`.subgroups.orbifold_name`),
+    largest first (then by name): each is a tiling's isohedral group, the tile's stabiliser in it
+    of order |H| / faces. The cube ``| 2 2 3``: *432, *332, 3*2, 432, 2*3, 332, 223, 3x."""
+    if sum(Fraction(1, n) for n in symbol.orders) <= 1:
+        raise ParameterError(f"{symbol} does not tile the sphere: its group is infinite, so it has no finite list "
+                             "of subgroups")
+    return dict(_subgroups_of(str(symbol)))
+
+
+def isohedral_types(tiling: LavesTiling) -> list[IsohedralType]:
+    """The isohedral types of a spherical Laves tiling's topology, one per face-transitive
+    subgroup up to conjugacy (:func:`face_transitive_subgroups`), largest group first."""
+    if tiling.hyperbolic:
+        raise ParameterError(f"[{tiling.configuration}] tiles the hyperbolic plane: its isohedral types are not listed "
+                             "(its group is infinite); group=full and group=rotations apply there")
+    rows = []
+    for name in face_transitive_subgroups(tiling.symbol):
+        t = LavesTiling(symbol=str(tiling.symbol), group=name)
+        sym = t.incidence_symbol
+        rows.append((name, len(t.subgroup), str(sym), len(t.stabiliser), sym.edge_kinds()))
+    return [IsohedralType(name, order, sym, stab, kinds,
+                          tuple(other for other, _, s, _, _ in rows if s == sym and other != name))
+            for name, order, sym, stab, kinds in rows]

@@ -45,7 +45,7 @@ from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.incidence import IncidenceSymbol, edge_curves
 from tilekit.plugins.curved import delaney, model, notation, wythoff
 from tilekit.plugins.curved.isohedral import colouring, hop_words, hops, word_colours
-from tilekit.plugins.curved.laves import GROUPS, _check_group, default_radius, symbol_from_group
+from tilekit.plugins.curved.laves import GROUPS, default_radius, symbol_from_group
 from tilekit.plugins.curved.orbifold import same_point
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
 from tilekit.plugins.curved.shaped import (
@@ -95,7 +95,11 @@ class StarLavesTiling(CurvedTiling):
     def __init__(self, configuration: str, *, pairing: str | None = None, group: str = "full",
                  edges: Mapping[str, EdgeShape | str] | str | None = None, radius: float | None = None,
                  samples: int = DEFAULT_SAMPLES, plane: str = "poincare", name: str = "", title: str = "") -> None:
-        self.group = _check_group(group)
+        if not isinstance(group, str) or group.strip() not in GROUPS:
+            # the hyperbolic groups' other face-transitive subgroups are infinitely many: only
+            # the whole group and its rotations are taken here (laves.py takes orbifolds on the sphere)
+            raise ParameterError(f"group must be one of {', '.join(GROUPS)} for a vertex-star dual, got {str(group)[:40]}")
+        self.group = group.strip()
         text = str(configuration)
         cfg = notation.laves_configuration(text)
         self.uniform = StarTiling(text if cfg is None else notation.dotted(cfg), pairing=pairing, radius=radius,
