@@ -360,6 +360,26 @@ def word_colours(symbol: IncidenceSymbol, words: np.ndarray, quotient: tuple[int
     return x * b + y
 
 
+def patch_colours(symbol: IncidenceSymbol, motions: np.ndarray, g: model.Geometry, local: np.ndarray, sep: float,
+                  what: str, perfect: tuple[tuple[int, int], tuple[int, ...]] | None = None
+                  ) -> tuple[tuple[int, int], np.ndarray]:
+    """((a, b), colour per tile): the least perfect colouring (:func:`colouring`; ``perfect``
+    when the caller has it already) of the tiles ``local`` (n, 3, 3), given in the frame of the
+    tile at the pole, each matched by its centre (welded at ``sep``) to the tile that the hops
+    ``motions`` reach breadth first (:func:`hop_words`), whose word gives its colour
+    (:func:`word_colours`). Shared by the Laves tiles and the vertex-star duals."""
+    bound = math.inf
+    if g.sign < 0:
+        bound = float(g.acos(local[:, 2, 2]).max()) + 1e-9 if len(local) else 0.0
+    reached, words, relations = hop_words(symbol, motions, g, bound, sep)
+    key = np.concatenate([reached, local])[:, :, 2]
+    rep = wythoff.weld(key if g.sign > 0 else key[:, :2], sep)[len(reached):]
+    if (rep >= len(reached)).any():
+        raise GeometryError(f"{what}: a tile of the patch is not reached by the hops across its edges")
+    quotient, phi = perfect if perfect is not None else colouring(symbol, relations)
+    return quotient, word_colours(symbol, words, quotient, phi)[rep]
+
+
 class CurvedIsohedralTiling(CurvedTiling):
     """Copies of one deformable tile filling the sphere or the hyperbolic plane (see the module).
 

@@ -61,7 +61,7 @@ from tilekit.edgeshapes import EdgeShape
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.incidence import LABELS, IncidenceSymbol, edge_curves
 from tilekit.plugins.curved import delaney, model, notation, subgroups, wythoff
-from tilekit.plugins.curved.isohedral import colouring, hop_words, hops, word_colours
+from tilekit.plugins.curved.isohedral import colouring, hop_words, hops, patch_colours
 from tilekit.plugins.curved.orbifold import (
     _first_of_each,
     _local_elements,
@@ -72,7 +72,13 @@ from tilekit.plugins.curved.orbifold import (
     vertex_stabiliser,
 )
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
-from tilekit.plugins.curved.shaped import edge_frames, first_simple, parse_edges, shaped_outline
+from tilekit.plugins.curved.shaped import (
+    edge_frames,
+    edges_text,
+    first_simple,
+    parse_edges,
+    shaped_outline,
+)
 from tilekit.plugins.curved.tiling import DEFAULT_SAMPLES, clipped
 from tilekit.plugins.curved.uniform import DEFAULT_FACES, MAX_RADIUS, UniformTiling
 
@@ -335,21 +341,11 @@ class LavesTiling(UniformTiling):
         return colouring(self.tile_symbol, relations)
 
     def _colours(self, mats: np.ndarray) -> np.ndarray:
-        """The perfect colouring's colour of each tile (transforms ``mats``): the tiles reached
-        breadth first by hops from the central tile, matched to ``mats`` by their centres."""
-        geom = model.Geometry(self.construction.space.sign)
+        """The perfect colouring's colour of each tile (transforms ``mats``), by
+        :func:`.isohedral.patch_colours` in the central tile's frame."""
         local = np.linalg.inv(self.frame) @ mats                    # the tiles in the central tile's frame
-        bound = math.inf
-        if self.hyperbolic:
-            bound = float(geom.acos(local[:, 2, 2]).max()) + 1e-9
-        reached, words, _ = hop_words(self.tile_symbol, self.motions, geom, bound, self.construction.edge_length)
-        key = np.concatenate([reached, local])[:, :, 2]
-        rep = wythoff.weld(key if geom.sign > 0 else key[:, :2], self.construction.edge_length)[len(reached):]
-        if (rep >= len(reached)).any():
-            raise GeometryError(f"[{self.configuration}]: a tile of the patch is not reached by the hops across "
-                                "its edges")
-        quotient, phi = self.perfect_colouring
-        return word_colours(self.tile_symbol, words, quotient, phi)[rep]
+        return patch_colours(self.tile_symbol, self.motions, model.Geometry(self.construction.space.sign), local,
+                             self.construction.edge_length, f"[{self.configuration}]", self.perfect_colouring)[1]
 
     # -- the Tiling interface ------------------------------------------------------------
     @cached_property
@@ -547,9 +543,7 @@ class LavesTiling(UniformTiling):
 
     def spec_edges(self) -> dict[str, str] | None:
         """The shapes as EdgeShape text per label (None: the straight tile)."""
-        if self.edge_shapes is None:
-            return None
-        return {k: v.to_text() for k, v in sorted(self.edge_shapes.items())}
+        return edges_text(self.edge_shapes)
 
     def defining_spec(self) -> dict[str, Any]:
         out: dict[str, Any] = {"laves": True, **super().defining_spec()}

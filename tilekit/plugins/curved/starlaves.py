@@ -44,7 +44,7 @@ from tilekit.edgeshapes import EdgeShape
 from tilekit.errors import GeometryError, ParameterError, ParseError
 from tilekit.incidence import IncidenceSymbol, edge_curves
 from tilekit.plugins.curved import delaney, model, notation, wythoff
-from tilekit.plugins.curved.isohedral import colouring, hop_words, hops, word_colours
+from tilekit.plugins.curved.isohedral import hops, patch_colours
 from tilekit.plugins.curved.laves import GROUPS, default_radius, symbol_from_group
 from tilekit.plugins.curved.orbifold import same_point
 from tilekit.plugins.curved.patch import ModelPatch, ModelPrototile
@@ -270,16 +270,8 @@ class StarLavesTiling(CurvedTiling):
 
     def perfect_colours(self, mats: np.ndarray) -> tuple[tuple[int, int], np.ndarray]:
         """((a, b), colour per tile placed by ``mats``): the least perfect colouring of the
-        tiles (:func:`.isohedral.colouring`, relations from the hop words reaching the
-        patch, :func:`.isohedral.hop_words`), each tile matched to its hop word by its centre."""
-        bound = float(G.acos(mats[:, 2, 2]).max()) + 1e-9 if len(mats) else 0.0
-        reached, words, relations = hop_words(self.tile_symbol, self.motions, G, bound, self.star.edge)
-        rep = wythoff.weld(np.concatenate([reached, mats])[:, :2, 2], self.star.edge)[len(reached):]
-        if (rep >= len(reached)).any():
-            raise GeometryError(f"[{self.configuration}]: a tile of the patch is not reached by the hops across "
-                                "its edges")
-        quotient, phi = colouring(self.tile_symbol, relations)
-        return quotient, word_colours(self.tile_symbol, words, quotient, phi)[rep]
+        tiles (:func:`.isohedral.patch_colours`)."""
+        return patch_colours(self.tile_symbol, self.motions, G, mats, self.star.edge, f"[{self.configuration}]")
 
     # -- the Tiling interface --------------------------------------------------------------
     @cached_property
