@@ -14,6 +14,7 @@ import re
 
 import numpy as np
 import pytest
+from test_curved_viewer import _face_at, _pixels
 
 from tilekit.plugins.curved import model
 from tilekit.plugins.curved.render import circle_through
@@ -21,18 +22,6 @@ from tilekit.plugins.curved.render import circle_through
 pytest.importorskip("playwright")
 
 CMD = re.compile(r"([MLA])([^MLAZ]*)")
-
-
-def _pixels(page, pts):
-    box = page.eval_on_selector("#disc", "s => { const r = s.getBoundingClientRect(); const v = s.viewBox.baseVal; "
-                                "return [r.left, r.top, r.width, r.height, v.x, v.y, v.width, v.height]; }")
-    left, top, w, h, vx, vy, vw, vh = box
-    return [(left + (x - vx) / vw * w, top + (-y - vy) / vh * h) for x, y in pts]
-
-
-def _face_at(page, xy) -> int | None:
-    return page.evaluate("p => { const e = document.elementFromPoint(p[0], p[1]); "
-                         "return e && e.dataset.face !== undefined ? Number(e.dataset.face) : null; }", list(xy))
 
 
 def _view(page) -> np.ndarray:

@@ -34,7 +34,7 @@
   const PAD = 1.02;
   let data = null, V = eye(), V0 = null, start = null, starts = [], svg = null, paths = [];
   let syms = [], rebase = 0.9, hyper = true, frame = 0, rim = null;
-  const STEREO_R = 0.5, FRAME = 2; // the equator's radius; the outside's frame (holds the view at 1x)
+  const STEREO_R = 0.3, FRAME = 2; // the equator's radius; the outside's frame (holds the view at 1x)
   let stereo = root.dataset.projection === "stereographic";
   const choice = document.getElementById("projection");
   if (choice) choice.value = stereo ? "stereographic" : "orthographic"; // not a form value the browser restored
