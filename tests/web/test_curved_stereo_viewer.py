@@ -129,10 +129,13 @@ def _check_drawing(page, client, name: str) -> None:
     assert shared >= len(sizes)
 
 
-@pytest.mark.parametrize(("name", "faces"), [("cube", 6), ("icosahedron", 20), ("truncated-icosahedron", 32)])
+@pytest.mark.parametrize(("name", "faces"), [("cube", 6), ("icosahedron", 20), ("truncated-icosahedron", 32),
+                                           ("pentagonal-icositetrahedron", 24), ("curved-ih-4-3-1", 6)])
 def test_stereographic_view_draws_every_face_once_with_true_arcs(page, client, name, faces):
-    """Face counts: the cube 6, the icosahedron 20, the truncated icosahedron 12 + 20 (Coxeter,
-    *Regular Polytopes*, table I; the Archimedean solid's faces)."""
+    """Face counts: the cube 6, the icosahedron 20 (Coxeter, *Regular Polytopes*, table I), the
+    truncated icosahedron 12 + 20 and the pentagonal icositetrahedron 24 (the snub cube's 24
+    vertices; Cundy and Rollett, *Mathematical Models*, §3.7), and the cube's faces with shaped
+    edges (curved-ih-4-3-1: pieces of geodesics between many outline points, not convex)."""
     errors = _open(page, f"/curved/{name}?view=stereographic")
     assert page.get_attribute("#curved", "data-projection") == "stereographic"
     assert page.eval_on_selector("#projection", "s => s.value") == "stereographic"
