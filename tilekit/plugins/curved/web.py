@@ -10,11 +10,11 @@ end point onto the view (a Lorentz matrix acting on the hyperboloid points, then
 true arcs); a drag on the sphere composes the rotation taking the start point to the end
 point, in orthographic or stereographic view (``?view=``, :func:`view_mode`; the stereographic
 view projects from the point opposite the screen's centre with render.py's conventions, every
-edge a true arc, the face holding that point drawn as the outside). Tiles beyond the patch are never needed: the payload carries the
-tiling's symmetries that move the disc's centre a short way, and whenever the point under
-the screen's centre is farther than ``rebase`` from the patch's centre the script folds one
-of them into the view (V <- V g): the tiling is g-invariant, so the picture is unchanged and
-the patch again surrounds the screen's centre. The web layer knows these pages only as this
+edge a true arc, the face holding that point drawn as the outside). Tiles beyond the patch
+are never needed: the payload carries the tiling's symmetries that move the disc's centre a
+short way, and whenever the point under the screen's centre is farther than ``rebase`` from
+the patch's centre the script folds one of them into the view (V <- V g): the tiling is
+g-invariant, so the picture is unchanged and the patch again surrounds the screen's centre. The web layer knows these pages only as this
 plugin's contribution."""
 
 from __future__ import annotations
