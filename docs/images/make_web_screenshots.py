@@ -26,6 +26,7 @@ PAGES = [
     ("web-penrose.png", "/penrose", "#penrose[data-state=ok]"),
     ("web-curved-editor.png", "/curved/edit/curved-ih-5-4-5?edge=a=0,0:0.2,0.12:0.36,0.02:1,0"
      "&edge=c=0,0:0.22,0.18:0.5,-0.16:0.8,0.1:1,0", "#curved[data-state=ok]"),
+    ("web-curved-stereographic.png", "/curved/truncated-icosahedron?view=stereographic", "#curved[data-state=ok]"),
     ("web-run.png", "/runs/2?limit=12", None),
     # a catalogue with the polyominoes classified to 8 cells (run 2): a non-tiler's record
     ("web-polyform.png", "/tiling/.x...%2F.x...%2Fxx...%2F.xxxx", None),
@@ -79,7 +80,8 @@ def main(base: str, only: list[str]) -> None:
             page.wait_for_timeout(300)
             # the split panel is below the edge widgets, the curved editor's links below the disc:
             # the whole page
-            page.screenshot(path=str(HERE / name), full_page=name in ("web-editor-split.png", "web-curved-editor.png"))
+            page.screenshot(path=str(HERE / name), full_page=name in ("web-editor-split.png", "web-curved-editor.png",
+                                                                   "web-curved-stereographic.png"))
             print("wrote", HERE / name)
         browser.close()
 

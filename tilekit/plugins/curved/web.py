@@ -8,11 +8,13 @@ sphere's (x, y, z)), and its script (static/viewer.js) moves the view client-sid
 the Poincaré disc composes the hyperbolic translation taking the drag's start point to its
 end point onto the view (a Lorentz matrix acting on the hyperboloid points, then drawn as
 true arcs); a drag on the sphere composes the rotation taking the start point to the end
-point (orthographic view). Tiles beyond the patch are never needed: the payload carries the
-tiling's symmetries that move the disc's centre a short way, and whenever the point under
-the screen's centre is farther than ``rebase`` from the patch's centre the script folds one
-of them into the view (V <- V g): the tiling is g-invariant, so the picture is unchanged and
-the patch again surrounds the screen's centre. The web layer knows these pages only as this
+point, in orthographic or stereographic view (``?view=``, :func:`view_mode`; the stereographic
+view projects from the point opposite the screen's centre with render.py's conventions, every
+edge a true arc, the face holding that point drawn as the outside). Tiles beyond the patch
+are never needed: the payload carries the tiling's symmetries that move the disc's centre a
+short way, and whenever the point under the screen's centre is farther than ``rebase`` from
+the patch's centre the script folds one of them into the view (V <- V g): the tiling is
+g-invariant, so the picture is unchanged and the patch again surrounds the screen's centre. The web layer knows these pages only as this
 plugin's contribution."""
 
 from __future__ import annotations
@@ -48,8 +50,13 @@ VIEW_FACES = 2500
 MAX_VIEW_RADIUS = 6.0
 #: Symmetries sent for rebasing: those moving the pole at most this far.
 SYMMETRY_REACH = 3.0
-#: Points per edge of a sphere face's outline (edges are drawn as polylines there).
+#: Points per edge of a sphere face's outline (edges are drawn as polylines in orthographic
+#: view; in stereographic view each piece between two of them as the true arc of its image).
 SPHERE_SAMPLES = 8
+#: The viewer's views (``?view=``), the default first: the sphere's two projections (as the
+#: CLI's ``--set plane=``), and the hyperbolic viewer's one.
+SPHERE_VIEWS = ("orthographic", "stereographic")
+HYPERBOLIC_VIEWS = ("poincare",)
 
 
 def _radius_for(tiling: Any, budget: int) -> float:
@@ -129,6 +136,28 @@ def view_data(tiling: Any, max_tiles: int, sizer: Any = None) -> dict[str, Any]:
     return out
 
 
+def view_mode(request: Any, hyperbolic: bool) -> str:
+    """The page's view from ``?view=`` (SPHERE_VIEWS or HYPERBOLIC_VIEWS, the first by default);
+    a one-line error naming the valid values otherwise."""
+    got = request.query_params.get("view")
+    valid = HYPERBOLIC_VIEWS if hyperbolic else SPHERE_VIEWS
+    if got is None or got == "":
+        return valid[0]
+    if got not in valid:
+        if hyperbolic:
+            raise ParameterError(f"view {got[:40]!r}: a hyperbolic tiling is drawn in the Poincaré disc, view=poincare "
+                                 f"({', '.join(SPHERE_VIEWS)} are the sphere's)")
+        raise ParameterError(f"view {got[:40]!r}: a sphere is drawn {SPHERE_VIEWS[0]} (default) or {SPHERE_VIEWS[1]}, "
+                             f"view={SPHERE_VIEWS[0]} or view={SPHERE_VIEWS[1]}")
+    return got
+
+
+def projection_control(mode: str) -> str:
+    """The sphere page's control switching between its views (viewer.js reads and follows it)."""
+    options = "".join(f'<option value="{v}"{" selected" if v == mode else ""}>{v}</option>' for v in SPHERE_VIEWS)
+    return f'<label>view <select id="projection" autocomplete="off">{options}</select></label>'
+
+
 def _tiling(request: Any, web: Any, name: str | None) -> Any:
     if name is not None:
         return web.renderer.base_tiling(name)
@@ -156,17 +185,21 @@ def viewer_page(request: Any, web: Any) -> str:
         src = f"/api/curved?p={tiling.p}&q={tiling.q}"
         heading = esc(f"{{{tiling.p},{tiling.q}}}")
     hyperbolic = bool(tiling.hyperbolic)
+    mode = view_mode(request, hyperbolic)
     how = ("Drag to translate the Poincaré disc: the view moves by the hyperbolic translation taking the point "
            "under the pointer where the drag began to where it is now." if hyperbolic else
            "Drag to turn the sphere: the rotation taking the point under the pointer where the drag began to "
-           "where it is now.") + " The wheel or a two-finger pinch zooms about the pointer (1x to 16x)."
+           "where it is now. The stereographic view projects from the point opposite the screen's centre; the "
+           "face holding that point is drawn as the outside.") + \
+        " The wheel or a two-finger pinch zooms about the pointer (1x to 16x)."
+    control = "" if hyperbolic else " " + projection_control(mode)
     editor = ""
     if name is not None and not isinstance(shape_symbol(tiling), str):
         editor = f' <a id="edit" href="/curved/edit/{esc(name_path(name))}">Shape its tiles in the tile editor.</a>'
     body = f"""<h1>{heading}</h1>
 <p>{esc(getattr(tiling, 'title', '') or tiling.describe())}{editor}</p>
-<p>{esc(how)} <button type="button" id="reset">reset view</button></p>
-<div class="curved-viewer" id="curved" data-src="{esc(src)}" data-state="loading">
+<p>{esc(how)} <button type="button" id="reset">reset view</button>{control}</p>
+<div class="curved-viewer" id="curved" data-src="{esc(src)}" data-state="loading" data-projection="{esc(mode)}">
 <div class="view" id="view"></div><p id="status"></p><p class="error" id="error" role="alert"></p></div>"""
     return web.page(f"viewer: {tiling.name}", body, scripts=[f"plugins/{STATIC}/viewer.js"])
 
@@ -344,8 +377,9 @@ def edit_page(request: Any, web: Any) -> str:
                 f"<p>{hint} <a href=\"/curved/{esc(name_path(name))}\">Open it in the viewer.</a></p>")
         return web.page(f"tile editor: {name}", body)
     notice = ""
+    mode = view_mode(request, bool(base.hyperbolic))  # the view is the page's, not the tiling's
     try:
-        tiling = edited(base, query_options(request.query_params.multi_items()))
+        tiling = edited(base, query_options([kv for kv in request.query_params.multi_items() if kv[0] != "view"]))
     except TilekitError as exc:
         notice = web.one_line(exc)
         tiling = edited(base, {})
@@ -358,12 +392,12 @@ def edit_page(request: Any, web: Any) -> str:
 <p>{esc(getattr(tiling, 'title', '') or tiling.describe())}</p>
 <p>{esc(how)} J edges are free curves, U and S edges a half completed by the mirror or the half-turn,
 I edges stay straight. <button type="button" id="reset">reset view</button>
-<button type="button" id="defaults">defaults</button></p>
+<button type="button" id="defaults">defaults</button>{"" if tiling.hyperbolic else " " + projection_control(mode)}</p>
 <p class="error" id="notice" role="alert">{esc(notice)}</p>
 <div class="editor curved-editor">
 <div class="edges" id="edges"></div>
 <div class="curved-viewer" id="curved" data-src="/api/curved/edit/{esc(name_path(name))}?{esc(_query_text(edges))}"
- data-state="loading" data-info="{esc(json.dumps(info))}" data-mark-home="">
+ data-state="loading" data-info="{esc(json.dumps(info))}" data-mark-home="" data-projection="{esc(mode)}">
 <div class="view" id="view"></div><p id="status"></p><p class="error" id="error" role="alert"></p></div>
 </div>
 <p><a id="link" href="#">link to this tiling</a> · <a id="svg" href="#" download>export SVG</a> ·

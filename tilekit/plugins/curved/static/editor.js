@@ -63,7 +63,8 @@
     document.getElementById("svg").href = body.svg;
     document.getElementById("cli").textContent = body.cli;
     root.dataset.query = body.query.join("&");
-    history.replaceState(null, "", body.link);
+    // the address bar also keeps the page's view (viewer.js's ?view=), which the link leaves out
+    history.replaceState(null, "", body.link + (root.dataset.projection === "stereographic" ? "&view=stereographic" : ""));
   });
   root.addEventListener("curved-refused", function (ev) {
     delete root.dataset.busy;

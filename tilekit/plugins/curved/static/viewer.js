@@ -3,7 +3,7 @@
 // rotation of the sphere). A drag composes onto the view at the drag's start, V0, the motion
 // taking the start point to the current point: the hyperbolic translation along their
 // geodesic (Poincaré disc, edges redrawn as true arcs), or the rotation about the axis
-// through both (orthographic sphere). Hyperbolic views are rebased by the tiling's own
+// through both (the sphere, in either view). Hyperbolic views are rebased by the tiling's own
 // symmetries (V <- V g), which leaves the picture as it is and keeps the patch round the
 // screen's centre. The wheel and a two-finger pinch magnify the picture (a Euclidean zoom of
 // the drawing, 1x to 16x, by the SVG's viewBox) about the point under the pointer or between
@@ -13,6 +13,16 @@
 // patch drawn is announced by a "curved-loaded" event carrying the payload, a refusal by
 // "curved-refused" (the last patch stays on screen). With data-mark-home the face placed by
 // the identity (the prototile) is drawn with a heavier outline.
+// The sphere has two views (data-projection, the page's #projection control and ?view=, which
+// the address bar follows): orthographic (the far side faint) and stereographic, with the
+// conventions of render.py's stereographic view (tilekit render --set plane=stereographic):
+// projected from the point opposite the screen's centre, (x, y) / (1 + z) on the turned
+// sphere, scaled so that the equator has radius STEREO_R; every piece of an outline (its
+// points are samples along geodesics) is the true arc of the circle through its projected
+// ends and midpoint, in two SVG arcs; the face holding the projection's pole is drawn as the
+// outside (a frame round the view less its boundary, even-odd). A drag turns the sphere by
+// the rotation taking the sphere point under the drag's start to the one under the pointer,
+// so the point under the pointer stays under it; switching views keeps the rotation.
 (function () {
   "use strict";
   const root = document.getElementById("curved");
@@ -23,7 +33,12 @@
   const NS = "http://www.w3.org/2000/svg";
   const PAD = 1.02;
   let data = null, V = eye(), V0 = null, start = null, starts = [], svg = null, paths = [];
-  let syms = [], rebase = 0.9, hyper = true, frame = 0;
+  let syms = [], rebase = 0.9, hyper = true, frame = 0, rim = null;
+  const STEREO_R = 0.3, FRAME = 2; // the equator's radius; the outside's frame (holds the view at 1x)
+  let stereo = root.dataset.projection === "stereographic";
+  const choice = document.getElementById("projection");
+  if (choice) choice.value = stereo ? "stereographic" : "orthographic"; // not a form value the browser restored
+  root.dataset.equator = String(STEREO_R);
   const MAX_ZOOM = 16;
   let zoom = 1, centre = [0, 0]; // the viewBox: centre (SVG coordinates, y down) and magnification
   const touches = new Map(); let pinch = null;
@@ -60,9 +75,14 @@
     if (r2 >= 1) { const r = Math.sqrt(r2); return [p[0] / r, p[1] / r, 0]; }
     return [p[0], p[1], Math.sqrt(1 - r2)];
   }
-  // the rotation about a x b taking the unit vector a to b (Rodrigues)
-  function rotation(a, b) {
-    const A = onSphere(a), B = onSphere(b);
+  // the sphere point whose stereographic image (scaled by STEREO_R) is the plane point p
+  function fromPlane(p) {
+    const u = p[0] / STEREO_R, v = p[1] / STEREO_R, r2 = u * u + v * v;
+    return [2 * u / (1 + r2), 2 * v / (1 + r2), (1 - r2) / (1 + r2)];
+  }
+  function sphereAt(p) { return stereo ? fromPlane(p) : onSphere(p); }
+  // the rotation about A x B taking the unit vector A to B (Rodrigues)
+  function rotation(A, B) {
     let k = [A[1] * B[2] - A[2] * B[1], A[2] * B[0] - A[0] * B[2], A[0] * B[1] - A[1] * B[0]];
     const s = Math.hypot(k[0], k[1], k[2]), c = A[0] * B[0] + A[1] * B[1] + A[2] * B[2];
     if (s < 1e-15) return eye();
@@ -110,7 +130,83 @@
     const cross = (a[0] - cx) * (b[1] - cy) - (a[1] - cy) * (b[0] - cx);
     return "A" + fmt(r) + " " + fmt(r) + " 0 0 " + (cross > 0 ? "0" : "1") + " " + fmt(b[0]) + " " + fmt(-b[1]);
   }
+  // the sphere point q (view space) projected from (0, 0, -1), scaled; near that pole the
+  // denominator is bounded away from 0 so no coordinate is infinite
+  function project(q) {
+    const s = STEREO_R / Math.max(1 + q[2], 1e-12);
+    return [q[0] * s, q[1] * s];
+  }
+  function pair(p) { return fmt(p[0]) + " " + fmt(-p[1]); }
+  // from a through m to b: two arcs of the circle through the three (render.py's
+  // three_point_arc_commands), or a line where they are collinear
+  function threePointArc(a, m, b) {
+    const u = [m[0] - a[0], m[1] - a[1]], w = [b[0] - a[0], b[1] - a[1]];
+    const cross = u[0] * w[1] - u[1] * w[0], ww = w[0] * w[0] + w[1] * w[1];
+    if (Math.abs(cross) <= 1e-9 * ww) return "L" + pair(b);
+    const uu = u[0] * u[0] + u[1] * u[1];
+    const cx = (uu * w[1] - ww * u[1]) / (2 * cross), cy = (ww * u[0] - uu * w[0]) / (2 * cross);
+    const r = fmt(Math.hypot(cx, cy));
+    const ccw = u[0] * (b[1] - m[1]) - u[1] * (b[0] - m[0]) > 0;
+    const head = "A" + r + " " + r + " 0 0 " + (ccw ? "0" : "1") + " "; // y is flipped: counter-clockwise is sweep 0
+    return head + pair(m) + " " + head + pair(b);
+  }
+  function dot(a, b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+  function cross(a, b) { return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]; }
+  // the turn of the face's outline q (view space) about the pole (0, 0, -1), both seen in the
+  // stereographic projection from the antipode o of the face's mean point (outside the face):
+  // about +-2 pi for the face holding the pole, about 0 for the others. (A projection from the
+  // screen's centre would not do: the face holding the centre also winds round the pole there.)
+  function turnAboutPole(q) {
+    const m = [0, 0, 0];
+    q.forEach(function (c) { m[0] += c[0]; m[1] += c[1]; m[2] += c[2]; });
+    const mn = Math.hypot(m[0], m[1], m[2]);
+    const o = mn > 1e-9 ? [-m[0] / mn, -m[1] / mn, -m[2] / mn] : [0, 0, 1];
+    const e1 = cross(o, Math.abs(o[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0]), n1 = Math.hypot(e1[0], e1[1], e1[2]);
+    e1[0] /= n1; e1[1] /= n1; e1[2] /= n1;
+    const e2 = cross(o, e1);
+    const flat = function (c) { const d = Math.max(1 - dot(c, o), 1e-300); return [dot(c, e1) / d, dot(c, e2) / d]; };
+    const x = flat([0, 0, -1]);
+    let turn = 0, prev = null;
+    for (let i = 0; i <= q.length; i++) {
+      const c = flat(q[i % q.length]);
+      const ang = Math.atan2(c[1] - x[1], c[0] - x[0]);
+      if (prev !== null) {
+        let da = ang - prev;
+        if (da > Math.PI) da -= 2 * Math.PI; else if (da < -Math.PI) da += 2 * Math.PI;
+        turn += da;
+      }
+      prev = ang;
+    }
+    return turn;
+  }
+  function drawStereo() {
+    const pts = data.points;
+    let off = 0, outside = -1;
+    const frameD = "M" + -FRAME + " " + -FRAME + " L" + FRAME + " " + -FRAME + " L" + FRAME + " " + FRAME +
+      " L" + -FRAME + " " + FRAME + " Z ";
+    data.sizes.forEach(function (k, f) {
+      const q = [];
+      for (let i = 0; i < k; i++, off += 3) q.push(apply(V, pts[off], pts[off + 1], pts[off + 2]));
+      let d = "M" + pair(project(q[0]));
+      for (let i = 0; i < k; i++) {
+        const a = q[i], b = q[(i + 1) % k];
+        const s = [a[0] + b[0], a[1] + b[1], a[2] + b[2]], n = Math.hypot(s[0], s[1], s[2]) || 1;
+        d += " " + threePointArc(project(a), project([s[0] / n, s[1] / n, s[2] / n]), project(b));
+      }
+      const el = paths[f];
+      const holds = outside < 0 && Math.abs(turnAboutPole(q)) > Math.PI;
+      if (holds) { outside = f; el.dataset.tile = "outside"; } else delete el.dataset.tile;
+      el.setAttribute("d", (holds ? frameD : "") + d + " Z");
+      el.setAttribute("fill-rule", "evenodd");
+      el.setAttribute("fill-opacity", "1");
+      el.setAttribute("stroke-opacity", "1");
+    });
+    root.dataset.outside = String(outside);
+  }
   function draw() {
+    rim.setAttribute("display", !hyper && stereo ? "none" : "inline");
+    if (!hyper && stereo) { drawStereo(); finish(); return; }
+    delete root.dataset.outside;
     const pts = data.points;
     let off = 0;
     const order = [];
@@ -134,12 +230,16 @@
       const el = paths[f];
       el.setAttribute("d", d + " Z");
       if (!hyper) {
+        delete el.dataset.tile;
         el.setAttribute("fill-opacity", front >= 0 ? "1" : "0.2");
         el.setAttribute("stroke-opacity", front >= 0 ? "1" : "0.2");
         order.push([front, el]);
       }
     });
     if (!hyper) order.sort(function (a, b) { return a[0] - b[0]; }).forEach(function (p) { svg.appendChild(p[1]); });
+    finish();
+  }
+  function finish() {
     root.dataset.view = V.map(function (v) { return v.toPrecision(12); }).join(",");
     root.dataset.renders = String(Number(root.dataset.renders || 0) + 1);
   }
@@ -170,14 +270,14 @@
     zoom = z;
     setBox();
   }
-  function inside(p) { return p[0] * p[0] + p[1] * p[1] < (hyper ? 0.9999 : 1); }
+  function inside(p) { return (!hyper && stereo) || p[0] * p[0] + p[1] * p[1] < (hyper ? 0.9999 : 1); }
   function build(keep) {
     svg = document.createElementNS(NS, "svg");
     svg.setAttribute("id", "disc");
     svg.style.touchAction = "none"; // pinches reach the page's handlers, not the browser's zoom
     if (!keep) { zoom = 1; centre = [0, 0]; }
     setBox();
-    const rim = document.createElementNS(NS, "circle");
+    rim = document.createElementNS(NS, "circle");
     Object.entries({ cx: 0, cy: 0, r: 1, fill: hyper ? "#f8f8f8" : "#eef2f6", stroke: "#222", "stroke-width": 0.004 })
       .forEach(function (kv) { rim.setAttribute(kv[0], kv[1]); });
     svg.appendChild(rim);
@@ -226,7 +326,7 @@
       if (!start) return;
       let p = discPoint(ev);
       if (hyper && !inside(p)) { const r = Math.hypot(p[0], p[1]) / 0.9999; p = [p[0] / r, p[1] / r]; }
-      V = mul(hyper ? translation(start, p) : rotation(start, p), V0);
+      V = mul(hyper ? translation(start, p) : rotation(sphereAt(start), sphereAt(p)), V0);
       if (hyper) rebaseView();
       later();
     });
@@ -277,6 +377,19 @@
     });
   }
   root.addEventListener("curved-reload", load);
+  // the address bar keeps the page's other parameters and says the view (?view=stereographic)
+  function syncUrl() {
+    const kept = location.search.replace(/^\?/, "").split("&").filter(function (s) { return s && !/^view=/.test(s); });
+    if (stereo) kept.push("view=stereographic");
+    history.replaceState(null, "", location.pathname + (kept.length ? "?" + kept.join("&") : "") + location.hash);
+  }
+  if (choice) choice.addEventListener("change", function () {
+    stereo = choice.value === "stereographic";
+    root.dataset.projection = choice.value;
+    syncUrl();
+    if (svg) { zoom = 1; centre = [0, 0]; setBox(); } // the rotation stays; the zoom starts again
+    if (data) draw();
+  });
   document.getElementById("reset").addEventListener("click", function () {
     V = hyper ? eye() : [1, 0, 0, 0, 0.906307787, -0.422618262, 0, 0.422618262, 0.906307787];
     if (svg) { zoom = 1; centre = [0, 0]; setBox(); }
