@@ -118,6 +118,19 @@ def test_laves_records_under_rotations_edit_and_full_groups_say_why_not(client):
     assert regular.status_code == 400 and "the tile editor shapes" in regular.json()["error"]
 
 
+def test_vertex_star_duals_edit_their_shapeable_edges(client):
+    """[3^3.6^2] under its whole group 2*32 has incidence symbol [a+a-b+cb-; a+b-c] (edge kinds
+    SSIII): the editor shapes its one S class; [4^2.6^2] under *3222 has I edges only."""
+    answer = client.get("/api/curved/edit/%5B3%5E3.6%5E2%5D?edge=a=0.25,0.1:0.5,0")
+    body = answer.json()
+    assert answer.status_code == 200, body
+    assert [(e["label"], e["kind"]) for e in body["edges"]] == [("a", "S")]
+    assert body["geometry"] == "hyperbolic", body["query"]
+    assert body["query"] == ["a=0,0:0.25,0.1:0.5,0:1,0"]      # the shape with its ends, exact
+    straight = client.get("/api/curved/edit/%5B4%5E2.6%5E2%5D")
+    assert straight.status_code == 400 and "I edge" in straight.json()["error"] and "\n" not in straight.json()["error"]
+
+
 def test_tiling_and_viewer_pages_link_to_the_editor_where_it_applies(client):
     assert 'href="/curved/edit/curved-ih-5-4-5"' in client.get("/tiling/curved-ih-5-4-5").text
     assert 'href="/curved/edit/curved-ih-5-4-5"' in client.get("/curved/curved-ih-5-4-5").text

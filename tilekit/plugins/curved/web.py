@@ -37,6 +37,7 @@ from tilekit.plugins.curved.laves import LavesTiling
 from tilekit.plugins.curved.model import check_pq
 from tilekit.plugins.curved.render import DEFAULT_PALETTE
 from tilekit.plugins.curved.shaped import parse_edges
+from tilekit.plugins.curved.starlaves import StarLavesTiling
 from tilekit.web.pages import esc, name_path
 from tilekit.web.service import query_options
 
@@ -250,18 +251,20 @@ EDIT_Y = (-1.0, 1.0)
 
 def shape_symbol(tiling: Any) -> tuple[Any, Any] | str:
     """(incidence symbol, label order) whose shape classes ``edges`` names for an editable
-    tiling (a curved-isohedral one; a curved Laves one under its rotations or a snub's dual), or
-    the one-line reason it has nothing to edit."""
+    tiling (a curved-isohedral one; a curved Laves one or a vertex-star dual under a group whose
+    symbol has J, S or U edges: the rotations, a snub's dual, a star dual's S edges), or the
+    one-line reason it has nothing to edit."""
     if isinstance(tiling, CurvedIsohedralTiling):
         symbol, order = tiling.symbol, None
-    elif isinstance(tiling, LavesTiling):
-        if not tiling.rotations_only:
-            return (f"{tiling.name}: under its full group every edge of the Laves tile lies on a mirror (an I edge, "
-                    "straight), so there is nothing to shape; shaped edges need group=rotations or a snub's dual")
+    elif isinstance(tiling, (LavesTiling, StarLavesTiling)):
         symbol, order = tiling.tile_symbol, tiling.label_order
+        if not shape_classes(symbol, order):
+            return (f"{tiling.name}: under its group every edge of the tile lies on a mirror (an I edge, straight), "
+                    "so there is nothing to shape; shaped edges need group=rotations or a snub's dual")
     else:
         return (f"{tiling.name} is a {getattr(tiling, 'family', '?')} tiling; the tile editor shapes the "
-                f"{CURVED_ISOHEDRAL} tilings and the curved Laves tilings (group=rotations or a snub's dual)")
+                f"{CURVED_ISOHEDRAL} tilings, the curved Laves tilings and the vertex-star duals (under a group "
+                "whose tile has edges off its mirrors)")
     if not shape_classes(symbol, order):
         return f"{tiling.name}: every edge of incidence symbol {symbol} is an I edge (straight): nothing to shape"
     return symbol, order
