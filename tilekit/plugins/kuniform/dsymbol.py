@@ -45,8 +45,8 @@ if TYPE_CHECKING:
 
 Perm = tuple[int, ...]
 T = TypeVar("T")
-#: The largest D-symbol text accepted: 12 chambers per vertex orbit, k <= 7.
-MAX_CHAMBERS = 84
+#: The largest D-symbol text accepted: 12 chambers per vertex orbit, k <= 8 (search.MAX_K).
+MAX_CHAMBERS = 96
 
 
 # --------------------------------------------------------------------------- vertex stars
@@ -261,7 +261,7 @@ class DSymbol:
         if len(parts) != 5:
             raise ValueError(f"a D-symbol text has 5 '/'-separated lists (m01/m12/σ0/σ1/σ2), got {len(parts)}")
         if any(p.count(",") >= max_chambers for p in parts):
-            limit = " (12 per vertex orbit, k <= 7)" if max_chambers == MAX_CHAMBERS else ""
+            limit = " (12 per vertex orbit, k <= 8)" if max_chambers == MAX_CHAMBERS else ""
             raise ValueError(f"a D-symbol text may have at most {max_chambers} chambers{limit}")
         face, degree, s0, s1, s2 = (tuple(int(v) for v in p.split(",")) for p in parts)
         n = len(face)
@@ -558,7 +558,7 @@ def from_gavrog(text: str) -> DSymbol:
     if m.group(2) is not None and int(m.group(2)) != 2:
         raise ValueError(f"only 2-dimensional D-symbols (tilings of the plane) are read here, not dimension {m.group(2)}")
     if not 1 <= n <= MAX_CHAMBERS:
-        raise ValueError(f"a D-symbol here has 1 to {MAX_CHAMBERS} chambers (12 per vertex orbit, k <= 7), not {n}")
+        raise ValueError(f"a D-symbol here has 1 to {MAX_CHAMBERS} chambers (12 per vertex orbit, k <= 8), not {n}")
     ops = m.group(3).split(",")
     mvals = m.group(4).split(",")
     if len(ops) != 3 or len(mvals) != 2:
