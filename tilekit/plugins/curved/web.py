@@ -258,16 +258,16 @@ def shape_symbol(tiling: Any) -> tuple[Any, Any] | str:
         symbol, order = tiling.symbol, None
     elif isinstance(tiling, (LavesTiling, StarLavesTiling)):
         symbol, order = tiling.tile_symbol, tiling.label_order
-        if not shape_classes(symbol, order):
-            return (f"{tiling.name}: under its group every edge of the tile lies on a mirror (an I edge, straight), "
-                    "so there is nothing to shape; shaped edges need group=rotations or a snub's dual")
     else:
         return (f"{tiling.name} is a {getattr(tiling, 'family', '?')} tiling; the tile editor shapes the "
                 f"{CURVED_ISOHEDRAL} tilings, the curved Laves tilings and the vertex-star duals (under a group "
                 "whose tile has edges off its mirrors)")
-    if not shape_classes(symbol, order):
-        return f"{tiling.name}: every edge of incidence symbol {symbol} is an I edge (straight): nothing to shape"
-    return symbol, order
+    if shape_classes(symbol, order):
+        return symbol, order
+    if order is not None:
+        return (f"{tiling.name}: under its group every edge of the tile lies on a mirror (an I edge, straight), "
+                "so there is nothing to shape; shaped edges need group=rotations or a snub's dual")
+    return f"{tiling.name}: every edge of incidence symbol {symbol} is an I edge (straight): nothing to shape"
 
 
 def edited(tiling: Any, raw: Any) -> Any:
