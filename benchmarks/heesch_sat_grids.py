@@ -265,9 +265,9 @@ def main() -> None:
         row = ", ".join(f"tilekit {a} / heesch-sat {b}: {c}" for (a, b), c in sorted(table[n].items()))
         print(f"n = {n}: {row}")
     print(f"agree on {len(polys) - len(disagree)} of {len(polys)} forms")
-    print(f"CPU s over {args.runs} runs (min / median): tilekit's classification {min(mine_cpu):.2f} / "
-          f"{statistics.median(mine_cpu):.2f}, heesch-sat -isohedral -hh {min(peer_cpu):.2f} / "
-          f"{statistics.median(peer_cpu):.2f}; heesch-sat / tilekit {min(peer_cpu) / min(mine_cpu):.2f} (min); "
+    print(f"CPU s over {args.runs} runs (min / median): tilekit's classification {min(mine_cpu):.3f} / "
+          f"{statistics.median(mine_cpu):.3f}, heesch-sat -isohedral -hh {min(peer_cpu):.3f} / "
+          f"{statistics.median(peer_cpu):.3f}; heesch-sat / tilekit {min(peer_cpu) / min(mine_cpu):.2f} (min); "
           f"load {os.getloadavg()}")
     if args.per_form:
         mine_min, peer_min = mine_per.min(axis=0), peer_per.min(axis=0)

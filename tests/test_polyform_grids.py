@@ -11,7 +11,11 @@ seq/A000/A000577.seq): 2,495 / 6,354 / 12,908 / 30,261 tile, 2,398 / 6,073 / 12,
 isohedral, 97 / 281 / 280 / 343 anisohedral, 6,290 / 18,099 / 54,808 / 159,048 hole-free
 non-tilers, 450 / 1,713 / 6,267 / 21,988 with holes, of 9,235 / 26,166 / 73,983 / 211,297 free
 forms (the n = 15 and 16 runs that reproduce them: docs/benchmarks.md, checked against these
-lists by test_the_stored_runs_in_the_docs_equal_myers).
+lists by test_the_stored_runs_in_the_docs_equal_myers). The polyhex terms for n = 10 are read from
+the same files (seq/A000/A000228.seq, seq/A070/A070766.seq, seq/A075/A075214.seq,
+seq/A075/A075215.seq, seq/A070/A070768.seq, seq/A038/A038144.seq): 30,490 free, 11,326 tile,
+11,068 isohedral, 258 anisohedral, 18,760 hole-free non-tilers, 404 with holes (the stored n = 10
+run: docs/benchmarks.md).
 """
 
 from __future__ import annotations
@@ -26,12 +30,12 @@ from tilekit.lattice import HEXAGONAL, SQUARE, TRIANGULAR, encode, enumerate_fre
 from tilekit.plugins.polyomino.isohedral import _template_arrays, analyse, periodic_tiling
 
 # n = 1.. ; the sequences' first terms
-A075214 = [1, 1, 3, 7, 22, 76, 290, 1018, 3715]  # isohedral polyhexes
+A075214 = [1, 1, 3, 7, 22, 76, 290, 1018, 3715, 11068]  # isohedral polyhexes
 A075223 = [1, 1, 1, 3, 4, 12, 23, 66, 133, 316, 514, 1987, 2398, 6073, 12628, 29918]  # isohedral polyiamonds
-A070766 = [1, 1, 3, 7, 22, 77, 294, 1054, 3788]  # polyhexes that tile
-A075215 = [0, 0, 0, 0, 0, 1, 4, 36, 73]  # anisohedral polyhexes
-A070768 = [0, 0, 0, 0, 0, 4, 37, 381, 2717]  # hole-free polyhexes that do not tile
-A038144 = [0, 0, 0, 0, 0, 1, 2, 13, 67]  # polyhexes with holes
+A070766 = [1, 1, 3, 7, 22, 77, 294, 1054, 3788, 11326]  # polyhexes that tile
+A075215 = [0, 0, 0, 0, 0, 1, 4, 36, 73, 258]  # anisohedral polyhexes
+A070768 = [0, 0, 0, 0, 0, 4, 37, 381, 2717, 18760]  # hole-free polyhexes that do not tile
+A038144 = [0, 0, 0, 0, 0, 1, 2, 13, 67, 404]  # polyhexes with holes
 A071332 = [1, 1, 1, 3, 4, 12, 23, 66, 139, 341, 567, 2034, 2495, 6354, 12908, 30261]  # polyiamonds that tile
 A075224 = [0, 0, 0, 0, 0, 0, 0, 0, 6, 25, 53, 47, 97, 281, 280, 343]  # anisohedral polyiamonds
 A071334 = [0, 0, 0, 0, 0, 0, 1, 0, 20, 103, 594, 1192, 6290, 18099, 54808, 159048]  # hole-free polyiamonds that do not tile
@@ -108,7 +112,7 @@ def _hole_free(grid, n):
     return [p for p in _free_forms(grid, n) if not _has_hole(grid, p)]
 
 
-A000228 = [1, 1, 3, 7, 22, 82, 333, 1448]  # free polyhexes (FACTS.md)
+A000228 = [1, 1, 3, 7, 22, 82, 333, 1448, 6572, 30490]  # free polyhexes (FACTS.md; 9-10: OEIS)
 A000577 = [1, 1, 1, 3, 4, 12, 24, 66, 160, 448, 1186, 3334, 9235, 26166, 73983, 211297]  # free polyiamonds (FACTS.md; 13-16: OEIS)
 A057786 = [1, 2, 4, 10, 27, 85, 262]  # free polykites (FACTS.md)
 
@@ -180,6 +184,13 @@ def test_isohedral_14_iamonds_equal_a075223():
     assert _isohedral_count(TRIANGULAR, 14) == A075223[13]
 
 
+def test_the_polyhex_sequences_add_up():
+    """Myers' polyhex counts as transcribed above are consistent to n = 10, as for the iamonds."""
+    for n in range(1, 11):
+        assert A070766[n - 1] == A075214[n - 1] + A075215[n - 1]
+        assert A000228[n - 1] == A070766[n - 1] + A070768[n - 1] + A038144[n - 1]
+
+
 def test_the_polyiamond_sequences_add_up():
     """Myers' polyiamond counts as transcribed above are consistent: every tiler is isohedral or
     anisohedral, and every free form tiles, is a hole-free non-tiler, or has holes."""
@@ -222,7 +233,7 @@ def test_the_stored_runs_in_the_docs_equal_myers():
     n = 10 to 16, and any polyhex table) state Myers' counts, column by column (the OEIS terms above),
     and each Heesch column (Hc, Hh) sums to the hole-free non-tilers."""
     rows = _stored_run_rows()
-    assert {(seq, n) for seq, n, *_ in rows} >= {("A000577", 15), ("A000577", 16)}
+    assert {(seq, n) for seq, n, *_ in rows} >= {("A000577", 15), ("A000577", 16), ("A000228", 10)}
     for seq, n, counts, hc, hh in rows:
         assert counts == [s[n - 1] for s in _STORED[seq]], (seq, n)
         assert sum(hc) == sum(hh) == counts[4], (seq, n)

@@ -569,12 +569,17 @@ def _empty_components(c, roots, nbr, period):
     # -1: not a cell centre, 0: empty, 1: filled, 2: visited
     buf = np.full(w * h, -1, np.int64)
     typ = np.zeros(w * h, np.int64)
+    # the cell type at each residue modulo the period (-1: no cell centre)
+    at = np.full(period * period, -1, np.int64)
+    for r in range(nr):
+        at[(roots[r, 1] % period) * period + roots[r, 0] % period] = r
     for yy in range(y0, y1 + 1):
+        row = (yy % period) * period
         for xx in range(x0, x1 + 1):
-            for r in range(nr):
-                if (xx - roots[r, 0]) % period == 0 and (yy - roots[r, 1]) % period == 0:
-                    buf[(yy - y0) * w + xx - x0] = 0
-                    typ[(yy - y0) * w + xx - x0] = r
+            r = at[row + xx % period]
+            if r >= 0:
+                buf[(yy - y0) * w + xx - x0] = 0
+                typ[(yy - y0) * w + xx - x0] = r
     for k in range(n):
         buf[(c[k, 1] - y0) * w + c[k, 0] - x0] = 1
     stack = np.zeros(w * h, np.int64)

@@ -690,6 +690,38 @@ def _padded(first: np.ndarray, starts: np.ndarray, members: np.ndarray, pad: int
     return out
 
 
+
+@njit(cache=True)
+def _vertex_pairs(keys, table, period, offs, starts, kernel):  # pragma: no cover - compiled
+    """:meth:`CoronaLadder._vertex_pairs`: for each cell type r in turn, each cell of ``keys``
+    (packed) of that type and each of its vertex neighbours ``offs[starts[r]:starts[r + 1]]``
+    not among the sorted ``kernel`` keys, the pair (cell, neighbour) of packed keys."""
+    off, mm = np.int64(_OFF), np.int64(_M)
+    n = keys.shape[0]
+    types = np.empty(n, np.int64)
+    for i in range(n):
+        x, y = keys[i] // mm - off, keys[i] % mm - off
+        types[i] = table[(y % period) * period + x % period]
+    out_c = np.empty(n * (offs.shape[0] + 1), np.int64)
+    out_d = np.empty(n * (offs.shape[0] + 1), np.int64)
+    k = 0
+    nk = kernel.shape[0]
+    for r in range(starts.shape[0] - 1):
+        for i in range(n):
+            if types[i] != r:
+                continue
+            x, y = keys[i] // mm - off, keys[i] % mm - off
+            for o in range(starts[r], starts[r + 1]):
+                dk = (x + offs[o, 0] + off) * mm + (y + offs[o, 1] + off)
+                q = np.searchsorted(kernel, dk)
+                if q < nk and kernel[q] == dk:
+                    continue
+                out_c[k] = keys[i]
+                out_d[k] = dk
+                k += 1
+    return out_c[:k].copy(), out_d[:k].copy()
+
+
 class CoronaLadder:
     """The corona formulas of :class:`HeeschSolver` for k = 1, 2, ... in one incremental solver.
 
@@ -737,22 +769,20 @@ class CoronaLadder:
         grid = hs.grid
         #: per cell type, the offsets of the cells sharing a vertex with it
         self.around = _vertex_neighbours(grid)
+        #: the same as one array of offsets and each type's start in it
+        self.around_flat = (np.ascontiguousarray(np.concatenate(self.around), dtype=np.int64),
+                            np.cumsum([0] + [len(o) for o in self.around]).astype(np.int64))
         #: (k, :func:`cover_index` of the candidate copies of levels 1..k), made on the first hole
         self.index: tuple[int, tuple[np.ndarray, np.ndarray]] | None = None
 
     def _vertex_pairs(self, keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(c, d) for every cell c of ``keys`` and every cell d sharing a vertex with it,
-        d not a kernel cell (a kernel cell is covered)."""
-        cells = unpack(keys)
-        types = self.hs.grid.cell_type(cells) if len(self.around) > 1 else np.zeros(len(cells), dtype=np.int64)
-        cs, ds = [], []
-        for r, off in enumerate(self.around):
-            at = cells[types == r]
-            cs.append(np.repeat(pack(at), len(off)))
-            ds.append(pack(at[:, None, :] + off[None, :, :]).ravel())
-        c, d = np.concatenate(cs), np.concatenate(ds)
-        keep = ~np.isin(d, self.hs.kernel_keys)
-        return c[keep], d[keep]
+        d not a kernel cell (a kernel cell is covered): the cells of each type in turn, in the
+        order of ``keys``, one compiled call (:func:`_vertex_pairs`)."""
+        grid = self.hs.grid
+        offs, starts = self.around_flat
+        return _vertex_pairs(np.ascontiguousarray(keys, dtype=np.int64), grid.type_table, np.int64(grid.period),
+                             offs, starts, self.hs.kernel_keys)
 
     def close(self) -> None:
         if self.solver is not None:

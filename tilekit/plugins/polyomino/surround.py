@@ -41,7 +41,7 @@ from tilekit.budget import Budget
 from tilekit.jit import njit
 from tilekit.lattice import _M, _OFF
 from tilekit.plugins.polyomino.heesch import HeeschSolver
-from tilekit.plugins.polyomino.isohedral import _group_inverse, _group_mul, _hnf_add
+from tilekit.plugins.polyomino.isohedral import _group_closure, _group_inverse, _group_mul
 from tilekit.plugins.polyomino.placements import Forms
 from tilekit.plugins.polyomino.torus import TorusSearch, TorusTiling, _reduce
 
@@ -295,40 +295,21 @@ class SurroundTest:
         elems = _elements(rows, self.c, self.gl)[used]
         gs = self.gl[0]
         syms = [(int(gs[k]), -int(self.c[gs[k], 0]), -int(self.c[gs[k], 1])) for k in range(1, self.S) if held[k - 1]]
-        gens = [tuple(e) for e in elems.tolist()] + syms
-        if not gens:
+        gens = np.array(elems.tolist() + syms, dtype=np.int64).reshape(-1, 3)
+        if not len(gens):
             return None
-        G, mul = self.group, self.mul
-
-        def compose(a: tuple[int, int, int], b: tuple[int, int, int]) -> tuple[int, int, int]:
-            m = G[a[0]]
-            return (int(mul[a[0], b[0]]), int(m[0, 0] * b[1] + m[0, 1] * b[2] + a[1]),
-                    int(m[1, 0] * b[1] + m[1, 1] * b[2] + a[2]))
-
-        reps = {0: (0, 0, 0)}  # a transversal of the point group of the generated group
-        queue = [0]
-        while queue:
-            r = reps[queue.pop()]
-            for e in gens:
-                q = compose(r, e)
-                if q[0] not in reps:
-                    reps[q[0]] = q
-                    queue.append(q[0])
-        lat: tuple[int, int, int] = (0, 0, 0)
-        for r in reps.values():  # Schreier's generators of the translations: r e rep(r e)^-1
-            for e in gens:
-                q = compose(r, e)
-                w = reps[q[0]]
-                dx, dy = q[1] - w[1], q[2] - w[2]
-                if dx % p or dy % p:
-                    return None
-                lat = _hnf_add(lat, (dx // p, dy // p))
-        a, b, d = lat
+        # a transversal of the point group of the generated group (taken depth first) and its
+        # translation lattice, by Schreier's generators
+        reps, a, b, d = _group_closure(gens, self.group, self.mul, True)
         if a == 0 or d == 0:
             return None  # no lattice of translations: not a tiling of the plane
+        if a % p or b % p or d % p:
+            return None  # a translation off the grid
+        a, b, d = a // p, b // p, d // p
+        lat = (a, b, d)
         ts = TorusSearch(self.hs.forms)
         N = a * d
-        placed = np.array([[self.o[g], (tx + self.c[g, 0]) // p, (ty + self.c[g, 1]) // p] for g, tx, ty in reps.values()],
+        placed = np.array([[self.o[g], (tx + self.c[g, 0]) // p, (ty + self.c[g, 1]) // p] for g, tx, ty in reps.tolist()],
                           dtype=np.int64)
         key = placed[:, 0] * N + _reduce(placed[:, 1:3], a, b, d)
         _, first = np.unique(key, return_index=True)

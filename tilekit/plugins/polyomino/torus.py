@@ -205,7 +205,7 @@ class TorusSearch:
         self.forms = forms
         self.solver = solver
         g = forms.grid
-        self.types = np.stack([g.cell_type(f) for f in forms.forms])  # (J, n)
+        self.types = g.cell_type(forms.forms).reshape(forms.forms.shape[:2])  # (J, n)
         self.units = (forms.forms - g.roots[self.types]) // g.period  # (J, n, 2)
         self.R = len(g.roots)
         self.sat_calls = 0
