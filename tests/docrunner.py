@@ -411,13 +411,27 @@ def _run_server(command: str, state: DocState, block: Block) -> None:
 # -- benchmarks -----------------------------------------------------------------------------
 
 
+def _pipeline_parts(command: str) -> list[list[str]]:
+    """The simple commands of a shell line as word lists: split at ``&&``, ``||``, ``;`` and ``|``
+    outside quotes (a quoted ``;``, as in a polyhex code, stays in its word), a `` #`` comment dropped."""
+    lex = shlex.shlex(command.split(" #")[0], posix=True, punctuation_chars=";&|")
+    lex.whitespace_split = True
+    lex.commenters = ""
+    parts: list[list[str]] = [[]]
+    for tok in lex:
+        if tok in (";", "&&", "||", "|"):
+            parts.append([])
+        else:
+            parts[-1].append(tok)
+    return [p for p in parts if p]
+
+
 def benchmark_invocations(block: Block) -> list[list[str]]:
     """The ``python benchmarks/X.py ARGS`` commands of a block, as argument lists."""
     lines = console_commands(block.text) if block.lang == "console" else [(c, []) for c in _script_commands(block.text)]
     out = []
     for command, _ in lines:
-        for part in re.split(r"\s*(?:&&|;|\|)\s*", command.split(" #")[0]):
-            words = shlex.split(part)
+        for words in _pipeline_parts(command):
             for i, w in enumerate(words):
                 # a script run by Python; `pytest benchmarks/X.py` is a pytest-benchmark suite
                 if (w.startswith("benchmarks/") and w.endswith(".py") and i > 0

@@ -119,6 +119,14 @@ def test_the_runner_fails_a_command_whose_output_drifted(tmp_path) -> None:
         run_block(Block(ROOT / "README.md", 3, "console", "$ echo fine\nerror: ...", "fast"), state)
 
 
+def test_benchmark_commands_split_at_shell_operators_outside_quotes() -> None:
+    """A benchmark block's command line is split into simple commands at ``;``, ``&&`` and ``|``
+    but not inside quotes: a polyhex code such as 'hex:0,0;3,0' is one word."""
+    block = Block(ROOT / "x.md", 1, "console",
+                  "$ tilekit search --codes 'hex:0,0;3,0' && python benchmarks/a.py --grid hex 'b;c' | head -1 # note\n", "benchmark")
+    assert benchmark_invocations(block) == [["benchmarks/a.py", "--grid", "hex", "b;c"]]
+
+
 def test_the_runner_runs_bash_blocks_with_errexit(tmp_path) -> None:
     state = DocState.create(ROOT / "README.md", tmp_path)
     with pytest.raises(AssertionError, match="exited 1"):
