@@ -529,7 +529,7 @@ def holes(grid: Grid, cells: np.ndarray) -> list[np.ndarray]:
 
 def _components(grid: Grid, cells: np.ndarray):
     c = np.ascontiguousarray(np.asarray(cells, dtype=np.int64).reshape(-1, 2))
-    return _empty_components(c, grid.roots.astype(np.int64), grid.neighbours.astype(np.int64), np.int64(grid.period))
+    return _empty_components(c, grid.type_table, grid.neighbours.astype(np.int64), np.int64(grid.period))
 
 
 def hole_count(grid: Grid, cells: np.ndarray) -> int:
@@ -538,7 +538,7 @@ def hole_count(grid: Grid, cells: np.ndarray) -> int:
 
 
 @njit(cache=True)
-def _empty_components(c, roots, nbr, period):
+def _empty_components(c, at, nbr, period):
     """Edge-connected components of the empty cells in the bounding box of ``c`` plus a margin
     of two periods: (label per box position, -1 where no empty cell; x0, y0, w, count).
     Label 0 is the outside (every component reaching beyond one period of the cells; holes
@@ -565,14 +565,10 @@ def _empty_components(c, roots, nbr, period):
     y1 = y1 - (y1 % period) + m + period - 1
     w = x1 - x0 + 1
     h = y1 - y0 + 1
-    nr = roots.shape[0]
     # -1: not a cell centre, 0: empty, 1: filled, 2: visited
     buf = np.full(w * h, -1, np.int64)
     typ = np.zeros(w * h, np.int64)
-    # the cell type at each residue modulo the period (-1: no cell centre)
-    at = np.full(period * period, -1, np.int64)
-    for r in range(nr):
-        at[(roots[r, 1] % period) * period + roots[r, 0] % period] = r
+    # ``at``: the cell type at each residue modulo the period, -1: no cell centre (Grid.type_table)
     for yy in range(y0, y1 + 1):
         row = (yy % period) * period
         for xx in range(x0, x1 + 1):

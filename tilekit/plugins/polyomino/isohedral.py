@@ -546,6 +546,13 @@ def _pattern(name: str, mask: int) -> tuple[tuple[str, ...], str, int | None]:
     return _canon_sig_cached(sig), "".join(sig), ih_type(f)
 
 
+def _verdict(fams: dict, found: list[dict], tilings: list, boundary: np.ndarray) -> dict:
+    """The result of :func:`analyse` (and of :func:`analyse_many`, each form) from its family
+    flags, the factorisations kept and the tilings built."""
+    return {**fams, "isohedral": bool(found), "ih_types": sorted({d["ih"] for d in found if d["ih"] is not None}),
+            "factorisations": found, "tilings": tilings, "boundary": boundary}
+
+
 def analyse_many(grid: Grid, polys: list[np.ndarray], maxout: int = 256) -> list[dict]:
     """``analyse(grid, cells, construct=False)`` of many hole-free polyforms, equal result by result.
 
@@ -599,9 +606,7 @@ def analyse_many(grid: Grid, polys: list[np.ndarray], maxout: int = 256) -> list
             fams[_family(fams_of[t], letters)] = True
             found.append({"template": names[t], "start": r[3], "lengths": r[4:4 + klen[t]], "heesch": letters,
                           "ih": ih})
-        out.append({**fams, "isohedral": bool(found),
-                    "ih_types": sorted({d["ih"] for d in found if d["ih"] is not None}),
-                    "factorisations": found, "tilings": [], "boundary": words[i, :m].copy()})
+        out.append(_verdict(fams, found, [], words[i, :m].copy()))
     return out
 
 
@@ -974,15 +979,7 @@ def analyse(grid: Grid, cells: np.ndarray, *, construct: bool = True, build_all:
         sigs_done.add(sig)
         fams[_family(f.family, heesch)] = True
         found.append({"template": f.template, "start": f.start, "lengths": list(f.lengths), "heesch": heesch, "ih": ih})
-    ihs = sorted({d["ih"] for d in found if d["ih"] is not None})
-    return {
-        **fams,
-        "isohedral": bool(found),
-        "ih_types": ihs,
-        "factorisations": found,
-        "tilings": tilings,
-        "boundary": letters,
-    }
+    return _verdict(fams, found, tilings, letters)
 
 
 
@@ -1064,8 +1061,7 @@ def _analyse_built(grid: Grid, cells: np.ndarray, verts: np.ndarray, letters: np
         tilings.append(BuiltTiling(f, ih, unit, np.array([[a, b], [0, d]], dtype=np.int64)))
         fams[_family(fam, heesch)] = True
         found_.append({"template": name, "start": f.start, "lengths": list(f.lengths), "heesch": heesch, "ih": ih})
-    return {**fams, "isohedral": bool(found_), "ih_types": sorted({d["ih"] for d in found_ if d["ih"] is not None}),
-            "factorisations": found_, "tilings": tilings, "boundary": letters}
+    return _verdict(fams, found_, tilings, letters)
 
 
 def periodic_tiling(grid: Grid, cells: np.ndarray, bt: BuiltTiling, name: str = "", family: str = "polyomino"):

@@ -41,7 +41,7 @@ from tilekit.budget import Budget
 from tilekit.jit import njit
 from tilekit.lattice import _M, _OFF
 from tilekit.plugins.polyomino.heesch import HeeschSolver
-from tilekit.plugins.polyomino.isohedral import _group_closure, _group_inverse, _group_mul
+from tilekit.plugins.polyomino.isohedral import _group_closure, _inv_array, _mul_array
 from tilekit.plugins.polyomino.placements import Forms
 from tilekit.plugins.polyomino.torus import TorusSearch, TorusTiling, _reduce
 
@@ -207,8 +207,7 @@ class SurroundTest:
         self.hs = hs
         forms, grid = hs.forms, hs.grid
         self.group = grid.group.astype(np.int64)
-        self.mul = np.asarray(_group_mul(grid), dtype=np.int64)
-        self.inv = np.asarray(_group_inverse(grid), dtype=np.int64)
+        self.mul, self.inv = _mul_array(grid), _inv_array(grid)  # shared, read only
         self.o, self.c = element_maps(forms)
         # the elements taking the kernel onto each orientation, in group order (S of each)
         G = len(self.group)
