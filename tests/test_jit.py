@@ -89,8 +89,48 @@ def test_with_no_writable_folder_functions_compile_without_a_disk_cache(tmp_path
 def test_a_user_set_numba_cache_dir_is_respected(tmp_path):
     mine = tmp_path / "mine"
     pkg, done = _compile(tmp_path, {"NUMBA_CACHE_DIR": str(mine), "HOME": str(tmp_path)})
-    assert done.stdout.split()[1] == str(mine)
+    assert Path(done.stdout.split()[1]).parent == mine
     assert _cache_files(mine) and _cache_files(pkg) == []
+
+
+def test_the_cache_folder_changes_with_any_source_of_tilekit(tmp_path):
+    """numba checks a cached function against its own file only: a caller cached before its callee
+    (in another module) changed kept the old callee (``heesch._least_holes`` failed to type after
+    ``lattice._empty_components`` took a new argument). The folder is named by all of tilekit's
+    sources, so any change starts a fresh cache."""
+    import tilekit.jit as jit
+
+    src = tmp_path / "src"
+    (src / "sub").mkdir(parents=True)
+    (src / "a.py").write_text("x = 1\n")
+    (src / "sub" / "b.py").write_text("y = 2\n")
+    first = jit.fingerprint(src)
+    assert jit.fingerprint(src) == first
+    (src / "sub" / "b.py").write_text("y = 3  # callee changed\n")
+    os.utime(src / "sub" / "b.py", ns=(1, 1))
+    assert jit.fingerprint(src) != first
+    jit.cache_dir.cache_clear()
+    try:
+        here = jit.cache_dir()
+        assert here is not None
+        assert here.name == f"src-{jit.fingerprint(ROOT / 'tilekit')}"
+    finally:
+        jit.cache_dir.cache_clear()
+
+
+def test_fingerprint_folders_unused_for_a_week_are_pruned(tmp_path):
+    import tilekit.jit as jit
+
+    old, recent = tmp_path / "src-old", tmp_path / "src-recent"
+    old.mkdir()
+    recent.mkdir()
+    other = tmp_path / "not-ours"
+    other.mkdir()
+    week = jit.STALE_SECONDS + 60
+    for p in (old, other):
+        os.utime(p, (os.path.getmtime(p) - week, os.path.getmtime(p) - week))
+    jit._prune(tmp_path, keep="src-current")
+    assert not old.exists() and recent.exists() and other.exists()
 
 
 def test_every_compiled_loop_of_tilekit_goes_through_tilekit_jit():

@@ -115,11 +115,11 @@ class HeeschResult:
 
 
 @njit(cache=True)
-def _least_holes(pairs, roots, nbr, period):  # pragma: no cover - compiled
+def _least_holes(pairs, at, nbr, period):  # pragma: no cover - compiled
     """Per row of ``pairs`` (cells of two copies), the size of its smallest hole (0: none)."""
     out = np.zeros(pairs.shape[0], np.int64)
     for i in range(pairs.shape[0]):
-        lab, x0, y0, w, comps = _empty_components(pairs[i], roots, nbr, period)
+        lab, x0, y0, w, comps = _empty_components(pairs[i], at, nbr, period)
         if comps <= 1:
             continue
         size = np.zeros(comps, np.int64)
@@ -144,7 +144,7 @@ def unfillable_rows(grid: Grid, forms: Forms, rows: np.ndarray, j: int = 0) -> n
         return np.zeros(0, dtype=bool)
     cells = np.concatenate([np.broadcast_to(forms.forms[j], (len(rows), forms.n, 2)),
                             forms.forms[rows[:, 0]] + rows[:, None, 1:3]], axis=1)
-    least = _least_holes(np.ascontiguousarray(cells), grid.roots.astype(np.int64), grid.neighbours.astype(np.int64),
+    least = _least_holes(np.ascontiguousarray(cells), grid.type_table, grid.neighbours.astype(np.int64),
                          np.int64(grid.period))
     return (least > 0) & (least < forms.n)
 
