@@ -23,6 +23,9 @@ row (103 non-tilers, Hc 44 / 55 / 3 / 1 and Hh 33 / 59 / 10 / 0 / 1 for 0 / 1 / 
 to ``sat -hh`` shape by shape (``bench_heesch_sat.py --grid iamond --cells 10 --mode hc --hh``,
 2026-12-03: "heesch-sat decided 103 of 103; they differ on 0"), and the 11-iamonds' row (594
 non-tilers, Hc 236 / 346 / 11 / 1, Hh 117 / 446 / 30 / 1: "decided 594 of 594; they differ on 0").
+The stored runs of the 8- and 9-hexes and the 12- and 13-iamonds (docs/benchmarks.md) were checked
+the same way by ``benchmarks/check_heesch_sat.py``: 381, 2,717, 1,192 and 6,290 forms, no pair
+differs; their rows are checked in the suite by their sums (tests/test_polyform_grids.py).
 
 Every row sums to Myers' count of hole-free non-tilers (A070768 polyhexes: 4, 37 for n = 6, 7;
 A071334 polyiamonds: 1, 0, 20, 103 for n = 7..10), and the shapes surrounded to the level limit
