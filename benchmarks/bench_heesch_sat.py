@@ -231,6 +231,16 @@ def child_cpu(cmd: list[str], stdin: str) -> tuple[float, str]:
         return usage.ru_utime + usage.ru_stime, out.read()
 
 
+def run_whole(cmd: list[str], lines: list[str], jobs: int, pool) -> tuple[float, list]:
+    """heesch-sat over the whole file, cut into ``jobs`` interleaved parts run side by side on
+    ``pool``: the CPU seconds summed over the parts, and the verdicts in the lines' order."""
+    done = list(pool.map(lambda part: child_cpu(cmd, part), ["".join(lines[i::jobs]) for i in range(jobs)]))
+    verdicts: list = [None] * len(lines)
+    for i, (_, out) in enumerate(done):
+        verdicts[i::jobs] = parse_verdicts(out)
+    return sum(cpu for cpu, _ in done), verdicts
+
+
 def run_peer(sat: Path, lines: list[str], runs: int, max_level: int, jobs: int,
              flags: tuple[str, ...] = ()) -> tuple[np.ndarray, list[float], float, list]:
     """heesch-sat per shape (a process each, ``jobs`` at a time; each child's own CPU time)
@@ -242,7 +252,6 @@ def run_peer(sat: Path, lines: list[str], runs: int, max_level: int, jobs: int,
     per = np.full((runs, len(lines)), np.inf)
     totals = []
     verdicts: list = []
-    parts = ["".join(lines[i::jobs]) for i in range(jobs)]
     with ThreadPoolExecutor(jobs) as pool:
         for r in range(runs):
             done = list(pool.map(lambda line: child_cpu(cmd, line), lines))
@@ -250,12 +259,9 @@ def run_peer(sat: Path, lines: list[str], runs: int, max_level: int, jobs: int,
             if r == 0:
                 for _, out in done:
                     verdicts.extend(parse_verdicts(out))
-            whole = list(pool.map(lambda part: child_cpu(cmd, part), parts))
-            totals.append(sum(cpu for cpu, _ in whole))
+            total, again = run_whole(cmd, lines, jobs, pool)
+            totals.append(total)
             if r == 0:
-                again: list = [None] * len(lines)
-                for i, (_, out) in enumerate(whole):
-                    again[i::jobs] = parse_verdicts(out)
                 if again != verdicts:
                     raise SystemExit("heesch-sat answered differently on the whole file and shape by shape")
     return per.min(axis=0), totals, empty, verdicts

@@ -27,31 +27,28 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import numpy as np
-import sqlalchemy as sa
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from bench_heesch_sat import PEER_GRID, cache_dir, child_cpu, parse_verdicts, peer_line  # noqa: E402
+from bench_heesch_sat import PEER_GRID, cache_dir, peer_line, run_whole  # noqa: E402
 
+from tilekit.catalogue import open_catalogue  # noqa: E402
+from tilekit.errors import TilekitError  # noqa: E402
 from tilekit.lattice import get_grid  # noqa: E402
-from tilekit.plugins.polyomino.tables import TABLE  # noqa: E402
 
 
 def stored_nontilers(url: str, grid: str, n: int) -> tuple[list[tuple[str, np.ndarray, int, int]], Counter]:
     """(code, cells, Hc, Hh) of every hole-free non-tiler of the run, and the tally of all its rows
-    by ``tiles`` (true / false / undecided) and holes."""
-    engine = sa.create_engine(url)
+    by ``tiles`` (true / false / undecided) and holes; read through the catalogue API, streamed."""
+    cat = open_catalogue(url, seed=False)
     rows = []
     tally: Counter = Counter()
-    with engine.connect() as conn:
-        q = sa.select(TABLE.c.code, TABLE.c.cell_list, TABLE.c.holes, TABLE.c.tiles, TABLE.c.heesch,
-                      TABLE.c.heesch_holes).where(TABLE.c.grid == grid, TABLE.c.cells == n)
-        for code, cell_list, holes, tiles, hc, hh in conn.execute(q):
-            tally["with holes" if holes else f"tiles={tiles}"] += 1
-            if not holes and tiles == "false":
-                rows.append((code, np.array(json.loads(cell_list), dtype=np.int64), int(hc), int(hh)))
-    engine.dispose()
+    for row in cat.iter_result_rows("polyominoes", [f"grid={grid}", f"cells={n}"]):
+        tally["with holes" if row["holes"] else f"tiles={row['tiles']}"] += 1
+        if not row["holes"] and row["tiles"] == "false":
+            rows.append((row["code"], np.array(json.loads(row["cell_list"]), dtype=np.int64),
+                         int(row["heesch"]), int(row["heesch_holes"])))
     return rows, tally
 
 
@@ -75,7 +72,7 @@ def main() -> None:
         raise SystemExit(f"no heesch-sat binary at {sat}: run benchmarks/bench_heesch_sat.py --build first")
     try:
         rows, tally = stored_nontilers(args.catalogue, grid.name, args.cells)
-    except (sa.exc.SQLAlchemyError, ValueError) as exc:
+    except TilekitError as exc:
         raise SystemExit(f"cannot read the polyform rows of {args.catalogue}: {str(exc).splitlines()[0]}") from None
     rows = rows[::max(1, args.every)]
     if not rows:
@@ -84,15 +81,10 @@ def main() -> None:
           f"{len(rows)} hole-free non-tilers to check (every {max(1, args.every)})", flush=True)
     lines = [peer_line(cells, grid) for _, cells, _, _ in rows]
     jobs = max(1, args.jobs)
-    parts = ["".join(lines[i::jobs]) for i in range(jobs)]
     cmd = [str(sat), "-hh", "-maxlevel", str(args.max_level)]
     start = time.time()
     with ThreadPoolExecutor(jobs) as pool:
-        done = list(pool.map(lambda part: child_cpu(cmd, part), parts))
-    verdicts: list = [None] * len(rows)
-    for i, (_, out) in enumerate(done):
-        verdicts[i::jobs] = parse_verdicts(out)
-    cpu = sum(c for c, _ in done)
+        cpu, verdicts = run_whole(cmd, lines, jobs, pool)
     ours = [("~", hc, hh) for _, _, hc, hh in rows]
     decided = [i for i, v in enumerate(verdicts) if v[0] == "~"]
     differ = [i for i in decided if verdicts[i] != ours[i]]
@@ -103,7 +95,7 @@ def main() -> None:
             per = Counter(v[col] for v in got if v[0] == "~")
             print(f"  {name} {what} per value: {dict(sorted(per.items()))}")
     print(f"verdicts: heesch-sat decided {len(decided)} of {len(rows)}; they differ on {len(differ)}")
-    for i in [i for i in range(len(rows)) if i not in set(decided)][:10]:
+    for i in [i for i, v in enumerate(verdicts) if v[0] != "~"][:10]:
         print(f"  undecided by heesch-sat: {rows[i][0]} {verdicts[i]}")
     for i in differ[:10]:
         print(f"  differs: {rows[i][0]} stored {ours[i][1:]} heesch-sat {verdicts[i][1:]}")
